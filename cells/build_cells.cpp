@@ -1,0 +1,95 @@
+// Avenues — build_cells: the pipeline of passes (see build_cells.h).
+#include "cells/build_cells.h"
+
+#include <chrono>
+
+#include "cells/passes.h"
+
+namespace avenues {
+
+namespace {
+
+/// Times a stage into the complex's timings (Recast's rcScopedTimer, in spirit).
+class ScopedTimer {
+ public:
+  ScopedTimer(CellComplex& c, const char* stage) : c_(c), stage_(stage), t0_(std::chrono::steady_clock::now()) {}
+  ~ScopedTimer() {
+    std::chrono::duration<double> dt = std::chrono::steady_clock::now() - t0_;
+    c_.timings.push_back({stage_, dt.count()});
+  }
+
+ private:
+  CellComplex& c_;
+  const char* stage_;
+  std::chrono::steady_clock::time_point t0_;
+};
+
+}  // namespace
+
+CellComplex build_cells(const Plan& plan, [[maybe_unused]] const CellParams& params) {
+  using namespace detail;
+  if (plan.walls.empty()) throw PlanError({plan.source, 0, 0, ""}, "the plan has no walls");
+  if (plan.storeys.empty()) throw PlanError({plan.source, 0, 0, ""}, "the plan has no storeys");
+  CellComplex out;
+  out.plan_name = plan.name;
+  out.storeys = plan.storeys;
+  out.materials = plan.materials;
+  out.objects = plan.objects;
+  out.lights = plan.lights;
+  out.view = plan.view;
+
+  Outline outline;
+  {
+    ScopedTimer t(out, "outline");
+    outline = make_outline(plan);
+  }
+  out.far_box.add({outline.lo.x, outline.lo.y, outline.z_bottom});
+  out.far_box.add({outline.hi.x, outline.hi.y, outline.z_top});
+  Triangulation tri;
+  {
+    ScopedTimer t(out, "triangulate");
+    std::vector<Vec2> labels;
+    for (const Room& r : plan.rooms) labels.push_back(r.label);
+    tri = triangulate(outline, labels);
+  }
+  Classes cls;
+  {
+    ScopedTimer t(out, "classify");
+    cls = classify(plan, outline, tri);
+    out.rooms = cls.rooms;
+  }
+  Layout layout;
+  {
+    ScopedTimer t(out, "merge+extrude");
+    layout = extrude(plan, outline, tri, cls, out);
+  }
+  {
+    ScopedTimer t(out, "lines");
+    real_lines(outline, tri, cls, layout, out);
+  }
+  // Solids, for naming what a point is inside; then the spatial index.
+  for (const Region& r : outline.regions) {
+    if (r.sheet) continue;
+    const Wall& w = plan.walls[size_t(r.wall)];
+    const Storey& s = plan.storeys[size_t(r.storey)];
+    std::string what = "wall '" + w.name + "'";
+    if (w.where.line > 0) what += " (" + w.where.file + ":" + std::to_string(w.where.line) + ")";
+    out.solids.push_back({r.poly, s.elevation, s.elevation + s.height, what});
+  }
+  {
+    ScopedTimer t(out, "index");
+    out.index();
+  }
+#ifndef NDEBUG
+  const bool check = true;
+#else
+  const bool check = params.validate;
+#endif
+  if (check) {
+    std::string why = cells_are_valid(out);
+    if (!why.empty()) throw std::logic_error("cell complex of '" + plan.name + "' is invalid: " + why);
+  }
+  return out;
+}
+
+}  // namespace avenues

@@ -1,0 +1,48 @@
+// Avenues — building the cell complex from a plan (the one CGAL boundary).
+//
+// build_cells() runs a pipeline of small passes (Recast style), each timed into
+// CellComplex::timings:
+//   1. outline   — walls become convex solid quads (mitred joins, arcs already
+//                  tessellated), zero-thickness walls become "sheets", openings
+//                  become footprints, floor openings become holes;
+//   2. triangulate — one exact constrained Delaunay triangulation (CGAL, Epeck with
+//                  exact intersections) of every outline of every storey and the far box;
+//   3. classify  — each triangle, per height band, is solid, or free space of one
+//                  room / doorway / stairwell / the outside;
+//   4. merge     — Hertel–Mehlhorn: adjacent free triangles of one class are merged
+//                  while convex, giving convex footprints;
+//   5. extrude   — footprints become prisms; shared edges become portals, stacked
+//                  footprints horizontal portals, the rest opaque faces;
+//   6. lines     — the real lines of the architecture, assigned to the cells they bound.
+#pragma once
+
+#include <string>
+
+#include "cells/cell_complex.h"
+#include "plans/plan.h"
+
+namespace avenues {
+
+struct CellParams {
+  bool validate = false;  ///< run cells_are_valid() after building (always on in debug builds)
+};
+
+/// Builds the cell complex. Throws PlanError for plan mistakes found only now
+/// (a room label inside a wall, a room open to the outside, ...).
+CellComplex build_cells(const Plan& plan, const CellParams& params = {});
+
+/// Independent checks of the complex (the same the tests run): convex cells that do not
+/// overlap, free volume accounted for, convex portals lying in a face of both cells,
+/// no portal joining a cell to itself. Returns "" when valid, else what is wrong.
+std::string cells_are_valid(const CellComplex& complex);
+
+/// Saves / loads a decomposed complex (binary, versioned). Throws std::runtime_error
+/// naming the file on failure; load_cells rebuilds the spatial index.
+void save_cells(const CellComplex& complex, const std::string& path);
+CellComplex load_cells(const std::string& path);
+
+/// Writes the opaque surfaces as a Wavefront OBJ triangle mesh, one group per cell
+/// named "cell<id>", so other tools can read the building.
+void export_obj(const CellComplex& complex, const std::string& path);
+
+}  // namespace avenues

@@ -1,0 +1,154 @@
+// Avenues — the cell complex's own operations: containment, point location, names.
+#include "cells/cell_complex.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace avenues {
+
+const char* to_string(CellKind k) {
+  switch (k) {
+    case CellKind::Room: return "room";
+    case CellKind::Doorway: return "doorway";
+    case CellKind::Stairwell: return "stairwell";
+    case CellKind::Outside: return "outside";
+    case CellKind::Sky: return "sky";
+  }
+  return "?";
+}
+
+const char* to_string(PortalKind k) {
+  switch (k) {
+    case PortalKind::Transparent: return "transparent";
+    case PortalKind::Door: return "door";
+    case PortalKind::Window: return "window";
+    case PortalKind::Hatch: return "hatch";
+    case PortalKind::Gap: return "gap";
+    case PortalKind::Stairwell: return "stairwell";
+    case PortalKind::Open: return "open";
+  }
+  return "?";
+}
+
+const char* to_string(LineKind k) {
+  switch (k) {
+    case LineKind::Concave: return "concave";
+    case LineKind::Convex: return "convex";
+    case LineKind::Sheet: return "sheet";
+  }
+  return "?";
+}
+
+Box3 Cell::bounds() const {
+  Box3 b;
+  for (Vec2 p : footprint) {
+    b.add({p.x, p.y, z0});
+    b.add({p.x, p.y, z1});
+  }
+  return b;
+}
+
+namespace {
+/// Closed containment of p in a convex counter-clockwise polygon, grown by tol.
+bool in_convex(const std::vector<Vec2>& poly, Vec2 p, double tol) {
+  const size_t m = poly.size();
+  for (size_t k = 0; k < m; ++k) {
+    Vec2 a = poly[k], b = poly[(k + 1) % m];
+    Vec2 d = b - a;
+    // Signed distance of p to the left of a->b.
+    if (cross(d, p - a) < -tol * length(d)) return false;
+  }
+  return true;
+}
+}  // namespace
+
+bool Cell::contains(Vec3 p, double tol) const {
+  if (p.z < z0 - tol || p.z > z1 + tol) return false;
+  return in_convex(footprint, {p.x, p.y}, tol);
+}
+
+double total_volume(const CellComplex& c) {
+  double v = 0;
+  for (const Cell& cell : c.cells) {
+    double a = 0;
+    for (size_t i = 0; i < cell.footprint.size(); ++i)
+      a += cross(cell.footprint[i], cell.footprint[(i + 1) % cell.footprint.size()]);
+    v += a / 2 * (cell.z1 - cell.z0);
+  }
+  return v;
+}
+
+void CellComplex::index() {
+  // One uniform grid in plan over the far box; each grid square lists the cells whose
+  // footprint's bounding box overlaps it (all heights: a few storeys per square).
+  bands.assign(1, Band{});
+  Band& g = bands[0];
+  g.z0 = far_box.lo.z;
+  g.z1 = far_box.hi.z;
+  const double w = far_box.hi.x - far_box.lo.x, h = far_box.hi.y - far_box.lo.y;
+  if (!(w > 0 && h > 0)) return;
+  g.x0 = far_box.lo.x;
+  g.y0 = far_box.lo.y;
+  g.cell_size = std::max(std::sqrt(w * h / double(std::max<size_t>(cells.size(), 1))), 1e-3);
+  g.nx = std::clamp(int(w / g.cell_size) + 1, 1, 2048);
+  g.ny = std::clamp(int(h / g.cell_size) + 1, 1, 2048);
+  g.cell_size = std::max(w / g.nx, h / g.ny) * (1 + 1e-9);
+  std::vector<std::vector<CellId>> sq(size_t(g.nx) * size_t(g.ny));
+  auto ix = [&](double x) { return std::clamp(int((x - g.x0) / g.cell_size), 0, g.nx - 1); };
+  auto iy = [&](double y) { return std::clamp(int((y - g.y0) / g.cell_size), 0, g.ny - 1); };
+  for (CellId c = 0; c < CellId(cells.size()); ++c) {
+    Box3 b = cells[size_t(c)].bounds();
+    for (int j = iy(b.lo.y); j <= iy(b.hi.y); ++j)
+      for (int i = ix(b.lo.x); i <= ix(b.hi.x); ++i) sq[size_t(j) * size_t(g.nx) + size_t(i)].push_back(c);
+  }
+  g.start.assign(1, 0);
+  g.items.clear();
+  for (auto& s : sq) {
+    g.items.insert(g.items.end(), s.begin(), s.end());
+    g.start.push_back(int32_t(g.items.size()));
+  }
+}
+
+Location CellComplex::locate(Vec3 p, CellId hint) const {
+  Location loc;
+  if (!far_box.contains(p)) return loc;
+  // Walk: the hint, then the cells one portal away (a moving eye rarely goes further).
+  if (hint >= 0 && hint < CellId(cells.size())) {
+    const Cell& h = cells[size_t(hint)];
+    if (h.contains(p)) return {Location::What::Cell, hint, {}};
+    for (PortalId pi : h.portals) {
+      CellId o = portals[size_t(pi)].other(hint);
+      if (cells[size_t(o)].contains(p)) return {Location::What::Cell, o, {}};
+    }
+  }
+  if (!bands.empty() && bands[0].nx > 0) {
+    const Band& g = bands[0];
+    int i = std::clamp(int((p.x - g.x0) / g.cell_size), 0, g.nx - 1);
+    int j = std::clamp(int((p.y - g.y0) / g.cell_size), 0, g.ny - 1);
+    size_t s = size_t(j) * size_t(g.nx) + size_t(i);
+    for (int32_t k = g.start[s]; k < g.start[s + 1]; ++k)
+      if (cells[size_t(g.items[size_t(k)])].contains(p)) return {Location::What::Cell, g.items[size_t(k)], {}};
+  }
+  // Not in free space: say what it is inside.
+  loc.what = Location::What::Solid;
+  for (const SolidBox& s : solids)
+    if (p.z >= s.z0 && p.z <= s.z1 && in_convex(s.quad, {p.x, p.y}, 0)) {
+      loc.solid = s.what;
+      return loc;
+    }
+  for (size_t k = 0; k < storeys.size(); ++k) {
+    const Storey& st = storeys[k];
+    if (p.z >= st.elevation + st.height && p.z <= st.elevation + st.height + st.slab) {
+      loc.solid = "the slab above storey '" + st.name + "'";
+      return loc;
+    }
+    if (p.z >= st.elevation && p.z <= st.elevation + st.height) {
+      loc.solid = "a wall of storey '" + st.name + "'";
+      return loc;
+    }
+  }
+  loc.solid = p.z < 0 ? "the ground" : "solid";
+  return loc;
+}
+
+}  // namespace avenues

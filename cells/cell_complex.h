@@ -1,0 +1,174 @@
+// Avenues — the cell complex: convex cells joined by convex portals.
+//
+// Jones 1971: "the space ... is considered ... as a set of cells which are bounded
+// partly by faces of the original objects, and partly by artificially introduced
+// transparent faces. ... Each cell is required to be a convex polyhedron, ... each
+// opening ... a convex polygon, ... shared by two adjacent cells."
+//
+// Every cell Avenues builds is a vertical prism: a convex footprint (counter-
+// clockwise, seen from above) between two heights. Plain structs linked by typed
+// indices (Recast/Godot style); the CellComplex owns every array, cells never point
+// at each other. All coordinates are doubles in metres, rounded once from the exact
+// CGAL construction in cells/decompose.cpp.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "plans/geometry.h"
+#include "plans/plan.h"
+
+namespace avenues {
+
+using CellId = int32_t;    ///< index into CellComplex::cells
+using PortalId = int32_t;  ///< index into CellComplex::portals
+using LineId = int32_t;    ///< index into CellComplex::lines
+using RoomId = int32_t;    ///< index into CellComplex::rooms; -1 = none (outside, sky)
+
+constexpr CellId kNoCell = -1;
+
+enum class CellKind : uint8_t {
+  Room,       ///< a convex piece of a named (or enclosed, unnamed) room
+  Doorway,    ///< the volume of an opening inside a thick wall, sill to head
+  Stairwell,  ///< a hole through a floor slab
+  Outside,    ///< free space around the building, storey or slab height
+  Sky,        ///< free space above the building, up to the far box
+};
+const char* to_string(CellKind k);
+
+enum class PortalKind : uint8_t {
+  Transparent,  ///< an artificial face between two convex pieces of one space
+  Door,
+  Window,
+  Hatch,
+  Gap,          ///< the open part above a low wall
+  Stairwell,    ///< horizontal, through a floor opening
+  Open,         ///< horizontal or vertical between outside pieces (no building element)
+};
+const char* to_string(PortalKind k);
+
+/// A convex polygon shared by exactly two cells.
+struct Portal {
+  CellId cell[2] = {kNoCell, kNoCell};
+  std::vector<Vec3> poly;  ///< convex, counter-clockwise seen from cell[0] (its normal points into cell[1])
+  Plane plane;             ///< n points from cell[0] into cell[1]
+  PortalKind kind = PortalKind::Transparent;
+  int opening = -1;        ///< plan element index (wall opening or floor opening), -1 if none
+  CellId other(CellId c) const { return cell[0] == c ? cell[1] : cell[0]; }
+};
+
+/// An opaque convex polygon on a cell's boundary, facing into the cell.
+struct OpaquePoly {
+  std::vector<Vec3> poly;  ///< convex, counter-clockwise seen from inside the cell
+  MaterialId material = -1;
+};
+
+/// One planar face of a cell's boundary: opaque except where portals open it.
+struct Face {
+  Plane plane;                    ///< outward
+  std::vector<Vec3> poly;         ///< the whole face, convex, counter-clockwise seen from inside
+  std::vector<PortalId> portals;  ///< portals lying in this face
+  std::vector<OpaquePoly> opaque; ///< the face minus its portals, as convex pieces
+};
+
+enum class LineKind : uint8_t {
+  Concave,  ///< a crease seen from inside free space (wall–floor, inner corner)
+  Convex,   ///< an outer corner, an edge of a reveal, a roof edge: can be a silhouette
+  Sheet,    ///< an edge of a zero-thickness wall (its end, its openings' frames)
+};
+const char* to_string(LineKind k);
+
+/// A real line of the architecture (never an edge of an artificial face).
+struct RealLine {
+  Vec3 a, b;  ///< [m]
+  LineKind kind = LineKind::Concave;
+};
+
+/// The part of a real line that bounds one cell; `line` is shared by every cell
+/// the line touches, so a renderer can draw each line once.
+struct CellLine {
+  LineId line = -1;
+  double t0 = 0, t1 = 1;  ///< parameter range along RealLine a→b, 0 <= t0 < t1 <= 1
+};
+
+struct Cell {
+  CellKind kind = CellKind::Room;
+  RoomId room = -1;
+  StoreyId storey = -1;          ///< storey whose band holds the cell; -1 above/below the building
+  std::vector<Vec2> footprint;   ///< convex, counter-clockwise, no collinear vertices
+  double z0 = 0, z1 = 0;         ///< [m] floor and ceiling of the prism, z0 < z1
+  std::vector<Face> faces;       ///< sides (one per footprint edge, edge i from footprint[i]), then bottom, then top
+  std::vector<PortalId> portals; ///< all portals of all faces
+  std::vector<CellLine> lines;   ///< real lines on the cell's boundary
+  int opening = -1;              ///< for Doorway/Stairwell cells: plan element index
+
+  Box3 bounds() const;
+  /// Closed containment with tolerance tol [m] (positive grows the cell).
+  bool contains(Vec3 p, double tol = 0) const;
+};
+
+struct RoomInfo {
+  std::string name;
+  StoreyId storey = 0;
+  bool named = true;  ///< false for an enclosed space no plan room labels
+  double area = 0;    ///< [m²] floor area (free footprint)
+};
+
+/// What a point is in (point location).
+struct Location {
+  enum class What : uint8_t { Cell, Solid, OutsideBox } what = What::OutsideBox;
+  CellId cell = kNoCell;
+  std::string solid;  ///< for Solid: what it is inside, e.g. "wall 'north' (plan.toml:12)"
+};
+
+/// Seconds spent per stage of the build, for `avenues cells`.
+struct StageTime {
+  std::string stage;
+  double seconds = 0;
+};
+
+struct CellComplex {
+  std::string plan_name;
+  std::vector<Storey> storeys;
+  std::vector<Material> materials;
+  std::vector<RoomInfo> rooms;
+  std::vector<Cell> cells;
+  std::vector<Portal> portals;
+  std::vector<RealLine> lines;
+  std::vector<Object> objects;  ///< carried along for the renderer
+  std::vector<Light> lights;
+  Box3 far_box;                 ///< the large opaque box (Jones) around everything
+  std::optional<Viewpoint> view;
+  std::vector<StageTime> timings;
+
+  /// Which cell holds p. `hint` (a cell near p, e.g. the last eye's) makes it a short
+  /// walk through portals; a spatial index catches the rest. Points on a shared face
+  /// go to either cell. Solid reports name the element when known.
+  Location locate(Vec3 p, CellId hint = kNoCell) const;
+
+  /// Builds the spatial index used by locate(); done by build_cells and load_cells.
+  void index();
+
+  // --- spatial index (derived; rebuilt by index()) ---
+  struct Band {
+    double z0 = 0, z1 = 0;
+    double x0 = 0, y0 = 0, cell_size = 1;
+    int nx = 0, ny = 0;
+    std::vector<int32_t> start;   ///< nx*ny+1 offsets into items
+    std::vector<CellId> items;
+  };
+  std::vector<Band> bands;
+  /// Solid regions for naming what a point is inside (footprints of walls etc.).
+  struct SolidBox {
+    std::vector<Vec2> quad;  ///< convex footprint
+    double z0 = 0, z1 = 0;
+    std::string what;
+  };
+  std::vector<SolidBox> solids;
+};
+
+/// Sum of cell volumes [m³].
+double total_volume(const CellComplex& c);
+
+}  // namespace avenues

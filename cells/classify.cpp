@@ -1,0 +1,226 @@
+// Avenues — pass 3 of build_cells: what each triangle is, band by band.
+//
+// The far box is cut into horizontal bands: each storey's floor-to-ceiling band, the
+// slab above it, a plinth under a raised ground floor, and the sky up to the box's top.
+// Within a band every triangle of the triangulation is solid or one class of free
+// space: a room (a connected component of a storey's free triangles, walls of no
+// thickness acting as barriers, named by the plan room whose label lies in it), a
+// doorway (a strip of wall open from sill to head), a stairwell (a hole in a slab) or
+// the outside. Plan mistakes found here (a label in a wall, a room open to the outside)
+// are PlanErrors naming the room.
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "cells/passes.h"
+
+namespace avenues::detail {
+
+namespace {
+
+bool has_sheet_of_storey(const Outline& o, const Triangulation& T, int h, StoreyId s) {
+  for (int32_t k = T.sheet_start[size_t(h)]; k < T.sheet_start[size_t(h) + 1]; ++k)
+    if (o.regions[size_t(T.sheet_items[size_t(k)])].storey == s) return true;
+  return false;
+}
+
+}  // namespace
+
+Classes classify(const Plan& plan, const Outline& outline, const Triangulation& T) {
+  Classes C;
+  const int n = T.size();
+  const int S = int(plan.storeys.size());
+
+  // --- bands, bottom to top; split at ground level (z = 0), below which the outside is earth.
+  std::vector<Band> bands;
+  const double e0 = plan.storeys.front().elevation;
+  if (e0 > 0) bands.push_back({Band::Kind::Plinth, 0, e0, 0, true});
+  for (int s = 0; s < S; ++s) {
+    const Storey& st = plan.storeys[size_t(s)];
+    bands.push_back({Band::Kind::Storey, st.elevation, st.elevation + st.height, s, true});
+    double top = s + 1 < S ? plan.storeys[size_t(s) + 1].elevation : st.elevation + st.height + st.slab;
+    if (top > st.elevation + st.height) bands.push_back({Band::Kind::Slab, st.elevation + st.height, top, s, true});
+  }
+  bands.push_back({Band::Kind::Sky, bands.back().z1, outline.z_top, -1, true});
+  for (Band b : bands) {
+    if (b.z0 < 0 && b.z1 > 0) {
+      Band lo = b, hi = b;
+      lo.z1 = 0;
+      hi.z0 = 0;
+      lo.outside_free = false;
+      C.bands.push_back(lo);
+      C.bands.push_back(hi);
+    } else {
+      b.outside_free = b.z0 >= 0;
+      C.bands.push_back(b);
+    }
+  }
+
+  // --- per storey: rooms as connected components of the triangles no wall of the storey covers.
+  // comp[s][t]: component id, -1 if covered by a wall region of s. Component 0 is the outside.
+  std::vector<std::vector<int32_t>> comp(size_t(S), std::vector<int32_t>(size_t(n), -1));
+  std::vector<std::vector<uint8_t>> covered(size_t(S), std::vector<uint8_t>(size_t(n), 0));
+  for (int t = 0; t < n; ++t)
+    for (int32_t k = T.region_start[size_t(t)]; k < T.region_start[size_t(t) + 1]; ++k)
+      covered[size_t(outline.regions[size_t(T.region_items[size_t(k)])].storey)][size_t(t)] = 1;
+
+  // Named rooms first (RoomId = index in plan.rooms), then enclosed spaces nobody named.
+  for (const Room& r : plan.rooms) C.rooms.push_back({r.name, r.storey, true, 0});
+  std::vector<std::vector<RoomId>> room_of_comp(static_cast<size_t>(S));
+  std::vector<int32_t> stack;
+  for (int s = 0; s < S; ++s) {
+    auto& cs = comp[size_t(s)];
+    std::vector<uint8_t> outside_comp;  // per component: touches the far box
+    int ncomp = 0;
+    for (int seed = 0; seed < n; ++seed) {
+      if (covered[size_t(s)][size_t(seed)] || cs[size_t(seed)] >= 0) continue;
+      bool touches = false;
+      cs[size_t(seed)] = ncomp;
+      stack.assign(1, seed);
+      while (!stack.empty()) {
+        int t = stack.back();
+        stack.pop_back();
+        for (int i = 0; i < 3; ++i) {
+          int u = T.nbr[size_t(t)][size_t(i)];
+          if (u < 0) { touches = true; continue; }
+          if (covered[size_t(s)][size_t(u)] || cs[size_t(u)] >= 0) continue;
+          if (has_sheet_of_storey(outline, T, 3 * t + i, s)) continue;
+          cs[size_t(u)] = ncomp;
+          stack.push_back(u);
+        }
+      }
+      outside_comp.push_back(touches);
+      ++ncomp;
+    }
+    auto& rc = room_of_comp[size_t(s)];
+    rc.assign(size_t(ncomp), -1);
+    for (int r = 0; r < int(plan.rooms.size()); ++r) {
+      const Room& room = plan.rooms[size_t(r)];
+      if (room.storey != s) continue;
+      int t = T.label_tri[size_t(r)];
+      if (t < 0) throw PlanError(room.where, "the label point of room '" + room.name + "' is outside the far box");
+      if (covered[size_t(s)][size_t(t)])
+        throw PlanError(room.where, "the label point of room '" + room.name + "' is inside a wall");
+      int c = cs[size_t(t)];
+      if (outside_comp[size_t(c)])
+        throw PlanError(room.where, "room '" + room.name +
+                                        "' is not enclosed by walls: its label point reaches the outside");
+      if (rc[size_t(c)] >= 0)
+        throw PlanError(room.where, "rooms '" + plan.rooms[size_t(rc[size_t(c)])].name + "' and '" + room.name +
+                                        "' label the same enclosed space");
+      rc[size_t(c)] = r;
+    }
+    int unnamed = 0;
+    for (int c = 0; c < ncomp; ++c) {
+      if (outside_comp[size_t(c)] || rc[size_t(c)] >= 0) continue;
+      rc[size_t(c)] = RoomId(C.rooms.size());
+      C.rooms.push_back({"space " + std::to_string(++unnamed) + " of " + plan.storeys[size_t(s)].name, s, false, 0});
+    }
+  }
+
+  // --- classes. Shared ones first.
+  auto add_class = [&](SpaceClass c) {
+    C.classes.push_back(std::move(c));
+    return int32_t(C.classes.size() - 1);
+  };
+  SpaceClass outside_c;
+  outside_c.kind = CellKind::Outside;
+  outside_c.portal = PortalKind::Open;
+  const int32_t kOutside = add_class(outside_c);
+  SpaceClass sky_c;
+  sky_c.kind = CellKind::Sky;
+  sky_c.portal = PortalKind::Open;
+  const int32_t kSky = add_class(sky_c);
+  std::vector<int32_t> room_class(C.rooms.size());
+  for (size_t r = 0; r < C.rooms.size(); ++r) {
+    SpaceClass c;
+    c.kind = CellKind::Room;
+    c.room = RoomId(r);
+    room_class[r] = add_class(c);
+  }
+  std::vector<int32_t> hole_class(plan.floor_openings.size());
+  for (size_t h = 0; h < plan.floor_openings.size(); ++h) {
+    SpaceClass c;
+    c.kind = CellKind::Stairwell;
+    c.opening = int(h);
+    c.portal = PortalKind::Stairwell;
+    hole_class[h] = add_class(c);
+  }
+  // Doorway classes, keyed by the set of wall regions covering a triangle.
+  std::map<std::vector<int32_t>, int32_t> region_class;
+
+  C.of.assign(C.bands.size(), std::vector<int32_t>(size_t(n), -1));
+  C.wall_of.assign(C.bands.size() * size_t(n), -1);
+  std::vector<int32_t> keys;
+  for (size_t b = 0; b < C.bands.size(); ++b) {
+    const Band& band = C.bands[b];
+    auto& of = C.of[b];
+    const int32_t outside = band.outside_free ? (band.kind == Band::Kind::Sky ? kSky : kOutside) : -1;
+    auto footprint = [&](int s, int t) {
+      return s >= 0 && s < S && (covered[size_t(s)][size_t(t)] || comp[size_t(s)][size_t(t)] >= 0) &&
+             (covered[size_t(s)][size_t(t)] || room_of_comp[size_t(s)][size_t(comp[size_t(s)][size_t(t)])] >= 0);
+    };
+    for (int t = 0; t < n; ++t) {
+      switch (band.kind) {
+        case Band::Kind::Sky: of[size_t(t)] = outside; break;
+        case Band::Kind::Plinth: of[size_t(t)] = footprint(0, t) ? -1 : outside; break;
+        case Band::Kind::Slab: {
+          const int s = band.storey;
+          if (!footprint(s, t) && !footprint(s + 1, t)) { of[size_t(t)] = outside; break; }
+          of[size_t(t)] = -1;
+          for (int32_t k = T.hole_start[size_t(t)]; k < T.hole_start[size_t(t) + 1]; ++k) {
+            int h = T.hole_items[size_t(k)];
+            if (plan.floor_openings[size_t(h)].storey == s + 1) of[size_t(t)] = hole_class[size_t(h)];
+          }
+          break;
+        }
+        case Band::Kind::Storey: {
+          const int s = band.storey;
+          if (!covered[size_t(s)][size_t(t)]) {
+            RoomId r = room_of_comp[size_t(s)][size_t(comp[size_t(s)][size_t(t)])];
+            of[size_t(t)] = r >= 0 ? room_class[size_t(r)] : outside;
+            break;
+          }
+          // Under wall regions of this storey: free where all of them are open.
+          keys.clear();
+          Intervals open{{band.z0, band.z1}};
+          for (int32_t k = T.region_start[size_t(t)]; k < T.region_start[size_t(t) + 1]; ++k) {
+            int32_t r = T.region_items[size_t(k)];
+            const Region& reg = outline.regions[size_t(r)];
+            if (reg.storey != s) continue;
+            keys.push_back(r);
+            open = intersect(open, reg.open);
+            if (C.wall_of[b * size_t(n) + size_t(t)] < 0) C.wall_of[b * size_t(n) + size_t(t)] = reg.wall;
+          }
+          if (open.empty()) { of[size_t(t)] = -1; break; }
+          auto it = region_class.find(keys);
+          if (it == region_class.end()) {
+            SpaceClass c;
+            c.kind = CellKind::Doorway;
+            c.open = open;
+            c.portal = PortalKind::Gap;
+            for (int32_t r : keys) {
+              const Region& reg = outline.regions[size_t(r)];
+              c.wall = reg.wall;
+              if (reg.opening >= 0) {
+                c.opening = opening_id(plan, reg.wall, reg.opening);
+                OpeningKind k = plan.walls[size_t(reg.wall)].openings[size_t(reg.opening)].kind;
+                c.portal = k == OpeningKind::Door     ? PortalKind::Door
+                           : k == OpeningKind::Window ? PortalKind::Window
+                           : k == OpeningKind::Hatch  ? PortalKind::Hatch
+                                                      : PortalKind::Gap;
+                break;
+              }
+            }
+            it = region_class.emplace(keys, add_class(c)).first;
+          }
+          of[size_t(t)] = it->second;
+          break;
+        }
+      }
+    }
+  }
+  return C;
+}
+
+}  // namespace avenues::detail

@@ -1,0 +1,413 @@
+// Avenues — pass 5 of build_cells: convex footprints become prisms, portals and faces.
+//
+// Each piece of each band is a cell from the band's floor to its ceiling (a doorway
+// piece: one cell per open height interval). Then, all by index on the triangulation:
+//  - a side half-edge whose far triangle is free in the same band gives a portal over
+//    the heights both cells share (cut by a wall of no thickness where it is solid);
+//  - triangles stacked across a band boundary give horizontal portals where both are
+//    free, and floors or ceilings where one is solid (merged into convex pieces);
+//  - what no portal covers is opaque, as convex rectangles (sides) or polygons (floors).
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "cells/passes.h"
+
+namespace avenues::detail {
+
+namespace {
+
+constexpr double kZTol = 1e-9;  ///< [m] heights are compared exactly up to this
+
+double area(const std::vector<Vec2>& p) {
+  double a = 0;
+  for (size_t i = 0; i < p.size(); ++i) a += cross(p[i], p[(i + 1) % p.size()]);
+  return a / 2;
+}
+
+/// Footprint of a piece: the boundary's vertices without collinear ones. side[k] is the
+/// footprint side index of boundary half-edge k; the footprint starts at a kept vertex.
+struct Outline2 {
+  std::vector<Vec2> poly;
+  std::vector<int32_t> half_edges;  ///< rotated so half_edges[0] starts side 0
+  std::vector<int32_t> side;
+};
+
+Outline2 footprint_of(const Triangulation& T, const std::vector<int32_t>& boundary) {
+  const size_t m = boundary.size();
+  auto from = [&](int32_t h) { return T.vert[size_t(T.tri[size_t(h / 3)][size_t((h % 3 + 1) % 3)])]; };
+  std::vector<uint8_t> keep(m);
+  for (size_t k = 0; k < m; ++k) {
+    Vec2 prev = from(boundary[(k + m - 1) % m]), here = from(boundary[k]), next = from(boundary[(k + 1) % m]);
+    keep[k] = orientation(prev, here, next) != 0;
+  }
+  size_t first = 0;
+  while (first < m && !keep[first]) ++first;
+  Outline2 o;
+  if (first == m) return o;  // degenerate (all collinear): no footprint
+  for (size_t j = 0; j < m; ++j) {
+    size_t k = (first + j) % m;
+    if (keep[k]) o.poly.push_back(from(boundary[k]));
+    o.half_edges.push_back(boundary[k]);
+    o.side.push_back(int32_t(o.poly.size()) - 1);
+  }
+  return o;
+}
+
+Vec3 at(Vec2 p, double z) { return {p.x, p.y, z}; }
+
+MaterialId wall_material(const Plan& plan, int wall) {
+  return wall >= 0 ? plan.walls[size_t(wall)].material : -1;
+}
+
+}  // namespace
+
+CellId Layout::cell_at(const CellComplex& c, size_t b, int t, double z) const {
+  if (t < 0) return kNoCell;
+  int32_t p = pieces[b].of[size_t(t)];
+  if (p < 0) return kNoCell;
+  for (CellId id : cells_of[b][size_t(p)])
+    if (z > c.cells[size_t(id)].z0 && z < c.cells[size_t(id)].z1) return id;
+  return kNoCell;
+}
+
+Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T, const Classes& C,
+               CellComplex& out) {
+  const int n = T.size();
+  Layout L;
+  // Per cell: its band and its boundary (half-edges with side indices).
+  std::vector<size_t> band_of;
+  std::vector<Outline2> shape;
+
+  auto sheets_on = [&](int32_t h, StoreyId s, std::vector<int32_t>& r) {
+    r.clear();
+    for (int32_t k = T.sheet_start[size_t(h)]; k < T.sheet_start[size_t(h) + 1]; ++k) {
+      int32_t reg = T.sheet_items[size_t(k)];
+      if (outline.regions[size_t(reg)].storey == s) r.push_back(reg);
+    }
+  };
+  std::vector<int32_t> tmp;
+
+  // --- 4. merge, per band; 5a. one cell per piece and open interval.
+  for (size_t b = 0; b < C.bands.size(); ++b) {
+    const Band& band = C.bands[b];
+    std::vector<uint8_t> barrier;
+    if (band.kind == Band::Kind::Storey) {
+      barrier.assign(size_t(3 * n), 0);
+      for (int32_t h = 0; h < 3 * n; ++h) {
+        sheets_on(h, band.storey, tmp);
+        barrier[size_t(h)] = !tmp.empty();
+      }
+    }
+    L.pieces.push_back(merge_convex(T, C.of[b], barrier));
+    const Pieces& P = L.pieces.back();
+    L.cells_of.emplace_back(P.boundary.size());
+    for (size_t p = 0; p < P.boundary.size(); ++p) {
+      const SpaceClass& sc = C.classes[size_t(P.label[p])];
+      Outline2 o = footprint_of(T, P.boundary[p]);
+      if (o.poly.size() < 3 || area(o.poly) <= 0) continue;
+      Intervals iv{{band.z0, band.z1}};
+      if (sc.kind == CellKind::Doorway) iv = intersect(iv, sc.open);
+      for (auto [z0, z1] : iv) {
+        Cell c;
+        c.kind = sc.kind;
+        c.room = sc.room;
+        c.opening = sc.opening;
+        c.storey = band.kind == Band::Kind::Storey ? band.storey
+                   : (band.kind == Band::Kind::Slab && sc.kind == CellKind::Stairwell) ? band.storey + 1
+                                                                                        : -1;
+        c.footprint = o.poly;
+        c.z0 = z0;
+        c.z1 = z1;
+        L.cells_of[b][p].push_back(CellId(out.cells.size()));
+        out.cells.push_back(std::move(c));
+        band_of.push_back(b);
+        shape.push_back(o);
+      }
+    }
+  }
+
+  // --- 5b. faces: sides, bottom, top (whole, before portals are cut out).
+  for (Cell& c : out.cells) {
+    const size_t m = c.footprint.size();
+    for (size_t k = 0; k < m; ++k) {
+      Vec2 a = c.footprint[k], b = c.footprint[(k + 1) % m];
+      Vec2 d = b - a;
+      double len = length(d);
+      Face f;
+      f.plane.n = {d.y / len, -d.x / len, 0};
+      f.plane.d = -dot(f.plane.n, at(a, 0));
+      f.poly = {at(a, c.z0), at(a, c.z1), at(b, c.z1), at(b, c.z0)};
+      c.faces.push_back(std::move(f));
+    }
+    Face bottom, top;
+    bottom.plane = {{0, 0, -1}, c.z0};
+    top.plane = {{0, 0, 1}, -c.z1};
+    for (Vec2 p : c.footprint) bottom.poly.push_back(at(p, c.z0));
+    for (size_t k = m; k-- > 0;) top.poly.push_back(at(c.footprint[k], c.z1));
+    c.faces.push_back(std::move(bottom));
+    c.faces.push_back(std::move(top));
+  }
+
+  auto add_portal = [&](CellId a, CellId b, std::vector<Vec3> poly, Vec3 n, PortalKind kind, int opening) {
+    Portal p;
+    p.cell[0] = a;
+    p.cell[1] = b;
+    p.plane.n = n;
+    p.plane.d = -dot(n, poly[0]);
+    p.poly = std::move(poly);
+    p.kind = kind;
+    p.opening = opening;
+    out.portals.push_back(std::move(p));
+    return PortalId(out.portals.size() - 1);
+  };
+  // Which kind of portal joins cells a and b (vertically).
+  auto kind_between = [&](const Cell& a, const Cell& b, int& opening) {
+    for (const Cell* c : {&a, &b})
+      if (c->kind == CellKind::Doorway) {
+        opening = c->opening;
+        for (const SpaceClass& sc : C.classes)
+          if (sc.kind == CellKind::Doorway && sc.opening == c->opening) return sc.portal;
+        return PortalKind::Gap;
+      }
+    opening = -1;
+    if (a.kind == CellKind::Room && b.kind == CellKind::Room && a.room == b.room) return PortalKind::Transparent;
+    return PortalKind::Open;
+  };
+
+  // --- 5c. side portals and opaque side rectangles.
+  struct Rect { double s0, s1, lo, hi; };
+  for (CellId ci = 0; ci < CellId(out.cells.size()); ++ci) {
+    const size_t b = band_of[size_t(ci)];
+    const Band& band = C.bands[b];
+    const Outline2& o = shape[size_t(ci)];
+    Cell& c = out.cells[size_t(ci)];
+    const size_t nsides = c.footprint.size();
+    std::vector<std::vector<Rect>> open(nsides);       // portal rects per side, in side coords
+    std::vector<MaterialId> side_material(nsides, -2); // -2: not yet known
+    // Runs of equal (neighbour, lo, hi) along consecutive half-edges of one side.
+    struct Run { CellId d; double lo, hi, s0, s1; int sheet_opening; };
+    std::vector<Run> active, next;
+    int prev_side = -1;
+    auto flush = [&](std::vector<Run>& runs, int side) {
+      for (const Run& r : runs) {
+        open[size_t(side)].push_back({r.s0, r.s1, r.lo, r.hi});
+        if (ci < r.d) {
+          Vec2 a = c.footprint[size_t(side)], e = c.footprint[(size_t(side) + 1) % nsides];
+          Vec2 dir = (1.0 / length(e - a)) * (e - a);
+          Vec2 p0 = a + r.s0 * dir, p1 = a + r.s1 * dir;
+          int opening = -1;
+          PortalKind kind = kind_between(c, out.cells[size_t(r.d)], opening);
+          if (r.sheet_opening >= 0) {  // an opening in a wall of no thickness
+            const Region& reg = outline.regions[size_t(r.sheet_opening)];
+            opening = opening_id(plan, reg.wall, reg.opening);
+            OpeningKind ok = plan.walls[size_t(reg.wall)].openings[size_t(reg.opening)].kind;
+            kind = ok == OpeningKind::Door ? PortalKind::Door : ok == OpeningKind::Window ? PortalKind::Window
+                   : ok == OpeningKind::Hatch ? PortalKind::Hatch : PortalKind::Gap;
+          }
+          add_portal(ci, r.d, {at(p0, r.lo), at(p1, r.lo), at(p1, r.hi), at(p0, r.hi)},
+                     c.faces[size_t(side)].plane.n, kind, opening);
+        }
+      }
+      runs.clear();
+    };
+    for (size_t k = 0; k < o.half_edges.size(); ++k) {
+      const int32_t h = o.half_edges[k];
+      const int side = o.side[k];
+      if (side != prev_side && prev_side >= 0) flush(active, prev_side);
+      prev_side = side;
+      const Vec2 a = c.footprint[size_t(side)];
+      const Vec2 e = c.footprint[(size_t(side) + 1) % nsides];
+      const Vec2 dir = (1.0 / length(e - a)) * (e - a);
+      const double s0 = dot(T.edge_from(h / 3, h % 3) - a, dir), s1 = dot(T.edge_to(h / 3, h % 3) - a, dir);
+      const int u = T.nbr[size_t(h / 3)][size_t(h % 3)];
+      // Heights at which the far side can be reached through this half-edge.
+      Intervals reach{{c.z0, c.z1}};
+      int sheet_wall = -1, sheet_opening = -1;
+      if (band.kind == Band::Kind::Storey) {
+        sheets_on(h, band.storey, tmp);
+        for (int32_t r : tmp) {
+          reach = intersect(reach, outline.regions[size_t(r)].open);
+          sheet_wall = outline.regions[size_t(r)].wall;
+          if (outline.regions[size_t(r)].opening >= 0) sheet_opening = r;
+        }
+      }
+      next.clear();
+      if (u >= 0 && L.pieces[b].of[size_t(u)] >= 0) {
+        for (CellId d : L.cells_of[b][size_t(L.pieces[b].of[size_t(u)])]) {
+          const Cell& dc = out.cells[size_t(d)];
+          for (auto [lo, hi] : intersect(reach, {{dc.z0, dc.z1}})) {
+            auto same = std::find_if(active.begin(), active.end(), [&](const Run& r) {
+              return r.d == d && std::fabs(r.lo - lo) < kZTol && std::fabs(r.hi - hi) < kZTol &&
+                     std::fabs(r.s1 - s0) < 1e-9 && r.sheet_opening == sheet_opening;
+            });
+            if (same != active.end()) {
+              Run r = *same;
+              r.s1 = s1;
+              next.push_back(r);
+              active.erase(same);
+            } else {
+              next.push_back({d, lo, hi, s0, s1, sheet_opening});
+            }
+          }
+        }
+      }
+      // Runs that did not continue end here.
+      flush(active, side);
+      active.swap(next);
+      if (side_material[size_t(side)] == -2) {
+        MaterialId mat = -2;
+        if (u < 0) mat = plan.sky;
+        else if (sheet_wall >= 0) mat = wall_material(plan, sheet_wall);
+        else if (L.pieces[b].of[size_t(u)] < 0) mat = wall_material(plan, C.wall_of[b * size_t(n) + size_t(u)]);
+        if (mat != -2) {
+          if (mat < 0 && c.kind == CellKind::Room && c.room < int(plan.rooms.size())) mat = plan.rooms[size_t(c.room)].walls;
+          side_material[size_t(side)] = mat;
+        }
+      }
+    }
+    if (prev_side >= 0) flush(active, prev_side);
+
+    // Opaque = side rectangle minus portal rectangles, as rectangles (sweep along s).
+    for (size_t k = 0; k < nsides; ++k) {
+      const Vec2 a = c.footprint[k], e = c.footprint[(k + 1) % nsides];
+      const double len = length(e - a);
+      const Vec2 dir = (1.0 / len) * (e - a);
+      std::vector<double> cuts{0, len};
+      for (const Rect& r : open[k]) cuts.push_back(r.s0), cuts.push_back(r.s1);
+      std::sort(cuts.begin(), cuts.end());
+      std::vector<Rect> rects;
+      for (size_t j = 0; j + 1 < cuts.size(); ++j) {
+        double s0 = cuts[j], s1 = cuts[j + 1];
+        if (s1 - s0 <= 1e-12) continue;
+        double sm = (s0 + s1) / 2;
+        Intervals covered;
+        for (const Rect& r : open[k])
+          if (r.s0 < sm && sm < r.s1) covered.push_back({r.lo, r.hi});
+        covered = unite(covered);
+        double z = c.z0;
+        Intervals solid;
+        for (auto [lo, hi] : covered) {
+          if (lo > z + kZTol) solid.push_back({z, lo});
+          z = std::max(z, hi);
+        }
+        if (c.z1 > z + kZTol) solid.push_back({z, c.z1});
+        for (auto [lo, hi] : solid) {
+          // Extend a rectangle of the previous s-interval with the same heights.
+          auto prev = std::find_if(rects.begin(), rects.end(), [&](const Rect& r) {
+            return std::fabs(r.s1 - s0) < 1e-12 && r.lo == lo && r.hi == hi;
+          });
+          if (prev != rects.end()) prev->s1 = s1;
+          else rects.push_back({s0, s1, lo, hi});
+        }
+      }
+      MaterialId mat = side_material[k] == -2 ? -1 : side_material[k];
+      for (const Rect& r : rects) {
+        Vec2 p0 = a + r.s0 * dir, p1 = a + r.s1 * dir;
+        c.faces[k].opaque.push_back({{at(p0, r.lo), at(p0, r.hi), at(p1, r.hi), at(p1, r.lo)}, mat});
+      }
+    }
+  }
+
+  // --- 5d. horizontal interfaces: portals, floors and ceilings.
+  auto floor_material = [&](const Cell& c, double z) {
+    if (c.kind == CellKind::Room && c.room < int(plan.rooms.size())) return plan.rooms[size_t(c.room)].floor;
+    if (c.kind == CellKind::Outside || c.kind == CellKind::Sky) return std::fabs(z) < kZTol ? plan.ground : plan.roof;
+    return wall_material(plan, -1);
+  };
+  auto ceiling_material = [&](const Cell& c) {
+    if (c.kind == CellKind::Room && c.room < int(plan.rooms.size())) return plan.rooms[size_t(c.room)].ceiling;
+    return MaterialId(-1);
+  };
+  const size_t nb = C.bands.size();
+  for (size_t b = 0; b <= nb; ++b) {
+    // Interface between band b-1 (below) and band b (above); b = 0 is the box floor, b = nb its top.
+    const double z = b < nb ? C.bands[b].z0 : C.bands[nb - 1].z1;
+    std::vector<int32_t> label(size_t(n), -1);
+    std::map<std::pair<CellId, CellId>, int32_t> pair_id;
+    std::vector<std::pair<CellId, CellId>> pairs;
+    for (int t = 0; t < n; ++t) {
+      CellId below = kNoCell, above = kNoCell;
+      if (b > 0) {
+        int32_t p = L.pieces[b - 1].of[size_t(t)];
+        if (p >= 0)
+          for (CellId id : L.cells_of[b - 1][size_t(p)])
+            if (std::fabs(out.cells[size_t(id)].z1 - z) < kZTol) below = id;
+      }
+      if (b < nb) {
+        int32_t p = L.pieces[b].of[size_t(t)];
+        if (p >= 0)
+          for (CellId id : L.cells_of[b][size_t(p)])
+            if (std::fabs(out.cells[size_t(id)].z0 - z) < kZTol) above = id;
+      }
+      if (below == kNoCell && above == kNoCell) continue;
+      auto [it, fresh] = pair_id.emplace(std::make_pair(below, above), int32_t(pairs.size()));
+      if (fresh) pairs.push_back({below, above});
+      label[size_t(t)] = it->second;
+    }
+    Pieces P = merge_convex(T, label, {});
+    for (size_t p = 0; p < P.boundary.size(); ++p) {
+      Outline2 o = footprint_of(T, P.boundary[p]);
+      if (o.poly.size() < 3 || area(o.poly) <= 0) continue;
+      auto [below, above] = pairs[size_t(P.label[p])];
+      std::vector<Vec3> up, down;  // counter-clockwise seen from above / from below
+      for (Vec2 v : o.poly) up.push_back(at(v, z));
+      down.assign(up.rbegin(), up.rend());
+      if (below != kNoCell && above != kNoCell) {
+        const Cell &cb = out.cells[size_t(below)], &ca = out.cells[size_t(above)];
+        PortalKind kind = (cb.kind == CellKind::Stairwell || ca.kind == CellKind::Stairwell) ? PortalKind::Stairwell
+                          : (cb.kind == CellKind::Room && ca.kind == CellKind::Room && cb.room == ca.room)
+                              ? PortalKind::Transparent
+                              : PortalKind::Open;
+        int opening = cb.kind == CellKind::Stairwell ? cb.opening : ca.kind == CellKind::Stairwell ? ca.opening : -1;
+        if (below < above) add_portal(below, above, up, {0, 0, 1}, kind, opening);
+        else add_portal(above, below, down, {0, 0, -1}, kind, opening);
+      } else if (below != kNoCell) {
+        Cell& cb = out.cells[size_t(below)];
+        cb.faces.back().opaque.push_back({down, b == nb ? plan.sky : ceiling_material(cb)});
+      } else {
+        Cell& ca = out.cells[size_t(above)];
+        ca.faces[ca.faces.size() - 2].opaque.push_back({up, floor_material(ca, z)});
+      }
+    }
+  }
+  // Doorway cells whose sill or head lies inside their band: wholly opaque sill and lintel.
+  for (size_t ci = 0; ci < out.cells.size(); ++ci) {
+    Cell& c = out.cells[ci];
+    const Band& band = C.bands[band_of[ci]];
+    MaterialId mat = -1;
+    if (c.z0 > band.z0 + kZTol) c.faces[c.faces.size() - 2].opaque.push_back({c.faces[c.faces.size() - 2].poly, mat});
+    if (c.z1 < band.z1 - kZTol) c.faces.back().opaque.push_back({c.faces.back().poly, mat});
+  }
+
+  // --- 5e. file each portal under the face of each cell it lies in.
+  for (PortalId pi = 0; pi < PortalId(out.portals.size()); ++pi) {
+    const Portal& p = out.portals[size_t(pi)];
+    Vec3 mid{0, 0, 0};
+    for (Vec3 v : p.poly) mid = mid + v;
+    mid = (1.0 / double(p.poly.size())) * mid;
+    for (int side = 0; side < 2; ++side) {
+      Cell& c = out.cells[size_t(p.cell[side])];
+      Vec3 n = side == 0 ? p.plane.n : -1.0 * p.plane.n;
+      Face* best = nullptr;
+      double best_err = HUGE_VAL;
+      for (Face& f : c.faces) {
+        if (dot(f.plane.n, n) < 0.999) continue;
+        double err = std::fabs(f.plane.eval(mid));
+        if (err < best_err) best_err = err, best = &f;
+      }
+      if (best) best->portals.push_back(pi);
+      c.portals.push_back(pi);
+    }
+  }
+
+  // Room floor areas.
+  for (const Cell& c : out.cells)
+    if (c.kind == CellKind::Room && c.room >= 0) {
+      const Band& band = C.bands[band_of[size_t(&c - out.cells.data())]];
+      if (band.kind == Band::Kind::Storey) out.rooms[size_t(c.room)].area += area(c.footprint);
+    }
+  return L;
+}
+
+}  // namespace avenues::detail

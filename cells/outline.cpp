@@ -1,0 +1,232 @@
+// Avenues — walls as convex outlines (see outline.h).
+#include "cells/outline.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace avenues::detail {
+
+Intervals unite(Intervals a) {
+  std::sort(a.begin(), a.end());
+  Intervals out;
+  for (auto iv : a) {
+    if (iv.second <= iv.first) continue;
+    if (!out.empty() && iv.first <= out.back().second)
+      out.back().second = std::max(out.back().second, iv.second);
+    else
+      out.push_back(iv);
+  }
+  return out;
+}
+
+Intervals intersect(const Intervals& a, const Intervals& b) {
+  Intervals out;
+  for (auto x : a)
+    for (auto y : b) {
+      double lo = std::max(x.first, y.first), hi = std::min(x.second, y.second);
+      if (hi > lo) out.push_back({lo, hi});
+    }
+  return unite(out);
+}
+
+int opening_id(const Plan& plan, int wall, int opening) {
+  int id = 0;
+  for (int w = 0; w < wall; ++w) id += int(plan.walls[size_t(w)].openings.size());
+  return id + opening;
+}
+
+namespace {
+
+Vec2 perp(Vec2 d) { return {-d.y, d.x}; }
+Vec2 unit(Vec2 d) { return (1.0 / length(d)) * d; }
+
+/// Intersection of lines p + s·d and q + t·e; nullopt when (nearly) parallel.
+std::optional<Vec2> meet(Vec2 p, Vec2 d, Vec2 q, Vec2 e) {
+  double den = cross(d, e);
+  if (std::fabs(den) < 1e-12 * length(d) * length(e)) return std::nullopt;
+  return p + (cross(q - p, e) / den) * d;
+}
+
+/// Keeps the part of convex polygon `poly` where dot(p - o, n) >= 0 (Sutherland–Hodgman).
+std::vector<Vec2> clip(const std::vector<Vec2>& poly, Vec2 o, Vec2 n) {
+  std::vector<Vec2> out;
+  for (size_t i = 0; i < poly.size(); ++i) {
+    Vec2 a = poly[i], b = poly[(i + 1) % poly.size()];
+    double da = dot(a - o, n), db = dot(b - o, n);
+    if (da >= 0) out.push_back(a);
+    if ((da > 0 && db < 0) || (da < 0 && db > 0)) out.push_back(a + (da / (da - db)) * (b - a));
+  }
+  // Drop repeated points the clip may leave at a vertex on the line.
+  std::vector<Vec2> clean;
+  for (auto p : out)
+    if (clean.empty() || !(p == clean.back())) clean.push_back(p);
+  while (clean.size() > 1 && clean.front() == clean.back()) clean.pop_back();
+  return clean;
+}
+
+double signed_area(const std::vector<Vec2>& p) {
+  double a = 0;
+  for (size_t i = 0; i < p.size(); ++i) a += cross(p[i], p[(i + 1) % p.size()]);
+  return a / 2;
+}
+
+/// Distance from p to segment ab.
+double distance(Vec2 p, Vec2 a, Vec2 b) {
+  Vec2 d = b - a;
+  double t = std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0);
+  return length(p - (a + t * d));
+}
+
+}  // namespace
+
+Outline make_outline(const Plan& plan) {
+  Outline out;
+  // Jones's "large opaque box surrounding the objects": the plan's extent plus a margin.
+  Vec2 lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
+  auto grow = [&](Vec2 p) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+  };
+  for (const Wall& w : plan.walls)
+    for (Vec2 p : w.centre) grow(p);
+  const double m = plan.far_margin;
+  double top = 0, bottom = 0;
+  for (const Storey& s : plan.storeys) {
+    top = std::max(top, s.elevation + s.height + s.slab);
+    bottom = std::min(bottom, s.elevation);
+  }
+  out.lo = {lo.x - m, lo.y - m};
+  out.hi = {hi.x + m, hi.y + m};
+  out.z_bottom = bottom;
+  out.z_top = top + m;
+
+  for (int wi = 0; wi < int(plan.walls.size()); ++wi) {
+    const Wall& w = plan.walls[size_t(wi)];
+    const Storey& st = plan.storeys[size_t(w.storey)];
+    const double floor = st.elevation, ceiling = st.elevation + st.height;
+    // A low wall is open from its top to the ceiling, along its whole length.
+    Intervals always;
+    if (w.height >= 0 && w.height < st.height) always.push_back({floor + w.height, ceiling});
+    const auto& c = w.centre;
+    const size_t nseg = c.size() - 1;
+    const bool closed = c.size() > 2 && c.front() == c.back();
+    const double h = w.thickness / 2;
+
+    // Does a wall end touch another wall of the storey? Then cap it square by h so
+    // that L and T junctions of separate walls close (the cap stays inside the other wall).
+    auto touches_other = [&](Vec2 p) {
+      for (int oi = 0; oi < int(plan.walls.size()); ++oi) {
+        const Wall& o = plan.walls[size_t(oi)];
+        if (oi == wi || o.storey != w.storey) continue;
+        for (size_t k = 0; k + 1 < o.centre.size(); ++k)
+          if (distance(p, o.centre[k], o.centre[k + 1]) <= o.thickness / 2 + 1e-9) return true;
+      }
+      return false;
+    };
+
+    // End lines of each segment: point + direction along which the segment's quad is cut.
+    // Mitred at joints (both quads share the mitre line exactly), square at free ends;
+    // a joint sharper than the mitre limit is bevelled with a filler triangle.
+    struct Cut { Vec2 left, right; };
+    std::vector<Cut> start(nseg), end(nseg);
+    std::vector<Vec2> dir(nseg), nrm(nseg);
+    for (size_t i = 0; i < nseg; ++i) {
+      dir[i] = unit(c[i + 1] - c[i]);
+      nrm[i] = perp(dir[i]);
+    }
+    auto square = [&](size_t i, Vec2 p) { return Cut{p + h * nrm[i], p - h * nrm[i]}; };
+    for (size_t i = 0; i < nseg; ++i) {
+      start[i] = square(i, c[i]);
+      end[i] = square(i, c[i + 1]);
+    }
+    std::vector<std::vector<Vec2>> fillers;
+    auto join = [&](size_t a, size_t b) {  // segment a ends where b starts
+      Vec2 p = c[a + 1];
+      double cosang = dot(dir[a], dir[b]);
+      auto l = meet(p + h * nrm[a], dir[a], p + h * nrm[b], dir[b]);
+      auto r = meet(p - h * nrm[a], dir[a], p - h * nrm[b], dir[b]);
+      const double limit = 4 * h;  // mitre limit, as in SVG's stroke-miterlimit
+      if (h > 0 && l && r && length(*l - p) <= limit && length(*r - p) <= limit) {
+        end[a] = {*l, *r};
+        start[b] = {*l, *r};
+      } else if (h > 0 && cosang < 1 - 1e-12) {
+        // Bevel: square ends plus the triangle closing the outer side of the turn.
+        bool left_turn = cross(dir[a], dir[b]) > 0;
+        Vec2 o1 = left_turn ? end[a].right : end[a].left;
+        Vec2 o2 = left_turn ? start[b].right : start[b].left;
+        std::vector<Vec2> tri{p, o1, o2};
+        if (signed_area(tri) < 0) std::reverse(tri.begin(), tri.end());
+        if (std::fabs(signed_area(tri)) > 0) fillers.push_back(tri);
+      }
+    };
+    for (size_t i = 0; i + 1 < nseg; ++i) join(i, i + 1);
+    if (closed && nseg > 2) join(nseg - 1, 0);
+    if (!closed && h > 0) {
+      if (touches_other(c.front())) start[0] = square(0, c.front() - h * dir[0]);
+      if (touches_other(c.back())) end[nseg - 1] = square(nseg - 1, c.back() + h * dir[nseg - 1]);
+    }
+
+    double along = 0;  // distance along the centre line to the segment's start
+    for (size_t i = 0; i < nseg; ++i) {
+      const double len = length(c[i + 1] - c[i]);
+      // Strips of this segment along s in [0, len]: solid between openings.
+      struct Strip { double s0, s1; int opening; };
+      std::vector<Strip> strips;
+      double s = 0;
+      std::vector<int> here;
+      for (int oi = 0; oi < int(w.openings.size()); ++oi) {
+        double a = w.openings[size_t(oi)].at - along;
+        if (a >= -1e-9 && a < len) here.push_back(oi);
+      }
+      std::sort(here.begin(), here.end(), [&](int x, int y) {
+        return w.openings[size_t(x)].at < w.openings[size_t(y)].at;
+      });
+      for (int oi : here) {
+        const Opening& o = w.openings[size_t(oi)];
+        double a = std::max(0.0, o.at - along), b = std::min(len, a + o.width);
+        if (a > s) strips.push_back({s, a, -1});
+        strips.push_back({a, b, oi});
+        s = b;
+      }
+      if (s < len) strips.push_back({s, len, -1});
+
+      std::vector<Vec2> quad{start[i].right, end[i].right, end[i].left, start[i].left};
+      for (const Strip& sp : strips) {
+        Region r;
+        r.storey = w.storey;
+        r.wall = wi;
+        r.opening = sp.opening;
+        r.open = always;
+        if (sp.opening >= 0) {
+          const Opening& o = w.openings[size_t(sp.opening)];
+          r.open.push_back({floor + o.sill, floor + o.head});
+        }
+        r.open = unite(r.open);
+        const Vec2 a = c[i] + sp.s0 * dir[i], b = c[i] + sp.s1 * dir[i];
+        if (h == 0) {
+          r.sheet = true;
+          r.poly = {a, b};
+        } else {
+          r.poly = quad;
+          if (sp.s0 > 0) r.poly = clip(r.poly, a, dir[i]);
+          if (sp.s1 < len) r.poly = clip(r.poly, b, -1.0 * dir[i]);
+          if (r.poly.size() < 3 || signed_area(r.poly) <= 0) continue;
+        }
+        out.regions.push_back(std::move(r));
+      }
+      along += len;
+    }
+    for (auto& f : fillers) {
+      Region r;
+      r.storey = w.storey;
+      r.wall = wi;
+      r.poly = f;
+      r.open = unite(always);
+      out.regions.push_back(std::move(r));
+    }
+  }
+  for (const FloorOpening& f : plan.floor_openings) out.holes.push_back(f.outline);
+  return out;
+}
+
+}  // namespace avenues::detail

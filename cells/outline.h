@@ -1,0 +1,47 @@
+// Avenues — pass 1 of build_cells: the plan's walls as 2D outlines.
+//
+// Every wall segment becomes a convex "region" (its mitred quad, cut into strips at
+// its openings) or, for a wall of no thickness, a "sheet" (a segment, cut likewise).
+// Each region or sheet strip says over which heights it is open: a solid strip of a
+// full-height wall is never open, a door strip is open from sill to head, and a low
+// wall is open from its top to the ceiling. Everything here is plain doubles; the
+// exact work starts in triangulate.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "plans/plan.h"
+
+namespace avenues::detail {
+
+/// Closed height intervals [lo, hi], absolute z [m], sorted and disjoint.
+using Intervals = std::vector<std::pair<double, double>>;
+Intervals intersect(const Intervals& a, const Intervals& b);
+Intervals unite(Intervals a);
+
+/// A convex piece of a thick wall, or a strip of a wall of no thickness.
+struct Region {
+  StoreyId storey = 0;
+  int wall = -1;             ///< index into Plan::walls
+  int opening = -1;          ///< index into the wall's openings, -1 for solid strips
+  bool sheet = false;        ///< zero thickness: `poly` holds the segment's two ends
+  std::vector<Vec2> poly;    ///< convex, counter-clockwise (or the sheet's 2 ends)
+  Intervals open;            ///< heights [m, absolute] at which the strip is open
+};
+
+struct Outline {
+  std::vector<Region> regions;
+  std::vector<std::vector<Vec2>> holes;  ///< floor openings, same order as Plan::floor_openings
+  Vec2 lo, hi;                           ///< far box in plan [m]
+  double z_bottom = 0, z_top = 0;        ///< far box heights [m]
+};
+
+/// Builds the outlines of every wall of the plan.
+Outline make_outline(const Plan& plan);
+
+/// Stable id of a wall opening across the whole plan (for portal/cell `opening`).
+int opening_id(const Plan& plan, int wall, int opening);
+
+}  // namespace avenues::detail

@@ -1,0 +1,71 @@
+// Avenues — what the passes of build_cells hand each other (internal to cells/).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cells/cell_complex.h"
+#include "cells/outline.h"
+#include "cells/triangulation.h"
+
+namespace avenues::detail {
+
+/// A horizontal slice of the far box in which every cell spans the full height
+/// (except doorway cells, which span their opening's sill to head inside a storey band).
+struct Band {
+  enum class Kind { Storey, Slab, Plinth, Sky } kind = Kind::Storey;
+  double z0 = 0, z1 = 0;   ///< [m]
+  StoreyId storey = -1;    ///< storey of a Storey band; the storey below a Slab band
+  bool outside_free = true;///< false below ground (earth)
+};
+
+/// What free space a triangle is, in one band.
+struct SpaceClass {
+  CellKind kind = CellKind::Room;
+  RoomId room = -1;
+  int opening = -1;        ///< plan-wide opening id (Doorway) or floor-opening index (Stairwell)
+  PortalKind portal = PortalKind::Transparent;  ///< kind of portal leading into it from a room
+  int wall = -1;           ///< the wall a doorway is cut through
+  Intervals open;          ///< heights [m] at which it is free (one cell per interval)
+};
+
+/// Pass 3's result: per band, per triangle, a class index or -1 for solid.
+struct Classes {
+  std::vector<Band> bands;
+  std::vector<SpaceClass> classes;
+  std::vector<std::vector<int32_t>> of;   ///< of[band][triangle]
+  std::vector<RoomInfo> rooms;
+  std::vector<int32_t> wall_of;           ///< per band*T + t: wall owning a solid triangle of a storey band, or -1
+};
+
+Classes classify(const Plan& plan, const Outline& outline, const Triangulation& tri);
+
+/// Pass 4: Hertel–Mehlhorn merging. Triangles with equal label >= 0 are merged across
+/// edges not marked as barriers while the union stays convex. Returns a piece index per
+/// triangle (-1 where label < 0) and each piece's boundary as half-edges 3t+i in
+/// counter-clockwise order.
+struct Pieces {
+  std::vector<int32_t> of;                       ///< per triangle
+  std::vector<std::vector<int32_t>> boundary;    ///< per piece, half-edges
+  std::vector<int32_t> label;                    ///< per piece
+};
+Pieces merge_convex(const Triangulation& tri, const std::vector<int32_t>& label,
+                    const std::vector<uint8_t>& barrier /* per half-edge, may be empty */);
+
+/// Which cells stand on which pieces of which band (pass 5's bookkeeping, read by pass 6).
+struct Layout {
+  std::vector<Pieces> pieces;                             ///< per band
+  std::vector<std::vector<std::vector<CellId>>> cells_of; ///< per band, per piece: its cells, bottom up
+  /// The cell of band b over triangle t that is free at height z (strictly inside), or -1.
+  CellId cell_at(const CellComplex& c, size_t b, int t, double z) const;
+};
+
+/// Pass 5: cells, portals and faces.
+Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& tri, const Classes& cls,
+               CellComplex& out);
+
+/// Pass 6: the real lines of the architecture, assigned to the cells they bound.
+void real_lines(const Outline& outline, const Triangulation& tri, const Classes& cls, const Layout& layout,
+                CellComplex& out);
+
+}  // namespace avenues::detail

@@ -1,0 +1,232 @@
+// Avenues — pass 6 of build_cells: the real lines of the architecture.
+//
+// Jones drew "all the lines in the cell which are not part of the boundary of an
+// opening" and flagged artificial ones as dummies. Here a real line is an edge of the
+// opaque surface that bounds free space where that surface is not flat: a crease
+// (wall–floor, an inner corner), a convex edge (an outer corner, a reveal, the roof's
+// rim), or an edge of a wall of no thickness. The building is cut into slices between
+// every height at which anything changes (floors, ceilings, sills, heads); in each
+// slice every triangle is solid or free. Then:
+//  - at a vertex, a vertical line stands in a slice where the solid/free boundary
+//    around it is not one straight line;
+//  - on an edge, a horizontal line lies at a slice boundary where the four quarters
+//    around it (left/right, below/above) are not a flat surface.
+// Collinear pieces are chained into long lines, and each cell gets the parts of the
+// lines on its boundary. Edges of transparent faces never appear: both sides are free.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+
+#include "cells/passes.h"
+
+namespace avenues::detail {
+
+namespace {
+
+struct Slices {
+  std::vector<double> z;  ///< breakpoints, ascending; slice j spans (z[j], z[j+1])
+  std::vector<size_t> band;  ///< per slice
+};
+
+}  // namespace
+
+void real_lines(const Outline& outline, const Triangulation& T, const Classes& C, const Layout& L,
+                CellComplex& out) {
+  const int n = T.size();
+  Slices S;
+  for (const Band& b : C.bands) S.z.push_back(b.z0), S.z.push_back(b.z1);
+  for (const SpaceClass& c : C.classes)
+    for (auto [lo, hi] : c.open) S.z.push_back(lo), S.z.push_back(hi);
+  for (const Region& r : outline.regions)
+    for (auto [lo, hi] : r.open) S.z.push_back(lo), S.z.push_back(hi);
+  std::sort(S.z.begin(), S.z.end());
+  S.z.erase(std::unique(S.z.begin(), S.z.end(), [](double a, double b) { return std::fabs(a - b) < 1e-9; }), S.z.end());
+  const int ns = int(S.z.size()) - 1;
+  for (int j = 0; j < ns; ++j) {
+    double zm = (S.z[size_t(j)] + S.z[size_t(j) + 1]) / 2;
+    size_t b = 0;
+    while (b + 1 < C.bands.size() && C.bands[b].z1 < zm) ++b;
+    S.band.push_back(b);
+  }
+  auto mid = [&](int j) { return (S.z[size_t(j)] + S.z[size_t(j) + 1]) / 2; };
+
+  // free_at[j][t]: the cell holding triangle t in slice j, or -1 (solid). Slices -1 and ns are solid.
+  std::vector<std::vector<CellId>> free_at(size_t(ns), std::vector<CellId>(size_t(n), kNoCell));
+  for (int j = 0; j < ns; ++j)
+    for (int t = 0; t < n; ++t) free_at[size_t(j)][size_t(t)] = L.cell_at(out, S.band[size_t(j)], t, mid(j));
+  auto cell = [&](int j, int t) -> CellId {
+    return (j < 0 || j >= ns || t < 0) ? kNoCell : free_at[size_t(j)][size_t(t)];
+  };
+  // A wall of no thickness standing (opaque) on half-edge h in slice j.
+  auto sheet = [&](int j, int32_t h) {
+    if (j < 0 || j >= ns) return false;
+    const Band& band = C.bands[S.band[size_t(j)]];
+    if (band.kind != Band::Kind::Storey) return false;
+    double zm = mid(j);
+    for (int32_t k = T.sheet_start[size_t(h)]; k < T.sheet_start[size_t(h) + 1]; ++k) {
+      const Region& r = outline.regions[size_t(T.sheet_items[size_t(k)])];
+      if (r.storey != band.storey) continue;
+      bool open = false;
+      for (auto [lo, hi] : r.open) open |= lo < zm && zm < hi;
+      if (!open) return true;
+    }
+    return false;
+  };
+
+  // Elementary pieces, each with the cells it bounds.
+  struct Piece { Vec3 a, b; LineKind kind; std::vector<CellId> cells; };
+  std::vector<Piece> pieces;
+  auto add_cells = [](std::vector<CellId>& v, CellId c) {
+    if (c != kNoCell && std::find(v.begin(), v.end(), c) == v.end()) v.push_back(c);
+  };
+
+  // --- horizontal pieces at every breakpoint, on every edge (once per edge).
+  for (int k = 0; k <= ns; ++k) {
+    const double z = S.z[size_t(k)];
+    for (int t = 0; t < n; ++t)
+      for (int i = 0; i < 3; ++i) {
+        const int u = T.nbr[size_t(t)][size_t(i)];
+        if (u >= 0 && u < t) continue;
+        const int32_t h = 3 * t + i;
+        CellId lb = cell(k - 1, t), la = cell(k, t), rb = cell(k - 1, u), ra = cell(k, u);
+        bool Lb = lb == kNoCell, La = la == kNoCell, Rb = rb == kNoCell, Ra = ra == kNoCell;
+        int solid = Lb + La + Rb + Ra;
+        bool sb = !Lb && !Rb && sheet(k - 1, h), sa = !La && !Ra && sheet(k, h);
+        bool line = false;
+        LineKind kind = LineKind::Concave;
+        if (solid == 1) line = true, kind = LineKind::Convex;
+        else if (solid == 3) line = true, kind = LineKind::Concave;
+        else if (solid == 2 && Lb == Ra && La == Rb) line = true, kind = LineKind::Convex;  // two edges meet
+        else if (solid == 2 && Lb == Rb && La == Ra) line = sa || sb, kind = LineKind::Concave;  // a sheet on a floor
+        else if (solid == 0) line = sa != sb, kind = LineKind::Sheet;  // top or bottom edge of a sheet
+        if (!line) continue;
+        Piece p{{T.edge_from(t, i).x, T.edge_from(t, i).y, z}, {T.edge_to(t, i).x, T.edge_to(t, i).y, z}, kind, {}};
+        for (CellId c : {lb, la, rb, ra}) add_cells(p.cells, c);
+        pieces.push_back(std::move(p));
+      }
+  }
+
+  // --- vertical pieces at every vertex, in every slice.
+  // Incident (triangle, local index) lists per vertex.
+  std::vector<int32_t> vstart(T.vert.size() + 1, 0), vitems(size_t(3 * n));
+  for (int t = 0; t < n; ++t)
+    for (int i = 0; i < 3; ++i) ++vstart[size_t(T.tri[size_t(t)][size_t(i)]) + 1];
+  std::partial_sum(vstart.begin(), vstart.end(), vstart.begin());
+  {
+    std::vector<int32_t> fill(vstart.begin(), vstart.end() - 1);
+    for (int t = 0; t < n; ++t)
+      for (int i = 0; i < 3; ++i) vitems[size_t(fill[size_t(T.tri[size_t(t)][size_t(i)])]++)] = 3 * t + i;
+  }
+  const double pi = std::acos(-1.0);
+  for (size_t v = 0; v < T.vert.size(); ++v) {
+    const Vec2 pv = T.vert[v];
+    for (int j = 0; j < ns; ++j) {
+      // Edges leaving v that separate solid from free (or carry a sheet between free sides).
+      std::vector<Vec2> dirs;
+      bool any_sheet = false;
+      double solid_angle = 0;
+      std::vector<CellId> cells;
+      for (int32_t k = vstart[v]; k < vstart[v + 1]; ++k) {
+        const int t = vitems[size_t(k)] / 3, i = vitems[size_t(k)] % 3;
+        const CellId ct = cell(j, t);
+        add_cells(cells, ct);
+        Vec2 p1 = T.vert[size_t(T.tri[size_t(t)][size_t((i + 1) % 3)])];
+        Vec2 p2 = T.vert[size_t(T.tri[size_t(t)][size_t((i + 2) % 3)])];
+        if (ct == kNoCell) {
+          Vec2 d1 = p1 - pv, d2 = p2 - pv;
+          solid_angle += std::atan2(cross(d1, d2), dot(d1, d2));
+        }
+        // The edge v -> p1 is opposite vertex (i+2): its far side is that neighbour.
+        const int32_t h1 = 3 * t + (i + 2) % 3;
+        const int u1 = T.nbr[size_t(t)][size_t((i + 2) % 3)];
+        const bool s1 = (ct == kNoCell) != (cell(j, u1) == kNoCell);
+        const bool sh1 = ct != kNoCell && cell(j, u1) != kNoCell && sheet(j, h1);
+        if (s1 || sh1) dirs.push_back(p1 - pv), any_sheet |= sh1;
+        // The edge p2 -> v (opposite vertex i+1) is seen here only where the far side is beyond the box.
+        const int u2 = T.nbr[size_t(t)][size_t((i + 1) % 3)];
+        if (u2 < 0 && ct != kNoCell) dirs.push_back(p2 - pv);
+      }
+      if (solid_angle < 0) solid_angle += 2 * pi;
+      bool line = !dirs.empty();
+      if (dirs.size() == 2 && orientation(pv + dirs[0], pv, pv + dirs[1]) == 0 && dot(dirs[0], dirs[1]) < 0)
+        line = false;  // a flat wall face, or a sheet, running straight through v
+      if (!line || cells.empty()) continue;
+      LineKind kind = any_sheet || dirs.size() == 1 ? LineKind::Sheet
+                      : solid_angle > pi            ? LineKind::Concave
+                                                    : LineKind::Convex;
+      pieces.push_back({{pv.x, pv.y, S.z[size_t(j)]}, {pv.x, pv.y, S.z[size_t(j) + 1]}, kind, cells});
+    }
+  }
+
+  // --- chain collinear touching pieces of one kind into lines (union-find on shared ends).
+  std::vector<int32_t> parent(pieces.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int32_t x) {
+    while (parent[size_t(x)] != x) x = parent[size_t(x)] = parent[size_t(parent[size_t(x)])];
+    return x;
+  };
+  {
+    // Index piece ends by (point, unit direction) so collinear continuations meet.
+    std::map<std::tuple<double, double, double>, std::vector<int32_t>> at_point;
+    for (size_t p = 0; p < pieces.size(); ++p) {
+      at_point[{pieces[p].a.x, pieces[p].a.y, pieces[p].a.z}].push_back(int32_t(p));
+      at_point[{pieces[p].b.x, pieces[p].b.y, pieces[p].b.z}].push_back(int32_t(p));
+    }
+    for (auto& [pt, ids] : at_point) {
+      Vec3 here{std::get<0>(pt), std::get<1>(pt), std::get<2>(pt)};
+      for (size_t x = 0; x < ids.size(); ++x)
+        for (size_t y = x + 1; y < ids.size(); ++y) {
+          const Piece &P = pieces[size_t(ids[x])], &Q = pieces[size_t(ids[y])];
+          if (P.kind != Q.kind) continue;
+          Vec3 dp = (P.a == here ? P.b : P.a) - here, dq = (Q.a == here ? Q.b : Q.a) - here;
+          // Opposite directions, exactly collinear: for vertical pieces trivially; for
+          // horizontal ones (same z) by the exact planar orientation.
+          bool collinear = dp.z != 0 ? (dq.z != 0 && dp.x == 0 && dq.x == 0 && dp.y == 0 && dq.y == 0)
+                                     : (dq.z == 0 && orientation({here.x + dp.x, here.y + dp.y}, {here.x, here.y},
+                                                                 {here.x + dq.x, here.y + dq.y}) == 0);
+          if (collinear && dot(dp, dq) < 0) parent[size_t(find(ids[x]))] = find(ids[y]);
+        }
+    }
+  }
+  // Each chain becomes one RealLine from its extreme ends.
+  std::map<int32_t, LineId> line_of_root;
+  for (size_t p = 0; p < pieces.size(); ++p) {
+    int32_t r = find(int32_t(p));
+    auto [it, fresh] = line_of_root.emplace(r, LineId(out.lines.size()));
+    if (fresh) out.lines.push_back({pieces[p].a, pieces[p].b, pieces[p].kind});
+    RealLine& l = out.lines[size_t(it->second)];
+    // Grow the line along its direction to cover this piece.
+    Vec3 d = l.b - l.a;
+    for (Vec3 q : {pieces[p].a, pieces[p].b}) {
+      double t = dot(q - l.a, d) / dot(d, d);
+      if (t < 0) l.a = q, d = l.b - l.a;
+      else if (t > 1) l.b = q, d = l.b - l.a;
+    }
+  }
+  // Per cell: the parameter ranges of each line it bounds, merged where they touch.
+  std::vector<std::vector<CellLine>> per_cell(out.cells.size());
+  for (size_t p = 0; p < pieces.size(); ++p) {
+    LineId id = line_of_root.at(find(int32_t(p)));
+    const RealLine& l = out.lines[size_t(id)];
+    Vec3 d = l.b - l.a;
+    double t0 = dot(pieces[p].a - l.a, d) / dot(d, d), t1 = dot(pieces[p].b - l.a, d) / dot(d, d);
+    if (t0 > t1) std::swap(t0, t1);
+    for (CellId c : pieces[p].cells) per_cell[size_t(c)].push_back({id, std::clamp(t0, 0.0, 1.0), std::clamp(t1, 0.0, 1.0)});
+  }
+  for (size_t c = 0; c < per_cell.size(); ++c) {
+    auto& v = per_cell[c];
+    std::sort(v.begin(), v.end(), [](const CellLine& x, const CellLine& y) {
+      return x.line != y.line ? x.line < y.line : x.t0 < y.t0;
+    });
+    for (const CellLine& cl : v) {
+      auto& lines = out.cells[c].lines;
+      if (!lines.empty() && lines.back().line == cl.line && cl.t0 <= lines.back().t1 + 1e-12)
+        lines.back().t1 = std::max(lines.back().t1, cl.t1);
+      else
+        lines.push_back(cl);
+    }
+  }
+}
+
+}  // namespace avenues::detail

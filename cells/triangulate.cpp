@@ -1,0 +1,168 @@
+// Avenues — the exact constrained triangulation (see triangulation.h).
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Constrained_triangulation_plus_2.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_2_algorithms.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "cells/triangulation.h"
+
+namespace avenues::detail {
+
+namespace {
+
+using K = CGAL::Exact_predicates_exact_constructions_kernel;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<int32_t, K>;
+using Fbi = CGAL::Triangulation_face_base_with_info_2<int, K>;
+using Fb = CGAL::Constrained_triangulation_face_base_2<K, Fbi>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+// The "plus" hierarchy keeps input constraints whole, so crossings are computed from
+// input points only (no cascade of constructions on constructed points).
+using CDT = CGAL::Constrained_triangulation_plus_2<
+    CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::Exact_intersections_tag>>;
+using Point = K::Point_2;
+
+Point P(Vec2 v) { return Point(v.x, v.y); }
+
+/// A uniform grid of item bounding boxes over the far box, for "what covers this point".
+struct Grid {
+  Vec2 lo;
+  double size = 1;
+  int nx = 1, ny = 1;
+  std::vector<std::vector<int32_t>> cell;
+  Grid(Vec2 lo_, Vec2 hi, size_t items) : lo(lo_) {
+    double w = hi.x - lo.x, h = hi.y - lo.y;
+    size = std::max(std::sqrt(w * h / double(std::max<size_t>(items, 1))), 1e-6);
+    nx = std::clamp(int(w / size) + 1, 1, 4096);
+    ny = std::clamp(int(h / size) + 1, 1, 4096);
+    size = std::max(w / nx, h / ny) * (1 + 1e-9);
+    cell.resize(size_t(nx) * size_t(ny));
+  }
+  int ix(double x) const { return std::clamp(int((x - lo.x) / size), 0, nx - 1); }
+  int iy(double y) const { return std::clamp(int((y - lo.y) / size), 0, ny - 1); }
+  void add(int32_t id, const std::vector<Vec2>& pts) {
+    double x0 = HUGE_VAL, y0 = HUGE_VAL, x1 = -HUGE_VAL, y1 = -HUGE_VAL;
+    for (Vec2 p : pts) x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+    for (int j = iy(y0); j <= iy(y1); ++j)
+      for (int i = ix(x0); i <= ix(x1); ++i) cell[size_t(j) * size_t(nx) + size_t(i)].push_back(id);
+  }
+  const std::vector<int32_t>& at(Vec2 p) const { return cell[size_t(iy(p.y)) * size_t(nx) + size_t(ix(p.x))]; }
+};
+
+bool strictly_inside_convex(const std::vector<Point>& poly, const Point& c) {
+  for (size_t i = 0; i < poly.size(); ++i)
+    if (CGAL::orientation(poly[i], poly[(i + 1) % poly.size()], c) != CGAL::LEFT_TURN) return false;
+  return true;
+}
+
+}  // namespace
+
+int orientation(Vec2 a, Vec2 b, Vec2 c) {
+  using Ik = CGAL::Exact_predicates_inexact_constructions_kernel;
+  return int(CGAL::orientation(Ik::Point_2(a.x, a.y), Ik::Point_2(b.x, b.y), Ik::Point_2(c.x, c.y)));
+}
+
+Triangulation triangulate(const Outline& outline, const std::vector<Vec2>& points) {
+  // Every outline edge becomes a constraint; exact intersections split crossing ones.
+  std::vector<Point> pts;
+  std::vector<std::pair<size_t, size_t>> segs;
+  auto add_loop = [&](const std::vector<Vec2>& loop, bool closed) {
+    size_t base = pts.size();
+    for (Vec2 v : loop) pts.push_back(P(v));
+    size_t n = loop.size();
+    for (size_t i = 0; i + (closed ? 0 : 1) < n; ++i) segs.push_back({base + i, base + (i + 1) % n});
+  };
+  add_loop({outline.lo, {outline.hi.x, outline.lo.y}, outline.hi, {outline.lo.x, outline.hi.y}}, true);
+  for (const Region& r : outline.regions) add_loop(r.poly, !r.sheet);
+  for (const auto& h : outline.holes) add_loop(h, true);
+  // Drop zero-length constraints (coincident points), which CGAL rejects.
+  segs.erase(std::remove_if(segs.begin(), segs.end(), [&](auto s) { return pts[s.first] == pts[s.second]; }),
+             segs.end());
+
+  CDT cdt;
+  cdt.insert_constraints(pts.begin(), pts.end(), segs.begin(), segs.end());
+
+  Triangulation T;
+  for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
+    v->info() = int32_t(T.vert.size());
+    T.vert.push_back({CGAL::to_double(v->point().x()), CGAL::to_double(v->point().y())});
+  }
+  int32_t nf = 0;
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) f->info() = nf++;
+  T.tri.resize(size_t(nf));
+  T.nbr.resize(size_t(nf));
+  std::vector<CDT::Face_handle> faces(static_cast<size_t>(nf));
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+    int t = f->info();
+    faces[size_t(t)] = f;
+    for (int i = 0; i < 3; ++i) {
+      T.tri[size_t(t)][size_t(i)] = f->vertex(i)->info();
+      auto g = f->neighbor(i);
+      T.nbr[size_t(t)][size_t(i)] = cdt.is_infinite(g) ? -1 : g->info();
+    }
+  }
+
+  // Which thick-wall regions cover each triangle: its centroid, exactly, in the convex region.
+  std::vector<std::vector<Point>> exact_regions(outline.regions.size());
+  Grid grid(outline.lo, outline.hi, outline.regions.size());
+  for (size_t r = 0; r < outline.regions.size(); ++r) {
+    const Region& reg = outline.regions[r];
+    for (Vec2 v : reg.poly) exact_regions[r].push_back(P(v));
+    grid.add(int32_t(r), reg.poly);
+  }
+  std::vector<std::vector<Point>> exact_holes;
+  Grid hole_grid(outline.lo, outline.hi, outline.holes.size());
+  for (size_t h = 0; h < outline.holes.size(); ++h) {
+    exact_holes.emplace_back();
+    for (Vec2 v : outline.holes[h]) exact_holes.back().push_back(P(v));
+    hole_grid.add(int32_t(h), outline.holes[h]);
+  }
+  T.region_start.assign(1, 0);
+  T.hole_start.assign(1, 0);
+  T.sheet_start.assign(1, 0);
+  for (int t = 0; t < nf; ++t) {
+    auto f = faces[size_t(t)];
+    Point c = CGAL::centroid(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
+    Vec2 cd{CGAL::to_double(c.x()), CGAL::to_double(c.y())};
+    for (int32_t r : grid.at(cd)) {
+      const Region& reg = outline.regions[size_t(r)];
+      if (!reg.sheet && strictly_inside_convex(exact_regions[size_t(r)], c)) T.region_items.push_back(r);
+    }
+    T.region_start.push_back(int32_t(T.region_items.size()));
+    for (int32_t h : hole_grid.at(cd))
+      if (CGAL::bounded_side_2(exact_holes[size_t(h)].begin(), exact_holes[size_t(h)].end(), c, K()) ==
+          CGAL::ON_BOUNDED_SIDE)
+        T.hole_items.push_back(h);
+    T.hole_start.push_back(int32_t(T.hole_items.size()));
+    // Sheets (walls of no thickness) lying on each constrained edge: its midpoint on the sheet.
+    for (int i = 0; i < 3; ++i) {
+      if (f->is_constrained(i)) {
+        const Point& a = f->vertex((i + 1) % 3)->point();
+        const Point& b = f->vertex((i + 2) % 3)->point();
+        Point mid = CGAL::midpoint(a, b);
+        Vec2 md{CGAL::to_double(mid.x()), CGAL::to_double(mid.y())};
+        for (int32_t r : grid.at(md)) {
+          const Region& reg = outline.regions[size_t(r)];
+          if (!reg.sheet) continue;
+          const auto& s = exact_regions[size_t(r)];
+          if (CGAL::collinear(s[0], s[1], mid) && CGAL::collinear_are_ordered_along_line(s[0], mid, s[1]))
+            T.sheet_items.push_back(r);
+        }
+      }
+      T.sheet_start.push_back(int32_t(T.sheet_items.size()));
+    }
+  }
+  // Locate query points (room labels).
+  for (Vec2 p : points) {
+    auto f = cdt.locate(P(p));
+    T.label_tri.push_back(f == nullptr || cdt.is_infinite(f) ? -1 : f->info());
+  }
+  return T;
+}
+
+}  // namespace avenues::detail

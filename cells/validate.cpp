@@ -1,0 +1,140 @@
+// Avenues — cells_are_valid: an independent check of a cell complex (CGAL's habit of
+// re-checking its output). It reads only the complex, never the passes' bookkeeping.
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "cells/build_cells.h"
+
+namespace avenues {
+
+namespace {
+
+double area2(const std::vector<Vec2>& p) {
+  double a = 0;
+  for (size_t i = 0; i < p.size(); ++i) a += cross(p[i], p[(i + 1) % p.size()]);
+  return a / 2;
+}
+
+/// Area of a planar 3D polygon.
+double area3(const std::vector<Vec3>& p) {
+  Vec3 s{0, 0, 0};
+  for (size_t i = 0; i < p.size(); ++i) s = s + cross(p[i], p[(i + 1) % p.size()]);
+  return length(s) / 2;
+}
+
+/// Part of convex polygon `a` inside convex counter-clockwise polygon `b`.
+std::vector<Vec2> clip(std::vector<Vec2> a, const std::vector<Vec2>& b) {
+  for (size_t k = 0; k < b.size() && !a.empty(); ++k) {
+    Vec2 o = b[k], d = b[(k + 1) % b.size()] - o;
+    std::vector<Vec2> out;
+    for (size_t i = 0; i < a.size(); ++i) {
+      Vec2 p = a[i], q = a[(i + 1) % a.size()];
+      double sp = cross(d, p - o), sq = cross(d, q - o);
+      if (sp >= 0) out.push_back(p);
+      if ((sp > 0 && sq < 0) || (sp < 0 && sq > 0)) out.push_back(p + (sp / (sp - sq)) * (q - p));
+    }
+    a.swap(out);
+  }
+  return a;
+}
+
+}  // namespace
+
+std::string cells_are_valid(const CellComplex& c) {
+  std::ostringstream why;
+  const double scale = std::max({1.0, std::fabs(c.far_box.lo.x), std::fabs(c.far_box.hi.x),
+                                 std::fabs(c.far_box.lo.y), std::fabs(c.far_box.hi.y)});
+  const double eps = 1e-9 * scale;  // [m] tolerance on coordinates rounded once from exact ones
+  auto fail = [&](auto&&... parts) {
+    (why << ... << parts);
+    return why.str();
+  };
+
+  // Cells: convex, counter-clockwise, of positive height, inside the far box.
+  for (size_t i = 0; i < c.cells.size(); ++i) {
+    const Cell& cell = c.cells[i];
+    const auto& f = cell.footprint;
+    if (f.size() < 3) return fail("cell ", i, " has a footprint of ", f.size(), " vertices");
+    if (!(cell.z1 > cell.z0)) return fail("cell ", i, " has no height");
+    if (area2(f) <= 0) return fail("cell ", i, " is not counter-clockwise");
+    for (size_t k = 0; k < f.size(); ++k) {
+      Vec2 a = f[k], b = f[(k + 1) % f.size()], d = f[(k + 2) % f.size()];
+      if (cross(b - a, d - b) < -eps * length(b - a)) return fail("cell ", i, " is not convex at vertex ", k + 1);
+    }
+    if (!c.far_box.contains(cell.bounds().lo, eps) || !c.far_box.contains(cell.bounds().hi, eps))
+      return fail("cell ", i, " leaves the far box");
+    if (cell.faces.size() != f.size() + 2) return fail("cell ", i, " has ", cell.faces.size(), " faces");
+    // Every face is accounted for: opaque pieces plus portals cover it exactly.
+    for (size_t k = 0; k < cell.faces.size(); ++k) {
+      const Face& face = cell.faces[k];
+      double covered = 0;
+      for (const OpaquePoly& o : face.opaque) covered += area3(o.poly);
+      for (PortalId p : face.portals) covered += area3(c.portals[size_t(p)].poly);
+      double whole = area3(face.poly);
+      if (std::fabs(covered - whole) > 1e-6 * std::max(1.0, whole))
+        return fail("face ", k, " of cell ", i, " has area ", whole, " but opaque + portals cover ", covered);
+    }
+  }
+
+  // Portals: join two different cells, convex and planar, lying in a face of each.
+  for (size_t p = 0; p < c.portals.size(); ++p) {
+    const Portal& portal = c.portals[p];
+    if (portal.cell[0] == portal.cell[1]) return fail("portal ", p, " joins cell ", portal.cell[0], " to itself");
+    for (CellId id : portal.cell)
+      if (id < 0 || id >= CellId(c.cells.size())) return fail("portal ", p, " names no cell");
+    if (portal.poly.size() < 3 || area3(portal.poly) <= 0) return fail("portal ", p, " is degenerate");
+    for (Vec3 v : portal.poly)
+      if (std::fabs(portal.plane.eval(v)) > eps) return fail("portal ", p, " is not planar");
+    // Convex, and counter-clockwise about its normal.
+    const size_t m = portal.poly.size();
+    for (size_t k = 0; k < m; ++k) {
+      Vec3 a = portal.poly[k], b = portal.poly[(k + 1) % m], d = portal.poly[(k + 2) % m];
+      if (dot(cross(b - a, d - b), portal.plane.n) < -eps * length(b - a))
+        return fail("portal ", p, " is not convex (or not oriented by its normal)");
+    }
+    for (int s = 0; s < 2; ++s) {
+      const Cell& cell = c.cells[size_t(portal.cell[s])];
+      Vec3 n = s == 0 ? portal.plane.n : -1.0 * portal.plane.n;
+      bool in_face = false;
+      for (const Face& f : cell.faces) {
+        if (dot(f.plane.n, n) < 1 - 1e-9) continue;
+        bool on = true;
+        for (Vec3 v : portal.poly) on = on && std::fabs(f.plane.eval(v)) <= eps && cell.contains(v, eps);
+        if (on && std::find(f.portals.begin(), f.portals.end(), PortalId(p)) != f.portals.end()) in_face = true;
+      }
+      if (!in_face) return fail("portal ", p, " does not lie in a face of cell ", portal.cell[s]);
+    }
+  }
+
+  // No two cells overlap: footprints of cells sharing heights meet in no area.
+  std::vector<size_t> order(c.cells.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::vector<Box3> box(c.cells.size());
+  for (size_t i = 0; i < c.cells.size(); ++i) box[i] = c.cells[i].bounds();
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return box[a].lo.x < box[b].lo.x; });
+  for (size_t x = 0; x < order.size(); ++x)
+    for (size_t y = x + 1; y < order.size() && box[order[y]].lo.x < box[order[x]].hi.x - eps; ++y) {
+      size_t i = order[x], j = order[y];
+      const Box3 &a = box[i], &b = box[j];
+      if (a.lo.y >= b.hi.y - eps || b.lo.y >= a.hi.y - eps) continue;
+      if (a.lo.z >= b.hi.z - eps || b.lo.z >= a.hi.z - eps) continue;
+      double overlap = area2(clip(c.cells[i].footprint, c.cells[j].footprint));
+      if (overlap > 1e-7 * std::max(1.0, scale)) return fail("cells ", i, " and ", j, " overlap by ", overlap, " m²");
+    }
+
+  // Real lines: each cell's parts lie on the cell's boundary.
+  for (size_t i = 0; i < c.cells.size(); ++i)
+    for (const CellLine& cl : c.cells[i].lines) {
+      if (cl.line < 0 || cl.line >= LineId(c.lines.size()) || !(cl.t0 < cl.t1))
+        return fail("cell ", i, " has a bad line part");
+      const RealLine& l = c.lines[size_t(cl.line)];
+      for (double t : {cl.t0, cl.t1}) {
+        Vec3 q = l.a + t * (l.b - l.a);
+        if (!c.cells[i].contains(q, 1e-6 * scale)) return fail("a line of cell ", i, " leaves the cell");
+      }
+    }
+  return {};
+}
+
+}  // namespace avenues

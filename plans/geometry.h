@@ -1,0 +1,57 @@
+// Avenues — small value types shared by every module.
+//
+// Plain doubles in metres, +z up. Kept deliberately tiny (pbrt-v4 style: distinct
+// point types, no hidden conversions); exact arithmetic lives behind cells/'s CGAL
+// boundary, and nothing downstream of it sees a CGAL type.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+namespace avenues {
+
+struct Vec2 {
+  double x = 0, y = 0;  ///< [m]
+  friend Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
+  friend Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
+  friend Vec2 operator*(double s, Vec2 a) { return {s * a.x, s * a.y}; }
+  friend bool operator==(Vec2 a, Vec2 b) { return a.x == b.x && a.y == b.y; }
+};
+inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
+inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
+inline double length(Vec2 a) { return std::hypot(a.x, a.y); }
+
+struct Vec3 {
+  double x = 0, y = 0, z = 0;  ///< [m]
+  friend Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+  friend Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+  friend Vec3 operator*(double s, Vec3 a) { return {s * a.x, s * a.y, s * a.z}; }
+  friend bool operator==(Vec3 a, Vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+};
+inline double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Vec3 cross(Vec3 a, Vec3 b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline double length(Vec3 a) { return std::sqrt(dot(a, a)); }
+
+/// Axis-aligned box; empty when lo > hi on any axis.
+struct Box3 {
+  Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  void add(Vec3 p) {
+    lo = {std::fmin(lo.x, p.x), std::fmin(lo.y, p.y), std::fmin(lo.z, p.z)};
+    hi = {std::fmax(hi.x, p.x), std::fmax(hi.y, p.y), std::fmax(hi.z, p.z)};
+  }
+  bool contains(Vec3 p, double tol = 0) const {
+    return p.x >= lo.x - tol && p.x <= hi.x + tol && p.y >= lo.y - tol && p.y <= hi.y + tol &&
+           p.z >= lo.z - tol && p.z <= hi.z + tol;
+  }
+};
+
+/// Plane n·p + d = 0. For a cell's face, n points out of the cell (unit length).
+struct Plane {
+  Vec3 n;
+  double d = 0;
+  double eval(Vec3 p) const { return dot(n, p) + d; }
+};
+
+}  // namespace avenues

@@ -1,0 +1,156 @@
+// Avenues — a building plan, as a person wrote it.
+//
+// The Plan is the parsed, unit-converted, validated input: everything in metres,
+// everything indexed (storeys, materials, rooms by position in their arrays), each
+// element remembering where in the source it came from so that any later stage can
+// name the line a problem stems from. It knows nothing of cells; cells/ builds the
+// cell complex from it (data flows plans -> cells -> visibility -> render -> app).
+#pragma once
+
+#include <array>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "plans/geometry.h"
+
+namespace avenues {
+
+/// Where an element came from: "house.toml:12:3 (wall 'north')".
+struct SourceLoc {
+  std::string file;
+  int line = 0;    ///< 1-based; 0 when unknown (generated plans)
+  int column = 0;  ///< 1-based; 0 when unknown
+  std::string element;  ///< e.g. "wall 'north'", "room 'kitchen'"
+  std::string str() const;
+};
+
+/// A plan mistake: reported with its location, exit status 2 in the CLI.
+class PlanError : public std::runtime_error {
+ public:
+  PlanError(const SourceLoc& where, const std::string& what)
+      : std::runtime_error(where.str() + ": " + what), where_(where) {}
+  const SourceLoc& where() const { return where_; }
+
+ private:
+  SourceLoc where_;
+};
+
+using MaterialId = int;  ///< index into Plan::materials; -1 = default
+using StoreyId = int;    ///< index into Plan::storeys
+
+struct Material {
+  std::string name;
+  double reflectance = 0.7;                 ///< R in Bouknight's I = R·RANGE·cos φ + BACK, [0,1]
+  std::array<double, 3> colour{0.8, 0.8, 0.8};  ///< linear RGB, each [0,1]
+  SourceLoc where;
+};
+
+struct Storey {
+  std::string name;
+  double elevation = 0;  ///< [m] top of this storey's floor
+  double height = 2.5;   ///< [m] floor to ceiling, > 0
+  double slab = 0.3;     ///< [m] thickness of the slab above the ceiling (floor of the next storey, or roof), >= 0
+  SourceLoc where;
+};
+
+enum class OpeningKind { Door, Window, Hatch, Gap };
+const char* to_string(OpeningKind k);
+
+/// A hole through a wall, from `sill` to `head` above the storey's floor.
+struct Opening {
+  std::string name;
+  OpeningKind kind = OpeningKind::Door;
+  double at = 0;     ///< [m] distance along the wall's centre line from its first point to the opening's near edge
+  double width = 0;  ///< [m] > 0, along the wall
+  double sill = 0;   ///< [m] above the storey floor, >= 0
+  double head = 2.1; ///< [m] above the storey floor, > sill, <= storey height
+  SourceLoc where;
+};
+
+/// One segment of a wall's centre line: straight to `to`, or an arc through `through`.
+struct WallVertex {
+  Vec2 p;                       ///< [m] end point of the segment reaching it (or the start point)
+  std::optional<Vec2> through;  ///< [m] a point on the arc from the previous vertex to p
+};
+
+/// A wall: a centre-line polyline with thickness, standing on one storey's floor.
+/// Arcs are tessellated into straight pieces (Plan::arc_tolerance) by the reader, so
+/// `centre` holds straight segments only; `arc_segments` marks which came from arcs.
+struct Wall {
+  std::string name;
+  StoreyId storey = 0;
+  double thickness = 0.2;       ///< [m] >= 0; 0 is Jones's wall of no thickness
+  double height = -1;           ///< [m] above floor; < 0 means "up to the ceiling"
+  std::vector<Vec2> centre;     ///< [m] straight centre line after tessellation, >= 2 points
+  std::vector<bool> from_arc;   ///< per segment (centre.size()-1): tessellated from an arc
+  std::vector<Opening> openings;
+  MaterialId material = -1;
+  SourceLoc where;
+};
+
+/// A hole in a storey's floor slab (a stairwell): joins this storey to the one below.
+struct FloorOpening {
+  std::string name;
+  StoreyId storey = 0;           ///< the storey whose floor has the hole (>= 1)
+  std::vector<Vec2> outline;     ///< [m] simple polygon, counter-clockwise
+  SourceLoc where;
+};
+
+struct Room {
+  std::string name;
+  StoreyId storey = 0;
+  Vec2 label;                    ///< [m] a point inside the room
+  MaterialId floor = -1, ceiling = -1, walls = -1;
+  SourceLoc where;
+};
+
+/// A mesh placed in a room; carried along for the renderer, it does not change cells.
+struct Object {
+  std::string name;
+  std::string mesh;              ///< path, resolved against the plan's directory
+  StoreyId storey = 0;
+  Vec3 position;                 ///< [m] storey floor is z = 0 for the object
+  Vec3 rotation_deg;             ///< [deg] about x, y, z, applied in that order
+  Vec3 scale{1, 1, 1};
+  MaterialId material = -1;
+  SourceLoc where;
+};
+
+struct Light {
+  std::string name;
+  Vec3 position;                 ///< [m] absolute
+  double intensity = 1;          ///< relative, > 0
+  std::array<double, 3> colour{1, 1, 1};
+  SourceLoc where;
+};
+
+struct Viewpoint {
+  Vec3 eye;    ///< [m]
+  Vec3 look;   ///< [m] centre of interest
+  double fov_deg = 60;
+};
+
+struct Plan {
+  std::string name;
+  std::string source;                ///< file it was read from ("" if generated)
+  double arc_tolerance = 0.01;       ///< [m] max sagitta of an arc's straight pieces
+  double far_margin = 30;            ///< [m] from the building to the far opaque box, > 0
+  MaterialId ground = -1, sky = -1, roof = -1;
+  std::vector<Material> materials;
+  std::vector<Storey> storeys;       ///< sorted by elevation, contiguous (elevation = below's elevation + height + slab)
+  std::vector<Wall> walls;
+  std::vector<FloorOpening> floor_openings;
+  std::vector<Room> rooms;
+  std::vector<Object> objects;
+  std::vector<Light> lights;
+  std::optional<Viewpoint> view;     ///< the plan's default viewpoint, if it names one
+};
+
+/// Reads a plan file (TOML). Throws PlanError naming file, line and element.
+Plan read_plan(const std::string& path);
+/// Same, from text (for tests and fuzzing); `name` stands for the file in messages.
+Plan parse_plan(const std::string& text, const std::string& name);
+
+}  // namespace avenues

@@ -1,0 +1,301 @@
+// Tests of cells/: tiny hand-made plans, each named for what it shows, checked
+// analytically (volumes, counts, positions) and by the independent validator.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <set>
+
+#include "cells/build_cells.h"
+
+using namespace avenues;
+
+namespace {
+
+Wall wall(const std::string& name, std::vector<Vec2> centre, double thickness) {
+  Wall w;
+  w.name = name;
+  w.thickness = thickness;
+  w.centre = std::move(centre);
+  w.from_arc.assign(w.centre.size() - 1, false);
+  return w;
+}
+
+Opening opening(const std::string& name, OpeningKind kind, double at, double width, double sill, double head) {
+  Opening o;
+  o.name = name;
+  o.kind = kind;
+  o.at = at;
+  o.width = width;
+  o.sill = sill;
+  o.head = head;
+  return o;
+}
+
+Room room(const std::string& name, Vec2 at, StoreyId s = 0) {
+  Room r;
+  r.name = name;
+  r.label = at;
+  r.storey = s;
+  return r;
+}
+
+/// Two 4 m × 4 m rooms side by side, a front door, a window and an inner door.
+Plan two_rooms_one_door(double thickness) {
+  Plan p;
+  p.name = "two rooms, one door";
+  p.far_margin = 5;
+  p.storeys.push_back({"ground", 0, 2.5, 0.3, {}});
+  Wall outer = wall("outer", {{0, 0}, {8, 0}, {8, 4}, {0, 4}, {0, 0}}, thickness);
+  outer.openings.push_back(opening("front", OpeningKind::Door, 2, 0.9, 0, 2.1));
+  outer.openings.push_back(opening("east window", OpeningKind::Window, 9, 1.2, 0.9, 2.1));
+  p.walls.push_back(outer);
+  Wall mid = wall("mid", {{4, 0}, {4, 4}}, thickness);
+  mid.openings.push_back(opening("inner", OpeningKind::Door, 1.5, 0.8, 0, 2.0));
+  p.walls.push_back(mid);
+  p.rooms = {room("west", {2, 2}), room("east", {6, 2})};
+  return p;
+}
+
+/// One closed 4 m × 3 m room with 0.2 m walls and no openings.
+Plan box_room() {
+  Plan p;
+  p.name = "box room";
+  p.far_margin = 2;
+  p.storeys.push_back({"ground", 0, 2.5, 0.3, {}});
+  p.walls.push_back(wall("box", {{0, 0}, {4, 0}, {4, 3}, {0, 3}, {0, 0}}, 0.2));
+  p.rooms = {room("box", {2, 1.5})};
+  return p;
+}
+
+double box_area(const CellComplex& c) {
+  return (c.far_box.hi.x - c.far_box.lo.x) * (c.far_box.hi.y - c.far_box.lo.y);
+}
+
+const Cell* only_cell_of_room(const CellComplex& c, RoomId r) {
+  const Cell* found = nullptr;
+  for (const Cell& cell : c.cells)
+    if (cell.kind == CellKind::Room && cell.room == r) {
+      if (found) return nullptr;
+      found = &cell;
+    }
+  return found;
+}
+
+}  // namespace
+
+TEST(Cells, TwoRoomsOneDoorThickWallsAreValidAndAccountForAllFreeVolume) {
+  CellComplex c = build_cells(two_rooms_one_door(0.2));
+  EXPECT_EQ(cells_are_valid(c), "");
+  ASSERT_EQ(c.rooms.size(), 2u);
+  EXPECT_EQ(c.rooms[0].name, "west");
+  // Free volume, worked out by hand: the far box minus walls (outer ring 4.8 m², middle
+  // wall 0.84 m² less 0.08 m² where it enters the ring), plus the three openings' volumes,
+  // the slab band outside the 8.2 × 4.2 footprint, and the sky band.
+  const double A = box_area(c);
+  const double storey = (A - 5.56) * 2.5 + 0.9 * 0.2 * 2.1 + 1.2 * 0.2 * 1.2 + 0.8 * 0.2 * 2.0;
+  const double slab = (A - 8.2 * 4.2) * 0.3;
+  const double sky = A * (c.far_box.hi.z - 2.8);
+  EXPECT_NEAR(total_volume(c), storey + slab + sky, 1e-6);
+  // Each room is one convex cell; three doorway cells stand in the walls.
+  EXPECT_NE(only_cell_of_room(c, 0), nullptr);
+  EXPECT_NE(only_cell_of_room(c, 1), nullptr);
+  int doorways = 0;
+  for (const Cell& cell : c.cells) doorways += cell.kind == CellKind::Doorway;
+  EXPECT_EQ(doorways, 3);
+  // The inner door's portals are 0.8 m wide and 2.0 m high, one on each face of the wall.
+  int inner = 0;
+  for (const Portal& p : c.portals)
+    if (p.kind == PortalKind::Door && std::fabs(p.poly[0].x - 4) < 0.2) {
+      double zmax = 0, ymin = 1e9, ymax = -1e9;
+      for (Vec3 v : p.poly) zmax = std::max(zmax, v.z), ymin = std::min(ymin, v.y), ymax = std::max(ymax, v.y);
+      EXPECT_NEAR(zmax, 2.0, 1e-12);
+      EXPECT_NEAR(ymax - ymin, 0.8, 1e-12);
+      ++inner;
+    }
+  EXPECT_EQ(inner, 2);
+}
+
+TEST(Cells, WallsOfNoThicknessMakePortalsDirectlyBetweenRooms) {
+  CellComplex c = build_cells(two_rooms_one_door(0.0));
+  EXPECT_EQ(cells_are_valid(c), "");
+  const double A = box_area(c);
+  EXPECT_NEAR(total_volume(c), A * 2.5 + (A - 32) * 0.3 + A * (c.far_box.hi.z - 2.8), 1e-6);
+  for (const Cell& cell : c.cells) EXPECT_NE(cell.kind, CellKind::Doorway);
+  const Cell* west = only_cell_of_room(c, 0);
+  const Cell* east = only_cell_of_room(c, 1);
+  ASSERT_TRUE(west && east);
+  int doors = 0;
+  for (const Portal& p : c.portals)
+    if (p.kind == PortalKind::Door &&
+        ((&c.cells[size_t(p.cell[0])] == west && &c.cells[size_t(p.cell[1])] == east) ||
+         (&c.cells[size_t(p.cell[0])] == east && &c.cells[size_t(p.cell[1])] == west)))
+      ++doors;
+  EXPECT_EQ(doors, 1);
+}
+
+TEST(Cells, BoxRoomHasTwelveRealLinesAllCreases) {
+  CellComplex c = build_cells(box_room());
+  EXPECT_EQ(cells_are_valid(c), "");
+  const Cell* box = only_cell_of_room(c, 0);
+  ASSERT_NE(box, nullptr);
+  // Four floor creases, four ceiling creases, four vertical corners: each a whole line.
+  ASSERT_EQ(box->lines.size(), 12u);
+  int vertical = 0;
+  for (const CellLine& cl : box->lines) {
+    const RealLine& l = c.lines[size_t(cl.line)];
+    EXPECT_EQ(l.kind, LineKind::Concave);
+    EXPECT_DOUBLE_EQ(cl.t0, 0);
+    EXPECT_DOUBLE_EQ(cl.t1, 1);
+    if (l.a.z != l.b.z) {
+      ++vertical;
+      EXPECT_NEAR(std::fabs(l.b.z - l.a.z), 2.5, 1e-12);
+    } else {
+      EXPECT_TRUE(l.a.z == 0 || l.a.z == 2.5);
+    }
+    // On the inner faces of the walls: x in {0.1, 3.9} or y in {0.1, 2.9}.
+    for (Vec3 v : {l.a, l.b})
+      EXPECT_TRUE(std::fabs(v.x - 0.1) < 1e-12 || std::fabs(v.x - 3.9) < 1e-12 || std::fabs(v.y - 0.1) < 1e-12 ||
+                  std::fabs(v.y - 2.9) < 1e-12);
+  }
+  EXPECT_EQ(vertical, 4);
+}
+
+TEST(Cells, LShapedRoomIsSplitByATransparentPortalThatDrawsNoLine) {
+  Plan p;
+  p.name = "L-shaped room";
+  p.far_margin = 2;
+  p.storeys.push_back({"ground", 0, 2.5, 0.3, {}});
+  p.walls.push_back(wall("L", {{0, 0}, {6, 0}, {6, 3}, {3, 3}, {3, 6}, {0, 6}, {0, 0}}, 0));
+  p.rooms = {room("L", {1, 1})};
+  CellComplex c = build_cells(p);
+  EXPECT_EQ(cells_are_valid(c), "");
+  std::vector<const Cell*> pieces;
+  for (const Cell& cell : c.cells)
+    if (cell.kind == CellKind::Room) pieces.push_back(&cell);
+  ASSERT_EQ(pieces.size(), 2u);
+  int transparent = 0;
+  for (const Portal& pt : c.portals) transparent += pt.kind == PortalKind::Transparent;
+  EXPECT_EQ(transparent, 1);
+  // Six walls: six floor creases, six ceiling creases, six corners — and nothing on the cut.
+  std::set<LineId> seen;
+  for (const Cell* cell : pieces)
+    for (const CellLine& cl : cell->lines) seen.insert(cl.line);
+  EXPECT_EQ(seen.size(), 18u);
+}
+
+TEST(Cells, StairwellJoinsStoreysThroughHorizontalPortals) {
+  Plan p;
+  p.name = "two storeys, one stairwell";
+  p.far_margin = 3;
+  p.storeys.push_back({"ground", 0, 2.5, 0.3, {}});
+  p.storeys.push_back({"upper", 2.8, 2.5, 0.3, {}});
+  for (StoreyId s : {0, 1}) {
+    Wall w = wall(s ? "upper box" : "ground box", {{0, 0}, {5, 0}, {5, 4}, {0, 4}, {0, 0}}, 0.2);
+    w.storey = s;
+    p.walls.push_back(w);
+    p.rooms.push_back(room(s ? "landing" : "hall", {2.5, 2}, s));
+  }
+  FloorOpening hole;
+  hole.name = "stairwell";
+  hole.storey = 1;
+  hole.outline = {{1, 1}, {3, 1}, {3, 2}, {1, 2}};
+  p.floor_openings.push_back(hole);
+  CellComplex c = build_cells(p);
+  EXPECT_EQ(cells_are_valid(c), "");
+  int stair_cells = 0, stair_portals = 0;
+  for (const Cell& cell : c.cells) stair_cells += cell.kind == CellKind::Stairwell;
+  for (const Portal& pt : c.portals) stair_portals += pt.kind == PortalKind::Stairwell;
+  EXPECT_EQ(stair_cells, 1);
+  EXPECT_GE(stair_portals, 2);
+  // From the hall one can reach the landing through portals.
+  Location hall = c.locate({2.5, 2, 1.5});
+  Location landing = c.locate({2.5, 2, 4.0});
+  ASSERT_EQ(hall.what, Location::What::Cell);
+  ASSERT_EQ(landing.what, Location::What::Cell);
+  std::set<CellId> reached{hall.cell};
+  std::vector<CellId> todo{hall.cell};
+  while (!todo.empty()) {
+    CellId x = todo.back();
+    todo.pop_back();
+    for (PortalId pi : c.cells[size_t(x)].portals) {
+      CellId y = c.portals[size_t(pi)].other(x);
+      if (c.cells[size_t(y)].kind != CellKind::Outside && c.cells[size_t(y)].kind != CellKind::Sky &&
+          reached.insert(y).second)
+        todo.push_back(y);
+    }
+  }
+  EXPECT_TRUE(reached.count(landing.cell));
+}
+
+TEST(Cells, LowWallLeavesTheSpaceAboveItOpen) {
+  Plan p = two_rooms_one_door(0.2);
+  p.walls[1].height = 1.0;  // the middle wall becomes a parapet
+  p.walls[1].openings.clear();
+  // Now west and east are one space: one room label must go.
+  p.rooms.pop_back();
+  CellComplex c = build_cells(p);
+  EXPECT_EQ(cells_are_valid(c), "");
+  int gaps = 0;
+  for (const Portal& pt : c.portals) gaps += pt.kind == PortalKind::Gap;
+  EXPECT_EQ(gaps, 2);  // one on each face of the wall, from 1.0 m to the ceiling
+}
+
+TEST(Cells, PointLocationAgreesWithBruteForce) {
+  for (double thickness : {0.2, 0.0}) {
+    CellComplex c = build_cells(two_rooms_one_door(thickness));
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> x(c.far_box.lo.x, c.far_box.hi.x), y(c.far_box.lo.y, c.far_box.hi.y),
+        z(c.far_box.lo.z, c.far_box.hi.z);
+    CellId hint = kNoCell;
+    for (int i = 0; i < 2000; ++i) {
+      Vec3 q{x(rng), y(rng), z(rng)};
+      CellId brute = kNoCell;
+      for (CellId k = 0; k < CellId(c.cells.size()); ++k)
+        if (c.cells[size_t(k)].contains(q)) brute = k;
+      Location loc = c.locate(q, hint);
+      if (brute == kNoCell) {
+        EXPECT_EQ(loc.what, Location::What::Solid) << q.x << "," << q.y << "," << q.z;
+      } else {
+        ASSERT_EQ(loc.what, Location::What::Cell);
+        EXPECT_TRUE(c.cells[size_t(loc.cell)].contains(q));
+        hint = loc.cell;
+      }
+    }
+  }
+}
+
+TEST(Cells, APointInsideAWallIsReportedAsThatWall) {
+  CellComplex c = build_cells(two_rooms_one_door(0.2));
+  Location loc = c.locate({4.0, 3.5, 1.0});
+  EXPECT_EQ(loc.what, Location::What::Solid);
+  EXPECT_NE(loc.solid.find("wall 'mid'"), std::string::npos) << loc.solid;
+  EXPECT_EQ(c.locate({4.0, 2.0, 2.3}).what, Location::What::Solid);  // above the inner door: lintel
+  EXPECT_EQ(c.locate({4.0, 2.0, 1.0}).what, Location::What::Cell);   // in the doorway
+}
+
+TEST(Cells, RoomMistakesNameTheRoom) {
+  Plan in_wall = two_rooms_one_door(0.2);
+  in_wall.rooms[1].label = {8.05, 2};
+  try {
+    build_cells(in_wall);
+    FAIL() << "a label inside a wall was accepted";
+  } catch (const PlanError& e) {
+    EXPECT_NE(std::string(e.what()).find("'east'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("inside a wall"), std::string::npos) << e.what();
+  }
+  Plan open = two_rooms_one_door(0.2);
+  open.walls[0].centre = {{0, 0}, {8, 0}, {8, 4}, {0, 4}};  // the west wall is missing
+  open.walls[0].from_arc.assign(3, false);
+  open.walls[0].openings.clear();
+  try {
+    build_cells(open);
+    FAIL() << "a room open to the outside was accepted";
+  } catch (const PlanError& e) {
+    EXPECT_NE(std::string(e.what()).find("'west'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("not enclosed"), std::string::npos) << e.what();
+  }
+  Plan twice = two_rooms_one_door(0.2);
+  twice.rooms[1].label = {1, 1};
+  EXPECT_THROW(build_cells(twice), PlanError);
+}
