@@ -18,6 +18,8 @@ namespace avenues::detail {
 namespace {
 
 constexpr double kZTol = 1e-9;  ///< [m] heights are compared exactly up to this
+constexpr double kMinArea = 1e-12;  ///< [m²] a footprint smaller than this is a sliver, not a cell
+constexpr double kMinWidth = 1e-9;  ///< [m] a portal narrower than this is not a portal
 
 double area(const std::vector<Vec2>& p) {
   double a = 0;
@@ -55,6 +57,12 @@ Outline2 footprint_of(const Triangulation& T, const std::vector<int32_t>& bounda
 }
 
 Vec3 at(Vec2 p, double z) { return {p.x, p.y, z}; }
+
+double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
+  Vec2 d = b - a;
+  double t = std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0);
+  return length(p - (a + t * d));
+}
 
 MaterialId wall_material(const Plan& plan, int wall) {
   return wall >= 0 ? plan.walls[size_t(wall)].material : -1;
@@ -105,7 +113,8 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
     for (size_t p = 0; p < P.boundary.size(); ++p) {
       const SpaceClass& sc = C.classes[size_t(P.label[p])];
       Outline2 o = footprint_of(T, P.boundary[p]);
-      if (o.poly.size() < 3 || area(o.poly) <= 0) continue;
+      // A sliver left by nearly coincident input points (below any built size) stays solid.
+      if (o.poly.size() < 3 || area(o.poly) <= kMinArea) continue;
       Intervals iv{{band.z0, band.z1}};
       if (sc.kind == CellKind::Doorway) iv = intersect(iv, sc.open);
       for (auto [z0, z1] : iv) {
@@ -149,12 +158,12 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
     c.faces.push_back(std::move(top));
   }
 
-  auto add_portal = [&](CellId a, CellId b, std::vector<Vec3> poly, Vec3 n, PortalKind kind, int opening) {
+  auto add_portal = [&](CellId a, CellId b, std::vector<Vec3> poly, Vec3 normal, PortalKind kind, int opening) {
     Portal p;
     p.cell[0] = a;
     p.cell[1] = b;
-    p.plane.n = n;
-    p.plane.d = -dot(n, poly[0]);
+    p.plane.n = normal;
+    p.plane.d = -dot(normal, poly[0]);
     p.poly = std::move(poly);
     p.kind = kind;
     p.opening = opening;
@@ -191,6 +200,7 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
     int prev_side = -1;
     auto flush = [&](std::vector<Run>& runs, int side) {
       for (const Run& r : runs) {
+        if (r.s1 - r.s0 < kMinWidth) continue;
         open[size_t(side)].push_back({r.s0, r.s1, r.lo, r.hi});
         if (ci < r.d) {
           Vec2 a = c.footprint[size_t(side)], e = c.footprint[(size_t(side) + 1) % nsides];
@@ -205,8 +215,21 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
             kind = ok == OpeningKind::Door ? PortalKind::Door : ok == OpeningKind::Window ? PortalKind::Window
                    : ok == OpeningKind::Hatch ? PortalKind::Hatch : PortalKind::Gap;
           }
-          add_portal(ci, r.d, {at(p0, r.lo), at(p1, r.lo), at(p1, r.hi), at(p0, r.hi)},
-                     c.faces[size_t(side)].plane.n, kind, opening);
+          PortalId pid = add_portal(ci, r.d, {at(p0, r.lo), at(p1, r.lo), at(p1, r.hi), at(p0, r.hi)},
+                                    c.faces[size_t(side)].plane.n, kind, opening);
+          c.faces[size_t(side)].portals.push_back(pid);
+          c.portals.push_back(pid);
+          // The far cell's face: the side whose segment holds both ends of the portal.
+          Cell& dc = out.cells[size_t(r.d)];
+          size_t best = 0;
+          double best_err = HUGE_VAL;
+          for (size_t k = 0; k < dc.footprint.size(); ++k) {
+            Vec2 fa = dc.footprint[k], fb = dc.footprint[(k + 1) % dc.footprint.size()];
+            double err = std::max(distance_to_segment(p0, fa, fb), distance_to_segment(p1, fa, fb));
+            if (err < best_err) best_err = err, best = k;
+          }
+          dc.faces[best].portals.push_back(pid);
+          dc.portals.push_back(pid);
         }
       }
       runs.clear();
@@ -348,7 +371,7 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
     Pieces P = merge_convex(T, label, {});
     for (size_t p = 0; p < P.boundary.size(); ++p) {
       Outline2 o = footprint_of(T, P.boundary[p]);
-      if (o.poly.size() < 3 || area(o.poly) <= 0) continue;
+      if (o.poly.size() < 3 || area(o.poly) <= kMinArea) continue;
       auto [below, above] = pairs[size_t(P.label[p])];
       std::vector<Vec3> up, down;  // counter-clockwise seen from above / from below
       for (Vec2 v : o.poly) up.push_back(at(v, z));
@@ -360,8 +383,14 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
                               ? PortalKind::Transparent
                               : PortalKind::Open;
         int opening = cb.kind == CellKind::Stairwell ? cb.opening : ca.kind == CellKind::Stairwell ? ca.opening : -1;
-        if (below < above) add_portal(below, above, up, {0, 0, 1}, kind, opening);
-        else add_portal(above, below, down, {0, 0, -1}, kind, opening);
+        PortalId pid = below < above ? add_portal(below, above, up, {0, 0, 1}, kind, opening)
+                                     : add_portal(above, below, down, {0, 0, -1}, kind, opening);
+        Cell& cbm = out.cells[size_t(below)];
+        Cell& cam = out.cells[size_t(above)];
+        cbm.faces.back().portals.push_back(pid);  // top face of the cell below
+        cbm.portals.push_back(pid);
+        cam.faces[cam.faces.size() - 2].portals.push_back(pid);  // bottom face of the cell above
+        cam.portals.push_back(pid);
       } else if (below != kNoCell) {
         Cell& cb = out.cells[size_t(below)];
         cb.faces.back().opaque.push_back({down, b == nb ? plan.sky : ceiling_material(cb)});
@@ -378,27 +407,6 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
     MaterialId mat = -1;
     if (c.z0 > band.z0 + kZTol) c.faces[c.faces.size() - 2].opaque.push_back({c.faces[c.faces.size() - 2].poly, mat});
     if (c.z1 < band.z1 - kZTol) c.faces.back().opaque.push_back({c.faces.back().poly, mat});
-  }
-
-  // --- 5e. file each portal under the face of each cell it lies in.
-  for (PortalId pi = 0; pi < PortalId(out.portals.size()); ++pi) {
-    const Portal& p = out.portals[size_t(pi)];
-    Vec3 mid{0, 0, 0};
-    for (Vec3 v : p.poly) mid = mid + v;
-    mid = (1.0 / double(p.poly.size())) * mid;
-    for (int side = 0; side < 2; ++side) {
-      Cell& c = out.cells[size_t(p.cell[side])];
-      Vec3 n = side == 0 ? p.plane.n : -1.0 * p.plane.n;
-      Face* best = nullptr;
-      double best_err = HUGE_VAL;
-      for (Face& f : c.faces) {
-        if (dot(f.plane.n, n) < 0.999) continue;
-        double err = std::fabs(f.plane.eval(mid));
-        if (err < best_err) best_err = err, best = &f;
-      }
-      if (best) best->portals.push_back(pi);
-      c.portals.push_back(pi);
-    }
   }
 
   // Room floor areas.

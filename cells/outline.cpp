@@ -226,6 +226,29 @@ Outline make_outline(const Plan& plan) {
     }
   }
   for (const FloorOpening& f : plan.floor_openings) out.holes.push_back(f.outline);
+  // Snap every outline vertex to a grid of 2^-27 m (7.5 nm): points meant to coincide
+  // (a door jamb computed along one wall, the corner of another wall computed from its
+  // own centre line) differ in their last bits, and the exact triangulation would keep
+  // them apart as slivers. Scaling by a power of two is exact, so snapping is too, and
+  // snapped coordinates stay exact doubles for the exact predicates downstream.
+  const double q = std::ldexp(1.0, -27);
+  auto snap = [q](Vec2& v) { v = {std::nearbyint(v.x / q) * q, std::nearbyint(v.y / q) * q}; };
+  for (Region& r : out.regions) {
+    for (Vec2& v : r.poly) snap(v);
+    // Snapping may merge neighbouring vertices of a tiny strip: drop repeats, and strips left flat.
+    std::vector<Vec2> clean;
+    for (Vec2 v : r.poly)
+      if (clean.empty() || !(v == clean.back())) clean.push_back(v);
+    while (clean.size() > 1 && clean.front() == clean.back()) clean.pop_back();
+    r.poly = std::move(clean);
+  }
+  out.regions.erase(std::remove_if(out.regions.begin(), out.regions.end(),
+                                   [](const Region& r) {
+                                     return r.sheet ? r.poly.size() < 2 : (r.poly.size() < 3 || signed_area(r.poly) <= 0);
+                                   }),
+                    out.regions.end());
+  for (auto& h : out.holes)
+    for (Vec2& v : h) snap(v);
   return out;
 }
 
