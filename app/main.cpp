@@ -1,0 +1,83 @@
+// Avenues — the `avenues` executable: the command line and nothing more.
+//
+//   avenues [PLAN]                                  the main job
+//   avenues cells PLAN [--json] [--svg F] [--save F.cells]
+//   avenues export PLAN -o FILE.obj
+//   avenues generate office --rooms ROWSxCOLS -o FILE.toml
+//
+// Exit status: 0 on success, 2 for a bad command line or bad input (a plan mistake,
+// a file that cannot be read or written), with "avenues: <message>" on stderr.
+#include <exception>
+#include <iostream>
+#include <new>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands.h"
+#include "plans/plan.h"
+
+namespace {
+constexpr int kBadInput = 2;
+}
+
+int main(int argc, char** argv) {
+  using namespace avenues::app;
+  CLI::App app{
+      "Avenues: an architectural walkthrough tool. It decomposes a building plan's free\n"
+      "space into convex cells joined by convex portals (Jones 1971).\n"
+      "Without a subcommand it runs the main job on PLAN (default: the bundled\n"
+      "plans/jones-house.toml): prints a summary and writes avenues-out/<plan>-plan.svg.",
+      "avenues"};
+  app.set_version_flag("--version", "avenues 0.1");
+  app.require_subcommand(0, 1);
+
+  MainJobOptions main_opt;
+  app.add_option("PLAN", main_opt.plan, "plan (.toml) or saved cells (.cells); default: the bundled plan");
+  app.add_option("--out-dir", main_opt.out_dir, "where the main job writes its files")
+      ->capture_default_str();
+
+  CellsOptions cells_opt;
+  CLI::App* cells = app.add_subcommand("cells", "decompose PLAN into cells and print a summary");
+  cells->add_option("PLAN", cells_opt.plan, "plan (.toml) or saved cells (.cells)")->required();
+  cells->add_flag("--json", cells_opt.json, "print the summary as one JSON object");
+  cells->add_option("--svg", cells_opt.svg, "also write the plan drawing (SVG) to FILE")->type_name("FILE");
+  cells->add_option("--save", cells_opt.save, "also save the complex to FILE.cells (loads fast)")
+      ->type_name("FILE.cells");
+
+  ExportOptions export_opt;
+  CLI::App* exp = app.add_subcommand("export", "write the opaque surfaces as a Wavefront OBJ mesh");
+  exp->add_option("PLAN", export_opt.plan, "plan (.toml) or saved cells (.cells)")->required();
+  exp->add_option("-o,--output", export_opt.output, "the OBJ file to write")->required()->type_name("FILE.obj");
+
+  GenerateOfficeOptions office_opt;
+  CLI::App* generate = app.add_subcommand("generate", "write a generated plan");
+  generate->require_subcommand(1);
+  CLI::App* office = generate->add_subcommand("office", "an office floor: a grid of rooms off corridors");
+  office->add_option("--rooms", office_opt.rooms, "grid size, e.g. 10x10")->required()->type_name("ROWSxCOLS");
+  office->add_option("-o,--output", office_opt.output, "the plan file to write")->required()->type_name("FILE.toml");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);  // --help, --version
+    std::cerr << "avenues: " << e.what() << "\nRun 'avenues --help' (or 'avenues SUBCOMMAND --help') for usage.\n";
+    return kBadInput;
+  }
+
+  try {
+    if (*cells) return run_cells(cells_opt);
+    if (*exp) return run_export(export_opt);
+    if (*office) return run_generate_office(office_opt);
+    return run_main_job(main_opt);
+  } catch (const avenues::PlanError& e) {
+    std::cerr << "avenues: " << e.what() << "\n";
+    return kBadInput;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "avenues: out of memory\n";
+    return kBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "avenues: " << e.what() << "\n";
+    return kBadInput;
+  }
+}

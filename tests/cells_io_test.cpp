@@ -1,0 +1,272 @@
+// Avenues — saving and loading the cell complex, exporting OBJ, drawing the plan:
+// in-process checks of cells/cells_io.cpp, cells/export_obj.cpp, render/plan_drawing.cpp.
+#include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "cells/build_cells.h"
+#include "plans/plan.h"
+#include "render/plan_drawing.h"
+
+namespace fs = std::filesystem;
+using namespace avenues;
+
+namespace {
+
+const std::string kPlan = std::string(AVENUES_SOURCE_DIR) + "/plans/jones-house.toml";
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+void spit(const fs::path& p, const std::string& bytes) { std::ofstream(p, std::ios::binary) << bytes; }
+
+bool same(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool same(Vec2 a, Vec2 b) { return same(a.x, b.x) && same(a.y, b.y); }
+bool same(Vec3 a, Vec3 b) { return same(a.x, b.x) && same(a.y, b.y) && same(a.z, b.z); }
+bool same(const Plane& a, const Plane& b) { return same(a.n, b.n) && same(a.d, b.d); }
+template <class T>
+bool same(const std::vector<T>& a, const std::vector<T>& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (!same(a[i], b[i])) return false;
+  return true;
+}
+bool same(const SourceLoc& a, const SourceLoc& b) {
+  return a.file == b.file && a.line == b.line && a.column == b.column && a.element == b.element;
+}
+
+/// Field-by-field, bit-for-bit equality of everything save_cells stores.
+void expect_same(const CellComplex& a, const CellComplex& b) {
+  EXPECT_EQ(a.plan_name, b.plan_name);
+  ASSERT_EQ(a.storeys.size(), b.storeys.size());
+  for (size_t i = 0; i < a.storeys.size(); ++i) {
+    EXPECT_EQ(a.storeys[i].name, b.storeys[i].name);
+    EXPECT_TRUE(same(a.storeys[i].elevation, b.storeys[i].elevation));
+    EXPECT_TRUE(same(a.storeys[i].height, b.storeys[i].height));
+    EXPECT_TRUE(same(a.storeys[i].slab, b.storeys[i].slab));
+    EXPECT_TRUE(same(a.storeys[i].where, b.storeys[i].where));
+  }
+  ASSERT_EQ(a.materials.size(), b.materials.size());
+  for (size_t i = 0; i < a.materials.size(); ++i) {
+    EXPECT_EQ(a.materials[i].name, b.materials[i].name);
+    EXPECT_TRUE(same(a.materials[i].reflectance, b.materials[i].reflectance));
+    for (int k = 0; k < 3; ++k) EXPECT_TRUE(same(a.materials[i].colour[k], b.materials[i].colour[k]));
+  }
+  ASSERT_EQ(a.rooms.size(), b.rooms.size());
+  for (size_t i = 0; i < a.rooms.size(); ++i) {
+    EXPECT_EQ(a.rooms[i].name, b.rooms[i].name);
+    EXPECT_EQ(a.rooms[i].storey, b.rooms[i].storey);
+    EXPECT_EQ(a.rooms[i].named, b.rooms[i].named);
+    EXPECT_TRUE(same(a.rooms[i].area, b.rooms[i].area));
+  }
+  ASSERT_EQ(a.cells.size(), b.cells.size());
+  for (size_t i = 0; i < a.cells.size(); ++i) {
+    const Cell &x = a.cells[i], &y = b.cells[i];
+    SCOPED_TRACE("cell " + std::to_string(i));
+    EXPECT_EQ(x.kind, y.kind);
+    EXPECT_EQ(x.room, y.room);
+    EXPECT_EQ(x.storey, y.storey);
+    EXPECT_TRUE(same(x.footprint, y.footprint));
+    EXPECT_TRUE(same(x.z0, y.z0));
+    EXPECT_TRUE(same(x.z1, y.z1));
+    ASSERT_EQ(x.faces.size(), y.faces.size());
+    for (size_t f = 0; f < x.faces.size(); ++f) {
+      EXPECT_TRUE(same(x.faces[f].plane, y.faces[f].plane));
+      EXPECT_TRUE(same(x.faces[f].poly, y.faces[f].poly));
+      EXPECT_EQ(x.faces[f].portals, y.faces[f].portals);
+      ASSERT_EQ(x.faces[f].opaque.size(), y.faces[f].opaque.size());
+      for (size_t o = 0; o < x.faces[f].opaque.size(); ++o) {
+        EXPECT_TRUE(same(x.faces[f].opaque[o].poly, y.faces[f].opaque[o].poly));
+        EXPECT_EQ(x.faces[f].opaque[o].material, y.faces[f].opaque[o].material);
+      }
+    }
+    EXPECT_EQ(x.portals, y.portals);
+    ASSERT_EQ(x.lines.size(), y.lines.size());
+    for (size_t l = 0; l < x.lines.size(); ++l) {
+      EXPECT_EQ(x.lines[l].line, y.lines[l].line);
+      EXPECT_TRUE(same(x.lines[l].t0, y.lines[l].t0));
+      EXPECT_TRUE(same(x.lines[l].t1, y.lines[l].t1));
+    }
+    EXPECT_EQ(x.opening, y.opening);
+  }
+  ASSERT_EQ(a.portals.size(), b.portals.size());
+  for (size_t i = 0; i < a.portals.size(); ++i) {
+    const Portal &x = a.portals[i], &y = b.portals[i];
+    EXPECT_EQ(x.cell[0], y.cell[0]);
+    EXPECT_EQ(x.cell[1], y.cell[1]);
+    EXPECT_TRUE(same(x.poly, y.poly));
+    EXPECT_TRUE(same(x.plane, y.plane));
+    EXPECT_EQ(x.kind, y.kind);
+    EXPECT_EQ(x.opening, y.opening);
+  }
+  ASSERT_EQ(a.lines.size(), b.lines.size());
+  for (size_t i = 0; i < a.lines.size(); ++i) {
+    EXPECT_TRUE(same(a.lines[i].a, b.lines[i].a));
+    EXPECT_TRUE(same(a.lines[i].b, b.lines[i].b));
+    EXPECT_EQ(a.lines[i].kind, b.lines[i].kind);
+  }
+  ASSERT_EQ(a.objects.size(), b.objects.size());
+  for (size_t i = 0; i < a.objects.size(); ++i) {
+    EXPECT_EQ(a.objects[i].name, b.objects[i].name);
+    EXPECT_EQ(a.objects[i].mesh, b.objects[i].mesh);
+    EXPECT_TRUE(same(a.objects[i].position, b.objects[i].position));
+    EXPECT_TRUE(same(a.objects[i].rotation_deg, b.objects[i].rotation_deg));
+    EXPECT_TRUE(same(a.objects[i].scale, b.objects[i].scale));
+  }
+  ASSERT_EQ(a.lights.size(), b.lights.size());
+  for (size_t i = 0; i < a.lights.size(); ++i) {
+    EXPECT_EQ(a.lights[i].name, b.lights[i].name);
+    EXPECT_TRUE(same(a.lights[i].position, b.lights[i].position));
+    EXPECT_TRUE(same(a.lights[i].intensity, b.lights[i].intensity));
+  }
+  EXPECT_TRUE(same(a.far_box.lo, b.far_box.lo));
+  EXPECT_TRUE(same(a.far_box.hi, b.far_box.hi));
+  ASSERT_EQ(a.view.has_value(), b.view.has_value());
+  if (a.view) {
+    EXPECT_TRUE(same(a.view->eye, b.view->eye));
+    EXPECT_TRUE(same(a.view->look, b.view->look));
+    EXPECT_TRUE(same(a.view->fov_deg, b.view->fov_deg));
+  }
+  ASSERT_EQ(a.timings.size(), b.timings.size());
+  for (size_t i = 0; i < a.timings.size(); ++i) EXPECT_EQ(a.timings[i].stage, b.timings[i].stage);
+  ASSERT_EQ(a.solids.size(), b.solids.size());
+  for (size_t i = 0; i < a.solids.size(); ++i) {
+    EXPECT_TRUE(same(a.solids[i].quad, b.solids[i].quad));
+    EXPECT_EQ(a.solids[i].what, b.solids[i].what);
+  }
+}
+
+class CellsIo : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    complex_ = new CellComplex(build_cells(read_plan(kPlan)));
+  }
+  static void TearDownTestSuite() {
+    delete complex_;
+    complex_ = nullptr;
+  }
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / ("avenues-io-" + std::to_string(::getpid()) + "-" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+  /// load_cells must throw std::runtime_error naming the file.
+  void expect_rejected(const std::string& bytes, const std::string& why) {
+    const fs::path p = dir_ / "bad.cells";
+    spit(p, bytes);
+    try {
+      (void)load_cells(p.string());
+      ADD_FAILURE() << why << ": loaded a bad file";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(p.string()), std::string::npos) << why << ": " << e.what();
+    }
+  }
+
+  static CellComplex* complex_;
+  fs::path dir_;
+};
+CellComplex* CellsIo::complex_ = nullptr;
+
+}  // namespace
+
+TEST_F(CellsIo, RoundTripKeepsEveryField) {
+  const fs::path p = dir_ / "house.cells";
+  save_cells(*complex_, p.string());
+  CellComplex loaded = load_cells(p.string());
+  expect_same(*complex_, loaded);
+  // Saving what was loaded gives the same bytes.
+  const fs::path q = dir_ / "again.cells";
+  save_cells(loaded, q.string());
+  EXPECT_EQ(slurp(p), slurp(q));
+}
+
+TEST_F(CellsIo, LoadedComplexLocatesLikeTheBuiltOne) {
+  const fs::path p = dir_ / "house.cells";
+  save_cells(*complex_, p.string());
+  CellComplex loaded = load_cells(p.string());
+  for (size_t i = 0; i < complex_->cells.size(); i += 1 + complex_->cells.size() / 50) {
+    const Cell& cell = complex_->cells[i];
+    Vec2 m;
+    for (Vec2 q : cell.footprint) m = m + q;
+    m = (1.0 / static_cast<double>(cell.footprint.size())) * m;
+    Vec3 at{m.x, m.y, 0.5 * (cell.z0 + cell.z1)};
+    Location a = complex_->locate(at), b = loaded.locate(at);
+    EXPECT_EQ(a.what, b.what) << "cell " << i;
+    EXPECT_EQ(a.cell, b.cell) << "cell " << i;
+  }
+}
+
+TEST_F(CellsIo, TruncatedFilesAreRejected) {
+  const fs::path p = dir_ / "house.cells";
+  save_cells(*complex_, p.string());
+  const std::string bytes = slurp(p);
+  ASSERT_GT(bytes.size(), 64u);
+  for (size_t n = 0; n < bytes.size(); n += (n < 256 ? 1 : 1 + bytes.size() / 97))
+    expect_rejected(bytes.substr(0, n), "truncated to " + std::to_string(n) + " bytes");
+  expect_rejected(bytes + std::string("x"), "one byte too many");
+}
+
+TEST_F(CellsIo, CorruptFilesAreRejected) {
+  const fs::path p = dir_ / "house.cells";
+  save_cells(*complex_, p.string());
+  const std::string bytes = slurp(p);
+  for (size_t at = 0; at < bytes.size(); at += 1 + bytes.size() / 61) {
+    std::string bad = bytes;
+    bad[at] = static_cast<char>(bad[at] ^ 0x24);
+    expect_rejected(bad, "byte " + std::to_string(at) + " flipped");
+  }
+  std::string version = bytes;
+  version[8] = 99;
+  expect_rejected(version, "a future version");
+  expect_rejected("", "an empty file");
+  expect_rejected("# not cells\n", "a text file");
+  // A huge count in an otherwise valid header must not allocate: the size check and
+  // checksum catch it before any vector is sized.
+  std::string huge = bytes.substr(0, 32) + std::string("\xff\xff\xff\xff", 4);
+  expect_rejected(huge, "a huge count");
+}
+
+TEST_F(CellsIo, MissingFileIsNamed) {
+  const std::string p = (dir_ / "none.cells").string();
+  try {
+    (void)load_cells(p);
+    FAIL() << "loaded a missing file";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(p), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(CellsIo, FailedWritesLeaveNoFile) {
+  EXPECT_THROW(save_cells(*complex_, (dir_ / "missing" / "x.cells").string()), std::runtime_error);
+  EXPECT_THROW(export_obj(*complex_, (dir_ / "missing" / "x.obj").string()), std::runtime_error);
+  EXPECT_THROW(write_plan_svg(*complex_, (dir_ / "missing" / "x.svg").string()), std::runtime_error);
+  EXPECT_THROW(save_cells(*complex_, dir_.string()), std::runtime_error);  // a directory
+  EXPECT_TRUE(fs::is_empty(dir_));
+}
+
+TEST_F(CellsIo, PlanDrawingShowsEveryStoreyAndRoom) {
+  std::string svg = plan_svg(*complex_);
+  EXPECT_EQ(svg.rfind("<?xml", 0), 0u);
+  for (size_t s = 0; s < complex_->storeys.size(); ++s)
+    EXPECT_NE(svg.find("id=\"storey-" + std::to_string(s) + "\""), std::string::npos) << "storey " << s;
+  for (const RoomInfo& r : complex_->rooms)
+    if (r.named) {
+      EXPECT_NE(svg.find(">" + r.name + "<"), std::string::npos) << "room " << r.name;
+    }
+  // The same complex draws the same picture.
+  EXPECT_EQ(svg, plan_svg(*complex_));
+}

@@ -1,0 +1,353 @@
+// Avenues — the `avenues` executable, run as a person would run it.
+//
+// Each test runs the real binary (AVENUES_BINARY) in a fresh temporary directory and
+// checks its exit status, what it prints and the files it writes (or must not write).
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <pugixml.hpp>
+
+#include "cells/build_cells.h"
+#include "plans/plan.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+const std::string kBinary = AVENUES_BINARY;
+const std::string kPlan = std::string(AVENUES_SOURCE_DIR) + "/plans/jones-house.toml";
+
+std::string quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+struct Outcome {
+  int status = -1;
+  std::string out, err;
+};
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           ("avenues-cli-" + std::to_string(::getpid()) + "-" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+
+  /// Runs `avenues ARGS` with the temporary directory as working directory.
+  Outcome run(const std::string& args) {
+    const fs::path out = dir_ / ".stdout", err = dir_ / ".stderr";
+    std::string cmd = "cd " + quote(dir_.string()) + " && " + quote(kBinary) + " " + args + " >" +
+                      quote(out.string()) + " 2>" + quote(err.string()) + " </dev/null";
+    int rc = std::system(cmd.c_str());
+    Outcome r;
+    r.status = (rc != -1 && WIFEXITED(rc)) ? WEXITSTATUS(rc) : -1;
+    r.out = slurp(out);
+    r.err = slurp(err);
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+  }
+
+  fs::path path(const std::string& name) const { return dir_ / name; }
+  void write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name, std::ios::binary) << text;
+  }
+  /// Files in the temporary directory (hidden temporaries included).
+  std::set<std::string> files() const {
+    std::set<std::string> out;
+    for (const auto& e : fs::directory_iterator(dir_)) out.insert(e.path().filename().string());
+    return out;
+  }
+
+  fs::path dir_;
+};
+
+json parse_json(const Outcome& r) {
+  try {
+    return json::parse(r.out);
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "not JSON: " << e.what() << "\n" << r.out;
+    return json::object();
+  }
+}
+
+// A plan that is not even TOML: the mistake is on line 3.
+const char* kBrokenToml =
+    "# a broken plan\n"
+    "name = \"broken\"\n"
+    "storeys = [ { name = \"ground\", height = 2.5 \n"
+    "walls = 3\n";
+
+}  // namespace
+
+TEST_F(Cli, HelpWorksForEverySubcommand) {
+  for (const std::string args : {"--help", "cells --help", "export --help", "generate --help",
+                                 "generate office --help"}) {
+    Outcome r = run(args);
+    EXPECT_EQ(r.status, 0) << args << "\n" << r.err;
+    EXPECT_NE(r.out.find("Usage"), std::string::npos) << args << "\n" << r.out;
+  }
+  Outcome r = run("--help");
+  for (const char* sub : {"cells", "export", "generate"})
+    EXPECT_NE(r.out.find(sub), std::string::npos) << "--help does not mention " << sub;
+}
+
+TEST_F(Cli, BadCommandLinesExitWithStatus2) {
+  const std::vector<std::string> bad = {"--no-such-option", "cells", "cells --json", "export " + quote(kPlan),
+                                       "generate", "generate office -o x.toml", "frobnicate extra words"};
+  for (const std::string& args : bad) {
+    Outcome r = run(args);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.out << r.err;
+    EXPECT_FALSE(r.err.empty()) << args;
+  }
+  EXPECT_FALSE(fs::exists(path("x.toml")));
+}
+
+TEST_F(Cli, CellsJsonHasTheCounts) {
+  Outcome r = run("cells " + quote(kPlan) + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  json j = parse_json(r);
+  for (const char* key : {"cells", "portals", "rooms", "storeys", "seconds", "stages", "cells_by_kind",
+                          "portals_by_kind", "opaque_faces", "lines", "cells_per_room"})
+    EXPECT_TRUE(j.contains(key)) << "missing key " << key << "\n" << r.out;
+  EXPECT_GT(j.value("cells", 0), 0);
+  EXPECT_GT(j.value("portals", 0), 0);
+  EXPECT_GT(j.value("rooms", 0), 0);
+  EXPECT_GE(j.value("storeys", 0), 1);
+  EXPECT_GT(j.value("opaque_faces", 0), 0);
+  EXPECT_TRUE(j["stages"].is_object());
+  EXPECT_FALSE(j["stages"].empty());
+  EXPECT_GE(j.value("seconds", -1.0), 0.0);
+  int by_kind = 0;
+  for (const auto& [kind, n] : j["cells_by_kind"].items()) by_kind += n.get<int>();
+  EXPECT_EQ(by_kind, j.value("cells", -1));
+  int portals_by_kind = 0;
+  for (const auto& [kind, n] : j["portals_by_kind"].items()) portals_by_kind += n.get<int>();
+  EXPECT_EQ(portals_by_kind, j.value("portals", -1));
+}
+
+TEST_F(Cli, CellsTextSummary) {
+  Outcome r = run("cells " + quote(kPlan));
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* word : {"storeys", "rooms", "cells", "portals", "opaque", "lines", "per room", "total"})
+    EXPECT_NE(r.out.find(word), std::string::npos) << "summary lacks '" << word << "':\n" << r.out;
+}
+
+TEST_F(Cli, MalformedPlanNamesFileAndLineAndWritesNothing) {
+  write("bad.toml", kBrokenToml);
+  Outcome r = run("cells bad.toml --svg out.svg --save out.cells");
+  EXPECT_EQ(r.status, 2) << r.out << r.err;
+  EXPECT_EQ(r.err.rfind("avenues: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("bad.toml:3"), std::string::npos) << "message should name file and line:\n" << r.err;
+
+  r = run("export bad.toml -o out.obj");
+  EXPECT_EQ(r.status, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("bad.toml:3"), std::string::npos) << r.err;
+
+  r = run("bad.toml");  // the main job
+  EXPECT_EQ(r.status, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("bad.toml:3"), std::string::npos) << r.err;
+
+  EXPECT_EQ(files(), std::set<std::string>{"bad.toml"}) << "no output (nor temporary) file may be left";
+}
+
+TEST_F(Cli, PlanMistakeFoundByTheDecomposerNamesTheElement) {
+  // Valid TOML, a valid plan to the reader, but the room is open to the outside:
+  // only the decomposition finds it, and must still name the room and its line.
+  write("leaky.toml",
+        "name = \"leaky\"\n"
+        "\n"
+        "[[storey]]\n"
+        "name = \"ground\"\n"
+        "height = 2.5\n"
+        "\n"
+        "[[wall]]\n"
+        "name = \"box\"\n"
+        "thickness = 0.2\n"
+        "path = [[0, 0], [4, 0], [4, 4], [0, 4]]\n"
+        "\n"
+        "[[room]]\n"
+        "name = \"hall\"\n"
+        "at = [2, 2]\n");
+  Outcome r = run("cells leaky.toml --svg out.svg --save out.cells");
+  EXPECT_EQ(r.status, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("leaky.toml:12"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("hall"), std::string::npos) << r.err;
+  r = run("export leaky.toml -o out.obj");
+  EXPECT_EQ(r.status, 2) << r.out << r.err;
+  EXPECT_EQ(files(), std::set<std::string>{"leaky.toml"});
+}
+
+TEST_F(Cli, MissingPlanFileIsNamed) {
+  Outcome r = run("cells no-such-plan.toml");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("no-such-plan.toml"), std::string::npos) << r.err;
+}
+
+TEST_F(Cli, OutputThatCannotBeWrittenIsAnError) {
+  Outcome r = run("export " + quote(kPlan) + " -o no-such-dir/out.obj");
+  EXPECT_EQ(r.status, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("no-such-dir/out.obj"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("no-such-dir")));
+}
+
+TEST_F(Cli, GeneratedOfficeIsAcceptedByCells) {
+  Outcome r = run("generate office --rooms 3x4 -o office.toml");
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(fs::exists(path("office.toml")));
+  r = run("cells office.toml --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  json j = parse_json(r);
+  EXPECT_GE(j.value("rooms", 0), 12);
+  EXPECT_GT(j.value("cells", 0), 12);
+}
+
+TEST_F(Cli, GenerateRejectsBadRooms) {
+  for (const char* rooms : {"3by4", "x", "3x", "0x4", "3x4x5", "-3x4", "3x100000"}) {
+    Outcome r = run(std::string("generate office --rooms ") + quote(rooms) + " -o office.toml");
+    EXPECT_EQ(r.status, 2) << rooms << "\n" << r.out << r.err;
+    EXPECT_NE(r.err.find("ROWSxCOLS"), std::string::npos) << rooms << ": " << r.err;
+  }
+  EXPECT_FALSE(fs::exists(path("office.toml")));
+}
+
+TEST_F(Cli, ExportWritesOneGroupPerCellAndEveryOpaqueTriangle) {
+  Outcome r = run("cells " + quote(kPlan) + " --save house.cells");
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = run("export " + quote(kPlan) + " -o house.obj");
+  ASSERT_EQ(r.status, 0) << r.err;
+  avenues::CellComplex c = avenues::load_cells(path("house.cells").string());
+
+  size_t expected_faces = 0;
+  for (const avenues::Cell& cell : c.cells)
+    for (const avenues::Face& f : cell.faces)
+      for (const avenues::OpaquePoly& op : f.opaque)
+        if (op.poly.size() >= 3) expected_faces += op.poly.size() - 2;
+
+  std::ifstream obj(path("house.obj"));
+  std::string line;
+  std::vector<std::string> groups;
+  size_t vertices = 0, faces = 0;
+  bool indices_ok = true;
+  while (std::getline(obj, line)) {
+    std::istringstream ls(line);
+    std::string tag;
+    ls >> tag;
+    if (tag == "v") {
+      double x, y, z;
+      EXPECT_TRUE(static_cast<bool>(ls >> x >> y >> z)) << line;
+      ++vertices;
+    } else if (tag == "g") {
+      std::string name;
+      ls >> name;
+      groups.push_back(name);
+    } else if (tag == "f") {
+      ++faces;
+      size_t idx, n = 0;
+      while (ls >> idx) {
+        ++n;
+        if (idx < 1 || idx > vertices) indices_ok = false;
+      }
+      if (n != 3) indices_ok = false;
+    }
+  }
+  ASSERT_EQ(groups.size(), c.cells.size());
+  for (size_t i = 0; i < groups.size(); ++i) EXPECT_EQ(groups[i], "cell" + std::to_string(i));
+  EXPECT_EQ(faces, expected_faces);
+  EXPECT_GT(faces, 0u);
+  EXPECT_TRUE(indices_ok) << "every face is a triangle of vertices defined before it";
+}
+
+TEST_F(Cli, SavedCellsLoadWithEqualCounts) {
+  Outcome built = run("cells " + quote(kPlan) + " --save house.cells --json");
+  ASSERT_EQ(built.status, 0) << built.err;
+  ASSERT_TRUE(fs::exists(path("house.cells")));
+  Outcome loaded = run("cells house.cells --json");
+  ASSERT_EQ(loaded.status, 0) << loaded.err;
+  json a = parse_json(built), b = parse_json(loaded);
+  for (const char* key : {"cells", "portals", "rooms", "storeys", "opaque_faces", "lines", "cells_by_kind",
+                          "portals_by_kind", "cells_per_room", "plan"})
+    EXPECT_EQ(a[key], b[key]) << key;
+}
+
+TEST_F(Cli, CorruptCellsFileIsAnError) {
+  ASSERT_EQ(run("cells " + quote(kPlan) + " --save house.cells").status, 0);
+  std::string bytes = slurp(path("house.cells"));
+  write("short.cells", bytes.substr(0, bytes.size() / 2));
+  write("junk.cells", "AVCELLS");
+  std::string flipped = bytes;
+  flipped[flipped.size() / 2] = static_cast<char>(flipped[flipped.size() / 2] ^ 0x5a);
+  write("flipped.cells", flipped);
+  for (const char* name : {"short.cells", "junk.cells", "flipped.cells"}) {
+    Outcome r = run(std::string("cells ") + name + " --json");
+    EXPECT_EQ(r.status, 2) << name << "\n" << r.out << r.err;
+    EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << name << ": " << r.out;
+  }
+}
+
+TEST_F(Cli, PlanDrawingIsWellFormedSvg) {
+  Outcome r = run("cells " + quote(kPlan) + " --svg plan.svg");
+  ASSERT_EQ(r.status, 0) << r.err;
+  pugi::xml_document doc;
+  pugi::xml_parse_result ok = doc.load_file(path("plan.svg").c_str());
+  ASSERT_TRUE(ok) << ok.description() << " at byte " << ok.offset;
+  pugi::xml_node svg = doc.child("svg");
+  ASSERT_TRUE(svg);
+  EXPECT_TRUE(svg.attribute("viewBox"));
+  EXPECT_NE(std::string(svg.attribute("width").value()).find("mm"), std::string::npos);
+  EXPECT_NE(std::string(svg.attribute("height").value()).find("mm"), std::string::npos);
+
+  // Every storey is drawn and titled; there are cells and walls in the drawing.
+  avenues::Plan plan = avenues::read_plan(kPlan);
+  std::string text;
+  size_t polygons = 0, lines = 0;
+  for (pugi::xpath_node n : doc.select_nodes("//text")) text += std::string(n.node().child_value()) + "\n";
+  polygons = doc.select_nodes("//polygon").size();
+  lines = doc.select_nodes("//line").size();
+  for (const avenues::Storey& s : plan.storeys)
+    EXPECT_NE(text.find(s.name), std::string::npos) << "storey '" << s.name << "' is not titled";
+  for (const avenues::Room& room : plan.rooms)
+    EXPECT_NE(text.find(room.name), std::string::npos) << "room '" << room.name << "' is not labelled";
+  EXPECT_EQ(doc.select_nodes("//g[starts-with(@id,'storey-')]").size(), plan.storeys.size());
+  EXPECT_GT(polygons, plan.rooms.size());
+  EXPECT_GT(lines, 0u);
+}
+
+TEST_F(Cli, MainJobWritesThePlanDrawing) {
+  Outcome r = run("");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const fs::path svg = path("avenues-out/jones-house-plan.svg");
+  EXPECT_TRUE(fs::exists(svg));
+  EXPECT_NE(r.out.find("avenues-out/jones-house-plan.svg"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("cells"), std::string::npos) << r.out;
+  pugi::xml_document doc;
+  EXPECT_TRUE(doc.load_file(svg.c_str()));
+}
