@@ -1,0 +1,46 @@
+// Avenues — the camera: Crow's eye space (Crow 1981, "the eyepoint and the centre of
+// interest"), with +z up in the world.
+//
+// Camera space: X to the right, Y up, Z forward (the direction of view). The picture
+// plane is Z = 1; a direction (X, Y, Z) with Z > 0 meets it at image point
+// (x, y) = (X/Z, Y/Z). The window on that plane is centred at (shift_x, shift_y) —
+// non-zero for the off-axis frusta of a stereo pair — and spans 2·tan(fov/2) across
+// the image width; its height follows the image's aspect ratio. Raster coordinates:
+// x to the right, rows from the top, pixel (i, j) covering [i, i+1) × [j, j+1) with
+// its sample at the centre (i + ½, j + ½).
+#pragma once
+
+#include "plans/geometry.h"
+
+namespace avenues {
+
+struct Camera {
+  Vec3 eye;                        ///< [m] world
+  Vec3 right{1, 0, 0}, up{0, 0, 1}, forward{0, 1, 0};  ///< orthonormal, world
+  double fov_deg = 60;             ///< horizontal field of view, (0, 179]
+  int width = 1280, height = 720;  ///< [px] > 0
+  double near = 0.01;              ///< [m] > 0, for drawing (visibility itself needs no near plane)
+  double shift_x = 0, shift_y = 0; ///< window centre on the picture plane (off-axis frustum)
+
+  /// Eye looking at a centre of interest; +z is up (looking straight up or down keeps +y as "up").
+  static Camera look_at(Vec3 eye, Vec3 look, double fov_deg, int width, int height);
+  /// Eye with a heading (yaw, degrees anticlockwise from +x) and pitch (degrees up).
+  static Camera yaw_pitch(Vec3 eye, double yaw_deg, double pitch_deg, double fov_deg, int width, int height);
+
+  double half_width() const;   ///< tan(fov/2): half the window's width on the picture plane
+  double half_height() const;  ///< half_width · height / width
+
+  /// World point → camera space (X right, Y up, Z forward).
+  Vec3 camera_from_world(Vec3 p) const {
+    Vec3 d = p - eye;
+    return {dot(d, right), dot(d, up), dot(d, forward)};
+  }
+  /// Picture-plane point → raster position [px] (rows top to bottom).
+  Vec2 raster_from_image(Vec2 xy) const;
+  /// Raster position [px] → picture-plane point.
+  Vec2 image_from_raster(Vec2 px) const;
+  /// World direction through a raster position (not normalised).
+  Vec3 ray_through_raster(Vec2 px) const;
+};
+
+}  // namespace avenues

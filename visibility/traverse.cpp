@@ -1,0 +1,76 @@
+// Avenues — find_visible in float and double; the exact kernel is in traverse_exact.cpp.
+#include "visibility/traverse.h"
+
+#include <algorithm>
+
+namespace avenues {
+
+namespace detail {
+template <>
+double to_double_of<float>(const float& x) { return double(x); }
+template <>
+double to_double_of<double>(const double& x) { return x; }
+}  // namespace detail
+
+const char* to_string(Kernel k) {
+  switch (k) {
+    case Kernel::Float: return "float";
+    case Kernel::Double: return "double";
+    case Kernel::Filtered: return "filtered";
+    case Kernel::Exact: return "exact";
+  }
+  return "?";
+}
+
+bool parse_kernel(const std::string& s, Kernel& out) {
+  if (s == "float") out = Kernel::Float;
+  else if (s == "double") out = Kernel::Double;
+  else if (s == "filtered") out = Kernel::Filtered;
+  else if (s == "exact") out = Kernel::Exact;
+  else return false;
+  return true;
+}
+
+std::vector<PortalId> VisibleSet::path(int avenue) const {
+  std::vector<PortalId> p;
+  for (int a = avenue; a >= 0 && avenues[size_t(a)].portal >= 0; a = avenues[size_t(a)].parent)
+    p.push_back(avenues[size_t(a)].portal);
+  std::reverse(p.begin(), p.end());
+  return p;
+}
+
+VisibleSet find_visible(const CellComplex& complex, const Camera& camera, CellId eye_cell, Kernel kernel) {
+  switch (kernel) {
+    case Kernel::Float: return detail::traverse_with<float>(complex, camera, eye_cell);
+    case Kernel::Double: return detail::traverse_with<double>(complex, camera, eye_cell);
+    case Kernel::Filtered: return detail::traverse_filtered(complex, camera, eye_cell);
+    case Kernel::Exact: return detail::traverse_exact(complex, camera, eye_cell);
+  }
+  return {};
+}
+
+std::vector<CellId> frustum_cells(const CellComplex& complex, const Camera& cam) {
+  // The four side planes of the view pyramid, as inward normals through the eye.
+  const double hw = cam.half_width(), hh = cam.half_height();
+  const Vec3 corners[4] = {
+      (cam.shift_x - hw) * cam.right + (cam.shift_y - hh) * cam.up + cam.forward,
+      (cam.shift_x + hw) * cam.right + (cam.shift_y - hh) * cam.up + cam.forward,
+      (cam.shift_x + hw) * cam.right + (cam.shift_y + hh) * cam.up + cam.forward,
+      (cam.shift_x - hw) * cam.right + (cam.shift_y + hh) * cam.up + cam.forward};
+  Vec3 n[4];
+  for (int k = 0; k < 4; ++k) n[k] = cross(corners[k], corners[(k + 1) % 4]);
+  std::vector<CellId> out;
+  for (CellId id = 0; id < CellId(complex.cells.size()); ++id) {
+    Box3 b = complex.cells[size_t(id)].bounds();
+    bool inside = true;
+    for (int k = 0; k < 4 && inside; ++k) {
+      // The box meets the half-space if its corner farthest along n does.
+      Vec3 far{n[k].x >= 0 ? b.hi.x : b.lo.x, n[k].y >= 0 ? b.hi.y : b.lo.y, n[k].z >= 0 ? b.hi.z : b.lo.z};
+      inside = dot(n[k], far - cam.eye) >= 0;
+    }
+    if (inside) out.push_back(id);
+  }
+  return out;
+}
+
+}  // namespace avenues

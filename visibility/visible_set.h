@@ -1,0 +1,50 @@
+// Avenues — the visible set: every (cell, mask) reached from the eye, with its avenue.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cells/cell_complex.h"
+#include "visibility/camera.h"
+
+namespace avenues {
+
+/// The arithmetic the traversal runs in (see mask.h for what each one guarantees):
+/// float and double round (with a sign bound that treats near-touching as touching);
+/// filtered evaluates in interval arithmetic and falls back to exact rationals only when
+/// an interval cannot decide a sign (CGAL::Lazy_exact_nt); exact is GMP rationals throughout.
+enum class Kernel { Float, Double, Filtered, Exact };
+const char* to_string(Kernel k);
+/// Parses "float", "double", "filtered" or "exact"; false if it is none of them.
+bool parse_kernel(const std::string& s, Kernel& out);
+
+/// One avenue of sight ending in a cell (Jones's Fig. 5: a node of the directed subgraph).
+struct Avenue {
+  CellId cell = kNoCell;
+  int parent = -1;         ///< index of the avenue this one extends; -1 for the eye's cell
+  PortalId portal = -1;    ///< the portal crossed last; -1 for the eye's cell
+  int depth = 0;           ///< portals crossed
+  std::vector<Vec2> mask;  ///< convex, counter-clockwise, on the picture plane (x = X/Z, y = Y/Z)
+};
+
+struct VisibleSet {
+  CellId eye_cell = kNoCell;
+  std::vector<Avenue> avenues;  ///< depth-first order; avenues[0] is the eye's cell
+  std::vector<CellId> cells;    ///< distinct visible cells, ascending
+  long portals_tested = 0;      ///< portals examined (facing test and clipping)
+  int max_depth = 0;
+  double micros = 0;            ///< [µs] time of the traversal
+  /// The avenue's portals from the eye outwards.
+  std::vector<PortalId> path(int avenue) const;
+};
+
+/// Jones's recursive search of the avenues of sight from `camera.eye`, which lies in
+/// cell `eye_cell` (closed). Exact convex masks; see mask.h for the representation.
+VisibleSet find_visible(const CellComplex& complex, const Camera& camera, CellId eye_cell,
+                        Kernel kernel = Kernel::Double);
+
+/// The peer a renderer without cells would use: every cell whose bounding box meets the
+/// view frustum (tests every cell; no occlusion at all).
+std::vector<CellId> frustum_cells(const CellComplex& complex, const Camera& camera);
+
+}  // namespace avenues
