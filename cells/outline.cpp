@@ -226,13 +226,19 @@ Outline make_outline(const Plan& plan) {
     }
   }
   for (const FloorOpening& f : plan.floor_openings) out.holes.push_back(f.outline);
-  // Snap every outline vertex to a grid of 2^-27 m (7.5 nm): points meant to coincide
+  // Snap every outline vertex to the nearest nanometre (a decimal grid, coarser only
+  // where a double cannot hold nanometres, beyond 4,500 km): points meant to coincide
   // (a door jamb computed along one wall, the corner of another wall computed from its
   // own centre line) differ in their last bits, and the exact triangulation would keep
-  // them apart as slivers. Scaling by a power of two is exact, so snapping is too, and
-  // snapped coordinates stay exact doubles for the exact predicates downstream.
-  const double q = std::ldexp(1.0, -27);
-  auto snap = [q](Vec2& v) { v = {std::nearbyint(v.x / q) * q, std::nearbyint(v.y / q) * q}; };
+  // them apart as slivers. A decimal grid maps a coordinate typed with up to nine
+  // decimals to the very double the reader parsed, so the eye placed "exactly on the
+  // wall face" at x = 3.9 still is, for the exact predicates downstream.
+  auto snap1 = [](double x) {
+    double scale = 1e9;
+    while (scale > 1 && std::fabs(x) * scale >= 4e15) scale /= 10;
+    return std::nearbyint(x * scale) / scale;
+  };
+  auto snap = [&](Vec2& v) { v = {snap1(v.x), snap1(v.y)}; };
   for (Region& r : out.regions) {
     for (Vec2& v : r.poly) snap(v);
     // Snapping may merge neighbouring vertices of a tiny strip: drop repeats, and strips left flat.
