@@ -6,10 +6,15 @@
 #pragma once
 
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "app/plan_source.h"
+#include "visibility/camera.h"
+#include "visibility/visible_set.h"
 
 namespace avenues::app {
 
@@ -35,6 +40,33 @@ struct GenerateOfficeOptions {
   std::string output;
 };
 int run_generate_office(const GenerateOfficeOptions& opt);
+
+/// `avenues view PLAN [--eye X,Y,Z] [--look X,Y,Z] ... [--stats-json FILE] [--overlay FILE.svg] [-o FILE]`
+struct ViewOptions {
+  std::string plan;
+  std::string eye, look;               ///< "X,Y,Z"; empty: the plan's default viewpoint
+  std::optional<double> yaw, pitch;    ///< [deg] instead of --look
+  double fov = -1;                     ///< [deg]; <= 0: the viewpoint's
+  std::string size = "1920x1080";
+  std::string kernel = "double";
+  std::string stats_json, overlay, output;
+};
+/// The camera and eye cell a view option set resolves to.
+struct ViewSetup {
+  Viewpoint viewpoint;
+  Camera camera;
+  Kernel kernel = Kernel::Double;
+  CellId eye_cell = kNoCell;
+};
+/// Resolves options against the plan: default viewpoint, camera, and the eye's cell.
+/// Throws PlanError when the eye is inside a solid or outside the far box.
+ViewSetup set_up_view(const LoadedPlan& plan, const ViewOptions& opt);
+bool parse_size(const std::string& s, int& w, int& h);
+nlohmann::json view_stats(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs);
+int run_view(const ViewOptions& opt);
+/// Writes the view's picture to `path` by its extension; adds what it measured to `stats`.
+void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs, const std::string& path,
+                       nlohmann::json& stats);
 
 /// No subcommand: the main job on PLAN (default: the bundled plan).
 struct MainJobOptions {

@@ -3,6 +3,7 @@
 //   avenues [PLAN]                                  the main job
 //   avenues cells PLAN [--json] [--svg F] [--save F.cells]
 //   avenues export PLAN -o FILE.obj
+//   avenues view PLAN [--eye X,Y,Z --look X,Y,Z] [--kernel K] [--stats-json F] [--overlay F.svg]
 //   avenues generate office --rooms ROWSxCOLS -o FILE.toml
 //
 // Exit status: 0 on success, 2 for a bad command line or bad input (a plan mistake,
@@ -50,6 +51,20 @@ int main(int argc, char** argv) {
   exp->add_option("PLAN", export_opt.plan, "plan (.toml) or saved cells (.cells)")->required();
   exp->add_option("-o,--output", export_opt.output, "the OBJ file to write")->required()->type_name("FILE.obj");
 
+  ViewOptions view_opt;
+  CLI::App* view = app.add_subcommand("view", "find what the eye sees from one viewpoint (Jones's avenues of sight)");
+  view->add_option("PLAN", view_opt.plan, "plan (.toml) or saved cells (.cells); default: the bundled plan");
+  view->add_option("--eye", view_opt.eye, "eye position; default: the plan's viewpoint")->type_name("X,Y,Z");
+  view->add_option("--look", view_opt.look, "centre of interest")->type_name("X,Y,Z");
+  view->add_option("--yaw", view_opt.yaw, "heading in degrees anticlockwise from +x (instead of --look)");
+  view->add_option("--pitch", view_opt.pitch, "degrees above the horizontal (with --yaw)");
+  view->add_option("--fov", view_opt.fov, "horizontal field of view in degrees, (0, 179]");
+  view->add_option("--size", view_opt.size, "picture size in pixels")->type_name("WxH")->capture_default_str();
+  view->add_option("--kernel", view_opt.kernel, "arithmetic: float, double, filtered or exact")->capture_default_str();
+  view->add_option("--stats-json", view_opt.stats_json, "write the view's statistics as JSON")->type_name("FILE");
+  view->add_option("--overlay", view_opt.overlay, "draw masks, plan and avenue tree as SVG")->type_name("FILE.svg");
+  view->add_option("-o,--output", view_opt.output, "the picture of the view, by extension")->type_name("FILE");
+
   GenerateOfficeOptions office_opt;
   CLI::App* generate = app.add_subcommand("generate", "write a generated plan");
   generate->require_subcommand(1);
@@ -68,6 +83,7 @@ int main(int argc, char** argv) {
   try {
     if (*cells) return run_cells(cells_opt);
     if (*exp) return run_export(export_opt);
+    if (*view) return run_view(view_opt);
     if (*office) return run_generate_office(office_opt);
     return run_main_job(main_opt);
   } catch (const avenues::PlanError& e) {

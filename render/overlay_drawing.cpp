@@ -103,7 +103,10 @@ std::string overlay_svg(const CellComplex& c, const Camera& cam, const VisibleSe
   auto Y = [&](double y) { return (py0 + ph - y) * plan_scale; };
   o << "<g id=\"plan\" transform=\"translate(" << fmt(W + gap) << ",30)\">\n"
     << "<text x=\"0\" y=\"-10\" font-size=\"14\">Plan at eye height: cells seen (shaded)</text>\n"
-    << "<rect x=\"0\" y=\"0\" width=\"" << fmt(PW) << "\" height=\"" << fmt(PH) << "\" fill=\"#fff\" stroke=\"#888\"/>\n";
+    << "<clipPath id=\"plan-clip\"><rect x=\"0\" y=\"0\" width=\"" << fmt(PW) << "\" height=\"" << fmt(PH)
+    << "\"/></clipPath>\n"
+    << "<rect x=\"0\" y=\"0\" width=\"" << fmt(PW) << "\" height=\"" << fmt(PH) << "\" fill=\"#fff\" stroke=\"#888\"/>\n"
+    << "<g clip-path=\"url(#plan-clip)\">\n";
   std::vector<uint8_t> visible(c.cells.size(), 0);
   for (CellId id : vs.cells) visible[size_t(id)] = 1;
   for (size_t id = 0; id < c.cells.size(); ++id) {
@@ -111,7 +114,8 @@ std::string overlay_svg(const CellComplex& c, const Camera& cam, const VisibleSe
     if (!(cell.z0 <= cam.eye.z && cam.eye.z <= cell.z1)) continue;
     std::string pts;
     for (Vec2 p : cell.footprint) pts += fmt(X(p.x)) + "," + fmt(Y(p.y)) + " ";
-    o << "<polygon points=\"" << pts << "\" fill=\"" << (visible[id] ? "#f5d76e" : "none")
+    const bool inside = cell.kind == CellKind::Room || cell.kind == CellKind::Doorway || cell.kind == CellKind::Stairwell;
+    o << "<polygon points=\"" << pts << "\" fill=\"" << (visible[id] ? (inside ? "#f5d76e" : "#d6eaf8") : "none")
       << "\" fill-opacity=\"0.6\" stroke=\"#999\" stroke-width=\"0.5\"><title>"
       << escape(cell_label(c, CellId(id))) << "</title></polygon>\n";
   }
@@ -125,8 +129,18 @@ std::string overlay_svg(const CellComplex& c, const Camera& cam, const VisibleSe
       << fmt(X(cam.eye.x + d.x / l * reach)) << "\" y2=\"" << fmt(Y(cam.eye.y + d.y / l * reach))
       << "\" stroke=\"#c0392b\" stroke-width=\"1\" stroke-dasharray=\"4 3\"/>\n";
   }
+  // Room names at their cells' centres (the first cell of each room at eye height).
+  std::vector<uint8_t> named(c.rooms.size(), 0);
+  for (const Cell& cell : c.cells) {
+    if (cell.room < 0 || named[size_t(cell.room)] || !(cell.z0 <= cam.eye.z && cam.eye.z <= cell.z1)) continue;
+    named[size_t(cell.room)] = 1;
+    Vec2 m{0, 0};
+    for (Vec2 p : cell.footprint) m = m + (1.0 / double(cell.footprint.size())) * p;
+    o << "<text x=\"" << fmt(X(m.x)) << "\" y=\"" << fmt(Y(m.y)) << "\" font-size=\"11\" text-anchor=\"middle\">"
+      << escape(c.rooms[size_t(cell.room)].name) << "</text>\n";
+  }
   o << "<circle cx=\"" << fmt(X(cam.eye.x)) << "\" cy=\"" << fmt(Y(cam.eye.y))
-    << "\" r=\"4\" fill=\"#c0392b\"><title>eye</title></circle>\n</g>\n";
+    << "\" r=\"4\" fill=\"#c0392b\"><title>eye</title></circle>\n</g>\n</g>\n";
 
   // --- panel 3: the avenue tree (depth across, depth-first order down).
   o << "<g id=\"avenue-tree\" transform=\"translate(" << fmt(W + gap + PW + gap) << ",30)\">\n"

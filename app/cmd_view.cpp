@@ -1,0 +1,125 @@
+// Avenues — `avenues view PLAN`: what the eye sees from one viewpoint.
+//
+//   avenues view PLAN [--eye X,Y,Z] [--look X,Y,Z | --yaw DEG --pitch DEG] [--fov DEG]
+//                     [--size WxH] [--kernel float|double|filtered|exact]
+//                     [--stats-json FILE] [--overlay FILE.svg]
+//
+// Finds the eye's cell (an eye inside a wall or slab is an error naming the wall), runs
+// Jones's traversal in the chosen kernel, and writes what was asked for: the statistics
+// as one JSON object, and the overlay (masks, plan and avenue tree) as SVG.
+#include <cmath>
+#include <iostream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "cells/atomic_file.h"
+#include "render/overlay_drawing.h"
+#include "visibility/viewpoint.h"
+#include "visibility/visible_set.h"
+
+namespace avenues::app {
+
+namespace {
+
+/// "X,Y,Z" → Vec3; throws std::runtime_error naming the option otherwise.
+Vec3 parse_vec3(const std::string& s, const char* option) {
+  std::istringstream in(s);
+  Vec3 v;
+  char c1 = 0, c2 = 0;
+  if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || !(in >> std::ws).eof() ||
+      !std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+    throw std::runtime_error(std::string(option) + " wants three numbers X,Y,Z, not '" + s + "'");
+  return v;
+}
+
+std::string str(Vec3 v) {
+  std::ostringstream o;
+  o << "(" << v.x << ", " << v.y << ", " << v.z << ")";
+  return o.str();
+}
+
+}  // namespace
+
+bool parse_size(const std::string& s, int& w, int& h) {
+  size_t x = s.find('x');
+  if (x == std::string::npos) return false;
+  try {
+    size_t a = 0, b = 0;
+    w = std::stoi(s.substr(0, x), &a);
+    h = std::stoi(s.substr(x + 1), &b);
+    return a == x && b == s.size() - x - 1 && w > 0 && h > 0 && w <= 32768 && h <= 32768;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+ViewSetup set_up_view(const LoadedPlan& plan, const ViewOptions& opt) {
+  const CellComplex& c = plan.complex;
+  ViewSetup v;
+  if (!parse_kernel(opt.kernel, v.kernel))
+    throw std::runtime_error("--kernel wants float, double, filtered or exact, not '" + opt.kernel + "'");
+  int w = 0, h = 0;
+  if (!parse_size(opt.size, w, h)) throw std::runtime_error("--size wants WIDTHxHEIGHT in pixels, not '" + opt.size + "'");
+  Viewpoint vp = default_viewpoint(c);
+  if (!opt.eye.empty()) vp.eye = parse_vec3(opt.eye, "--eye");
+  if (!opt.look.empty()) vp.look = parse_vec3(opt.look, "--look");
+  if (opt.fov > 0) vp.fov_deg = opt.fov;
+  if (!(vp.fov_deg > 0 && vp.fov_deg <= 179)) throw std::runtime_error("--fov must lie in (0, 179] degrees");
+  if (opt.yaw || opt.pitch) {
+    v.camera = Camera::yaw_pitch(vp.eye, opt.yaw.value_or(0), opt.pitch.value_or(0), vp.fov_deg, w, h);
+    vp.look = vp.eye + v.camera.forward;
+  } else {
+    if (length(vp.look - vp.eye) == 0) throw std::runtime_error("--look must differ from the eye");
+    v.camera = Camera::look_at(vp.eye, vp.look, vp.fov_deg, w, h);
+  }
+  v.viewpoint = vp;
+  Location loc = c.locate(vp.eye);
+  if (loc.what == Location::What::OutsideBox)
+    throw PlanError({plan.path, 0, 0, ""}, "the eye " + str(vp.eye) + " is outside the far box");
+  if (loc.what == Location::What::Solid)
+    throw PlanError({plan.path, 0, 0, ""}, "the eye " + str(vp.eye) + " is inside " + loc.solid);
+  v.eye_cell = loc.cell;
+  return v;
+}
+
+nlohmann::json view_stats(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs) {
+  const CellComplex& c = plan.complex;
+  nlohmann::json j;
+  j["plan"] = plan.path;
+  j["eye"] = {v.viewpoint.eye.x, v.viewpoint.eye.y, v.viewpoint.eye.z};
+  j["look"] = {v.viewpoint.look.x, v.viewpoint.look.y, v.viewpoint.look.z};
+  j["fov"] = v.viewpoint.fov_deg;
+  j["size"] = {v.camera.width, v.camera.height};
+  j["kernel"] = to_string(v.kernel);
+  j["eye_cell"] = vs.eye_cell;
+  const Cell& ec = c.cells[size_t(vs.eye_cell)];
+  j["eye_room"] = ec.room >= 0 ? c.rooms[size_t(ec.room)].name : std::string(to_string(ec.kind));
+  j["visible_cells"] = vs.cells.size();
+  j["visible"] = vs.cells;
+  j["avenues"] = vs.avenues.size();
+  j["portals_tested"] = vs.portals_tested;
+  j["max_depth"] = vs.max_depth;
+  j["visibility_us"] = vs.micros;
+  return j;
+}
+
+int run_view(const ViewOptions& opt) {
+  LoadedPlan plan = load_plan_source(opt.plan);
+  ViewSetup v = set_up_view(plan, opt);
+  VisibleSet vs = find_visible(plan.complex, v.camera, v.eye_cell, v.kernel);
+  nlohmann::json stats = view_stats(plan, v, vs);
+  if (!opt.overlay.empty()) write_overlay_svg(plan.complex, v.camera, vs, opt.overlay);
+  if (!opt.output.empty()) write_view_output(plan, v, vs, opt.output, stats);
+  if (!opt.stats_json.empty()) write_file_atomically(opt.stats_json, stats.dump(2) + "\n");
+  std::cout << "eye in cell " << vs.eye_cell << " (" << stats["eye_room"].get<std::string>() << "): "
+            << vs.cells.size() << " cells visible through " << vs.avenues.size() << " avenues, "
+            << vs.portals_tested << " portals tested, depth " << vs.max_depth << ", " << vs.micros << " us ("
+            << to_string(v.kernel) << ")\n";
+  for (const std::string& f : {opt.overlay, opt.output, opt.stats_json})
+    if (!f.empty()) std::cout << "wrote " << f << "\n";
+  return 0;
+}
+
+}  // namespace avenues::app

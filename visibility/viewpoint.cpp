@@ -1,0 +1,67 @@
+// Avenues — the default viewpoint (see viewpoint.h).
+#include "visibility/viewpoint.h"
+
+#include <cmath>
+
+namespace avenues {
+
+namespace {
+double area(const std::vector<Vec2>& p) {
+  double a = 0;
+  for (size_t i = 0; i < p.size(); ++i) a += cross(p[i], p[(i + 1) % p.size()]);
+  return a / 2;
+}
+Vec2 centroid(const std::vector<Vec2>& p) {
+  double a = 0, cx = 0, cy = 0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    Vec2 u = p[i], v = p[(i + 1) % p.size()];
+    double w = cross(u, v);
+    a += w, cx += (u.x + v.x) * w, cy += (u.y + v.y) * w;
+  }
+  return {cx / (3 * a), cy / (3 * a)};
+}
+}  // namespace
+
+Viewpoint default_viewpoint(const CellComplex& c) {
+  if (c.view) return *c.view;
+  // The first room that has a cell, preferring named rooms.
+  CellId best = kNoCell;
+  for (int pass = 0; pass < 2 && best == kNoCell; ++pass)
+    for (size_t r = 0; r < c.rooms.size() && best == kNoCell; ++r) {
+      if (pass == 0 && !c.rooms[r].named) continue;
+      for (CellId id = 0; id < CellId(c.cells.size()); ++id) {
+        const Cell& cell = c.cells[size_t(id)];
+        if (cell.kind == CellKind::Room && cell.room == RoomId(r) &&
+            (best == kNoCell || area(cell.footprint) > area(c.cells[size_t(best)].footprint)))
+          best = id;
+      }
+    }
+  Viewpoint v;
+  v.fov_deg = 60;
+  if (best == kNoCell) {  // no rooms at all: stand outside, looking at the box's centre
+    v.eye = {c.far_box.lo.x + 1, c.far_box.lo.y + 1, kEyeHeight};
+    v.look = {(c.far_box.lo.x + c.far_box.hi.x) / 2, (c.far_box.lo.y + c.far_box.hi.y) / 2, kEyeHeight};
+    return v;
+  }
+  const Cell& cell = c.cells[size_t(best)];
+  Vec2 m = centroid(cell.footprint);
+  v.eye = {m.x, m.y, cell.z0 + std::min(kEyeHeight, (cell.z1 - cell.z0) * 0.65)};
+  // Look through the first door of the cell, else the first window, else any portal.
+  const Portal* through = nullptr;
+  for (PortalKind want : {PortalKind::Door, PortalKind::Window, PortalKind::Hatch, PortalKind::Transparent,
+                          PortalKind::Open, PortalKind::Gap})
+    for (PortalId p : cell.portals)
+      if (!through && c.portals[size_t(p)].kind == want && std::fabs(c.portals[size_t(p)].plane.n.z) < 0.5)
+        through = &c.portals[size_t(p)];
+  if (through) {
+    Vec3 mid{0, 0, 0};
+    for (Vec3 q : through->poly) mid = mid + q;
+    mid = (1.0 / double(through->poly.size())) * mid;
+    v.look = {mid.x, mid.y, v.eye.z};
+  } else {
+    v.look = v.eye + Vec3{1, 0, 0};
+  }
+  return v;
+}
+
+}  // namespace avenues
