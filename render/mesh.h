@@ -1,0 +1,36 @@
+// Avenues — triangle meshes read from files (OBJ, OFF, PLY, STL) with OpenMesh.
+//
+// Objects of a plan (furniture, Jones's "set of unconnected objects") and the papers'
+// scenes arrive as meshes. Avenues keeps them as plain arrays: vertices, triangles, and
+// the polygon each triangle came from (so a renderer can tell a crease between two
+// polygons from the diagonal of a quad, and a drawing never draws the latter).
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "plans/geometry.h"
+#include "plans/plan.h"
+
+namespace avenues {
+
+struct Mesh {
+  std::string path;                        ///< where it was read from
+  std::vector<Vec3> vertices;              ///< [m]
+  std::vector<std::array<int, 3>> triangles;  ///< counter-clockwise seen from outside
+  std::vector<int> polygon_of;             ///< per triangle: the input polygon it came from
+  std::vector<Vec3> vertex_normals;        ///< unit, averaged over incident polygons (for smooth shading)
+  bool closed = false;                     ///< every edge shared by exactly two polygons
+  int boundary_edges = 0;                  ///< edges with one polygon (0 when closed)
+};
+
+/// Reads a mesh; the format follows the extension. Throws std::runtime_error naming the
+/// file for a missing, unreadable or empty mesh.
+Mesh load_mesh(const std::string& path);
+
+/// The mesh placed as `object` says: scaled, rotated about x, then y, then z (degrees),
+/// then moved to object.position + (0, 0, floor_z).
+Mesh place(const Mesh& mesh, const Object& object, double floor_z);
+
+}  // namespace avenues
