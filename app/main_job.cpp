@@ -1,6 +1,7 @@
 // Avenues — the main job: what `avenues [PLAN]` does with no subcommand.
 //
-// Today it is the offline job: decompose the plan, print the summary, draw the plan.
+// Today it is the offline job: decompose the plan, print the summary, draw the plan,
+// and show the avenues of sight from the plan's default viewpoint.
 // The walkthrough window arrives with a later issue; it will slot in as
 // run_walkthrough(), with run_offline() kept as the fallback when no display can be
 // opened (CI, ssh), so run_main_job() stays a small dispatcher.
@@ -10,6 +11,7 @@
 #include <system_error>
 
 #include "app/commands.h"
+#include "render/overlay_drawing.h"
 #include "render/plan_drawing.h"
 
 namespace avenues::app {
@@ -25,8 +27,23 @@ int run_offline(const LoadedPlan& plan, const MainJobOptions& opt) {
   const std::string svg = (fs::path(opt.out_dir) / (plan.stem + "-plan.svg")).string();
   write_plan_svg(plan.complex, svg);
 
+  // The plan's default view: what the eye sees, and why (the avenues of sight).
+  ViewOptions view_opt;
+  view_opt.size = "1280x720";
+  ViewSetup view = set_up_view(plan, view_opt);
+  VisibleSet visible = find_visible(plan.complex, view.camera, view.eye_cell, view.kernel);
+  const std::string overlay = (fs::path(opt.out_dir) / (plan.stem + "-avenues.svg")).string();
+  write_overlay_svg(plan.complex, view.camera, visible, overlay);
+
   print_summary(std::cout, plan);
+  const Cell& eye_cell = plan.complex.cells[size_t(view.eye_cell)];
+  std::cout << "\ndefault view: eye (" << view.viewpoint.eye.x << ", " << view.viewpoint.eye.y << ", "
+            << view.viewpoint.eye.z << ") in "
+            << (eye_cell.room >= 0 ? plan.complex.rooms[size_t(eye_cell.room)].name : to_string(eye_cell.kind))
+            << ": " << visible.cells.size() << " cells seen through " << visible.avenues.size() << " avenues in "
+            << visible.micros << " us\n";
   std::cout << "\nplan drawing: " << svg << "\n";
+  std::cout << "avenues of sight (masks, plan, avenue tree): " << overlay << "\n";
   std::cout << "(open it in a web browser; `avenues --help` lists what else avenues can do)\n";
   return 0;
 }

@@ -109,13 +109,13 @@ const char* kBrokenToml =
 
 TEST_F(Cli, HelpWorksForEverySubcommand) {
   for (const std::string args : {"--help", "cells --help", "export --help", "generate --help",
-                                 "generate office --help"}) {
+                                 "generate office --help", "view --help"}) {
     Outcome r = run(args);
     EXPECT_EQ(r.status, 0) << args << "\n" << r.err;
     EXPECT_NE(r.out.find("Usage"), std::string::npos) << args << "\n" << r.out;
   }
   Outcome r = run("--help");
-  for (const char* sub : {"cells", "export", "generate"})
+  for (const char* sub : {"cells", "export", "generate", "view"})
     EXPECT_NE(r.out.find(sub), std::string::npos) << "--help does not mention " << sub;
 }
 
@@ -350,4 +350,73 @@ TEST_F(Cli, MainJobWritesThePlanDrawing) {
   EXPECT_NE(r.out.find("cells"), std::string::npos) << r.out;
   pugi::xml_document doc;
   EXPECT_TRUE(doc.load_file(svg.c_str()));
+  // The default view's avenues of sight, too.
+  const fs::path avenues = path("avenues-out/jones-house-avenues.svg");
+  EXPECT_TRUE(doc.load_file(avenues.c_str()));
+  EXPECT_NE(r.out.find("default view"), std::string::npos) << r.out;
+}
+
+// --- avenues view -------------------------------------------------------------------
+
+TEST_F(Cli, ViewWritesStatsWithTheSameIdsAsExportAndAnOverlay) {
+  Outcome r = run("view " + quote(kPlan) +
+                  " --eye 1.0,0.5,1.2 --look 6,3,1.2 --fov 100 --size 640x400 --stats-json s.json --overlay o.svg");
+  ASSERT_EQ(r.status, 0) << r.err;
+  json j = json::parse(slurp(path("s.json")));
+  for (const char* key : {"visible_cells", "visible", "avenues", "portals_tested", "max_depth", "visibility_us", "eye",
+                          "look", "fov", "kernel"})
+    EXPECT_TRUE(j.contains(key)) << "missing key " << key;
+  EXPECT_EQ(j["visible"].size(), j["visible_cells"].get<size_t>());
+  EXPECT_EQ(j["eye"], json({1.0, 0.5, 1.2}));
+  EXPECT_EQ(j["fov"].get<double>(), 100.0);
+  // Jones's kitchen through the door and the hatch: more avenues than cells.
+  EXPECT_GT(j["avenues"].get<int>(), j["visible_cells"].get<int>());
+  // The ids are those of `avenues export`'s groups.
+  ASSERT_EQ(run("export " + quote(kPlan) + " -o b.obj").status, 0);
+  const std::string obj = slurp(path("b.obj"));
+  for (int id : j["visible"]) EXPECT_NE(obj.find("g cell" + std::to_string(id) + "\n"), std::string::npos) << id;
+  pugi::xml_document doc;
+  ASSERT_TRUE(doc.load_file(path("o.svg").c_str())) << "overlay is not XML";
+  EXPECT_TRUE(doc.child("svg").find_child_by_attribute("g", "id", "avenue-tree"));
+}
+
+TEST_F(Cli, ViewWithoutAnEyeUsesThePlansViewpoint) {
+  Outcome r = run("view " + quote(kPlan) + " --stats-json s.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  json j = json::parse(slurp(path("s.json")));
+  EXPECT_EQ(j["eye"], json({1.5, 3.0, 1.6}));  // the [view] of jones-house.toml
+  EXPECT_EQ(j["eye_room"], "L");
+}
+
+TEST_F(Cli, ViewKernelsAgreeOnTheDefaultView) {
+  std::map<std::string, json> visible;
+  for (const char* k : {"float", "double", "filtered", "exact"}) {
+    Outcome r = run("view " + quote(kPlan) + " --kernel " + k + " --stats-json " + k + ".json");
+    ASSERT_EQ(r.status, 0) << k << r.err;
+    visible[k] = json::parse(slurp(path(std::string(k) + ".json")))["visible"];
+  }
+  EXPECT_EQ(visible["double"], visible["exact"]);
+  EXPECT_EQ(visible["filtered"], visible["exact"]);
+}
+
+TEST_F(Cli, ViewRefusesAnEyeInsideAWallAndWritesNothing) {
+  write("thick.toml",
+        "[[wall]]\nname = \"box\"\nthickness = 0.3\npath = [[0,0],[6,0],[6,4],[0,4],[0,0]]\n"
+        "[[room]]\nname = \"only\"\nat = [3, 2]\n");
+  Outcome r = run("view thick.toml --eye 3,0.05,1.2 --look 3,2,1.2 --stats-json s.json --overlay o.svg");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("inside wall 'box'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("thick.toml"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("s.json")));
+  EXPECT_FALSE(fs::exists(path("o.svg")));
+  // In the room it is fine.
+  EXPECT_EQ(run("view thick.toml --eye 3,2,1.2 --look 6,2,1.2 --stats-json s.json").status, 0);
+}
+
+TEST_F(Cli, ViewRejectsBadOptions) {
+  for (const std::string args : {"--kernel quad", "--size 10by10", "--eye 1,2", "--fov 180", "--eye 1,2,3 --look 1,2,3"}) {
+    Outcome r = run("view " + quote(kPlan) + " " + args + " --stats-json s.json");
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
+    EXPECT_FALSE(fs::exists(path("s.json"))) << args;
+  }
 }
