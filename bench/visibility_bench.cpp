@@ -100,7 +100,7 @@ void local_view(benchmark::State& state, int size) {
 
 int register_all() {
   for (const char* plan : {"jones-house.toml", "two-storey-house.toml", "office-corridor.toml", "curved-walls.toml"}) {
-    for (Kernel k : {Kernel::Float, Kernel::Double, Kernel::Exact})
+    for (Kernel k : {Kernel::Float, Kernel::Double, Kernel::Filtered, Kernel::Exact})
       benchmark::RegisterBenchmark((std::string("Visibility/") + plan + "/" + to_string(k)).c_str(),
                                    [plan, k](benchmark::State& s) { traverse(s, plan, k); })
           ->Unit(benchmark::kMicrosecond);

@@ -68,7 +68,7 @@ struct OpaquePoly {
 struct Face {
   Plane plane;                    ///< outward
   std::vector<Vec3> poly;         ///< the whole face, convex, counter-clockwise seen from inside
-  std::vector<PortalId> portals;  ///< portals lying in this face
+  std::vector<PortalId> portals;  ///< portals lying in this face; on a side face, sorted along it (from footprint[i])
   std::vector<OpaquePoly> opaque; ///< the face minus its portals, as convex pieces
 };
 

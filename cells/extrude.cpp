@@ -409,6 +409,21 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
     if (c.z1 < band.z1 - kZTol) c.faces.back().opaque.push_back({c.faces.back().poly, mat});
   }
 
+  // Portals on a side face in order along it, so a traversal can look up the few that a
+  // mask can see on a long wall of doors (a corridor) instead of testing every one.
+  for (Cell& c : out.cells)
+    for (size_t k = 0; k < c.footprint.size(); ++k) {
+      const Vec2 a = c.footprint[k], e = c.footprint[(k + 1) % c.footprint.size()];
+      const Vec2 dir = (1.0 / length(e - a)) * (e - a);
+      auto start = [&](PortalId p) {
+        double s = HUGE_VAL;
+        for (Vec3 v : out.portals[size_t(p)].poly) s = std::min(s, dot(Vec2{v.x, v.y} - a, dir));
+        return s;
+      };
+      auto& ps = c.faces[k].portals;
+      std::sort(ps.begin(), ps.end(), [&](PortalId x, PortalId y) { return start(x) < start(y); });
+    }
+
   // Room floor areas.
   for (const Cell& c : out.cells)
     if (c.kind == CellKind::Room && c.room >= 0) {

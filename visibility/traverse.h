@@ -44,8 +44,15 @@ class Traversal {
     up_ = in(cam.up);
     forward_ = in(cam.forward);
     const double hw = cam.half_width(), hh = cam.half_height();
+    eye_d_ = cam.eye;
+    cam_ = cam;
     window_ = Mask<T>::window(T(cam.shift_x - hw), T(cam.shift_x + hw), T(cam.shift_y - hh), T(cam.shift_y + hh));
-    on_path_.assign(c.cells.size(), 0);
+    // Cells on the current avenue. Every visit clears its mark on the way out, so the
+    // buffer is all zero between traversals: keep it per thread, and never clear a
+    // 100,000-cell array for a view that sees five cells.
+    thread_local std::vector<uint8_t> on_path;
+    if (on_path.size() < c.cells.size()) on_path.assign(c.cells.size(), 0);
+    on_path_ = on_path.data();
   }
 
   void run(CellId start) {
@@ -68,14 +75,87 @@ class Traversal {
     a.portal = via;
     a.depth = depth;
     for (const auto& v : mask.polygon()) a.mask.push_back({to_double_of(v.x), to_double_of(v.y)});
+    mask_d_ = a.mask;
     out_.avenues.push_back(std::move(a));
     out_.max_depth = std::max(out_.max_depth, depth);
     on_path_[size_t(cell)] = 1;
-    for (PortalId pi : c_.cells[size_t(cell)].portals) {
-      if (pi == via) continue;
+    // Each face's portals; on a long side face (a corridor's wall of doors) only those
+    // within the stretch of wall the mask can see (portals are sorted along side faces).
+    const Cell& cl = c_.cells[size_t(cell)];
+    const std::vector<Vec2> mask_here = mask_d_;
+    for (size_t f = 0; f < cl.faces.size(); ++f) {
+      const auto& ps = cl.faces[f].portals;
+      size_t lo = 0, hi = ps.size();
+      if (f < cl.footprint.size() && ps.size() > kLinearScan) side_range(cl, f, mask_here, lo, hi);
+      for (size_t i = lo; i < hi; ++i) consider(cell, mask, self, via, depth, ps[i]);
+    }
+    on_path_[size_t(cell)] = 0;
+  }
+
+  /// Portals on a side face beyond which a mask is never worth a look-up.
+  static constexpr size_t kLinearScan = 8;
+
+  /// The index range [lo, hi) of side face k's portals that the mask can see: the
+  /// stretch of the face's line hit by rays through the mask (conservatively, in double,
+  /// with a margin; rays parallel to the face reach out to infinity).
+  void side_range(const Cell& cl, size_t k, const std::vector<Vec2>& mask, size_t& lo, size_t& hi) const {
+    const size_t n = cl.footprint.size();
+    const Vec2 a = cl.footprint[k], b = cl.footprint[(k + 1) % n];
+    const Vec2 u = (1.0 / length(b - a)) * (b - a);
+    const Vec3 nrm = cl.faces[k].plane.n;
+    // Signed distance from the eye to the face's plane: positive when the eye is on the
+    // cell's side (its own cell), negative beyond it (a cell seen through portals). A ray d
+    // meets the plane ahead when h / (n·d) > 0.
+    const double h = -cl.faces[k].plane.eval(eye_d_);
+    if (h == 0 || !std::isfinite(h)) return;  // the eye in the face's plane: keep them all
+    const double sigma = h > 0 ? 1 : -1;
+    const double se = dot(Vec2{eye_d_.x, eye_d_.y} - a, u);
+    double smin = HUGE_VAL, smax = -HUGE_VAL;
+    auto dir = [&](Vec2 m) { return m.x * cam_.right + m.y * cam_.up + cam_.forward; };
+    auto reach_infinity = [&](Vec3 d) {  // a ray parallel to the face: unbounded along its direction
+      double du = d.x * u.x + d.y * u.y;
+      if (du >= 0) smax = HUGE_VAL;
+      if (du <= 0) smin = -HUGE_VAL;
+    };
+    for (size_t i = 0; i < mask.size(); ++i) {
+      const Vec3 p = dir(mask[i]), q = dir(mask[(i + 1) % mask.size()]);
+      const double np = sigma * dot(nrm, p), nq = sigma * dot(nrm, q);
+      if (np > 0) {
+        const double s = se + sigma * h * (p.x * u.x + p.y * u.y) / np;
+        smin = std::min(smin, s), smax = std::max(smax, s);
+      } else if (np == 0) {
+        reach_infinity(p);
+      }
+      if ((np > 0 && nq < 0) || (np < 0 && nq > 0)) reach_infinity(p + (np / (np - nq)) * (q - p));
+    }
+    if (smin > smax) {  // no ray through the mask meets this face
+      lo = hi = 0;
+      return;
+    }
+    const double margin = 1e-6 * (1 + std::fabs(se) + length(b - a));
+    smin -= margin, smax += margin;
+    const auto& ps = cl.faces[k].portals;
+    auto extent = [&](PortalId p, bool hi_end) {
+      double s = hi_end ? -HUGE_VAL : HUGE_VAL;
+      for (Vec3 v : c_.portals[size_t(p)].poly) {
+        double t = dot(Vec2{v.x, v.y} - a, u);
+        s = hi_end ? std::max(s, t) : std::min(s, t);
+      }
+      return s;
+    };
+    // Portals on a face do not overlap: sorted by start, they are sorted by end too.
+    lo = size_t(std::partition_point(ps.begin(), ps.end(), [&](PortalId p) { return extent(p, true) < smin; }) -
+                ps.begin());
+    hi = size_t(std::partition_point(ps.begin() + long(lo), ps.end(), [&](PortalId p) { return extent(p, false) <= smax; }) -
+                ps.begin());
+  }
+
+  void consider(CellId cell, const Mask<T>& mask, int self, PortalId via, int depth, PortalId pi) {
+    {
+      if (pi == via) return;
       const Portal& p = c_.portals[size_t(pi)];
       const CellId other = p.other(cell);
-      if (on_path_[size_t(other)]) continue;
+      if (on_path_[size_t(other)]) return;
       ++out_.portals_tested;
       // Which side of the portal's plane is the eye on? Exactly, from input vertices.
       const Vec3T<T> v0 = in(p.poly[0]), v1 = in(p.poly[1]), v2 = in(p.poly[2]);
@@ -86,11 +166,11 @@ class Traversal {
       if (s == T(0)) {
         // The eye stands in the portal's plane: through it, if it stands in the portal,
         // lies the whole half-space on the far side; otherwise it is seen edge-on.
-        if (!eye_in_polygon(p, N)) continue;
+        if (!eye_in_polygon(p, N)) return;
         const Vec3T<T> toward = from_first ? N : Vec3T<T>{-N.x, -N.y, -N.z};
-        if (!m.clip(trace(toward))) continue;
+        if (!m.clip(trace(toward))) return;
       } else {
-        if ((s < T(0)) != from_first) continue;  // seen from behind
+        if ((s < T(0)) != from_first) return;  // seen from behind
         // Rays through the portal: inside every plane through the eye and an edge.
         // With the eye behind N (s < 0) the edge normals (a-e)×(b-e) point inwards.
         bool alive = true;
@@ -100,12 +180,11 @@ class Traversal {
           if (s > T(0)) e = {-e.x, -e.y, -e.z};
           alive = m.clip(trace(e));
         }
-        if (!alive) continue;
+        if (!alive) return;
       }
-      if (!(m.area2() > T(0))) continue;
+      if (!(m.area2() > T(0))) return;
       visit(other, m, self, pi, depth + 1);
     }
-    on_path_[size_t(cell)] = 0;
   }
 
   /// Closed point-in-convex-polygon test of the eye, which lies in the polygon's plane.
@@ -122,7 +201,10 @@ class Traversal {
   VisibleSet& out_;
   Vec3T<T> eye_, right_, up_, forward_;
   Mask<T> window_;
-  std::vector<uint8_t> on_path_;
+  uint8_t* on_path_ = nullptr;  ///< per cell: on the current avenue (thread-local buffer)
+  Vec3 eye_d_;                 ///< the eye in double, for culling only
+  Camera cam_;
+  std::vector<Vec2> mask_d_;   ///< the current mask in double (scratch)
 };
 
 template <class T>
