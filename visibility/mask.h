@@ -69,7 +69,10 @@ class Mask {
   bool clip(const HalfPlane<T>& l) {
     const size_t n = h_.size();
     if (n < 3) return false;
-    // Sign of l at each vertex.
+    // Sign of l at each vertex (scratch buffers per thread: a mask is copied at every
+    // portal, and carrying its scratch along would allocate three times per copy).
+    thread_local std::vector<int> side_;
+    thread_local std::vector<HalfPlane<T>> next_;
     side_.resize(n);
     bool any_out = false, any_in = false;
     for (size_t k = 0; k < n; ++k) {
@@ -105,7 +108,7 @@ class Mask {
       const int end = side_[(k + 1) % n];
       if (end < 0 || (end == 0 && !keep(k + 1))) next_.push_back(l);
     }
-    h_.swap(next_);
+    h_.assign(next_.begin(), next_.end());
     if (h_.size() < 3) {
       h_.clear();
       return false;
@@ -130,8 +133,6 @@ class Mask {
   /// divisions of degree-2 terms, then one more degree-1 evaluation; 2^7 ulps covers it.
   static constexpr double kSignBound = std::is_floating_point_v<T> ? 128 * double(std::numeric_limits<T>::epsilon()) : 0;
   std::vector<HalfPlane<T>> h_;
-  std::vector<int> side_;
-  std::vector<HalfPlane<T>> next_;
 };
 
 }  // namespace avenues

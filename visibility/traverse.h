@@ -83,13 +83,52 @@ class Traversal {
     // within the stretch of wall the mask can see (portals are sorted along side faces).
     const Cell& cl = c_.cells[size_t(cell)];
     const std::vector<Vec2> mask_here = mask_d_;
+    const std::vector<Vec3> cone = cone_planes(mask_here);
     for (size_t f = 0; f < cl.faces.size(); ++f) {
       const auto& ps = cl.faces[f].portals;
       size_t lo = 0, hi = ps.size();
       if (f < cl.footprint.size() && ps.size() > kLinearScan) side_range(cl, f, mask_here, lo, hi);
-      for (size_t i = lo; i < hi; ++i) consider(cell, mask, self, via, depth, ps[i]);
+      for (size_t i = lo; i < hi; ++i)
+        if (!surely_outside(cone, ps[i])) consider(cell, mask, self, via, depth, ps[i]);
     }
     on_path_[size_t(cell)] = 0;
+  }
+
+  /// The mask's cone as inward normals of planes through the eye (world space, double).
+  std::vector<Vec3> cone_planes(const std::vector<Vec2>& mask) const {
+    std::vector<Vec3> n;
+    if (mask.size() < 3) return n;
+    auto dir = [&](Vec2 m) { return m.x * cam_.right + m.y * cam_.up + cam_.forward; };
+    Vec2 c{0, 0};
+    for (Vec2 m : mask) c = c + (1.0 / double(mask.size())) * m;
+    const Vec3 inside = dir(c);
+    for (size_t i = 0; i < mask.size(); ++i) {
+      Vec3 p = cross(dir(mask[i]), dir(mask[(i + 1) % mask.size()]));
+      const double l = length(p);
+      if (!(l > 0)) continue;
+      p = (1.0 / l) * p;
+      n.push_back(dot(p, inside) < 0 ? -1.0 * p : p);
+    }
+    return n;
+  }
+
+  /// A cheap, conservative cull before the kernel's exact work: true when every vertex of
+  /// the portal lies clearly outside one plane of the mask's cone (by more than a margin far
+  /// above double rounding), so no ray through the mask can pass the portal.
+  bool surely_outside(const std::vector<Vec3>& cone, PortalId pi) const {
+    const Portal& p = c_.portals[size_t(pi)];
+    for (const Vec3& n : cone) {
+      bool all_out = true;
+      for (const Vec3& v : p.poly) {
+        const Vec3 d = v - eye_d_;
+        if (dot(n, d) >= -1e-9 * (1 + std::fabs(d.x) + std::fabs(d.y) + std::fabs(d.z))) {
+          all_out = false;
+          break;
+        }
+      }
+      if (all_out) return true;
+    }
+    return false;
   }
 
   /// Portals on a side face beyond which a mask is never worth a look-up.
