@@ -118,43 +118,91 @@ void real_lines(const Outline& outline, const Triangulation& T, const Classes& C
     for (int t = 0; t < n; ++t)
       for (int i = 0; i < 3; ++i) vitems[size_t(fill[size_t(T.tri[size_t(t)][size_t(i)])]++)] = 3 * t + i;
   }
-  const double pi = std::acos(-1.0);
+  // The triangles around each vertex in counter-clockwise order (a fan), starting, where
+  // the fan is open (on the far box's rim), at the triangle with nothing clockwise of it.
+  // Around v in triangle t (v at local index i), the next triangle counter-clockwise lies
+  // across the edge v -> vertex i+2, i.e. opposite vertex i+1.
+  std::vector<std::pair<int, int>> fan;
+  auto build_fan = [&](size_t v) {
+    fan.clear();
+    int t0 = vitems[size_t(vstart[v])] / 3, i0 = vitems[size_t(vstart[v])] % 3;
+    for (int32_t k = vstart[v]; k < vstart[v + 1]; ++k) {
+      const int t = vitems[size_t(k)] / 3, i = vitems[size_t(k)] % 3;
+      if (T.nbr[size_t(t)][size_t((i + 2) % 3)] < 0) t0 = t, i0 = i;  // nothing clockwise: start here
+    }
+    int t = t0, i = i0;
+    for (int guard = vstart[v + 1] - vstart[v]; guard-- > 0;) {
+      fan.push_back({t, i});
+      const int u = T.nbr[size_t(t)][size_t((i + 1) % 3)];
+      if (u < 0 || u == t0) break;
+      const auto& tu = T.tri[size_t(u)];
+      i = tu[0] == int32_t(v) ? 0 : tu[1] == int32_t(v) ? 1 : 2;
+      t = u;
+    }
+  };
   for (size_t v = 0; v < T.vert.size(); ++v) {
     const Vec2 pv = T.vert[v];
+    build_fan(v);
+    const size_t m = fan.size();
+    const bool open_fan = T.nbr[size_t(fan[0].first)][size_t((fan[0].second + 2) % 3)] < 0;
+    auto start_dir = [&](size_t f) {  // v -> the fan triangle's first vertex after v
+      return T.vert[size_t(T.tri[size_t(fan[f].first)][size_t((fan[f].second + 1) % 3)])] - pv;
+    };
+    auto end_dir = [&](size_t f) {
+      return T.vert[size_t(T.tri[size_t(fan[f].first)][size_t((fan[f].second + 2) % 3)])] - pv;
+    };
     for (int j = 0; j < ns; ++j) {
-      // Edges leaving v that separate solid from free (or carry a sheet between free sides).
-      std::vector<Vec2> dirs;
-      bool any_sheet = false;
-      double solid_angle = 0;
-      std::vector<CellId> cells;
-      for (int32_t k = vstart[v]; k < vstart[v + 1]; ++k) {
-        const int t = vitems[size_t(k)] / 3, i = vitems[size_t(k)] % 3;
-        const CellId ct = cell(j, t);
-        add_cells(cells, ct);
-        Vec2 p1 = T.vert[size_t(T.tri[size_t(t)][size_t((i + 1) % 3)])];
-        Vec2 p2 = T.vert[size_t(T.tri[size_t(t)][size_t((i + 2) % 3)])];
-        if (ct == kNoCell) {
-          Vec2 d1 = p1 - pv, d2 = p2 - pv;
-          solid_angle += std::atan2(cross(d1, d2), dot(d1, d2));
-        }
-        // The edge v -> p1 is opposite vertex (i+2): its far side is that neighbour.
-        const int32_t h1 = 3 * t + (i + 2) % 3;
-        const int u1 = T.nbr[size_t(t)][size_t((i + 2) % 3)];
-        const bool s1 = (ct == kNoCell) != (cell(j, u1) == kNoCell);
-        const bool sh1 = ct != kNoCell && cell(j, u1) != kNoCell && sheet(j, h1);
-        if (s1 || sh1) dirs.push_back(p1 - pv), any_sheet |= sh1;
-        // The edge p2 -> v (opposite vertex i+1) is seen here only where the far side is beyond the box.
-        const int u2 = T.nbr[size_t(t)][size_t((i + 1) % 3)];
-        if (u2 < 0 && ct != kNoCell) dirs.push_back(p2 - pv);
+      // Boundary before fan triangle f: free and solid meet there, or a sheet stands there
+      // between two free sides, or (open fan) the far box's rim.
+      std::vector<CellId> here(m);
+      for (size_t f = 0; f < m; ++f) here[f] = cell(j, fan[f].first);
+      std::vector<uint8_t> boundary(m + 1, 0), sheet_before(m + 1, 0);
+      for (size_t f = 0; f < m; ++f) {
+        if (f == 0 && open_fan) { boundary[0] = here[0] != kNoCell; continue; }
+        const CellId prev = here[(f + m - 1) % m];
+        const int32_t h = 3 * fan[f].first + (fan[f].second + 2) % 3;  // edge v -> start vertex
+        sheet_before[f] = prev != kNoCell && here[f] != kNoCell && sheet(j, h);
+        boundary[f] = (prev == kNoCell) != (here[f] == kNoCell) || sheet_before[f];
       }
-      if (solid_angle < 0) solid_angle += 2 * pi;
-      bool line = !dirs.empty();
-      if (dirs.size() == 2 && orientation(pv + dirs[0], pv, pv + dirs[1]) == 0 && dot(dirs[0], dirs[1]) < 0)
-        line = false;  // a flat wall face, or a sheet, running straight through v
-      if (!line || cells.empty()) continue;
-      LineKind kind = any_sheet || dirs.size() == 1 ? LineKind::Sheet
-                      : solid_angle > pi            ? LineKind::Concave
-                                                    : LineKind::Convex;
+      if (open_fan) boundary[m] = here[m - 1] != kNoCell;
+      // Each sector of free triangles between two boundaries sees a line at v unless its two
+      // bounding edges run straight on (a flat wall, a sheet passing by): then it sees none.
+      // This is decided per sector, so a sheet meeting a flat wall at v draws the corner on
+      // its own side only.
+      std::vector<CellId> cells;
+      LineKind kind = LineKind::Concave;
+      bool any = false;
+      size_t first = m;
+      for (size_t f = 0; f < m; ++f)
+        if (boundary[f]) { first = f; break; }
+      if (first == m) continue;  // no boundary around v: nothing stands here
+      const size_t limit = open_fan ? m : m + first;
+      for (size_t f = first; f < limit;) {
+        const size_t fi = f % m;
+        if (here[fi] == kNoCell) { ++f; continue; }
+        // A sector starts at fi (a boundary precedes it) and runs while no boundary follows.
+        std::vector<CellId> sector{here[fi]};
+        bool sheet_edge = sheet_before[fi];
+        size_t g = f + 1;
+        while (g < (open_fan ? m : f + m) && !boundary[g % m] && here[g % m] != kNoCell) {
+          if (std::find(sector.begin(), sector.end(), here[g % m]) == sector.end()) sector.push_back(here[g % m]);
+          ++g;
+        }
+        const size_t last = (g - 1) % m;
+        sheet_edge |= (open_fan ? (g == m ? false : bool(sheet_before[g % m])) : bool(sheet_before[g % m]));
+        const Vec2 a = start_dir(fi), b = end_dir(last);
+        const bool whole_turn = !open_fan && g - f == m;  // one boundary only: a sheet's end
+        const bool flat = !whole_turn && orientation(pv + a, pv, pv + b) == 0 && dot(a, b) < 0;
+        if (!flat) {
+          any = true;
+          for (CellId c : sector) add_cells(cells, c);
+          const double turn = std::atan2(cross(a, b), dot(a, b));  // the free sector's angle
+          kind = whole_turn || sheet_edge ? LineKind::Sheet : (turn > 0 && turn < std::acos(-1.0)) ? LineKind::Concave
+                                                                                          : LineKind::Convex;
+        }
+        f = g;
+      }
+      if (!any || cells.empty()) continue;
       pieces.push_back({{pv.x, pv.y, S.z[size_t(j)]}, {pv.x, pv.y, S.z[size_t(j) + 1]}, kind, cells});
     }
   }

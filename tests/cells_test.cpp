@@ -299,3 +299,21 @@ TEST(Cells, RoomMistakesNameTheRoom) {
   twice.rooms[1].label = {1, 1};
   EXPECT_THROW(build_cells(twice), PlanError);
 }
+
+TEST(Cells, ASheetMeetingAFlatWallDrawsTheCornerOnItsOwnSideOnly) {
+  // Jones's house: the kitchen–dining wall meets the living room's east wall at (5, 3).
+  // Kitchen and dining room see that corner; the living room sees a flat wall there.
+  Plan p = two_rooms_one_door(0.0);
+  p.walls.push_back(wall("shelf", {{4, 3}, {8, 3}}, 0.0));  // splits the east room, away from the door
+  p.rooms.push_back(room("east north", {6, 3.5}));
+  p.rooms[1].label = {6, 1};
+  CellComplex c = build_cells(p);
+  EXPECT_EQ(cells_are_valid(c), "");
+  std::set<RoomId> seen_from;
+  for (const Cell& cell : c.cells)
+    for (const CellLine& cl : cell.lines) {
+      const RealLine& l = c.lines[size_t(cl.line)];
+      if (l.a.x == 4 && l.b.x == 4 && l.a.y == 3 && l.b.y == 3 && cell.kind == CellKind::Room) seen_from.insert(cell.room);
+    }
+  EXPECT_EQ(seen_from, (std::set<RoomId>{1, 2})) << "the west room's wall is flat at (4, 3)";
+}
