@@ -1,0 +1,79 @@
+// Avenues — furniture: the plan's objects as edges to draw and polygons that hide.
+//
+// An object changes no cell (Jones's cells are the space between walls), so its own hidden
+// lines are removed the older way, Crow 1981's: "polygons closer to the eyepoint hide all or
+// part of one that is farther away", each candidate edge being clipped against the polygons
+// that face the eye. The candidate edges of a mesh are
+//  - silhouettes: edges between a polygon facing the eye and one facing away (Crow's back-face
+//    test; the same rule as line_weight.h, for two faces), and the edges of an open mesh's
+//    boundary: outlines;
+//  - creases: edges between two different polygons, both facing the eye, whose normals differ
+//    by more than a threshold: creases. A quad's diagonal joins two triangles of one polygon,
+//    so it is never an edge here at all.
+// Walls hide furniture through the cells: an object belongs to every cell its bounding box
+// overlaps (so the cell holding its centroid, and any other it reaches), and each of its
+// edges is cut to each such cell's prism and then to that cell's masks.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "cells/cell_complex.h"
+#include "render/drawing.h"
+#include "render/interval_clip.h"
+#include "render/mesh.h"
+#include "visibility/camera.h"
+
+namespace avenues {
+
+/// An edge between two polygons of a mesh (or on its boundary).
+struct FurnitureEdge {
+  int32_t v[2] = {-1, -1};        ///< vertex indices into the piece's mesh
+  int32_t polygon[2] = {-1, -1};  ///< the polygons either side; polygon[1] = -1 on an open mesh's boundary
+  double dihedral_deg = 0;        ///< [deg] in [0, 180]: angle between the two polygons' normals (90 on a box)
+};
+
+/// One object of the plan, placed.
+struct FurniturePiece {
+  std::string name;
+  Mesh mesh;                         ///< placed: world coordinates [m]
+  std::vector<Vec3> polygon_normal;  ///< unit, outward, per input polygon of the mesh
+  std::vector<Vec3> polygon_point;   ///< a vertex of each polygon
+  std::vector<FurnitureEdge> edges;  ///< every edge between two different polygons, and the boundary
+  std::vector<CellId> cells;         ///< ascending: the cells the bounding box overlaps
+};
+
+struct Furniture {
+  std::vector<FurniturePiece> pieces;  ///< one per complex.objects entry, same order
+};
+
+/// Loads each object's mesh (each file once), places it on its storey, finds its edges and
+/// its cells. Throws std::runtime_error naming the mesh file if one cannot be read.
+Furniture place_furniture(const CellComplex& complex);
+
+/// Crow's back-face test: 1 for each polygon of `piece` that faces `eye`.
+std::vector<uint8_t> polygons_facing(const FurniturePiece& piece, Vec3 eye);
+
+/// Whether `edge` is drawn, given which polygons face the eye, and how heavy.
+bool edge_is_seen(const FurnitureEdge& edge, const std::vector<uint8_t>& facing, double crease_deg, Weight& weight);
+
+/// A triangle of a polygon facing the eye, in camera space: the points it hides are those
+/// inside the cone from the eye over the triangle and strictly behind its plane.
+struct Occluder {
+  Vec3 side[3];   ///< the cone's sides: side·P >= 0 inside (planes through the eye)
+  Vec3 n;         ///< unit normal of the triangle's plane, the eye on its positive side
+  double d = 0;   ///< n·P + d: [m] signed distance of P from the plane
+  Vec2 lo, hi;    ///< bounding box on the picture plane (infinite when a corner is behind the eye)
+};
+
+/// Appends the occluders of `piece`: the triangles of its polygons facing the eye (every
+/// triangle of an open mesh, which is seen from both sides).
+void add_occluders(const FurniturePiece& piece, const std::vector<uint8_t>& facing, const Camera& camera,
+                   std::vector<Occluder>& out);
+
+/// Removes from `intervals` (sorted, disjoint parameters along the camera-space segment
+/// P(t) = p0 + t·(p1 − p0), all with Z > 0) what the occluders hide.
+void hide_behind(const std::vector<Occluder>& occluders, Vec3 p0, Vec3 p1, std::vector<detail::Interval>& intervals);
+
+}  // namespace avenues

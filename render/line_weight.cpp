@@ -1,0 +1,87 @@
+// Avenues — line weights (see line_weight.h).
+#include "render/line_weight.h"
+
+#include <cmath>
+
+namespace avenues {
+
+namespace {
+
+constexpr double kOnPlane = 1e-7;  ///< [m] a line lies in a face's plane (coordinates are snapped to 1 nm)
+constexpr double kProbe = 1e-4;    ///< [m] how far from the line a face is probed (openings are centimetres wide)
+constexpr double kEdgeOn = 1e-9;   ///< |cos| below which a surface is seen edge-on
+
+Vec3 unit(Vec3 v) { return (1.0 / length(v)) * v; }
+
+/// Closed containment of q, lying in the polygon's plane with normal n, in the convex
+/// polygon (either orientation).
+bool in_convex(const std::vector<Vec3>& poly, Vec3 n, Vec3 q) {
+  bool pos = false, neg = false;
+  for (size_t k = 0; k < poly.size(); ++k) {
+    const Vec3 a = poly[k], b = poly[(k + 1) % poly.size()];
+    const Vec3 e = b - a;
+    const double s = dot(cross(e, q - a), n) / length(e);  // signed distance of q from the edge
+    pos |= s > 1e-9;
+    neg |= s < -1e-9;
+  }
+  return !(pos && neg);
+}
+
+}  // namespace
+
+LineFaces line_faces(const CellComplex& c) {
+  LineFaces out;
+  std::vector<std::vector<Vec3>> dirs(c.lines.size());
+  out.cell_start.reserve(c.cells.size() + 1);
+  for (const Cell& cell : c.cells) {
+    out.cell_start.push_back(int32_t(out.shows.size()));
+    for (const CellLine& cl : cell.lines) {
+      const RealLine& l = c.lines[size_t(cl.line)];
+      const Vec3 u = unit(l.b - l.a);
+      const Vec3 m = l.a + (0.5 * (cl.t0 + cl.t1)) * (l.b - l.a);
+      int faces = 0, opaque_sides = 0;
+      for (const Face& f : cell.faces) {
+        if (std::fabs(f.plane.eval(l.a)) > kOnPlane || std::fabs(f.plane.eval(l.b)) > kOnPlane) continue;
+        ++faces;
+        const Vec3 w = unit(cross(f.plane.n, u));  // in the face, perpendicular to the line
+        for (Vec3 side : {w, -1.0 * w}) {
+          bool opaque = false;
+          for (const OpaquePoly& op : f.opaque) opaque = opaque || in_convex(op.poly, f.plane.n, m + kProbe * side);
+          if (!opaque) continue;
+          ++opaque_sides;
+          bool known = false;
+          for (Vec3 k : dirs[size_t(cl.line)]) known = known || length(k - side) < 1e-6;
+          if (!known) dirs[size_t(cl.line)].push_back(side);
+        }
+      }
+      out.shows.push_back(!(faces == 1 && opaque_sides == 2));
+    }
+  }
+  out.cell_start.push_back(int32_t(out.shows.size()));
+  out.start.reserve(c.lines.size() + 1);
+  out.start.push_back(0);
+  for (const auto& d : dirs) {
+    out.dirs.insert(out.dirs.end(), d.begin(), d.end());
+    out.start.push_back(int32_t(out.dirs.size()));
+  }
+  return out;
+}
+
+Weight line_weight(const CellComplex& c, const LineFaces& faces, LineId id, Vec3 eye) {
+  const RealLine& l = c.lines[size_t(id)];
+  const int32_t first = faces.start[size_t(id)], last = faces.start[size_t(id) + 1];
+  // No face found (never expected): fall back on the line's kind.
+  if (first == last) return l.kind == LineKind::Concave ? Weight::Crease : Weight::Outline;
+  const Vec3 n = cross(l.a - eye, l.b - l.a);  // normal of Π, the plane through the eye and the line
+  const double nn = length(n);
+  if (!(nn > 0)) return Weight::Crease;  // seen end-on: a point
+  bool pos = false, neg = false;
+  for (int32_t k = first; k < last; ++k) {
+    const double s = dot(n, faces.dirs[size_t(k)]) / nn;
+    pos |= s > kEdgeOn;
+    neg |= s < -kEdgeOn;
+  }
+  return pos && neg ? Weight::Crease : Weight::Outline;
+}
+
+}  // namespace avenues

@@ -1,0 +1,160 @@
+// Avenues — the hidden-line drawing of a view (see view_lines.h).
+#include "render/view_lines.h"
+
+#include <algorithm>
+
+#include "render/interval_clip.h"
+#include "render/stroke_merge.h"
+
+namespace avenues {
+
+namespace {
+
+using detail::clip_interval;
+using detail::KeyedInterval;
+using detail::Interval;
+
+constexpr double kTouch = 1e-9;   ///< pieces of one line closer than this (in its parameter) are one piece
+constexpr double kOnFace = 1e-9;  ///< [m] furniture lying on a cell's face belongs to the cell
+
+/// The mask's edges as camera-space half-spaces s·P >= 0 (interval_clip.h): the left side of the
+/// edge p→q of a counter-clockwise mask, cross(q − p, (X/Z, Y/Z) − p) >= 0, times Z.
+void mask_sides(const std::vector<Vec2>& mask, std::vector<Vec3>& sides) {
+  sides.clear();
+  for (size_t k = 0; k < mask.size(); ++k) {
+    const Vec2 p = mask[k], q = mask[(k + 1) % mask.size()];
+    const double dx = q.x - p.x, dy = q.y - p.y;
+    sides.push_back({-dy, dx, dy * p.x - dx * p.y});
+  }
+}
+
+/// Cuts the camera-space segment p0→p1 (parameters of `s`) to the near plane and the mask.
+bool clip_to_avenue(Interval& s, Vec3 p0, Vec3 p1, double near, const std::vector<Vec3>& sides) {
+  if (!clip_interval(s, p0.z - near, p1.z - near)) return false;
+  for (const Vec3& n : sides)
+    if (!clip_interval(s, dot(n, p0), dot(n, p1))) return false;
+  return true;
+}
+
+/// Appends the strokes of the intervals of camera-space segment p0→p1.
+void add_strokes(const Camera& cam, Vec3 p0, Vec3 p1, const std::vector<Interval>& intervals, Weight weight, Layer layer,
+                 std::vector<Stroke>& out) {
+  const Vec3 d = p1 - p0;
+  auto raster = [&](double t) {
+    const Vec3 p = p0 + t * d;
+    return cam.raster_from_image({p.x / p.z, p.y / p.z});
+  };
+  for (const Interval& s : intervals) out.push_back({raster(s.t0), raster(s.t1), weight, layer});
+}
+
+/// Calls f(key, intervals) for each key of merged, sorted `pieces`.
+template <class F>
+void for_each_line(const std::vector<KeyedInterval>& pieces, std::vector<Interval>& intervals, F&& f) {
+  for (size_t i = 0; i < pieces.size();) {
+    intervals.clear();
+    size_t j = i;
+    for (; j < pieces.size() && pieces[j].key == pieces[i].key; ++j) intervals.push_back(pieces[j].interval);
+    f(pieces[i].key, intervals);
+    i = j;
+  }
+}
+
+/// One furniture edge to draw in this view.
+struct SeenEdge {
+  int32_t piece, edge;
+  Weight weight;
+};
+
+}  // namespace
+
+LineScene prepare_line_scene(const CellComplex& complex) { return {line_faces(complex), place_furniture(complex)}; }
+
+Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& cam, const VisibleSet& vs,
+                  const LineOptions& options) {
+  Drawing d;
+  d.width = cam.width;
+  d.height = cam.height;
+  d.title = c.plan_name;
+
+  // Furniture in a visible cell: the edges it shows from this eye, and the triangles that hide.
+  std::vector<SeenEdge> seen;
+  std::vector<int32_t> seen_start;  // per piece, into `seen`; empty unless drawn
+  std::vector<Occluder> occluders;
+  if (options.furniture) {
+    const auto& pieces = scene.furniture.pieces;
+    seen_start.assign(pieces.size() + 1, 0);
+    for (size_t i = 0; i < pieces.size(); ++i) {
+      const FurniturePiece& p = pieces[i];
+      seen_start[i] = int32_t(seen.size());
+      const bool visible = std::any_of(p.cells.begin(), p.cells.end(), [&](CellId id) {
+        return std::binary_search(vs.cells.begin(), vs.cells.end(), id);
+      });
+      if (!visible) continue;
+      const std::vector<uint8_t> facing = polygons_facing(p, cam.eye);
+      for (size_t e = 0; e < p.edges.size(); ++e) {
+        Weight w;
+        if (edge_is_seen(p.edges[e], facing, options.crease_deg, w)) seen.push_back({int32_t(i), int32_t(e), w});
+      }
+      add_occluders(p, facing, cam, occluders);
+    }
+    seen_start[pieces.size()] = int32_t(seen.size());
+  }
+
+  // Jones: each avenue's cell, its lines clipped to the avenue's mask.
+  std::vector<Vec3> sides;
+  std::vector<KeyedInterval> lines, edges;  // keyed by LineId, by index into `seen`
+  for (const Avenue& a : vs.avenues) {
+    mask_sides(a.mask, sides);
+    const Cell& cell = c.cells[size_t(a.cell)];
+    const uint8_t* shows = scene.faces.shows.data() + scene.faces.cell_start[size_t(a.cell)];
+    for (size_t k = 0; k < cell.lines.size(); ++k) {
+      if (!shows[k]) continue;  // the far side of a wall of no thickness
+      const CellLine& cl = cell.lines[k];
+      const RealLine& l = c.lines[size_t(cl.line)];
+      Interval s{cl.t0, cl.t1};
+      if (clip_to_avenue(s, cam.camera_from_world(l.a), cam.camera_from_world(l.b), cam.near, sides))
+        lines.push_back({cl.line, s});
+    }
+    if (seen.empty()) continue;
+    for (size_t i = 0; i + 1 < seen_start.size(); ++i) {
+      const FurniturePiece& p = scene.furniture.pieces[i];
+      if (seen_start[i] == seen_start[i + 1] || !std::binary_search(p.cells.begin(), p.cells.end(), a.cell)) continue;
+      for (int32_t k = seen_start[i]; k < seen_start[i + 1]; ++k) {
+        const FurnitureEdge& e = p.edges[size_t(seen[size_t(k)].edge)];
+        const Vec3 w0 = p.mesh.vertices[size_t(e.v[0])], w1 = p.mesh.vertices[size_t(e.v[1])];
+        Interval s{0, 1};
+        bool alive = true;
+        for (size_t f = 0; f < cell.faces.size() && alive; ++f) {  // inside the cell's prism
+          const Plane& pl = cell.faces[f].plane;
+          alive = clip_interval(s, kOnFace - pl.eval(w0), kOnFace - pl.eval(w1));
+        }
+        if (alive && clip_to_avenue(s, cam.camera_from_world(w0), cam.camera_from_world(w1), cam.near, sides))
+          edges.push_back({k, s});
+      }
+    }
+  }
+
+  // Each line once: the union of its pieces, less what furniture hides, as strokes.
+  std::vector<Interval> intervals;
+  detail::merge_intervals(lines, kTouch);
+  for_each_line(lines, intervals, [&](int32_t id, std::vector<Interval>& s) {
+    const RealLine& l = c.lines[size_t(id)];
+    const Vec3 p0 = cam.camera_from_world(l.a), p1 = cam.camera_from_world(l.b);
+    hide_behind(occluders, p0, p1, s);
+    add_strokes(cam, p0, p1, s, line_weight(c, scene.faces, id, cam.eye), Layer::Architecture, d.strokes);
+  });
+  detail::merge_intervals(edges, kTouch);
+  for_each_line(edges, intervals, [&](int32_t k, std::vector<Interval>& s) {
+    const SeenEdge& se = seen[size_t(k)];
+    const FurniturePiece& p = scene.furniture.pieces[size_t(se.piece)];
+    const FurnitureEdge& e = p.edges[size_t(se.edge)];
+    const Vec3 p0 = cam.camera_from_world(p.mesh.vertices[size_t(e.v[0])]);
+    const Vec3 p1 = cam.camera_from_world(p.mesh.vertices[size_t(e.v[1])]);
+    hide_behind(occluders, p0, p1, s);
+    add_strokes(cam, p0, p1, s, se.weight, Layer::Furniture, d.strokes);
+  });
+  merge_collinear(d.strokes);
+  return d;
+}
+
+}  // namespace avenues
