@@ -21,9 +21,6 @@
 
 namespace avenues::app {
 
-namespace {
-
-/// "X,Y,Z" → Vec3; throws std::runtime_error naming the option otherwise.
 Vec3 parse_vec3(const std::string& s, const char* option) {
   std::istringstream in(s);
   Vec3 v;
@@ -33,6 +30,8 @@ Vec3 parse_vec3(const std::string& s, const char* option) {
     throw std::runtime_error(std::string(option) + " wants three numbers X,Y,Z, not '" + s + "'");
   return v;
 }
+
+namespace {
 
 std::string str(Vec3 v) {
   std::ostringstream o;
@@ -111,13 +110,20 @@ int run_view(const ViewOptions& opt) {
   VisibleSet vs = find_visible(plan.complex, v.camera, v.eye_cell, v.kernel);
   nlohmann::json stats = view_stats(plan, v, vs);
   if (!opt.overlay.empty()) write_overlay_svg(plan.complex, v.camera, vs, opt.overlay);
-  if (!opt.output.empty()) write_view_output(plan, v, vs, opt.output, stats);
+  if ((opt.frames > 0 || !opt.stereo.empty()) && opt.output.empty())
+    throw std::runtime_error("--stereo and --frames need -o FILE");
+  if (opt.frames > 0 && (opt.to_eye.empty() || opt.to_look.empty()))
+    throw std::runtime_error("--frames needs --to-eye X,Y,Z and --to-look X,Y,Z");
+  if (!opt.output.empty()) write_view_output(plan, v, vs, opt, stats);
   if (!opt.stats_json.empty()) write_file_atomically(opt.stats_json, stats.dump(2) + "\n");
   std::cout << "eye in cell " << vs.eye_cell << " (" << stats["eye_room"].get<std::string>() << "): "
             << vs.cells.size() << " cells visible through " << vs.avenues.size() << " avenues, "
             << vs.portals_tested << " portals tested, depth " << vs.max_depth << ", " << vs.micros << " us ("
             << to_string(v.kernel) << ")\n";
-  for (const std::string& f : {opt.overlay, opt.output, opt.stats_json})
+  std::string picture = opt.output;
+  if (opt.frames > 0) picture = stats["first_frame"].get<std::string>() + " and the next " + std::to_string(opt.frames - 1);
+  if (opt.stereo == "pair") picture = "the pair " + opt.output + " (-left, -right)";
+  for (const std::string& f : {opt.overlay, picture, opt.stats_json})
     if (!f.empty()) std::cout << "wrote " << f << "\n";
   return 0;
 }

@@ -50,6 +50,11 @@ struct ViewOptions {
   std::string size = "1920x1080";
   std::string kernel = "double";
   std::string stats_json, overlay, output;
+  std::string stereo;                  ///< "", parallel, cross or pair
+  double interocular = 0.065;          ///< [m]
+  double converge = 2.0;               ///< [m]
+  int frames = 0;                      ///< > 0: a straight walk to to_eye/to_look
+  std::string to_eye, to_look;         ///< "X,Y,Z"
 };
 /// The camera and eye cell a view option set resolves to.
 struct ViewSetup {
@@ -64,9 +69,12 @@ ViewSetup set_up_view(const LoadedPlan& plan, const ViewOptions& opt);
 bool parse_size(const std::string& s, int& w, int& h);
 nlohmann::json view_stats(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs);
 int run_view(const ViewOptions& opt);
-/// Writes the view's picture to `path` by its extension; adds what it measured to `stats`.
-void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs, const std::string& path,
+/// Writes the view's picture to opt.output by its extension (stereo, walk frames as asked);
+/// adds what it measured to `stats`.
+void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs, const ViewOptions& opt,
                        nlohmann::json& stats);
+/// "X,Y,Z" → Vec3; throws std::runtime_error naming the option otherwise.
+Vec3 parse_vec3(const std::string& s, const char* option);
 
 /// No subcommand: the main job on PLAN (default: the bundled plan).
 struct MainJobOptions {

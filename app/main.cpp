@@ -63,7 +63,16 @@ int main(int argc, char** argv) {
   view->add_option("--kernel", view_opt.kernel, "arithmetic: float, double, filtered or exact")->capture_default_str();
   view->add_option("--stats-json", view_opt.stats_json, "write the view's statistics as JSON")->type_name("FILE");
   view->add_option("--overlay", view_opt.overlay, "draw masks, plan and avenue tree as SVG")->type_name("FILE.svg");
-  view->add_option("-o,--output", view_opt.output, "the picture of the view, by extension")->type_name("FILE");
+  view->add_option("-o,--output", view_opt.output,
+                   "the picture of the view, by extension: .svg .pdf .eps .dxf .hpgl .plt (hidden-line drawing)")
+      ->type_name("FILE");
+  view->add_option("--stereo", view_opt.stereo, "a stereo pair: parallel, cross (side by side) or pair (two files)");
+  view->add_option("--interocular", view_opt.interocular, "[m] distance between the eyes")->capture_default_str();
+  view->add_option("--converge", view_opt.converge, "[m] distance at which the two views coincide")
+      ->capture_default_str();
+  view->add_option("--frames", view_opt.frames, "write N frames of a straight walk to --to-eye/--to-look");
+  view->add_option("--to-eye", view_opt.to_eye, "where the walk ends")->type_name("X,Y,Z");
+  view->add_option("--to-look", view_opt.to_look, "what the walk's last frame looks at")->type_name("X,Y,Z");
 
   GenerateOfficeOptions office_opt;
   CLI::App* generate = app.add_subcommand("generate", "write a generated plan");

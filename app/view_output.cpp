@@ -1,16 +1,107 @@
 // Avenues — `avenues view ... -o FILE`: the picture of the view, chosen by FILE's extension.
-// Drawings and half-tone pictures are added here as the renderers land.
+//
+//   .svg .pdf .eps .dxf .hpgl .plt   the hidden-line drawing (render/view_lines.h)
+//
+// with --stereo parallel|cross|pair (two eyes, off-axis, never toe-in) and --frames N
+// (a straight walk to --to-eye/--to-look, one numbered file per frame).
+#include <chrono>
 #include <filesystem>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "render/drawing.h"
+#include "render/stereo_drawing.h"
+#include "render/view_lines.h"
+#include "render/walkthrough.h"
+#include "visibility/stereo.h"
 
 namespace avenues::app {
 
-void write_view_output(const LoadedPlan&, const ViewSetup&, const VisibleSet&, const std::string& path,
-                       nlohmann::json&) {
-  const std::string ext = std::filesystem::path(path).extension().string();
-  throw std::runtime_error("cannot write '" + path + "': no renderer yet writes '" + ext +
-                           "' files (use --overlay FILE.svg and --stats-json FILE)");
+namespace {
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  return ext;
+}
+
+bool is_drawing(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  return ext == ".svg" || ext == ".pdf" || ext == ".eps" || ext == ".dxf" || ext == ".hpgl" || ext == ".plt";
+}
+
+double micros_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void add_drawing_stats(nlohmann::json& stats, const DrawingStats& d, double render_us, const std::string& path) {
+  stats["lines"] = d.lines;
+  stats["render_us"] = render_us;
+  const std::string ext = lower_extension(path);
+  if (ext == ".hpgl" || ext == ".plt") stats["penup_mm"] = {{"before", d.penup_mm_before}, {"after", d.penup_mm_after}};
+}
+
+}  // namespace
+
+void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs, const ViewOptions& opt,
+                       nlohmann::json& stats) {
+  const std::string& path = opt.output;
+  const CellComplex& c = plan.complex;
+  if (!is_drawing(path))
+    throw std::runtime_error("cannot write '" + path + "': unknown picture format '" + lower_extension(path) +
+                             "' (drawings: " + drawing_extensions() + ")");
+  const LineScene scene = prepare_line_scene(c);
+
+  if (opt.frames > 0) {
+    // A straight walk, one drawing per frame; every frame's eye is checked before any is written.
+    const auto frames = walk_frames(c, v.viewpoint.eye, v.viewpoint.look, parse_vec3(opt.to_eye, "--to-eye"),
+                                    parse_vec3(opt.to_look, "--to-look"), opt.frames, v.camera);
+    size_t lines = 0;
+    double render_us = 0;
+    for (size_t k = 0; k < frames.size(); ++k) {
+      auto t0 = std::chrono::steady_clock::now();
+      VisibleSet fv = find_visible(c, frames[k].camera, frames[k].cell, v.kernel);
+      Drawing d = draw_view(c, scene, frames[k].camera, fv);
+      render_us += micros_since(t0);
+      lines += write_drawing(d, frame_path(path, int(k), int(frames.size()))).lines;
+    }
+    stats["frames"] = frames.size();
+    stats["lines"] = lines;
+    stats["render_us"] = render_us;
+    stats["first_frame"] = frame_path(path, 0, int(frames.size()));
+    return;
+  }
+
+  if (!opt.stereo.empty()) {
+    StereoLayout layout;
+    if (!parse_stereo_layout(opt.stereo, layout))
+      throw std::runtime_error("--stereo wants parallel, cross or pair for drawings, not '" + opt.stereo + "'");
+    StereoRig rig = stereo_rig(c, v.camera, {opt.interocular, opt.converge});
+    if (rig.problem != StereoRig::Problem::None) throw std::runtime_error(rig.message());
+    auto t0 = std::chrono::steady_clock::now();
+    VisibleSet lv = find_visible(c, rig.left, rig.left_at.cell, v.kernel);
+    VisibleSet rv = find_visible(c, rig.right, rig.right_at.cell, v.kernel);
+    Drawing left = draw_view(c, scene, rig.left, lv), right = draw_view(c, scene, rig.right, rv);
+    const double render_us = micros_since(t0);
+    add_drawing_stats(stats, write_stereo_drawing(left, right, layout, path), render_us, path);
+    stats["stereo"] = {{"layout", to_string(layout)},
+                       {"interocular", opt.interocular},
+                       {"converge", opt.converge},
+                       {"left_cell", rig.left_at.cell},
+                       {"right_cell", rig.right_at.cell},
+                       {"eyes_apart", rig.eyes_apart()}};
+    if (rig.eyes_apart())
+      std::cout << "note: the two eyes stand in different cells (" << rig.left_at.cell << " and " << rig.right_at.cell
+                << "); each sees through its own avenues\n";
+    return;
+  }
+
+  auto t0 = std::chrono::steady_clock::now();
+  Drawing d = draw_view(c, scene, v.camera, vs);
+  const double render_us = micros_since(t0);
+  add_drawing_stats(stats, write_drawing(d, path), render_us, path);
 }
 
 }  // namespace avenues::app

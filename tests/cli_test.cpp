@@ -420,3 +420,36 @@ TEST_F(Cli, ViewRejectsBadOptions) {
     EXPECT_FALSE(fs::exists(path("s.json"))) << args;
   }
 }
+
+TEST_F(Cli, ViewWritesTheDrawingInEveryFormatWithItsStats) {
+  for (const char* name : {"v.svg", "v.pdf", "v.eps", "v.dxf", "v.hpgl"}) {
+    Outcome r = run("view " + quote(kPlan) + " -o " + name + " --stats-json s.json");
+    ASSERT_EQ(r.status, 0) << name << r.err;
+    EXPECT_GT(fs::file_size(path(name)), 100u) << name;
+    json j = json::parse(slurp(path("s.json")));
+    EXPECT_GT(j["lines"].get<int>(), 0) << name;
+    EXPECT_TRUE(j.contains("render_us")) << name;
+    if (std::string(name) == "v.hpgl") {
+      EXPECT_LE(j["penup_mm"]["after"].get<double>(), j["penup_mm"]["before"].get<double>());
+    }
+  }
+  Outcome bad = run("view " + quote(kPlan) + " -o v.xyz");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find(".svg"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(path("v.xyz")));
+}
+
+TEST_F(Cli, ViewStereoAndWalkFrames) {
+  ASSERT_EQ(run("view " + quote(kPlan) + " -o s.svg --stereo cross --stats-json s.json").status, 0);
+  EXPECT_TRUE(json::parse(slurp(path("s.json"))).contains("stereo"));
+  ASSERT_EQ(run("view " + quote(kPlan) + " -o p.dxf --stereo pair").status, 0);
+  EXPECT_TRUE(fs::exists(path("p-left.dxf")) && fs::exists(path("p-right.dxf")));
+  Outcome walk = run("view " + quote(kPlan) + " -o w.svg --frames 4 --to-eye 7,4.5,1.6 --to-look 8,5,1.5");
+  ASSERT_EQ(walk.status, 0) << walk.err;
+  for (int k = 1; k <= 4; ++k) EXPECT_TRUE(fs::exists(path("w-000" + std::to_string(k) + ".svg"))) << k;
+  // A walk whose last eye is outside the far box writes nothing at all.
+  Outcome bad = run("view " + quote(kPlan) + " -o x.svg --frames 3 --to-eye 7,4.5,60 --to-look 8,5,1.5");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("frame 3 of 3"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(path("x-0001.svg")));
+}
