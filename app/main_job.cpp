@@ -13,6 +13,7 @@
 #include "app/commands.h"
 #include "render/overlay_drawing.h"
 #include "render/plan_drawing.h"
+#include "render/view_lines.h"
 
 namespace avenues::app {
 namespace fs = std::filesystem;
@@ -34,6 +35,9 @@ int run_offline(const LoadedPlan& plan, const MainJobOptions& opt) {
   VisibleSet visible = find_visible(plan.complex, view.camera, view.eye_cell, view.kernel);
   const std::string overlay = (fs::path(opt.out_dir) / (plan.stem + "-avenues.svg")).string();
   write_overlay_svg(plan.complex, view.camera, visible, overlay);
+  // What the eye sees, as a hidden-line drawing (Jones's perspective line drawing).
+  const std::string drawing = (fs::path(opt.out_dir) / (plan.stem + "-view.svg")).string();
+  const DrawingStats lines = write_drawing(draw_view(plan.complex, prepare_line_scene(plan.complex), view.camera, visible), drawing);
 
   print_summary(std::cout, plan);
   const Cell& eye_cell = plan.complex.cells[size_t(view.eye_cell)];
@@ -44,6 +48,7 @@ int run_offline(const LoadedPlan& plan, const MainJobOptions& opt) {
             << visible.micros << " us\n";
   std::cout << "\nplan drawing: " << svg << "\n";
   std::cout << "avenues of sight (masks, plan, avenue tree): " << overlay << "\n";
+  std::cout << "hidden-line drawing of the view (" << lines.lines << " strokes): " << drawing << "\n";
   std::cout << "(open it in a web browser; `avenues --help` lists what else avenues can do)\n";
   return 0;
 }
