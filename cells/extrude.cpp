@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <tuple>
 
 #include "cells/passes.h"
 
@@ -84,7 +85,7 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
   const int n = T.size();
   Layout L;
   // Per cell: its band and its boundary (half-edges with side indices).
-  std::vector<size_t> band_of;
+  std::vector<size_t> band_of, band_last;  // per cell: the bands it spans, first and last
   std::vector<Outline2> shape;
 
   auto sheets_on = [&](int32_t h, StoreyId s, std::vector<int32_t>& r) {
@@ -112,6 +113,25 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
     L.cells_of.emplace_back(P.boundary.size());
     for (size_t p = 0; p < P.boundary.size(); ++p) {
       const SpaceClass& sc = C.classes[size_t(P.label[p])];
+      // The outside piece right above an identical outside piece (the slab band around a
+      // building has the storey band's outline) continues that cell upwards: one tall cell
+      // instead of a stack of two joined by a horizontal portal, and so fewer avenues.
+      if (sc.kind == CellKind::Outside && b > 0 && !P.boundary[p].empty()) {
+        const int t = P.boundary[p][0] / 3;
+        const int32_t q = L.pieces[b - 1].of[size_t(t)];
+        if (q >= 0 && L.cells_of[b - 1][size_t(q)].size() == 1) {
+          const CellId d = L.cells_of[b - 1][size_t(q)][0];
+          Cell& below = out.cells[size_t(d)];
+          auto sorted = [](std::vector<int32_t> v) { std::sort(v.begin(), v.end()); return v; };
+          if (below.kind == CellKind::Outside && std::fabs(below.z1 - band.z0) < kZTol &&
+              sorted(L.pieces[b - 1].boundary[size_t(q)]) == sorted(P.boundary[p])) {
+            below.z1 = band.z1;
+            band_last[size_t(d)] = b;
+            L.cells_of[b][p].push_back(d);
+            continue;
+          }
+        }
+      }
       Outline2 o = footprint_of(T, P.boundary[p]);
       // A sliver left by nearly coincident input points (below any built size) stays solid.
       if (o.poly.size() < 3 || area(o.poly) <= kMinArea) continue;
@@ -131,6 +151,7 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
         L.cells_of[b][p].push_back(CellId(out.cells.size()));
         out.cells.push_back(std::move(c));
         band_of.push_back(b);
+        band_last.push_back(b);
         shape.push_back(o);
       }
     }
@@ -187,19 +208,41 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
   // --- 5c. side portals and opaque side rectangles.
   struct Rect { double s0, s1, lo, hi; };
   for (CellId ci = 0; ci < CellId(out.cells.size()); ++ci) {
-    const size_t b = band_of[size_t(ci)];
-    const Band& band = C.bands[b];
     const Outline2& o = shape[size_t(ci)];
     Cell& c = out.cells[size_t(ci)];
     const size_t nsides = c.footprint.size();
     std::vector<std::vector<Rect>> open(nsides);       // portal rects per side, in side coords
     std::vector<MaterialId> side_material(nsides, -2); // -2: not yet known
     // Runs of equal (neighbour, lo, hi) along consecutive half-edges of one side.
-    struct Run { CellId d; double lo, hi, s0, s1; int sheet_opening; };
-    std::vector<Run> active, next;
-    int prev_side = -1;
+    struct Run { CellId d; double lo, hi, s0, s1; int sheet_opening; int side; };
+    std::vector<Run> active, next, done;
+    // Runs end here; they become portals once every band the cell spans has been walked
+    // (a tall outside cell meets a tall neighbour in one portal, not one per band).
     auto flush = [&](std::vector<Run>& runs, int side) {
-      for (const Run& r : runs) {
+      for (Run r : runs) {
+        r.side = side;
+        done.push_back(r);
+      }
+      runs.clear();
+    };
+    auto emit = [&]() {
+      std::sort(done.begin(), done.end(), [](const Run& x, const Run& y) {
+        return std::tie(x.side, x.d, x.s0, x.s1, x.sheet_opening, x.lo) < std::tie(y.side, y.d, y.s0, y.s1, y.sheet_opening, y.lo);
+      });
+      std::vector<Run> merged;
+      for (const Run& r : done) {
+        if (!merged.empty()) {
+          Run& m = merged.back();
+          if (m.side == r.side && m.d == r.d && m.sheet_opening == r.sheet_opening && std::fabs(m.s0 - r.s0) < 1e-9 &&
+              std::fabs(m.s1 - r.s1) < 1e-9 && std::fabs(m.hi - r.lo) < kZTol) {
+            m.hi = r.hi;
+            continue;
+          }
+        }
+        merged.push_back(r);
+      }
+      for (const Run& r : merged) {
+        const int side = r.side;
         if (r.s1 - r.s0 < kMinWidth) continue;
         open[size_t(side)].push_back({r.s0, r.s1, r.lo, r.hi});
         if (ci < r.d) {
@@ -232,8 +275,11 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
           dc.portals.push_back(pid);
         }
       }
-      runs.clear();
     };
+    for (size_t b = band_of[size_t(ci)]; b <= band_last[size_t(ci)]; ++b) {
+    const Band& band = C.bands[b];
+    const double zlo = std::max(c.z0, band.z0), zhi = std::min(c.z1, band.z1);
+    int prev_side = -1;
     for (size_t k = 0; k < o.half_edges.size(); ++k) {
       const int32_t h = o.half_edges[k];
       const int side = o.side[k];
@@ -245,7 +291,7 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
       const double s0 = dot(T.edge_from(h / 3, h % 3) - a, dir), s1 = dot(T.edge_to(h / 3, h % 3) - a, dir);
       const int u = T.nbr[size_t(h / 3)][size_t(h % 3)];
       // Heights at which the far side can be reached through this half-edge.
-      Intervals reach{{c.z0, c.z1}};
+      Intervals reach{{zlo, zhi}};
       int sheet_wall = -1, sheet_opening = -1;
       if (band.kind == Band::Kind::Storey) {
         sheets_on(h, band.storey, tmp);
@@ -270,7 +316,7 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
               next.push_back(r);
               active.erase(same);
             } else {
-              next.push_back({d, lo, hi, s0, s1, sheet_opening});
+              next.push_back({d, lo, hi, s0, s1, sheet_opening, -1});
             }
           }
         }
@@ -290,6 +336,8 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
       }
     }
     if (prev_side >= 0) flush(active, prev_side);
+    }
+    emit();
 
     // Opaque = side rectangle minus portal rectangles, as rectangles (sweep along s).
     for (size_t k = 0; k < nsides; ++k) {
