@@ -1,0 +1,339 @@
+// Avenues — the half-tone renderer: bands of rows over threads, spans lit and encoded (see
+// halftone.h).
+#include "render/halftone.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+
+#include "render/raster_srgb.h"
+#include "render/scanline.h"
+
+namespace avenues {
+
+namespace {
+
+/// [pixels] rows per band: enough bands to share among threads, few enough that presetting
+/// each band's active list (a pass over the edges that began above it) stays cheap.
+constexpr int kBandRows = 24;
+
+using Clock = std::chrono::steady_clock;
+double micros_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
+}
+
+/// Fills n pixels of `channels` bytes with one encoded colour, a block at a time; the last
+/// block is written flush with the span's end, over part of the one before (the same bytes).
+void fill_pixels(uint8_t* dst, size_t n, const std::array<uint8_t, 3>& code, int channels) {
+  if (channels == 1) {
+    std::memset(dst, code[0], n);
+    return;
+  }
+  constexpr size_t kBlock = 16;  // pixels per copied block
+  uint8_t block[3 * kBlock];
+  for (size_t i = 0; i < kBlock; ++i) std::memcpy(block + 3 * i, code.data(), 3);
+  if (n < kBlock) {
+    for (size_t i = 0; i < n; ++i) std::memcpy(dst + 3 * i, block, 3);
+    return;
+  }
+  for (size_t i = 0; i + kBlock <= n; i += kBlock) std::memcpy(dst + 3 * i, block, sizeof block);
+  std::memcpy(dst + 3 * (n - kBlock), block, sizeof block);
+}
+
+/// What the shading of a polygon's span needs, prepared once per picture.
+struct PolygonLook {
+  std::array<float, 3> linear{};   ///< colour (RGB, or luminance in [0]) of a Constant shade times its I
+  std::array<uint8_t, 3> code{};   ///< that, encoded (Constant shades only)
+  std::array<float, 3> colour{};   ///< the material's colour (RGB, or luminance in [0])
+  bool constant = false;
+};
+
+/// Scans bands of rows into the picture; one per thread, reused from band to band (its
+/// counters add up over the bands it painted).
+class BandPainter {
+ public:
+  BandPainter(const ScreenScene& scene, const EdgeTable& table, const std::vector<PolygonLook>& looks,
+              const PolygonLook& background, int per_side, int channels, Image& out, std::vector<int32_t>* items)
+      : scene_(scene), engine_(table), looks_(looks), background_(background), s_(per_side), ch_(channels),
+        out_(out), items_(items), encoder_(srgb_encoder()) {
+    intensity_.resize(size_t(scene.raster.width));
+    if (per_side > 1) sum_.resize(size_t(out.width) * size_t(channels));
+  }
+
+  void paint(int y0, int y1) {
+    engine_.start(y0 * s_);
+    for (int y = y0; y < y1; ++y) {
+      uint8_t* dst = out_.row(y);
+      if (s_ == 1) {
+        engine_.scan(spans_);
+        for (const Span& sp : spans_) write_span(dst, sp, y);
+        keep_items(y);
+        continue;
+      }
+      std::fill(sum_.begin(), sum_.end(), 0.0f);
+      for (int k = 0; k < s_; ++k) {
+        const int row = y * s_ + k;
+        engine_.scan(spans_);
+        for (const Span& sp : spans_) add_span(sp, row);
+        keep_items(row);
+      }
+      const float mean = 1.0f / float(s_ * s_);
+      for (size_t i = 0; i < sum_.size(); ++i) dst[i] = encoder_(sum_[i] * mean);
+    }
+  }
+  const ScanCounters& counters() const { return engine_.counters(); }
+  long pixels() const { return pixels_; }
+
+ private:
+  const PolygonLook& look_of(int32_t polygon) const { return polygon < 0 ? background_ : looks_[size_t(polygon)]; }
+
+  /// Intensities of the span's samples into intensity_ (non-constant shades).
+  const float* light(const Span& sp, int row) {
+    const size_t p = size_t(sp.polygon);
+    shade_samples(scene_.shades[p], scene_.polygons[p].depth, scene_.raster, row, sp.x0, sp.x1, intensity_.data());
+    return intensity_.data();
+  }
+
+  /// One sample per pixel: straight into the picture.
+  void write_span(uint8_t* dst, const Span& sp, int row) {
+    const PolygonLook& look = look_of(sp.polygon);
+    if (sp.polygon >= 0) pixels_ += sp.x1 - sp.x0;
+    uint8_t* at = dst + size_t(sp.x0) * size_t(ch_);
+    if (look.constant) return fill_pixels(at, size_t(sp.x1 - sp.x0), look.code, ch_);
+    const float* in = light(sp, row);
+    for (int i = 0; i < sp.x1 - sp.x0; ++i)
+      for (int c = 0; c < ch_; ++c) at[i * ch_ + c] = encoder_(look.colour[size_t(c)] * in[i]);
+  }
+
+  /// Several samples per pixel: summed per pixel in linear light, pixel by pixel over the
+  /// samples of the span that fall in it.
+  void add_span(const Span& sp, int row) {
+    const PolygonLook& look = look_of(sp.polygon);
+    if (sp.polygon >= 0) pixels_ += sp.x1 - sp.x0;
+    const float* in = look.constant ? nullptr : light(sp, row);
+    for (int px = sp.x0 / s_; px * s_ < sp.x1; ++px) {
+      const int from = std::max(sp.x0, px * s_), to = std::min(sp.x1, (px + 1) * s_);
+      float* sum = &sum_[size_t(px) * size_t(ch_)];
+      if (look.constant) {
+        for (int c = 0; c < ch_; ++c) sum[c] += float(to - from) * look.linear[size_t(c)];
+        continue;
+      }
+      float light_sum = 0;
+      for (int i = from; i < to; ++i) light_sum += in[i - sp.x0];
+      for (int c = 0; c < ch_; ++c) sum[c] += look.colour[size_t(c)] * light_sum;
+    }
+  }
+
+  void keep_items(int row) {
+    if (!items_) return;
+    int32_t* dst = items_->data() + size_t(row) * size_t(scene_.raster.width);
+    for (const Span& sp : spans_) std::fill(dst + sp.x0, dst + sp.x1, sp.polygon);
+  }
+
+  const ScreenScene& scene_;
+  ScanlineEngine engine_;
+  const std::vector<PolygonLook>& looks_;
+  const PolygonLook& background_;
+  int s_, ch_;
+  Image& out_;
+  std::vector<int32_t>* items_;
+  const SrgbEncoder& encoder_;
+  std::vector<Span> spans_;
+  std::vector<float> intensity_, sum_;
+  long pixels_ = 0;
+};
+
+/// One arena per thread count, made once: creating an arena each frame costs more than
+/// scanning a band. Never destroyed (TBB may be gone by the time statics are).
+tbb::task_arena& arena_for(int threads) {
+  static std::mutex lock;
+  static auto* arenas = new std::map<int, std::unique_ptr<tbb::task_arena>>;
+  const std::lock_guard<std::mutex> hold(lock);
+  auto& a = (*arenas)[std::max(threads, 0)];
+  if (!a) a = std::make_unique<tbb::task_arena>(threads > 0 ? threads : int(tbb::task_arena::automatic));
+  return *a;
+}
+
+PolygonLook look_of(const SurfaceShade& shade, bool colour, const SrgbEncoder& enc) {
+  PolygonLook look;
+  look.colour = colour ? shade.colour : std::array<float, 3>{luminance(shade.colour[0], shade.colour[1], shade.colour[2]), 0, 0};
+  look.constant = shade.kind == SurfaceShade::Kind::Constant;
+  for (size_t c = 0; c < 3; ++c) {
+    look.linear[c] = look.colour[c] * shade.intensity;
+    look.code[c] = enc(look.linear[c]);
+  }
+  return look;
+}
+
+}  // namespace
+
+int samples_per_side(int samples) {
+  switch (samples) {
+    case 1: return 1;
+    case 4: return 2;
+    case 16: return 4;
+  }
+  throw std::invalid_argument("samples per pixel must be 1, 4 or 16, not " + std::to_string(samples));
+}
+
+SceneOptions scene_options(const HalftoneOptions& options) {
+  SceneOptions s;
+  s.per_side = samples_per_side(options.samples);
+  s.shading = options.shading;
+  s.cull_back_faces = options.cull_back_faces;
+  return s;
+}
+
+std::vector<std::pair<std::string, double>> RenderStats::fields() const {
+  return {{"render_us", render_us},
+          {"polygons", double(polygons)},
+          {"edges", double(edges)},
+          {"scanlines", double(scanlines)},
+          {"intersections", double(intersections)},
+          {"spans", double(spans)},
+          {"pixels", double(pixels)},
+          {"implicit_lines", double(implicit_lines)},
+          {"depth_sorts", double(depth_sorts)},
+          {"depth_comparisons", double(depth_comparisons)},
+          {"active_max", double(active_max)},
+          {"active_mean", active_mean},
+          {"threads", double(threads)}};
+}
+
+void RenderStats::add(const RenderStats& o) {
+  render_us += o.render_us;
+  polygons += o.polygons;
+  edges += o.edges;
+  scanlines += o.scanlines;
+  intersections += o.intersections;
+  spans += o.spans;
+  pixels += o.pixels;
+  implicit_lines += o.implicit_lines;
+  depth_sorts += o.depth_sorts;
+  depth_comparisons += o.depth_comparisons;
+  active_max = std::max(active_max, o.active_max);
+  active_mean = scanlines > 0 ? double(intersections) / double(scanlines) : 0;
+  threads = std::max(threads, o.threads);
+}
+
+void render_scene(const ScreenScene& scene, const HalftoneOptions& options, Image& out, RenderStats* stats,
+                  std::vector<int32_t>* item_buffer) {
+  const auto t0 = Clock::now();
+  const int s = samples_per_side(options.samples);
+  const RasterMap& raster = scene.raster;
+  const int channels = options.colour ? 3 : 1;
+  out.resize(raster.width / s, raster.height / s, channels);
+  if (item_buffer) item_buffer->assign(size_t(raster.width) * size_t(raster.height), -1);
+
+  const SrgbEncoder& enc = srgb_encoder();
+  std::vector<PolygonLook> looks;
+  looks.reserve(scene.shades.size());
+  for (const SurfaceShade& shade : scene.shades) looks.push_back(look_of(shade, options.colour, enc));
+  SurfaceShade background;
+  background.colour = {float(options.background[0]), float(options.background[1]), float(options.background[2])};
+  background.intensity = 1;
+  const PolygonLook back = look_of(background, options.colour, enc);
+
+  const EdgeTable table(raster.width, raster.height, scene.polygons, scene.clips);
+  const int bands = (out.height + kBandRows - 1) / kBandRows;
+  tbb::enumerable_thread_specific<BandPainter> painters(
+      [&] { return BandPainter(scene, table, looks, back, s, channels, out, item_buffer); });
+  tbb::task_arena& arena = arena_for(options.threads);
+  arena.execute([&] {
+    tbb::parallel_for(0, bands, [&](int band) {
+      painters.local().paint(band * kBandRows, std::min(out.height, (band + 1) * kBandRows));
+    });
+  });
+
+  if (stats) {
+    ScanCounters total;
+    RenderStats r;
+    for (const BandPainter& p : painters) {  // sums and a maximum: the same in any order
+      total.add(p.counters());
+      r.pixels += p.pixels();
+    }
+    r.polygons = long(scene.polygons.size());
+    r.edges = table.edge_count();
+    r.scanlines = total.scanlines;
+    r.intersections = total.intersections;
+    r.spans = total.spans;
+    r.implicit_lines = total.implicit_lines;
+    r.depth_sorts = total.depth_sorts;
+    r.depth_comparisons = total.depth_comparisons;
+    r.active_max = total.active_max;
+    r.active_mean = total.scanlines > 0 ? double(total.intersections) / double(total.scanlines) : 0;
+    r.threads = arena.max_concurrency();
+    *stats = r;
+  }
+  if (options.dither != Dither::None) out = dither(out, options.dither);
+  if (stats) stats->render_us = micros_since(t0);
+}
+
+void render_view(const CellComplex& complex, const std::vector<PlacedObject>& objects, const Camera& camera,
+                 const VisibleSet& visible, const HalftoneOptions& options, Image& out, RenderStats* stats) {
+  const auto t0 = Clock::now();
+  const ScreenScene scene = screen_scene_of_view(complex, objects, camera, visible, scene_options(options));
+  render_scene(scene, options, out, stats);
+  if (stats) stats->render_us = micros_since(t0);
+}
+
+Image render_view(const CellComplex& complex, const Camera& camera, const VisibleSet& visible,
+                  const HalftoneOptions& options, RenderStats* stats) {
+  Image out;
+  render_view(complex, place_objects(complex), camera, visible, options, out, stats);
+  return out;
+}
+
+Image render_stereo_view(const CellComplex& complex, const std::vector<PlacedObject>& objects, const Camera& left,
+                         const Camera& right, StereoComposite composite, const HalftoneOptions& options,
+                         RenderStats* stats, Kernel kernel) {
+  if (composite == StereoComposite::Anaglyph && options.dither != Dither::None)
+    throw std::invalid_argument("an anaglyph cannot be dithered: 1-bit grey cannot carry its colours");
+  const auto t0 = Clock::now();
+  HalftoneOptions each = options;
+  each.dither = Dither::None;  // dithered once, after composing
+  Image views[2];
+  RenderStats total;
+  const Camera* eyes[2] = {&left, &right};
+  for (int k = 0; k < 2; ++k) {
+    const Location at = complex.locate(eyes[k]->eye);
+    if (at.what != Location::What::Cell)
+      throw std::runtime_error(std::string(k == 0 ? "the left" : "the right") + " eye is not in free space" +
+                               (at.solid.empty() ? std::string() : " (inside " + at.solid + ")"));
+    const VisibleSet visible = find_visible(complex, *eyes[k], at.cell, kernel);
+    RenderStats one;
+    render_view(complex, objects, *eyes[k], visible, each, views[k], &one);
+    total.add(one);
+  }
+  Image out = stereo_composite(views[0], views[1], composite);
+  if (options.dither != Dither::None) out = dither(out, options.dither);
+  if (stats) {
+    *stats = total;
+    stats->render_us = micros_since(t0);
+  }
+  return out;
+}
+
+Image render_meshes(const std::vector<Mesh>& meshes, const std::vector<MeshPaint>& paints, const Camera& camera,
+                    const HalftoneOptions& options, RenderStats* stats) {
+  const auto t0 = Clock::now();
+  Image out;
+  render_scene(screen_scene_of_meshes(meshes, paints, camera, scene_options(options)), options, out, stats);
+  if (stats) stats->render_us = micros_since(t0);
+  return out;
+}
+
+Image render_meshes(const std::vector<Mesh>& meshes, const Camera& camera, const HalftoneOptions& options,
+                    RenderStats* stats) {
+  return render_meshes(meshes, {}, camera, options, stats);
+}
+
+}  // namespace avenues

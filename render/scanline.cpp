@@ -1,0 +1,475 @@
+// Avenues — the scanline engine (see scanline.h for the passes and the conventions).
+#include "render/scanline.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace avenues {
+
+namespace {
+
+constexpr int64_t kHalf = kSubpixelOne / 2;  ///< a sample centre's offset from its corner
+
+/// Floor and ceiling of a / b for b > 0, in integers.
+int64_t floor_div(int64_t a, int64_t b) { return a / b - ((a % b != 0) && (a < 0)); }
+int64_t ceil_div(int64_t a, int64_t b) { return -floor_div(-a, b); }
+
+/// First row whose sample centre y = row + ½ lies at or below the fixed-point y.
+int32_t first_row_at_or_below(int64_t y) { return int32_t(ceil_div(y - kHalf, kSubpixelOne)); }
+
+/// Twice the signed area of an outline, exactly: in 128 bits, where no sum of products of
+/// coordinates (each below 2^29) can overflow.
+__extension__ typedef __int128 Wide;
+Wide area2(const std::vector<FixedPoint>& v) {
+  Wide a = 0;
+  for (size_t i = 0, n = v.size(); i < n; ++i) {
+    const FixedPoint p = v[i], q = v[(i + 1) % n];
+    a += Wide(p.x) * q.y - Wide(q.x) * p.y;
+  }
+  return a;
+}
+
+}  // namespace
+
+void ScanCounters::add(const ScanCounters& o) {
+  scanlines += o.scanlines;
+  intersections += o.intersections;
+  spans += o.spans;
+  implicit_lines += o.implicit_lines;
+  depth_sorts += o.depth_sorts;
+  depth_comparisons += o.depth_comparisons;
+  active_max = std::max(active_max, o.active_max);
+}
+
+// --- the edge table ------------------------------------------------------------------
+
+EdgeTable::EdgeTable(int width, int height, const std::vector<ScreenPolygon>& polygons,
+                     const std::vector<ClipRegion>& clips)
+    : width_(width), height_(height), polygons_(&polygons), clip_count_(clips.size()) {
+  constexpr int64_t kFar = int64_t(1) << 62;
+  // A clip region is empty outside its rows and its box, so the polygons it cuts need no
+  // edges there.
+  struct Box {
+    Rows rows;
+    int64_t x_lo, x_hi;
+  };
+  std::vector<Box> boxes(clips.size());
+  for (size_t k = 0; k < clips.size(); ++k) {
+    boxes[k].rows = add_outline(clips[k].outline, int32_t(k), true, {0, height}, -kFar, kFar);
+    boxes[k].x_lo = kFar;
+    boxes[k].x_hi = -kFar;
+    for (FixedPoint v : clips[k].outline) {
+      boxes[k].x_lo = std::min(boxes[k].x_lo, v.x);
+      boxes[k].x_hi = std::max(boxes[k].x_hi, v.x);
+    }
+  }
+  polygon_rows_.resize(polygons.size());
+  for (size_t p = 0; p < polygons.size(); ++p) {
+    const ScreenPolygon& poly = polygons[p];
+    Box box{{0, height}, 0, int64_t(width) * kSubpixelOne};  // the window
+    if (poly.clip >= 0) {
+      const Box& c = boxes[size_t(poly.clip)];
+      box = {c.rows, std::max(box.x_lo, c.x_lo), std::min(box.x_hi, c.x_hi)};
+    }
+    int64_t x_lo = kFar, x_hi = -kFar;
+    for (FixedPoint v : poly.outline) {
+      x_lo = std::min(x_lo, v.x);
+      x_hi = std::max(x_hi, v.x);
+    }
+    if (x_hi <= box.x_lo || x_lo >= box.x_hi) continue;  // wholly beside its region: never seen
+    polygon_rows_[p] = add_outline(poly.outline, int32_t(p), false, box.rows, box.x_lo, box.x_hi);
+  }
+  polygon_clip_.resize(polygons.size());
+  for (size_t p = 0; p < polygons.size(); ++p) polygon_clip_[p] = polygons[p].clip;
+  // Bouknight's Appendix 1: a card sort into one bin per row, then the bins in row order;
+  // the same for the polygons (Wylie's y-entry table).
+  row_start_.assign(size_t(height) + 1, 0);
+  for (const Edge& e : edges_) ++row_start_[size_t(e.first_row) + 1];
+  for (int r = 0; r < height; ++r) row_start_[size_t(r) + 1] += row_start_[size_t(r)];
+  std::vector<int32_t> fill(row_start_.begin(), row_start_.end() - 1);
+  std::vector<Edge> sorted(edges_.size());
+  for (const Edge& e : edges_) sorted[size_t(fill[size_t(e.first_row)]++)] = e;
+  edges_.swap(sorted);
+  polygon_row_start_.assign(size_t(height) + 1, 0);
+  for (const Rows& r : polygon_rows_)
+    if (r.first < r.end) ++polygon_row_start_[size_t(r.first) + 1];
+  for (int r = 0; r < height; ++r) polygon_row_start_[size_t(r) + 1] += polygon_row_start_[size_t(r)];
+  fill.assign(polygon_row_start_.begin(), polygon_row_start_.end() - 1);
+  polygon_order_.resize(size_t(polygon_row_start_.back()));
+  polygons_ending_.assign(size_t(height) + 1, 0);
+  for (size_t p = 0; p < polygon_rows_.size(); ++p)
+    if (polygon_rows_[p].first < polygon_rows_[p].end) {
+      polygon_order_[size_t(fill[size_t(polygon_rows_[p].first)]++)] = int32_t(p);
+      ++polygons_ending_[size_t(polygon_rows_[p].end)];
+    }
+}
+
+EdgeTable::Rows EdgeTable::add_outline(const std::vector<FixedPoint>& v, int32_t owner, bool clip, Rows within,
+                                       int64_t x_lo, int64_t x_hi) {
+  const size_t n = v.size();
+  Rows rows{within.end, within.first};
+  if (n < 3) return rows;
+  const Wide a = area2(v);
+  if (a == 0) return rows;  // no area: seen edge-on
+  for (size_t i = 0; i < n; ++i) {
+    const FixedPoint p = v[i], q = v[(i + 1) % n];
+    if (p.y == q.y) continue;  // horizontal: the half-open rows of its neighbours bound it
+    const bool down = q.y > p.y;
+    const FixedPoint top = down ? p : q, bottom = down ? q : p;
+    Edge e;
+    e.x0 = top.x;
+    e.y0 = top.y;
+    e.dx = bottom.x - top.x;
+    e.dy = bottom.y - top.y;
+    e.first_row = std::max(first_row_at_or_below(top.y), within.first);
+    e.end_row = std::min(first_row_at_or_below(bottom.y), within.end);
+    if (e.first_row >= e.end_row) continue;  // crosses no sample centre in the window
+    rows = {std::min(rows.first, e.first_row), std::max(rows.end, e.end_row)};
+    e.owner = owner;
+    e.clip = clip;
+    // The interior lies left of each directed edge when the signed area is positive
+    // (x right, y down): an edge running down the raster then bounds it on the right.
+    e.left = (a > 0) != down;
+    if (e.left ? std::max(p.x, q.x) <= x_lo : std::min(p.x, q.x) >= x_hi) continue;  // cannot matter
+    edges_.push_back(e);
+  }
+  return rows;
+}
+
+// --- the scan ------------------------------------------------------------------------
+
+namespace {
+constexpr int32_t kNoSpan = INT32_MAX;  ///< span key of a polygon with nothing on this row
+constexpr int64_t kUnbounded = int64_t(1) << 62;
+}  // namespace
+
+ScanlineEngine::ScanlineEngine(const EdgeTable& table)
+    : table_(table), polygons_(*table.polygons_) {
+  polygon_extent_.resize(polygons_.size());
+  clip_extent_.resize(table.clip_count_);
+  span_left_.assign(polygons_.size(), kNoSpan);
+  span_right_.assign(polygons_.size(), kNoSpan);
+  inside_at_.assign(polygons_.size(), -1);
+}
+
+void ScanlineEngine::enter(const EdgeTable::Edge& e, int row) {
+  // The crossing with row r is the first sample i with i + ½ >= x(r + ½), i.e.
+  //   i = ceil(num / den),  num = (x0 − ½)·dy + (y − y0)·dx,  den = 256·dy,
+  // in fixed-point units; each row down adds 256·dx to num.
+  ActiveEdge a;
+  const int64_t y = int64_t(row) * kSubpixelOne + kHalf;
+  const int64_t num = (e.x0 - kHalf) * e.dy + (y - e.y0) * e.dx;
+  a.den = kSubpixelOne * e.dy;
+  a.crossing = ceil_div(num, a.den);
+  a.remainder = a.crossing * a.den - num;
+  const int64_t step = kSubpixelOne * e.dx;
+  a.step_q = floor_div(step, a.den);
+  a.step_r = step - a.step_q * a.den;
+  a.end_row = e.end_row;
+  a.owner = e.owner;
+  a.clip = e.clip;
+  a.left = e.left;
+  active_.push_back(a);
+}
+
+void ScanlineEngine::enter_polygon(int32_t p) {
+  span_left_[size_t(p)] = span_right_[size_t(p)] = kNoSpan;
+  by_left_.push_back(p);
+  by_right_.push_back(p);
+}
+
+void ScanlineEngine::start(int row) {
+  active_.clear();
+  by_left_.clear();
+  by_right_.clear();
+  row_ = row;
+  if (row < 0 || row >= table_.height_) return;
+  // Bouknight's bin of lines starting below the window, generalised to any first row:
+  // every edge (and polygon) that began above this row and still crosses it, then this
+  // row's bin.
+  const int32_t through = table_.row_start_[size_t(row) + 1];
+  for (int32_t i = 0; i < through; ++i)
+    if (table_.edges_[size_t(i)].end_row > row) enter(table_.edges_[size_t(i)], row);
+  const int32_t polys = table_.polygon_row_start_[size_t(row) + 1];
+  for (int32_t i = 0; i < polys; ++i) {
+    const int32_t p = table_.polygon_order_[size_t(i)];
+    if (table_.polygon_rows_[size_t(p)].end > row) enter_polygon(p);
+  }
+}
+
+void ScanlineEngine::touch(Extent& x, const ActiveEdge& a) {
+  if (x.row != row_) {
+    x.row = row_;
+    x.has_left = x.has_right = false;
+  }
+  if (a.left) {
+    x.left = x.has_left ? std::max(x.left, a.crossing) : a.crossing;
+    x.has_left = true;
+  } else {
+    x.right = x.has_right ? std::min(x.right, a.crossing) : a.crossing;
+    x.has_right = true;
+  }
+}
+
+void ScanlineEngine::scan(std::vector<Span>& out) {
+  out.clear();
+  out_ = &out;
+  row_centre_ = row_ + 0.5;
+  if (!active_.empty()) {
+    ++counters_.scanlines;
+    counters_.intersections += long(active_.size());
+    counters_.active_max = std::max(counters_.active_max, int(active_.size()));
+  }
+  for (const ActiveEdge& a : active_) touch(a.clip ? clip_extent_[size_t(a.owner)] : polygon_extent_[size_t(a.owner)], a);
+  spans_of_polygons();
+  walk();
+  counters_.spans += long(out.size());
+  next_row();
+}
+
+void ScanlineEngine::spans_of_polygons() {
+  // Each polygon's span [L, R): right of its left edges, left of its right edges (no edge
+  // on a side: unbounded there), cut by its clip region and the window.
+  const int64_t width = table_.width_;
+  coverage_.clear();
+  for (int32_t p : by_left_) {
+    const Extent& x = polygon_extent_[size_t(p)];
+    const bool mine = x.row == row_;
+    int64_t l = mine && x.has_left ? x.left : -kUnbounded;
+    int64_t r = mine && x.has_right ? x.right : kUnbounded;
+    const int32_t clip = table_.polygon_clip_[size_t(p)];
+    if (clip >= 0) {
+      const Extent& c = clip_extent_[size_t(clip)];
+      if (c.row == row_ && c.has_left && c.has_right) {
+        l = std::max(l, c.left);
+        r = std::min(r, c.right);
+      } else {
+        r = l;  // the clip region has nothing on this row
+      }
+    }
+    l = std::max<int64_t>(l, 0);
+    r = std::min<int64_t>(r, width);
+    if (l < r) {
+      span_left_[size_t(p)] = int32_t(l);
+      span_right_[size_t(p)] = int32_t(r);
+      coverage_.push_back({int32_t(l), int32_t(r), p});
+    } else {
+      span_left_[size_t(p)] = span_right_[size_t(p)] = kNoSpan;
+    }
+  }
+  // The span ends in scan order. Both lists were in order on the row above and spans move
+  // little from row to row, so an insertion sort has next to nothing to do (Bouknight
+  // sorts his active list anew each scanline; coherence makes it cheap).
+  auto sort_by = [](std::vector<int32_t>& list, const std::vector<int32_t>& key) {
+    for (size_t i = 1; i < list.size(); ++i) {
+      const int32_t p = list[i];
+      const int32_t k = key[size_t(p)];
+      size_t j = i;
+      for (; j > 0; --j) {
+        const int32_t q = list[j - 1];
+        if (key[size_t(q)] < k || (key[size_t(q)] == k && q < p)) break;
+        list[j] = q;
+      }
+      list[j] = p;
+    }
+  };
+  sort_by(by_left_, span_left_);
+  sort_by(by_right_, span_right_);
+}
+
+void ScanlineEngine::walk() {
+  // Left to right through the span ends: at equal x, polygons left before polygons entered.
+  // Between two ends the set of polygons the ray is in is fixed: resolve it there.
+  const int32_t width = table_.width_;
+  size_t enters = 0, leaves = 0;
+  int32_t x = 0;
+  while (x < width) {
+    for (; leaves < by_right_.size() && span_right_[size_t(by_right_[leaves])] <= x; ++leaves) {
+      const int32_t p = by_right_[leaves];
+      const int32_t i = inside_at_[size_t(p)];
+      const int32_t last = inside_.back();
+      inside_[size_t(i)] = last;
+      inside_at_[size_t(last)] = i;
+      inside_.pop_back();
+      inside_at_[size_t(p)] = -1;
+    }
+    for (; enters < by_left_.size() && span_left_[size_t(by_left_[enters])] <= x; ++enters) {
+      const int32_t p = by_left_[enters];
+      inside_at_[size_t(p)] = int32_t(inside_.size());
+      inside_.push_back(p);
+    }
+    int32_t next = width;
+    if (leaves < by_right_.size()) next = std::min(next, span_right_[size_t(by_right_[leaves])]);
+    if (enters < by_left_.size()) next = std::min(next, span_left_[size_t(by_left_[enters])]);
+    resolve(x, next);
+    x = next;
+  }
+  for (int32_t p : inside_) inside_at_[size_t(p)] = -1;
+  inside_.clear();
+}
+
+void ScanlineEngine::next_row() {
+  // Down a row: drop the edges that end, step the others exactly, let the new ones in;
+  // the same for the polygons.
+  size_t kept = 0;
+  for (const ActiveEdge& a : active_) {
+    if (a.end_row <= row_ + 1) continue;
+    ActiveEdge b = a;  // stepped in registers, stored once
+    b.crossing += b.step_q;
+    const int64_t over = b.step_r - b.remainder;
+    if (over > 0) {
+      b.crossing += 1;
+      b.remainder = b.den - over;
+    } else {
+      b.remainder = -over;
+    }
+    active_[kept++] = b;
+  }
+  active_.resize(kept);
+  ++row_;
+  if (row_ <= table_.height_ && table_.polygons_ending_[size_t(row_)] > 0) {
+    auto ended = [&](int32_t p) { return table_.polygon_rows_[size_t(p)].end <= row_; };
+    by_left_.erase(std::remove_if(by_left_.begin(), by_left_.end(), ended), by_left_.end());
+    by_right_.erase(std::remove_if(by_right_.begin(), by_right_.end(), ended), by_right_.end());
+  }
+  if (row_ >= table_.height_) return;
+  for (int32_t i = table_.row_start_[size_t(row_)]; i < table_.row_start_[size_t(row_) + 1]; ++i)
+    enter(table_.edges_[size_t(i)], row_);
+  for (int32_t i = table_.polygon_row_start_[size_t(row_)]; i < table_.polygon_row_start_[size_t(row_) + 1]; ++i)
+    enter_polygon(table_.polygon_order_[size_t(i)]);
+}
+
+void ScanlineEngine::emit(int32_t x0, int32_t x1, int32_t polygon) {
+  if (x0 >= x1) return;
+  if (!out_->empty() && out_->back().polygon == polygon && out_->back().x1 == x0) {
+    out_->back().x1 = x1;
+    return;
+  }
+  out_->push_back({x0, x1, polygon});
+}
+
+namespace {
+
+/// Among faces, the deepest avenue's is seen; ties (only where rounding lets two avenues
+/// of one depth overlap) go to the earlier avenue, then the earlier polygon.
+bool deeper_face(const std::vector<ScreenPolygon>& polys, int32_t p, int32_t q) {
+  if (q < 0) return true;
+  const ScreenPolygon &a = polys[size_t(p)], &b = polys[size_t(q)];
+  if (a.rank != b.rank) return a.rank > b.rank;
+  if (a.group != b.group) return a.group < b.group;
+  return p < q;
+}
+
+}  // namespace
+
+void ScanlineEngine::resolve(int32_t x0, int32_t x1) {
+  if (inside_.empty()) return emit(x0, x1, -1);
+  if (inside_.size() == 1) return emit(x0, x1, inside_[0]);
+  int32_t deepest_face = -1;
+  objects_.clear();
+  for (int32_t p : inside_) {
+    if (polygons_[size_t(p)].role == PolygonRole::Object) objects_.push_back(p);
+    else if (deeper_face(polygons_, p, deepest_face)) deepest_face = p;
+  }
+  if (objects_.empty()) return emit(x0, x1, deepest_face);
+  // Objects by avenue, nearest avenue (fewest portals) first.
+  std::sort(objects_.begin(), objects_.end(), [&](int32_t p, int32_t q) {
+    const ScreenPolygon &a = polygons_[size_t(p)], &b = polygons_[size_t(q)];
+    if (a.rank != b.rank) return a.rank < b.rank;
+    if (a.group != b.group) return a.group < b.group;
+    return p < q;
+  });
+  if (candidates_.size() < objects_.size() + 1) candidates_.resize(objects_.size() + 1);
+  resolve_groups(x0, x1, 0, deepest_face, 0);
+}
+
+void ScanlineEngine::resolve_groups(int32_t x0, int32_t x1, size_t first, int32_t deepest_face, int level) {
+  if (first == objects_.size()) return emit(x0, x1, deepest_face);
+  const int32_t group = polygons_[size_t(objects_[first])].group;
+  size_t last = first;
+  while (last < objects_.size() && polygons_[size_t(objects_[last])].group == group) ++last;
+  // The candidates: this avenue's objects and its face (the depth bound of its cell).
+  std::vector<int32_t>& cands = candidates_[size_t(level)];
+  cands.assign(objects_.begin() + std::ptrdiff_t(first), objects_.begin() + std::ptrdiff_t(last));
+  int32_t face = -1;
+  for (int32_t p : inside_) {
+    const ScreenPolygon& poly = polygons_[size_t(p)];
+    if (poly.role == PolygonRole::Face && poly.group == group && deeper_face(polygons_, p, face)) face = p;
+  }
+  if (face >= 0) cands.push_back(face);
+  // An object seen is final; where the cell's face is nearest, the ray leaves the cell and
+  // the deeper avenues decide.
+  auto take = [&](int32_t s0, int32_t s1, int32_t winner) {
+    if (polygons_[size_t(winner)].role == PolygonRole::Object) emit(s0, s1, winner);
+    else resolve_groups(s0, s1, last, deepest_face, level + 1);
+  };
+  if (cands.size() == 1) return take(x0, x1, cands[0]);
+  // Bouknight: depth sort at the left end of the run; while some polygon is nearer than
+  // the current one at the right end, an implicitly defined line lies between — split at
+  // the first such crossing (Appendix 2) and carry on from there.
+  int32_t start = x0;
+  const int32_t last_x = x1 - 1;
+  int32_t cur = nearest(cands, start);
+  while (start < last_x) {
+    ++counters_.depth_sorts;
+    int32_t next = -1, at = x1;
+    for (int32_t q : cands) {
+      if (q == cur) continue;
+      ++counters_.depth_comparisons;
+      if (!(nearer_by(q, cur, last_x) > 0)) continue;
+      const int32_t p = first_nearer(q, cur, start, last_x);
+      bool sooner = p < at;
+      if (p == at) {  // two lines cross the row at one sample: the nearer polygon there
+        ++counters_.depth_comparisons;
+        sooner = nearer_by(q, next, p) > 0;
+      }
+      if (sooner) {
+        next = q;
+        at = p;
+      }
+    }
+    if (next < 0) break;
+    take(start, at, cur);
+    ++counters_.implicit_lines;
+    cur = next;
+    start = at;
+  }
+  take(start, x1, cur);
+}
+
+double ScanlineEngine::nearer_by(int32_t p, int32_t q, int32_t x) const {
+  // 1/Z(p) − 1/Z(q) at the centre of sample x, as one affine function of x evaluated the
+  // same way every time: monotonic along the row, and exactly antisymmetric in (p, q).
+  const RasterPlane &a = polygons_[size_t(p)].depth, &b = polygons_[size_t(q)].depth;
+  return (a.a - b.a) * (x + 0.5) + ((a.b - b.b) * row_centre_ + (a.c - b.c));
+}
+
+int32_t ScanlineEngine::nearest(const std::vector<int32_t>& cands, int32_t x) {
+  ++counters_.depth_sorts;
+  int32_t best = cands[0];
+  for (size_t i = 1; i < cands.size(); ++i) {
+    ++counters_.depth_comparisons;
+    const double d = nearer_by(cands[i], best, x);
+    if (d > 0 || (d == 0 && cands[i] < best)) best = cands[i];
+  }
+  return best;
+}
+
+int32_t ScanlineEngine::first_nearer(int32_t q, int32_t cur, int32_t from, int32_t last) const {
+  // Appendix 2: the planes meet where (A1 − A2)·x = (B2 − B1)·y + (C2 − C1); that is the
+  // estimate, and the sign of nearer_by (monotonic) settles the sample exactly.
+  const RasterPlane &a = polygons_[size_t(q)].depth, &b = polygons_[size_t(cur)].depth;
+  const double slope = a.a - b.a;
+  const double offset = (a.b - b.b) * row_centre_ + (a.c - b.c);
+  int32_t p = from + 1;
+  if (slope > 0) {
+    const double x = std::floor(-offset / slope - 0.5) + 1;  // first sample centre past the meeting
+    if (std::isfinite(x)) p = int32_t(std::clamp(x, double(from + 1), double(last)));
+  }
+  while (p > from + 1 && nearer_by(q, cur, p - 1) > 0) --p;
+  while (p < last && !(nearer_by(q, cur, p) > 0)) ++p;
+  return p;
+}
+
+}  // namespace avenues

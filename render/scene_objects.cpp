@@ -1,0 +1,42 @@
+// Avenues — a plan's objects placed in their cells (see scene_objects.h).
+#include "render/scene_objects.h"
+
+#include <map>
+
+namespace avenues {
+
+const Material& MeshPaint::of_polygon(int polygon) const {
+  static const Material kDefault;
+  if (materials.empty()) return kDefault;
+  if (polygon >= 0 && size_t(polygon) < polygon_material.size()) {
+    const int m = polygon_material[size_t(polygon)];
+    if (m >= 0 && size_t(m) < materials.size()) return materials[size_t(m)];
+  }
+  return materials[0];
+}
+
+std::vector<PlacedObject> place_objects(const CellComplex& complex) {
+  std::vector<PlacedObject> out;
+  std::map<std::string, Mesh> loaded;
+  CellId hint = kNoCell;
+  for (const Object& o : complex.objects) {
+    auto it = loaded.find(o.mesh);
+    if (it == loaded.end()) it = loaded.emplace(o.mesh, load_mesh(o.mesh)).first;
+    const double floor_z =
+        o.storey >= 0 && size_t(o.storey) < complex.storeys.size() ? complex.storeys[size_t(o.storey)].elevation : 0;
+    PlacedObject p;
+    p.name = o.name;
+    p.mesh = place(it->second, o, floor_z);
+    Vec3 centroid{0, 0, 0};
+    for (Vec3 v : p.mesh.vertices) centroid = centroid + v;
+    centroid = (1.0 / double(p.mesh.vertices.size())) * centroid;
+    const Location at = complex.locate(centroid, hint);
+    if (at.what == Location::What::Cell) p.cell = hint = at.cell;
+    if (o.material >= 0 && size_t(o.material) < complex.materials.size())
+      p.paint.materials.push_back(complex.materials[size_t(o.material)]);
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+}  // namespace avenues

@@ -1,0 +1,34 @@
+// Avenues — meshes to draw and what they are made of: a plan's objects placed in their
+// cells, or meshes alone (the papers' scenes).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cells/cell_complex.h"
+#include "render/mesh.h"
+
+namespace avenues {
+
+/// What a mesh is made of: one material, or one per input polygon (Bouknight's cottage
+/// gives the undersides of its roof "a smaller index of reflectivity").
+struct MeshPaint {
+  std::vector<Material> materials;    ///< empty: the default material (plans/plan.h)
+  std::vector<int> polygon_material;  ///< per input polygon (Mesh::polygon_of): index into materials; empty: the first
+  const Material& of_polygon(int polygon) const;
+};
+
+/// A plan object loaded, placed, and assigned to the cell holding its centroid.
+struct PlacedObject {
+  std::string name;
+  Mesh mesh;               ///< world coordinates [m]
+  CellId cell = kNoCell;   ///< kNoCell: its centroid lies in a solid or outside the far box; never drawn
+  MeshPaint paint;
+};
+
+/// Loads every object of the complex (render/mesh.h, each file read once), places it on
+/// its storey, and finds the cell holding the centroid of its vertices. Throws
+/// std::runtime_error naming the mesh file when one cannot be read.
+std::vector<PlacedObject> place_objects(const CellComplex& complex);
+
+}  // namespace avenues

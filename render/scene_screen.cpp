@@ -1,0 +1,229 @@
+// Avenues — polygons from camera space to the fixed-point raster (see scene_screen.h).
+#include "render/scene_screen.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace avenues {
+
+namespace {
+
+bool before(Vec3 a, Vec3 b) { return a.x != b.x ? a.x < b.x : a.y != b.y ? a.y < b.y : a.z < b.z; }
+bool before(Vec2 a, Vec2 b) { return a.x != b.x ? a.x < b.x : a.y < b.y; }
+
+/// Sutherland–Hodgman against one half-plane f >= 0. A crossing is interpolated from the
+/// edge's end points in canonical (lexicographic) order, whichever way the edge runs.
+template <class P, class F>
+void cut(const std::vector<P>& in, F f, std::vector<P>& out) {
+  out.clear();
+  const size_t n = in.size();
+  for (size_t i = 0; i < n; ++i) {
+    const P a = in[i], b = in[(i + 1) % n];
+    const double fa = f(a), fb = f(b);
+    if (fa >= 0) out.push_back(a);
+    if ((fa >= 0) != (fb >= 0)) {
+      const bool ab = before(a, b);
+      const P p = ab ? a : b, q = ab ? b : a;
+      const double fp = ab ? fa : fb, fq = ab ? fb : fa;
+      out.push_back(p + (fp / (fp - fq)) * (q - p));
+    }
+  }
+}
+
+FixedPoint to_fixed(Vec2 r) { return {std::llround(r.x * kSubpixelOne), std::llround(r.y * kSubpixelOne)}; }
+
+/// Convex hull (Andrew's monotone chain), exact in integers; collinear points dropped.
+std::vector<FixedPoint> hull(std::vector<FixedPoint> pts) {
+  std::sort(pts.begin(), pts.end(), [](FixedPoint a, FixedPoint b) { return a.x != b.x ? a.x < b.x : a.y < b.y; });
+  pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+  if (pts.size() < 3) return {};
+  auto turn = [](FixedPoint o, FixedPoint a, FixedPoint b) {
+    return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);  // |terms| < 2^58
+  };
+  std::vector<FixedPoint> h(2 * pts.size());
+  size_t k = 0;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    while (k >= 2 && turn(h[k - 2], h[k - 1], pts[i]) <= 0) --k;
+    h[k++] = pts[i];
+  }
+  for (size_t i = pts.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && turn(h[k - 2], h[k - 1], pts[i]) <= 0) --k;
+    h[k++] = pts[i];
+  }
+  h.resize(k - 1);
+  return h.size() >= 3 ? h : std::vector<FixedPoint>{};
+}
+
+}  // namespace
+
+ScreenSceneBuilder::ScreenSceneBuilder(const Camera& camera, const SceneOptions& options, ScreenScene& out)
+    : camera_(camera), options_(options), out_(out) {
+  if (options.per_side != 1 && options.per_side != 2 && options.per_side != 4)
+    throw std::invalid_argument("samples per pixel side must be 1, 2 or 4");
+  out_.raster = RasterMap::of(camera, options.per_side);
+  guard_ = std::max(out_.raster.width, out_.raster.height);
+  if (3 * guard_ >= double(kRasterLimit))
+    throw std::invalid_argument("picture too large for the scanline engine's fixed point");
+}
+
+int32_t ScreenSceneBuilder::add_clip(const std::vector<Vec2>& picture_polygon, double grow) {
+  const int64_t g = std::llround(grow * kSubpixelOne);
+  std::vector<FixedPoint> pts;
+  for (Vec2 p : picture_polygon) {
+    const FixedPoint f = to_fixed(out_.raster.raster_from_image(p));
+    for (int64_t dx : {-g, g})
+      for (int64_t dy : {-g, g}) pts.push_back({f.x + dx, f.y + dy});
+  }
+  std::vector<FixedPoint> h = hull(std::move(pts));
+  if (h.empty()) return -1;
+  out_.clips.push_back({std::move(h)});
+  return int32_t(out_.clips.size() - 1);
+}
+
+bool ScreenSceneBuilder::add(const std::vector<Vec3>& points, Vec3 n, double d, const SurfaceShade& shade,
+                             Placement where, const PolygonSource& source) {
+  if (!(std::fabs(d) > 0)) return false;  // the plane passes through the eye: seen edge-on
+  // 2. Near plane, in 3D (only when some corner lies nearer than it).
+  const double near = camera_.near;
+  const bool all_beyond = std::all_of(points.begin(), points.end(), [near](Vec3 p) { return p.z >= near; });
+  if (!all_beyond) cut(points, [near](Vec3 p) { return p.z - near; }, near_cut_);
+  const std::vector<Vec3>& in_front = all_beyond ? points : near_cut_;
+  if (in_front.size() < 3) return false;
+  // 3. Picture plane, then raster.
+  raster_.clear();
+  for (Vec3 p : in_front) raster_.push_back(out_.raster.raster_from_image({p.x / p.z, p.y / p.z}));
+  // 4. Guard band (only when some corner lies outside it).
+  const double lo = -guard_, hx = out_.raster.width + guard_, hy = out_.raster.height + guard_;
+  if (!std::all_of(raster_.begin(), raster_.end(),
+                   [&](Vec2 p) { return p.x >= lo && p.x <= hx && p.y >= lo && p.y <= hy; })) {
+    cut(raster_, [lo](Vec2 p) { return p.x - lo; }, guard_cut_);
+    cut(guard_cut_, [hx](Vec2 p) { return hx - p.x; }, raster_);
+    cut(raster_, [lo](Vec2 p) { return p.y - lo; }, guard_cut_);
+    cut(guard_cut_, [hy](Vec2 p) { return hy - p.y; }, raster_);
+  }
+  // 5. Fixed point, once.
+  ScreenPolygon poly;
+  for (Vec2 r : raster_) {
+    const FixedPoint f = to_fixed(r);
+    if (poly.outline.empty() || !(poly.outline.back() == f)) poly.outline.push_back(f);
+  }
+  while (poly.outline.size() > 1 && poly.outline.front() == poly.outline.back()) poly.outline.pop_back();
+  if (poly.outline.size() < 3) return false;
+  // 1/Z on the raster: n·(d_xy·Z) + d = 0 with d_xy = (x, y, 1), x = x0 + step·u, y = y0 − step·v.
+  const RasterMap& m = out_.raster;
+  poly.depth = {-n.x * m.step / d, n.y * m.step / d, -(n.x * m.x0 + n.y * m.y0 + n.z) / d};
+  poly.clip = where.clip;
+  poly.group = where.group;
+  poly.rank = where.rank;
+  poly.role = where.role;
+  out_.polygons.push_back(std::move(poly));
+  out_.shades.push_back(shade);
+  out_.sources.push_back(source);
+  return true;
+}
+
+bool ScreenSceneBuilder::add_face(const std::vector<Vec3>& polygon, const Plane& plane, const Material& material,
+                                  Placement where, const PolygonSource& source) {
+  std::vector<Vec3> cam;
+  Vec3 centroid{0, 0, 0};
+  for (Vec3 p : polygon) {
+    cam.push_back(camera_.camera_from_world(p));
+    centroid = centroid + cam.back();
+  }
+  centroid = (1.0 / double(cam.size())) * centroid;
+  // The face's plane in camera space: n·P + (n·eye + d) = 0.
+  const Vec3 n = camera_dir(plane.n);
+  const double d = plane.eval(camera_.eye);
+  const SurfaceShade shade = options_.shading.model == ShadingModel::Flat
+                                 ? flat_shade(material, n, centroid, options_.shading)
+                                 : eye_light_shade(material, std::fabs(d) / length(n), options_.shading);
+  return add(cam, n, d, shade, where, source);
+}
+
+void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<int>& corners, const Material& material,
+                                          Placement where, const PolygonSource& source) {
+  std::vector<Vec3> cam;
+  Vec3 n{0, 0, 0}, centroid{0, 0, 0};
+  for (size_t k = 0; k < corners.size(); ++k) {
+    const Vec3 p = mesh.vertices[size_t(corners[k])], q = mesh.vertices[size_t(corners[(k + 1) % corners.size()])];
+    n = n + cross(p, q);  // Newell's normal: outwards for counter-clockwise corners
+    cam.push_back(camera_.camera_from_world(p));
+    centroid = centroid + cam.back();
+  }
+  const double area = length(n);
+  if (!(area > 0)) return;
+  centroid = (1.0 / double(cam.size())) * centroid;
+  const Vec3 nc = camera_dir(n);
+  const double d = -dot(nc, centroid);
+  // Crow 1981: a closed surface seen from inside is hidden, so a polygon facing away goes.
+  if (options_.cull_back_faces && mesh.closed && !(d > 0)) return;
+  if (options_.shading.model == ShadingModel::Flat) {
+    add(cam, nc, d, flat_shade(material, nc, centroid, options_.shading), where, source);
+    return;
+  }
+  // Smooth: a flat part of the mesh (every corner's normal the polygon's) is lit exactly
+  // from its plane; a curved part by Gouraud over each triangle.
+  bool planar = true;
+  for (int c : corners) planar &= dot(mesh.vertex_normals[size_t(c)], (1 / area) * n) > 1 - 1e-9;
+  if (planar) {
+    add(cam, nc, d, eye_light_shade(material, std::fabs(d) / area, options_.shading), where, source);
+    return;
+  }
+  for (size_t k = 1; k + 1 < corners.size(); ++k) {
+    const size_t c[3] = {0, k, k + 1};
+    std::array<Vec3, 3> points, normals;
+    for (size_t i = 0; i < 3; ++i) {
+      points[i] = cam[c[i]];
+      normals[i] = camera_dir(mesh.vertex_normals[size_t(corners[c[i]])]);
+    }
+    const Vec3 tn = cross(points[1] - points[0], points[2] - points[0]);
+    SurfaceShade shade;
+    if (gouraud_shade(material, points, normals, options_.shading, out_.raster, shade))
+      add({points.begin(), points.end()}, tn, -dot(tn, points[0]), shade, where, source);
+  }
+}
+
+void ScreenSceneBuilder::add_mesh(const Mesh& mesh, const MeshPaint& paint, Placement where, PolygonSource source) {
+  const size_t n = mesh.triangles.size();
+  std::vector<int> corners;
+  for (size_t t = 0; t < n;) {
+    const int polygon = mesh.polygon_of[t];
+    size_t end = t + 1;
+    while (end < n && mesh.polygon_of[end] == polygon) ++end;
+    source.polygon = polygon;
+    const Material& material = paint.of_polygon(polygon);
+    // The input polygon again, from its fan (render/mesh.h triangulates a polygon a, b, c,
+    // d, ... as abc, acd, ...); a polygon that was not a fan goes triangle by triangle.
+    corners.assign(mesh.triangles[t].begin(), mesh.triangles[t].end());
+    bool fan = true;
+    for (size_t k = t + 1; k < end && fan; ++k) {
+      fan = mesh.triangles[k][0] == corners[0] && mesh.triangles[k][1] == corners.back();
+      corners.push_back(mesh.triangles[k][2]);
+    }
+    if (fan) {
+      add_mesh_polygon(mesh, corners, material, where, source);
+    } else {
+      for (size_t k = t; k < end; ++k)
+        add_mesh_polygon(mesh, {mesh.triangles[k][0], mesh.triangles[k][1], mesh.triangles[k][2]}, material, where,
+                         source);
+    }
+    t = end;
+  }
+}
+
+ScreenScene screen_scene_of_meshes(const std::vector<Mesh>& meshes, const std::vector<MeshPaint>& paints,
+                                   const Camera& camera, const SceneOptions& options) {
+  ScreenScene out;
+  ScreenSceneBuilder b(camera, options, out);
+  static const MeshPaint kDefault;
+  for (size_t i = 0; i < meshes.size(); ++i) {
+    PolygonSource source;
+    source.kind = PolygonSource::Kind::Mesh;
+    source.mesh = int(i);
+    b.add_mesh(meshes[i], i < paints.size() ? paints[i] : kDefault, {}, source);
+  }
+  return out;
+}
+
+}  // namespace avenues

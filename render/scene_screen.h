@@ -1,0 +1,107 @@
+// Avenues — the picture's polygons on the raster: what the scanline engine is fed.
+//
+// Bouknight's preprocessing, step by step, for every convex polygon drawn:
+//   1. into camera space (the eye at the origin, looking along +Z: Bouknight's "standard
+//      arrangement");
+//   2. cut at the near plane Z = camera.near, in 3D ("a truncation must be applied to those
+//      planar polygons that extend behind the observer");
+//   3. projected to the picture plane (x = X/Z, y = Y/Z) and on to the raster;
+//   4. cut to a guard band one raster size wide around the window, which keeps the fixed
+//      point in range (scanline.h) — the window itself is cut during the scan;
+//   5. rounded once to the fixed-point grid, with its plane as 1/Z over the raster.
+// Every cut computes a crossing from the edge's two end points taken in one canonical
+// order, so an edge two polygons share is cut at bit-identical points and stays shared.
+//
+// For a view (scene_view.cpp) each avenue of sight adds its mask as a clip region and its
+// cell's faces turned towards the eye; a cell's objects join the avenues of that cell.
+// Meshes alone (the papers' scenes) are one group of objects cut by the window only.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "cells/cell_complex.h"
+#include "render/raster_map.h"
+#include "render/scanline.h"
+#include "render/scene_objects.h"
+#include "render/shading.h"
+#include "visibility/camera.h"
+#include "visibility/visible_set.h"
+
+namespace avenues {
+
+/// Where a screen polygon came from (for item buffers and tests).
+struct PolygonSource {
+  enum class Kind : uint8_t { Face, Object, Mesh };
+  Kind kind = Kind::Mesh;
+  int avenue = -1;        ///< Face, Object: index into VisibleSet::avenues
+  CellId cell = kNoCell;  ///< Face, Object: the avenue's cell
+  int face = -1;          ///< Face: index into the cell's faces
+  int mesh = -1;          ///< Object: index into the placed objects; Mesh: into the meshes
+  int polygon = -1;       ///< Object, Mesh: the mesh's input polygon (Mesh::polygon_of)
+};
+
+struct ScreenScene {
+  RasterMap raster;
+  std::vector<ScreenPolygon> polygons;
+  std::vector<SurfaceShade> shades;     ///< one per polygon
+  std::vector<PolygonSource> sources;   ///< one per polygon
+  std::vector<ClipRegion> clips;
+};
+
+struct SceneOptions {
+  int per_side = 1;              ///< samples along each side of a pixel: 1, 2 or 4
+  Shading shading;
+  bool cull_back_faces = true;   ///< drop polygons of closed meshes facing away from the eye (Crow 1981)
+};
+
+/// Adds polygons to a ScreenScene (steps 1–5 above).
+class ScreenSceneBuilder {
+ public:
+  /// What the scan does with a polygon (see ScreenPolygon).
+  struct Placement {
+    int32_t clip = -1, group = 0, rank = 0;
+    PolygonRole role = PolygonRole::Object;
+  };
+  ScreenSceneBuilder(const Camera& camera, const SceneOptions& options, ScreenScene& out);
+
+  /// A clip region from a convex picture-plane polygon, grown by `grow` samples on every
+  /// side (by the Minkowski sum with a square). -1 if nothing of area is left.
+  int32_t add_clip(const std::vector<Vec2>& picture_polygon, double grow);
+  /// A planar convex polygon of a cell (world coordinates, on `plane`), lit as
+  /// options.shading says. False if nothing of it is left to draw.
+  bool add_face(const std::vector<Vec3>& polygon, const Plane& plane, const Material& material, Placement where,
+                const PolygonSource& source);
+  /// A mesh, input polygon by input polygon (its fan of triangles put back together). Flat:
+  /// one intensity each. Smooth: a polygon whose corners' normals are its own is lit from
+  /// its plane; a curved one by Gouraud over its triangles. Polygons of a closed mesh
+  /// facing away from the eye are dropped when options.cull_back_faces.
+  void add_mesh(const Mesh& mesh, const MeshPaint& paint, Placement where, PolygonSource source);
+
+ private:
+  /// Steps 2–5 for a polygon already in camera space on the plane n·P + d = 0.
+  bool add(const std::vector<Vec3>& points, Vec3 n, double d, const SurfaceShade& shade, Placement where,
+           const PolygonSource& source);
+  Vec3 camera_dir(Vec3 v) const { return {dot(v, camera_.right), dot(v, camera_.up), dot(v, camera_.forward)}; }
+  void add_mesh_polygon(const Mesh& mesh, const std::vector<int>& corners, const Material& material,
+                        Placement where, const PolygonSource& source);
+
+  Camera camera_;
+  SceneOptions options_;
+  ScreenScene& out_;
+  double guard_ = 0;  ///< [samples] the guard band's width around the window
+  std::vector<Vec3> near_cut_;
+  std::vector<Vec2> raster_, guard_cut_;
+};
+
+/// The polygons of a view: every avenue's mask, its cell's faces turned to the eye and
+/// the objects of its cell.
+ScreenScene screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedObject>& objects,
+                                 const Camera& camera, const VisibleSet& visible, const SceneOptions& options);
+
+/// The polygons of meshes alone, seen by `camera`; paints[i] goes with meshes[i] (missing
+/// ones: the default material).
+ScreenScene screen_scene_of_meshes(const std::vector<Mesh>& meshes, const std::vector<MeshPaint>& paints,
+                                   const Camera& camera, const SceneOptions& options);
+
+}  // namespace avenues

@@ -1,0 +1,79 @@
+// Avenues — the polygons of a view, fed by the visible set (see scene_screen.h).
+//
+// Jones 1971 draws each visible cell's lines clipped to the mask of the avenue that reaches
+// it; the half-tone does the same with faces. For each avenue:
+//   - its mask becomes a clip region. Masks of one view tile the picture: a deeper mask
+//     lies inside the portal it was seen through. A deeper mask is grown by 1/64 of a
+//     sample so that rounding never opens a crack between it and the faces around it
+//     (the deeper avenue wins where they overlap, a sliver far below a sample's width);
+//   - its cell's faces turned towards the eye (the eye on their inner side) are drawn
+//     whole — a portal's hole is not cut out, since the deeper avenue seen through it
+//     covers it. Within the mask they never overlap (a convex cell), so they need no
+//     depth test. A face made of pieces of different materials is drawn piece by piece;
+//     a face with no opaque piece at all (wholly a portal) is not drawn;
+//   - the objects of its cell, which resolve depth against that cell's faces and each
+//     other, inside the mask only.
+#include "render/scene_screen.h"
+
+#include <map>
+
+namespace avenues {
+
+namespace {
+
+/// [samples] how far a deeper avenue's mask is grown: more than the rounding of a vertex
+/// to the fixed-point grid (1/512), far less than a sample.
+constexpr double kMaskGrowth = 1.0 / 64;
+
+const Material& material_of(const CellComplex& c, MaterialId id) {
+  static const Material kDefault;
+  return id >= 0 && size_t(id) < c.materials.size() ? c.materials[size_t(id)] : kDefault;
+}
+
+}  // namespace
+
+ScreenScene screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedObject>& objects,
+                                 const Camera& camera, const VisibleSet& visible, const SceneOptions& options) {
+  ScreenScene out;
+  ScreenSceneBuilder b(camera, options, out);
+  std::map<CellId, std::vector<size_t>> objects_in;
+  for (size_t i = 0; i < objects.size(); ++i)
+    if (objects[i].cell != kNoCell) objects_in[objects[i].cell].push_back(i);
+  for (size_t i = 0; i < visible.avenues.size(); ++i) {
+    const Avenue& avenue = visible.avenues[i];
+    if (avenue.mask.size() < 3) continue;
+    const int32_t clip = b.add_clip(avenue.mask, avenue.depth == 0 ? 0 : kMaskGrowth);
+    if (clip < 0) continue;
+    const Cell& cell = complex.cells[size_t(avenue.cell)];
+    ScreenSceneBuilder::Placement where{clip, int32_t(i), avenue.depth, PolygonRole::Face};
+    PolygonSource source;
+    source.kind = PolygonSource::Kind::Face;
+    source.avenue = int(i);
+    source.cell = avenue.cell;
+    for (size_t k = 0; k < cell.faces.size(); ++k) {
+      const Face& face = cell.faces[k];
+      if (face.opaque.empty() || !(face.plane.eval(camera.eye) < 0)) continue;
+      source.face = int(k);
+      bool one_material = true;
+      for (const OpaquePoly& piece : face.opaque) one_material &= piece.material == face.opaque[0].material;
+      if (one_material) {
+        b.add_face(face.poly, face.plane, material_of(complex, face.opaque[0].material), where, source);
+      } else {
+        for (const OpaquePoly& piece : face.opaque)
+          b.add_face(piece.poly, face.plane, material_of(complex, piece.material), where, source);
+      }
+    }
+    auto in = objects_in.find(avenue.cell);
+    if (in == objects_in.end()) continue;
+    where.role = PolygonRole::Object;
+    source.kind = PolygonSource::Kind::Object;
+    source.face = -1;
+    for (size_t o : in->second) {
+      source.mesh = int(o);
+      b.add_mesh(objects[o].mesh, objects[o].paint, where, source);
+    }
+  }
+  return out;
+}
+
+}  // namespace avenues
