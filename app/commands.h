@@ -55,7 +55,13 @@ struct ViewOptions {
   double converge = 2.0;               ///< [m]
   int frames = 0;                      ///< > 0: a straight walk to to_eye/to_look
   std::string to_eye, to_look;         ///< "X,Y,Z"
+  int samples = 1;                     ///< half-tone: samples per pixel, 1, 4 or 16
+  std::string shading = "flat";        ///< half-tone: flat or smooth
+  std::string dither = "none";         ///< half-tone: none, bayer or fs
 };
+
+/// `avenues bench papers [--threads N] [--repeats N]`: the papers' scenes beside their figures.
+int run_bench_papers(int threads, int repeats);
 /// The camera and eye cell a view option set resolves to.
 struct ViewSetup {
   Viewpoint viewpoint;

@@ -64,15 +64,27 @@ int main(int argc, char** argv) {
   view->add_option("--stats-json", view_opt.stats_json, "write the view's statistics as JSON")->type_name("FILE");
   view->add_option("--overlay", view_opt.overlay, "draw masks, plan and avenue tree as SVG")->type_name("FILE.svg");
   view->add_option("-o,--output", view_opt.output,
-                   "the picture of the view, by extension: .svg .pdf .eps .dxf .hpgl .plt (hidden-line drawing)")
+                   "the picture of the view, by extension: .svg .pdf .eps .dxf .hpgl .plt (hidden-line drawing) or "
+                   ".png .pgm .ppm .pbm (half-tone picture)")
       ->type_name("FILE");
-  view->add_option("--stereo", view_opt.stereo, "a stereo pair: parallel, cross (side by side) or pair (two files)");
+  view->add_option("--stereo", view_opt.stereo,
+                   "a stereo pair: parallel or cross (side by side), pair (two drawings) or anaglyph (pictures)");
+  view->add_option("--samples", view_opt.samples, "half-tone: samples per pixel, 1, 4 or 16")->capture_default_str();
+  view->add_option("--shading", view_opt.shading, "half-tone: flat (Bouknight) or smooth (Wylie)")->capture_default_str();
+  view->add_option("--dither", view_opt.dither, "half-tone: none, bayer or fs (1-bit for print)")->capture_default_str();
   view->add_option("--interocular", view_opt.interocular, "[m] distance between the eyes")->capture_default_str();
   view->add_option("--converge", view_opt.converge, "[m] distance at which the two views coincide")
       ->capture_default_str();
   view->add_option("--frames", view_opt.frames, "write N frames of a straight walk to --to-eye/--to-look");
   view->add_option("--to-eye", view_opt.to_eye, "where the walk ends")->type_name("X,Y,Z");
   view->add_option("--to-look", view_opt.to_look, "what the walk's last frame looks at")->type_name("X,Y,Z");
+
+  int bench_threads = 0, bench_repeats = 5;
+  CLI::App* bench = app.add_subcommand("bench", "measure Avenues against the source papers");
+  bench->require_subcommand(1);
+  CLI::App* papers = bench->add_subcommand("papers", "render Bouknight's and Wylie's scenes at 512x512 beside their figures");
+  papers->add_option("--threads", bench_threads, "threads for the scanline bands (0: all)");
+  papers->add_option("--repeats", bench_repeats, "renders per scene (the median is reported)")->capture_default_str();
 
   GenerateOfficeOptions office_opt;
   CLI::App* generate = app.add_subcommand("generate", "write a generated plan");
@@ -93,6 +105,7 @@ int main(int argc, char** argv) {
     if (*cells) return run_cells(cells_opt);
     if (*exp) return run_export(export_opt);
     if (*view) return run_view(view_opt);
+    if (*papers) return run_bench_papers(bench_threads, bench_repeats);
     if (*office) return run_generate_office(office_opt);
     return run_main_job(main_opt);
   } catch (const avenues::PlanError& e) {

@@ -11,7 +11,9 @@
 #include <system_error>
 
 #include "app/commands.h"
+#include "render/halftone.h"
 #include "render/overlay_drawing.h"
+#include "render/raster.h"
 #include "render/plan_drawing.h"
 #include "render/view_lines.h"
 
@@ -38,6 +40,11 @@ int run_offline(const LoadedPlan& plan, const MainJobOptions& opt) {
   // What the eye sees, as a hidden-line drawing (Jones's perspective line drawing).
   const std::string drawing = (fs::path(opt.out_dir) / (plan.stem + "-view.svg")).string();
   const DrawingStats lines = write_drawing(draw_view(plan.complex, prepare_line_scene(plan.complex), view.camera, visible), drawing);
+  // And as a half-tone picture (Wylie, Bouknight), four samples per pixel.
+  const std::string picture = (fs::path(opt.out_dir) / (plan.stem + "-view.png")).string();
+  HalftoneOptions halftone;
+  halftone.samples = 4;
+  write_image(render_view(plan.complex, view.camera, visible, halftone), picture);
 
   print_summary(std::cout, plan);
   const Cell& eye_cell = plan.complex.cells[size_t(view.eye_cell)];
@@ -49,7 +56,8 @@ int run_offline(const LoadedPlan& plan, const MainJobOptions& opt) {
   std::cout << "\nplan drawing: " << svg << "\n";
   std::cout << "avenues of sight (masks, plan, avenue tree): " << overlay << "\n";
   std::cout << "hidden-line drawing of the view (" << lines.lines << " strokes): " << drawing << "\n";
-  std::cout << "(open it in a web browser; `avenues --help` lists what else avenues can do)\n";
+  std::cout << "half-tone picture of the view: " << picture << "\n";
+  std::cout << "(open them in a web browser or an image viewer; `avenues --help` lists what else avenues can do)\n";
   return 0;
 }
 

@@ -1,9 +1,12 @@
 // Avenues — `avenues view ... -o FILE`: the picture of the view, chosen by FILE's extension.
 //
 //   .svg .pdf .eps .dxf .hpgl .plt   the hidden-line drawing (render/view_lines.h)
+//   .png .pgm .ppm .pbm              the scanline half-tone picture (render/halftone.h),
+//                                    with --samples, --shading and --dither
 //
-// with --stereo parallel|cross|pair (two eyes, off-axis, never toe-in) and --frames N
-// (a straight walk to --to-eye/--to-look, one numbered file per frame).
+// with --stereo (drawings: parallel, cross, pair; pictures: anaglyph, parallel, cross; two
+// eyes, off-axis, never toe-in) and --frames N (a straight walk to --to-eye/--to-look,
+// one numbered file per frame).
 #include <chrono>
 #include <filesystem>
 #include <iostream>
@@ -12,6 +15,9 @@
 
 #include "app/commands.h"
 #include "render/drawing.h"
+#include "render/halftone.h"
+#include "render/raster.h"
+#include "render/scene_objects.h"
 #include "render/stereo_drawing.h"
 #include "render/view_lines.h"
 #include "render/walkthrough.h"
@@ -43,15 +49,77 @@ void add_drawing_stats(nlohmann::json& stats, const DrawingStats& d, double rend
   if (ext == ".hpgl" || ext == ".plt") stats["penup_mm"] = {{"before", d.penup_mm_before}, {"after", d.penup_mm_after}};
 }
 
+HalftoneOptions halftone_options(const ViewOptions& opt) {
+  HalftoneOptions o;
+  o.samples = opt.samples;
+  if (o.samples != 1 && o.samples != 4 && o.samples != 16)
+    throw std::runtime_error("--samples wants 1, 4 or 16, not " + std::to_string(opt.samples));
+  if (!parse_shading(opt.shading, o.shading.model))
+    throw std::runtime_error("--shading wants flat or smooth, not '" + opt.shading + "'");
+  if (!parse_dither(opt.dither, o.dither))
+    throw std::runtime_error("--dither wants none, bayer or fs, not '" + opt.dither + "'");
+  return o;
+}
+
+void add_render_stats(nlohmann::json& stats, const RenderStats& rs) {
+  for (const auto& [key, value] : rs.fields()) stats[key] = value;
+}
+
+/// The half-tone picture(s): one view, a stereo composite, or walk frames.
+void write_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs, const ViewOptions& opt,
+                   nlohmann::json& stats) {
+  const CellComplex& c = plan.complex;
+  const HalftoneOptions o = halftone_options(opt);
+  const std::vector<PlacedObject> objects = place_objects(c);
+  if (opt.frames > 0) {
+    const auto frames = walk_frames(c, v.viewpoint.eye, v.viewpoint.look, parse_vec3(opt.to_eye, "--to-eye"),
+                                    parse_vec3(opt.to_look, "--to-look"), opt.frames, v.camera);
+    RenderStats total;
+    Image frame;
+    for (size_t k = 0; k < frames.size(); ++k) {
+      VisibleSet fv = find_visible(c, frames[k].camera, frames[k].cell, v.kernel);
+      RenderStats rs;
+      render_view(c, objects, frames[k].camera, fv, o, frame, &rs);
+      write_image(frame, frame_path(opt.output, int(k), int(frames.size())));
+      total.add(rs);
+    }
+    add_render_stats(stats, total);
+    stats["frames"] = frames.size();
+    stats["first_frame"] = frame_path(opt.output, 0, int(frames.size()));
+    return;
+  }
+  if (!opt.stereo.empty()) {
+    StereoComposite composite;
+    if (!parse_stereo_composite(opt.stereo, composite))
+      throw std::runtime_error("--stereo wants anaglyph, parallel or cross for pictures, not '" + opt.stereo + "'");
+    StereoRig rig = stereo_rig(c, v.camera, {opt.interocular, opt.converge});
+    if (rig.problem != StereoRig::Problem::None) throw std::runtime_error(rig.message());
+    RenderStats rs;
+    Image picture = render_stereo_view(c, objects, rig.left, rig.right, composite, o, &rs, v.kernel);
+    write_image(picture, opt.output);
+    add_render_stats(stats, rs);
+    stats["stereo"] = {{"layout", opt.stereo}, {"interocular", opt.interocular}, {"converge", opt.converge},
+                       {"left_cell", rig.left_at.cell}, {"right_cell", rig.right_at.cell}};
+    return;
+  }
+  RenderStats rs;
+  Image picture;
+  render_view(c, objects, v.camera, vs, o, picture, &rs);
+  write_image(picture, opt.output);
+  add_render_stats(stats, rs);
+}
+
 }  // namespace
 
 void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs, const ViewOptions& opt,
                        nlohmann::json& stats) {
   const std::string& path = opt.output;
   const CellComplex& c = plan.complex;
+  if (is_raster_path(path)) return write_picture(plan, v, vs, opt, stats);
   if (!is_drawing(path))
     throw std::runtime_error("cannot write '" + path + "': unknown picture format '" + lower_extension(path) +
-                             "' (drawings: " + drawing_extensions() + ")");
+                             "' (drawings: " + drawing_extensions() + "; half-tone pictures: " + raster_extensions() +
+                             ")");
   const LineScene scene = prepare_line_scene(c);
 
   if (opt.frames > 0) {

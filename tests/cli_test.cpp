@@ -453,3 +453,27 @@ TEST_F(Cli, ViewStereoAndWalkFrames) {
   EXPECT_NE(bad.err.find("frame 3 of 3"), std::string::npos) << bad.err;
   EXPECT_FALSE(fs::exists(path("x-0001.svg")));
 }
+
+TEST_F(Cli, ViewWritesHalftonePicturesStereoAndThePapersTable) {
+  Outcome r = run("view " + quote(kPlan) + " -o h.png --size 320x180 --samples 4 --stats-json s.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string png = slurp(path("h.png"));
+  ASSERT_GT(png.size(), 8u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+  json j = json::parse(slurp(path("s.json")));
+  EXPECT_GT(j["spans"].get<double>(), 0);
+  EXPECT_TRUE(j.contains("render_us"));
+  EXPECT_EQ(run("view " + quote(kPlan) + " -o g.pgm --size 160x90 --dither bayer").status, 0);
+  EXPECT_EQ(slurp(path("g.pgm")).substr(0, 2), "P5");
+  EXPECT_EQ(run("view " + quote(kPlan) + " -o a.png --size 160x90 --stereo anaglyph").status, 0);
+  EXPECT_TRUE(fs::exists(path("a.png")));
+  for (const std::string bad : {"--samples 3", "--shading glossy", "--dither dots", "--stereo pair"}) {
+    Outcome b = run("view " + quote(kPlan) + " -o x.png --size 160x90 " + bad);
+    EXPECT_EQ(b.status, 2) << bad << "\n" << b.err;
+    EXPECT_FALSE(fs::exists(path("x.png"))) << bad;
+  }
+  Outcome papers = run("bench papers --repeats 1");
+  ASSERT_EQ(papers.status, 0) << papers.err;
+  for (const char* scene : {"cottage", "ripple-torus", "cubes", "wylie-cube", "crow-object"})
+    EXPECT_NE(papers.out.find(scene), std::string::npos) << scene;
+}

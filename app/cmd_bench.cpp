@@ -1,0 +1,17 @@
+// Avenues — `avenues bench papers`: the papers' scenes (Bouknight 1969, Wylie 1967,
+// Crow 1981) rendered at 512 × 512 by the scanline engine, our counts and times beside
+// the figures the papers give (render/scenes.h has the table and its sources).
+#include <iostream>
+
+#include "app/commands.h"
+#include "render/scenes.h"
+
+namespace avenues::app {
+
+int run_bench_papers(int threads, int repeats) {
+  if (repeats < 1) throw std::runtime_error("--repeats must be at least 1");
+  std::cout << papers_table(bench_papers(threads, repeats));
+  return 0;
+}
+
+}  // namespace avenues::app
