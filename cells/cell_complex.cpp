@@ -69,12 +69,7 @@ bool Cell::contains(Vec3 p, double tol) const {
 
 double total_volume(const CellComplex& c) {
   double v = 0;
-  for (const Cell& cell : c.cells) {
-    double a = 0;
-    for (size_t i = 0; i < cell.footprint.size(); ++i)
-      a += cross(cell.footprint[i], cell.footprint[(i + 1) % cell.footprint.size()]);
-    v += a / 2 * (cell.z1 - cell.z0);
-  }
+  for (const Cell& cell : c.cells) v += signed_area(cell.footprint) * (cell.z1 - cell.z0);
   return v;
 }
 

@@ -22,12 +22,6 @@ constexpr double kZTol = 1e-9;  ///< [m] heights are compared exactly up to this
 constexpr double kMinArea = 1e-12;  ///< [m²] a footprint smaller than this is a sliver, not a cell
 constexpr double kMinWidth = 1e-9;  ///< [m] a portal narrower than this is not a portal
 
-double area(const std::vector<Vec2>& p) {
-  double a = 0;
-  for (size_t i = 0; i < p.size(); ++i) a += cross(p[i], p[(i + 1) % p.size()]);
-  return a / 2;
-}
-
 /// Footprint of a piece: the boundary's vertices without collinear ones. side[k] is the
 /// footprint side index of boundary half-edge k; the footprint starts at a kept vertex.
 struct Outline2 {
@@ -134,7 +128,7 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
       }
       Outline2 o = footprint_of(T, P.boundary[p]);
       // A sliver left by nearly coincident input points (below any built size) stays solid.
-      if (o.poly.size() < 3 || area(o.poly) <= kMinArea) continue;
+      if (o.poly.size() < 3 || signed_area(o.poly) <= kMinArea) continue;
       Intervals iv{{band.z0, band.z1}};
       if (sc.kind == CellKind::Doorway) iv = intersect(iv, sc.open);
       for (auto [z0, z1] : iv) {
@@ -419,7 +413,7 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
     Pieces P = merge_convex(T, label, {});
     for (size_t p = 0; p < P.boundary.size(); ++p) {
       Outline2 o = footprint_of(T, P.boundary[p]);
-      if (o.poly.size() < 3 || area(o.poly) <= kMinArea) continue;
+      if (o.poly.size() < 3 || signed_area(o.poly) <= kMinArea) continue;
       auto [below, above] = pairs[size_t(P.label[p])];
       std::vector<Vec3> up, down;  // counter-clockwise seen from above / from below
       for (Vec2 v : o.poly) up.push_back(at(v, z));
@@ -476,7 +470,7 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
   for (const Cell& c : out.cells)
     if (c.kind == CellKind::Room && c.room >= 0) {
       const Band& band = C.bands[band_of[size_t(&c - out.cells.data())]];
-      if (band.kind == Band::Kind::Storey) out.rooms[size_t(c.room)].area += area(c.footprint);
+      if (band.kind == Band::Kind::Storey) out.rooms[size_t(c.room)].area += signed_area(c.footprint);
     }
   return L;
 }

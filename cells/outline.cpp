@@ -64,12 +64,6 @@ std::vector<Vec2> clip(const std::vector<Vec2>& poly, Vec2 o, Vec2 n) {
   return clean;
 }
 
-double signed_area(const std::vector<Vec2>& p) {
-  double a = 0;
-  for (size_t i = 0; i < p.size(); ++i) a += cross(p[i], p[(i + 1) % p.size()]);
-  return a / 2;
-}
-
 /// Distance from p to segment ab.
 double distance(Vec2 p, Vec2 a, Vec2 b) {
   Vec2 d = b - a;

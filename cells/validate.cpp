@@ -10,12 +10,6 @@ namespace avenues {
 
 namespace {
 
-double area2(const std::vector<Vec2>& p) {
-  double a = 0;
-  for (size_t i = 0; i < p.size(); ++i) a += cross(p[i], p[(i + 1) % p.size()]);
-  return a / 2;
-}
-
 /// Area of a planar 3D polygon.
 double area3(const std::vector<Vec3>& p) {
   Vec3 s{0, 0, 0};
@@ -57,7 +51,7 @@ std::string cells_are_valid(const CellComplex& c) {
     const auto& f = cell.footprint;
     if (f.size() < 3) return fail("cell ", i, " has a footprint of ", f.size(), " vertices");
     if (!(cell.z1 > cell.z0)) return fail("cell ", i, " has no height");
-    if (area2(f) <= 0) return fail("cell ", i, " is not counter-clockwise");
+    if (signed_area(f) <= 0) return fail("cell ", i, " is not counter-clockwise");
     for (size_t k = 0; k < f.size(); ++k) {
       Vec2 a = f[k], b = f[(k + 1) % f.size()], d = f[(k + 2) % f.size()];
       if (cross(b - a, d - b) < -eps * length(b - a)) return fail("cell ", i, " is not convex at vertex ", k + 1);
@@ -119,7 +113,7 @@ std::string cells_are_valid(const CellComplex& c) {
       const Box3 &a = box[i], &b = box[j];
       if (a.lo.y >= b.hi.y - eps || b.lo.y >= a.hi.y - eps) continue;
       if (a.lo.z >= b.hi.z - eps || b.lo.z >= a.hi.z - eps) continue;
-      double overlap = area2(clip(c.cells[i].footprint, c.cells[j].footprint));
+      double overlap = signed_area(clip(c.cells[i].footprint, c.cells[j].footprint));
       if (overlap > 1e-7 * std::max(1.0, scale)) return fail("cells ", i, " and ", j, " overlap by ", overlap, " m²");
     }
 

@@ -34,6 +34,29 @@ inline Vec3 cross(Vec3 a, Vec3 b) {
 }
 inline double length(Vec3 a) { return std::sqrt(dot(a, a)); }
 
+/// Signed area [m²] of a simple polygon: positive when counter-clockwise.
+inline double signed_area(const std::vector<Vec2>& p) {
+  double a = 0;
+  for (size_t i = 0, n = p.size(); i < n; ++i) a += cross(p[i], p[(i + 1) % n]);
+  return a / 2;
+}
+
+/// Area centroid of a simple polygon (the vertex mean when it has no area).
+inline Vec2 centroid(const std::vector<Vec2>& p) {
+  double a = 0, cx = 0, cy = 0;
+  for (size_t i = 0, n = p.size(); i < n; ++i) {
+    const Vec2 u = p[i], v = p[(i + 1) % n];
+    const double w = cross(u, v);
+    a += w, cx += (u.x + v.x) * w, cy += (u.y + v.y) * w;
+  }
+  if (std::fabs(a) < 1e-12) {
+    Vec2 s;
+    for (Vec2 q : p) s = s + q;
+    return p.empty() ? Vec2{} : (1.0 / double(p.size())) * s;
+  }
+  return {cx / (3 * a), cy / (3 * a)};
+}
+
 /// Axis-aligned box; empty when lo > hi on any axis.
 struct Box3 {
   Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};

@@ -1,6 +1,7 @@
 // Avenues — the avenue overlay (see overlay_drawing.h). Hand-written SVG, units in
 // pixels of the picture (panel 1), metres (panel 2, y flipped) and layout units (panel 3).
 #include "render/overlay_drawing.h"
+#include "render/xml_text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,18 +18,6 @@ std::string fmt(double v) {
   char b[32];
   std::snprintf(b, sizeof b, "%.3f", v);
   return b;
-}
-
-std::string escape(const std::string& s) {
-  std::string o;
-  for (char ch : s) {
-    if (ch == '&') o += "&amp;";
-    else if (ch == '<') o += "&lt;";
-    else if (ch == '>') o += "&gt;";
-    else if (ch == '"') o += "&quot;";
-    else o += ch;
-  }
-  return o;
 }
 
 /// A colour per avenue depth, dark to light along a hue wheel.
@@ -71,7 +60,7 @@ std::string overlay_svg(const CellComplex& c, const Camera& cam, const VisibleSe
   o << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
     << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << fmt(total_w) << "\" height=\"" << fmt(total_h)
     << "\" viewBox=\"0 0 " << fmt(total_w) << " " << fmt(total_h) << "\" font-family=\"sans-serif\">\n"
-    << "<title>Avenues of sight: " << escape(c.plan_name) << "</title>\n";
+    << "<title>Avenues of sight: " << xml_escape(c.plan_name) << "</title>\n";
 
   // --- panel 1: picture plane with masks.
   o << "<g id=\"picture-plane\" transform=\"translate(0,30)\">\n"
@@ -91,10 +80,10 @@ std::string overlay_svg(const CellComplex& c, const Camera& cam, const VisibleSe
     }
     o << "<polygon points=\"" << pts << "\" fill=\"none\" stroke=\"" << depth_colour(a.depth)
       << "\" stroke-width=\"" << (a.depth == 0 ? 2 : 1.2) << "\"><title>avenue " << i << ": "
-      << escape(cell_label(c, a.cell)) << ", depth " << a.depth << "</title></polygon>\n";
+      << xml_escape(cell_label(c, a.cell)) << ", depth " << a.depth << "</title></polygon>\n";
     if (a.depth > 0)
       o << "<text x=\"" << fmt(cx) << "\" y=\"" << fmt(cy) << "\" font-size=\"9\" text-anchor=\"middle\" fill=\""
-        << depth_colour(a.depth) << "\">" << escape(cell_label(c, a.cell)) << "</text>\n";
+        << depth_colour(a.depth) << "\">" << xml_escape(cell_label(c, a.cell)) << "</text>\n";
   }
   o << "</g>\n";
 
@@ -117,7 +106,7 @@ std::string overlay_svg(const CellComplex& c, const Camera& cam, const VisibleSe
     const bool inside = cell.kind == CellKind::Room || cell.kind == CellKind::Doorway || cell.kind == CellKind::Stairwell;
     o << "<polygon points=\"" << pts << "\" fill=\"" << (visible[id] ? (inside ? "#f5d76e" : "#d6eaf8") : "none")
       << "\" fill-opacity=\"0.6\" stroke=\"#999\" stroke-width=\"0.5\"><title>"
-      << escape(cell_label(c, CellId(id))) << "</title></polygon>\n";
+      << xml_escape(cell_label(c, CellId(id))) << "</title></polygon>\n";
   }
   // The view: two rays along the window's sides in plan.
   const double hw = cam.half_width(), reach = std::max(pw, ph);
@@ -137,7 +126,7 @@ std::string overlay_svg(const CellComplex& c, const Camera& cam, const VisibleSe
     Vec2 m{0, 0};
     for (Vec2 p : cell.footprint) m = m + (1.0 / double(cell.footprint.size())) * p;
     o << "<text x=\"" << fmt(X(m.x)) << "\" y=\"" << fmt(Y(m.y)) << "\" font-size=\"11\" text-anchor=\"middle\">"
-      << escape(c.rooms[size_t(cell.room)].name) << "</text>\n";
+      << xml_escape(c.rooms[size_t(cell.room)].name) << "</text>\n";
   }
   o << "<circle cx=\"" << fmt(X(cam.eye.x)) << "\" cy=\"" << fmt(Y(cam.eye.y))
     << "\" r=\"4\" fill=\"#c0392b\"><title>eye</title></circle>\n</g>\n</g>\n";
@@ -158,7 +147,7 @@ std::string overlay_svg(const CellComplex& c, const Camera& cam, const VisibleSe
     }
     o << "<circle cx=\"" << fmt(x) << "\" cy=\"" << fmt(y) << "\" r=\"3\" fill=\"" << depth_colour(a.depth)
       << "\"/>\n<text x=\"" << fmt(x + 6) << "\" y=\"" << fmt(y + 3) << "\" font-size=\"9\">"
-      << escape(cell_label(c, a.cell)) << "</text>\n";
+      << xml_escape(cell_label(c, a.cell)) << "</text>\n";
   }
   o << "</g>\n</svg>\n";
   return o.str();

@@ -4,6 +4,7 @@
 // (line widths, text, dashes) are given in paper millimetres and converted with the
 // drawing's scale, so the picture reads the same at 1:50 as at 1:1000.
 #include "render/plan_drawing.h"
+#include "render/xml_text.h"
 
 #include <algorithm>
 #include <array>
@@ -34,25 +35,6 @@ std::string num(double v) {
   }
   if (s == "-0") s = "0";
   return s;
-}
-
-std::string xml_escape(const std::string& in) {
-  std::string out;
-  out.reserve(in.size());
-  for (char ch : in) {
-    switch (ch) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default:
-        // Control characters other than tab/newline are not allowed in XML 1.0.
-        if (static_cast<unsigned char>(ch) < 0x20 && ch != '\t' && ch != '\n') out += ' ';
-        else out += ch;
-    }
-  }
-  return out;
 }
 
 std::string hex_colour(double r, double g, double b) {
@@ -112,29 +94,6 @@ PortalStyle portal_style(PortalKind k) {
 }
 
 // --- geometry helpers ------------------------------------------------------
-
-double area(const std::vector<Vec2>& p) {
-  double a = 0;
-  for (size_t i = 0, n = p.size(); i < n; ++i) a += cross(p[i], p[(i + 1) % n]);
-  return a / 2;
-}
-
-Vec2 centroid(const std::vector<Vec2>& p) {
-  double a = 0, cx = 0, cy = 0;
-  for (size_t i = 0, n = p.size(); i < n; ++i) {
-    Vec2 u = p[i], v = p[(i + 1) % n];
-    double w = cross(u, v);
-    a += w;
-    cx += (u.x + v.x) * w;
-    cy += (u.y + v.y) * w;
-  }
-  if (std::fabs(a) < 1e-12) {
-    Vec2 s;
-    for (Vec2 q : p) s = s + q;
-    return p.empty() ? Vec2{} : (1.0 / static_cast<double>(p.size())) * s;
-  }
-  return {cx / (3 * a), cy / (3 * a)};
-}
 
 struct Seg {
   Vec2 a, b;
@@ -517,7 +476,7 @@ std::string plan_svg(const CellComplex& c) {
       Vec2 m = centroid(cell.footprint);
       if (inside(m)) svg.text(f.X(m.x), f.Y(m.y) - svg.mm(2.2), 1.8, std::to_string(id));
       if (cell.kind == CellKind::Room && cell.room >= 0) {
-        double a = std::fabs(area(cell.footprint));
+        double a = std::fabs(signed_area(cell.footprint));
         auto it = label_at.find(cell.room);
         if (it == label_at.end() || a > it->second.first) label_at[cell.room] = {a, m};
       }

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "render/drawing_formats.h"
+#include "render/xml_text.h"
 
 namespace avenues::detail {
 
@@ -17,20 +18,6 @@ std::string num(double v) {
   return std::string(buf, r.ptr);
 }
 
-std::string escaped(const std::string& s) {
-  std::string out;
-  for (char ch : s) {
-    switch (ch) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += static_cast<unsigned char>(ch) < 0x20 && ch != '\t' && ch != '\n' ? ' ' : ch;
-    }
-  }
-  return out;
-}
-
 }  // namespace
 
 std::string svg_bytes(const Drawing& d, const Page& page) {
@@ -40,7 +27,7 @@ std::string svg_bytes(const Drawing& d, const Page& page) {
        "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\"";
   o += " width=\"" + num(page.width) + "mm\" height=\"" + num(page.height) + "mm\"";
   o += " viewBox=\"0 0 " + num(page.width) + " " + num(page.height) + "\">\n";
-  if (!d.title.empty()) o += "<title>" + escaped(d.title) + "</title>\n";
+  if (!d.title.empty()) o += "<title>" + xml_escape(d.title) + "</title>\n";
   for (Layer layer : {Layer::Architecture, Layer::Furniture}) {
     const std::string name = to_string(layer);
     o += "<g id=\"" + name + "\" inkscape:groupmode=\"layer\" inkscape:label=\"" + name +

@@ -7,19 +7,12 @@
 #include <set>
 
 #include "cells/build_cells.h"
+#include "test_plans.h"
 
 using namespace avenues;
+using avenues::testing::wall;
 
 namespace {
-
-Wall wall(const std::string& name, std::vector<Vec2> centre, double thickness) {
-  Wall w;
-  w.name = name;
-  w.thickness = thickness;
-  w.centre = std::move(centre);
-  w.from_arc.assign(w.centre.size() - 1, false);
-  return w;
-}
 
 Opening opening(const std::string& name, OpeningKind kind, double at, double width, double sill, double head) {
   Opening o;

@@ -10,21 +10,12 @@
 #include "cells/build_cells.h"
 #include "ray_oracle.h"
 #include "visibility/visible_set.h"
+#include "test_plans.h"
 
 using namespace avenues;
-using avenues::testing::first_hit;
-using avenues::testing::length_inside;
+using avenues::testing::wall;
 
 namespace {
-
-Wall wall(const std::string& name, std::vector<Vec2> centre, double thickness) {
-  Wall w;
-  w.name = name;
-  w.thickness = thickness;
-  w.centre = std::move(centre);
-  w.from_arc.assign(w.centre.size() - 1, false);
-  return w;
-}
 
 Opening door(double at, double width = 0.8, double head = 2.0) {
   Opening o;
@@ -74,25 +65,9 @@ Outcome view(const CellComplex& c, const Camera& cam, Kernel k) {
   if (loc.what != Location::What::Cell) return o;
   VisibleSet vs = find_visible(c, cam, loc.cell, k);
   o.cells.insert(vs.cells.begin(), vs.cells.end());
-  for (int j = 0; j < cam.height; ++j)
-    for (int i = 0; i < cam.width; ++i) {
-      Vec3 dir = cam.ray_through_raster({i + 0.5, j + 0.5});
-      double t = first_hit(c, cam.eye, dir);
-      for (CellId id = 0; id < CellId(c.cells.size()); ++id)
-        if (!o.cells.count(id) && length_inside(c.cells[size_t(id)], cam.eye, dir, 0, t) > 1e-6) ++o.missing;
-    }
-  const double px2 = (cam.width / (2 * cam.half_width())) * (cam.height / (2 * cam.half_height()));
-  for (const Avenue& a : vs.avenues) {
-    double area = 0, cx = 0, cy = 0;
-    for (size_t m = 0; m < a.mask.size(); ++m) {
-      Vec2 p = a.mask[m], q = a.mask[(m + 1) % a.mask.size()];
-      double w = cross(p, q);
-      area += w / 2, cx += (p.x + q.x) * w / 6, cy += (p.y + q.y) * w / 6;
-    }
-    if (area * px2 <= 1 || a.depth == 0) continue;  // the eye's own cell holds the eye, perhaps on its face
-    Vec3 dir = (cx / area) * cam.right + (cy / area) * cam.up + cam.forward;
-    if (!(length_inside(c.cells[size_t(a.cell)], cam.eye, dir, 0, first_hit(c, cam.eye, dir)) > 0)) ++o.extra;
-  }
+  const avenues::testing::OracleResult r = avenues::testing::check_visible_set(c, cam, vs);
+  o.missing = r.missing;
+  o.extra = r.extra;
   return o;
 }
 

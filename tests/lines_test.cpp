@@ -19,21 +19,14 @@
 #include "visibility/stereo.h"
 #include "visibility/viewpoint.h"
 #include "visibility/visible_set.h"
+#include "test_plans.h"
 
 using namespace avenues;
+using avenues::testing::plan_path;
+using avenues::testing::room_named;
 using avenues::testing::first_hit;
 
 namespace {
-
-std::string plan_path(const std::string& name) {
-  return (std::filesystem::path(AVENUES_SOURCE_DIR) / "plans" / name).string();
-}
-
-RoomId room_named(const CellComplex& c, const std::string& name) {
-  for (size_t r = 0; r < c.rooms.size(); ++r)
-    if (c.rooms[r].name == name) return RoomId(r);
-  return -1;
-}
 
 struct View {
   Camera camera;

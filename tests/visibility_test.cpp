@@ -11,58 +11,15 @@
 #include "cells/build_cells.h"
 #include "ray_oracle.h"
 #include "visibility/visible_set.h"
+#include "test_plans.h"
 
 using namespace avenues;
-using avenues::testing::first_hit;
-using avenues::testing::length_inside;
+using avenues::testing::plan_path;
+using avenues::testing::room_named;
+using avenues::testing::check_visible_set;
+using avenues::testing::OracleResult;
 
 namespace {
-
-std::string plan_path(const std::string& name) {
-  return (std::filesystem::path(AVENUES_SOURCE_DIR) / "plans" / name).string();
-}
-
-RoomId room_named(const CellComplex& c, const std::string& name) {
-  for (size_t r = 0; r < c.rooms.size(); ++r)
-    if (c.rooms[r].name == name) return RoomId(r);
-  return -1;
-}
-
-struct OracleResult {
-  int missing = 0, extra = 0, rays = 0;
-};
-
-/// Casts one ray per pixel (every `step` pixels): each cell a ray crosses before its first
-/// opaque hit must be visible. Each avenue whose mask covers more than a pixel must be
-/// crossed by the ray through its mask's centroid.
-OracleResult check_against_rays(const CellComplex& c, const Camera& cam, const VisibleSet& vs, int step) {
-  OracleResult r;
-  std::set<CellId> visible(vs.cells.begin(), vs.cells.end());
-  for (int j = step / 2; j < cam.height; j += step)
-    for (int i = step / 2; i < cam.width; i += step) {
-      Vec3 dir = cam.ray_through_raster({i + 0.5, j + 0.5});
-      double t = first_hit(c, cam.eye, dir);
-      ++r.rays;
-      for (CellId id = 0; id < CellId(c.cells.size()); ++id)
-        if (!visible.count(id) && length_inside(c.cells[size_t(id)], cam.eye, dir, 0, t) > 1e-6) ++r.missing;
-    }
-  const double px2 = (cam.width / (2 * cam.half_width())) * (cam.height / (2 * cam.half_height()));
-  for (const Avenue& a : vs.avenues) {
-    double area = 0, cx = 0, cy = 0;
-    for (size_t k = 0; k < a.mask.size(); ++k) {
-      Vec2 p = a.mask[k], q = a.mask[(k + 1) % a.mask.size()];
-      double w = cross(p, q);
-      area += w / 2;
-      cx += (p.x + q.x) * w / 6;
-      cy += (p.y + q.y) * w / 6;
-    }
-    if (area * px2 <= 1 || a.depth == 0) continue;  // the eye's own cell holds the eye, perhaps on its face
-    Vec3 dir = (cx / area) * cam.right + (cy / area) * cam.up + cam.forward;
-    double t = first_hit(c, cam.eye, dir);
-    if (!(length_inside(c.cells[size_t(a.cell)], cam.eye, dir, 0, t) > 0)) ++r.extra;
-  }
-  return r;
-}
 
 /// A random eye inside a random room or outside cell, at a height within the cell.
 Vec3 random_eye(const CellComplex& c, std::mt19937& rng, CellId& cell) {
@@ -105,7 +62,7 @@ TEST(Visibility, JonesKitchenIsSeenThroughTheDoorAndSeparatelyThroughTheHatch) {
     }
     EXPECT_GE(direct, 1) << to_string(k);
     EXPECT_GE(via_hatch, 1) << to_string(k);
-    OracleResult r = check_against_rays(c, cam, vs, 4);
+    OracleResult r = check_visible_set(c, cam, vs, 4);
     EXPECT_EQ(r.missing, 0);
     EXPECT_EQ(r.extra, 0);
   }
@@ -127,7 +84,7 @@ TEST(Visibility, RandomViewsOfEveryBundledPlanAgreeWithRayCasting) {
                    "," + std::to_string(eye.z) + " yaw " + std::to_string(y) + " pitch " + std::to_string(p) +
                    " fov " + std::to_string(f));
       VisibleSet vs = find_visible(c, cam, cell, Kernel::Double);
-      OracleResult r = check_against_rays(c, cam, vs, 1);
+      OracleResult r = check_visible_set(c, cam, vs, 1);
       EXPECT_EQ(r.missing, 0) << "view " << v << " eye " << eye.x << "," << eye.y << "," << eye.z;
       EXPECT_EQ(r.extra, 0) << "view " << v;
       // The exact kernel sees the same cells.

@@ -5,23 +5,6 @@
 
 namespace avenues {
 
-namespace {
-double area(const std::vector<Vec2>& p) {
-  double a = 0;
-  for (size_t i = 0; i < p.size(); ++i) a += cross(p[i], p[(i + 1) % p.size()]);
-  return a / 2;
-}
-Vec2 centroid(const std::vector<Vec2>& p) {
-  double a = 0, cx = 0, cy = 0;
-  for (size_t i = 0; i < p.size(); ++i) {
-    Vec2 u = p[i], v = p[(i + 1) % p.size()];
-    double w = cross(u, v);
-    a += w, cx += (u.x + v.x) * w, cy += (u.y + v.y) * w;
-  }
-  return {cx / (3 * a), cy / (3 * a)};
-}
-}  // namespace
-
 Viewpoint default_viewpoint(const CellComplex& c) {
   if (c.view) return *c.view;
   // The first room that has a cell, preferring named rooms.
@@ -32,7 +15,7 @@ Viewpoint default_viewpoint(const CellComplex& c) {
       for (CellId id = 0; id < CellId(c.cells.size()); ++id) {
         const Cell& cell = c.cells[size_t(id)];
         if (cell.kind == CellKind::Room && cell.room == RoomId(r) &&
-            (best == kNoCell || area(cell.footprint) > area(c.cells[size_t(best)].footprint)))
+            (best == kNoCell || signed_area(cell.footprint) > signed_area(c.cells[size_t(best)].footprint)))
           best = id;
       }
     }
