@@ -222,3 +222,40 @@ TEST(HardCases, EyeAMillimetreFromAWall) {
   all_kernels(c, Camera::look_at({3.899, 3.0, 1.5}, {0, 3.0, 1.0}, 90, 48, 32), kAll);
   all_kernels(c, Camera::look_at({3.899, 3.0, 1.5}, {3.9, 0, 1.0}, 120, 48, 32), kDoubleExact);
 }
+
+// Stable: walls a millimetre thick decompose into valid cells (the doorway a millimetre
+// deep) and are seen exactly as the rays see them.
+TEST(HardCases, MillimetreThinWalls) {
+  CellComplex c = build_cells(two_rooms(0.001));
+  EXPECT_EQ(cells_are_valid(c), "");
+  all_kernels(c, Camera::look_at({1, 1.9, 1.0}, {8, 1.9, 1.0}, 70, 48, 32), kDoubleExact);
+  all_kernels(c, Camera::look_at({3.9995, 1.9, 1.0}, {8, 1.9, 1.0}, 70, 48, 32), kDoubleExact);  // in the doorway
+}
+
+// Stable: two thick walls leaving one corner at half a degree from each other (a mitre that
+// would reach 20 m is bevelled) still give valid cells that cover the free space.
+TEST(HardCases, WallsMeetingAtATinyAngle) {
+  Plan p = two_rooms(0.2);
+  const double a = 0.5 * 3.14159265358979 / 180;
+  p.walls.push_back(wall("splinter", {{8, 4}, {8 + 6 * std::cos(a), 4 + 6 * std::sin(a)}, {14, 4}}, 0.2));
+  CellComplex c = build_cells(p);
+  EXPECT_EQ(cells_are_valid(c), "");
+  all_kernels(c, Camera::look_at({6, 3.5, 1.0}, {14, 4.02, 1.0}, 70, 48, 32), kDoubleExact);
+}
+
+// Stable: a wall whose end lies within 1e-10 m of another wall's corner (input meant to
+// coincide) decomposes as if it were exact: no sliver cells, no sliver portals.
+TEST(HardCases, VerticesWithinANanometre) {
+  Plan p = two_rooms(0.2);
+  p.walls[1].centre = {{4 + 1e-10, 0 - 1e-10}, {4 - 1e-10, 4 + 1e-10}};
+  CellComplex near_exact = build_cells(p);
+  CellComplex exact = build_cells(two_rooms(0.2));
+  EXPECT_EQ(cells_are_valid(near_exact), "");
+  EXPECT_EQ(near_exact.cells.size(), exact.cells.size());
+  EXPECT_EQ(near_exact.portals.size(), exact.portals.size());
+  for (const Portal& portal : near_exact.portals) {
+    double extent = 0;
+    for (Vec3 v : portal.poly) extent = std::max(extent, length(v - portal.poly[0]));
+    EXPECT_GT(extent, 1e-3) << "a sliver portal";
+  }
+}
