@@ -232,12 +232,19 @@ std::string plan_svg(const CellComplex& c) {
   }
   for (size_t i = 0; i < c.cells.size(); ++i) {
     const Cell& cell = c.cells[i];
+    auto id = static_cast<CellId>(i);
+    // A tall outside cell (the outside around several storeys is one cell where its outline
+    // does not change) belongs on the plan of every storey whose whole height it spans.
+    if (cell.kind == CellKind::Outside) {
+      for (StoreyView& v : views)
+        if (cell.z0 <= v.floor + kEps && cell.z1 >= v.ceiling - kEps) v.fill.push_back(id);
+      continue;
+    }
     if (cell.storey < 0 || static_cast<size_t>(cell.storey) >= nstoreys) continue;
     StoreyView& v = views[static_cast<size_t>(cell.storey)];
-    auto id = static_cast<CellId>(i);
     if (cell.kind == CellKind::Doorway) {
       v.fill.push_back(id);
-    } else if (cell.kind == CellKind::Room || cell.kind == CellKind::Outside) {
+    } else if (cell.kind == CellKind::Room) {
       if (cell.z0 <= v.floor + kEps) v.fill.push_back(id);
       else if (cell.kind == CellKind::Room && cell.z0 < v.ceiling - kEps) v.raised.push_back(id);
     }
@@ -455,8 +462,8 @@ std::string plan_svg(const CellComplex& c) {
     // Walls cut at sill height.
     o += "<g class=\"cut\" " + svg.stroke(kCutStroke, 0.6) + ">\n";
     for (const Cell& cell : c.cells) {
-      if (cell.storey != static_cast<StoreyId>(s) || cell.kind == CellKind::Sky) continue;
-      if (!(cell.z0 < v.cut && cell.z1 > v.cut)) continue;
+      if (cell.kind == CellKind::Sky || !(cell.z0 < v.cut && cell.z1 > v.cut)) continue;
+      if (cell.kind != CellKind::Outside && cell.storey != static_cast<StoreyId>(s)) continue;
       for (const Face& face : cell.faces) {
         if (!vertical(face.plane)) continue;
         for (const OpaquePoly& op : face.opaque)
