@@ -73,6 +73,16 @@ Mesh load_mesh(const std::string& path) {
   return m;
 }
 
+Mesh load_object_mesh(const Object& object) {
+  try {
+    return load_mesh(object.mesh);
+  } catch (const std::runtime_error& e) {
+    const std::string where = object.where.str();
+    if (where.empty()) throw;
+    throw std::runtime_error(where + ": " + e.what());
+  }
+}
+
 Mesh place(const Mesh& mesh, const Object& o, double floor_z) {
   Mesh m = mesh;
   const Vec3 at = o.position + Vec3{0, 0, floor_z};

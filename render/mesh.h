@@ -29,6 +29,10 @@ struct Mesh {
 /// file for a missing, unreadable or empty mesh.
 Mesh load_mesh(const std::string& path);
 
+/// The mesh of a plan's object; a failure names the object's place in the plan too
+/// ("house.toml:62:1 (object 'table'): cannot read mesh ...").
+Mesh load_object_mesh(const Object& object);
+
 /// The mesh placed as `object` says: scaled, rotated about x, then y, then z (degrees),
 /// then moved to object.position + (0, 0, floor_z).
 Mesh place(const Mesh& mesh, const Object& object, double floor_z);

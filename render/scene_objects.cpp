@@ -21,7 +21,7 @@ std::vector<PlacedObject> place_objects(const CellComplex& complex) {
   CellId hint = kNoCell;
   for (const Object& o : complex.objects) {
     auto it = loaded.find(o.mesh);
-    if (it == loaded.end()) it = loaded.emplace(o.mesh, load_mesh(o.mesh)).first;
+    if (it == loaded.end()) it = loaded.emplace(o.mesh, load_object_mesh(o)).first;
     const double floor_z =
         o.storey >= 0 && size_t(o.storey) < complex.storeys.size() ? complex.storeys[size_t(o.storey)].elevation : 0;
     PlacedObject p;

@@ -477,3 +477,18 @@ TEST_F(Cli, ViewWritesHalftonePicturesStereoAndThePapersTable) {
   for (const char* scene : {"cottage", "ripple-torus", "cubes", "wylie-cube", "crow-object"})
     EXPECT_NE(papers.out.find(scene), std::string::npos) << scene;
 }
+
+TEST_F(Cli, AMissingObjectMeshNamesThePlanLineAndWritesNothing) {
+  write("furnished.toml",
+        "[[wall]]\nname = \"box\"\nthickness = 0.2\npath = [[0,0],[5,0],[5,4],[0,4],[0,0]]\n"
+        "[[room]]\nname = \"room\"\nat = [2.5, 2]\n"
+        "[[object]]\nname = \"table\"\nmesh = \"missing.off\"\nposition = [2, 2, 0]\n");
+  for (const char* out : {"v.png", "v.svg"}) {
+    Outcome r = run(std::string("view furnished.toml --eye 1,1,1.6 --look 4,3,1.2 -o ") + out);
+    EXPECT_EQ(r.status, 2) << out;
+    EXPECT_NE(r.err.find("furnished.toml:8"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("object 'table'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("missing.off"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(path(out)));
+  }
+}
