@@ -60,6 +60,19 @@ struct ViewOptions {
   std::string dither = "none";         ///< half-tone: none, bayer or fs
 };
 
+/// `avenues path PLAN --through ROOM,ROOM,... -o DIR`: a batch walkthrough through named rooms.
+struct PathOptions {
+  std::string plan;
+  std::string through;            ///< "ROOM,ROOM,..."
+  std::string out_dir = "avenues-path";
+  std::string format = "png";     ///< png (half-tone) or svg (hidden-line)
+  double step = 0.25;             ///< [m] between frames
+  std::string size = "640x360";
+  double fov = 70;                ///< [deg]
+  std::string kernel = "double";
+};
+int run_path(const PathOptions& opt);
+
 /// `avenues bench papers [--threads N] [--repeats N]`: the papers' scenes beside their figures.
 int run_bench_papers(int threads, int repeats);
 /// The camera and eye cell a view option set resolves to.

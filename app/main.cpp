@@ -3,6 +3,7 @@
 //   avenues [PLAN]                                  the main job
 //   avenues cells PLAN [--json] [--svg F] [--save F.cells]
 //   avenues export PLAN -o FILE.obj
+//   avenues path [PLAN] --through ROOM,ROOM,... [-o DIR] [--format png|svg]
 //   avenues view PLAN [--eye X,Y,Z --look X,Y,Z] [--kernel K] [--stats-json F] [--overlay F.svg]
 //   avenues generate office --rooms ROWSxCOLS -o FILE.toml
 //
@@ -79,6 +80,17 @@ int main(int argc, char** argv) {
   view->add_option("--to-eye", view_opt.to_eye, "where the walk ends")->type_name("X,Y,Z");
   view->add_option("--to-look", view_opt.to_look, "what the walk's last frame looks at")->type_name("X,Y,Z");
 
+  PathOptions path_opt;
+  CLI::App* path = app.add_subcommand("path", "write the frames of a walk through named rooms (a batch walkthrough)");
+  path->add_option("PLAN", path_opt.plan, "plan (.toml) or saved cells (.cells); default: the bundled plan");
+  path->add_option("--through", path_opt.through, "rooms to walk through, in order")->required()->type_name("ROOM,ROOM,...");
+  path->add_option("-o,--output", path_opt.out_dir, "directory for the numbered frames")->capture_default_str();
+  path->add_option("--format", path_opt.format, "png (half-tone) or svg (hidden-line drawing)")->capture_default_str();
+  path->add_option("--step", path_opt.step, "[m] between frames")->capture_default_str();
+  path->add_option("--size", path_opt.size, "frame size in pixels")->type_name("WxH")->capture_default_str();
+  path->add_option("--fov", path_opt.fov, "horizontal field of view in degrees")->capture_default_str();
+  path->add_option("--kernel", path_opt.kernel, "arithmetic of the traversal")->capture_default_str();
+
   int bench_threads = 0, bench_repeats = 5;
   CLI::App* bench = app.add_subcommand("bench", "measure Avenues against the source papers");
   bench->require_subcommand(1);
@@ -106,6 +118,7 @@ int main(int argc, char** argv) {
     if (*exp) return run_export(export_opt);
     if (*view) return run_view(view_opt);
     if (*papers) return run_bench_papers(bench_threads, bench_repeats);
+    if (*path) return run_path(path_opt);
     if (*office) return run_generate_office(office_opt);
     return run_main_job(main_opt);
   } catch (const avenues::PlanError& e) {

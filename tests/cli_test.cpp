@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -491,4 +492,22 @@ TEST_F(Cli, AMissingObjectMeshNamesThePlanLineAndWritesNothing) {
     EXPECT_NE(r.err.find("missing.off"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(path(out)));
   }
+}
+
+TEST_F(Cli, PathWalksThroughTheNamedRoomsAndWritesFrames) {
+  Outcome r = run("path " + quote(kPlan) + " --through L,K,D -o walk --size 160x90 --step 0.5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::vector<std::string> frames;
+  for (const auto& e : fs::directory_iterator(path("walk"))) frames.push_back(e.path().filename().string());
+  std::sort(frames.begin(), frames.end());
+  ASSERT_GE(frames.size(), 10u);
+  EXPECT_EQ(frames.front(), "frame-0001.png");
+  EXPECT_EQ(slurp(path("walk") / frames.back()).substr(1, 3), "PNG");
+  EXPECT_EQ(run("path " + quote(kPlan) + " --through L,D --format svg -o drawn --size 160x90").status, 0);
+  EXPECT_TRUE(fs::exists(path("drawn/frame-0001.svg")));
+  Outcome bad = run("path " + quote(kPlan) + " --through L,Attic -o none");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("no room 'Attic'"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("'K'"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(path("none")));
 }

@@ -10,6 +10,7 @@
 
 #include "cells/build_cells.h"
 #include "ray_oracle.h"
+#include "visibility/route.h"
 #include "visibility/visible_set.h"
 #include "test_plans.h"
 
@@ -93,4 +94,24 @@ TEST(Visibility, RandomViewsOfEveryBundledPlanAgreeWithRayCasting) {
       EXPECT_EQ(find_visible(c, cam, cell, Kernel::Filtered).cells, exact.cells) << "view " << v;
     }
   }
+}
+
+TEST(Route, JonesHouseFromLivingRoomToKitchenToDiningRoomOnFoot) {
+  using avenues::testing::plan_path;
+  CellComplex c = build_cells(read_plan(plan_path("jones-house.toml")));
+  const std::vector<Vec3> way = route_through(c, {"L", "K", "D"});
+  const std::vector<Vec3> path = smooth_path(c, way, 0.2);
+  // Every point is in free space at eye height, and the rooms come in order L, K, L, D:
+  // the hatch between kitchen and dining room is no door, so the walk goes back through L.
+  std::vector<std::string> rooms;
+  for (Vec3 p : path) {
+    Location at = c.locate(p);
+    ASSERT_EQ(at.what, Location::What::Cell) << p.x << "," << p.y << "," << p.z;
+    const Cell& cell = c.cells[size_t(at.cell)];
+    if (cell.room >= 0 && (rooms.empty() || rooms.back() != c.rooms[size_t(cell.room)].name))
+      rooms.push_back(c.rooms[size_t(cell.room)].name);
+    EXPECT_NEAR(p.z, 1.6, 1e-9);
+  }
+  EXPECT_EQ(rooms, (std::vector<std::string>{"L", "K", "L", "D"}));
+  EXPECT_THROW(route_through(c, {"L", "Cellar"}), std::runtime_error);
 }
