@@ -1,15 +1,18 @@
-// Avenues — `avenues path PLAN --through ROOM,ROOM,... -o DIR`: a batch walkthrough.
+// Avenues — `avenues path PLAN --through ROOM,ROOM,... | --keys FILE -o DIR`: a batch walkthrough.
 //
 // The route runs through the named rooms on the portal graph (visibility/route.h: doorway
 // centres as waypoints, a Catmull–Rom curve through them), one frame every --step metres,
-// each looking a metre ahead along the path. Frames are PNG half-tone pictures or SVG
+// each looking a metre ahead along the path; or it follows recorded keyframes (eye and
+// point looked at), straight between them. Frames are PNG half-tone pictures or SVG
 // drawings, numbered in DIR; on a terminal a progress bar shows the frame and the time
 // left. With PNG frames and ffmpeg on the PATH, DIR/walk.mp4 as well.
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -50,6 +53,27 @@ void progress(int done, int total, double seconds) {
 
 }  // namespace
 
+/// Keyframes from a text file: one per line, "EX EY EZ LX LY LZ" (eye, then the point it
+/// looks at, in metres), '#' starts a comment. Throws PlanError naming the file and line.
+std::vector<std::pair<Vec3, Vec3>> read_keys(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error("cannot read keyframes " + file);
+  std::vector<std::pair<Vec3, Vec3>> keys;
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    line = line.substr(0, line.find('#'));
+    std::istringstream words(line);
+    Vec3 e, l;
+    if (!(words >> std::ws).good()) continue;  // blank or comment
+    if (!(words >> e.x >> e.y >> e.z >> l.x >> l.y >> l.z) || !(words >> std::ws).eof() || !std::isfinite(e.x + e.y + e.z + l.x + l.y + l.z))
+      throw PlanError({file, n, 0, "keyframe"}, "a keyframe is six numbers: the eye X Y Z, then the point looked at X Y Z");
+    if (!(length(l - e) > 0)) throw PlanError({file, n, 0, "keyframe"}, "the eye looks at itself");
+    keys.push_back({e, l});
+  }
+  if (keys.size() < 2) throw std::runtime_error("keyframes " + file + ": a walk needs at least two keyframes");
+  return keys;
+}
+
 int run_path(const PathOptions& opt) {
   LoadedPlan plan = load_plan_source(opt.plan);
   const CellComplex& c = plan.complex;
@@ -59,7 +83,25 @@ int run_path(const PathOptions& opt) {
   if (!(opt.fov > 0 && opt.fov <= 179)) throw std::runtime_error("--fov must lie in (0, 179] degrees");
   Kernel kernel;
   if (!parse_kernel(opt.kernel, kernel)) throw std::runtime_error("--kernel wants float, double, filtered or exact");
-  const std::vector<Vec3> eyes = smooth_path(c, route_through(c, split_names(opt.through)), opt.step);
+  if (opt.through.empty() == opt.keys.empty()) throw std::runtime_error("give either --through ROOMS or --keys FILE");
+  if (!(opt.step > 0)) throw std::runtime_error("--step must be a positive length");
+  std::vector<Vec3> eyes, looks;  // looks: empty for a route (look ahead along it)
+  if (!opt.through.empty()) {
+    eyes = smooth_path(c, route_through(c, split_names(opt.through)), opt.step);
+  } else {
+    // Recorded keyframes: straight between them, one frame every --step metres of eye travel.
+    const auto keys = read_keys(opt.keys);
+    eyes.push_back(keys[0].first);
+    looks.push_back(keys[0].second);
+    for (size_t i = 0; i + 1 < keys.size(); ++i) {
+      const int n = std::max(1, int(std::ceil(length(keys[i + 1].first - keys[i].first) / opt.step)));
+      for (int s = 1; s <= n; ++s) {
+        const double t = double(s) / n;
+        eyes.push_back(keys[i].first + t * (keys[i + 1].first - keys[i].first));
+        looks.push_back(keys[i].second + t * (keys[i + 1].second - keys[i].second));
+      }
+    }
+  }
   if (eyes.size() < 2) throw std::runtime_error("--through names rooms that are already where the walk starts");
 
   // Every frame's camera first (a frame whose eye would leave free space is an error
@@ -75,9 +117,10 @@ int run_path(const PathOptions& opt) {
     if (length(dir) > 1e-6) last_dir = dir;
     const Location at = c.locate(eyes[k], hint);
     if (at.what != Location::What::Cell)
-      throw std::runtime_error("frame " + std::to_string(k + 1) + " of the path leaves free space");
+      throw std::runtime_error("frame " + std::to_string(k + 1) + " of the path: the eye is " +
+                               (at.what == Location::What::Solid ? "inside " + at.solid : std::string("outside the far box")));
     WalkFrame f;
-    f.camera = Camera::look_at(eyes[k], eyes[k] + last_dir, opt.fov, w, h);
+    f.camera = Camera::look_at(eyes[k], looks.empty() ? eyes[k] + last_dir : looks[k], opt.fov, w, h);
     f.cell = hint = at.cell;
     frames.push_back(f);
   }

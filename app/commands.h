@@ -63,7 +63,8 @@ struct ViewOptions {
 /// `avenues path PLAN --through ROOM,ROOM,... -o DIR`: a batch walkthrough through named rooms.
 struct PathOptions {
   std::string plan;
-  std::string through;            ///< "ROOM,ROOM,..."
+  std::string through;            ///< "ROOM,ROOM,..."; or
+  std::string keys;               ///< a keyframe file: "EX EY EZ LX LY LZ" per line
   std::string out_dir = "avenues-path";
   std::string format = "png";     ///< png (half-tone) or svg (hidden-line)
   double step = 0.25;             ///< [m] between frames

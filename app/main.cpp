@@ -83,7 +83,8 @@ int main(int argc, char** argv) {
   PathOptions path_opt;
   CLI::App* path = app.add_subcommand("path", "write the frames of a walk through named rooms (a batch walkthrough)");
   path->add_option("PLAN", path_opt.plan, "plan (.toml) or saved cells (.cells); default: the bundled plan");
-  path->add_option("--through", path_opt.through, "rooms to walk through, in order")->required()->type_name("ROOM,ROOM,...");
+  path->add_option("--through", path_opt.through, "rooms to walk through, in order")->type_name("ROOM,ROOM,...");
+  path->add_option("--keys", path_opt.keys, "keyframes to follow: one 'EX EY EZ LX LY LZ' per line")->type_name("FILE");
   path->add_option("-o,--output", path_opt.out_dir, "directory for the numbered frames")->capture_default_str();
   path->add_option("--format", path_opt.format, "png (half-tone) or svg (hidden-line drawing)")->capture_default_str();
   path->add_option("--step", path_opt.step, "[m] between frames")->capture_default_str();

@@ -511,3 +511,21 @@ TEST_F(Cli, PathWalksThroughTheNamedRoomsAndWritesFrames) {
   EXPECT_NE(bad.err.find("'K'"), std::string::npos) << bad.err;
   EXPECT_FALSE(fs::exists(path("none")));
 }
+
+TEST_F(Cli, PathFollowsRecordedKeyframes) {
+  write("keys.txt", "# eye, then the point looked at\n1.5 3 1.6  5 3 1.4\n\n3.0 2 1.6  5 1.6 1.4\n4.5 1.6 1.6  8 1.5 1.4\n");
+  Outcome r = run("path " + quote(kPlan) + " --keys keys.txt -o keyed --format svg --size 160x90 --step 0.5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(path("keyed/frame-0001.svg")));
+  write("bad.txt", "1.5 3 1.6  5 3 1.4\n1 2 3\n");
+  Outcome bad = run("path " + quote(kPlan) + " --keys bad.txt -o none");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("bad.txt:2"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(path("none")));
+  write("wall.txt", "1.5 3 1.6  5 3 1.4\n1.5 3 60  5 3 1.4\n");
+  Outcome out = run("path " + quote(kPlan) + " --keys wall.txt -o none");
+  EXPECT_EQ(out.status, 2);
+  EXPECT_NE(out.err.find("is inside the slab above storey"), std::string::npos) << out.err;  // it walks up through the ceiling
+  EXPECT_FALSE(fs::exists(path("none")));
+  EXPECT_EQ(run("path " + quote(kPlan) + " -o none").status, 2);
+}
