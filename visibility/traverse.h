@@ -75,14 +75,13 @@ class Traversal {
     a.portal = via;
     a.depth = depth;
     for (const auto& v : mask.polygon()) a.mask.push_back({to_double_of(v.x), to_double_of(v.y)});
-    mask_d_ = a.mask;
+    const std::vector<Vec2> mask_here = a.mask;  // a is moved into the visible set below
     out_.avenues.push_back(std::move(a));
     out_.max_depth = std::max(out_.max_depth, depth);
     on_path_[size_t(cell)] = 1;
     // Each face's portals; on a long side face (a corridor's wall of doors) only those
     // within the stretch of wall the mask can see (portals are sorted along side faces).
     const Cell& cl = c_.cells[size_t(cell)];
-    const std::vector<Vec2> mask_here = mask_d_;
     const std::vector<Vec3> cone = cone_planes(mask_here);
     for (size_t f = 0; f < cl.faces.size(); ++f) {
       const auto& ps = cl.faces[f].portals;
@@ -243,7 +242,6 @@ class Traversal {
   uint8_t* on_path_ = nullptr;  ///< per cell: on the current avenue (thread-local buffer)
   Vec3 eye_d_;                 ///< the eye in double, for culling only
   Camera cam_;
-  std::vector<Vec2> mask_d_;   ///< the current mask in double (scratch)
 };
 
 template <class T>
