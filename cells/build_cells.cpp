@@ -37,6 +37,7 @@ CellComplex build_cells(const Plan& plan, [[maybe_unused]] const CellParams& par
   out.objects = plan.objects;
   out.lights = plan.lights;
   out.view = plan.view;
+  out.warnings = plan.warnings;
 
   Outline outline;
   {
@@ -49,7 +50,7 @@ CellComplex build_cells(const Plan& plan, [[maybe_unused]] const CellParams& par
   {
     ScopedTimer t(out, "triangulate");
     std::vector<Vec2> labels;
-    for (const Room& r : plan.rooms) labels.push_back(r.label);
+    for (const Room& r : plan.rooms) labels.push_back(r.label.value_or(outline.lo - Vec2{1, 1}));  // unlabelled: outside the box
     tri = triangulate(outline, labels);
   }
   Classes cls;

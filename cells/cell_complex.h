@@ -141,6 +141,9 @@ struct CellComplex {
   Box3 far_box;                 ///< the large opaque box (Jones) around everything
   std::optional<Viewpoint> view;
   std::vector<StageTime> timings;
+  /// What the importer and the decomposition noticed and repaired or dropped, one line
+  /// each, naming the element (the CLI prints them to stderr).
+  std::vector<std::string> warnings;
 
   /// Which cell holds p. `hint` (a cell near p, e.g. the last eye's) makes it a short
   /// walk through portals; a spatial index catches the rest. Points on a shared face

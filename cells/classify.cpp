@@ -10,6 +10,7 @@
 // are PlanErrors naming the room.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include "cells/passes.h"
@@ -22,6 +23,86 @@ bool has_sheet_of_storey(const Outline& o, const Triangulation& T, int h, Storey
   for (int32_t k = T.sheet_start[size_t(h)]; k < T.sheet_start[size_t(h) + 1]; ++k)
     if (o.regions[size_t(T.sheet_items[size_t(k)])].storey == s) return true;
   return false;
+}
+
+double triangle_area(const Triangulation& T, int t) {
+  return std::fabs(signed_area({T.vert[size_t(T.tri[size_t(t)][0])], T.vert[size_t(T.tri[size_t(t)][1])],
+                                T.vert[size_t(T.tri[size_t(t)][2])]}));
+}
+
+/// Names the spaces of storey s that no label point named by the rooms their bounding
+/// walls of no thickness say lie on that side (Wall::left_room / right_room), each
+/// space taking the room with the longest stretch of wall voting for it. Ties and
+/// disagreements (an unclosed Doom sector bleeding into its neighbour) are warnings
+/// naming both rooms and the area at stake; so are rooms left with no space, and spaces
+/// that reach the far box although a wall claims them (area dropped when the outside is solid).
+void name_by_wall_sides(const Plan& plan, const Outline& o, const Triangulation& T, StoreyId s,
+                        const std::vector<int32_t>& comp, const std::vector<uint8_t>& outside_comp,
+                        std::vector<RoomId>& room_of_comp, std::vector<std::string>& warnings) {
+  bool any = false;
+  for (const Room& r : plan.rooms) any |= r.storey == s && !r.label;
+  if (!any) return;
+  const size_t ncomp = outside_comp.size();
+  std::vector<std::map<RoomId, double>> votes(ncomp);
+  std::vector<double> area(ncomp, 0);
+  for (int t = 0; t < T.size(); ++t) {
+    const int32_t c = comp[size_t(t)];
+    if (c < 0) continue;
+    area[size_t(c)] += triangle_area(T, t);
+    for (int i = 0; i < 3; ++i) {
+      const int32_t h = 3 * t + i;
+      const Vec2 a = T.edge_from(t, i), b = T.edge_to(t, i);
+      for (int32_t k = T.sheet_start[size_t(h)]; k < T.sheet_start[size_t(h) + 1]; ++k) {
+        const Region& reg = o.regions[size_t(T.sheet_items[size_t(k)])];
+        if (reg.storey != s) continue;
+        const Wall& w = plan.walls[size_t(reg.wall)];
+        // The triangle lies left of its counter-clockwise edge a -> b.
+        const bool left = dot(b - a, reg.poly[1] - reg.poly[0]) > 0;
+        const int room = left ? w.left_room : w.right_room;
+        if (room >= 0 && !plan.rooms[size_t(room)].label) votes[size_t(c)][room] += length(b - a);
+      }
+    }
+  }
+  std::vector<double> got(plan.rooms.size(), 0);
+  double dropped = 0;
+  for (size_t c = 0; c < ncomp; ++c) {
+    if (room_of_comp[c] >= 0 || votes[c].empty()) continue;
+    auto best = std::max_element(votes[c].begin(), votes[c].end(),
+                                 [](const auto& x, const auto& y) { return x.second < y.second; });
+    char buf[64];
+    if (outside_comp[c]) {
+      if (plan.outside_solid) {
+        std::snprintf(buf, sizeof buf, "%.2f", area[c]);
+        warnings.push_back("room '" + plan.rooms[size_t(best->first)].name + "' (" +
+                           plan.rooms[size_t(best->first)].where.str() + ") is not closed: " + buf +
+                           " m² reaching the void around the map dropped");
+        dropped += area[c];
+      }
+      continue;
+    }
+    if (votes[c].size() > 1) {
+      std::string others;
+      for (auto [r, len] : votes[c])
+        if (r != best->first) others += (others.empty() ? "'" : ", '") + plan.rooms[size_t(r)].name + "'";
+      std::snprintf(buf, sizeof buf, "%.2f", area[c]);
+      warnings.push_back("a space of " + std::string(buf) + " m² is claimed by room '" +
+                         plan.rooms[size_t(best->first)].name + "' and by " + others +
+                         " (walls missing between them): given to '" + plan.rooms[size_t(best->first)].name + "'");
+    }
+    room_of_comp[c] = best->first;
+    got[size_t(best->first)] += area[c];
+  }
+  for (size_t r = 0; r < plan.rooms.size(); ++r) {
+    const Room& room = plan.rooms[r];
+    if (room.storey != s || room.label || got[r] > 0) continue;
+    warnings.push_back("room '" + room.name + "' (" + room.where.str() +
+                       ") encloses no space of its own (its walls are missing or claimed by another room): dropped");
+  }
+  if (dropped > 0) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.2f", dropped);
+    warnings.push_back("storey '" + plan.storeys[size_t(s)].name + "': " + buf + " m² of unclosed rooms dropped");
+  }
 }
 
 }  // namespace
@@ -96,7 +177,7 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
     rc.assign(size_t(ncomp), -1);
     for (int r = 0; r < int(plan.rooms.size()); ++r) {
       const Room& room = plan.rooms[size_t(r)];
-      if (room.storey != s) continue;
+      if (room.storey != s || !room.label) continue;
       int t = T.label_tri[size_t(r)];
       if (t < 0) throw PlanError(room.where, "the label point of room '" + room.name + "' is outside the far box");
       if (covered[size_t(s)][size_t(t)])
@@ -110,12 +191,17 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
                                         "' label the same enclosed space");
       rc[size_t(c)] = r;
     }
+    name_by_wall_sides(plan, outline, T, s, cs, outside_comp, rc, C.warnings);
     int unnamed = 0;
     for (int c = 0; c < ncomp; ++c) {
-      if (outside_comp[size_t(c)] || rc[size_t(c)] >= 0) continue;
+      if (outside_comp[size_t(c)] || rc[size_t(c)] >= 0 || plan.outside_solid) continue;
       rc[size_t(c)] = RoomId(C.rooms.size());
       C.rooms.push_back({"space " + std::to_string(++unnamed) + " of " + plan.storeys[size_t(s)].name, s, false, 0});
     }
+    // With a solid outside, spaces that reach the far box are solid even if named.
+    if (plan.outside_solid)
+      for (int c = 0; c < ncomp; ++c)
+        if (outside_comp[size_t(c)]) rc[size_t(c)] = -1;
   }
 
   // --- classes. Shared ones first.
@@ -136,6 +222,15 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
     SpaceClass c;
     c.kind = CellKind::Room;
     c.room = RoomId(r);
+    // A room with its own floor or ceiling (a Doom sector) is free over those heights
+    // only, like a doorway; a room open to the sky is free up to its storey's top.
+    if (r < plan.rooms.size()) {
+      const Room& room = plan.rooms[r];
+      const Storey& st = plan.storeys[size_t(room.storey)];
+      const double lo = st.elevation + room.floor_at;
+      const double hi = room.sky || room.ceiling_at < 0 ? st.elevation + st.height : st.elevation + room.ceiling_at;
+      if (room.floor_at > 0 || (room.ceiling_at >= 0 && !room.sky)) c.open = {{lo, hi}};
+    }
     room_class[r] = add_class(c);
   }
   std::vector<int32_t> hole_class(plan.floor_openings.size());
@@ -155,17 +250,30 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
   for (size_t b = 0; b < C.bands.size(); ++b) {
     const Band& band = C.bands[b];
     auto& of = C.of[b];
-    const int32_t outside = band.outside_free ? (band.kind == Band::Kind::Sky ? kSky : kOutside) : -1;
+    const int32_t outside =
+        band.outside_free && !plan.outside_solid ? (band.kind == Band::Kind::Sky ? kSky : kOutside) : -1;
+    // Above a room open to the sky (outside_solid plans): the sky, up to the box's top.
+    auto sky_over = [&](int t) {
+      if (!plan.outside_solid || band.kind == Band::Kind::Storey || band.kind == Band::Kind::Plinth) return false;
+      for (int st = 0; st < S; ++st) {
+        if (plan.storeys[size_t(st)].elevation + plan.storeys[size_t(st)].height > band.z0 + 1e-9) continue;
+        if (covered[size_t(st)][size_t(t)]) continue;
+        RoomId r = room_of_comp[size_t(st)][size_t(comp[size_t(st)][size_t(t)])];
+        if (r >= 0 && r < RoomId(plan.rooms.size()) && plan.rooms[size_t(r)].sky) return true;
+      }
+      return false;
+    };
     auto footprint = [&](int s, int t) {
       return s >= 0 && s < S && (covered[size_t(s)][size_t(t)] || comp[size_t(s)][size_t(t)] >= 0) &&
              (covered[size_t(s)][size_t(t)] || room_of_comp[size_t(s)][size_t(comp[size_t(s)][size_t(t)])] >= 0);
     };
     for (int t = 0; t < n; ++t) {
       switch (band.kind) {
-        case Band::Kind::Sky: of[size_t(t)] = outside; break;
+        case Band::Kind::Sky: of[size_t(t)] = sky_over(t) ? kSky : outside; break;
         case Band::Kind::Plinth: of[size_t(t)] = footprint(0, t) ? -1 : outside; break;
         case Band::Kind::Slab: {
           const int s = band.storey;
+          if (sky_over(t)) { of[size_t(t)] = kSky; break; }
           if (!footprint(s, t) && !footprint(s + 1, t)) { of[size_t(t)] = outside; break; }
           of[size_t(t)] = -1;
           for (int32_t k = T.hole_start[size_t(t)]; k < T.hole_start[size_t(t) + 1]; ++k) {

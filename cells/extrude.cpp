@@ -130,7 +130,7 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
       // A sliver left by nearly coincident input points (below any built size) stays solid.
       if (o.poly.size() < 3 || signed_area(o.poly) <= kMinArea) continue;
       Intervals iv{{band.z0, band.z1}};
-      if (sc.kind == CellKind::Doorway) iv = intersect(iv, sc.open);
+      if (!sc.open.empty()) iv = intersect(iv, sc.open);
       for (auto [z0, z1] : iv) {
         Cell c;
         c.kind = sc.kind;
@@ -442,13 +442,15 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
       }
     }
   }
-  // Doorway cells whose sill or head lies inside their band: wholly opaque sill and lintel.
+  // Cells whose bottom or top lies inside their band (a doorway's sill and lintel, a
+  // raised room floor, a lowered ceiling): wholly opaque there.
   for (size_t ci = 0; ci < out.cells.size(); ++ci) {
     Cell& c = out.cells[ci];
     const Band& band = C.bands[band_of[ci]];
-    MaterialId mat = -1;
-    if (c.z0 > band.z0 + kZTol) c.faces[c.faces.size() - 2].opaque.push_back({c.faces[c.faces.size() - 2].poly, mat});
-    if (c.z1 < band.z1 - kZTol) c.faces.back().opaque.push_back({c.faces.back().poly, mat});
+    const bool room = c.kind == CellKind::Room && c.room >= 0 && c.room < int(plan.rooms.size());
+    if (c.z0 > band.z0 + kZTol)
+      c.faces[c.faces.size() - 2].opaque.push_back({c.faces[c.faces.size() - 2].poly, room ? floor_material(c, c.z0) : -1});
+    if (c.z1 < band.z1 - kZTol) c.faces.back().opaque.push_back({c.faces.back().poly, room ? ceiling_material(c) : -1});
   }
 
   // Portals on a side face in order along it, so a traversal can look up the few that a

@@ -36,6 +36,7 @@ struct Classes {
   std::vector<std::vector<int32_t>> of;   ///< of[band][triangle]
   std::vector<RoomInfo> rooms;
   std::vector<int32_t> wall_of;           ///< per band*T + t: wall owning a solid triangle of a storey band, or -1
+  std::vector<std::string> warnings;      ///< spaces claimed by two rooms, rooms that leak, area dropped
 };
 
 Classes classify(const Plan& plan, const Outline& outline, const Triangulation& tri);

@@ -87,6 +87,11 @@ struct Wall {
   std::vector<bool> from_arc;   ///< per segment (centre.size()-1): tessellated from an arc
   std::vector<Opening> openings;
   MaterialId material = -1;
+  /// For a wall of no thickness: the rooms (indices into Plan::rooms) on its left and
+  /// right, seen walking from centre.front() to centre.back(); -1 when not said. An
+  /// imported map names its rooms this way (a Doom linedef's sides) instead of by label
+  /// points: an enclosed space with no label takes the room its bounding walls vote for.
+  int left_room = -1, right_room = -1;
   SourceLoc where;
 };
 
@@ -101,7 +106,11 @@ struct FloorOpening {
 struct Room {
   std::string name;
   StoreyId storey = 0;
-  Vec2 label;                    ///< [m] a point inside the room
+  std::optional<Vec2> label;     ///< [m] a point inside the room; none: named by its walls' sides
+  /// The room's own floor and ceiling, above the storey's floor [m]: a Doom sector's
+  /// heights, a raised platform. 0 and < 0 ("the storey's ceiling") for an ordinary room.
+  double floor_at = 0, ceiling_at = -1;
+  bool sky = false;              ///< open to the sky: free up to the top of the far box (Doom's F_SKY1)
   MaterialId floor = -1, ceiling = -1, walls = -1;
   SourceLoc where;
 };
@@ -114,6 +123,9 @@ struct Object {
   Vec3 position;                 ///< [m] storey floor is z = 0 for the object
   Vec3 rotation_deg;             ///< [deg] about x, y, z, applied in that order
   Vec3 scale{1, 1, 1};
+  /// With no mesh: the object is a box this size [m] (x by y, z high), its base centred
+  /// on `position` (furniture whose model is not at hand). Scale and rotation apply.
+  Vec3 box{0, 0, 0};
   MaterialId material = -1;
   SourceLoc where;
 };
@@ -146,6 +158,11 @@ struct Plan {
   std::vector<Object> objects;
   std::vector<Light> lights;
   std::optional<Viewpoint> view;     ///< the plan's default viewpoint, if it names one
+  /// Everything outside the rooms is solid (a Doom map's void): no outside cells, and
+  /// the sky only above rooms open to it. Enclosed spaces no room claims are solid too.
+  bool outside_solid = false;
+  /// What an importer noticed and repaired or dropped (carried into the cell complex).
+  std::vector<std::string> warnings;
 };
 
 /// Reads a plan file (TOML). Throws PlanError naming file, line and element.

@@ -829,13 +829,23 @@ void Reader::read_rooms(const toml::table& root) {
     auto given = Element(*this, *ts[i], element_name("room", {}, static_cast<int>(i))).name_key();
     Element e(*this, *ts[i], element_name("room", given, static_cast<int>(i)));
     if (!given) e.fail_here("room " + std::to_string(i + 1) + " needs a 'name'");
-    e.allow({"name", "storey", "at", "floor", "ceiling", "walls"});
+    e.allow({"name", "storey", "at", "floor", "ceiling", "walls", "floor_at", "ceiling_at"});
     Room r;
     r.name = *given;
     r.where = e.loc();
     r.storey = storey(e, true);
     unique(seen[r.storey], r.name, e, "room");
     r.label = e.point2_of(e.need("at"), "'at'");
+    const double h = plan_.storeys[size_t(r.storey)].height;
+    if (auto v = e.length("floor_at")) {
+      if (!(*v >= 0 && *v < h)) e.fail("floor_at", "'floor_at' must lie from 0 to below the storey's height");
+      r.floor_at = *v;
+    }
+    if (auto v = e.length("ceiling_at")) {
+      if (!(*v > r.floor_at && *v <= h))
+        e.fail("ceiling_at", "'ceiling_at' must lie above 'floor_at' and at most at the storey's height");
+      r.ceiling_at = *v;
+    }
     r.floor = material(e, "floor");
     r.ceiling = material(e, "ceiling");
     r.walls = material(e, "walls");

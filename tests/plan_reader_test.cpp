@@ -183,14 +183,14 @@ void expect_sensible(const Plan& plan) {
       if (r.storey == s) rooms.push_back(&r);
     for (const Room* r : rooms) {
       for (const Wall* w : raster.walls())
-        EXPECT_GT(dist_to_wall(r->label, *w), w->thickness / 2 + 0.05) << r->where.str() << " label in " << w->where.str();
+        EXPECT_GT(dist_to_wall(*r->label, *w), w->thickness / 2 + 0.05) << r->where.str() << " label in " << w->where.str();
       bool leaks = false;
-      regions[s].push_back(raster.fill(r->label, leaks));
+      regions[s].push_back(raster.fill(*r->label, leaks));
       EXPECT_FALSE(regions[s].back().empty()) << r->where.str() << ": label in a wall";
       EXPECT_FALSE(leaks) << r->where.str() << ": room is not enclosed";
       for (const Room* q : rooms)
         if (q != r) {
-          EXPECT_FALSE(raster.inside(regions[s].back(), q->label)) << r->where.str() << " contains " << q->where.str();
+          EXPECT_FALSE(raster.inside(regions[s].back(), *q->label)) << r->where.str() << " contains " << q->where.str();
         }
     }
     // Floor openings: inside a room of their storey and of the one below.
@@ -202,7 +202,7 @@ void expect_sensible(const Plan& plan) {
         for (const Room& r : plan.rooms) {
           if (r.storey != t) continue;
           bool leaks = false;
-          auto region = rt.fill(r.label, leaks);
+          auto region = rt.fill(*r.label, leaks);
           bool all = true;
           for (Vec2 p : f.outline) all = all && rt.inside(region, p);
           in_some = in_some || all;
@@ -496,7 +496,7 @@ position = [200, 100, 250]
   EXPECT_DOUBLE_EQ(w.openings[0].width, 1.5);
   EXPECT_DOUBLE_EQ(w.openings[0].sill, 0.9);  // defaults are in metres, whatever the units
   EXPECT_DOUBLE_EQ(w.openings[0].head, 2.1);
-  EXPECT_DOUBLE_EQ(p.rooms[0].label.x, 2.0);
+  EXPECT_DOUBLE_EQ(p.rooms[0].label->x, 2.0);
   EXPECT_DOUBLE_EQ(p.view->eye.z, 1.6);
   EXPECT_DOUBLE_EQ(p.lights[0].position.z, 2.5);
 
