@@ -58,6 +58,7 @@ CellComplex build_cells(const Plan& plan, [[maybe_unused]] const CellParams& par
     ScopedTimer t(out, "classify");
     cls = classify(plan, outline, tri);
     out.rooms = cls.rooms;
+    out.warnings.insert(out.warnings.end(), cls.warnings.begin(), cls.warnings.end());
   }
   Layout layout;
   {

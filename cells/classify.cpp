@@ -179,16 +179,26 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
       const Room& room = plan.rooms[size_t(r)];
       if (room.storey != s || !room.label) continue;
       int t = T.label_tri[size_t(r)];
-      if (t < 0) throw PlanError(room.where, "the label point of room '" + room.name + "' is outside the far box");
-      if (covered[size_t(s)][size_t(t)])
-        throw PlanError(room.where, "the label point of room '" + room.name + "' is inside a wall");
+      // A mistake: an error naming the room, or in a lenient (imported) plan a warning.
+      auto mistake = [&](const std::string& what) {
+        if (!plan.lenient) throw PlanError(room.where, what);
+        C.warnings.push_back(room.where.str() + ": " + what + ": room dropped");
+      };
+      if (t < 0) { mistake("the label point of room '" + room.name + "' is outside the far box"); continue; }
+      if (covered[size_t(s)][size_t(t)]) { mistake("the label point of room '" + room.name + "' is inside a wall"); continue; }
       int c = cs[size_t(t)];
-      if (outside_comp[size_t(c)])
-        throw PlanError(room.where, "room '" + room.name +
-                                        "' is not enclosed by walls: its label point reaches the outside");
-      if (rc[size_t(c)] >= 0)
-        throw PlanError(room.where, "rooms '" + plan.rooms[size_t(rc[size_t(c)])].name + "' and '" + room.name +
-                                        "' label the same enclosed space");
+      if (outside_comp[size_t(c)]) {
+        mistake("room '" + room.name + "' is not enclosed by walls: its label point reaches the outside");
+        continue;
+      }
+      if (rc[size_t(c)] >= 0) {
+        const std::string what = "rooms '" + plan.rooms[size_t(rc[size_t(c)])].name + "' and '" + room.name +
+                                 "' label the same enclosed space";
+        if (!plan.lenient) throw PlanError(room.where, what);
+        C.warnings.push_back(room.where.str() + ": " + what + " (no wall between them): one room, both names");
+        C.rooms[size_t(rc[size_t(c)])].name += " + " + room.name;
+        continue;
+      }
       rc[size_t(c)] = r;
     }
     name_by_wall_sides(plan, outline, T, s, cs, outside_comp, rc, C.warnings);
@@ -230,6 +240,10 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
       const double lo = st.elevation + room.floor_at;
       const double hi = room.sky || room.ceiling_at < 0 ? st.elevation + st.height : st.elevation + room.ceiling_at;
       if (room.floor_at > 0 || (room.ceiling_at >= 0 && !room.sky)) c.open = {{lo, hi}};
+      if (hi <= lo + 1e-9) {  // a closed Doom door, a lift at its top: no free space at all
+        room_class[r] = -1;
+        continue;
+      }
     }
     room_class[r] = add_class(c);
   }

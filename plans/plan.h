@@ -161,6 +161,9 @@ struct Plan {
   /// Everything outside the rooms is solid (a Doom map's void): no outside cells, and
   /// the sky only above rooms open to it. Enclosed spaces no room claims are solid too.
   bool outside_solid = false;
+  /// An imported plan (Sweet Home 3D): a room label in a wall or outside the walls is a
+  /// warning and the room is dropped; two labels in one space share it (names joined).
+  bool lenient = false;
   /// What an importer noticed and repaired or dropped (carried into the cell complex).
   std::vector<std::string> warnings;
 };

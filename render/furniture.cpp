@@ -72,8 +72,8 @@ Furniture place_furniture(const CellComplex& c) {
   Furniture f;
   std::map<std::string, Mesh> loaded;
   for (const Object& o : c.objects) {
-    auto it = loaded.find(o.mesh);
-    if (it == loaded.end()) it = loaded.emplace(o.mesh, load_object_mesh(o)).first;
+    auto it = loaded.find(mesh_key(o));
+    if (it == loaded.end()) it = loaded.emplace(mesh_key(o), load_object_mesh(o)).first;
     const double floor_z = o.storey >= 0 && size_t(o.storey) < c.storeys.size() ? c.storeys[size_t(o.storey)].elevation : 0;
     FurniturePiece p;
     p.name = o.name;

@@ -22,7 +22,7 @@
 #include "cells/cell_complex.h"
 #include "render/drawing.h"
 #include "render/interval_clip.h"
-#include "render/mesh.h"
+#include "plans/mesh.h"
 #include "visibility/camera.h"
 
 namespace avenues {

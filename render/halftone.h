@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "cells/cell_complex.h"
-#include "render/mesh.h"
+#include "plans/mesh.h"
 #include "render/raster.h"
 #include "render/scene_objects.h"
 #include "render/scene_screen.h"

@@ -20,8 +20,8 @@ std::vector<PlacedObject> place_objects(const CellComplex& complex) {
   std::map<std::string, Mesh> loaded;
   CellId hint = kNoCell;
   for (const Object& o : complex.objects) {
-    auto it = loaded.find(o.mesh);
-    if (it == loaded.end()) it = loaded.emplace(o.mesh, load_object_mesh(o)).first;
+    auto it = loaded.find(mesh_key(o));
+    if (it == loaded.end()) it = loaded.emplace(mesh_key(o), load_object_mesh(o)).first;
     const double floor_z =
         o.storey >= 0 && size_t(o.storey) < complex.storeys.size() ? complex.storeys[size_t(o.storey)].elevation : 0;
     PlacedObject p;

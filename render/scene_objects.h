@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "cells/cell_complex.h"
-#include "render/mesh.h"
+#include "plans/mesh.h"
 
 namespace avenues {
 

@@ -15,7 +15,7 @@
 #include "plans/geometry.h"
 #include "plans/plan.h"
 #include "render/halftone.h"
-#include "render/mesh.h"
+#include "plans/mesh.h"
 #include "render/scene_objects.h"
 #include "visibility/camera.h"
 

@@ -1,10 +1,11 @@
 // Avenues — reading meshes with OpenMesh (see mesh.h).
-#include "render/mesh.h"
+#include "plans/mesh.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <stdexcept>
@@ -73,7 +74,43 @@ Mesh load_mesh(const std::string& path) {
   return m;
 }
 
+Mesh box_mesh(Vec3 size) {
+  Mesh m;
+  m.path = mesh_key_of_box(size);
+  const double x = size.x / 2, y = size.y / 2, z = size.z;
+  m.vertices = {{-x, -y, 0}, {x, -y, 0}, {x, y, 0}, {-x, y, 0}, {-x, -y, z}, {x, -y, z}, {x, y, z}, {-x, y, z}};
+  // Counter-clockwise seen from outside: bottom, top, then the four sides.
+  const int quads[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  for (int q = 0; q < 6; ++q) {
+    m.triangles.push_back({quads[q][0], quads[q][1], quads[q][2]});
+    m.triangles.push_back({quads[q][0], quads[q][2], quads[q][3]});
+    m.polygon_of.push_back(q);
+    m.polygon_of.push_back(q);
+  }
+  for (Vec3 v : m.vertices) {
+    Vec3 n{v.x / std::max(x, 1e-12), v.y / std::max(y, 1e-12), v.z > 0 ? 1.0 : -1.0};
+    m.vertex_normals.push_back((1.0 / length(n)) * n);
+  }
+  m.closed = true;
+  return m;
+}
+
+std::string mesh_key_of_box(Vec3 size) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "box %.6g x %.6g x %.6g", size.x, size.y, size.z);
+  return buf;
+}
+
+std::string mesh_key(const Object& object) {
+  return object.mesh.empty() ? mesh_key_of_box(object.box) : object.mesh;
+}
+
 Mesh load_object_mesh(const Object& object) {
+  if (object.mesh.empty()) {
+    if (!(object.box.x > 0 && object.box.y > 0 && object.box.z > 0))
+      throw std::runtime_error(object.where.str() + ": object '" + object.name + "' has neither a mesh nor a box size");
+    return box_mesh(object.box);
+  }
   try {
     return load_mesh(object.mesh);
   } catch (const std::runtime_error& e) {

@@ -29,7 +29,14 @@ struct Mesh {
 /// file for a missing, unreadable or empty mesh.
 Mesh load_mesh(const std::string& path);
 
-/// The mesh of a plan's object; a failure names the object's place in the plan too
+/// A box `size` large (x by y, z high), its base centred on the origin: furniture known
+/// only by its dimensions. Its path is mesh_key_of_box(size).
+Mesh box_mesh(Vec3 size);
+std::string mesh_key_of_box(Vec3 size);
+/// What identifies an object's mesh, for loading each only once: its file, or its box.
+std::string mesh_key(const Object& object);
+
+/// The mesh of a plan's object (a box when it names no file, Object::box); a failure names the object's place in the plan too
 /// ("house.toml:62:1 (object 'table'): cannot read mesh ...").
 Mesh load_object_mesh(const Object& object);
 
