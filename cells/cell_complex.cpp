@@ -64,6 +64,11 @@ bool in_convex(const std::vector<Vec2>& poly, Vec2 p, double tol) {
 
 bool Cell::contains(Vec3 p, double tol) const {
   if (p.z < z0 - tol || p.z > z1 + tol) return false;
+  if (!prism) {  // a general convex polyhedron: inside every face's plane
+    for (const Face& f : faces)
+      if (f.plane.eval(p) > tol) return false;
+    return true;
+  }
   return in_convex(footprint, {p.x, p.y}, tol);
 }
 

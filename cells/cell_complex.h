@@ -102,6 +102,10 @@ struct Cell {
   std::vector<PortalId> portals; ///< all portals of all faces
   std::vector<CellLine> lines;   ///< real lines on the cell's boundary
   int opening = -1;              ///< for Doorway/Stairwell cells: plan element index
+  /// false: a general convex polyhedron (a mesh scene's cell, cells/mesh_scene.h). Its
+  /// faces are all there is, in no particular order; `footprint` is its outline seen from
+  /// above and z0..z1 its range of heights, for drawings and indexing only.
+  bool prism = true;
 
   Box3 bounds() const;
   /// Closed containment with tolerance tol [m] (positive grows the cell).
