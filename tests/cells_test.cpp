@@ -7,6 +7,7 @@
 #include <set>
 
 #include "cells/build_cells.h"
+#include "plans/plan.h"
 #include "test_plans.h"
 
 using namespace avenues;
@@ -309,4 +310,165 @@ TEST(Cells, ASheetMeetingAFlatWallDrawsTheCornerOnItsOwnSideOnly) {
       if (l.a.x == 4 && l.b.x == 4 && l.a.y == 3 && l.b.y == 3 && cell.kind == CellKind::Room) seen_from.insert(cell.room);
     }
   EXPECT_EQ(seen_from, (std::set<RoomId>{1, 2})) << "the west room's wall is flat at (4, 3)";
+}
+
+// --- Rooms with their own floor and ceiling, named by wall sides, a solid outside:
+// what an imported Doom map needs (cells/doom_map.h builds such plans from sectors).
+namespace {
+
+/// Two 4 m × 4 m "sectors" sharing the line x = 4, walls of no thickness, no labels:
+/// the west one's floor at 0.5 m and ceiling at 2.0 m, the east one's 0 to 2.5 m (sky).
+Plan two_sectors(bool east_sky) {
+  Plan p;
+  p.name = "two sectors";
+  p.far_margin = 1;
+  p.outside_solid = true;
+  p.storeys.push_back({"map", 0, 3.0, 0, {}});
+  Room west, east;
+  west.name = "west";
+  west.floor_at = 0.5;
+  west.ceiling_at = 2.0;
+  east.name = "east";
+  east.ceiling_at = 2.5;
+  east.sky = east_sky;
+  p.rooms = {west, east};
+  // Outer boundary counter-clockwise: the inside is on each line's left.
+  auto line = [&](Vec2 a, Vec2 b, int left, int right) {
+    Wall w = wall("line " + std::to_string(p.walls.size()), {a, b}, 0);
+    w.left_room = left;
+    w.right_room = right;
+    return w;
+  };
+  p.walls = {line({0, 0}, {4, 0}, 0, -1), line({4, 0}, {8, 0}, 1, -1), line({8, 0}, {8, 4}, 1, -1),
+             line({8, 4}, {4, 4}, 1, -1), line({4, 4}, {0, 4}, 0, -1), line({0, 4}, {0, 0}, 0, -1)};
+  Wall shared = line({4, 0}, {4, 4}, 0, 1);  // west on its left walking north
+  shared.openings.push_back(opening("step", OpeningKind::Gap, 0, 4, 0, 3.0));
+  p.walls.push_back(shared);
+  return p;
+}
+
+}  // namespace
+
+TEST(Cells, SectorRoomsSpanTheirOwnHeightsAndMeetOverTheOverlap) {
+  Plan p = two_sectors(false);
+  CellComplex c = build_cells(p);
+  ASSERT_EQ(cells_are_valid(c), "");
+  EXPECT_TRUE(c.warnings.empty()) << c.warnings.front();
+  double west_lo = 1e9, west_hi = -1e9;
+  int outside = 0;
+  for (const Cell& cell : c.cells) {
+    outside += cell.kind == CellKind::Outside || cell.kind == CellKind::Sky;
+    if (cell.kind == CellKind::Room && cell.room == 0) {
+      west_lo = std::min(west_lo, cell.z0);
+      west_hi = std::max(west_hi, cell.z1);
+    }
+  }
+  EXPECT_EQ(outside, 0) << "the void around a map is solid";
+  EXPECT_DOUBLE_EQ(west_lo, 0.5);
+  EXPECT_DOUBLE_EQ(west_hi, 2.0);
+  EXPECT_NEAR(c.rooms[0].area, 16, 1e-9);
+  EXPECT_NEAR(c.rooms[1].area, 16, 1e-9);
+  // The portal between them spans the overlap of 0.5..2.0 and 0..2.5.
+  int between = 0;
+  for (const Portal& po : c.portals) {
+    const Cell &a = c.cells[size_t(po.cell[0])], &b = c.cells[size_t(po.cell[1])];
+    if (a.room == b.room) continue;
+    ++between;
+    double lo = 1e9, hi = -1e9;
+    for (Vec3 v : po.poly) lo = std::min(lo, v.z), hi = std::max(hi, v.z);
+    EXPECT_DOUBLE_EQ(lo, 0.5);
+    EXPECT_DOUBLE_EQ(hi, 2.0);
+  }
+  EXPECT_GE(between, 1);
+  // Inside the raised floor is solid; above the west ceiling is solid.
+  EXPECT_EQ(c.locate({2, 2, 0.25}).what, Location::What::Solid);
+  EXPECT_EQ(c.locate({2, 2, 2.5}).what, Location::What::Solid);
+  EXPECT_EQ(c.locate({2, 2, 1.0}).what, Location::What::Cell);
+  EXPECT_EQ(c.locate({-0.5, 2, 1.0}).what, Location::What::Solid) << "outside the map";
+}
+
+TEST(Cells, ASkyRoomOpensToTheSkyAboveItOnly) {
+  CellComplex c = build_cells(two_sectors(true));
+  ASSERT_EQ(cells_are_valid(c), "");
+  const Location above_east = c.locate({6, 2, 3.5}), above_west = c.locate({2, 2, 3.5});
+  ASSERT_EQ(above_east.what, Location::What::Cell);
+  EXPECT_EQ(c.cells[size_t(above_east.cell)].kind, CellKind::Sky);
+  EXPECT_EQ(above_west.what, Location::What::Solid);
+  // The east room reaches its storey's top (3 m) to meet the sky through a portal.
+  const Location in_east = c.locate({6, 2, 2.8});
+  ASSERT_EQ(in_east.what, Location::What::Cell);
+  EXPECT_EQ(c.cells[size_t(in_east.cell)].room, 1);
+}
+
+TEST(Cells, UnclosedSectorsAndSpacesClaimedTwiceAreWarnedAbout) {
+  Plan p = two_sectors(false);
+  p.walls.back().right_room = 1;  // the shared line now says east on both sides
+  p.walls.back().openings.clear();
+  p.walls.back().left_room = 1;
+  p.walls[0].left_room = 1;       // the west space: claimed by west (2 lines) and east (2 lines)
+  p.walls[4].left_room = 1;
+  CellComplex c = build_cells(p);
+  ASSERT_EQ(cells_are_valid(c), "");
+  bool claimed = false;
+  for (const std::string& w : c.warnings) claimed |= w.find("claimed by room") != std::string::npos;
+  EXPECT_TRUE(claimed);
+
+  Plan leaky = two_sectors(false);
+  leaky.walls.erase(leaky.walls.begin() + 5);  // the west side of the west sector is missing
+  CellComplex d = build_cells(leaky);
+  ASSERT_EQ(cells_are_valid(d), "");
+  bool dropped = false;
+  for (const std::string& w : d.warnings) dropped |= w.find("m² of unclosed rooms dropped") != std::string::npos;
+  EXPECT_TRUE(dropped);
+  EXPECT_EQ(d.locate({2, 2, 1.0}).what, Location::What::Solid) << "the leaking sector is dropped";
+  EXPECT_EQ(d.locate({6, 2, 1.0}).what, Location::What::Cell);
+}
+
+TEST(Cells, ARoomWhoseFloorMeetsItsCeilingIsSolid) {
+  Plan p = two_sectors(false);
+  p.rooms[0].ceiling_at = 0.5;  // a closed door: floor and ceiling at 0.5 m
+  CellComplex c = build_cells(p);
+  ASSERT_EQ(cells_are_valid(c), "");
+  for (const Cell& cell : c.cells) EXPECT_NE(cell.room, 0);
+  EXPECT_EQ(c.locate({2, 2, 0.5}).what, Location::What::Solid);
+}
+
+TEST(Cells, LenientPlansTurnRoomLabelMistakesIntoWarnings) {
+  Plan p = two_rooms_one_door(0.2);
+  p.rooms.push_back(room("terrace", {10, 2}));   // outside the walls
+  p.rooms.push_back(room("nook", {2.5, 2.5}));   // in the same space as 'west'
+  EXPECT_THROW(build_cells(p), PlanError);
+  p.lenient = true;
+  CellComplex c = build_cells(p);
+  ASSERT_EQ(cells_are_valid(c), "");
+  ASSERT_EQ(c.warnings.size(), 2u);
+  EXPECT_NE(c.warnings[0].find("terrace"), std::string::npos);
+  EXPECT_NE(c.warnings[1].find("nook"), std::string::npos);
+  EXPECT_EQ(c.rooms[0].name, "west + nook");
+}
+
+TEST(Cells, RaisedFloorsAndLoweredCeilingsInATomlPlan) {
+  const std::string text = R"(
+name = "platform"
+[[storey]]
+name = "ground"
+height = 3.0
+[[wall]]
+name = "box"
+thickness = 0.2
+path = [[0, 0], [4, 0], [4, 4], [0, 4], [0, 0]]
+[[room]]
+name = "stage"
+at = [2, 2]
+floor_at = 0.4
+ceiling_at = 2.6
+)";
+  CellComplex c = build_cells(parse_plan(text, "platform.toml"));
+  ASSERT_EQ(cells_are_valid(c), "");
+  for (const Cell& cell : c.cells)
+    if (cell.kind == CellKind::Room) {
+      EXPECT_DOUBLE_EQ(cell.z0, 0.4);
+      EXPECT_DOUBLE_EQ(cell.z1, 2.6);
+    }
+  EXPECT_THROW(parse_plan(std::string(text).replace(text.find("0.4"), 3, "3.5"), "platform.toml"), PlanError);
 }
