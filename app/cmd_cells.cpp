@@ -90,6 +90,7 @@ nlohmann::json summary_json(const LoadedPlan& plan) {
     stages[t.stage] = stages.value(t.stage, 0.0) + t.seconds;
   j["stages"] = stages;
   j["seconds"] = plan.seconds();
+  j["warnings"] = c.warnings;
   return j;
 }
 

@@ -4,9 +4,16 @@
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <regex>
+#include <iterator>
+#include <sstream>
+#include <vector>
 #include <map>
 #include <stdexcept>
 
@@ -24,8 +31,90 @@ Vec3 rotate(Vec3 p, Vec3 deg) {
 }
 }  // namespace
 
+namespace {
+
+bool whole_integer(const std::string& t, long long& v) {
+  char* end = nullptr;
+  v = std::strtoll(t.c_str(), &end, 10);
+  return !t.empty() && *end == '\0';
+}
+
+bool whole_number(const std::string& t) {
+  char* end = nullptr;
+  const double v = std::strtod(t.c_str(), &end);
+  return !t.empty() && *end == '\0' && std::isfinite(v);
+}
+
+/// OpenMesh's ASCII OFF reader trusts its input: a negative face size ("-1 1 1"), a
+/// token like "2-1", a file cut short or a stray control byte (all found by fuzzing,
+/// tests/fuzz/regressions/mesh/) make it allocate until memory runs out. So an ASCII
+/// OFF file is checked here first, strictly — the header, then every vertex line (three
+/// or more numbers) and every face line (a count, that many vertex indices, optional
+/// colour numbers), one per line as every OFF writer puts them — and the reading is
+/// left to OpenMesh.
+void check_off(const std::string& path) {
+  auto bad = [&](const std::string& what) { throw std::runtime_error("cannot read mesh " + path + ": " + what); };
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  int lineno = 0;
+  std::vector<std::string> tok;
+  auto next_line = [&]() {
+    while (std::getline(in, line)) {
+      ++lineno;
+      for (char ch : line)
+        if (static_cast<unsigned char>(ch) < 32 && ch != '\t' && ch != '\r')
+          bad("line " + std::to_string(lineno) + " holds a control character");
+      const size_t hash = line.find('#');
+      if (hash != std::string::npos) line.erase(hash);
+      std::istringstream ls(line);
+      tok.assign(std::istream_iterator<std::string>(ls), std::istream_iterator<std::string>());
+      if (!tok.empty()) return true;
+    }
+    return false;
+  };
+  auto at = [&]() { return "line " + std::to_string(lineno) + ": "; };
+  if (!next_line()) return;  // empty: OpenMesh refuses it
+  // [ST][C][N][4][n]OFF [BINARY], the counts on this line or the next.
+  if (!std::regex_match(tok[0], std::regex("(ST)?C?N?4?n?OFF"))) bad("it does not start with an OFF header");
+  if (line.find("BINARY") != std::string::npos || tok[0].find("nOFF") != std::string::npos) return;
+  std::vector<std::string> counts(tok.begin() + 1, tok.end());
+  if (counts.empty()) {
+    if (!next_line()) bad("it ends before its vertex and face counts");
+    counts = tok;
+  }
+  long long nv = -1, nf = -1;
+  constexpr long long kMax = 100'000'000;
+  if (counts.size() < 2 || !whole_integer(counts[0], nv) || !whole_integer(counts[1], nf) || nv < 0 || nf < 0 ||
+      nv > kMax || nf > kMax)
+    bad(at() + "the vertex and face counts are not two whole numbers");
+  for (long long i = 0; i < nv; ++i) {
+    if (!next_line()) bad("it ends after " + std::to_string(i) + " of its " + std::to_string(nv) + " vertices");
+    if (tok.size() < 3) bad(at() + "a vertex needs three coordinates");
+    for (const std::string& t : tok)
+      if (!whole_number(t)) bad(at() + "'" + t + "' is not a number");
+  }
+  for (long long f = 0; f < nf; ++f) {
+    if (!next_line()) bad("it ends after " + std::to_string(f) + " of its " + std::to_string(nf) + " faces");
+    long long k = 0;
+    if (!whole_integer(tok[0], k) || k < 1 || k > 1'000'000) bad(at() + "a face needs a vertex count");
+    if (tok.size() < size_t(k) + 1) bad(at() + "the face lists fewer than its " + std::to_string(k) + " vertices");
+    for (size_t j = 1; j <= size_t(k); ++j) {
+      long long v = -1;
+      if (!whole_integer(tok[j], v) || v < 0 || v >= nv)
+        bad(at() + "'" + tok[j] + "' is not a vertex number from 0 to " + std::to_string(nv - 1));
+    }
+    for (size_t j = size_t(k) + 1; j < tok.size(); ++j)
+      if (!whole_number(tok[j])) bad(at() + "'" + tok[j] + "' is not a colour number");
+  }
+}
+
+}  // namespace
+
 Mesh load_mesh(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) throw std::runtime_error("cannot read mesh " + path + ": no such file");
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  if (ext == ".off") check_off(path);
   PolyMesh pm;
   OpenMesh::IO::Options opt;
   if (!OpenMesh::IO::read_mesh(pm, path, opt))
