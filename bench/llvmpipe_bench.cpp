@@ -1,4 +1,5 @@
-// Avenues — the half-tone frame against a z-buffer drawing the whole building (Google Benchmark).
+// Avenues — the half-tone frame against peers drawing the whole building (Google Benchmark):
+// Mesa's llvmpipe with a z-buffer, and Embree casting one ray per pixel (issue 8).
 //
 //   ./build/bench/avenues_bench --benchmark_filter=Llvmpipe
 //
@@ -6,8 +7,9 @@
 // the scanline half-tone (flat shading, one sample per pixel, 2 threads) — 20× faster than
 // Mesa's llvmpipe (OSMesa, 2 threads) drawing every opaque triangle of the building with a
 // 24-bit z-buffer and no culling, on the same 1920 × 1080 view of the generated 100 × 100
-// room office. Each plan has two benchmarks, Llvmpipe/<plan>/avenues and .../llvmpipe; the
-// ratio is the quotient of their medians.
+// room office. Each plan has three benchmarks, Llvmpipe/<plan>/avenues, .../llvmpipe and
+// .../embree (bench/embree_peer.h: a ray per pixel centre into a BVH of every opaque
+// triangle, 2 threads); the ratios are the quotients of their medians.
 //
 // Before timing, each plan's view is checked once: neither picture may be uniform, and the
 // llvmpipe item picture (each triangle painted with the face or object polygon it
@@ -25,6 +27,7 @@
 #include <map>
 #include <memory>
 
+#include "bench/embree_peer.h"
 #include "bench/llvmpipe_peer.h"
 #include "cells/build_cells.h"
 #include "plans/generate.h"
@@ -96,6 +99,33 @@ LlvmpipePeer& peer_of(const std::string& key) {
   return *slot;
 }
 
+/// Avenues' picture of a plan's view with its item buffer (which polygon each pixel shows):
+/// the same polygons render_view puts on the raster. Computed once per plan.
+struct AvenuesItems {
+  ScreenScene scene;
+  Image picture;
+  std::vector<int32_t> items;
+  long triangles = 0;  ///< fan triangles of the polygons on the raster
+};
+
+HalftoneOptions avenues_options();
+
+const AvenuesItems& avenues_items(const std::string& key) {
+  static auto* cache = new std::map<std::string, std::unique_ptr<AvenuesItems>>;
+  auto& slot = (*cache)[key];
+  if (!slot) {
+    const PlanView& pv = plan_view(key);
+    auto a = std::make_unique<AvenuesItems>();
+    const HalftoneOptions options = avenues_options();
+    const VisibleSet visible = find_visible(pv.complex, pv.camera, pv.eye_cell);
+    a->scene = screen_scene_of_view(pv.complex, pv.objects, pv.camera, visible, scene_options(options));
+    for (const ScreenPolygon& p : a->scene.polygons) a->triangles += long(p.outline.size()) - 2;
+    render_scene(a->scene, options, a->picture, nullptr, &a->items);
+    slot = std::move(a);
+  }
+  return *slot;
+}
+
 /// What the once-per-plan check found.
 struct Check {
   std::string error;          ///< non-empty: a picture was not drawn
@@ -112,36 +142,10 @@ bool uniform(const std::vector<uint8_t>& data, int channels) {
   return true;
 }
 
-const Check& check_of(const std::string& key) {
-  static auto* cache = new std::map<std::string, Check>;
-  auto found = cache->find(key);
-  if (found != cache->end()) return found->second;
-  Check& k = (*cache)[key];
-  const PlanView& pv = plan_view(key);
-  if (pv.eye_cell == kNoCell) {
-    k.error = key + ": the eye is not in a cell";
-    return k;
-  }
-  LlvmpipePeer& peer = peer_of(key);
-  peer.draw(pv.camera);
-  if (uniform(peer.read_rgba(), 4)) k.error = key + ": the llvmpipe frame is uniform";
-
-  // Avenues' picture with its item buffer: the same polygons render_view puts on the raster.
-  const HalftoneOptions options = avenues_options();
-  const VisibleSet visible = find_visible(pv.complex, pv.camera, pv.eye_cell);
-  const ScreenScene scene = screen_scene_of_view(pv.complex, pv.objects, pv.camera, visible, scene_options(options));
-  for (const ScreenPolygon& p : scene.polygons) k.avenues_triangles += long(p.outline.size()) - 2;
-  Image picture;
-  std::vector<int32_t> items;
-  render_scene(scene, options, picture, nullptr, &items);
-  if (k.error.empty() && uniform(picture.data, picture.channels)) k.error = key + ": the Avenues frame is uniform";
-  if (items.size() != size_t(kWidth) * kHeight) {
-    k.error = key + ": Avenues' item buffer is not one sample per pixel";
-    return k;
-  }
-
-  peer.draw_ids(pv.camera);
-  const std::vector<int32_t> ids = peer.read_ids();
+/// Compares Avenues' item buffer with a peer's per-pixel sources (either peer: they number
+/// sources alike) into k's agreement fractions and covered-pixel counts.
+template <class Peer>
+void agree(const PlanView& pv, const AvenuesItems& av, const Peer& peer, const std::vector<int32_t>& ids, Check& k) {
   // Two faces are one surface when they lie in one plane, facing either way: the two sides
   // of a zero-thickness wall, which a z-buffer without culling draws both of.
   auto plane_of = [&](int32_t s) -> const Plane* {
@@ -157,10 +161,11 @@ const Check& check_of(const std::string& key) {
     return std::fabs(std::fabs(dot(pa->n, pp->n)) - 1) < 1e-9 && std::fabs(pa->d - s * pp->d) < 1e-6;
   };
   long same_coverage = 0, same_face = 0, same_surface = 0;
+  k.avenues_covered = k.peer_covered = 0;
   for (size_t i = 0; i < ids.size(); ++i) {
     int32_t a = -1;  // Avenues' source as the peer's source index (-2: one the peer does not have)
-    if (items[i] >= 0) {
-      const PolygonSource& s = scene.sources[size_t(items[i])];
+    if (av.items[i] >= 0) {
+      const PolygonSource& s = av.scene.sources[size_t(av.items[i])];
       a = s.kind == PolygonSource::Kind::Face     ? peer.source_index({0, s.cell, s.face})
           : s.kind == PolygonSource::Kind::Object ? peer.source_index({1, s.mesh, s.polygon})
                                                   : -2;
@@ -177,6 +182,31 @@ const Check& check_of(const std::string& key) {
   k.coverage_agree = double(same_coverage) / n;
   k.face_agree = double(same_face) / n;
   k.surface_agree = double(same_surface) / n;
+}
+
+const Check& check_of(const std::string& key) {
+  static auto* cache = new std::map<std::string, Check>;
+  auto found = cache->find(key);
+  if (found != cache->end()) return found->second;
+  Check& k = (*cache)[key];
+  const PlanView& pv = plan_view(key);
+  if (pv.eye_cell == kNoCell) {
+    k.error = key + ": the eye is not in a cell";
+    return k;
+  }
+  LlvmpipePeer& peer = peer_of(key);
+  peer.draw(pv.camera);
+  if (uniform(peer.read_rgba(), 4)) k.error = key + ": the llvmpipe frame is uniform";
+
+  const AvenuesItems& av = avenues_items(key);
+  k.avenues_triangles = av.triangles;
+  if (k.error.empty() && uniform(av.picture.data, av.picture.channels)) k.error = key + ": the Avenues frame is uniform";
+  if (av.items.size() != size_t(kWidth) * kHeight) {
+    k.error = key + ": Avenues' item buffer is not one sample per pixel";
+    return k;
+  }
+  peer.draw_ids(pv.camera);
+  agree(pv, av, peer, peer.read_ids(), k);
   std::fprintf(stderr,
                "llvmpipe peer check %s: agree on coverage %.6f, face %.6f, surface %.6f (pixels covered: "
                "avenues %ld, llvmpipe %ld)\n",
@@ -231,6 +261,67 @@ void llvmpipe_frame(benchmark::State& state, const std::string& key) {
   state.counters["surface_agree"] = check.surface_agree;
 }
 
+/// The Embree peer with the plan's triangles in its BVH, one per plan (2 threads, as the others).
+EmbreePeer& embree_of(const std::string& key) {
+  static auto* cache = new std::map<std::string, std::unique_ptr<EmbreePeer>>;
+  auto& slot = (*cache)[key];
+  if (!slot) {
+    auto peer = std::make_unique<EmbreePeer>(kWidth, kHeight, 2);
+    const PlanView& pv = plan_view(key);
+    peer->upload(pv.complex, pv.objects);
+    std::fprintf(stderr, "embree peer: %s: %ld triangles\n", key.c_str(), peer->triangles());
+    slot = std::move(peer);
+  }
+  return *slot;
+}
+
+/// The Embree frame checked once against Avenues' item buffer, as the llvmpipe one is.
+const Check& embree_check_of(const std::string& key) {
+  static auto* cache = new std::map<std::string, Check>;
+  auto found = cache->find(key);
+  if (found != cache->end()) return found->second;
+  Check& k = (*cache)[key];
+  const PlanView& pv = plan_view(key);
+  if (pv.eye_cell == kNoCell) {
+    k.error = key + ": the eye is not in a cell";
+    return k;
+  }
+  EmbreePeer& peer = embree_of(key);
+  peer.draw(pv.camera);
+  if (uniform(peer.frame(), 1)) k.error = key + ": the Embree frame is uniform";
+  const AvenuesItems& av = avenues_items(key);
+  agree(pv, av, peer, peer.read_ids(), k);
+  std::fprintf(stderr,
+               "embree peer check %s: agree on coverage %.6f, face %.6f, surface %.6f (pixels covered: "
+               "avenues %ld, embree %ld)\n",
+               key.c_str(), k.coverage_agree, k.face_agree, k.surface_agree, k.avenues_covered, k.peer_covered);
+  if (k.error.empty() && (k.coverage_agree < 0.95 || k.surface_agree < 0.95))
+    k.error = key + ": the Embree and Avenues pictures differ on more than 5% of the pixels";
+  return k;
+}
+
+/// (c) Embree: a ray per pixel into the BVH of the whole building, every frame.
+void embree_frame(benchmark::State& state, const std::string& key) {
+  const Check& check = embree_check_of(key);
+  if (!check.error.empty()) {
+    state.SkipWithError(check.error.c_str());
+    return;
+  }
+  const PlanView& pv = plan_view(key);
+  EmbreePeer& peer = embree_of(key);
+  for (auto _ : state) {
+    peer.draw(pv.camera);
+    benchmark::DoNotOptimize(peer.frame().data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["triangles"] = double(peer.triangles());
+  state.counters["pixels"] = double(check.peer_covered);
+  state.counters["frame_pixels"] = double(kWidth) * kHeight;
+  state.counters["coverage_agree"] = check.coverage_agree;
+  state.counters["face_agree"] = check.face_agree;
+  state.counters["surface_agree"] = check.surface_agree;
+}
+
 int register_all() {
   for (const auto& [name, key] : std::map<std::string, std::string>{
            {"jones_house", "jones-house.toml"}, {"office_corridor", "office-corridor.toml"}, {"office100x100", "office:100"}}) {
@@ -239,6 +330,9 @@ int register_all() {
         ->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(3)->ReportAggregatesOnly(true);
     benchmark::RegisterBenchmark(("Llvmpipe/" + name + "/llvmpipe").c_str(),
                                  [key = key](benchmark::State& s) { llvmpipe_frame(s, key); })
+        ->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(3)->ReportAggregatesOnly(true);
+    benchmark::RegisterBenchmark(("Llvmpipe/" + name + "/embree").c_str(),
+                                 [key = key](benchmark::State& s) { embree_frame(s, key); })
         ->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(3)->ReportAggregatesOnly(true);
   }
   return 0;
