@@ -7,7 +7,9 @@
 
 #include <iosfwd>
 #include <optional>
+#include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
@@ -74,8 +76,46 @@ struct PathOptions {
 };
 int run_path(const PathOptions& opt);
 
+/// Keyframes from a text file: one per line, "EX EY EZ LX LY LZ" (eye, then the point it
+/// looks at, in metres), '#' starts a comment (cmd_path.cpp). Throws PlanError naming the file and line.
+std::vector<std::pair<Vec3, Vec3>> read_keys(const std::string& file);
+
+/// `avenues walk [PLAN]`: the interactive walkthrough window.
+struct WalkOptions {
+  std::string plan;
+  std::string size = "1280x720";       ///< the window's first size; frames follow the window
+  std::string eye, look;               ///< "X,Y,Z"; empty: the plan's default viewpoint
+  double fov = -1;                     ///< [deg]; <= 0: the viewpoint's
+  bool fly = false;                    ///< start in fly mode (else walk)
+  bool lines = false;                  ///< start with the hidden-line drawing (else half-tone)
+  std::string stereo = "mono";         ///< start in mono, side-by-side or anaglyph
+  bool progressive = false;            ///< start with progressive display (cell by cell)
+  int progressive_rate = 1;            ///< avenues added per swap in progressive display, >= 1
+  bool hud = true;                     ///< the status line
+  bool vsync = true;
+  std::string script;                  ///< a key-event file to replay (app/script.h)
+  std::optional<uint32_t> random_input;  ///< replay random input from this seed instead
+  long frames = 0;                     ///< > 0: quit after this many frames
+  double dt = 0;                       ///< [s] > 0: fixed time step; 0: 1/60 with a script or --frames, else real time
+  std::string screenshot;              ///< write the last frame shown (PNG) at the end
+  std::string stats_json;              ///< frame times, memory, the last pose, as JSON
+  std::string out_dir = "avenues-out"; ///< where F2, F3 and F4 write
+  std::string record;                  ///< keyframe file for K; default OUT_DIR/<plan>-keys.txt
+  int samples = 1;                     ///< half-tone: 1, 4 or 16
+  std::string shading = "flat";
+  std::string kernel = "double";
+  double interocular = 0.065;          ///< [m]
+  double converge = 2.0;               ///< [m]
+};
+int run_walk(const WalkOptions& opt);
+/// The walkthrough window on a loaded plan. Returns false, with the reason in `why`, when no
+/// window could be opened (no display); otherwise the exit status in `status`.
+bool run_walkthrough(const LoadedPlan& plan, const WalkOptions& opt, int& status, std::string& why);
+
 /// `avenues bench papers [--threads N] [--repeats N]`: the papers' scenes beside their figures.
 int run_bench_papers(int threads, int repeats);
+/// `avenues bench walk [PLAN...] [--frames N] [--size WxH]`: frame times of the walkthrough window.
+int run_bench_walk(const std::vector<std::string>& plans, long frames, const std::string& size);
 /// The camera and eye cell a view option set resolves to.
 struct ViewSetup {
   Viewpoint viewpoint;

@@ -5,6 +5,8 @@
 //   avenues export PLAN -o FILE.obj
 //   avenues path [PLAN] --through ROOM,ROOM,... [-o DIR] [--format png|svg]
 //   avenues view PLAN [--eye X,Y,Z --look X,Y,Z] [--kernel K] [--stats-json F] [--overlay F.svg]
+//   avenues walk [PLAN] [--script FILE] [--frames N --screenshot F.png] ...
+//   avenues bench papers | accuracy [--quick] | walk [PLAN...]
 //   avenues generate office --rooms ROWSxCOLS -o FILE.toml
 //
 // Exit status: 0 on success, 2 for a bad command line or bad input (a plan mistake,
@@ -16,6 +18,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/accuracy.h"
 #include "app/commands.h"
 #include "plans/plan.h"
 
@@ -29,7 +32,8 @@ int main(int argc, char** argv) {
       "Avenues: an architectural walkthrough tool. It decomposes a building plan's free\n"
       "space into convex cells joined by convex portals (Jones 1971).\n"
       "Without a subcommand it runs the main job on PLAN (default: the bundled\n"
-      "plans/jones-house.toml): prints a summary and writes avenues-out/<plan>-plan.svg.",
+      "plans/jones-house.toml): prints a summary and opens the walkthrough window when\n"
+      "there is a display; without one it writes avenues-out/<plan>-plan.svg and the view.",
       "avenues"};
   app.set_version_flag("--version", "avenues 0.1");
   app.require_subcommand(0, 1);
@@ -92,12 +96,61 @@ int main(int argc, char** argv) {
   path->add_option("--fov", path_opt.fov, "horizontal field of view in degrees")->capture_default_str();
   path->add_option("--kernel", path_opt.kernel, "arithmetic of the traversal")->capture_default_str();
 
+  WalkOptions walk_opt;
+  CLI::App* walk = app.add_subcommand("walk", "walk through PLAN in a window (H in the window lists the controls)");
+  walk->add_option("PLAN", walk_opt.plan, "plan (.toml) or saved cells (.cells); default: the bundled plan");
+  walk->add_option("--size", walk_opt.size, "the window's size in pixels")->type_name("WxH")->capture_default_str();
+  walk->add_option("--eye", walk_opt.eye, "where to start; default: the plan's viewpoint")->type_name("X,Y,Z");
+  walk->add_option("--look", walk_opt.look, "what to look at first")->type_name("X,Y,Z");
+  walk->add_option("--fov", walk_opt.fov, "horizontal field of view in degrees");
+  walk->add_flag("--fly", walk_opt.fly, "start in fly mode (anywhere in free space) instead of walk mode");
+  walk->add_flag("--lines", walk_opt.lines, "start with the hidden-line drawing instead of the half-tone picture");
+  walk->add_option("--stereo", walk_opt.stereo, "start in mono, side-by-side or anaglyph")->capture_default_str();
+  walk->add_flag("--progressive", walk_opt.progressive, "progressive display: the view builds up cell by cell");
+  walk->add_option("--progressive-rate", walk_opt.progressive_rate, "avenues added per frame in progressive display")
+      ->capture_default_str();
+  walk->add_flag_callback("--no-hud", [&] { walk_opt.hud = false; }, "start without the status line");
+  walk->add_flag_callback("--no-vsync", [&] { walk_opt.vsync = false; }, "do not wait for the display's refresh");
+  walk->add_option("--script", walk_opt.script, "replay a key-event file (one 'FRAME EVENT ARGS' per line)")
+      ->type_name("FILE");
+  walk->add_option("--random-input", walk_opt.random_input, "replay random input from this seed (with --frames)")
+      ->type_name("SEED");
+  walk->add_option("--frames", walk_opt.frames, "quit after N frames");
+  walk->add_option("--dt", walk_opt.dt, "[s] fixed time step (default 1/60 with --script or --frames, else real time)");
+  walk->add_option("--screenshot", walk_opt.screenshot, "at the end, write the last frame shown as PNG")
+      ->type_name("FILE.png");
+  walk->add_option("--stats-json", walk_opt.stats_json, "at the end, write frame times, memory and the pose as JSON")
+      ->type_name("FILE");
+  walk->add_option("--out-dir", walk_opt.out_dir, "where F2, F3 and F4 write the view")->capture_default_str();
+  walk->add_option("--record", walk_opt.record, "keyframe file K appends to (default OUT_DIR/<plan>-keys.txt)")
+      ->type_name("FILE");
+  walk->add_option("--samples", walk_opt.samples, "half-tone: samples per pixel, 1, 4 or 16")->capture_default_str();
+  walk->add_option("--shading", walk_opt.shading, "half-tone: flat or smooth")->capture_default_str();
+  walk->add_option("--kernel", walk_opt.kernel, "arithmetic of the traversal")->capture_default_str();
+  walk->add_option("--interocular", walk_opt.interocular, "[m] distance between the eyes")->capture_default_str();
+  walk->add_option("--converge", walk_opt.converge, "[m] distance at which the two views coincide")
+      ->capture_default_str();
+
   int bench_threads = 0, bench_repeats = 5;
   CLI::App* bench = app.add_subcommand("bench", "measure Avenues against the source papers");
   bench->require_subcommand(1);
   CLI::App* papers = bench->add_subcommand("papers", "render Bouknight's and Wylie's scenes at 512x512 beside their figures");
   papers->add_option("--threads", bench_threads, "threads for the scanline bands (0: all)");
   papers->add_option("--repeats", bench_repeats, "renders per scene (the median is reported)")->capture_default_str();
+  AccuracyOptions accuracy;
+  CLI::App* bench_accuracy = bench->add_subcommand(
+      "accuracy", "what accuracy costs in time: kernels, renderer quality, tessellation; writes docs/ACCURACY.md");
+  bench_accuracy->add_flag("--quick", accuracy.quick, "a small version of each study (under a minute)");
+  bench_accuracy->add_option("--report", accuracy.report, "the Markdown report; plots go beside it in accuracy/")
+      ->capture_default_str();
+  bench_accuracy->add_option("--seed", accuracy.seed, "for the random eyes")->capture_default_str();
+  std::vector<std::string> bench_walk_plans;
+  long bench_walk_frames = 600;
+  std::string bench_walk_size = "1280x720";
+  CLI::App* bench_walk = bench->add_subcommand("walk", "frame times of the walkthrough window (needs a display, e.g. xvfb-run)");
+  bench_walk->add_option("PLAN", bench_walk_plans, "plans to walk through; default: the bundled plans");
+  bench_walk->add_option("--frames", bench_walk_frames, "frames per plan")->capture_default_str();
+  bench_walk->add_option("--size", bench_walk_size, "the window's size")->type_name("WxH")->capture_default_str();
 
   GenerateOfficeOptions office_opt;
   CLI::App* generate = app.add_subcommand("generate", "write a generated plan");
@@ -119,6 +172,9 @@ int main(int argc, char** argv) {
     if (*exp) return run_export(export_opt);
     if (*view) return run_view(view_opt);
     if (*papers) return run_bench_papers(bench_threads, bench_repeats);
+    if (*bench_accuracy) return run_bench_accuracy(accuracy);
+    if (*bench_walk) return run_bench_walk(bench_walk_plans, bench_walk_frames, bench_walk_size);
+    if (*walk) return run_walk(walk_opt);
     if (*path) return run_path(path_opt);
     if (*office) return run_generate_office(office_opt);
     return run_main_job(main_opt);

@@ -1,10 +1,11 @@
 // Avenues — the main job: what `avenues [PLAN]` does with no subcommand.
 //
-// Today it is the offline job: decompose the plan, print the summary, draw the plan,
-// and show the avenues of sight from the plan's default viewpoint.
-// The walkthrough window arrives with a later issue; it will slot in as
-// run_walkthrough(), with run_offline() kept as the fallback when no display can be
-// opened (CI, ssh), so run_main_job() stays a small dispatcher.
+// With a display ($DISPLAY set and a window opens) it prints the summary and opens the
+// walkthrough window (run_walkthrough, app/cmd_walk.cpp) at the plan's default viewpoint.
+// Without one (CI, ssh) it is the offline job: decompose the plan, print the summary, draw
+// the plan, and show the avenues of sight from the plan's default viewpoint as drawings
+// and a picture in the output directory. run_main_job() stays a small dispatcher.
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <stdexcept>
@@ -23,7 +24,7 @@ namespace fs = std::filesystem;
 namespace {
 
 /// The job without a window: summary on stdout, drawings in the output directory.
-int run_offline(const LoadedPlan& plan, const MainJobOptions& opt) {
+int run_offline(const LoadedPlan& plan, const MainJobOptions& opt, bool summary_printed) {
   std::error_code ec;
   fs::create_directories(opt.out_dir, ec);
   if (ec) throw std::runtime_error("cannot create the output directory " + opt.out_dir + ": " + ec.message());
@@ -46,7 +47,7 @@ int run_offline(const LoadedPlan& plan, const MainJobOptions& opt) {
   halftone.samples = 4;
   write_image(render_view(plan.complex, view.camera, visible, halftone), picture);
 
-  print_summary(std::cout, plan);
+  if (!summary_printed) print_summary(std::cout, plan);
   const Cell& eye_cell = plan.complex.cells[size_t(view.eye_cell)];
   std::cout << "\ndefault view: eye (" << view.viewpoint.eye.x << ", " << view.viewpoint.eye.y << ", "
             << view.viewpoint.eye.z << ") in "
@@ -65,7 +66,23 @@ int run_offline(const LoadedPlan& plan, const MainJobOptions& opt) {
 
 int run_main_job(const MainJobOptions& opt) {
   LoadedPlan plan = load_plan_source(opt.plan);
-  return run_offline(plan, opt);
+  const char* display = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  if ((display && *display) || (wayland && *wayland)) {
+    print_summary(std::cout, plan);
+    std::cout << "\nopening the walkthrough window (H shows the controls; F2, F3 and F4 write the view to "
+              << opt.out_dir << ")\n"
+              << std::flush;
+    WalkOptions walk;
+    walk.plan = opt.plan;
+    walk.out_dir = opt.out_dir;
+    int status = 0;
+    std::string why;
+    if (run_walkthrough(plan, walk, status, why)) return status;
+    std::cout << "no walkthrough window (" << why << "); writing the views instead\n";
+    return run_offline(plan, opt, true);
+  }
+  return run_offline(plan, opt, false);
 }
 
 }  // namespace avenues::app

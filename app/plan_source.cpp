@@ -2,13 +2,19 @@
 #include "app/plan_source.h"
 
 #include <chrono>
+#include <cctype>
 #include <cstring>
+#include <iostream>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <system_error>
 
 #include "cells/build_cells.h"
+#include "cells/crow.h"
+#include "cells/doom_map.h"
+#include "cells/mesh_scene.h"
+#include "cells/sweet_home.h"
 #include "plans/plan.h"
 
 #ifndef AVENUES_SOURCE_DIR
@@ -57,26 +63,89 @@ std::string default_plan_path() {
                            (looked.empty() ? "nowhere" : looked) + "); name a PLAN");
 }
 
+namespace {
+
+std::string lower(std::string s) {
+  for (char& ch : s) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  return s;
+}
+
+/// Prints what the importer and the decomposition repaired or dropped: the first few
+/// lines, then how many more (a real Doom map may have dozens).
+void print_warnings(const std::string& path, const std::vector<std::string>& warnings) {
+  constexpr size_t kShown = 12;
+  for (size_t i = 0; i < warnings.size() && i < kShown; ++i) std::cerr << path << ": warning: " << warnings[i] << "\n";
+  if (warnings.size() > kShown)
+    std::cerr << path << ": " << warnings.size() - kShown << " more warnings (avenues cells PLAN --json lists them all)\n";
+}
+
+}  // namespace
+
+PlanSpec parse_plan_spec(const std::string& plan) {
+  PlanSpec spec;
+  spec.file = plan;
+  // FILE.wad:MAP01 — the map after the last colon, when what precedes it is a WAD.
+  const size_t colon = plan.rfind(':');
+  if (colon != std::string::npos && colon > 4 && lower(plan.substr(colon - 4, 4)) == ".wad") {
+    spec.file = plan.substr(0, colon);
+    spec.map = plan.substr(colon + 1);
+  }
+  const std::string ext = lower(fs::path(spec.file).extension().string());
+  if (ext == ".cells") spec.format = PlanFormat::Cells;
+  else if (ext == ".wad") spec.format = PlanFormat::DoomMap;
+  else if (ext == ".sh3d" || ext == ".xml") spec.format = PlanFormat::SweetHome;
+  else if (ext == ".off" || ext == ".obj" || ext == ".ply" || ext == ".stl") spec.format = PlanFormat::MeshScene;
+  else if (ext == ".crow") spec.format = PlanFormat::Crow;
+  else spec.format = PlanFormat::Toml;
+  return spec;
+}
+
 LoadedPlan load_plan_source(const std::string& plan) {
   LoadedPlan out;
-  out.path = plan.empty() ? default_plan_path() : plan;
-  fs::path p(out.path);
-  out.stem = p.stem().string();
+  PlanSpec spec = parse_plan_spec(plan.empty() ? default_plan_path() : plan);
+  out.path = plan.empty() ? spec.file : plan;
+  fs::path p(spec.file);
+  out.stem = p.stem().string() + (spec.map.empty() ? "" : "-" + spec.map);
   std::error_code ec;
-  if (!fs::exists(p, ec)) throw std::runtime_error(out.path + ": no such file");
-  if (fs::is_directory(p, ec)) throw std::runtime_error(out.path + ": is a directory, not a plan");
+  if (!fs::exists(p, ec)) throw std::runtime_error(spec.file + ": no such file");
+  if (fs::is_directory(p, ec)) throw std::runtime_error(spec.file + ": is a directory, not a plan");
+  if (spec.format != PlanFormat::Cells && looks_like_cells(spec.file)) spec.format = PlanFormat::Cells;
 
-  if (p.extension() == ".cells" || looks_like_cells(out.path)) {
-    auto t0 = std::chrono::steady_clock::now();
-    out.complex = load_cells(out.path);
-    out.stages.push_back({"load cells", since(t0)});
-    return out;
-  }
   auto t0 = std::chrono::steady_clock::now();
-  Plan parsed = read_plan(out.path);
-  out.stages.push_back({"read plan", since(t0)});
-  out.complex = build_cells(parsed);
-  for (const StageTime& t : out.complex.timings) out.stages.push_back(t);
+  auto decompose = [&](const Plan& parsed, const char* stage) {
+    out.stages.push_back({stage, since(t0)});
+    out.complex = build_cells(parsed);
+    for (const StageTime& t : out.complex.timings) out.stages.push_back(t);
+  };
+  switch (spec.format) {
+    case PlanFormat::Cells:
+      out.complex = load_cells(spec.file);
+      out.stages.push_back({"load cells", since(t0)});
+      return out;
+    case PlanFormat::Toml: decompose(read_plan(spec.file), "read plan"); break;
+    case PlanFormat::DoomMap: {
+      if (spec.map.empty()) {
+        const std::vector<std::string> maps = doom_map_names(spec.file);
+        if (maps.empty()) throw PlanError({spec.file, 0, 0, ""}, "the WAD holds no maps");
+        spec.map = maps.front();
+        out.stem += "-" + spec.map;
+        std::cerr << spec.file << ": reading " << spec.map << ", the first of its " << maps.size()
+                  << " maps (name one as " << spec.file << ":" << maps.back() << ")\n";
+      }
+      decompose(read_doom_map(spec.file, spec.map), "read map");
+      break;
+    }
+    case PlanFormat::SweetHome: decompose(read_sweet_home(spec.file), "read home"); break;
+    case PlanFormat::MeshScene:
+      out.complex = read_mesh_scene(spec.file);
+      for (const StageTime& t : out.complex.timings) out.stages.push_back(t);
+      break;
+    case PlanFormat::Crow:
+      out.complex = read_crow_scene(spec.file);
+      for (const StageTime& t : out.complex.timings) out.stages.push_back(t);
+      break;
+  }
+  print_warnings(spec.file, out.complex.warnings);
   return out;
 }
 

@@ -1,7 +1,10 @@
 // Avenues — where the executable's complex comes from.
 //
-// PLAN on the command line is a plan (.toml: read and decomposed) or a saved complex
-// (.cells: loaded); none means the bundled default plan, plans/jones-house.toml.
+// PLAN on the command line is a plan (.toml: read and decomposed), a saved complex
+// (.cells: loaded), or a plan from elsewhere (docs/PLAN_FORMAT.md, "Plans from
+// elsewhere"): a Doom map FILE.wad:MAP01, a Sweet Home 3D home (.sh3d, Home.xml), a mesh
+// as a whole scene (.off .obj .ply .stl) or a Crow object (.crow). None means the
+// bundled default plan, plans/jones-house.toml.
 #pragma once
 
 #include <string>
@@ -19,12 +22,22 @@ struct LoadedPlan {
   double seconds() const;          ///< total of stages
 };
 
+enum class PlanFormat { Toml, Cells, DoomMap, SweetHome, MeshScene, Crow };
+
+/// PLAN taken apart: the file, the map inside it (a WAD's), and its format by extension.
+struct PlanSpec {
+  std::string file;
+  std::string map;   ///< "MAP01" of "doom2.wad:MAP01"; "" for the first map
+  PlanFormat format = PlanFormat::Toml;
+};
+PlanSpec parse_plan_spec(const std::string& plan);
+
 /// The bundled default plan: AVENUES_SOURCE_DIR/plans/jones-house.toml, else
 /// <executable>/../share/avenues/plans/jones-house.toml. Throws if neither exists.
 std::string default_plan_path();
 
-/// Loads PLAN ("" = the default plan). Throws PlanError for plan mistakes and
-/// std::runtime_error naming the file for anything else.
+/// Loads PLAN ("" = the default plan) and prints its warnings to stderr. Throws
+/// PlanError for plan mistakes and std::runtime_error naming the file for anything else.
 LoadedPlan load_plan_source(const std::string& plan);
 
 }  // namespace avenues::app

@@ -68,8 +68,12 @@ struct OpaquePoly {
 struct Face {
   Plane plane;                    ///< outward
   std::vector<Vec3> poly;         ///< the whole face, convex, counter-clockwise seen from inside
-  std::vector<PortalId> portals;  ///< portals lying in this face; on a side face, sorted along it (from footprint[i])
+  std::vector<PortalId> portals;  ///< portals lying in this face; on a prism's side face, sorted along it (from footprint[i])
   std::vector<OpaquePoly> opaque; ///< the face minus its portals, as convex pieces
+  /// Some portals of this side face overlap along it (stacked one above another: a tall
+  /// outside cell meeting cells of several bands), so sorted by start they are not sorted
+  /// by end; a lookup by the stretch of face seen must then scan from the first.
+  bool portals_overlap = false;
 };
 
 enum class LineKind : uint8_t {

@@ -45,7 +45,7 @@ namespace avenues {
 namespace {
 
 constexpr char kMagic[8] = {'A', 'V', 'C', 'E', 'L', 'L', 'S', '\0'};
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;  // 2: Cell::prism (mesh scenes' general convex cells), Face::portals_overlap
 constexpr size_t kHeaderSize = 32;
 
 uint64_t checksum(const unsigned char* p, size_t n) {
@@ -118,6 +118,7 @@ void write_complex(Writer& w, const CellComplex& c) {
   w.count(c.cells.size(), "cells");
   for (const Cell& cell : c.cells) {
     w.u8(static_cast<uint8_t>(cell.kind));
+    w.u8(cell.prism ? 1 : 0);
     w.i32(cell.room);
     w.i32(cell.storey);
     w.poly2(cell.footprint);
@@ -125,6 +126,7 @@ void write_complex(Writer& w, const CellComplex& c) {
     w.count(cell.faces.size(), "faces");
     for (const Face& f : cell.faces) {
       w.plane(f.plane);
+      w.u8(f.portals_overlap ? 1 : 0);
       w.poly3(f.poly);
       w.ids(f.portals);
       w.count(f.opaque.size(), "opaque polygons");
@@ -328,6 +330,7 @@ void read_complex(Reader& r, CellComplex& c) {
   c.cells.resize(r.count(kMinCell, "cells"));
   for (Cell& cell : c.cells) {
     cell.kind = r.kind(CellKind::Sky, "cell kind");
+    cell.prism = r.u8("cell") != 0;
     cell.room = r.i32("cell");
     cell.storey = r.i32("cell");
     cell.footprint = r.poly2("cell footprint");
@@ -336,6 +339,7 @@ void read_complex(Reader& r, CellComplex& c) {
     cell.faces.resize(r.count(kMinFace, "faces"));
     for (Face& f : cell.faces) {
       f.plane = r.plane("face");
+      f.portals_overlap = r.u8("face") != 0;
       f.poly = r.poly3("face polygon");
       f.portals = r.ids("face portals");
       f.opaque.resize(r.count(kMinOpaque, "opaque polygons"));

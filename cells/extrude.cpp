@@ -466,6 +466,16 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
       };
       auto& ps = c.faces[k].portals;
       std::sort(ps.begin(), ps.end(), [&](PortalId x, PortalId y) { return start(x) < start(y); });
+      double reach = -HUGE_VAL;  // the farthest end so far along the face
+      for (PortalId p : ps) {
+        double s0 = HUGE_VAL, s1 = -HUGE_VAL;
+        for (Vec3 v : out.portals[size_t(p)].poly) {
+          const double s = dot(Vec2{v.x, v.y} - a, dir);
+          s0 = std::min(s0, s), s1 = std::max(s1, s);
+        }
+        if (s0 < reach - 1e-9) c.faces[k].portals_overlap = true;
+        reach = std::max(reach, s1);
+      }
     }
 
   // Room floor areas.

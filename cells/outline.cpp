@@ -170,7 +170,7 @@ Outline make_outline(const Plan& plan) {
       std::vector<int> here;
       for (int oi = 0; oi < int(w.openings.size()); ++oi) {
         double a = w.openings[size_t(oi)].at - along;
-        if (a >= -1e-9 && a < len) here.push_back(oi);
+        if (a >= -1e-9 && a < len - 1e-9) here.push_back(oi);  // one starting at the segment's end belongs to the next
       }
       std::sort(here.begin(), here.end(), [&](int x, int y) {
         return w.openings[size_t(x)].at < w.openings[size_t(y)].at;
@@ -178,6 +178,8 @@ Outline make_outline(const Plan& plan) {
       for (int oi : here) {
         const Opening& o = w.openings[size_t(oi)];
         double a = std::max(0.0, o.at - along), b = std::min(len, a + o.width);
+        if (a < 1e-9) a = 0;          // at the segment's start: its mitre, not a clip a hair past it
+        if (b > len - 1e-9) b = len;  // likewise at its end
         if (a > s) strips.push_back({s, a, -1});
         strips.push_back({a, b, oi});
         s = b;

@@ -33,6 +33,90 @@ std::vector<Vec2> clip(std::vector<Vec2> a, const std::vector<Vec2>& b) {
   return a;
 }
 
+/// Every vertex of a cell's faces (prism or not).
+std::vector<Vec3> vertices_of(const Cell& cell) {
+  std::vector<Vec3> v;
+  for (const Face& f : cell.faces) v.insert(v.end(), f.poly.begin(), f.poly.end());
+  return v;
+}
+
+/// What is wrong with a cell that is a general convex polyhedron (Cell::prism == false),
+/// or "": at least four faces, each a planar convex polygon counter-clockwise seen from
+/// inside with a unit outward normal; every vertex inside every face's plane (convex);
+/// the faces closing up (their area vectors sum to zero); the outline from above and the
+/// heights holding every vertex.
+std::string polyhedron_problem(const Cell& cell, double eps) {
+  std::ostringstream why;
+  if (cell.faces.size() < 4) return (why << "has " << cell.faces.size() << " faces", why.str());
+  const std::vector<Vec3> all = vertices_of(cell);
+  Vec3 closure{0, 0, 0};
+  double total = 0;
+  for (size_t k = 0; k < cell.faces.size(); ++k) {
+    const Face& f = cell.faces[k];
+    if (std::fabs(length(f.plane.n) - 1) > 1e-9) return (why << "face " << k << " has no unit normal", why.str());
+    const size_t m = f.poly.size();
+    if (m < 3) return (why << "face " << k << " has " << m << " vertices", why.str());
+    Vec3 s{0, 0, 0};
+    for (size_t i = 0; i < m; ++i) {
+      const Vec3 a = f.poly[i], b = f.poly[(i + 1) % m], d = f.poly[(i + 2) % m];
+      if (std::fabs(f.plane.eval(a)) > eps) return (why << "face " << k << " is not planar", why.str());
+      if (dot(cross(b - a, d - b), f.plane.n) > eps * length(b - a))
+        return (why << "face " << k << " is not convex (or not counter-clockwise seen from inside)", why.str());
+      s = s + cross(a, b);
+    }
+    for (const OpaquePoly& o : f.opaque)
+      for (Vec3 v : o.poly)
+        if (std::fabs(f.plane.eval(v)) > eps) return (why << "an opaque piece of face " << k << " leaves its plane", why.str());
+    closure = closure + s;
+    total += length(s);
+    for (Vec3 v : all)
+      if (f.plane.eval(v) > eps) return (why << "is not convex: a vertex lies outside face " << k, why.str());
+  }
+  if (length(closure) > 1e-6 * std::max(total, 1.0)) return (why << "is not closed by its faces", why.str());
+  double zlo = HUGE_VAL, zhi = -HUGE_VAL;
+  for (Vec3 v : all) {
+    zlo = std::min(zlo, v.z), zhi = std::max(zhi, v.z);
+    const std::vector<Vec2>& fp = cell.footprint;
+    for (size_t i = 0; i < fp.size(); ++i) {
+      const Vec2 a = fp[i], b = fp[(i + 1) % fp.size()];
+      if (cross(b - a, Vec2{v.x, v.y} - a) < -eps * length(b - a))
+        return (why << "has a vertex outside its outline from above", why.str());
+    }
+  }
+  if (std::fabs(zlo - cell.z0) > eps || std::fabs(zhi - cell.z1) > eps)
+    return (why << "has heights " << cell.z0 << ".." << cell.z1 << " but its vertices span " << zlo << ".." << zhi, why.str());
+  return {};
+}
+
+/// True when two convex cells share interior, deeper than `depth` [m] along every axis of
+/// the separating-axis test (face normals of both, cross products of their edges).
+bool polyhedra_overlap(const Cell& a, const Cell& b, double depth) {
+  const std::vector<Vec3> va = vertices_of(a), vb = vertices_of(b);
+  auto separated_along = [&](Vec3 axis) {
+    const double l = length(axis);
+    if (!(l > 1e-12)) return false;
+    axis = (1.0 / l) * axis;
+    double a0 = HUGE_VAL, a1 = -HUGE_VAL, b0 = HUGE_VAL, b1 = -HUGE_VAL;
+    for (Vec3 v : va) a0 = std::min(a0, dot(axis, v)), a1 = std::max(a1, dot(axis, v));
+    for (Vec3 v : vb) b0 = std::min(b0, dot(axis, v)), b1 = std::max(b1, dot(axis, v));
+    return std::min(a1, b1) - std::max(a0, b0) <= depth;
+  };
+  for (const Cell* c : {&a, &b})
+    for (const Face& f : c->faces)
+      if (separated_along(f.plane.n)) return false;
+  auto edges = [](const Cell& c) {
+    std::vector<Vec3> e;
+    for (const Face& f : c.faces)
+      for (size_t i = 0; i < f.poly.size(); ++i) e.push_back(f.poly[(i + 1) % f.poly.size()] - f.poly[i]);
+    return e;
+  };
+  const std::vector<Vec3> ea = edges(a), eb = edges(b);
+  for (Vec3 u : ea)
+    for (Vec3 w : eb)
+      if (separated_along(cross(u, w))) return false;
+  return true;
+}
+
 }  // namespace
 
 std::string cells_are_valid(const CellComplex& c) {
@@ -58,7 +142,12 @@ std::string cells_are_valid(const CellComplex& c) {
     }
     if (!c.far_box.contains(cell.bounds().lo, eps) || !c.far_box.contains(cell.bounds().hi, eps))
       return fail("cell ", i, " leaves the far box");
-    if (cell.faces.size() != f.size() + 2) return fail("cell ", i, " has ", cell.faces.size(), " faces");
+    if (!cell.prism) {
+      const std::string problem = polyhedron_problem(cell, eps);
+      if (!problem.empty()) return fail("cell ", i, " ", problem);
+    } else if (cell.faces.size() != f.size() + 2) {
+      return fail("cell ", i, " has ", cell.faces.size(), " faces");
+    }
     // Every face is accounted for: opaque pieces plus portals cover it exactly.
     for (size_t k = 0; k < cell.faces.size(); ++k) {
       const Face& face = cell.faces[k];
@@ -113,6 +202,10 @@ std::string cells_are_valid(const CellComplex& c) {
       const Box3 &a = box[i], &b = box[j];
       if (a.lo.y >= b.hi.y - eps || b.lo.y >= a.hi.y - eps) continue;
       if (a.lo.z >= b.hi.z - eps || b.lo.z >= a.hi.z - eps) continue;
+      if (!c.cells[i].prism || !c.cells[j].prism) {  // general convex polyhedra
+        if (polyhedra_overlap(c.cells[i], c.cells[j], 1e-7 * scale)) return fail("cells ", i, " and ", j, " overlap");
+        continue;
+      }
       double overlap = signed_area(clip(c.cells[i].footprint, c.cells[j].footprint));
       if (overlap > 1e-7 * std::max(1.0, scale)) return fail("cells ", i, " and ", j, " overlap by ", overlap, " m²");
     }

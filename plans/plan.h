@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -130,10 +131,15 @@ struct Object {
   SourceLoc where;
 };
 
+/// A point light shines from its position and casts shadows; an ambient light (Bouknight's
+/// BACK) lights every surface evenly from nowhere in particular.
+enum class LightKind : uint8_t { Point, Ambient };
+
 struct Light {
   std::string name;
-  Vec3 position;                 ///< [m] absolute
-  double intensity = 1;          ///< relative, > 0
+  LightKind kind = LightKind::Point;
+  Vec3 position;                 ///< [m] absolute (Point only)
+  double intensity = 1;          ///< relative, > 0 (Ambient: the share of full light, <= 1)
   std::array<double, 3> colour{1, 1, 1};
   SourceLoc where;
 };

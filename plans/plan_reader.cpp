@@ -910,14 +910,26 @@ void Reader::read_lights(const toml::table& root) {
   for (size_t i = 0; i < ts.size(); ++i) {
     auto given = Element(*this, *ts[i], element_name("light", {}, static_cast<int>(i))).name_key();
     Element e(*this, *ts[i], element_name("light", given, static_cast<int>(i)));
-    e.allow({"name", "position", "intensity", "colour"});
+    e.allow({"name", "kind", "position", "intensity", "colour"});
     Light l;
     l.name = given.value_or("light " + std::to_string(i + 1));
     l.where = e.loc();
     unique(seen, l.name, e, "light");
-    l.position = e.point3_of(e.need("position"), "'position'");
+    const std::string kind = e.string("kind").value_or("point");
+    if (kind == "point") l.kind = LightKind::Point;
+    else if (kind == "ambient") l.kind = LightKind::Ambient;
+    else e.fail("kind", "unknown light kind '" + kind + "' (use point or ambient)" +
+                            did_you_mean(kind, std::initializer_list<std::string_view>{"point", "ambient"}));
+    if (l.kind == LightKind::Point) {
+      l.position = e.point3_of(e.need("position"), "'position'");
+    } else if (e.has("position")) {
+      e.fail("position", "an ambient light has no 'position': it lights every surface evenly");
+    }
+    if (l.kind == LightKind::Ambient) l.intensity = 0.1;  // Bouknight's BACK, unless given
     if (auto k = e.number("intensity")) {
       if (*k <= 0) e.fail("intensity", "'intensity' must be > 0, not " + fmt(*k));
+      if (l.kind == LightKind::Ambient && *k > 1)
+        e.fail("intensity", "an ambient light's 'intensity' is a share of full light, at most 1, not " + fmt(*k));
       l.intensity = *k;
     }
     if (auto* c = e.get("colour")) l.colour = e.colour_of(*c, "'colour'");

@@ -13,7 +13,14 @@
 namespace avenues {
 
 const char* to_string(Weight w) { return w == Weight::Outline ? "outline" : "crease"; }
-const char* to_string(Layer l) { return l == Layer::Architecture ? "architecture" : "furniture"; }
+const char* to_string(Layer l) {
+  switch (l) {
+    case Layer::Architecture: return "architecture";
+    case Layer::Furniture: return "furniture";
+    case Layer::Shadows: return "shadows";
+  }
+  return "?";
+}
 
 namespace {
 

@@ -34,6 +34,7 @@ const char* to_string(Weight w);
 enum class Layer : uint8_t {
   Architecture,  ///< real lines of the cell complex (walls, floors, openings)
   Furniture,     ///< edges of the plan's objects
+  Shadows,       ///< outlines of the shadows the plan's point lights cast (optional: LineOptions::shadows)
 };
 const char* to_string(Layer l);
 

@@ -8,6 +8,7 @@
 // instead, in dxflib's own layout, and write_drawing() puts the bytes in place at once.
 #include <dxflib/dl_dxf.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -83,11 +84,14 @@ std::string dxf_bytes(const Drawing& d, const Page& page) {
     dxf.writeLinetype(dw, DL_LinetypeData("BYLAYER", "", 0, 0, 0.0));
     dxf.writeLinetype(dw, DL_LinetypeData("CONTINUOUS", "Solid line", 0, 0, 0.0));
     dw.tableEnd();
-    dw.tableLayers(3);
+    const bool shadows =
+        std::any_of(d.strokes.begin(), d.strokes.end(), [](const Stroke& s) { return s.layer == Layer::Shadows; });
+    dw.tableLayers(shadows ? 4 : 3);
     dxf.writeLayer(dw, DL_LayerData("0", 0), DL_Attributes("", DL_Codes::black, -3, "CONTINUOUS", 1.0));
-    for (Layer layer : {Layer::Architecture, Layer::Furniture})
-      dxf.writeLayer(dw, DL_LayerData(to_string(layer), 0),
-                     DL_Attributes("", DL_Codes::black, -3, "CONTINUOUS", 1.0));
+    for (Layer layer : {Layer::Architecture, Layer::Furniture, Layer::Shadows})
+      if (layer != Layer::Shadows || shadows)
+        dxf.writeLayer(dw, DL_LayerData(to_string(layer), 0),
+                       DL_Attributes("", DL_Codes::black, -3, "CONTINUOUS", 1.0));
     dw.tableEnd();
     dw.tableStyle(1);
     dxf.writeStyle(dw, DL_StyleData("standard", 0, 2.5, 1.0, 0.0, 0, 2.5, "txt", ""));

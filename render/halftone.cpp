@@ -12,8 +12,10 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 
+#include "render/effects.h"
 #include "render/raster_srgb.h"
 #include "render/scanline.h"
 
@@ -54,26 +56,32 @@ struct PolygonLook {
   std::array<uint8_t, 3> code{};   ///< that, encoded (Constant shades only)
   std::array<float, 3> colour{};   ///< the material's colour (RGB, or luminance in [0])
   bool constant = false;
+  bool lit = false;                ///< a Lit shade lit per sample (lit_samples)
+  int light_channels = 1;          ///< lit: intensities per sample, 1 or 3 (coloured light)
 };
 
 /// Scans bands of rows into the picture; one per thread, reused from band to band (its
 /// counters add up over the bands it painted).
 class BandPainter {
  public:
-  BandPainter(const ScreenScene& scene, const EdgeTable& table, const std::vector<PolygonLook>& looks,
-              const PolygonLook& background, int per_side, int channels, Image& out, std::vector<int32_t>* items)
-      : scene_(scene), engine_(table), looks_(looks), background_(background), s_(per_side), ch_(channels),
-        out_(out), items_(items), encoder_(srgb_encoder()) {
-    intensity_.resize(size_t(scene.raster.width));
+  BandPainter(const ScreenScene& scene, const EdgeTable& table, const EdgeTable* pieces,
+              const std::vector<PolygonLook>& looks, const PolygonLook& background, int per_side, int channels,
+              Image& out, std::vector<int32_t>* items)
+      : scene_(scene), engine_(table, scene.implicit_lines), looks_(looks), background_(background), s_(per_side),
+        ch_(channels), out_(out), items_(items), encoder_(srgb_encoder()) {
+    intensity_.resize(size_t(scene.raster.width) * (scene.light_terms.empty() ? 1 : 3));
     if (per_side > 1) sum_.resize(size_t(out.width) * size_t(channels));
+    if (pieces) secondary_.emplace(*pieces);
   }
 
   void paint(int y0, int y1) {
     engine_.start(y0 * s_);
+    if (secondary_) secondary_->start(y0 * s_);
     for (int y = y0; y < y1; ++y) {
       uint8_t* dst = out_.row(y);
       if (s_ == 1) {
         engine_.scan(spans_);
+        if (secondary_) secondary_->scan();
         for (const Span& sp : spans_) write_span(dst, sp, y);
         keep_items(y);
         continue;
@@ -82,6 +90,7 @@ class BandPainter {
       for (int k = 0; k < s_; ++k) {
         const int row = y * s_ + k;
         engine_.scan(spans_);
+        if (secondary_) secondary_->scan();
         for (const Span& sp : spans_) add_span(sp, row);
         keep_items(row);
       }
@@ -98,7 +107,40 @@ class BandPainter {
   /// Intensities of the span's samples into intensity_ (non-constant shades).
   const float* light(const Span& sp, int row) {
     const size_t p = size_t(sp.polygon);
-    shade_samples(scene_.shades[p], scene_.polygons[p].depth, scene_.raster, row, sp.x0, sp.x1, intensity_.data());
+    const SurfaceShade& shade = scene_.shades[p];
+    if (shade.kind == SurfaceShade::Kind::Lit) return light_lit(sp, row, shade, looks_[p].light_channels);
+    shade_samples(shade, scene_.polygons[p].depth, scene_.raster, row, sp.x0, sp.x1, intensity_.data());
+    return intensity_.data();
+  }
+
+  /// A Lit shade: the secondary scan says, per light, which samples it reaches (its lit
+  /// pieces, less its shadow polygons); lit_samples adds up the lights there.
+  const float* light_lit(const Span& sp, int row, const SurfaceShade& shade, int channels) {
+    const int n = sp.x1 - sp.x0;
+    const LightTerm* terms = scene_.light_terms.data() + shade.first_term;
+    masks_.resize(size_t(shade.terms));
+    mask_buffer_.resize(size_t(shade.terms) * size_t(n));
+    for (int t = 0; t < shade.terms; ++t) {
+      const LightTerm& term = terms[t];
+      if (!term.needs_scan()) {
+        masks_[size_t(t)] = nullptr;
+        continue;
+      }
+      uint8_t* mask = mask_buffer_.data() + size_t(t) * size_t(n);
+      masks_[size_t(t)] = mask;
+      std::memset(mask, term.whole ? 1 : 0, size_t(n));
+      auto mark = [&](int32_t piece, uint8_t value) {
+        const Span c = secondary_->span_of(piece);
+        const int32_t a = std::max(c.x0, sp.x0), b = std::min(c.x1, sp.x1);
+        if (a < b) std::memset(mask + (a - sp.x0), value, size_t(b - a));
+      };
+      const int32_t shadows = term.first_piece + term.lit_pieces;
+      for (int32_t i = term.first_piece; i < shadows; ++i) mark(i, 1);
+      for (int32_t i = shadows; i < shadows + term.shadow_pieces; ++i) mark(i, 0);
+    }
+    const size_t p = size_t(sp.polygon);
+    lit_samples(shade.lit_ambient, terms, shade.terms, masks_.data(), scene_.polygons[p].depth, scene_.raster, row,
+                sp.x0, sp.x1, channels, intensity_.data());
     return intensity_.data();
   }
 
@@ -109,6 +151,11 @@ class BandPainter {
     uint8_t* at = dst + size_t(sp.x0) * size_t(ch_);
     if (look.constant) return fill_pixels(at, size_t(sp.x1 - sp.x0), look.code, ch_);
     const float* in = light(sp, row);
+    if (look.light_channels == 3) {
+      for (int i = 0; i < sp.x1 - sp.x0; ++i)
+        for (int c = 0; c < ch_; ++c) at[i * ch_ + c] = encoder_(look.colour[size_t(c)] * in[3 * i + c]);
+      return;
+    }
     for (int i = 0; i < sp.x1 - sp.x0; ++i)
       for (int c = 0; c < ch_; ++c) at[i * ch_ + c] = encoder_(look.colour[size_t(c)] * in[i]);
   }
@@ -126,6 +173,14 @@ class BandPainter {
         for (int c = 0; c < ch_; ++c) sum[c] += float(to - from) * look.linear[size_t(c)];
         continue;
       }
+      if (look.light_channels == 3) {
+        for (int c = 0; c < ch_; ++c) {
+          float light_sum = 0;
+          for (int i = from; i < to; ++i) light_sum += in[3 * (i - sp.x0) + c];
+          sum[c] += look.colour[size_t(c)] * light_sum;
+        }
+        continue;
+      }
       float light_sum = 0;
       for (int i = from; i < to; ++i) light_sum += in[i - sp.x0];
       for (int c = 0; c < ch_; ++c) sum[c] += look.colour[size_t(c)] * light_sum;
@@ -140,6 +195,7 @@ class BandPainter {
 
   const ScreenScene& scene_;
   ScanlineEngine engine_;
+  std::optional<SecondaryScan> secondary_;  ///< Bouknight's secondary scan, when the scene has pieces
   const std::vector<PolygonLook>& looks_;
   const PolygonLook& background_;
   int s_, ch_;
@@ -148,6 +204,8 @@ class BandPainter {
   const SrgbEncoder& encoder_;
   std::vector<Span> spans_;
   std::vector<float> intensity_, sum_;
+  std::vector<const uint8_t*> masks_;  ///< per light term of the span's shade: lit samples (nullptr: all)
+  std::vector<uint8_t> mask_buffer_;
   long pixels_ = 0;
 };
 
@@ -162,12 +220,28 @@ tbb::task_arena& arena_for(int threads) {
   return *a;
 }
 
-PolygonLook look_of(const SurfaceShade& shade, bool colour, const SrgbEncoder& enc) {
+PolygonLook look_of(const SurfaceShade& shade, const std::vector<LightTerm>& terms, bool colour,
+                    const SrgbEncoder& enc) {
   PolygonLook look;
   look.colour = colour ? shade.colour : std::array<float, 3>{luminance(shade.colour[0], shade.colour[1], shade.colour[2]), 0, 0};
   look.constant = shade.kind == SurfaceShade::Kind::Constant;
+  std::array<float, 3> intensity{shade.intensity, shade.intensity, shade.intensity};
+  if (shade.kind == SurfaceShade::Kind::Lit) {
+    look.light_channels = shade.coloured ? 3 : 1;
+    // Lit alike everywhere (flat, no light partly cut off): a constant after all.
+    look.constant = true;
+    intensity = shade.lit_ambient;
+    for (int32_t t = shade.first_term; t < shade.first_term + shade.terms && look.constant; ++t) {
+      const LightTerm& term = terms[size_t(t)];
+      look.constant = term.kind == LightTerm::Kind::Constant && !term.needs_scan();
+      for (size_t c = 0; c < 3; ++c) intensity[c] += term.diffuse * term.colour[c];
+    }
+    for (float& i : intensity) i = std::min(i, 1.0f);
+    if (!shade.coloured) intensity[1] = intensity[2] = intensity[0];
+    look.lit = !look.constant;
+  }
   for (size_t c = 0; c < 3; ++c) {
-    look.linear[c] = look.colour[c] * shade.intensity;
+    look.linear[c] = look.colour[c] * intensity[c];
     look.code[c] = enc(look.linear[c]);
   }
   return look;
@@ -205,7 +279,9 @@ std::vector<std::pair<std::string, double>> RenderStats::fields() const {
           {"depth_comparisons", double(depth_comparisons)},
           {"active_max", double(active_max)},
           {"active_mean", active_mean},
-          {"threads", double(threads)}};
+          {"threads", double(threads)},
+          {"light_pieces", double(light_pieces)},
+          {"effects_us", effects_us}};
 }
 
 void RenderStats::add(const RenderStats& o) {
@@ -222,6 +298,8 @@ void RenderStats::add(const RenderStats& o) {
   active_max = std::max(active_max, o.active_max);
   active_mean = scanlines > 0 ? double(intersections) / double(scanlines) : 0;
   threads = std::max(threads, o.threads);
+  light_pieces += o.light_pieces;
+  effects_us += o.effects_us;
 }
 
 void render_scene(const ScreenScene& scene, const HalftoneOptions& options, Image& out, RenderStats* stats,
@@ -236,16 +314,20 @@ void render_scene(const ScreenScene& scene, const HalftoneOptions& options, Imag
   const SrgbEncoder& enc = srgb_encoder();
   std::vector<PolygonLook> looks;
   looks.reserve(scene.shades.size());
-  for (const SurfaceShade& shade : scene.shades) looks.push_back(look_of(shade, options.colour, enc));
+  for (const SurfaceShade& shade : scene.shades) looks.push_back(look_of(shade, scene.light_terms, options.colour, enc));
   SurfaceShade background;
   background.colour = {float(options.background[0]), float(options.background[1]), float(options.background[2])};
   background.intensity = 1;
-  const PolygonLook back = look_of(background, options.colour, enc);
+  const PolygonLook back = look_of(background, scene.light_terms, options.colour, enc);
 
   const EdgeTable table(raster.width, raster.height, scene.polygons, scene.clips);
+  // Bouknight's secondary scan, only when some light is cut off somewhere.
+  std::optional<EdgeTable> pieces;
+  if (!scene.pieces.empty()) pieces.emplace(raster.width, raster.height, scene.pieces, std::vector<ClipRegion>{});
   const int bands = (out.height + kBandRows - 1) / kBandRows;
-  tbb::enumerable_thread_specific<BandPainter> painters(
-      [&] { return BandPainter(scene, table, looks, back, s, channels, out, item_buffer); });
+  tbb::enumerable_thread_specific<BandPainter> painters([&] {
+    return BandPainter(scene, table, pieces ? &*pieces : nullptr, looks, back, s, channels, out, item_buffer);
+  });
   tbb::task_arena& arena = arena_for(options.threads);
   arena.execute([&] {
     tbb::parallel_for(0, bands, [&](int band) {
@@ -271,15 +353,42 @@ void render_scene(const ScreenScene& scene, const HalftoneOptions& options, Imag
     r.active_max = total.active_max;
     r.active_mean = total.scanlines > 0 ? double(total.intersections) / double(total.scanlines) : 0;
     r.threads = arena.max_concurrency();
+    r.light_pieces = long(scene.pieces.size());
     *stats = r;
   }
   if (options.dither != Dither::None) out = dither(out, options.dither);
   if (stats) stats->render_us = micros_since(t0);
 }
 
+void render_view(const CellComplex& complex, const std::vector<PlacedObject>& objects, const SceneEffects& effects,
+                 const Camera& camera, const VisibleSet& visible, const HalftoneOptions& options, Image& out,
+                 RenderStats* stats) {
+  const auto t0 = Clock::now();
+  const EffectPlan& plan = effects.plan;
+  SceneOptions so = scene_options(options);
+  so.shading = plan.shading;
+  if (!plan.lighting.at_eye) {
+    so.lighting = &plan.lighting;
+    so.shadows = &effects.shadows;
+  }
+  ScreenScene scene = screen_scene_of_view(complex, objects, camera, visible, so);
+  scene.implicit_lines = plan.implicit_lines.on;
+  render_scene(scene, options, out, stats);
+  if (stats) stats->render_us = micros_since(t0);
+}
+
 void render_view(const CellComplex& complex, const std::vector<PlacedObject>& objects, const Camera& camera,
                  const VisibleSet& visible, const HalftoneOptions& options, Image& out, RenderStats* stats) {
   const auto t0 = Clock::now();
+  if (options.plan_effects) {
+    const SceneEffects effects = prepare_effects(complex, objects, options);
+    render_view(complex, objects, effects, camera, visible, options, out, stats);
+    if (stats) {
+      stats->effects_us = effects.prepare_us;
+      stats->render_us = micros_since(t0);
+    }
+    return;
+  }
   const ScreenScene scene = screen_scene_of_view(complex, objects, camera, visible, scene_options(options));
   render_scene(scene, options, out, stats);
   if (stats) stats->render_us = micros_since(t0);
@@ -303,6 +412,8 @@ Image render_stereo_view(const CellComplex& complex, const std::vector<PlacedObj
   Image views[2];
   RenderStats total;
   const Camera* eyes[2] = {&left, &right};
+  std::optional<SceneEffects> effects;  // decided once for both eyes
+  if (options.plan_effects) effects.emplace(prepare_effects(complex, objects, options));
   for (int k = 0; k < 2; ++k) {
     const Location at = complex.locate(eyes[k]->eye);
     if (at.what != Location::What::Cell)
@@ -310,13 +421,15 @@ Image render_stereo_view(const CellComplex& complex, const std::vector<PlacedObj
                                (at.solid.empty() ? std::string() : " (inside " + at.solid + ")"));
     const VisibleSet visible = find_visible(complex, *eyes[k], at.cell, kernel);
     RenderStats one;
-    render_view(complex, objects, *eyes[k], visible, each, views[k], &one);
+    if (effects) render_view(complex, objects, *effects, *eyes[k], visible, each, views[k], &one);
+    else render_view(complex, objects, *eyes[k], visible, each, views[k], &one);
     total.add(one);
   }
   Image out = stereo_composite(views[0], views[1], composite);
   if (options.dither != Dither::None) out = dither(out, options.dither);
   if (stats) {
     *stats = total;
+    if (effects) stats->effects_us = effects->prepare_us;
     stats->render_us = micros_since(t0);
   }
   return out;

@@ -21,6 +21,7 @@
 
 #include "cells/cell_complex.h"
 #include "plans/mesh.h"
+#include "render/lighting.h"
 #include "render/raster.h"
 #include "render/scene_objects.h"
 #include "render/scene_screen.h"
@@ -38,6 +39,11 @@ struct HalftoneOptions {
   int threads = 0;              ///< 0: as many as TBB offers; otherwise at most this many
   bool cull_back_faces = true;  ///< drop polygons of closed meshes facing away from the eye
   std::array<double, 3> background{0, 0, 0};  ///< linear RGB where nothing is seen (Bouknight's polygon 0)
+  Lights lights = Lights::Plan;  ///< the plan's point lights (with shadows) when it has any, else the eye's; or the eye's only
+  /// Assemble only the stages the scene calls for (effects.h). False: the bare pipeline as
+  /// it was before effects were planned — the light at the eye, implicit lines searched
+  /// wherever objects meet — for comparison.
+  bool plan_effects = true;
 };
 
 /// What a render did and how long it took.
@@ -55,6 +61,8 @@ struct RenderStats {
   int active_max = 0;          ///< most edges in the active list on one row
   double active_mean = 0;      ///< mean active list length over the scanlines
   int threads = 0;             ///< threads the bands were spread over
+  long light_pieces = 0;       ///< lit pieces and shadow polygons in the secondary scan (0: none needed)
+  double effects_us = 0;       ///< [µs] of render_us: deciding the effects and casting shadows (0 when prepared beforehand)
   /// Every field as (key, value), e.g. for `avenues view --stats-json` ("render_us", "spans", ...).
   std::vector<std::pair<std::string, double>> fields() const;
   /// Adds another render's figures (a stereo pair's second eye): sums, the larger maximum.
@@ -66,9 +74,16 @@ struct RenderStats {
 Image render_view(const CellComplex& complex, const Camera& camera, const VisibleSet& visible,
                   const HalftoneOptions& options, RenderStats* stats = nullptr);
 /// The same with objects placed beforehand (place_objects), into a picture whose storage
-/// is reused from frame to frame (a walkthrough).
+/// is reused from frame to frame (a walkthrough). The scene's effects are decided (and its
+/// shadows cast) on each call; see the next overload to do that once.
 void render_view(const CellComplex& complex, const std::vector<PlacedObject>& objects, const Camera& camera,
                  const VisibleSet& visible, const HalftoneOptions& options, Image& out, RenderStats* stats = nullptr);
+struct SceneEffects;
+/// The same with the scene's effects prepared beforehand (effects.h: prepare_effects with the
+/// same complex, objects and options), shared by every view of the scene.
+void render_view(const CellComplex& complex, const std::vector<PlacedObject>& objects, const SceneEffects& effects,
+                 const Camera& camera, const VisibleSet& visible, const HalftoneOptions& options, Image& out,
+                 RenderStats* stats = nullptr);
 
 /// A stereo pair as one picture: each eye located and its avenues found (Jones's traversal
 /// in `kernel`), both views rendered, then composed as `composite` asks; a dither, if

@@ -144,8 +144,8 @@ constexpr int32_t kNoSpan = INT32_MAX;  ///< span key of a polygon with nothing 
 constexpr int64_t kUnbounded = int64_t(1) << 62;
 }  // namespace
 
-ScanlineEngine::ScanlineEngine(const EdgeTable& table)
-    : table_(table), polygons_(*table.polygons_) {
+ScanlineEngine::ScanlineEngine(const EdgeTable& table, bool implicit_lines)
+    : table_(table), polygons_(*table.polygons_), implicit_lines_(implicit_lines) {
   polygon_extent_.resize(polygons_.size());
   clip_extent_.resize(table.clip_count_);
   span_left_.assign(polygons_.size(), kNoSpan);
@@ -222,13 +222,25 @@ void ScanlineEngine::scan(std::vector<Span>& out) {
     counters_.active_max = std::max(counters_.active_max, int(active_.size()));
   }
   for (const ActiveEdge& a : active_) touch(a.clip ? clip_extent_[size_t(a.owner)] : polygon_extent_[size_t(a.owner)], a);
-  spans_of_polygons();
+  spans_of_polygons(true);
   walk();
   counters_.spans += long(out.size());
   next_row();
 }
 
-void ScanlineEngine::spans_of_polygons() {
+void ScanlineEngine::scan_coverage() {
+  row_centre_ = row_ + 0.5;
+  if (!active_.empty()) {
+    ++counters_.scanlines;
+    counters_.intersections += long(active_.size());
+    counters_.active_max = std::max(counters_.active_max, int(active_.size()));
+  }
+  for (const ActiveEdge& a : active_) touch(a.clip ? clip_extent_[size_t(a.owner)] : polygon_extent_[size_t(a.owner)], a);
+  spans_of_polygons(false);
+  next_row();
+}
+
+void ScanlineEngine::spans_of_polygons(bool sort) {
   // Each polygon's span [L, R): right of its left edges, left of its right edges (no edge
   // on a side: unbounded there), cut by its clip region and the window.
   const int64_t width = table_.width_;
@@ -258,6 +270,7 @@ void ScanlineEngine::spans_of_polygons() {
       span_left_[size_t(p)] = span_right_[size_t(p)] = kNoSpan;
     }
   }
+  if (!sort) return;
   // The span ends in scan order. Both lists were in order on the row above and spans move
   // little from row to row, so an insertion sort has next to nothing to do (Bouknight
   // sorts his active list anew each scanline; coherence makes it cheap).
@@ -405,6 +418,7 @@ void ScanlineEngine::resolve_groups(int32_t x0, int32_t x1, size_t first, int32_
     else resolve_groups(s0, s1, last, deepest_face, level + 1);
   };
   if (cands.size() == 1) return take(x0, x1, cands[0]);
+  if (!implicit_lines_) return take(x0, x1, nearest(cands, x0));  // no interpenetration: one order all along
   // Bouknight: depth sort at the left end of the run; while some polygon is nearer than
   // the current one at the right end, an implicitly defined line lies between — split at
   // the first such crossing (Appendix 2) and carry on from there.
@@ -470,6 +484,27 @@ int32_t ScanlineEngine::first_nearer(int32_t q, int32_t cur, int32_t from, int32
   while (p > from + 1 && nearer_by(q, cur, p - 1) > 0) --p;
   while (p < last && !(nearer_by(q, cur, p) > 0)) ++p;
   return p;
+}
+
+// --- the secondary scan -------------------------------------------------------------
+
+SecondaryScan::SecondaryScan(const EdgeTable& pieces) : engine_(pieces) {
+  spans_.resize(size_t(pieces.polygons_->size()));
+  row_of_.assign(spans_.size(), -1);
+}
+
+void SecondaryScan::start(int row) {
+  engine_.start(row);
+  next_ = row;
+}
+
+void SecondaryScan::scan() {
+  engine_.scan_coverage();
+  row_ = next_++;
+  for (const Span& sp : engine_.coverage()) {
+    spans_[size_t(sp.polygon)] = sp;
+    row_of_[size_t(sp.polygon)] = row_;
+  }
 }
 
 }  // namespace avenues

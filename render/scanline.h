@@ -130,6 +130,7 @@ class EdgeTable {
 
  private:
   friend class ScanlineEngine;
+  friend class SecondaryScan;
   struct Edge {
     int64_t x0 = 0, y0 = 0;  ///< upper end point [1/256 sample]
     int64_t dx = 0, dy = 0;  ///< to the lower end point; dy > 0
@@ -163,12 +164,18 @@ class EdgeTable {
 /// Scans rows one after the other from any starting row. One per thread.
 class ScanlineEngine {
  public:
-  explicit ScanlineEngine(const EdgeTable& table);
+  /// `implicit_lines` false: the scene has no interpenetrating polygons (effects.h), so the
+  /// nearest polygon at the left end of a run is the nearest all along it and the search for
+  /// implicitly defined lines is skipped (one depth sort per run instead of two or more).
+  explicit ScanlineEngine(const EdgeTable& table, bool implicit_lines = true);
 
   /// Places the scan at `row`: the edges already crossing it enter the active list.
   void start(int row);
   /// The spans of the current row, left to right, tiling [0, width); then moves down a row.
   void scan(std::vector<Span>& out);
+  /// Only each polygon's own span on the current row (coverage()), no hidden surfaces; then
+  /// moves down a row. The secondary scan's step.
+  void scan_coverage();
   const ScanCounters& counters() const { return counters_; }
   /// Each polygon's own span on the row last scanned, before hidden surfaces were
   /// resolved (for checking coverage: the fill rule's "exactly once").
@@ -192,7 +199,7 @@ class ScanlineEngine {
   void enter(const EdgeTable::Edge& e, int row);
   void enter_polygon(int32_t p);
   void touch(Extent& x, const ActiveEdge& a);
-  void spans_of_polygons();
+  void spans_of_polygons(bool sort);
   void walk();
   void next_row();
   void resolve(int32_t x0, int32_t x1);
@@ -216,7 +223,36 @@ class ScanlineEngine {
   std::vector<std::vector<int32_t>> candidates_;  ///< resolve: per level of groups
   std::vector<Span>* out_ = nullptr;
   double row_centre_ = 0.5;
+  bool implicit_lines_ = true;
   ScanCounters counters_;
+};
+
+/// Bouknight's secondary scan (Chapter V): "a secondary scan which simply keeps track of
+/// which shadows are being pierced by the scan ray at any given point on the scan", run
+/// alongside the primary scan over the same rows. Its polygons are the shadow polygons and
+/// lit pieces of the surfaces (shadows.h) on the raster, each belonging to one light and one
+/// polygon of the primary scan; no depth is needed, since the primary scan has already chosen
+/// the polygon a sample sees. Coverage follows the primary scan's conventions exactly (the
+/// same fixed point, edges stepped the same way, the top-left rule), so a shadow polygon's
+/// edge shared with its polygon's edge bounds both alike: the test per sample is exact.
+class SecondaryScan {
+ public:
+  explicit SecondaryScan(const EdgeTable& pieces);
+  /// Places the scan at `row`, as ScanlineEngine::start.
+  void start(int row);
+  /// Finds each piece's samples on the current row, then moves down a row.
+  void scan();
+  /// The samples [x0, x1) of piece `piece` on the row last scanned (x0 >= x1: none).
+  Span span_of(int32_t piece) const {
+    return row_of_[size_t(piece)] == row_ ? spans_[size_t(piece)] : Span{0, 0, piece};
+  }
+
+ private:
+  ScanlineEngine engine_;
+  std::vector<Span> spans_;      ///< per piece, its span on row row_of_[piece]
+  std::vector<int32_t> row_of_;  ///< per piece, the row its span belongs to
+  int32_t row_ = -1;             ///< the row last scanned
+  int32_t next_ = 0;             ///< the row scan() does next
 };
 
 }  // namespace avenues

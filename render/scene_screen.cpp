@@ -5,6 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "render/shadows.h"
+
 namespace avenues {
 
 namespace {
@@ -84,6 +86,22 @@ int32_t ScreenSceneBuilder::add_clip(const std::vector<Vec2>& picture_polygon, d
 bool ScreenSceneBuilder::add(const std::vector<Vec3>& points, Vec3 n, double d, const SurfaceShade& shade,
                              Placement where, const PolygonSource& source) {
   if (!(std::fabs(d) > 0)) return false;  // the plane passes through the eye: seen edge-on
+  ScreenPolygon poly;
+  if (!project(points, poly)) return false;
+  // 1/Z on the raster: n·(d_xy·Z) + d = 0 with d_xy = (x, y, 1), x = x0 + step·u, y = y0 − step·v.
+  const RasterMap& m = out_.raster;
+  poly.depth = {-n.x * m.step / d, n.y * m.step / d, -(n.x * m.x0 + n.y * m.y0 + n.z) / d};
+  poly.clip = where.clip;
+  poly.group = where.group;
+  poly.rank = where.rank;
+  poly.role = where.role;
+  out_.polygons.push_back(std::move(poly));
+  out_.shades.push_back(shade);
+  out_.sources.push_back(source);
+  return true;
+}
+
+bool ScreenSceneBuilder::project(const std::vector<Vec3>& points, ScreenPolygon& poly) {
   // 2. Near plane, in 3D (only when some corner lies nearer than it).
   const double near = camera_.near;
   const bool all_beyond = std::all_of(points.begin(), points.end(), [near](Vec3 p) { return p.z >= near; });
@@ -103,24 +121,110 @@ bool ScreenSceneBuilder::add(const std::vector<Vec3>& points, Vec3 n, double d, 
     cut(guard_cut_, [hy](Vec2 p) { return hy - p.y; }, raster_);
   }
   // 5. Fixed point, once.
-  ScreenPolygon poly;
+  poly.outline.clear();
   for (Vec2 r : raster_) {
     const FixedPoint f = to_fixed(r);
     if (poly.outline.empty() || !(poly.outline.back() == f)) poly.outline.push_back(f);
   }
   while (poly.outline.size() > 1 && poly.outline.front() == poly.outline.back()) poly.outline.pop_back();
-  if (poly.outline.size() < 3) return false;
-  // 1/Z on the raster: n·(d_xy·Z) + d = 0 with d_xy = (x, y, 1), x = x0 + step·u, y = y0 − step·v.
-  const RasterMap& m = out_.raster;
-  poly.depth = {-n.x * m.step / d, n.y * m.step / d, -(n.x * m.x0 + n.y * m.y0 + n.z) / d};
-  poly.clip = where.clip;
-  poly.group = where.group;
-  poly.rank = where.rank;
-  poly.role = where.role;
-  out_.polygons.push_back(std::move(poly));
-  out_.shades.push_back(shade);
-  out_.sources.push_back(source);
+  return poly.outline.size() >= 3;
+}
+
+// --- the plan's lights ------------------------------------------------------------------
+
+const SurfaceLight* ScreenSceneBuilder::surface_light(size_t k, const PolygonSource& source) const {
+  switch (source.kind) {
+    case PolygonSource::Kind::Face: return options_.shadows->on_face(k, source.cell, source.face);
+    case PolygonSource::Kind::Object: return options_.shadows->on_object(k, source.mesh, source.polygon);
+    case PolygonSource::Kind::Mesh: return nullptr;
+  }
+  return nullptr;
+}
+
+bool ScreenSceneBuilder::add_pieces(const SurfaceLight& s, LightTerm& term) {
+  const size_t before = out_.pieces.size();
+  std::vector<Vec3> cam;
+  auto put = [&](const std::vector<Vec3>& world) {
+    cam.clear();
+    for (Vec3 p : world) cam.push_back(camera_.camera_from_world(p));
+    ScreenPolygon piece;
+    if (project(cam, piece)) out_.pieces.push_back(std::move(piece));
+  };
+  term.first_piece = int32_t(before);
+  term.whole = s.whole;
+  if (!s.whole) {
+    for (const auto& p : s.lit) put(p);
+    term.lit_pieces = int32_t(out_.pieces.size() - before);
+    if (term.lit_pieces == 0) return false;
+  }
+  const size_t shadows_from = out_.pieces.size();
+  for (const auto& p : s.shadow) put(p);
+  term.shadow_pieces = int32_t(out_.pieces.size() - shadows_from);
   return true;
+}
+
+SurfaceShade ScreenSceneBuilder::lit_planar_shade(const Material& m, Vec3 n, double d, Vec3 centroid, bool per_sample,
+                                                  const PolygonSource& source) {
+  const Lighting& lighting = *options_.lighting;
+  SurfaceShade shade;
+  shade.kind = SurfaceShade::Kind::Lit;
+  shade.colour = material_colour(m);
+  shade.lit_ambient = lighting.ambient;
+  shade.coloured = lighting.coloured;
+  shade.first_term = int32_t(out_.light_terms.size());
+  for (size_t k = 0; k < lighting.points.size(); ++k) {
+    const SurfaceLight* s = surface_light(k, source);
+    if (!s) continue;
+    const PointLight& light = lighting.points[k];
+    LightTerm term;
+    if (!planar_light_term(m, n, d, centroid, camera_.camera_from_world(light.position), light, lighting, per_sample,
+                           term))
+      continue;
+    const size_t pieces = out_.pieces.size();
+    if (!add_pieces(*s, term)) {
+      out_.pieces.resize(pieces);
+      continue;
+    }
+    out_.light_terms.push_back(term);
+  }
+  shade.terms = int32_t(out_.light_terms.size()) - shade.first_term;
+  return shade;
+}
+
+SurfaceShade ScreenSceneBuilder::lit_gouraud_shade(const Material& m, const std::array<Vec3, 3>& points,
+                                                   const std::array<Vec3, 3>& normals, const PolygonSource& source) {
+  const Lighting& lighting = *options_.lighting;
+  SurfaceShade shade;
+  shade.kind = SurfaceShade::Kind::Lit;
+  shade.colour = material_colour(m);
+  shade.lit_ambient = lighting.ambient;
+  shade.coloured = lighting.coloured;
+  shade.first_term = int32_t(out_.light_terms.size());
+  for (size_t k = 0; k < lighting.points.size(); ++k) {
+    const SurfaceLight* s = surface_light(k, source);
+    if (!s) continue;
+    const PointLight& light = lighting.points[k];
+    LightTerm term;
+    if (!gouraud_light_term(m, points, normals, camera_.camera_from_world(light.position), light, lighting,
+                            out_.raster, term))
+      continue;
+    const size_t pieces = out_.pieces.size();
+    if (!add_pieces(*s, term)) {
+      out_.pieces.resize(pieces);
+      continue;
+    }
+    out_.light_terms.push_back(term);
+  }
+  shade.terms = int32_t(out_.light_terms.size()) - shade.first_term;
+  return shade;
+}
+
+bool ScreenSceneBuilder::add_lit(const std::vector<Vec3>& points, Vec3 n, double d, const SurfaceShade& shade,
+                                 Placement where, const PolygonSource& source, size_t pieces_before) {
+  if (add(points, n, d, shade, where, source)) return true;
+  out_.light_terms.resize(size_t(shade.first_term));
+  out_.pieces.resize(pieces_before);
+  return false;
 }
 
 bool ScreenSceneBuilder::add_face(const std::vector<Vec3>& polygon, const Plane& plane, const Material& material,
@@ -135,9 +239,14 @@ bool ScreenSceneBuilder::add_face(const std::vector<Vec3>& polygon, const Plane&
   // The face's plane in camera space: n·P + (n·eye + d) = 0.
   const Vec3 n = camera_dir(plane.n);
   const double d = plane.eval(camera_.eye);
-  const SurfaceShade shade = options_.shading.model == ShadingModel::Flat
-                                 ? flat_shade(material, n, centroid, options_.shading)
-                                 : eye_light_shade(material, std::fabs(d) / length(n), options_.shading);
+  const bool smooth = options_.shading.model == ShadingModel::Smooth;  // Auto: a plane is flat
+  if (lit()) {
+    if (!(std::fabs(d) > 0)) return false;
+    const size_t pieces = out_.pieces.size();
+    return add_lit(cam, n, d, lit_planar_shade(material, n, d, centroid, smooth, source), where, source, pieces);
+  }
+  const SurfaceShade shade = !smooth ? flat_shade(material, n, centroid, options_.shading)
+                                     : eye_light_shade(material, std::fabs(d) / length(n), options_.shading);
   return add(cam, n, d, shade, where, source);
 }
 
@@ -158,16 +267,35 @@ void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<in
   const double d = -dot(nc, centroid);
   // Crow 1981: a closed surface seen from inside is hidden, so a polygon facing away goes.
   if (options_.cull_back_faces && mesh.closed && !(d > 0)) return;
+  const bool lit_here = lit() && source.kind == PolygonSource::Kind::Object && std::fabs(d) > 0;
   if (options_.shading.model == ShadingModel::Flat) {
+    if (lit_here) {
+      const size_t pieces = out_.pieces.size();
+      add_lit(cam, nc, d, lit_planar_shade(material, nc, d, centroid, false, source), where, source, pieces);
+      return;
+    }
     add(cam, nc, d, flat_shade(material, nc, centroid, options_.shading), where, source);
     return;
   }
   // Smooth: a flat part of the mesh (every corner's normal the polygon's) is lit exactly
-  // from its plane; a curved part by Gouraud over each triangle.
-  bool planar = true;
-  for (int c : corners) planar &= dot(mesh.vertex_normals[size_t(c)], (1 / area) * n) > 1 - 1e-9;
+  // from its plane; a curved part by Gouraud over each triangle. Auto: the flat part flat.
+  double min_cos = 1;
+  for (int c : corners) min_cos = std::min(min_cos, dot(mesh.vertex_normals[size_t(c)], (1 / area) * n));
+  bool planar = min_cos > 1 - 1e-9;
+  // Auto: curved means a smooth surface cut into polygons — corner normals near the
+  // polygon's own; a box's corner normals (averaged over a right angle) are a crease.
+  if (options_.shading.model == ShadingModel::Auto && min_cos < kCurvedCos) planar = true;
   if (planar) {
-    add(cam, nc, d, eye_light_shade(material, std::fabs(d) / area, options_.shading), where, source);
+    const bool smooth = options_.shading.model == ShadingModel::Smooth;
+    if (lit_here) {
+      const size_t pieces = out_.pieces.size();
+      add_lit(cam, nc, d, lit_planar_shade(material, nc, d, centroid, smooth, source), where, source, pieces);
+      return;
+    }
+    add(cam, nc, d,
+        smooth ? eye_light_shade(material, std::fabs(d) / area, options_.shading)
+               : flat_shade(material, nc, centroid, options_.shading),
+        where, source);
     return;
   }
   for (size_t k = 1; k + 1 < corners.size(); ++k) {
@@ -178,9 +306,22 @@ void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<in
       normals[i] = camera_dir(mesh.vertex_normals[size_t(corners[c[i]])]);
     }
     const Vec3 tn = cross(points[1] - points[0], points[2] - points[0]);
+    const double td = -dot(tn, points[0]);
+    if (lit() && source.kind == PolygonSource::Kind::Object) {
+      if (!(std::fabs(td) > 0)) continue;
+      // The side the eye sees: a polygon seen from behind (an open mesh) turns its normals.
+      // (nc and d, not tn and td: camera space is left-handed, so a cross product of camera
+      // coordinates points the other way.)
+      if (!(d > 0))
+        for (Vec3& v : normals) v = -1.0 * v;
+      const size_t pieces = out_.pieces.size();
+      add_lit({points.begin(), points.end()}, tn, td, lit_gouraud_shade(material, points, normals, source), where,
+              source, pieces);
+      continue;
+    }
     SurfaceShade shade;
     if (gouraud_shade(material, points, normals, options_.shading, out_.raster, shade))
-      add({points.begin(), points.end()}, tn, -dot(tn, points[0]), shade, where, source);
+      add({points.begin(), points.end()}, tn, td, shade, where, source);
   }
 }
 

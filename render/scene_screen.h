@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "cells/cell_complex.h"
+#include "render/lighting.h"
 #include "render/raster_map.h"
 #include "render/scanline.h"
 #include "render/scene_objects.h"
@@ -47,12 +48,28 @@ struct ScreenScene {
   std::vector<SurfaceShade> shades;     ///< one per polygon
   std::vector<PolygonSource> sources;   ///< one per polygon
   std::vector<ClipRegion> clips;
+  /// Lit shades' light terms (SurfaceShade::first_term), when the plan's lights light the view.
+  std::vector<LightTerm> light_terms;
+  /// The secondary scan's polygons (LightTerm::first_piece): lit pieces and shadow polygons of
+  /// the surfaces (shadows.h), on the raster like the polygons they fall on. Only their
+  /// outlines matter.
+  std::vector<ScreenPolygon> pieces;
+  /// Search for implicitly defined lines where objects' polygons change depth order (false:
+  /// the scene has no interpenetrating polygons, effects.h; the scan is the same without).
+  bool implicit_lines = true;
 };
+
+struct SceneShadows;
+struct SurfaceLight;
 
 struct SceneOptions {
   int per_side = 1;              ///< samples along each side of a pixel: 1, 2 or 4
   Shading shading;
   bool cull_back_faces = true;   ///< drop polygons of closed meshes facing away from the eye (Crow 1981)
+  /// The plan's lights (lighting.h) and what they reach (shadows.h), for a view of a cell
+  /// complex; both must be given, and outlive the builder. Null or at the eye: the light at the eye.
+  const Lighting* lighting = nullptr;
+  const SceneShadows* shadows = nullptr;
 };
 
 /// Adds polygons to a ScreenScene (steps 1–5 above).
@@ -69,7 +86,8 @@ class ScreenSceneBuilder {
   /// side (by the Minkowski sum with a square). -1 if nothing of area is left.
   int32_t add_clip(const std::vector<Vec2>& picture_polygon, double grow);
   /// A planar convex polygon of a cell (world coordinates, on `plane`), lit as
-  /// options.shading says. False if nothing of it is left to draw.
+  /// options.shading says (or by the plan's lights, options.lighting: `source` names the
+  /// face). False if nothing of it is left to draw.
   bool add_face(const std::vector<Vec3>& polygon, const Plane& plane, const Material& material, Placement where,
                 const PolygonSource& source);
   /// A mesh, input polygon by input polygon (its fan of triangles put back together). Flat:
@@ -82,6 +100,26 @@ class ScreenSceneBuilder {
   /// Steps 2–5 for a polygon already in camera space on the plane n·P + d = 0.
   bool add(const std::vector<Vec3>& points, Vec3 n, double d, const SurfaceShade& shade, Placement where,
            const PolygonSource& source);
+  /// Steps 2–4 and the fixed point of step 5: the outline on the raster of a camera-space
+  /// polygon. False if nothing of area is left.
+  bool project(const std::vector<Vec3>& points, ScreenPolygon& poly);
+  /// Lit by the plan's point lights (not the eye's).
+  bool lit() const { return options_.lighting != nullptr && options_.shadows != nullptr && !options_.lighting->at_eye; }
+  /// A Lit shade for a polygon from `source`, its terms appended to the scene (planar: plane
+  /// n·P + d = 0 and centroid in camera space; `per_sample`: Plane terms, else Constant).
+  SurfaceShade lit_planar_shade(const Material& m, Vec3 n, double d, Vec3 centroid, bool per_sample,
+                                const PolygonSource& source);
+  /// The same for a Gouraud triangle (corners and unit vertex normals in camera space).
+  SurfaceShade lit_gouraud_shade(const Material& m, const std::array<Vec3, 3>& points,
+                                 const std::array<Vec3, 3>& normals, const PolygonSource& source);
+  /// What light k does to the surface `source` came from; nullptr: nothing.
+  const SurfaceLight* surface_light(size_t k, const PolygonSource& source) const;
+  /// Puts a surface's lit pieces and shadow polygons on the raster for `term`; false if the
+  /// light lights none of it on the raster (the term is dropped).
+  bool add_pieces(const SurfaceLight& s, LightTerm& term);
+  /// add() for a Lit shade: drops the shade's terms and pieces when nothing is drawn.
+  bool add_lit(const std::vector<Vec3>& points, Vec3 n, double d, const SurfaceShade& shade, Placement where,
+               const PolygonSource& source, size_t pieces_before);
   Vec3 camera_dir(Vec3 v) const { return {dot(v, camera_.right), dot(v, camera_.up), dot(v, camera_.forward)}; }
   void add_mesh_polygon(const Mesh& mesh, const std::vector<int>& corners, const Material& material,
                         Placement where, const PolygonSource& source);

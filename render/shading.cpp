@@ -9,21 +9,29 @@
 
 namespace avenues {
 
-const char* to_string(ShadingModel m) { return m == ShadingModel::Flat ? "flat" : "smooth"; }
+const char* to_string(ShadingModel m) {
+  switch (m) {
+    case ShadingModel::Flat: return "flat";
+    case ShadingModel::Smooth: return "smooth";
+    case ShadingModel::Auto: return "auto";
+  }
+  return "?";
+}
+
+std::array<float, 3> material_colour(const Material& m) {
+  return {float(std::clamp(m.colour[0], 0.0, 1.0)), float(std::clamp(m.colour[1], 0.0, 1.0)),
+          float(std::clamp(m.colour[2], 0.0, 1.0))};
+}
 
 bool parse_shading(const std::string& s, ShadingModel& out) {
   if (s == "flat") out = ShadingModel::Flat;
   else if (s == "smooth") out = ShadingModel::Smooth;
+  else if (s == "auto") out = ShadingModel::Auto;
   else return false;
   return true;
 }
 
 namespace {
-
-std::array<float, 3> colour_of(const Material& m) {
-  return {float(std::clamp(m.colour[0], 0.0, 1.0)), float(std::clamp(m.colour[1], 0.0, 1.0)),
-          float(std::clamp(m.colour[2], 0.0, 1.0))};
-}
 
 double back_of(const Shading& s) { return std::clamp(s.back, 0.0, 1.0); }
 
@@ -47,7 +55,7 @@ double point_intensity(double reflectance, double cos_phi, double distance, cons
 SurfaceShade flat_shade(const Material& m, Vec3 normal, Vec3 centroid, const Shading& shading) {
   SurfaceShade s;
   s.kind = SurfaceShade::Kind::Constant;
-  s.colour = colour_of(m);
+  s.colour = material_colour(m);
   const double nl = length(normal), cl = length(centroid);
   // Bouknight App. 3: cos φ = |n·l| / (|n| |l|), l from the polygon to the light at the eye.
   const double cos_phi = nl > 0 && cl > 0 ? std::fabs(dot(normal, centroid)) / (nl * cl) : 1;
@@ -58,7 +66,7 @@ SurfaceShade flat_shade(const Material& m, Vec3 normal, Vec3 centroid, const Sha
 SurfaceShade eye_light_shade(const Material& m, double plane_distance, const Shading& shading) {
   SurfaceShade s;
   s.kind = SurfaceShade::Kind::EyeLight;
-  s.colour = colour_of(m);
+  s.colour = material_colour(m);
   const double back = back_of(shading);
   s.ambient = float(back);
   s.diffuse = float((1 - back) * std::clamp(m.reflectance, 0.0, 1.0));
@@ -68,13 +76,22 @@ SurfaceShade eye_light_shade(const Material& m, double plane_distance, const Sha
   return s;
 }
 
-bool gouraud_shade(const Material& m, const std::array<Vec3, 3>& p, const std::array<Vec3, 3>& n,
-                   const Shading& shading, const RasterMap& raster, SurfaceShade& out) {
+bool over_depth(const std::array<Vec3, 3>& p, const std::array<double, 3>& value, const RasterMap& raster,
+                RasterPlane& out) {
   // A function linear over the triangle's plane, which misses the eye, is I(P) = g·P for
   // one vector g: solve g·P_k = I_k by Cramer's rule.
   const Vec3 c12 = cross(p[1], p[2]), c20 = cross(p[2], p[0]), c01 = cross(p[0], p[1]);
   const double det = dot(p[0], c12);
   if (!(std::fabs(det) > 1e-14 * length(p[0]) * length(p[1]) * length(p[2]))) return false;
+  const Vec3 g = (1 / det) * (value[0] * c12 + value[1] * c20 + value[2] * c01);
+  // On the raster P = d / (1/Z) with d = (x, y, 1) on the picture plane, so I·(1/Z) = g·d,
+  // affine in the raster position: x = x0 + step·u, y = y0 − step·v.
+  out = {g.x * raster.step, -g.y * raster.step, g.x * raster.x0 + g.y * raster.y0 + g.z};
+  return true;
+}
+
+bool gouraud_shade(const Material& m, const std::array<Vec3, 3>& p, const std::array<Vec3, 3>& n,
+                   const Shading& shading, const RasterMap& raster, SurfaceShade& out) {
   std::array<double, 3> value{};
   for (size_t k = 0; k < 3; ++k) {
     const double r = length(p[k]);
@@ -82,13 +99,12 @@ bool gouraud_shade(const Material& m, const std::array<Vec3, 3>& p, const std::a
     const double cos_phi = r > 0 ? std::fabs(dot(n[k], p[k])) / r : 1;
     value[k] = point_intensity(m.reflectance, cos_phi, r, shading, true);
   }
-  const Vec3 g = (1 / det) * (value[0] * c12 + value[1] * c20 + value[2] * c01);
-  // On the raster P = d / (1/Z) with d = (x, y, 1) on the picture plane, so I·(1/Z) = g·d,
-  // affine in the raster position: x = x0 + step·u, y = y0 − step·v.
+  RasterPlane f;
+  if (!over_depth(p, value, raster, f)) return false;
   out = SurfaceShade{};
   out.kind = SurfaceShade::Kind::Gouraud;
-  out.colour = colour_of(m);
-  out.intensity_over_depth = {g.x * raster.step, -g.y * raster.step, g.x * raster.x0 + g.y * raster.y0 + g.z};
+  out.colour = material_colour(m);
+  out.intensity_over_depth = f;
   return true;
 }
 
@@ -140,6 +156,9 @@ void shade_samples(const SurfaceShade& s, const RasterPlane& depth, const Raster
       if (s.falloff_start_sq <= 0) return eye_light_row<0>(s, depth, raster, v, x0, x1, out);
       if (s.falloff_power == 4) return eye_light_row<4>(s, depth, raster, v, x0, x1, out);
       return eye_light_row<2>(s, depth, raster, v, x0, x1, out);
+    case SurfaceShade::Kind::Lit:  // lit_samples (lighting.h) lights these, with the secondary scan's masks
+      std::fill(out, out + (x1 - x0), 0.0f);
+      return;
     case SurfaceShade::Kind::Gouraud: {
       const RasterPlane& f = s.intensity_over_depth;
       const double f_row = f.b * v + f.c, depth_row = depth.b * v + depth.c;

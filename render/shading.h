@@ -36,9 +36,14 @@
 
 namespace avenues {
 
-enum class ShadingModel : uint8_t { Flat, Smooth };
+/// Flat: Bouknight's, everywhere. Smooth: Wylie's, everywhere. Auto: smooth only where it
+/// shows — Gouraud on the curved polygons of meshes, flat on everything planar.
+enum class ShadingModel : uint8_t { Flat, Smooth, Auto };
+/// Auto: a mesh polygon is curved when its corners' normals differ from its own, each by
+/// less than 45° (cosine above this); more than that is a crease (a box's averaged corners).
+constexpr double kCurvedCos = 0.70710678118654752;
 const char* to_string(ShadingModel m);
-/// Parses "flat" or "smooth"; false if it is neither.
+/// Parses "flat", "smooth" or "auto"; false if it is none of them.
 bool parse_shading(const std::string& s, ShadingModel& out);
 
 struct Shading {
@@ -54,6 +59,7 @@ struct SurfaceShade {
     Constant,  ///< I = intensity (Flat)
     EyeLight,  ///< I from the plane at each sample (Smooth, planar polygons)
     Gouraud,   ///< I = intensity_over_depth / (1/Z) (Smooth, meshes)
+    Lit,       ///< I from the plan's lights: ambient plus light terms (lighting.h), where the secondary scan says lit
   };
   Kind kind = Kind::Constant;
   std::array<float, 3> colour{0.8f, 0.8f, 0.8f};  ///< linear RGB of the material, each [0, 1]
@@ -64,7 +70,13 @@ struct SurfaceShade {
   double falloff_start_sq = 0;    ///< EyeLight: [m²] square of Shading::falloff_start; 0: no falloff
   int falloff_power = 2;          ///< EyeLight: 2 or 4
   RasterPlane intensity_over_depth;  ///< Gouraud: I·(1/Z), affine on the raster
+  std::array<float, 3> lit_ambient{};  ///< Lit: the ambient light A (linear RGB; [0] alone when not coloured)
+  int32_t first_term = 0, terms = 0;   ///< Lit: the scene's light terms [first_term, first_term + terms)
+  bool coloured = false;               ///< Lit: light per channel
 };
+
+/// A material's colour as linear RGB, each channel clamped to [0, 1].
+std::array<float, 3> material_colour(const Material& m);
 
 /// Bouknight's intensity at a point: back + (1 − back)·R·cos φ, times Wylie's distance law
 /// min(1, (falloff_start / distance)^power) when `with_distance` (Smooth). In [0, 1].
@@ -82,6 +94,12 @@ SurfaceShade eye_light_shade(const Material& m, double plane_distance, const Sha
 /// passes through the eye.
 bool gouraud_shade(const Material& m, const std::array<Vec3, 3>& points, const std::array<Vec3, 3>& normals,
                    const Shading& shading, const RasterMap& raster, SurfaceShade& out);
+
+/// The affine function on the raster equal to value[k]·(1/Z) at the triangle's corners
+/// `points` (camera space): perspective-correct interpolation of a per-vertex quantity.
+/// False if the triangle's plane passes through the eye.
+bool over_depth(const std::array<Vec3, 3>& points, const std::array<double, 3>& value, const RasterMap& raster,
+                RasterPlane& out);
 
 /// Intensities I in [0, 1] of samples [x0, x1) of raster row `row` (centres at x + ½,
 /// row + ½) on a polygon whose 1/Z is `depth`. Writes x1 − x0 values to `out`.

@@ -1,6 +1,7 @@
 // Avenues — a drawing as SVG (see drawing.h). Hand-written XML: user units are paper
 // millimetres (viewBox = page size in mm), one group per layer (an Inkscape layer too),
 // inside it one group per weight carrying the stroke width in mm.
+#include <algorithm>
 #include <charconv>
 #include <string>
 
@@ -28,7 +29,9 @@ std::string svg_bytes(const Drawing& d, const Page& page) {
   o += " width=\"" + num(page.width) + "mm\" height=\"" + num(page.height) + "mm\"";
   o += " viewBox=\"0 0 " + num(page.width) + " " + num(page.height) + "\">\n";
   if (!d.title.empty()) o += "<title>" + xml_escape(d.title) + "</title>\n";
-  for (Layer layer : {Layer::Architecture, Layer::Furniture}) {
+  const bool shadows = std::any_of(d.strokes.begin(), d.strokes.end(), [](const Stroke& s) { return s.layer == Layer::Shadows; });
+  for (Layer layer : {Layer::Architecture, Layer::Furniture, Layer::Shadows}) {
+    if (layer == Layer::Shadows && !shadows) continue;  // an optional layer: there only when drawn
     const std::string name = to_string(layer);
     o += "<g id=\"" + name + "\" inkscape:groupmode=\"layer\" inkscape:label=\"" + name +
          "\" fill=\"none\" stroke=\"#000\" stroke-linecap=\"round\">\n";

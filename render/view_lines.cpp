@@ -2,8 +2,10 @@
 #include "render/view_lines.h"
 
 #include <algorithm>
+#include <map>
 
 #include "render/interval_clip.h"
+#include "render/shadow_outline.h"
 #include "render/stroke_merge.h"
 
 namespace avenues {
@@ -65,9 +67,59 @@ struct SeenEdge {
   Weight weight;
 };
 
+/// The outlines of the shadows on the faces each avenue sees, clipped to its mask like the
+/// lines of its cell and hidden behind furniture like them (Layer::Shadows, thin).
+void draw_shadow_outlines(const CellComplex& c, const LineScene& scene, const Camera& cam, const VisibleSet& vs,
+                          const std::vector<Occluder>& occluders, std::vector<Stroke>& out) {
+  if (scene.shadows.lights.empty()) return;
+  std::vector<std::array<Vec3, 2>> segments;  // every outline segment of every face seen, once
+  std::map<std::pair<size_t, int32_t>, std::pair<int32_t, int32_t>> of_face;  // (light, global face) -> segments
+  std::vector<Vec3> sides;
+  std::vector<KeyedInterval> pieces;
+  for (const Avenue& a : vs.avenues) {
+    mask_sides(a.mask, sides);
+    const Cell& cell = c.cells[size_t(a.cell)];
+    for (size_t k = 0; k < cell.faces.size(); ++k) {
+      const Face& f = cell.faces[k];
+      if (f.opaque.empty() || !(f.plane.eval(cam.eye) < 0)) continue;
+      for (size_t l = 0; l < scene.shadows.lights.size(); ++l) {
+        const SurfaceLight* s = scene.shadows.on_face(l, a.cell, int(k));
+        if (!s) continue;
+        const int32_t face = scene.shadows.face_base[size_t(a.cell)] + int32_t(k);
+        auto [it, fresh] = of_face.try_emplace({l, face}, int32_t(segments.size()), int32_t(segments.size()));
+        if (fresh) {
+          for (const auto& e : shadow_outline(f.poly, *s)) segments.push_back(e);
+          it->second.second = int32_t(segments.size());
+        }
+        for (int32_t i = it->second.first; i < it->second.second; ++i) {
+          Interval iv{0, 1};
+          const auto& e = segments[size_t(i)];
+          if (clip_to_avenue(iv, cam.camera_from_world(e[0]), cam.camera_from_world(e[1]), cam.near, sides))
+            pieces.push_back({i, iv});
+        }
+      }
+    }
+  }
+  std::vector<Interval> intervals;
+  detail::merge_intervals(pieces, kTouch);
+  for_each_line(pieces, intervals, [&](int32_t i, std::vector<Interval>& iv) {
+    const Vec3 p0 = cam.camera_from_world(segments[size_t(i)][0]), p1 = cam.camera_from_world(segments[size_t(i)][1]);
+    hide_behind(occluders, p0, p1, iv);
+    add_strokes(cam, p0, p1, iv, Weight::Crease, Layer::Shadows, out);
+  });
+}
+
 }  // namespace
 
-LineScene prepare_line_scene(const CellComplex& complex) { return {line_faces(complex), place_furniture(complex)}; }
+LineScene prepare_line_scene(const CellComplex& complex) { return {line_faces(complex), place_furniture(complex), {}, {}}; }
+
+LineScene prepare_line_scene(const CellComplex& complex, const LineOptions& options) {
+  LineScene scene = prepare_line_scene(complex);
+  if (!options.shadows) return scene;
+  scene.lighting = lighting_of(complex, Shading{}, Lights::Plan, false, false);
+  scene.shadows = cast_shadows(complex, place_objects(complex), scene.lighting);
+  return scene;
+}
 
 Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& cam, const VisibleSet& vs,
                   const LineOptions& options) {
@@ -154,6 +206,7 @@ Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& ca
     add_strokes(cam, p0, p1, s, se.weight, Layer::Furniture, d.strokes);
   });
   merge_collinear(d.strokes);
+  if (options.shadows) draw_shadow_outlines(c, scene, cam, vs, occluders, d.strokes);
   return d;
 }
 

@@ -23,6 +23,8 @@
 #include "render/drawing.h"
 #include "render/furniture.h"
 #include "render/line_weight.h"
+#include "render/lighting.h"
+#include "render/shadows.h"
 #include "visibility/camera.h"
 #include "visibility/visible_set.h"
 
@@ -31,6 +33,9 @@ namespace avenues {
 struct LineOptions {
   double crease_deg = 30;  ///< [deg] in [0, 180): furniture edges whose polygons differ by more are creases
   bool furniture = true;   ///< draw the plan's objects (and let them hide what is behind them)
+  /// Outline the shadows the plan's point lights cast on the faces of cells (Layer::Shadows;
+  /// shadow_outline.h). Needs a LineScene prepared with this option.
+  bool shadows = false;
 };
 
 /// What drawing a complex needs besides its cells, prepared once and shared by every view
@@ -38,11 +43,15 @@ struct LineOptions {
 struct LineScene {
   LineFaces faces;
   Furniture furniture;
+  Lighting lighting;     ///< the plan's point lights, when shadows are outlined
+  SceneShadows shadows;  ///< what they light (empty unless prepared with LineOptions::shadows)
 };
 
 /// Prepares the scene of `complex`. Reads the objects' meshes: throws std::runtime_error
 /// naming a mesh that cannot be read.
 LineScene prepare_line_scene(const CellComplex& complex);
+/// The same, and with options.shadows the shadows of the plan's point lights (shadows.h).
+LineScene prepare_line_scene(const CellComplex& complex, const LineOptions& options);
 
 /// The hidden-line drawing of what `camera` sees; `visible` is find_visible() from the same
 /// camera. The drawing's page is the camera's image (width × height px).

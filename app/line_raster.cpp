@@ -1,0 +1,53 @@
+// Avenues — a hidden-line drawing as a picture (see line_raster.h).
+#include "app/line_raster.h"
+
+#include <cairo.h>
+
+#include <cstring>
+
+namespace avenues::app {
+
+void raster_of_drawing(const Drawing& drawing, Image& out) {
+  const int w = drawing.width, h = drawing.height;
+  out.resize(w, h, 3);
+  if (w <= 0 || h <= 0) return;
+  cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h);
+  cairo_t* cr = cairo_create(s);
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  // One path per (layer, weight), stroked once: far fewer calls than a stroke per line.
+  for (const Layer layer : {Layer::Architecture, Layer::Furniture})
+    for (const Weight weight : {Weight::Crease, Weight::Outline}) {
+      bool any = false;
+      for (const Stroke& st : drawing.strokes) {
+        if (st.layer != layer || st.weight != weight) continue;
+        cairo_move_to(cr, st.a.x, st.a.y);
+        cairo_line_to(cr, st.b.x, st.b.y);
+        any = true;
+      }
+      if (!any) continue;
+      const double ink = layer == Layer::Furniture ? 0.3 : 0;
+      cairo_set_source_rgb(cr, ink, ink, ink);
+      cairo_set_line_width(cr, weight == Weight::Outline ? 2 : 1);
+      cairo_stroke(cr);
+    }
+  cairo_destroy(cr);
+  cairo_surface_flush(s);
+  // RGB24: native-endian 32-bit xRGB, i.e. bytes B, G, R, x on little-endian machines.
+  const unsigned char* data = cairo_image_surface_get_data(s);
+  const int stride = cairo_image_surface_get_stride(s);
+  for (int y = 0; y < h; ++y) {
+    const uint32_t* src = reinterpret_cast<const uint32_t*>(data + size_t(y) * size_t(stride));
+    uint8_t* dst = out.row(y);
+    for (int x = 0; x < w; ++x) {
+      const uint32_t p = src[x];
+      dst[3 * x] = uint8_t(p >> 16);
+      dst[3 * x + 1] = uint8_t(p >> 8);
+      dst[3 * x + 2] = uint8_t(p);
+    }
+  }
+  cairo_surface_destroy(s);
+}
+
+}  // namespace avenues::app

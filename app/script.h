@@ -1,0 +1,44 @@
+// Avenues — a key-event script: input for the walkthrough window, replayed frame by frame.
+//
+// `avenues walk --script FILE` replays FILE as if a person pressed the keys, so that tests
+// (and demonstrations) drive the real window. One event per line, "FRAME EVENT ARGS", the
+// frame counted from 0 (events of a frame happen, in file order, before it is drawn); '#'
+// starts a comment:
+//
+//   0    down W            key W goes down (held until "up")
+//   90   up W
+//   91   tap 1             pressed and released: latches sense switch 1 (x+)
+//   120  look 200 -40      the mouse moves 200 px right, 40 px up while looking
+//   150  resize 800 450    the window is resized
+//   180  screenshot a.png  the frame as shown is read back and written (PNG)
+//   181  pose              the eye, heading, pitch and field of view are printed
+//   240  quit
+//
+// Key names are GLFW's without the prefix (W, UP, PAGE_UP, F2, 1, KP_ADD, ...).
+#pragma once
+
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace avenues::app {
+
+struct ScriptEvent {
+  enum class What : uint8_t { Down, Up, Tap, Look, Resize, Screenshot, Pose, Quit } what = What::Tap;
+  long frame = 0;      ///< >= 0
+  int key = -1;        ///< GLFW key code (Down, Up, Tap)
+  double x = 0, y = 0; ///< Look: [px]; Resize: width, height
+  std::string path;    ///< Screenshot
+  int line = 0;        ///< in the file, for messages
+};
+
+/// Reads a script. Throws PlanError naming the file, line and the bad word; events come
+/// back sorted by frame (stable: a frame's events keep their order).
+std::vector<ScriptEvent> read_script(const std::string& path);
+
+/// The script's text for `frames` frames of random input from `seed`: keys held and let go,
+/// switches flipped, mouse looks, mode and style toggles, resizes (no exports, no quit).
+std::string random_script(uint32_t seed, long frames);
+
+}  // namespace avenues::app

@@ -1,0 +1,817 @@
+// Avenues — meshes as whole scenes (see mesh_scene.h): free space as exact Nef polyhedra,
+// cut into convex cells by CGAL::convex_decomposition_3.
+//
+// The pipeline, each stage timed into CellComplex::timings:
+//   solids    — each connected component becomes a closed solid: as it is when it is a
+//               closed, consistently oriented, self-intersection-free triangle mesh;
+//               otherwise repaired (convex hull, or a thin plate when it lies flat) with a
+//               warning. Each becomes a Nef polyhedron; their union is taken.
+//   free      — the far box minus that union (regularised);
+//   decompose — CGAL::convex_decomposition_3 inserts walls until every marked volume is convex;
+//   cells     — each bounded marked volume is a cell. Its halffacets, grouped by plane, are
+//               its faces; a halffacet whose other side is another cell is part of the portal
+//               between them, every other one is opaque (a solid, or the far box). Exact to
+//               the end: each face is the exact convex hull of its vertices, each portal the
+//               hull of its halffacets (the meeting of two convex faces is convex), the opaque
+//               rest the face minus its portals, cut into convex pieces; then rounded to
+//               double once;
+//   lines     — the solids' feature edges, assigned to the cells whose boundary holds them.
+// This is the only file that includes CGAL's Nef machinery; nothing leaves it but
+// Avenues' own structs.
+#include "cells/mesh_scene.h"
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Nef_nary_union_3.h>
+#include <CGAL/Nef_polyhedron_3.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/convex_decomposition_3.h>
+#include <CGAL/convex_hull_3.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <numeric>
+#include <stdexcept>
+
+namespace avenues {
+
+namespace {
+
+using K = CGAL::Exact_predicates_exact_constructions_kernel;
+using FT = K::FT;
+using EPoint = K::Point_3;
+using EPoint2 = K::Point_2;
+using EPlane = K::Plane_3;
+using Nef = CGAL::Nef_polyhedron_3<K>;
+using SurfaceMesh = CGAL::Surface_mesh<EPoint>;
+
+class Timer {
+ public:
+  Timer(CellComplex& c, const char* stage) : c_(c), stage_(stage), t0_(std::chrono::steady_clock::now()) {}
+  ~Timer() {
+    c_.timings.push_back({stage_, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count()});
+  }
+
+ private:
+  CellComplex& c_;
+  const char* stage_;
+  std::chrono::steady_clock::time_point t0_;
+};
+
+Vec3 to_vec(const EPoint& p) {
+  return {CGAL::to_double(CGAL::exact(p.x())), CGAL::to_double(CGAL::exact(p.y())),
+          CGAL::to_double(CGAL::exact(p.z()))};
+}
+
+// --- solids --------------------------------------------------------------------------
+
+/// A closed solid, triangles counter-clockwise seen from outside, exact and rounded.
+struct Solid {
+  std::string name;                       ///< for warnings and point location
+  std::vector<EPoint> p;                  ///< exact vertices
+  std::vector<Vec3> v;                    ///< the same, rounded
+  std::vector<std::array<int, 3>> tris;
+  std::vector<int> polygon_of;            ///< per triangle: its polygon (no line between triangles of one)
+};
+
+Vec3 tri_normal(const std::vector<Vec3>& v, const std::array<int, 3>& t) {
+  return cross(v[size_t(t[1])] - v[size_t(t[0])], v[size_t(t[2])] - v[size_t(t[0])]);
+}
+
+/// Surface mesh of a solid; false when its triangles do not make a manifold surface.
+bool to_surface_mesh(const Solid& s, SurfaceMesh& sm) {
+  std::vector<SurfaceMesh::Vertex_index> vi;
+  for (const EPoint& p : s.p) vi.push_back(sm.add_vertex(p));
+  for (const auto& t : s.tris) {
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) return false;
+    if (sm.add_face(vi[size_t(t[0])], vi[size_t(t[1])], vi[size_t(t[2])]) == SurfaceMesh::null_face()) return false;
+  }
+  return true;
+}
+
+/// The solid as read from a closed, triangulated surface mesh (a convex hull): one
+/// polygon per triangle, coplanar neighbours are told apart by their normals later.
+Solid from_surface_mesh(const SurfaceMesh& sm, std::string name) {
+  Solid s;
+  s.name = std::move(name);
+  std::map<SurfaceMesh::Vertex_index, int> index;
+  for (auto v : sm.vertices()) {
+    index[v] = int(s.p.size());
+    s.p.push_back(sm.point(v));
+    s.v.push_back(to_vec(sm.point(v)));
+  }
+  for (auto f : sm.faces()) {
+    std::vector<int> ids;
+    for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) ids.push_back(index[v]);
+    for (size_t k = 1; k + 1 < ids.size(); ++k) {
+      s.tris.push_back({ids[0], ids[k], ids[k + 1]});
+      s.polygon_of.push_back(int(s.polygon_of.size()));
+    }
+  }
+  return s;
+}
+
+/// Convex hull of the points (at least four, not coplanar).
+Solid hull_solid(const std::vector<Vec3>& pts, std::string name) {
+  std::vector<EPoint> ep;
+  for (Vec3 q : pts) ep.emplace_back(q.x, q.y, q.z);
+  SurfaceMesh sm;
+  CGAL::convex_hull_3(ep.begin(), ep.end(), sm);
+  return from_surface_mesh(sm, std::move(name));
+}
+
+/// Monotone chain over exact 2D points: indices of the convex hull, counter-clockwise,
+/// without collinear or repeated points.
+std::vector<size_t> hull2(const std::vector<EPoint2>& p) {
+  std::vector<size_t> idx(p.size());
+  std::iota(idx.begin(), idx.end(), size_t(0));
+  std::sort(idx.begin(), idx.end(), [&](size_t a, size_t b) { return CGAL::compare_xy(p[a], p[b]) == CGAL::SMALLER; });
+  idx.erase(std::unique(idx.begin(), idx.end(), [&](size_t a, size_t b) { return p[a] == p[b]; }), idx.end());
+  if (idx.size() < 3) return idx;
+  std::vector<size_t> h(2 * idx.size());
+  size_t k = 0;
+  for (size_t i = 0; i < idx.size(); ++i) {  // lower chain
+    while (k >= 2 && CGAL::orientation(p[h[k - 2]], p[h[k - 1]], p[idx[i]]) != CGAL::LEFT_TURN) --k;
+    h[k++] = idx[i];
+  }
+  for (size_t i = idx.size() - 1, lo = k + 1; i-- > 0;) {  // upper chain
+    while (k >= lo && CGAL::orientation(p[h[k - 2]], p[h[k - 1]], p[idx[i]]) != CGAL::LEFT_TURN) --k;
+    h[k++] = idx[i];
+  }
+  h.resize(k - 1);
+  return h;
+}
+
+/// The axis a plane with normal (a, b, c) is projected along (its largest component),
+/// and the two kept, in cyclic order so that counter-clockwise in 2D is counter-clockwise
+/// about +axis in 3D.
+int dominant_axis(const FT& a, const FT& b, const FT& c) {
+  const FT aa = CGAL::abs(a), ab = CGAL::abs(b), ac = CGAL::abs(c);
+  if (aa >= ab && aa >= ac) return 0;
+  return ab >= ac ? 1 : 2;
+}
+FT coord(const EPoint& p, int i) { return i == 0 ? p.x() : i == 1 ? p.y() : p.z(); }
+EPoint2 project(const EPoint& p, int axis) { return {coord(p, (axis + 1) % 3), coord(p, (axis + 2) % 3)}; }
+
+/// A component lying flat becomes a plate `thickness` thick about its mid-plane: its
+/// outline (the exact hull of its points projected along the dominant axis) lifted
+/// exactly onto two parallel planes, so every face is exactly planar.
+Solid plate_solid(const std::vector<Vec3>& pts, Vec3 n, double mid_d, double thickness, std::string name) {
+  const FT a(n.x), b(n.y), c(n.z);
+  const int k = dominant_axis(a, b, c);
+  const FT nk = k == 0 ? a : k == 1 ? b : c;
+  const FT nu = k == 0 ? b : k == 1 ? c : a, nv = k == 0 ? c : k == 1 ? a : b;
+  std::vector<EPoint2> q;
+  for (Vec3 p : pts) q.push_back(project(EPoint(p.x, p.y, p.z), k));
+  std::vector<size_t> h = hull2(q);
+  if (nk < 0) std::reverse(h.begin(), h.end());  // counter-clockwise about +n
+  auto lift = [&](const EPoint2& uv, const FT& d) {
+    FT w = -(nu * uv.x() + nv * uv.y() + d) / nk;
+    FT xyz[3];
+    xyz[k] = w, xyz[(k + 1) % 3] = uv.x(), xyz[(k + 2) % 3] = uv.y();
+    return EPoint(xyz[0], xyz[1], xyz[2]);
+  };
+  // n·p + d = 0 with |n| = 1: the top plane is t/2 along +n from the mid-plane.
+  const FT d_top = FT(mid_d) - FT(thickness / 2), d_bottom = FT(mid_d) + FT(thickness / 2);
+  Solid s;
+  s.name = std::move(name);
+  const int m = int(h.size());
+  for (size_t i : h) s.p.push_back(lift(q[i], d_top));
+  for (size_t i : h) s.p.push_back(lift(q[i], d_bottom));
+  for (const EPoint& p : s.p) s.v.push_back(to_vec(p));
+  int poly = 0;
+  for (int i = 1; i + 1 < m; ++i) s.tris.push_back({0, i, i + 1}), s.polygon_of.push_back(poly);  // top
+  ++poly;
+  for (int i = 1; i + 1 < m; ++i) s.tris.push_back({m, m + i + 1, m + i}), s.polygon_of.push_back(poly);  // bottom
+  ++poly;
+  for (int i = 0; i < m; ++i, ++poly) {  // sides: bottom_i, bottom_i+1, top_i+1, top_i
+    const int j = (i + 1) % m;
+    s.tris.push_back({m + i, m + j, j}), s.polygon_of.push_back(poly);
+    s.tris.push_back({m + i, j, i}), s.polygon_of.push_back(poly);
+  }
+  return s;
+}
+
+/// Makes a closed solid of one component, repaired if need be; a solid with no triangles
+/// when there is nothing to keep. Each repair or drop is one line in `warnings`.
+Solid solid_of(const Mesh& m, const std::string& name, double sheet_thickness, std::vector<std::string>& warnings) {
+  Solid none;
+  // Distinct points, their extent and how flat they lie.
+  std::vector<Vec3> pts = m.vertices;
+  Box3 box;
+  for (Vec3 p : pts) box.add(p);
+  const double ext = std::max({box.hi.x - box.lo.x, box.hi.y - box.lo.y, box.hi.z - box.lo.z});
+  Vec3 p0 = pts[0], p1 = p0, p2 = p0;
+  for (Vec3 p : pts)
+    if (length(p - p0) > length(p1 - p0)) p1 = p;
+  double best = 0;
+  for (Vec3 p : pts) {
+    double d = length(cross(p1 - p0, p - p0));
+    if (d > best) best = d, p2 = p;
+  }
+  const double tiny = 1e-12 * std::max(ext, 1.0);
+  if (!(length(p1 - p0) > tiny) || !(best / length(p1 - p0) > tiny)) {
+    warnings.push_back(name + " has no area (its points lie on a line): dropped");
+    return none;
+  }
+  Vec3 n = cross(p1 - p0, p2 - p0);
+  n = (1.0 / length(n)) * n;
+  double lo = HUGE_VAL, hi = -HUGE_VAL;
+  for (Vec3 p : pts) lo = std::min(lo, dot(n, p - p0)), hi = std::max(hi, dot(n, p - p0));
+  const bool flat = hi - lo <= sheet_thickness;
+  const double mid_d = -(dot(n, p0) + (lo + hi) / 2);
+
+  // Closed and consistently oriented: every directed edge once, its reverse once.
+  std::map<std::pair<int, int>, int> directed;
+  for (const auto& t : m.triangles)
+    for (int k = 0; k < 3; ++k) directed[{t[size_t(k)], t[size_t((k + 1) % 3)]}]++;
+  int boundary = 0;
+  bool consistent = true;
+  for (const auto& [e, count] : directed) {
+    auto r = directed.find({e.second, e.first});
+    const int back = r == directed.end() ? 0 : r->second;
+    if (back == 0) ++boundary;
+    if (count != 1 || back > 1) consistent = false;
+  }
+  double volume = 0;
+  for (const auto& t : m.triangles)
+    volume += dot(m.vertices[size_t(t[0])] - p0, cross(m.vertices[size_t(t[1])] - p0, m.vertices[size_t(t[2])] - p0)) / 6;
+
+  const std::string polys = " (" + std::to_string(m.polygon_of.empty() ? m.triangles.size() : size_t(m.polygon_of.back() + 1)) + " polygons)";
+  auto as_plate = [&](const std::string& why) {
+    char t[32];
+    std::snprintf(t, sizeof t, "%g", sheet_thickness);
+    warnings.push_back(name + polys + " " + why + " and lies flat: kept as a sheet, a plate " + t +
+                       " m thick with both sides opaque");
+    return plate_solid(pts, n, mid_d, sheet_thickness, name);
+  };
+  auto as_hull = [&](const std::string& why) {
+    warnings.push_back(name + polys + " " + why + ": closed by its convex hull");
+    return hull_solid(pts, name);
+  };
+  if (boundary > 0) {
+    const std::string why = "is not closed (" + std::to_string(boundary) + " boundary edges)";
+    return flat ? as_plate(why) : as_hull(why);
+  }
+  if (!consistent) return flat ? as_plate("is not consistently oriented") : as_hull("is not consistently oriented");
+  if (!(std::fabs(volume) > 1e-9 * ext * ext * ext))
+    return flat ? as_plate("encloses no volume") : as_hull("encloses no volume");
+
+  Solid s;
+  s.name = name;
+  for (Vec3 p : m.vertices) s.p.emplace_back(p.x, p.y, p.z), s.v.push_back(p);
+  s.tris = m.triangles;
+  s.polygon_of = m.polygon_of;
+  if (s.polygon_of.size() != s.tris.size()) {
+    s.polygon_of.resize(s.tris.size());
+    std::iota(s.polygon_of.begin(), s.polygon_of.end(), 0);
+  }
+  if (volume < 0) {
+    warnings.push_back(name + polys + " is inside out: turned");
+    for (auto& t : s.tris) std::swap(t[1], t[2]);
+  }
+  SurfaceMesh sm;
+  if (!to_surface_mesh(s, sm)) return as_hull("is not a manifold surface");
+  if (CGAL::Polygon_mesh_processing::does_self_intersect(sm)) return as_hull("intersects itself");
+  return s;
+}
+
+// --- exact faces -----------------------------------------------------------------------
+
+/// An exact convex polygon in a face's 2D projection, counter-clockwise.
+using Poly2 = std::vector<EPoint2>;
+
+FT area2(const Poly2& p) {
+  FT a = 0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    const EPoint2 &u = p[i], &w = p[(i + 1) % p.size()];
+    a += u.x() * w.y() - u.y() * w.x();
+  }
+  return a;
+}
+
+/// The part of convex `poly` on the left of (or on) the line a→b.
+Poly2 clip_left(const Poly2& poly, const EPoint2& a, const EPoint2& b) {
+  Poly2 out;
+  auto side = [&](const EPoint2& p) { return (b.x() - a.x()) * (p.y() - a.y()) - (b.y() - a.y()) * (p.x() - a.x()); };
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const EPoint2 &p = poly[i], &q = poly[(i + 1) % poly.size()];
+    const FT sp = side(p), sq = side(q);
+    if (sp >= 0) out.push_back(p);
+    if ((sp > 0 && sq < 0) || (sp < 0 && sq > 0)) {
+      const FT t = sp / (sp - sq);
+      out.emplace_back(p.x() + t * (q.x() - p.x()), p.y() + t * (q.y() - p.y()));
+    }
+  }
+  // Drop repeated and collinear vertices.
+  for (bool changed = true; changed && out.size() >= 3;) {
+    changed = false;
+    for (size_t i = 0; i < out.size() && out.size() >= 3; ++i) {
+      const EPoint2 &u = out[(i + out.size() - 1) % out.size()], &w = out[(i + 1) % out.size()];
+      if (out[i] == w || CGAL::orientation(u, out[i], w) == CGAL::COLLINEAR) {
+        out.erase(out.begin() + long(i));
+        changed = true;
+      }
+    }
+  }
+  if (out.size() < 3) out.clear();
+  return out;
+}
+
+/// Convex pieces of `pieces` minus convex `hole` (both counter-clockwise).
+std::vector<Poly2> subtract(const std::vector<Poly2>& pieces, const Poly2& hole) {
+  std::vector<Poly2> out;
+  for (const Poly2& piece : pieces) {
+    // Separated by a line of the hole's: untouched.
+    bool apart = false;
+    for (size_t e = 0; e < hole.size() && !apart; ++e) {
+      const EPoint2 &a = hole[e], &b = hole[(e + 1) % hole.size()];
+      apart = std::all_of(piece.begin(), piece.end(), [&](const EPoint2& p) { return CGAL::orientation(a, b, p) != CGAL::LEFT_TURN; });
+    }
+    if (apart) {
+      out.push_back(piece);
+      continue;
+    }
+    Poly2 rest = piece;
+    for (size_t e = 0; e < hole.size() && !rest.empty(); ++e) {
+      const EPoint2 &a = hole[e], &b = hole[(e + 1) % hole.size()];
+      Poly2 outside = clip_left(rest, b, a);
+      if (!outside.empty() && area2(outside) > 0) out.push_back(std::move(outside));
+      rest = clip_left(rest, a, b);
+    }
+  }
+  return out;
+}
+
+/// Canonical key of an oriented plane: coefficients scaled by 1/|largest normal component|.
+using PlaneKey = std::array<FT, 4>;
+struct PlaneLess {
+  bool operator()(const PlaneKey& x, const PlaneKey& y) const {
+    for (int i = 0; i < 4; ++i) {
+      if (x[size_t(i)] < y[size_t(i)]) return true;
+      if (y[size_t(i)] < x[size_t(i)]) return false;
+    }
+    return false;
+  }
+};
+PlaneKey key_of(const EPlane& h) {
+  const int k = dominant_axis(h.a(), h.b(), h.c());
+  const FT s = CGAL::abs(k == 0 ? h.a() : k == 1 ? h.b() : h.c());
+  return {h.a() / s, h.b() / s, h.c() / s, h.d() / s};
+}
+
+struct FacetCollector {
+  std::vector<Nef::Halffacet_const_handle>* out;
+  void visit(Nef::Vertex_const_handle) {}
+  void visit(Nef::Halfedge_const_handle) {}
+  void visit(Nef::Halffacet_const_handle f) { out->push_back(f); }
+  void visit(Nef::SHalfedge_const_handle) {}
+  void visit(Nef::SHalfloop_const_handle) {}
+  void visit(Nef::SFace_const_handle) {}
+};
+
+/// One face of a cell being built: its halffacets, by the cell on their other side.
+struct FaceBuild {
+  EPlane plane;                                     ///< outward
+  std::vector<Nef::Vertex_const_handle> all;        ///< every vertex of its halffacets
+  std::map<CellId, std::vector<Nef::Vertex_const_handle>> toward;  ///< portal vertices per neighbour
+};
+
+/// Cells that rounding to double leaves without a shape: thinner than `1e-9 · scale`
+/// (the tolerance cells_are_valid allows coordinates rounded once) across some face, or
+/// with no outline from above. Where shallow solids cross (the ripple torus) the exact
+/// decomposition leaves a few such slivers, nanometres across. They are dropped; the
+/// portals into them become opaque pieces of their neighbours' faces (of that size, they
+/// hide nothing), and one warning counts them.
+void drop_slivers(CellComplex& out) {
+  const Box3& fb = out.far_box;
+  const double scale = std::max({1.0, std::fabs(fb.lo.x), std::fabs(fb.hi.x), std::fabs(fb.lo.y), std::fabs(fb.hi.y),
+                                 std::fabs(fb.lo.z), std::fabs(fb.hi.z)});
+  const double thin = 1e-9 * scale;
+  std::vector<CellId> new_id(out.cells.size(), kNoCell);
+  CellId kept = 0;
+  double thinnest = HUGE_VAL;
+  for (size_t i = 0; i < out.cells.size(); ++i) {
+    const Cell& cell = out.cells[i];
+    double width = HUGE_VAL;
+    for (const Face& f : cell.faces) {
+      double depth = 0;
+      for (const Face& g : cell.faces)
+        for (Vec3 v : g.poly) depth = std::max(depth, -f.plane.eval(v));
+      width = std::min(width, depth);
+    }
+    const bool sliver = cell.faces.size() < 4 || cell.footprint.size() < 3 || !(width > thin) ||
+                        !(signed_area(cell.footprint) > thin * thin) || !(cell.z1 > cell.z0);
+    if (sliver) thinnest = std::min(thinnest, width);
+    else new_id[i] = kept++;
+  }
+  if (kept == CellId(out.cells.size())) return;
+  const size_t dropped = out.cells.size() - size_t(kept);
+  std::vector<PortalId> new_portal(out.portals.size(), -1);
+  std::vector<Portal> portals;
+  for (size_t p = 0; p < out.portals.size(); ++p) {
+    Portal q = out.portals[p];
+    if (new_id[size_t(q.cell[0])] == kNoCell || new_id[size_t(q.cell[1])] == kNoCell) continue;
+    q.cell[0] = new_id[size_t(q.cell[0])], q.cell[1] = new_id[size_t(q.cell[1])];
+    new_portal[p] = PortalId(portals.size());
+    portals.push_back(std::move(q));
+  }
+  std::vector<Cell> cells;
+  for (size_t i = 0; i < out.cells.size(); ++i) {
+    if (new_id[i] == kNoCell) continue;
+    Cell cell = std::move(out.cells[i]);
+    cell.portals.clear();
+    for (Face& f : cell.faces) {
+      std::vector<PortalId> keep;
+      for (PortalId p : f.portals) {
+        if (new_portal[size_t(p)] >= 0) {
+          keep.push_back(new_portal[size_t(p)]);
+          continue;
+        }
+        // Into a sliver: opaque now, counter-clockwise seen from this cell.
+        const Portal& q = out.portals[size_t(p)];
+        std::vector<Vec3> poly = q.poly;
+        if (q.cell[0] == CellId(i)) std::reverse(poly.begin(), poly.end());
+        f.opaque.push_back({std::move(poly), -1});
+      }
+      f.portals = keep;
+      cell.portals.insert(cell.portals.end(), keep.begin(), keep.end());
+    }
+    cells.push_back(std::move(cell));
+  }
+  out.cells = std::move(cells);
+  out.portals = std::move(portals);
+  char what[200];
+  std::snprintf(what, sizeof what,
+                "%zu slivers of free space thinner than %.3g m (the thinnest %.3g m), left by rounding the exact cells "
+                "to double, were dropped; the portals into them became opaque",
+                dropped, thin, std::max(thinnest, 0.0));
+  out.warnings.push_back(what);
+}
+
+/// The cells, faces and portals of the decomposed free space (see the file comment).
+void build_cells_of(const Nef& free, CellComplex& out) {
+  std::map<const void*, CellId> id_of;
+  std::vector<Nef::Volume_const_handle> volumes;
+  {
+    auto v = free.volumes_begin();
+    ++v;  // the outer volume
+    for (; v != free.volumes_end(); ++v)
+      if (v->mark()) {
+        id_of[&*v] = CellId(volumes.size());
+        volumes.push_back(v);
+      }
+  }
+  std::map<const void*, Vec3> rounded;  // each exact vertex converted once
+  auto vec = [&](Nef::Vertex_const_handle h) {
+    auto [it, fresh] = rounded.try_emplace(&*h);
+    if (fresh) it->second = to_vec(h->point());
+    return it->second;
+  };
+  std::map<std::pair<CellId, CellId>, PortalId> portal_of;
+  out.cells.resize(volumes.size());
+
+  for (CellId id = 0; id < CellId(volumes.size()); ++id) {
+    const Nef::Volume_const_handle vol = volumes[size_t(id)];
+    std::vector<Nef::Halffacet_const_handle> facets;
+    FacetCollector collect{&facets};
+    for (auto sh = vol->shells_begin(); sh != vol->shells_end(); ++sh)
+      free.visit_shell_objects(Nef::SFace_const_handle(sh), collect);
+    // The cell's vertices (for orienting planes, the footprint and heights).
+    std::vector<Nef::Vertex_const_handle> verts;
+    std::map<const void*, bool> seen;
+    auto vertices_of = [&](Nef::Halffacet_const_handle f) {
+      std::vector<Nef::Vertex_const_handle> vs;
+      for (auto c = f->facet_cycles_begin(); c != f->facet_cycles_end(); ++c) {
+        if (!c.is_shalfedge()) continue;
+        Nef::SHalfedge_around_facet_const_circulator s(c), end(s);
+        CGAL_For_all(s, end) vs.push_back(s->source()->source());
+      }
+      return vs;
+    };
+    for (auto f : facets)
+      for (auto h : vertices_of(f))
+        if (!seen[&*h]) seen[&*h] = true, verts.push_back(h);
+
+    std::map<PlaneKey, FaceBuild, PlaneLess> faces;
+    for (auto f : facets) {
+      if (f->incident_volume() != vol) f = f->twin();
+      EPlane h = f->plane();
+      // Outward: every vertex of the (convex) cell on the negative side or on it.
+      for (auto v : verts) {
+        CGAL::Oriented_side s = h.oriented_side(v->point());
+        if (s == CGAL::ON_ORIENTED_BOUNDARY) continue;
+        if (s == CGAL::ON_POSITIVE_SIDE) h = h.opposite();
+        break;
+      }
+      FaceBuild& fb = faces.try_emplace(key_of(h), FaceBuild{h, {}, {}}).first->second;
+      std::vector<Nef::Vertex_const_handle> vs = vertices_of(f);
+      fb.all.insert(fb.all.end(), vs.begin(), vs.end());
+      Nef::Volume_const_handle other = f->twin()->incident_volume();
+      auto o = id_of.find(&*other);
+      if (o != id_of.end() && o->second != id && f->mark()) {
+        auto& t = fb.toward[o->second];
+        t.insert(t.end(), vs.begin(), vs.end());
+      }
+    }
+
+    Cell& cell = out.cells[size_t(id)];
+    cell.kind = CellKind::Outside;
+    cell.prism = false;
+    {  // Outline from above and heights.
+      std::vector<EPoint2> xy;
+      for (auto v : verts) xy.emplace_back(v->point().x(), v->point().y());
+      for (size_t i : hull2(xy)) cell.footprint.push_back({vec(verts[i]).x, vec(verts[i]).y});
+      cell.z0 = HUGE_VAL, cell.z1 = -HUGE_VAL;
+      for (auto v : verts) cell.z0 = std::min(cell.z0, vec(v).z), cell.z1 = std::max(cell.z1, vec(v).z);
+    }
+    for (auto& [key, fb] : faces) {
+      const EPlane& h = fb.plane;
+      const int k = dominant_axis(h.a(), h.b(), h.c());
+      const bool flip = (k == 0 ? h.a() : k == 1 ? h.b() : h.c()) > 0;  // 2D ccw is about +axis
+      // The projected hull of some vertices, as indices into them, counter-clockwise
+      // about +n when `about_n` else about -n.
+      auto hull_of = [&](const std::vector<Nef::Vertex_const_handle>& vs, bool about_n, Poly2* exact) {
+        std::vector<EPoint2> q;
+        for (auto v : vs) q.push_back(project(v->point(), k));
+        std::vector<size_t> hh = hull2(q);
+        Poly2 ccw2;
+        for (size_t i : hh) ccw2.push_back(q[i]);
+        if (exact) *exact = ccw2;
+        if (flip != about_n) std::reverse(hh.begin(), hh.end());
+        std::vector<Vec3> poly;
+        for (size_t i : hh) poly.push_back(vec(vs[i]));
+        return poly;
+      };
+      Face face;
+      Poly2 whole;
+      face.poly = hull_of(fb.all, false, &whole);
+      if (face.poly.size() < 3) continue;
+      Vec3 n{CGAL::to_double(h.a()), CGAL::to_double(h.b()), CGAL::to_double(h.c())};
+      n = (1.0 / length(n)) * n;
+      double d = 0;
+      for (Vec3 p : face.poly) d -= dot(n, p);
+      face.plane = {n, d / double(face.poly.size())};
+      std::vector<Poly2> opaque{whole};
+      for (auto& [other, vs] : fb.toward) {
+        Poly2 hole;
+        std::vector<Vec3> poly = hull_of(vs, true, &hole);
+        if (poly.size() < 3) continue;
+        opaque = subtract(opaque, hole);
+        PortalId pid;
+        const auto pair = std::minmax(id, other);
+        auto it = portal_of.find(pair);
+        if (it != portal_of.end()) {
+          pid = it->second;
+        } else {
+          Portal p;
+          p.cell[0] = id, p.cell[1] = other;
+          p.poly = std::move(poly);
+          p.plane = face.plane;
+          p.kind = PortalKind::Open;
+          pid = PortalId(out.portals.size());
+          out.portals.push_back(std::move(p));
+          portal_of[pair] = pid;
+        }
+        face.portals.push_back(pid);
+        cell.portals.push_back(pid);
+      }
+      // The opaque rest, lifted from the projection back onto the plane.
+      const FT nk = k == 0 ? h.a() : k == 1 ? h.b() : h.c();
+      const FT nu = k == 0 ? h.b() : k == 1 ? h.c() : h.a(), nv = k == 0 ? h.c() : k == 1 ? h.a() : h.b();
+      for (const Poly2& piece : opaque) {
+        OpaquePoly op;
+        for (const EPoint2& uv : piece) {
+          double xyz[3];
+          xyz[k] = CGAL::to_double(CGAL::exact(-(nu * uv.x() + nv * uv.y() + h.d()) / nk));
+          xyz[(k + 1) % 3] = CGAL::to_double(CGAL::exact(uv.x()));
+          xyz[(k + 2) % 3] = CGAL::to_double(CGAL::exact(uv.y()));
+          op.poly.push_back({xyz[0], xyz[1], xyz[2]});
+        }
+        if (flip) std::reverse(op.poly.begin(), op.poly.end());  // counter-clockwise about -n
+        face.opaque.push_back(std::move(op));
+      }
+      cell.faces.push_back(std::move(face));
+    }
+    // Faces in no particular order (Cell::prism == false); those with the most portals
+    // last, where a traversal that scans side faces by footprint index never looks.
+    std::stable_sort(cell.faces.begin(), cell.faces.end(),
+                     [](const Face& a, const Face& b) { return a.portals.size() < b.portals.size(); });
+  }
+  drop_slivers(out);
+}
+
+/// The feature edges of a solid: between triangles of different polygons whose planes differ.
+std::vector<RealLine> feature_edges(const Solid& s) {
+  std::map<std::pair<int, int>, std::vector<size_t>> edge;
+  for (size_t t = 0; t < s.tris.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      int a = s.tris[t][size_t(k)], b = s.tris[t][size_t((k + 1) % 3)];
+      edge[{std::min(a, b), std::max(a, b)}].push_back(t);
+    }
+  std::vector<RealLine> lines;
+  for (const auto& [e, ts] : edge) {
+    if (ts.size() != 2 || s.polygon_of[ts[0]] == s.polygon_of[ts[1]]) continue;
+    Vec3 n1 = tri_normal(s.v, s.tris[ts[0]]), n2 = tri_normal(s.v, s.tris[ts[1]]);
+    const double l1 = length(n1), l2 = length(n2);
+    if (!(l1 > 0 && l2 > 0)) continue;
+    n1 = (1.0 / l1) * n1, n2 = (1.0 / l2) * n2;
+    if (dot(n1, n2) > 1 - 1e-10) continue;  // coplanar
+    // Convex when the second triangle's far vertex lies below the first's plane.
+    const auto& t2 = s.tris[ts[1]];
+    int far = t2[0];
+    for (int v : t2)
+      if (v != e.first && v != e.second) far = v;
+    const Vec3 a = s.v[size_t(e.first)], b = s.v[size_t(e.second)];
+    lines.push_back({a, b, dot(n1, s.v[size_t(far)] - a) < 0 ? LineKind::Convex : LineKind::Concave});
+  }
+  return lines;
+}
+
+}  // namespace
+
+std::vector<Mesh> mesh_components(const Mesh& mesh) {
+  std::vector<int> parent(mesh.vertices.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int a) {
+    while (parent[size_t(a)] != a) a = parent[size_t(a)] = parent[size_t(parent[size_t(a)])];
+    return a;
+  };
+  for (const auto& t : mesh.triangles)
+    for (int k = 1; k < 3; ++k) parent[size_t(find(t[size_t(k)]))] = find(t[0]);
+  std::map<int, size_t> comp_of;  // root -> component
+  std::vector<Mesh> out;
+  std::vector<std::map<int, int>> vmap, pmap;
+  for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const auto& t = mesh.triangles[i];
+    auto [it, fresh] = comp_of.try_emplace(find(t[0]), out.size());
+    if (fresh) {
+      out.emplace_back();
+      out.back().path = mesh.path;
+      vmap.emplace_back();
+      pmap.emplace_back();
+    }
+    const size_t c = it->second;
+    Mesh& m = out[c];
+    std::array<int, 3> nt{};
+    for (int k = 0; k < 3; ++k) {
+      auto [v, added] = vmap[c].try_emplace(t[size_t(k)], int(m.vertices.size()));
+      if (added) {
+        m.vertices.push_back(mesh.vertices[size_t(t[size_t(k)])]);
+        if (size_t(t[size_t(k)]) < mesh.vertex_normals.size())
+          m.vertex_normals.push_back(mesh.vertex_normals[size_t(t[size_t(k)])]);
+      }
+      nt[size_t(k)] = v->second;
+    }
+    m.triangles.push_back(nt);
+    const int poly = i < mesh.polygon_of.size() ? mesh.polygon_of[i] : int(i);
+    m.polygon_of.push_back(pmap[c].try_emplace(poly, int(pmap[c].size())).first->second);
+  }
+  for (Mesh& m : out) {
+    std::map<std::pair<int, int>, int> edges;
+    for (const auto& t : m.triangles)
+      for (int k = 0; k < 3; ++k) {
+        int a = t[size_t(k)], b = t[size_t((k + 1) % 3)];
+        edges[{std::min(a, b), std::max(a, b)}]++;
+      }
+    for (const auto& [e, count] : edges) m.boundary_edges += count == 1;
+    m.closed = m.boundary_edges == 0;
+  }
+  return out;
+}
+
+void add_real_lines(CellComplex& c, const std::vector<RealLine>& lines) {
+  const double scale = std::max({1.0, std::fabs(c.far_box.lo.x), std::fabs(c.far_box.hi.x), std::fabs(c.far_box.lo.y),
+                                 std::fabs(c.far_box.hi.y), std::fabs(c.far_box.lo.z), std::fabs(c.far_box.hi.z)});
+  const double tol = 1e-9 * scale;       // [m] a line on a face is on it within rounding
+  const double min_len = 1e-6 * scale;   // [m] shorter stretches only touch the cell
+  std::vector<Box3> bounds(c.cells.size());
+  for (size_t i = 0; i < c.cells.size(); ++i) bounds[i] = c.cells[i].bounds();
+  for (const RealLine& l : lines) {
+    const LineId id = LineId(c.lines.size());
+    c.lines.push_back(l);
+    Box3 lb;
+    lb.add(l.a), lb.add(l.b);
+    const double len = length(l.b - l.a);
+    if (!(len > min_len)) continue;
+    for (size_t i = 0; i < c.cells.size(); ++i) {
+      const Box3& b = bounds[i];
+      if (lb.lo.x > b.hi.x + tol || lb.hi.x < b.lo.x - tol || lb.lo.y > b.hi.y + tol || lb.hi.y < b.lo.y - tol ||
+          lb.lo.z > b.hi.z + tol || lb.hi.z < b.lo.z - tol)
+        continue;
+      // The stretch inside every face's plane (grown by tol): a + t·s <= tol.
+      double t0 = 0, t1 = 1;
+      for (const Face& f : c.cells[i].faces) {
+        const double a = f.plane.eval(l.a), s = f.plane.eval(l.b) - a;
+        if (std::fabs(s) < 1e-300) {
+          if (a > tol) t1 = -1;
+        } else if (s > 0) {
+          t1 = std::min(t1, (tol - a) / s);
+        } else {
+          t0 = std::max(t0, (tol - a) / s);
+        }
+        if (t1 < t0) break;
+      }
+      if ((t1 - t0) * len > min_len) c.cells[i].lines.push_back({id, t0, t1});
+    }
+  }
+}
+
+CellComplex build_mesh_scene(const std::vector<Mesh>& meshes, const MeshSceneParams& params) {
+  if (!(params.margin > 0)) throw std::invalid_argument("mesh scene: margin must be > 0");
+  if (!(params.sheet_thickness > 0)) throw std::invalid_argument("mesh scene: sheet thickness must be > 0");
+  CellComplex out;
+  std::vector<Solid> solids;
+  Nef free;
+  {
+    Timer t(out, "solids");
+    for (const Mesh& mesh : meshes) {
+      std::vector<Mesh> parts = mesh_components(mesh);
+      const std::string file = mesh.path.empty() ? std::string("mesh") : mesh.path;
+      for (size_t i = 0; i < parts.size(); ++i) {
+        const std::string name = parts.size() == 1 ? file : file + ": component " + std::to_string(i + 1);
+        Solid s = solid_of(parts[i], name, params.sheet_thickness, out.warnings);
+        if (!s.tris.empty()) solids.push_back(std::move(s));
+      }
+    }
+  }
+  Box3 box = params.include;
+  for (const Solid& s : solids)
+    for (Vec3 p : s.v) box.add(p);
+  if (!(box.lo.x <= box.hi.x)) throw std::invalid_argument("mesh scene: no solids and nothing to include");
+  const double m = params.margin;
+  out.far_box.lo = box.lo - Vec3{m, m, m};
+  out.far_box.hi = box.hi + Vec3{m, m, m};
+  // A first view from a corner of the margin (free, whatever the solids are), looking at
+  // the middle of the scene, wide enough to take in the sphere around it.
+  const Vec3 middle = 0.5 * (box.lo + box.hi);
+  const Vec3 eye{box.lo.x - m / 2, box.lo.y - m / 2, middle.z};
+  const double fov = 2 * std::atan(length(box.hi - box.lo) / 2 / length(middle - eye)) * 180 / 3.14159265358979323846;
+  out.view = Viewpoint{eye, middle, std::clamp(fov, 40.0, 120.0)};
+  {
+    Timer t(out, "free");
+    CGAL::Nef_nary_union_3<Nef> all;
+    bool any = false;
+    for (const Solid& s : solids) {
+      SurfaceMesh sm;
+      if (!to_surface_mesh(s, sm)) {
+        out.warnings.push_back(s.name + ": not a manifold surface after repair: dropped");
+        continue;
+      }
+      all.add_polyhedron(Nef(sm));
+      any = true;
+    }
+    const Vec3 lo = out.far_box.lo, hi = out.far_box.hi;
+    // The far box (a bounded Nef polyhedron: half-spaces need the extended kernel).
+    Solid far;
+    for (int k = 0; k < 8; ++k) far.p.emplace_back(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z);
+    const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto& q : quads) far.tris.push_back({q[0], q[1], q[2]}), far.tris.push_back({q[0], q[2], q[3]});
+    SurfaceMesh box_mesh;
+    to_surface_mesh(far, box_mesh);
+    free = Nef(box_mesh);
+    if (any) free = (free - all.get_union()).regularization();
+  }
+  {
+    Timer t(out, "decompose");
+    CGAL::convex_decomposition_3(free);
+  }
+  {
+    Timer t(out, "cells");
+    build_cells_of(free, out);
+  }
+  {
+    Timer t(out, "lines");
+    std::vector<RealLine> lines;
+    for (const Solid& s : solids) {
+      std::vector<RealLine> l = feature_edges(s);
+      lines.insert(lines.end(), l.begin(), l.end());
+      // What a point inside the solid is in, by its bounding box (for locate()).
+      Box3 b;
+      for (Vec3 p : s.v) b.add(p);
+      out.solids.push_back({{{b.lo.x, b.lo.y}, {b.hi.x, b.lo.y}, {b.hi.x, b.hi.y}, {b.lo.x, b.hi.y}}, b.lo.z, b.hi.z, s.name});
+    }
+    add_real_lines(out, lines);
+  }
+  out.index();
+  return out;
+}
+
+CellComplex read_mesh_scene(const std::string& path, const MeshSceneParams& params) {
+  Mesh mesh = load_mesh(path);  // names the file when it cannot be read
+  CellComplex c;
+  try {
+    c = build_mesh_scene({mesh}, params);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path + ": " + e.what());
+  }
+  c.plan_name = std::filesystem::path(path).stem().string();
+  return c;
+}
+
+}  // namespace avenues

@@ -1,0 +1,1233 @@
+// Avenues — reading a Sweet Home 3D home into a Plan (see sweet_home.h).
+//
+// The reader works in the order the elements depend on each other:
+//   1. the bytes: a zip (libzip, from memory) whose "Home.xml" entry is read, or bare XML;
+//   2. pugixml parses the XML; every element keeps its byte offset, which becomes a line
+//      and column for messages ("Home.xml:120:3 (wall 'wall7')");
+//   3. levels → storeys; walls → drafts (centre lines in metres, rounded to 0.1 mm to
+//      undo Sweet Home's float noise; arcs tessellated); drafts joined end to end
+//      (wallAtStart / wallAtEnd naming each other, same thickness and height) → one
+//      polyline each, so their corners are mitred as Sweet Home draws them; a free end
+//      stopping just short of another wall is stretched into it so that no hairline gap
+//      joins two rooms;
+//   4. doors and windows → openings of the nearest parallel wall; where the wall bends a
+//      little under one (a tessellated arc) it is straightened to the opening's chord,
+//      across a real corner the opening is cut in parts, so that every opening lies on
+//      one straight segment as outline.cpp wants;
+//   5. sloped walls → pieces of constant height, never cut inside an opening;
+//   6. rooms, furniture (boxes; the .obj models inside a .sh3d are not read), staircase
+//      cut-outs (floor openings), the observer camera.
+// Mistakes the file cannot be read past (no Home.xml, XML syntax, a wall without its
+// coordinates, a number that is not a number, a level that does not exist) are
+// PlanErrors; odd but readable data (NaN, zero-length walls, a window in no wall) is
+// repaired or dropped with a line in Plan::warnings.
+#include "cells/sweet_home.h"
+
+#include <pugixml.hpp>
+#include <zip.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <string_view>
+#include <unordered_map>
+
+namespace avenues {
+namespace {
+
+constexpr double kCm = 0.01;            ///< [m] per Sweet Home length unit
+constexpr double kAbsurd = 1e8;         ///< [m] any length beyond this is taken for garbage
+constexpr double kJoinGap = 0.002;      ///< [m] wall ends this close are one joint
+constexpr double kReach = 0.02;         ///< [m] a free wall end this far short of another wall is stretched into it
+constexpr double kStep = 0.05;          ///< [m] largest height step between pieces of a sloped wall
+constexpr double kMinStepPiece = 0.02;  ///< [m] shortest piece a sloped wall is cut into
+constexpr double kDoorSill = 0.05;      ///< [m] a door or window reaching this close to the floor is a door
+constexpr double kParallelSin = 0.26;   ///< sin 15°: how far a piece may turn from its wall
+constexpr double kMinOpening = 0.01;    ///< [m] narrower or lower openings (and lower walls) are dropped
+constexpr double kDefaultSlab = 0.12;   ///< [m] Sweet Home's default floor thickness
+
+std::string fmt(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+double dist_to_segment(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 d = b - a;
+  const double dd = dot(d, d);
+  const double t = dd > 0 ? std::clamp(dot(p - a, d) / dd, 0.0, 1.0) : 0.0;
+  return length(p - (a + t * d));
+}
+
+double polyline_length(const std::vector<Vec2>& c) {
+  double l = 0;
+  for (size_t i = 0; i + 1 < c.size(); ++i) l += length(c[i + 1] - c[i]);
+  return l;
+}
+
+/// Even–odd point in polygon.
+bool inside_polygon(const std::vector<Vec2>& poly, Vec2 p) {
+  bool in = false;
+  for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const Vec2 a = poly[i], b = poly[j];
+    if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x)) in = !in;
+  }
+  return in;
+}
+
+// --- the bytes -------------------------------------------------------------------------
+
+std::string read_bytes(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw PlanError(SourceLoc{path, 0, 0, ""}, "cannot read home: it is a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw PlanError(SourceLoc{path, 0, 0, ""}, std::string("cannot open home: ") + std::strerror(errno));
+  std::ostringstream s;
+  s << in.rdbuf();
+  if (in.bad()) throw PlanError(SourceLoc{path, 0, 0, ""}, "cannot read home");
+  return s.str();
+}
+
+bool looks_like_zip(const std::string& b) {
+  return b.size() >= 4 && b[0] == 'P' && b[1] == 'K' && ((b[2] == 3 && b[3] == 4) || (b[2] == 5 && b[3] == 6));
+}
+
+bool has_sh3d_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".sh3d";
+}
+
+/// The "Home.xml" entry of a .sh3d archive held in memory.
+std::string home_xml_of_zip(const std::string& path, const std::string& bytes) {
+  const SourceLoc at{path, 0, 0, ""};
+  zip_error_t err;
+  zip_error_init(&err);
+  zip_source_t* src = zip_source_buffer_create(bytes.data(), bytes.size(), 0, &err);
+  if (!src) {
+    const std::string why = zip_error_strerror(&err);
+    zip_error_fini(&err);
+    throw PlanError(at, "cannot read the archive: " + why);
+  }
+  zip_t* za = zip_open_from_source(src, ZIP_RDONLY, &err);
+  if (!za) {
+    zip_source_free(src);
+    const std::string why = zip_error_strerror(&err);
+    zip_error_fini(&err);
+    throw PlanError(at, "not a Sweet Home 3D .sh3d file: not a zip archive (" + why + ")");
+  }
+  zip_error_fini(&err);
+  std::unique_ptr<zip_t, void (*)(zip_t*)> archive(za, &zip_discard);
+  const zip_int64_t idx = zip_name_locate(za, "Home.xml", 0);
+  if (idx < 0) {
+    if (zip_name_locate(za, "Home", 0) >= 0)
+      throw PlanError(at, "the archive holds no Home.xml entry, only a serialized Java 'Home' entry, which Avenues "
+                          "does not read (save the home again with Sweet Home 3D 5.3 or later, which writes Home.xml)");
+    throw PlanError(at, "the archive holds no Home.xml entry: not a Sweet Home 3D home");
+  }
+  zip_file_t* f = zip_fopen_index(za, zip_uint64_t(idx), 0);
+  if (!f) throw PlanError(at, "cannot open Home.xml in the archive: " + std::string(zip_strerror(za)));
+  std::string out;
+  std::vector<char> buf(1 << 16);
+  for (;;) {
+    const zip_int64_t n = zip_fread(f, buf.data(), buf.size());
+    if (n < 0) {
+      const std::string why = zip_file_strerror(f);
+      zip_fclose(f);
+      throw PlanError(at, "cannot read Home.xml in the archive: " + why);
+    }
+    if (n == 0) break;
+    out.append(buf.data(), size_t(n));
+  }
+  zip_fclose(f);
+  return out;
+}
+
+/// Byte offset → 1-based line and column.
+class LineIndex {
+ public:
+  explicit LineIndex(const std::string& text) {
+    starts_.push_back(0);
+    for (size_t i = 0; i < text.size(); ++i)
+      if (text[i] == '\n') starts_.push_back(i + 1);
+  }
+  std::pair<int, int> at(ptrdiff_t offset) const {
+    if (offset < 0) return {0, 0};
+    const auto it = std::upper_bound(starts_.begin(), starts_.end(), size_t(offset));
+    const size_t line = size_t(it - starts_.begin());
+    return {int(line), int(size_t(offset) - starts_[line - 1] + 1)};
+  }
+
+ private:
+  std::vector<size_t> starts_;
+};
+
+// --- geometry of walls -------------------------------------------------------------------
+
+/// Appends to `out` (which ends at a) the arc from a through m to b: the circle through
+/// the three points in n >= 2 equal pieces whose sagitta r(1 − cos(θ/2)) is at most tol
+/// (as plans/plan_reader.cpp does for `through` arcs); b exactly. False if collinear.
+bool tessellate_arc(Vec2 a, Vec2 m, Vec2 b, double tol, std::vector<Vec2>& out) {
+  const Vec2 u = m - a, v = b - a;
+  const double c = cross(u, v);
+  if (!(std::fabs(c) > 1e-9 * length(u) * length(v))) return false;
+  const double uu = dot(u, u), vv = dot(v, v);
+  const Vec2 o{(v.y * uu - u.y * vv) / (2 * c), (u.x * vv - v.x * uu) / (2 * c)};
+  const Vec2 centre = a + o;
+  const double r = length(o);
+  const double a0 = std::atan2(a.y - centre.y, a.x - centre.x);
+  double sweep = std::atan2(b.y - centre.y, b.x - centre.x) - a0;
+  const double two_pi = 2 * std::numbers::pi;
+  if (c > 0) {
+    while (sweep <= 0) sweep += two_pi;
+  } else {
+    while (sweep >= 0) sweep -= two_pi;
+  }
+  const double max_piece = tol >= r ? std::numbers::pi : 2 * std::acos(1 - tol / r);
+  const double n = std::clamp(std::ceil(std::fabs(sweep) / max_piece - 1e-9), 2.0, 10000.0);
+  for (int i = 1; i < int(n); ++i) {
+    const double t = a0 + sweep * double(i) / n;
+    out.push_back({centre.x + r * std::cos(t), centre.y + r * std::sin(t)});
+  }
+  out.push_back(b);
+  return true;
+}
+
+/// The part of polyline c from distance s0 to s1 along it (s0 < s1), with its arc flags.
+void sub_polyline(const std::vector<Vec2>& c, const std::vector<bool>& arc, double s0, double s1,
+                  std::vector<Vec2>& out, std::vector<bool>& out_arc) {
+  out.clear();
+  out_arc.clear();
+  double along = 0;
+  for (size_t i = 0; i + 1 < c.size(); ++i) {
+    const double len = length(c[i + 1] - c[i]);
+    const double lo = std::max(s0, along), hi = std::min(s1, along + len);
+    if (hi > lo && len > 0) {
+      const Vec2 p = c[i] + ((lo - along) / len) * (c[i + 1] - c[i]);
+      const Vec2 q = c[i] + ((hi - along) / len) * (c[i + 1] - c[i]);
+      if (out.empty()) out.push_back(p);
+      if (length(q - out.back()) > 1e-9) {
+        out.push_back(q);
+        out_arc.push_back(arc[i]);
+      }
+    }
+    along += len;
+  }
+}
+
+// --- what the reader collects before it builds the plan ------------------------------------
+
+/// A <level>, in metres.
+struct LevelIn {
+  std::string id, name;
+  double elevation = 0, floor = 0, height = 0;
+  int index = 0;  ///< elevationIndex: order among levels of one elevation
+  pugi::xml_node node;
+};
+
+/// A wall on its way into the plan: one <wall> or several joined end to end.
+struct Draft {
+  std::vector<std::string> ids;  ///< Sweet Home ids of the walls it is made of
+  Wall wall;                     ///< centre line, thickness, storey, name, where (height set last)
+  double h0 = 0, h1 = 0;         ///< [m] heights at the start and end of the centre line
+  std::string at_start, at_end;  ///< ids of the walls joined at its ends (single walls)
+  bool sloped() const { return std::fabs(h1 - h0) > 1e-6; }
+};
+
+/// A piece of furniture, door or window, in metres and plan axes.
+struct PieceIn {
+  std::string name;
+  SourceLoc where;
+  StoreyId storey = 0;
+  Vec2 centre;            ///< [m]
+  double angle = 0;       ///< [rad] anticlockwise in plan (Sweet Home's is clockwise on screen)
+  double width = 0, depth = 0, height = 0, elevation = 0;  ///< [m], elevation above the level
+  bool door_or_window = false;
+  std::string cut_out;    ///< a staircase's staircaseCutOutShape (SVG path in the unit square)
+  bool mirrored = false;
+};
+
+/// A door or window on its way into the wall it sits in.
+struct Hole {
+  double a0 = 0, a1 = 0;  ///< [m] its span along the wall's centre line (as read, before straightening)
+  Opening o;              ///< name, kind, sill, head, where (at and width set last)
+};
+
+class HomeReader {
+ public:
+  HomeReader(std::string path, std::string file, const std::string& text)
+      : path_(std::move(path)), file_(std::move(file)), lines_(text) {}
+
+  Plan read(pugi::xml_node home);
+
+ private:
+  // --- locations, errors, numbers -----------------------------------------------------
+  SourceLoc loc(pugi::xml_node n, const std::string& element) const {
+    // pugixml's offset of an element is that of its name; point at its '<'.
+    auto [line, col] = lines_.at(n.offset_debug() - (n.type() == pugi::node_element ? 1 : 0));
+    return SourceLoc{file_, line, col, element};
+  }
+  [[noreturn]] void fail(pugi::xml_node n, const std::string& element, const std::string& what) const {
+    throw PlanError(loc(n, element), what);
+  }
+  void warn(pugi::xml_node n, const std::string& element, const std::string& what) {
+    plan_.warnings.push_back(loc(n, element).str() + ": " + what);
+  }
+  /// An attribute as a number; nullopt when absent. Not a number at all: PlanError.
+  /// NaN and infinities are numbers (Java writes them so); callers decide.
+  std::optional<double> number(pugi::xml_node n, const char* attr, const std::string& element) const {
+    const pugi::xml_attribute a = n.attribute(attr);
+    if (!a) return std::nullopt;
+    std::string_view s = a.value();
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+    if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+    double v = 0;
+    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (s.empty() || ec != std::errc() || end != s.data() + s.size())
+      fail(n, element, "attribute '" + std::string(attr) + "' of " + element + " is not a number: \"" +
+                           std::string(a.value()) + "\"");
+    return v;
+  }
+  double need(pugi::xml_node n, const char* attr, const std::string& element) const {
+    auto v = number(n, attr, element);
+    if (!v) fail(n, element, element + " has no '" + std::string(attr) + "' attribute");
+    return *v;
+  }
+  static bool sane(double v) { return std::isfinite(v) && std::fabs(v) * kCm <= kAbsurd; }
+  /// "wall 'wall3'" when it has an id (or name), "wall 3" otherwise.
+  static std::string element_name(pugi::xml_node n, const char* key, int count) {
+    const std::string id = n.attribute(key).as_string();
+    return id.empty() ? std::string(n.name()) + " " + std::to_string(count) : std::string(n.name()) + " '" + id + "'";
+  }
+  StoreyId storey_of(pugi::xml_node n, const std::string& element, const char* inherited = "") const;
+  /// Sweet Home (x, y) [cm] → plan [m], rounded to 0.1 mm: Sweet Home computes in floats,
+  /// so a wall drawn along y = −5.5 may end at y = −5.4999795, and the hair between it and
+  /// a wall on another storey along y = −5.5 would become a row of sliver cells.
+  static Vec2 plan_point(double x, double y) {
+    return {std::nearbyint(x * 100) / 10000, -std::nearbyint(y * 100) / 10000};  // 1/100 cm steps, in m
+  }
+
+  // --- the steps --------------------------------------------------------------------------
+  void read_levels(pugi::xml_node home);
+  void read_walls(pugi::xml_node home);
+  void join_walls();
+  void stretch_free_ends();
+  void collect_pieces(pugi::xml_node parent, const std::string& level);
+  void find_wall(const PieceIn& p);
+  void cut_openings();
+  void finish_walls();
+  void read_rooms(pugi::xml_node home);
+  void add_furniture();
+  void read_camera(pugi::xml_node home);
+
+  std::string path_, file_;
+  LineIndex lines_;
+  Plan plan_;
+  double wall_height_ = 2.5;   ///< [m] the home's default wall height
+  bool has_levels_ = false;
+  StoreyId default_storey_ = 0;
+  std::unordered_map<std::string, StoreyId> storey_of_level_;
+  std::vector<Draft> drafts_;
+  std::vector<PieceIn> pieces_;
+  std::vector<std::vector<Hole>> holes_;  ///< per draft: the doors and windows found in it
+  int piece_count_ = 0;
+  int walls_cut_ = 0;          ///< walls taller than their storey
+  int sloped_ = 0, steps_ = 0; ///< sloped walls, and the pieces they became
+};
+
+StoreyId HomeReader::storey_of(pugi::xml_node n, const std::string& element, const char* inherited) const {
+  std::string id = n.attribute("level").as_string();
+  if (id.empty()) id = inherited;
+  if (id.empty()) return default_storey_;
+  auto it = storey_of_level_.find(id);
+  if (it == storey_of_level_.end())
+    fail(n, element, element + " is on level '" + id + "', which the home does not define");
+  return it->second;
+}
+
+// --- levels → storeys ---------------------------------------------------------------------
+
+void HomeReader::read_levels(pugi::xml_node home) {
+  std::vector<LevelIn> levels;
+  int count = 0;
+  for (pugi::xml_node n : home.children("level")) {
+    const std::string element = element_name(n, "id", ++count);
+    LevelIn l;
+    l.id = n.attribute("id").as_string();
+    l.name = n.attribute("name").as_string();
+    if (l.name.empty()) l.name = l.id.empty() ? "level " + std::to_string(count) : l.id;
+    l.elevation = need(n, "elevation", element);
+    l.floor = need(n, "floorThickness", element);
+    l.height = need(n, "height", element);
+    const double index = number(n, "elevationIndex", element).value_or(0);
+    l.index = std::isfinite(index) ? int(std::clamp(index, -1e6, 1e6)) : 0;
+    l.node = n;
+    if (!sane(l.elevation) || !sane(l.floor) || !sane(l.height) || l.height <= 0 || l.floor < 0)
+      fail(n, element, element + " has an elevation, floorThickness or height that makes no sense (" +
+                           fmt(l.elevation) + ", " + fmt(l.floor) + ", " + fmt(l.height) + ")");
+    l.elevation *= kCm, l.floor *= kCm, l.height *= kCm;
+    levels.push_back(l);
+  }
+  has_levels_ = !levels.empty();
+  if (!has_levels_) {  // one storey, as tall as the home's walls
+    Storey s;
+    s.name = "home";
+    s.height = wall_height_;
+    s.slab = kDefaultSlab;
+    s.where = loc(home, "home");
+    plan_.storeys.push_back(s);
+    return;
+  }
+  std::stable_sort(levels.begin(), levels.end(), [](const LevelIn& a, const LevelIn& b) {
+    return a.elevation != b.elevation ? a.elevation < b.elevation : a.index < b.index;
+  });
+  // Levels at one elevation (elevationIndex tells them apart) are one storey: Sweet Home
+  // draws them as layers of the same floor.
+  std::vector<std::vector<const LevelIn*>> groups;
+  for (const LevelIn& l : levels) {
+    if (!groups.empty() && std::fabs(l.elevation - groups.back().front()->elevation) < 1e-4)
+      groups.back().push_back(&l);
+    else
+      groups.push_back({&l});
+  }
+  for (size_t g = 0; g < groups.size(); ++g) {
+    const auto& grp = groups[g];
+    Storey s;
+    s.where = loc(grp.front()->node, "level '" + grp.front()->name + "'");
+    s.elevation = g == 0 ? grp.front()->elevation : plan_.storeys.back().elevation + plan_.storeys.back().height +
+                                                        plan_.storeys.back().slab;
+    s.height = 0;
+    for (const LevelIn* l : grp) {
+      s.name += (s.name.empty() ? "" : " + ") + l->name;
+      s.height = std::max(s.height, l->height);
+    }
+    if (grp.size() > 1)
+      plan_.warnings.push_back(s.where.str() + ": levels '" + s.name + "' share the elevation " +
+                               fmt(grp.front()->elevation) + " m: merged into one storey " + fmt(s.height) +
+                               " m high");
+    if (g + 1 < groups.size()) {
+      // The slab is the gap up to the next level's floor (its floorThickness, if the
+      // levels are consistent). A level reaching into the next one's floor is cut.
+      const LevelIn& next = *groups[g + 1].front();
+      const double gap = next.elevation - grp.front()->elevation;
+      if (s.height + next.floor > gap + 1e-6) {
+        const double slab = std::clamp(next.floor, 0.0, gap / 2);
+        const double h = gap - slab;
+        plan_.warnings.push_back(s.where.str() + ": level '" + s.name + "' (" + fmt(s.height) +
+                                 " m high) reaches into the floor of level '" + next.name + "' at " +
+                                 fmt(next.elevation) + " m: cut to " + fmt(h) + " m");
+        s.height = h;
+      }
+      s.slab = gap - s.height;
+    } else {
+      s.slab = grp.front()->floor;
+    }
+    for (const LevelIn* l : grp)
+      if (!l->id.empty()) storey_of_level_[l->id] = StoreyId(plan_.storeys.size());
+    plan_.storeys.push_back(s);
+  }
+  // Elements that name no level stand on the storey nearest the ground.
+  double best = HUGE_VAL;
+  for (size_t s = 0; s < plan_.storeys.size(); ++s)
+    if (std::fabs(plan_.storeys[s].elevation) < best) best = std::fabs(plan_.storeys[s].elevation), default_storey_ = StoreyId(s);
+}
+
+// --- walls ----------------------------------------------------------------------------------
+
+void HomeReader::read_walls(pugi::xml_node home) {
+  int count = 0;
+  for (pugi::xml_node n : home.children("wall")) {
+    const std::string element = element_name(n, "id", ++count);
+    Draft d;
+    const std::string id = n.attribute("id").as_string();
+    d.ids.push_back(id.empty() ? "wall " + std::to_string(count) : id);
+    d.wall.name = d.ids.front();
+    d.wall.where = loc(n, element);
+    d.wall.storey = storey_of(n, element);
+    const double xs = need(n, "xStart", element), ys = need(n, "yStart", element);
+    const double xe = need(n, "xEnd", element), ye = need(n, "yEnd", element);
+    const double th = need(n, "thickness", element);
+    const auto h = number(n, "height", element), he = number(n, "heightAtEnd", element);
+    const auto arc = number(n, "arcExtent", element);
+    if (!sane(xs) || !sane(ys) || !sane(xe) || !sane(ye) || !sane(th) || (h && !sane(*h)) || (he && !sane(*he)) ||
+        (arc && !std::isfinite(*arc))) {
+      warn(n, element, "a coordinate, thickness, height or arcExtent is not a finite number: wall dropped");
+      continue;
+    }
+    if (th < 0) {
+      warn(n, element, "negative thickness " + fmt(th) + " cm: wall dropped");
+      continue;
+    }
+    const Vec2 a = plan_point(xs, ys), b = plan_point(xe, ye);
+    if (length(b - a) < 1e-6) {
+      warn(n, element, "the wall has length 0: dropped");
+      continue;
+    }
+    d.wall.thickness = th * kCm;
+    const Storey& st = plan_.storeys[size_t(d.wall.storey)];
+    d.h0 = h ? *h * kCm : (has_levels_ ? st.height : wall_height_);
+    d.h1 = he ? *he * kCm : d.h0;
+    if (d.h0 <= kMinOpening && d.h1 <= kMinOpening) {
+      warn(n, element, "the wall has no height: dropped");
+      continue;
+    }
+    d.wall.centre.push_back(a);
+    if (arc && std::fabs(*arc) > 1e-6 && std::fabs(*arc) < 2 * std::numbers::pi - 1e-6) {
+      // Sweet Home's arc bulges to the side of (ye − ys, xs − xe) on screen for a positive
+      // extent, by the sagitta (chord/2)·tan(extent/4) at the chord's middle (Wall.java's
+      // getArcCircleCenter, solved for the arc's midpoint).
+      const double k = std::tan(*arc / 4) / 2;  // sagitta / chord
+      const Vec2 m = plan_point((xs + xe) / 2 + k * (ye - ys), (ys + ye) / 2 + k * (xs - xe));
+      if (tessellate_arc(a, m, b, plan_.arc_tolerance, d.wall.centre))
+        d.wall.from_arc.assign(d.wall.centre.size() - 1, true);
+    }
+    if (d.wall.centre.size() == 1) {
+      d.wall.centre.push_back(b);
+      d.wall.from_arc.push_back(false);
+    }
+    d.at_start = n.attribute("wallAtStart").as_string();
+    d.at_end = n.attribute("wallAtEnd").as_string();
+    drafts_.push_back(std::move(d));
+  }
+}
+
+/// Walls joined end to end (each naming the other at that end, ends within kJoinGap) of
+/// the same storey, thickness and height become one centre line: outline.cpp then mitres
+/// their corners as Sweet Home draws them. Closed rings stay closed.
+void HomeReader::join_walls() {
+  const size_t n = drafts_.size();
+  std::unordered_map<std::string, size_t> index;
+  for (size_t i = 0; i < n; ++i) index.emplace(drafts_[i].ids.front(), i);
+  auto height_of = [&](const Draft& d) {
+    const double sh = plan_.storeys[size_t(d.wall.storey)].height;
+    return d.h0 >= sh - 1e-9 ? -1.0 : d.h0;
+  };
+  auto end_point = [&](size_t i, int e) { return e == 0 ? drafts_[i].wall.centre.front() : drafts_[i].wall.centre.back(); };
+  // Direction of travel leaving wall i through end e.
+  auto out_dir = [&](size_t i, int e) {
+    const auto& c = drafts_[i].wall.centre;
+    const Vec2 d = e == 1 ? c[c.size() - 1] - c[c.size() - 2] : c[0] - c[1];
+    return (1.0 / length(d)) * d;
+  };
+  auto compatible = [&](size_t i, size_t j) {
+    const Draft &a = drafts_[i], &b = drafts_[j];
+    return a.wall.storey == b.wall.storey && !a.sloped() && !b.sloped() &&
+           std::fabs(a.wall.thickness - b.wall.thickness) < 1e-6 && std::fabs(height_of(a) - height_of(b)) < 1e-6;
+  };
+  struct Link { long other = -1; int end = 0; };
+  std::vector<std::array<Link, 2>> link(n);
+  for (size_t i = 0; i < n; ++i)
+    for (int e = 0; e < 2; ++e) {
+      const std::string& partner = e == 0 ? drafts_[i].at_start : drafts_[i].at_end;
+      auto it = index.find(partner);
+      if (partner.empty() || it == index.end() || it->second == i) continue;
+      const size_t j = it->second;
+      if (!compatible(i, j)) continue;
+      for (int f = 0; f < 2; ++f) {
+        const std::string& back = f == 0 ? drafts_[j].at_start : drafts_[j].at_end;
+        if (back != drafts_[i].ids.front() || length(end_point(i, e) - end_point(j, f)) > kJoinGap) continue;
+        // Not when the second wall folds back over the first.
+        if (dot(out_dir(i, e), out_dir(j, f)) > 0.985) continue;
+        link[i][size_t(e)] = {long(j), f};
+        break;
+      }
+    }
+  for (size_t i = 0; i < n; ++i)  // keep mutual links only
+    for (int e = 0; e < 2; ++e) {
+      const Link l = link[i][size_t(e)];
+      if (l.other >= 0 && (link[size_t(l.other)][size_t(l.end)].other != long(i) || link[size_t(l.other)][size_t(l.end)].end != e))
+        link[i][size_t(e)] = {};
+    }
+
+  std::vector<uint8_t> used(n, 0);
+  std::vector<Draft> out;
+  auto walk = [&](size_t first, bool reversed) {
+    Draft d;
+    size_t cur = first;
+    bool rev = reversed;
+    bool closed = false;
+    for (;;) {
+      used[cur] = 1;
+      Draft& w = drafts_[cur];
+      std::vector<Vec2> c = w.wall.centre;
+      std::vector<bool> fa = w.wall.from_arc;
+      if (rev) std::reverse(c.begin(), c.end()), std::reverse(fa.begin(), fa.end());
+      if (d.ids.empty()) {
+        d = w;
+        d.ids.clear();
+        d.wall.centre = c;
+        d.wall.from_arc = fa;
+        if (rev) std::swap(d.h0, d.h1), std::swap(d.at_start, d.at_end);
+      } else {
+        d.wall.centre.insert(d.wall.centre.end(), c.begin() + 1, c.end());
+        d.wall.from_arc.insert(d.wall.from_arc.end(), fa.begin(), fa.end());
+        d.at_end = rev ? w.at_start : w.at_end;
+      }
+      d.ids.push_back(w.ids.front());
+      const Link l = link[cur][rev ? 0 : 1];
+      if (l.other < 0) break;
+      if (size_t(l.other) == first && l.end == (reversed ? 1 : 0)) {
+        closed = true;
+        break;
+      }
+      if (used[size_t(l.other)]) break;
+      cur = size_t(l.other);
+      rev = l.end == 1;
+    }
+    if (closed && d.wall.centre.size() > 3) {
+      d.wall.centre.back() = d.wall.centre.front();
+      d.at_start.clear(), d.at_end.clear();
+    }
+    if (d.ids.size() > 1) {
+      d.wall.name = d.ids[0];
+      const size_t shown = std::min<size_t>(d.ids.size(), 3);
+      for (size_t k = 1; k < shown; ++k) d.wall.name += "+" + d.ids[k];
+      if (d.ids.size() > shown) d.wall.name += "+" + std::to_string(d.ids.size() - shown) + " more";
+      d.wall.where.element = "wall '" + d.wall.name + "'";
+    }
+    out.push_back(std::move(d));
+  };
+  for (size_t i = 0; i < n; ++i) {
+    if (used[i]) continue;
+    if (link[i][0].other < 0) walk(i, false);
+    else if (link[i][1].other < 0) walk(i, true);
+  }
+  for (size_t i = 0; i < n; ++i)  // what is left are rings
+    if (!used[i]) walk(i, false);
+  // Ends joined within kJoinGap may leave a segment of (almost) no length: drop it.
+  drafts_.clear();
+  for (Draft& d : out) {
+    std::vector<Vec2> c{d.wall.centre.front()};
+    std::vector<bool> arc;
+    for (size_t k = 1; k < d.wall.centre.size(); ++k)
+      if (length(d.wall.centre[k] - c.back()) > 1e-6) c.push_back(d.wall.centre[k]), arc.push_back(d.wall.from_arc[k - 1]);
+    if (c.size() < 2) continue;
+    if (d.wall.centre.front() == d.wall.centre.back()) c.back() = c.front();  // a ring stays closed
+    d.wall.centre = std::move(c);
+    d.wall.from_arc = std::move(arc);
+    drafts_.push_back(std::move(d));
+  }
+}
+
+/// A free wall end that stops just short of another wall of its storey (Sweet Home floats:
+/// a T junction's end lands on the other wall's face, give or take a micrometre) is
+/// stretched to that wall's centre line, so that outline.cpp sees the two touch and no
+/// hairline gap lets two rooms run into each other.
+void HomeReader::stretch_free_ends() {
+  for (size_t i = 0; i < drafts_.size(); ++i) {
+    Wall& w = drafts_[i].wall;
+    if (w.centre.size() > 3 && w.centre.front() == w.centre.back()) continue;
+    for (int e = 0; e < 2; ++e) {
+      const size_t m = w.centre.size();
+      const Vec2 p = e == 0 ? w.centre[0] : w.centre[m - 1];
+      const Vec2 q = e == 0 ? w.centre[1] : w.centre[m - 2];
+      const Vec2 d = (1.0 / length(p - q)) * (p - q);  // outwards
+      double best = HUGE_VAL;
+      bool inside = false;
+      for (size_t j = 0; j < drafts_.size() && !inside; ++j) {
+        const Wall& o = drafts_[j].wall;
+        if (j == i || o.storey != w.storey || o.thickness <= 0) continue;
+        for (size_t k = 0; k + 1 < o.centre.size(); ++k) {
+          const Vec2 a = o.centre[k], b = o.centre[k + 1];
+          if (dist_to_segment(p, a, b) <= o.thickness / 2 + 1e-9) {
+            inside = true;  // already touches: outline.cpp caps it into the other wall
+            break;
+          }
+          const Vec2 s = b - a;
+          const double den = cross(d, s);
+          const double sin_angle = std::fabs(den) / length(s);
+          if (sin_angle < 0.2) continue;  // nearly parallel: not a junction
+          const double t = cross(a - p, s) / den;   // p + t·d on the other centre line
+          const double u = cross(a - p, d) / den;   // … at a + u·s
+          if (t <= 0 || u < 0 || u > 1) continue;
+          if (t <= (o.thickness / 2) / sin_angle + kReach) best = std::min(best, t);
+        }
+      }
+      if (inside || best == HUGE_VAL) continue;
+      (e == 0 ? w.centre[0] : w.centre[m - 1]) = p + best * d;
+    }
+  }
+}
+
+// --- doors and windows --------------------------------------------------------------------
+
+void HomeReader::collect_pieces(pugi::xml_node parent, const std::string& level) {
+  for (pugi::xml_node n : parent.children()) {
+    const std::string_view kind = n.name();
+    if (kind == "furnitureGroup") {
+      const std::string own = n.attribute("level").as_string();
+      collect_pieces(n, own.empty() ? level : own);
+      continue;
+    }
+    if (kind != "pieceOfFurniture" && kind != "doorOrWindow" && kind != "light") continue;
+    const std::string element = element_name(n, "name", ++piece_count_);
+    PieceIn p;
+    p.name = n.attribute("name").as_string();
+    if (p.name.empty()) p.name = std::string(kind) + " " + std::to_string(piece_count_);
+    p.where = loc(n, element);
+    p.storey = storey_of(n, element, level.c_str());
+    const double x = need(n, "x", element), y = need(n, "y", element);
+    const double w = need(n, "width", element), dp = need(n, "depth", element), h = need(n, "height", element);
+    const double angle = number(n, "angle", element).value_or(0);
+    const double elev = number(n, "elevation", element).value_or(0);
+    if (std::string_view(n.attribute("visible").as_string()) == "false") continue;
+    if (!sane(x) || !sane(y) || !sane(w) || !sane(dp) || !sane(h) || !sane(elev) || !std::isfinite(angle) || w < 0 ||
+        dp < 0 || h < 0) {
+      warn(n, element, "a position, size or angle is not a finite, non-negative number: " + std::string(kind) +
+                           " dropped");
+      continue;
+    }
+    p.centre = plan_point(x, y);
+    p.angle = -angle;  // clockwise on screen → anticlockwise in plan
+    p.width = w * kCm, p.depth = dp * kCm, p.height = h * kCm, p.elevation = elev * kCm;
+    p.door_or_window = kind == "doorOrWindow";
+    p.cut_out = n.attribute("staircaseCutOutShape").as_string();
+    p.mirrored = n.attribute("modelMirrored").as_bool();
+    pieces_.push_back(std::move(p));
+  }
+}
+
+/// Finds the wall a door or window sits in: the wall of its storey whose centre line passes
+/// nearest its centre, running parallel to its width, within half the wall's thickness
+/// plus half the piece's depth. Its span along that centre line (the piece's width,
+/// clipped to the wall) is kept as two points, cut out by cut_openings() once every
+/// piece has found its wall.
+void HomeReader::find_wall(const PieceIn& p) {
+  const Vec2 axis{std::cos(p.angle), std::sin(p.angle)};
+  long best_wall = -1;
+  double best_score = HUGE_VAL, best_s = 0;
+  for (size_t i = 0; i < drafts_.size(); ++i) {
+    const Wall& w = drafts_[i].wall;
+    if (w.storey != p.storey) continue;
+    double along = 0;
+    for (size_t k = 0; k + 1 < w.centre.size(); ++k) {
+      const Vec2 a = w.centre[k], b = w.centre[k + 1];
+      const double len = length(b - a);
+      const Vec2 d = (1.0 / len) * (b - a);
+      const double t = dot(p.centre - a, d);
+      const double off = std::fabs(cross(d, p.centre - a));
+      const double beyond = std::max({0.0, -t, t - len});  // along the line, past the segment's ends
+      if (std::fabs(cross(d, axis)) <= kParallelSin && off <= w.thickness / 2 + p.depth / 2 + 0.01 &&
+          beyond <= p.width / 2) {
+        const double score = off + beyond;
+        if (score < best_score) best_score = score, best_wall = long(i), best_s = along + std::clamp(t, 0.0, len);
+      }
+      along += len;
+    }
+  }
+  if (best_wall < 0) {
+    plan_.warnings.push_back(p.where.str() + ": lies in no wall of its level (none parallel to it within its depth): "
+                             "no opening cut");
+    return;
+  }
+  const Wall& w = drafts_[size_t(best_wall)].wall;
+  const Storey& st = plan_.storeys[size_t(w.storey)];
+  const double total = polyline_length(w.centre);
+  Hole h;
+  h.a0 = std::max(0.0, best_s - p.width / 2);
+  h.a1 = std::min(total, best_s + p.width / 2);
+  h.o.name = p.name;
+  h.o.where = p.where;
+  h.o.sill = std::max(0.0, p.elevation);
+  h.o.head = std::min(st.height, p.elevation + p.height);
+  h.o.kind = p.elevation < kDoorSill ? OpeningKind::Door : OpeningKind::Window;
+  if (h.o.head - h.o.sill < kMinOpening || h.a1 - h.a0 < kMinOpening) {
+    plan_.warnings.push_back(p.where.str() + ": no part of it lies within wall '" + w.name + "' and below the ceiling " +
+                             "of its storey: no opening cut");
+    return;
+  }
+  holes_.resize(drafts_.size());
+  holes_[size_t(best_wall)].push_back(h);
+}
+
+/// The point at distance s along polyline c.
+Vec2 point_along(const std::vector<Vec2>& c, double s) {
+  double along = 0;
+  for (size_t i = 0; i + 1 < c.size(); ++i) {
+    const double len = length(c[i + 1] - c[i]);
+    if (s <= along + len || i + 2 == c.size())
+      return c[i] + (len > 0 ? std::clamp((s - along) / len, 0.0, 1.0) : 0.0) * (c[i + 1] - c[i]);
+    along += len;
+  }
+  return c.back();
+}
+
+/// Makes p a vertex of polyline c (it lies on it, on segment `from` or later): returns its
+/// index. A point within `snap` of a vertex is that vertex.
+size_t insert_vertex(std::vector<Vec2>& c, std::vector<bool>& arc, Vec2 p, double snap, size_t from) {
+  size_t best = from;
+  double best_d = HUGE_VAL;
+  for (size_t i = from; i + 1 < c.size(); ++i) {
+    const double d = dist_to_segment(p, c[i], c[i + 1]);
+    if (d < best_d) best_d = d, best = i;
+  }
+  if (length(p - c[best]) <= snap) return best;
+  if (length(p - c[best + 1]) <= snap) return best + 1;
+  c.insert(c.begin() + long(best) + 1, p);
+  arc.insert(arc.begin() + long(best) + 1, bool(arc[best]));
+  return best + 1;
+}
+
+/// Does polyline c turn at its interior vertex i?
+bool bends_at(const std::vector<Vec2>& c, size_t i) {
+  if (i == 0 || i + 1 >= c.size()) return false;
+  const Vec2 u = c[i] - c[i - 1], v = c[i + 1] - c[i];
+  return std::fabs(cross(u, v)) > 1e-9 * length(u) * length(v);
+}
+
+/// Cuts the doors and windows found in each wall. Overlapping ones (a door frame and its
+/// door, two windows drawn into each other) become one, their union along the wall and in
+/// height. Where the centre line bends under an opening only a little (a tessellated arc:
+/// Sweet Home's windows are flat boxes), the bend is straightened to the chord between the
+/// opening's ends, so that the opening lies on one straight segment as outline.cpp wants;
+/// across a real corner the opening is cut in one part per segment.
+void HomeReader::cut_openings() {
+  holes_.resize(drafts_.size());
+  for (size_t wi = 0; wi < drafts_.size(); ++wi) {
+    Wall& w = drafts_[wi].wall;
+    auto& hs = holes_[wi];
+    std::stable_sort(hs.begin(), hs.end(), [](const Hole& a, const Hole& b) { return a.a0 < b.a0; });
+    std::vector<Hole> merged;
+    for (Hole& h : hs) {
+      if (!merged.empty() && h.a0 < merged.back().a1 - 1e-6) {
+        Hole& m = merged.back();
+        plan_.warnings.push_back(h.o.where.str() + ": overlaps " + m.o.where.element + " (line " +
+                                 std::to_string(m.o.where.line) + ") in wall '" + w.name + "': one opening cut for both");
+        m.a1 = std::max(m.a1, h.a1);
+        m.o.sill = std::min(m.o.sill, h.o.sill);
+        m.o.head = std::max(m.o.head, h.o.head);
+        if (h.o.kind == OpeningKind::Door) m.o.kind = OpeningKind::Door;
+        m.o.name += " + " + h.o.name;
+        continue;
+      }
+      merged.push_back(std::move(h));
+    }
+    // Each span's ends become vertices, in order along the wall (a closed ring's first
+    // point is also its last): later spans only change the line beyond earlier ones.
+    // [m] An opening's end this close to a vertex ends at the vertex: no piece of the centre
+    // line is shorter, so that outline.cpp's mitres (directions of pieces, compared to 1e-12)
+    // see two pieces in line as in line.
+    const double snap = 0.01;
+    const std::vector<Vec2> read = w.centre;
+    std::vector<std::pair<size_t, size_t>> span(merged.size());
+    size_t from = 0;
+    for (size_t j = 0; j < merged.size(); ++j) {
+      size_t i0 = insert_vertex(w.centre, w.from_arc, point_along(read, merged[j].a0), snap, from);
+      size_t i1 = std::max(i0, insert_vertex(w.centre, w.from_arc, point_along(read, merged[j].a1), snap, i0));
+      if (i1 > i0 + 1) {
+        double dev = 0;
+        bool arc = false;
+        for (size_t k = i0 + 1; k < i1; ++k) dev = std::max(dev, dist_to_segment(w.centre[k], w.centre[i0], w.centre[i1]));
+        for (size_t k = i0; k < i1; ++k) arc |= w.from_arc[k];
+        if (dev <= std::max(plan_.arc_tolerance, w.thickness / 4)) {  // else a real corner: parts
+          w.centre.erase(w.centre.begin() + long(i0) + 1, w.centre.begin() + long(i1));
+          w.from_arc.erase(w.from_arc.begin() + long(i0) + 1, w.from_arc.begin() + long(i1));
+          w.from_arc[i0] = arc;
+          i1 = i0 + 1;
+        }
+      }
+      // Never start an opening where the line bends slightly (straightening makes such
+      // bends): outline.cpp would clip its strip a hair past the mitre there, and the
+      // clip's rounding leave a pocket of free space of no area. The solid wall runs on
+      // past the mitre instead (h·tan(θ/2) on the faces), by at least `snap`.
+      if (i1 > i0 && bends_at(w.centre, i0)) {
+        const Vec2 u = w.centre[i0] - w.centre[i0 - 1], d = w.centre[i0 + 1] - w.centre[i0];
+        const double lu = length(u), ld = length(d);
+        const double tan_half = std::fabs(cross(u, d)) / (lu * ld + dot(u, d));  // tan(θ/2), θ the turn
+        const double past = std::max(snap, w.thickness / 2 * tan_half + 1e-3);
+        if (std::isfinite(past) && past <= 2 * snap && past < ld / 2) {
+          w.centre.insert(w.centre.begin() + long(i0) + 1, w.centre[i0] + (past / ld) * d);
+          w.from_arc.insert(w.from_arc.begin() + long(i0) + 1, bool(w.from_arc[i0]));
+          ++i0, ++i1;
+        }
+      }
+      span[j] = {i0, i1};
+      from = i1;
+    }
+    // Distances along the final centre line, summed as outline.cpp sums them.
+    std::vector<double> cum{0};
+    for (size_t k = 0; k + 1 < w.centre.size(); ++k) cum.push_back(cum.back() + length(w.centre[k + 1] - w.centre[k]));
+    for (size_t j = 0; j < merged.size(); ++j) {
+      const auto [v0, v1] = span[j];
+      std::vector<Opening> parts;
+      for (size_t k = v0; k < v1; ++k) {
+        Opening part = merged[j].o;
+        // outline.cpp places an opening on the segment whose [start, start + length) holds
+        // `at`, and clamps its end to the segment. Start a hair (far below its nanometre
+        // grid) past the corner, end a hair beyond the next: with the sums rounded either
+        // way, the opening then never lands on the segment before with width 1e-16, nor
+        // leaves a solid strip of width 1e-16 before the next, whose clipped corners would
+        // be pockets of free space of no area.
+        part.at = k == 0 ? 0.0 : cum[k] + 1e-11;
+        part.width = cum[k + 1] - cum[k] + 1e-9;
+        if (part.width >= kMinOpening || v1 == v0 + 1) parts.push_back(part);
+      }
+      for (size_t k = 0; k < parts.size() && parts.size() > 1; ++k)
+        parts[k].name += " (part " + std::to_string(k + 1) + " of " + std::to_string(parts.size()) + ")";
+      w.openings.insert(w.openings.end(), parts.begin(), parts.end());
+    }
+  }
+}
+
+// --- walls into the plan: heights, and sloped walls stepped -------------------------------
+
+void HomeReader::finish_walls() {
+  for (Draft& d : drafts_) {
+    const Storey& st = plan_.storeys[size_t(d.wall.storey)];
+    auto cut = [&](double h) { return h >= st.height - 1e-9 ? -1.0 : h; };
+    if (std::max(d.h0, d.h1) > st.height + 1e-6) ++walls_cut_;
+    if (!d.sloped()) {
+      d.wall.height = cut(d.h0);
+      plan_.walls.push_back(std::move(d.wall));
+      continue;
+    }
+    // Cells are vertical prisms: a sloped top becomes steps of constant height (the mean
+    // over the piece), at most kStep apart, never cut inside an opening.
+    const double len = polyline_length(d.wall.centre);
+    const double rise = d.h1 - d.h0;
+    const double most = std::clamp(std::floor(len / kMinStepPiece), 1.0, 1000.0);  // pieces
+    const int n = int(std::clamp(std::ceil(std::fabs(rise) / kStep - 1e-9), 1.0, most));
+    std::vector<double> cuts{0};
+    for (int j = 1; j < n; ++j) {
+      const double s = len * j / n;
+      bool in_opening = false;
+      for (const Opening& o : d.wall.openings) in_opening |= s > o.at + 1e-6 && s < o.at + o.width - 1e-6;
+      if (!in_opening) cuts.push_back(s);
+    }
+    cuts.push_back(len);
+    struct Step { double s0, s1, h; };
+    std::vector<Step> steps;
+    for (size_t j = 0; j + 1 < cuts.size(); ++j) {
+      const double h = cut(d.h0 + rise * (cuts[j] + cuts[j + 1]) / (2 * len));
+      if (!steps.empty() && std::fabs(steps.back().h - h) < 1e-9) steps.back().s1 = cuts[j + 1];
+      else steps.push_back({cuts[j], cuts[j + 1], h});
+    }
+    const bool stepped = steps.size() > 1;  // not when the whole slope is above the ceiling
+    sloped_ += stepped;
+    int k = 0;
+    for (const Step& s : steps) {
+      ++k;
+      if (s.h >= 0 && s.h < kMinOpening) continue;  // the low end of a wall sloping to nothing
+      Wall piece;
+      piece.name = steps.size() > 1 ? d.wall.name + " step " + std::to_string(k) : d.wall.name;
+      piece.storey = d.wall.storey;
+      piece.thickness = d.wall.thickness;
+      piece.material = d.wall.material;
+      piece.where = d.wall.where;
+      piece.height = s.h;
+      sub_polyline(d.wall.centre, d.wall.from_arc, s.s0, s.s1, piece.centre, piece.from_arc);
+      if (piece.centre.size() < 2) continue;
+      for (const Opening& o : d.wall.openings)
+        if (o.at >= s.s0 - 1e-6 && o.at < s.s1) {
+          Opening q = o;
+          q.at = std::max(0.0, o.at - s.s0);
+          piece.openings.push_back(q);
+        }
+      steps_ += stepped;
+      plan_.walls.push_back(std::move(piece));
+    }
+  }
+}
+
+// --- rooms ----------------------------------------------------------------------------------
+
+/// A point well inside a room: of points sampled over the polygon (a grid, then finer grids
+/// around the best), the one farthest from the polygon's edges and from every wall face of
+/// its storey. Not the centroid: rooms are often L-shaped, and partitions cross them.
+Vec2 label_point(const std::vector<Vec2>& poly, const std::vector<const Wall*>& walls) {
+  Vec2 lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
+  for (Vec2 p : poly) lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)}, hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+  std::vector<const Wall*> near;  // walls with a segment whose box meets the room's
+  for (const Wall* w : walls)
+    for (size_t k = 0; k + 1 < w->centre.size(); ++k) {
+      const Vec2 a = w->centre[k], b = w->centre[k + 1];
+      const double r = w->thickness / 2;
+      if (std::max(a.x, b.x) + r >= lo.x && std::min(a.x, b.x) - r <= hi.x && std::max(a.y, b.y) + r >= lo.y &&
+          std::min(a.y, b.y) - r <= hi.y) {
+        near.push_back(w);
+        break;
+      }
+    }
+  auto clearance = [&](Vec2 p) {
+    double c = HUGE_VAL;
+    for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) c = std::min(c, dist_to_segment(p, poly[j], poly[i]));
+    for (const Wall* w : near)
+      for (size_t k = 0; k + 1 < w->centre.size(); ++k)
+        c = std::min(c, dist_to_segment(p, w->centre[k], w->centre[k + 1]) - w->thickness / 2);
+    return c;
+  };
+  Vec2 best = centroid(poly);
+  double best_c = inside_polygon(poly, best) ? clearance(best) : -HUGE_VAL;
+  double cell = std::max(hi.x - lo.x, hi.y - lo.y) / 32;
+  if (!(cell > 0)) return best;
+  for (double y = lo.y + cell / 2; y < hi.y; y += cell)
+    for (double x = lo.x + cell / 2; x < hi.x; x += cell) {
+      const Vec2 p{x, y};
+      if (!inside_polygon(poly, p)) continue;
+      const double c = clearance(p);
+      if (c > best_c) best_c = c, best = p;
+    }
+  for (int round = 0; round < 3; ++round) {  // finer grids around the best so far
+    const Vec2 centre = best;
+    for (int j = -4; j <= 4; ++j)
+      for (int i = -4; i <= 4; ++i) {
+        const Vec2 p{centre.x + i * cell / 4, centre.y + j * cell / 4};
+        if (!inside_polygon(poly, p)) continue;
+        const double c = clearance(p);
+        if (c > best_c) best_c = c, best = p;
+      }
+    cell /= 4;
+  }
+  return best;
+}
+
+void HomeReader::read_rooms(pugi::xml_node home) {
+  struct RoomIn {
+    Room room;
+    std::vector<Vec2> poly;
+    bool named;
+  };
+  std::vector<RoomIn> rooms;
+  int count = 0;
+  for (pugi::xml_node n : home.children("room")) {
+    ++count;
+    const std::string name = n.attribute("name").as_string();
+    const std::string element = name.empty() ? "room " + std::to_string(count) : "room '" + name + "'";
+    RoomIn r;
+    r.named = !name.empty();
+    r.room.name = r.named ? name : "room " + std::to_string(count);
+    r.room.where = loc(n, element);
+    r.room.storey = storey_of(n, element);
+    bool ok = true;
+    for (pugi::xml_node pt : n.children("point")) {
+      const double x = need(pt, "x", element), y = need(pt, "y", element);
+      ok &= sane(x) && sane(y);
+      const Vec2 p = plan_point(x, y);
+      if (r.poly.empty() || length(p - r.poly.back()) > 1e-9) r.poly.push_back(p);
+    }
+    while (r.poly.size() > 1 && length(r.poly.front() - r.poly.back()) <= 1e-9) r.poly.pop_back();
+    if (!ok || r.poly.size() < 3 || std::fabs(signed_area(r.poly)) < 1e-6) {
+      warn(n, element, ok ? "the room's polygon has no area: dropped" : "a point is not a finite number: room dropped");
+      continue;
+    }
+    rooms.push_back(std::move(r));
+  }
+  std::vector<std::vector<const Wall*>> walls_of(plan_.storeys.size());
+  for (const Wall& w : plan_.walls) walls_of[size_t(w.storey)].push_back(&w);
+  for (RoomIn& r : rooms) r.room.label = label_point(r.poly, walls_of[size_t(r.room.storey)]);
+  // Named rooms first; an unnamed one inside a named one is a floor or ceiling drawn apart,
+  // not a room of its own (it would only rename the space "Kitchen + room 7").
+  int inside_named = 0;
+  std::map<std::pair<StoreyId, std::string>, int> seen;
+  for (int pass = 0; pass < 2; ++pass)
+    for (RoomIn& r : rooms) {
+      if (r.named != (pass == 0)) continue;
+      if (!r.named) {
+        bool within = false;
+        for (const RoomIn& o : rooms)
+          within |= o.named && o.room.storey == r.room.storey && inside_polygon(o.poly, *r.room.label);
+        if (within) {
+          ++inside_named;
+          continue;
+        }
+      }
+      const int k = ++seen[{r.room.storey, r.room.name}];
+      if (k > 1) r.room.name += " (" + std::to_string(k) + ")";
+      plan_.rooms.push_back(r.room);
+    }
+  if (inside_named > 0)
+    plan_.warnings.push_back(file_ + ": " + std::to_string(inside_named) +
+                             " unnamed room(s) lie within named ones (floors or ceilings drawn apart): not rooms of their own");
+}
+
+// --- furniture, staircases, the camera --------------------------------------------------------
+
+/// A staircase's cut-out (an SVG path in the piece's unit square, x along its width, y along
+/// its depth, y down) as a polygon in plan. Straight commands only (M L H V Z, either case);
+/// anything else is taken as the whole footprint.
+std::vector<Vec2> cut_out_outline(const PieceIn& p) {
+  std::vector<Vec2> unit;
+  const std::string& s = p.cut_out;
+  size_t i = 0;
+  char cmd = 0;
+  Vec2 cur{0, 0};
+  bool ok = true;
+  auto skip = [&] { while (i < s.size() && (std::isspace(static_cast<unsigned char>(s[i])) || s[i] == ',')) ++i; };
+  auto num = [&](double& v) {
+    skip();
+    const char* b = s.data() + i;
+    const auto [e, ec] = std::from_chars(b, s.data() + s.size(), v);
+    if (ec != std::errc()) return false;
+    i += size_t(e - b);
+    return true;
+  };
+  while (ok) {
+    skip();
+    if (i >= s.size()) break;
+    if (std::isalpha(static_cast<unsigned char>(s[i]))) cmd = s[i++];
+    const bool rel = std::islower(static_cast<unsigned char>(cmd));
+    double x = 0, y = 0;
+    switch (std::toupper(static_cast<unsigned char>(cmd))) {
+      case 'M': case 'L':
+        ok = num(x) && num(y);
+        cur = rel ? cur + Vec2{x, y} : Vec2{x, y};
+        break;
+      case 'H':
+        ok = num(x);
+        cur.x = rel ? cur.x + x : x;
+        break;
+      case 'V':
+        ok = num(y);
+        cur.y = rel ? cur.y + y : y;
+        break;
+      case 'Z':
+        continue;
+      default:
+        ok = false;
+    }
+    if (ok) unit.push_back(cur);
+  }
+  while (unit.size() > 1 && length(unit.front() - unit.back()) < 1e-9) unit.pop_back();
+  if (!ok || unit.size() < 3 || std::fabs(signed_area(unit)) < 1e-9) unit = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
+  // Unit square → piece (screen axes: x along the width, y along the depth, both in the
+  // y-down plane the angle turns clockwise in) → plan.
+  const Vec2 ax{std::cos(p.angle), std::sin(p.angle)};  // width axis, in plan
+  const Vec2 ay{ax.y, -ax.x};                           // depth axis (screen +y), in plan
+  std::vector<Vec2> out;
+  for (Vec2 u : unit) {
+    const double ux = p.mirrored ? 1 - u.x : u.x;
+    out.push_back(p.centre + ((ux - 0.5) * p.width) * ax + ((u.y - 0.5) * p.depth) * ay);
+  }
+  if (signed_area(out) < 0) std::reverse(out.begin(), out.end());
+  return out;
+}
+
+void HomeReader::add_furniture() {
+  for (const PieceIn& p : pieces_) {
+    if (p.door_or_window) continue;
+    Object o;
+    o.name = p.name;
+    o.storey = p.storey;
+    o.position = {p.centre.x, p.centre.y, p.elevation};
+    o.rotation_deg = {0, 0, p.angle * 180 / std::numbers::pi};
+    o.box = {p.width, p.depth, p.height};
+    o.where = p.where;
+    plan_.objects.push_back(o);
+    if (p.cut_out.empty() || p.width <= 0 || p.depth <= 0) continue;
+    // A staircase cuts the floors of the storeys it climbs into.
+    const double base = plan_.storeys[size_t(p.storey)].elevation + p.elevation, top = base + p.height;
+    for (size_t s = 1; s < plan_.storeys.size(); ++s) {
+      const double e = plan_.storeys[s].elevation;
+      if (!(e > base + 1e-6 && e <= top + 1e-6)) continue;
+      FloorOpening f;
+      f.name = p.name;
+      f.storey = StoreyId(s);
+      f.outline = cut_out_outline(p);
+      f.where = p.where;
+      plan_.floor_openings.push_back(std::move(f));
+    }
+  }
+}
+
+void HomeReader::read_camera(pugi::xml_node home) {
+  for (pugi::xml_node n : home.children("observerCamera")) {
+    if (std::string_view(n.attribute("attribute").as_string()) != "observerCamera") continue;
+    const std::string element = "observerCamera";
+    const double x = need(n, "x", element), y = need(n, "y", element), z = need(n, "z", element);
+    const double yaw = need(n, "yaw", element), pitch = need(n, "pitch", element);
+    const double fov = number(n, "fieldOfView", element).value_or(63 * std::numbers::pi / 180);
+    if (!sane(x) || !sane(y) || !sane(z) || !std::isfinite(yaw) || !std::isfinite(pitch) || !std::isfinite(fov)) {
+      warn(n, element, "a coordinate or angle is not a finite number: no viewpoint");
+      return;
+    }
+    // Sweet Home walks forward along (−sin yaw, cos yaw) on screen (HomeController3D's
+    // moveCamera), y down; a positive pitch looks down.
+    Viewpoint v;
+    v.eye = {x * kCm, -y * kCm, z * kCm};
+    const Vec3 dir{-std::sin(yaw) * std::cos(pitch), -std::cos(yaw) * std::cos(pitch), -std::sin(pitch)};
+    v.look = v.eye + dir;
+    v.fov_deg = std::clamp(fov * 180 / std::numbers::pi, 1.0, 179.0);
+    plan_.view = v;
+    return;
+  }
+}
+
+// --- the whole home ---------------------------------------------------------------------------
+
+Plan HomeReader::read(pugi::xml_node home) {
+  plan_.source = path_;
+  plan_.lenient = true;
+  std::string name = home.attribute("name").as_string();
+  plan_.name = std::filesystem::path(name.empty() ? path_ : name).stem().string();
+  const double wh = number(home, "wallHeight", "home").value_or(250);
+  if (sane(wh) && wh > 0) wall_height_ = wh * kCm;
+
+  read_levels(home);
+  read_walls(home);
+  join_walls();
+  stretch_free_ends();
+  collect_pieces(home, "");
+  for (const PieceIn& p : pieces_)
+    if (p.door_or_window) find_wall(p);
+  cut_openings();
+  finish_walls();
+  if (plan_.walls.empty()) throw PlanError(loc(home, "home"), "the home has no walls");
+  read_rooms(home);
+  add_furniture();
+  read_camera(home);
+
+  if (walls_cut_ > 0)
+    plan_.warnings.push_back(file_ + ": " + std::to_string(walls_cut_) +
+                             " wall(s) taller than their storey cut to its ceiling");
+  if (sloped_ > 0)
+    plan_.warnings.push_back(file_ + ": " + std::to_string(sloped_) + " sloped wall(s) (heightAtEnd) stepped into " +
+                             std::to_string(steps_) + " pieces of constant height, steps of at most " +
+                             fmt(kStep * 100) + " cm: cells are vertical prisms");
+  return std::move(plan_);
+}
+
+}  // namespace
+
+Plan read_sweet_home(const std::string& path) {
+  const std::string bytes = read_bytes(path);
+  std::string text, file = path;
+  if (looks_like_zip(bytes) || has_sh3d_extension(path)) {
+    if (!looks_like_zip(bytes))
+      throw PlanError(SourceLoc{path, 0, 0, ""}, "not a Sweet Home 3D .sh3d file: not a zip archive");
+    text = home_xml_of_zip(path, bytes);
+    file = path + ":Home.xml";
+  } else {
+    text = bytes;
+  }
+  pugi::xml_document doc;
+  const pugi::xml_parse_result parsed = doc.load_buffer(text.data(), text.size(), pugi::parse_default);
+  const LineIndex lines(text);
+  if (!parsed) {
+    auto [line, col] = lines.at(parsed.offset);
+    throw PlanError(SourceLoc{file, line, col, ""}, std::string("XML syntax error: ") + parsed.description());
+  }
+  const pugi::xml_node home = doc.child("home");
+  if (!home) {
+    const pugi::xml_node root = doc.document_element();
+    throw PlanError(SourceLoc{file, root ? lines.at(root.offset_debug()).first : 0, 0, ""},
+                    "not a Sweet Home 3D home: the root element is <" + std::string(root ? root.name() : "") +
+                        ">, not <home>");
+  }
+  return HomeReader(path, file, text).read(home);
+}
+
+}  // namespace avenues

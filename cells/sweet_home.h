@@ -1,0 +1,36 @@
+// Avenues — a Sweet Home 3D home as a Plan.
+//
+// Sweet Home 3D (eTeks) saves a home as a .sh3d zip whose "Home.xml" entry describes it
+// (older versions wrote only a serialized Java "Home" entry, which is not read); the
+// examples Debian ships are bare Home.xml files. The importer turns
+//   <level>            into storeys, stacked by elevation (levels at one elevation merged),
+//   <wall>             into walls: joined walls of one thickness and height become one
+//                      mitred centre line, arcs (arcExtent) are tessellated within
+//                      Plan::arc_tolerance, sloped tops (heightAtEnd) are stepped into
+//                      pieces of constant height (cells are vertical prisms),
+//   <doorOrWindow>     into openings of the wall they sit in (also inside furniture groups),
+//   <room>             into rooms labelled at a point well inside their polygon,
+//   <pieceOfFurniture> into boxes of the piece's size (the models are not read),
+//                      and a staircase's cut-out into holes in the floors it climbs through,
+//   <observerCamera>   into the plan's viewpoint.
+// Sweet Home lengths are centimetres with y pointing down the screen; a point (x, y)
+// becomes (x/100, −y/100) m, which keeps counter-clockwise polygons counter-clockwise
+// and turns Sweet Home's clockwise angles into Avenues' anticlockwise ones.
+//
+// The plan is lenient (Plan::lenient): homes drawn by hand have terraces open to the
+// outside, rooms labelled twice, room polygons that cross walls; build_cells() makes
+// those warnings. What the importer itself repaired or dropped is in Plan::warnings.
+#pragma once
+
+#include <string>
+
+#include "plans/plan.h"
+
+namespace avenues {
+
+/// Reads a Sweet Home 3D home: a .sh3d file (a zip holding Home.xml) or a bare Home.xml
+/// (the examples shipped in Debian's sweethome3d package are bare XML). Throws PlanError
+/// naming the file and element (with the XML line where known) for what cannot be read.
+Plan read_sweet_home(const std::string& path);
+
+}  // namespace avenues

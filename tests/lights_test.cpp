@@ -1,0 +1,414 @@
+// Tests of lights and shadows (render/lighting.h, render/shadows.h, visibility/light_reach.h,
+// the secondary scan in render/scanline.h): tiny hand-made plans, each named for what it
+// shows, checked in pixels against analytic shadows.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "cells/build_cells.h"
+#include "plans/plan.h"
+#include "render/effects.h"
+#include "render/halftone.h"
+#include "render/raster_srgb.h"
+#include "render/shadow_outline.h"
+#include "render/view_lines.h"
+#include "test_plans.h"
+#include "visibility/light_reach.h"
+
+using namespace avenues;
+using avenues::testing::room_named;
+using avenues::testing::wall;
+
+namespace {
+
+Room room(const std::string& name, Vec2 at) {
+  Room r;
+  r.name = name;
+  r.label = at;
+  return r;
+}
+
+Light point_light(const std::string& name, Vec3 at) {
+  Light l;
+  l.name = name;
+  l.position = at;
+  return l;
+}
+
+/// A 6 m square room, 3 m high, a 1 m box on its floor at (3, 3), and a lamp at (2, 2, 2.5).
+Plan box_under_a_light() {
+  Plan p;
+  p.name = "box under a light";
+  p.far_margin = 2;
+  p.storeys.push_back({"ground", 0, 3.0, 0.3, {}});
+  p.walls.push_back(wall("room", {{0, 0}, {6, 0}, {6, 6}, {0, 6}, {0, 0}}, 0.2));
+  p.rooms = {room("room", {1, 1})};
+  Object box;
+  box.name = "box";
+  box.box = {1, 1, 1};
+  box.position = {3, 3, 0};
+  p.objects = {box};
+  p.lights = {point_light("lamp", {2, 2, 2.5})};
+  return p;
+}
+
+constexpr Vec3 kLamp{2, 2, 2.5};
+
+constexpr Vec3 kDoorLamp{1.0, 1.9, 2.3};
+
+/// Two 4 m rooms side by side, 2.5 m high; the wall between them (x = 3.9 to 4.1) has a
+/// door 0.8 m wide (y = 1.5 to 2.3) and 2 m high when `door`. A lamp in the west room.
+Plan two_rooms(bool door) {
+  Plan p;
+  p.name = door ? "light through a door" : "two rooms, no door";
+  p.far_margin = 2;
+  p.storeys.push_back({"ground", 0, 2.5, 0.3, {}});
+  p.walls.push_back(wall("outer", {{0, 0}, {8, 0}, {8, 4}, {0, 4}, {0, 0}}, 0.2));
+  Wall mid = wall("mid", {{4, 0}, {4, 4}}, 0.2);
+  if (door) {
+    Opening o;
+    o.name = "door";
+    o.at = 1.5;
+    o.width = 0.8;
+    o.sill = 0;
+    o.head = 2.0;
+    mid.openings.push_back(o);
+  }
+  p.walls.push_back(mid);
+  p.rooms = {room("west", {2, 2}), room("east", {6, 2})};
+  p.lights = {point_light("lamp", kDoorLamp)};
+  return p;
+}
+
+/// Where a ray from `eye` through the centre (or corner) of a pixel meets `plane`.
+bool hit(const Camera& cam, Vec2 px, const Plane& plane, Vec3& at) {
+  const Vec3 d = cam.ray_through_raster(px);
+  const double den = dot(plane.n, d);
+  if (den == 0) return false;
+  const double t = -plane.eval(cam.eye) / den;
+  if (!(t > 0)) return false;
+  at = cam.eye + t * d;
+  return true;
+}
+
+/// Convex hull of points in the plane (monotone chain), counter-clockwise.
+std::vector<Vec2> hull_of(std::vector<Vec2> p) {
+  std::sort(p.begin(), p.end(), [](Vec2 a, Vec2 b) { return a.x != b.x ? a.x < b.x : a.y < b.y; });
+  std::vector<Vec2> h(2 * p.size());
+  size_t k = 0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    while (k >= 2 && cross(h[k - 1] - h[k - 2], p[i] - h[k - 2]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  for (size_t i = p.size() - 1, lo = k + 1; i-- > 0;) {
+    while (k >= lo && cross(h[k - 1] - h[k - 2], p[i] - h[k - 2]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  h.resize(k - 1);
+  return h;
+}
+
+bool inside(const std::vector<Vec2>& ccw, Vec2 q) {
+  for (size_t i = 0; i < ccw.size(); ++i)
+    if (cross(ccw[(i + 1) % ccw.size()] - ccw[i], q - ccw[i]) < 0) return false;
+  return true;
+}
+
+/// The box's shadow on the floor from the lamp, analytically: the hull of its footprint and
+/// its top corners projected from the lamp onto z = 0.
+std::vector<Vec2> analytic_box_shadow() {
+  std::vector<Vec2> pts;
+  for (double x : {2.5, 3.5})
+    for (double y : {2.5, 3.5}) {
+      pts.push_back({x, y});
+      const double k = kLamp.z / (kLamp.z - 1.0);  // top at z = 1
+      pts.push_back({kLamp.x + k * (x - kLamp.x), kLamp.y + k * (y - kLamp.y)});
+    }
+  return hull_of(pts);
+}
+
+/// A grey picture of the view lit by the plan's lights, with its item buffer.
+struct Shot {
+  Camera cam;
+  ScreenScene scene;
+  Image picture;
+  std::vector<int32_t> items;
+};
+
+Shot shoot(const CellComplex& c, const Camera& cam, int threads = 0) {
+  const VisibleSet vs = find_visible(c, cam, c.locate(cam.eye).cell);
+  const std::vector<PlacedObject> objects = place_objects(c);
+  HalftoneOptions o;
+  o.colour = false;
+  o.threads = threads;
+  const SceneEffects e = prepare_effects(c, objects, o);
+  SceneOptions so = scene_options(o);
+  so.lighting = &e.plan.lighting;
+  so.shadows = &e.shadows;
+  Shot s{cam, screen_scene_of_view(c, objects, cam, vs, so), {}, {}};
+  render_scene(s.scene, o, s.picture, nullptr, &s.items);
+  return s;
+}
+
+/// The grey code of a surface of the default material in ambient light only (BACK = 0.1).
+uint8_t unlit_code() { return srgb_encoder()(float(0.8 * 0.1)); }
+
+/// Compares a shot's pixels on the faces `wanted` says with `lit(P)`; pixels whose centre
+/// and corners disagree analytically (the outline runs through them) are left out.
+struct Tally {
+  long lit = 0, dark = 0, wrong = 0, boundary = 0;
+};
+template <class Wanted, class Lit>
+Tally compare(const CellComplex& c, const Shot& s, Wanted wanted, Lit lit) {
+  Tally t;
+  const uint8_t dark = unlit_code();
+  for (int y = 0; y < s.cam.height; ++y)
+    for (int x = 0; x < s.cam.width; ++x) {
+      const int32_t p = s.items[size_t(y) * size_t(s.cam.width) + size_t(x)];
+      if (p < 0) continue;
+      const PolygonSource& src = s.scene.sources[size_t(p)];
+      if (src.kind != PolygonSource::Kind::Face || !wanted(src)) continue;
+      const Plane& plane = c.cells[size_t(src.cell)].faces[size_t(src.face)].plane;
+      Vec3 at;
+      if (!hit(s.cam, {x + 0.5, y + 0.5}, plane, at)) continue;
+      const bool expect = lit(at, plane);
+      bool straddles = false;
+      for (double dx : {0.0, 1.0})
+        for (double dy : {0.0, 1.0}) {
+          Vec3 corner;
+          straddles |= !hit(s.cam, {x + dx, y + dy}, plane, corner) || lit(corner, plane) != expect;
+        }
+      if (straddles) {
+        ++t.boundary;
+        continue;
+      }
+      const bool measured = s.picture.row(y)[x] > dark + 2;  // above the ambient level (rounding aside)
+      (expect ? t.lit : t.dark) += 1;
+      if (measured != expect) ++t.wrong;
+    }
+  return t;
+}
+
+}  // namespace
+
+// --- lights in plans --------------------------------------------------------------------
+
+TEST(Lights, PlansCarryPointAndAmbientLights) {
+  const Plan p = parse_plan(
+      "name = 'lit'\n"
+      "[[storey]]\nname = 'g'\nheight = 3\n"
+      "[[wall]]\npath = [[0, 0], [4, 0], [4, 4], [0, 4], [0, 0]]\n"
+      "[[room]]\nname = 'r'\nat = [2, 2]\n"
+      "[[light]]\nname = 'lamp'\nposition = [2, 2, 2]\ncolour = [1, 0.5, 0.25]\n"
+      "[[light]]\nname = 'sky'\nkind = 'ambient'\nintensity = 0.2\n",
+      "lit.toml");
+  ASSERT_EQ(p.lights.size(), 2u);
+  EXPECT_EQ(p.lights[0].kind, LightKind::Point);
+  EXPECT_EQ(p.lights[1].kind, LightKind::Ambient);
+  EXPECT_DOUBLE_EQ(p.lights[1].intensity, 0.2);
+  const CellComplex c = build_cells(p);
+  const Lighting l = lighting_of(c, Shading{}, Lights::Plan, false, true);
+  EXPECT_FALSE(l.at_eye);
+  ASSERT_EQ(l.points.size(), 1u);
+  EXPECT_NE(l.points[0].cell, kNoCell);
+  EXPECT_TRUE(l.coloured);
+  EXPECT_FLOAT_EQ(l.ambient[0], 0.2f);
+  EXPECT_FLOAT_EQ(l.diffuse, 0.8f);
+  // Grey pictures and the light at the eye carry no colour; Eye ignores the point lights.
+  EXPECT_FALSE(lighting_of(c, Shading{}, Lights::Plan, false, false).coloured);
+  EXPECT_TRUE(lighting_of(c, Shading{}, Lights::Eye, false, true).at_eye);
+}
+
+TEST(Lights, BadLightsNameFileAndElement) {
+  auto fails = [](const std::string& light, const std::string& says) {
+    try {
+      parse_plan("name = 'x'\n[[storey]]\nname = 'g'\n[[wall]]\npath = [[0, 0], [4, 0]]\n[[light]]\nname = 'l'\n" + light,
+                 "x.toml");
+      ADD_FAILURE() << "accepted " << light;
+    } catch (const PlanError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("x.toml"), std::string::npos) << what;
+      EXPECT_NE(what.find("light 'l'"), std::string::npos) << what;
+      EXPECT_NE(what.find(says), std::string::npos) << what;
+    }
+  };
+  fails("kind = 'spot'\nposition = [0, 0, 1]\n", "unknown light kind 'spot'");
+  fails("kind = 'ambient'\nposition = [0, 0, 1]\n", "has no 'position'");
+  fails("kind = 'ambient'\nintensity = 2\n", "at most 1");
+  fails("intensity = 1\n", "position");
+}
+
+TEST(Lights, LambertsCosineFromALightAwayFromTheEye) {
+  // A plane z = 0 seen from the eye above; a light 1 m above the point (0, 0): at the foot
+  // cos φ = 1, at 1 m off it cos φ = 1/√2, and a light below the plane lights nothing seen.
+  Material m;
+  m.reflectance = 1;
+  Lighting lighting;
+  lighting.at_eye = false;
+  lighting.ambient = {0, 0, 0};
+  lighting.diffuse = 1;
+  PointLight lamp;
+  const Vec3 n{0, 0, 1};
+  const double d = 2;  // camera space: the eye at the origin, the plane z = −2 ... n·P + 2 = 0
+  LightTerm t;
+  ASSERT_TRUE(planar_light_term(m, n, d, {0, 0, -2}, {0, 0, -1}, lamp, lighting, false, t));
+  EXPECT_NEAR(t.diffuse, 1.0, 1e-6);
+  ASSERT_TRUE(planar_light_term(m, n, d, {1, 0, -2}, {0, 0, -1}, lamp, lighting, false, t));
+  EXPECT_NEAR(t.diffuse, 1 / std::sqrt(2.0), 1e-6);
+  EXPECT_FALSE(planar_light_term(m, n, d, {0, 0, -2}, {0, 0, -3}, lamp, lighting, false, t));
+  // Distance falloff only when asked: Wylie's law (r0 / r)² beyond r0.
+  lighting.falloff = true;
+  lighting.falloff_start = 0.5;
+  ASSERT_TRUE(planar_light_term(m, n, d, {0, 0, -2}, {0, 0, -1}, lamp, lighting, false, t));
+  EXPECT_NEAR(t.diffuse, 0.25, 1e-6);
+}
+
+// --- what a light reaches ------------------------------------------------------------------
+
+TEST(LightReach, NoLightReachesACellWithNoPortalPathToTheLight) {
+  const CellComplex c = build_cells(two_rooms(false));
+  const LightReach r = find_lit(c, kDoorLamp, c.locate(kDoorLamp).cell);
+  const RoomId west = room_named(c, "west"), east = room_named(c, "east");
+  ASSERT_GE(west, 0);
+  ASSERT_GE(east, 0);
+  bool lit_west = false;
+  for (CellId id : r.cells) {
+    EXPECT_NE(c.cells[size_t(id)].room, east) << "light leaked through the wall into cell " << id;
+    lit_west |= c.cells[size_t(id)].room == west;
+  }
+  EXPECT_TRUE(lit_west);
+  // And in the picture: every pixel of the east room is at the ambient level.
+  const Shot s = shoot(c, Camera::look_at({7.5, 0.6, 2.0}, {4.5, 2.5, 0.5}, 80, 96, 72));
+  const Tally t = compare(
+      c, s, [&](const PolygonSource& src) { return c.cells[size_t(src.cell)].room == east; },
+      [](Vec3, const Plane&) { return false; });
+  EXPECT_GT(t.dark, 1000);
+  EXPECT_EQ(t.wrong, 0);
+  EXPECT_EQ(t.lit, 0);
+}
+
+TEST(LightReach, ThroughADoorTheConeIsTheDoorway) {
+  const CellComplex c = build_cells(two_rooms(true));
+  const LightReach r = find_lit(c, kDoorLamp, c.locate(kDoorLamp).cell);
+  const RoomId east = room_named(c, "east");
+  bool through = false;
+  for (const LightPath& p : r.paths) {
+    if (c.cells[size_t(p.cell)].room != east) continue;
+    through = true;
+    ASSERT_GE(p.window.size(), 3u);
+    // The window lies in the door's plane on the east face of the wall, inside the door.
+    for (Vec3 w : p.window) {
+      EXPECT_GE(w.y, 1.5 - 1e-9);
+      EXPECT_LE(w.y, 2.3 + 1e-9);
+      EXPECT_LE(w.z, 2.0 + 1e-9);
+    }
+  }
+  EXPECT_TRUE(through);
+  EXPECT_EQ(r.paths[0].cell, c.locate(kDoorLamp).cell);
+  EXPECT_TRUE(r.paths[0].window.empty());
+}
+
+// --- shadows in pixels -------------------------------------------------------------------
+
+TEST(Shadows, ABoxUnderALampShadowsItsProjectionOnTheFloor) {
+  const CellComplex c = build_cells(box_under_a_light());
+  const std::vector<Vec2> shadow = analytic_box_shadow();
+  const Shot s = shoot(c, Camera::look_at({5.6, 5.6, 2.7}, {3.0, 3.0, 0.0}, 70, 200, 150));
+  const Tally t = compare(
+      c, s, [&](const PolygonSource& src) { return c.cells[size_t(src.cell)].faces[size_t(src.face)].plane.n.z < -0.99; },
+      [&](Vec3 p, const Plane&) { return !inside(shadow, {p.x, p.y}); });
+  EXPECT_GT(t.dark, 500) << "the shadow is in view";
+  EXPECT_GT(t.lit, 2000);
+  EXPECT_EQ(t.wrong, 0) << t.lit << " lit, " << t.dark << " in shadow, " << t.boundary << " on the outline";
+}
+
+TEST(Shadows, LightThroughADoorIsTheDoorwaysProjection) {
+  const CellComplex c = build_cells(two_rooms(true));
+  const RoomId east = room_named(c, "east");
+  // Lit in the east room: in front of the face, and the segment from the lamp passes the
+  // doorway on both faces of the wall (x = 3.9 and 4.1), y in [1.5, 2.3], z in [0, 2].
+  auto lit = [](Vec3 p, const Plane& face) {
+    if (!(face.eval(kDoorLamp) < 0)) return false;
+    for (double x : {3.9, 4.1}) {
+      const double t = (x - kDoorLamp.x) / (p.x - kDoorLamp.x);
+      const Vec3 q = kDoorLamp + t * (p - kDoorLamp);
+      if (q.y < 1.5 || q.y > 2.3 || q.z < 0 || q.z > 2.0) return false;
+    }
+    return true;
+  };
+  const Shot s = shoot(c, Camera::look_at({7.5, 0.4, 2.2}, {5.5, 2.5, 0.2}, 80, 200, 150));
+  const Tally t = compare(
+      c, s, [&](const PolygonSource& src) { return c.cells[size_t(src.cell)].room == east; }, lit);
+  EXPECT_GT(t.lit, 300) << "the patch of light is in view";
+  EXPECT_GT(t.dark, 2000);
+  EXPECT_EQ(t.wrong, 0) << t.lit << " lit, " << t.dark << " dark, " << t.boundary << " on the outline";
+}
+
+TEST(Shadows, TheSamePictureOnAnyNumberOfThreads) {
+  const CellComplex c = build_cells(box_under_a_light());
+  const Camera cam = Camera::look_at({5.6, 5.6, 2.7}, {3.0, 3.0, 0.0}, 70, 160, 120);
+  EXPECT_EQ(shoot(c, cam, 1).picture.data, shoot(c, cam, 2).picture.data);
+}
+
+TEST(Shadows, AShadowPolygonIsTheSurfaceCutToTheShadowVolume) {
+  // A unit square 1 m under a light, 1 m above a floor: its shadow is the square doubled.
+  const std::vector<Vec3> floor{{-5, -5, 0}, {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}};
+  const std::vector<Vec3> square{{-0.5, -0.5, 1}, {0.5, -0.5, 1}, {0.5, 0.5, 1}, {-0.5, 0.5, 1}};
+  const std::vector<Vec3> sh = shadow_on(floor, square, {0, 0, 2});
+  ASSERT_EQ(sh.size(), 4u);
+  for (Vec3 v : sh) {
+    EXPECT_NEAR(std::fabs(v.x), 1.0, 1e-12);
+    EXPECT_NEAR(std::fabs(v.y), 1.0, 1e-12);
+    EXPECT_NEAR(v.z, 0.0, 1e-12);
+  }
+  EXPECT_TRUE(shadow_on(floor, square, {0, 0, 0.5}).empty()) << "the light below the occluder";
+  EXPECT_TRUE(shadow_on(floor, square, {0, 0, 1}).empty()) << "the light in the occluder's plane";
+}
+
+// --- shadow outlines in drawings -----------------------------------------------------------
+
+TEST(ShadowOutlines, TheBoxsShadowOutlineIsItsAnalyticOutline) {
+  const CellComplex c = build_cells(box_under_a_light());
+  const std::vector<PlacedObject> objects = place_objects(c);
+  const Lighting lighting = lighting_of(c, Shading{}, Lights::Plan, false, false);
+  const SceneShadows shadows = cast_shadows(c, objects, lighting);
+  const std::vector<Vec2> want = analytic_box_shadow();
+  double perimeter = 0;
+  for (size_t i = 0; i < want.size(); ++i) perimeter += length(want[(i + 1) % want.size()] - want[i]);
+  double drawn = 0;
+  int floors = 0;
+  for (size_t id = 0; id < c.cells.size(); ++id)
+    for (size_t k = 0; k < c.cells[id].faces.size(); ++k) {
+      const Face& f = c.cells[id].faces[k];
+      const SurfaceLight* s = shadows.on_face(0, CellId(id), int(k));
+      if (!s || f.plane.n.z > -0.99) continue;  // floors: outward normal down
+      ++floors;
+      for (const auto& e : shadow_outline(f.poly, *s)) {
+        drawn += length(e[1] - e[0]);
+        // Every piece lies on the analytic outline.
+        for (Vec3 p : {e[0], e[1], 0.5 * (e[0] + e[1])}) {
+          double nearest = HUGE_VAL;
+          for (size_t i = 0; i < want.size(); ++i) {
+            const Vec2 a = want[i], b = want[(i + 1) % want.size()];
+            const double t = std::clamp(dot(Vec2{p.x, p.y} - a, b - a) / dot(b - a, b - a), 0.0, 1.0);
+            nearest = std::min(nearest, length(Vec2{p.x, p.y} - (a + t * (b - a))));
+          }
+          EXPECT_LT(nearest, 1e-9);
+          EXPECT_NEAR(p.z, 0.0, 1e-9);
+        }
+      }
+    }
+  EXPECT_GE(floors, 1);
+  EXPECT_NEAR(drawn, perimeter, 1e-6) << "the whole outline, once";
+  // In a drawing: an optional layer, there only when asked.
+  LineOptions lo;
+  const Camera cam = Camera::look_at({5.6, 5.6, 2.7}, {3.0, 3.0, 0.0}, 70, 200, 150);
+  const VisibleSet vs = find_visible(c, cam, c.locate(cam.eye).cell);
+  auto shadow_strokes = [&](const Drawing& d) {
+    return std::count_if(d.strokes.begin(), d.strokes.end(), [](const Stroke& s) { return s.layer == Layer::Shadows; });
+  };
+  EXPECT_EQ(shadow_strokes(draw_view(c, prepare_line_scene(c), cam, vs, lo)), 0);
+  lo.shadows = true;
+  EXPECT_GT(shadow_strokes(draw_view(c, prepare_line_scene(c, lo), cam, vs, lo)), 2);
+}

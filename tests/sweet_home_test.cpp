@@ -1,0 +1,580 @@
+// Tests of the Sweet Home 3D importer (cells/sweet_home.cpp).
+//
+//   * the nine example homes Debian's sweethome3d ships (bare Home.xml) read and build
+//     valid cells; every room they name owns cells or is accounted for by a warning;
+//     every door gives a Door portal; the views the homes store (the observer camera and
+//     the stored cameras, read here straight from the XML) agree with ray casting;
+//   * a .sh3d zip made here reads as its bare Home.xml does;
+//   * small hand-made homes: an arc wall, a sloped wall, a door and a window, levels;
+//   * malformed files give a PlanError naming the file, the element and its line.
+#include <gtest/gtest.h>
+#include <pugixml.hpp>
+#include <unistd.h>
+#include <zip.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "cells/build_cells.h"
+#include "cells/sweet_home.h"
+#include "ray_oracle.h"
+#include "visibility/visible_set.h"
+
+namespace avenues {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kExamples = AVENUES_SH3D_EXAMPLES;
+const char* const kHomes[] = {"1BedroomApartmentWithRoundWall", "2BedroomApartment", "2BedroomApartmentWithBowWindow",
+                              "2BedroomHouseWithBasement",      "3BedroomApartment", "3BedroomHouseWithAttic",
+                              "3BedroomHouseWithMezzanine",     "4BedroomHouse",     "Studio"};
+
+/// A scratch directory per test, removed afterwards.
+class TempDir {
+ public:
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / ("avenues-sh3d-" + std::to_string(::getpid()) + "-" + info->name());
+    fs::create_directories(dir_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  std::string write(const std::string& name, const std::string& text) const {
+    const std::string path = (dir_ / name).string();
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+  }
+  /// A zip holding the given entries (name → bytes), written with libzip.
+  std::string zip(const std::string& name, const std::map<std::string, std::string>& entries) const {
+    const std::string path = (dir_ / name).string();
+    int err = 0;
+    zip_t* za = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
+    EXPECT_NE(za, nullptr) << "libzip error " << err;
+    if (!za) return path;
+    for (const auto& [entry, bytes] : entries) {
+      zip_source_t* src = zip_source_buffer(za, bytes.data(), bytes.size(), 0);
+      EXPECT_GE(zip_file_add(za, entry.c_str(), src, ZIP_FL_OVERWRITE), 0) << zip_strerror(za);
+    }
+    EXPECT_EQ(zip_close(za), 0);  // writes the entries (their buffers are still alive here)
+    return path;
+  }
+
+ private:
+  fs::path dir_;
+};
+
+/// A Sweet Home camera from its XML element: walks along (−sin yaw, cos yaw) on the
+/// y-down screen, pitch > 0 looks down; (x, y, z) cm → (x, −y, z)/100 m.
+Camera sweet_home_camera(pugi::xml_node n, int width, int height) {
+  const double x = n.attribute("x").as_double(), y = n.attribute("y").as_double(), z = n.attribute("z").as_double();
+  const double yaw = n.attribute("yaw").as_double(), pitch = n.attribute("pitch").as_double();
+  const double fov = n.attribute("fieldOfView").as_double() * 180 / std::numbers::pi;
+  const Vec3 eye{x / 100, -y / 100, z / 100};
+  const Vec3 dir{-std::sin(yaw) * std::cos(pitch), -std::cos(yaw) * std::cos(pitch), -std::sin(pitch)};
+  return Camera::look_at(eye, eye + dir, fov, width, height);
+}
+
+/// Plan-wide index of a wall opening, as cells/ numbers them (Portal::opening).
+int opening_index(const Plan& p, size_t wall, size_t opening) {
+  int id = 0;
+  for (size_t w = 0; w < wall; ++w) id += int(p.walls[w].openings.size());
+  return id + int(opening);
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+/// Does a complex room's name ("Hall + Bedroom + Kitchen", "Bathroom (2)") include `name`?
+bool names(const std::string& joined, const std::string& name) {
+  size_t from = 0;
+  for (;;) {
+    const size_t to = joined.find(" + ", from);
+    std::string part = joined.substr(from, to == std::string::npos ? std::string::npos : to - from);
+    if (part == name || (part.rfind(name + " (", 0) == 0 && part.back() == ')')) return true;
+    if (to == std::string::npos) return false;
+    from = to + 3;
+  }
+}
+
+// A small home: a 6 m × 4 m box (walls joined end to end), a partition with a door, a
+// window in the south wall, two named rooms. `extra` goes inside <home>.
+std::string small_home(const std::string& extra = "", const std::string& partition_extra = "") {
+  return R"(<?xml version='1.0'?>
+<home version='5500' name='Small.sh3d' wallHeight='250.0'>
+  <wall id='s' wallAtStart='w' wallAtEnd='e' xStart='0' yStart='400' xEnd='600' yEnd='400' height='250' thickness='20'/>
+  <wall id='e' wallAtStart='s' wallAtEnd='n' xStart='600' yStart='400' xEnd='600' yEnd='0' height='250' thickness='20'/>
+  <wall id='n' wallAtStart='e' wallAtEnd='w' xStart='600' yStart='0' xEnd='0' yEnd='0' height='250' thickness='20'/>
+  <wall id='w' wallAtStart='n' wallAtEnd='s' xStart='0' yStart='0' xEnd='0' yEnd='400' height='250' thickness='20'/>
+  <wall id='p' xStart='400' yStart='0' xEnd='400' yEnd='400' height='250' thickness='10' )" +
+         partition_extra + R"(/>
+  <doorOrWindow name='Door' x='400' y='250' angle='1.5707964' width='90' depth='10' height='210'/>
+  <doorOrWindow name='Window' x='150' y='400' elevation='90' width='120' depth='20' height='120'/>
+  <room name='Living'><point x='10' y='10'/><point x='395' y='10'/><point x='395' y='390'/><point x='10' y='390'/></room>
+  <room name='Kitchen'><point x='405' y='10'/><point x='590' y='10'/><point x='590' y='390'/><point x='405' y='390'/></room>
+  <observerCamera attribute='observerCamera' x='100' y='200' z='160' yaw='4.712389' pitch='0.0' fieldOfView='1.0995574'/>
+)" + extra + "</home>\n";
+}
+
+const Wall* wall_named(const Plan& p, const std::string& name) {
+  for (const Wall& w : p.walls)
+    if (w.name == name) return &w;
+  return nullptr;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------
+// The example homes.
+
+TEST(SweetHome, ExampleHomesBuildValidCellsWithTheirRoomsAndDoors) {
+  if (!fs::exists(kExamples / "Studio.xml"))
+    GTEST_SKIP() << "the Sweet Home 3D example homes are not in " << kExamples << " (run .ci/install-deps)";
+  for (const char* home : kHomes) {
+    SCOPED_TRACE(home);
+    const std::string path = (kExamples / (std::string(home) + ".xml")).string();
+    const Plan plan = read_sweet_home(path);
+    const auto t0 = std::chrono::steady_clock::now();
+    const CellComplex c = build_cells(plan);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_EQ(cells_are_valid(c), "");
+    ASSERT_TRUE(plan.view.has_value());
+    EXPECT_EQ(c.locate(plan.view->eye).what, Location::What::Cell) << "the observer stands in free space";
+
+    // Every room the home names owns cells (under its name, or joined with the names of
+    // rooms sharing its space), or a warning says why not (open to the outside, in a wall).
+    std::vector<int> cells_of(c.rooms.size(), 0);
+    for (const Cell& cell : c.cells)
+      if (cell.room >= 0) ++cells_of[size_t(cell.room)];
+    pugi::xml_document doc;
+    ASSERT_TRUE(doc.load_file(path.c_str()));
+    int named = 0, found = 0;
+    std::string missing;
+    for (pugi::xml_node r : doc.child("home").children("room")) {
+      const std::string name = r.attribute("name").as_string();
+      if (name.empty()) continue;
+      ++named;
+      bool owns = false;
+      for (size_t k = 0; k < c.rooms.size(); ++k) owns |= cells_of[k] > 0 && names(c.rooms[k].name, name);
+      if (owns) {
+        ++found;
+        continue;
+      }
+      bool explained = false;
+      for (const std::string& w : c.warnings) explained |= contains(w, "'" + name + "'");
+      EXPECT_TRUE(explained) << "room '" << name << "' owns no cells and no warning says why";
+      missing += " '" + name + "'";
+    }
+    EXPECT_GE(2 * found, named) << "most named rooms own cells; missing:" << missing;
+
+    // Every door of a full-height wall opens into a Door portal.
+    std::set<int> door_portals;
+    for (const Portal& p : c.portals)
+      if (p.kind == PortalKind::Door) door_portals.insert(p.opening);
+    int doors = 0;
+    for (size_t w = 0; w < plan.walls.size(); ++w)
+      for (size_t o = 0; o < plan.walls[w].openings.size(); ++o) {
+        if (plan.walls[w].openings[o].kind != OpeningKind::Door || plan.walls[w].height >= 0) continue;
+        ++doors;
+        EXPECT_TRUE(door_portals.count(opening_index(plan, w, o)))
+            << "door '" << plan.walls[w].openings[o].name << "' in wall '" << plan.walls[w].name << "' has no Door portal";
+      }
+    EXPECT_GT(doors, 0);
+    std::printf("[ sh3d     ] %-32s %2zu storeys %3zu walls %4zu cells %4zu portals %2d/%2d named rooms own cells "
+                "(missing:%s) %2zu warnings %.2f s\n",
+                home, plan.storeys.size(), plan.walls.size(), c.cells.size(), c.portals.size(), found, named,
+                missing.empty() ? " none" : missing.c_str(), c.warnings.size(), seconds);
+  }
+}
+
+TEST(SweetHome, StoredViewsOfTheExampleHomesAgreeWithRayCasting) {
+  if (!fs::exists(kExamples / "Studio.xml"))
+    GTEST_SKIP() << "the Sweet Home 3D example homes are not in " << kExamples << " (run .ci/install-deps)";
+  for (const char* home : kHomes) {
+    SCOPED_TRACE(home);
+    const std::string path = (kExamples / (std::string(home) + ".xml")).string();
+    const CellComplex c = build_cells(read_sweet_home(path));
+    pugi::xml_document doc;
+    ASSERT_TRUE(doc.load_file(path.c_str()));
+    int views = 0, in_walls = 0, seeing_beyond = 0;
+    for (pugi::xml_node n : doc.child("home").children("observerCamera")) {
+      const std::string name = n.attribute("name").as_string("observer");
+      SCOPED_TRACE("camera '" + name + "'");
+      const Camera cam = sweet_home_camera(n, 96, 64);
+      const Location at = c.locate(cam.eye);
+      if (at.what != Location::What::Cell) {
+        // Sweet Home lets a stored camera stand inside a wall's thickness (its near plane
+        // clips the wall away): 3BedroomHouseWithAttic's 'Living room', 5 cm into wall55.
+        ++in_walls;
+        continue;
+      }
+      const VisibleSet vs = find_visible(c, cam, at.cell, Kernel::Double);
+      const avenues::testing::OracleResult r = avenues::testing::check_visible_set(c, cam, vs, 2);
+      EXPECT_EQ(r.missing, 0);
+      EXPECT_EQ(r.extra, 0);
+      EXPECT_EQ(find_visible(c, cam, at.cell, Kernel::Exact).cells, vs.cells);
+      seeing_beyond += vs.cells.size() > 1;
+      ++views;
+    }
+    EXPECT_GE(views, 2);
+    EXPECT_LE(in_walls, 1) << "cameras standing in walls";
+    EXPECT_GT(seeing_beyond, 0) << "some stored view sees past the eye's own cell";
+  }
+}
+
+// ---------------------------------------------------------------------------------
+// The .sh3d zip.
+
+TEST(SweetHome, Sh3dZipReadsAsItsBareHomeXml) {
+  TempDir dir;
+  const std::string xml = small_home();
+  const Plan bare = read_sweet_home(dir.write("Home.xml", xml));
+  const std::string sh3d = dir.zip("small.sh3d", {{"Home.xml", xml}, {"Home", "serialized Java, not read"}});
+  const Plan zipped = read_sweet_home(sh3d);
+  ASSERT_EQ(zipped.walls.size(), bare.walls.size());
+  for (size_t w = 0; w < bare.walls.size(); ++w) {
+    EXPECT_EQ(zipped.walls[w].name, bare.walls[w].name);
+    ASSERT_EQ(zipped.walls[w].centre.size(), bare.walls[w].centre.size());
+    for (size_t k = 0; k < bare.walls[w].centre.size(); ++k) EXPECT_EQ(zipped.walls[w].centre[k], bare.walls[w].centre[k]);
+    ASSERT_EQ(zipped.walls[w].openings.size(), bare.walls[w].openings.size());
+    for (size_t o = 0; o < bare.walls[w].openings.size(); ++o) {
+      EXPECT_EQ(zipped.walls[w].openings[o].at, bare.walls[w].openings[o].at);
+      EXPECT_EQ(zipped.walls[w].openings[o].where.line, bare.walls[w].openings[o].where.line);
+    }
+  }
+  ASSERT_EQ(zipped.rooms.size(), bare.rooms.size());
+  for (size_t r = 0; r < bare.rooms.size(); ++r) {
+    EXPECT_EQ(zipped.rooms[r].name, bare.rooms[r].name);
+    EXPECT_EQ(*zipped.rooms[r].label, *bare.rooms[r].label);
+  }
+  EXPECT_EQ(zipped.name, "Small");
+  EXPECT_EQ(zipped.source, sh3d);
+  // Both build the same cells.
+  EXPECT_EQ(build_cells(zipped).cells.size(), build_cells(bare).cells.size());
+}
+
+// ---------------------------------------------------------------------------------
+// Small hand-made homes.
+
+TEST(SweetHome, SmallHomeJoinsItsWallsAndCutsTheDoorAndWindowWhereTheyStand) {
+  TempDir dir;
+  const Plan p = read_sweet_home(dir.write("Home.xml", small_home()));
+  ASSERT_EQ(p.storeys.size(), 1u);
+  EXPECT_NEAR(p.storeys[0].height, 2.5, 1e-12);
+  EXPECT_TRUE(p.lenient);
+  // The four outer walls name each other at their ends: one closed, mitred ring.
+  ASSERT_EQ(p.walls.size(), 2u);
+  const Wall* ring = wall_named(p, "s+e+n+1 more");
+  const Wall* part = wall_named(p, "p");
+  ASSERT_NE(ring, nullptr);
+  ASSERT_NE(part, nullptr);
+  EXPECT_EQ(ring->centre.front(), ring->centre.back());
+  // y is flipped: the south wall (y = 400 cm on screen) runs along y = −4 m, east.
+  EXPECT_EQ(ring->centre.front(), (Vec2{0, -4}));
+  EXPECT_EQ(ring->height, -1);  // as tall as the storey: up to the ceiling
+  EXPECT_NEAR(ring->thickness, 0.2, 1e-12);
+  // The window (centre x = 1.5 m, 1.2 m wide) in the south wall, 0.9 m above the floor.
+  ASSERT_EQ(ring->openings.size(), 1u);
+  const Opening& win = ring->openings[0];
+  EXPECT_EQ(win.kind, OpeningKind::Window);
+  EXPECT_NEAR(win.at, 0.9, 1e-6);
+  EXPECT_NEAR(win.width, 1.2, 1e-6);
+  EXPECT_NEAR(win.sill, 0.9, 1e-9);
+  EXPECT_NEAR(win.head, 2.1, 1e-9);
+  // The door (centre y = 2.5 m down the partition drawn from y = 0) in the partition.
+  ASSERT_EQ(part->openings.size(), 1u);
+  const Opening& door = part->openings[0];
+  EXPECT_EQ(door.kind, OpeningKind::Door);
+  EXPECT_NEAR(door.at, 2.5 - 0.45, 1e-6);
+  EXPECT_NEAR(door.width, 0.9, 1e-6);
+  EXPECT_NEAR(door.head, 2.1, 1e-9);
+  EXPECT_EQ(door.name, "Door");
+  EXPECT_GT(door.where.line, 0);
+  // Labels well inside their rooms, and the rooms come out as two spaces joined by a door.
+  ASSERT_EQ(p.rooms.size(), 2u);
+  EXPECT_GT(p.rooms[0].label->x, 0.5);
+  EXPECT_LT(p.rooms[0].label->x, 3.5);
+  EXPECT_GT(p.rooms[1].label->x, 4.3);
+  const CellComplex c = build_cells(p);
+  EXPECT_EQ(cells_are_valid(c), "");
+  EXPECT_TRUE(c.warnings.empty()) << c.warnings.front();
+  int doors = 0, windows = 0;
+  for (const Portal& q : c.portals) doors += q.kind == PortalKind::Door, windows += q.kind == PortalKind::Window;
+  EXPECT_GT(doors, 0);
+  EXPECT_GT(windows, 0);
+  // The observer at (1, −2) looks along yaw 3π/2: (−sin, −cos) = (1, 0), east, into the kitchen.
+  ASSERT_TRUE(p.view.has_value());
+  EXPECT_NEAR(p.view->eye.z, 1.6, 1e-12);
+  EXPECT_NEAR(p.view->look.x - p.view->eye.x, 1, 1e-6);
+  EXPECT_NEAR(p.view->look.y - p.view->eye.y, 0, 1e-6);
+  EXPECT_NEAR(p.view->fov_deg, 63, 1e-3);
+}
+
+TEST(SweetHome, ArcWallIsTessellatedWithinTheTolerance) {
+  TempDir dir;
+  // A half circle from (0, 0) to (200, 0) cm: positive arcExtent bulges towards −y on
+  // the screen (Wall.java), +y in plan: centre (1, 0) m, radius 1 m, top at (1, 1).
+  const Plan p = read_sweet_home(dir.write("Home.xml", R"(<home wallHeight='250'>
+  <wall id='arc' xStart='0' yStart='0' xEnd='200' yEnd='0' thickness='10' arcExtent='3.1415927'/>
+</home>)"));
+  ASSERT_EQ(p.walls.size(), 1u);
+  const Wall& w = p.walls[0];
+  ASSERT_GT(w.centre.size(), 10u);
+  EXPECT_EQ(w.from_arc, std::vector<bool>(w.centre.size() - 1, true));
+  EXPECT_EQ(w.centre.front(), (Vec2{0, 0}));
+  EXPECT_EQ(w.centre.back(), (Vec2{2, 0}));
+  double top = -HUGE_VAL;
+  for (size_t k = 0; k < w.centre.size(); ++k) {
+    EXPECT_NEAR(length(w.centre[k] - Vec2{1, 0}), 1, 1e-6);
+    top = std::max(top, w.centre[k].y);
+    if (k == 0) continue;
+    // Sagitta of each straight piece within the plan's arc tolerance.
+    const double chord = length(w.centre[k] - w.centre[k - 1]);
+    EXPECT_LE(1 - std::sqrt(1 - chord * chord / 4), p.arc_tolerance + 1e-9);
+  }
+  EXPECT_NEAR(top, 1, p.arc_tolerance);
+  // The negative extent bulges the other way.
+  const Plan q = read_sweet_home(dir.write("Home2.xml", R"(<home wallHeight='250'>
+  <wall id='arc' xStart='0' yStart='0' xEnd='200' yEnd='0' thickness='10' arcExtent='-1.5707964'/>
+</home>)"));
+  double bottom = HUGE_VAL;
+  for (Vec2 v : q.walls[0].centre) bottom = std::min(bottom, v.y);
+  // Quarter circle on a 2 m chord: sagitta (chord/2)·tan(extent/4) = tan(π/8).
+  EXPECT_NEAR(bottom, -std::tan(std::numbers::pi / 8), p.arc_tolerance);
+}
+
+TEST(SweetHome, SlopedWallIsSteppedIntoPiecesOfConstantHeight) {
+  TempDir dir;
+  // 4 m long, 2.5 m high at its start, 0.5 m at its end; a door 1 m from the start.
+  const Plan p = read_sweet_home(dir.write("Home.xml", R"(<home wallHeight='250'>
+  <wall id='slope' xStart='0' yStart='0' xEnd='400' yEnd='0' height='250' heightAtEnd='50' thickness='10'/>
+  <doorOrWindow name='Low door' x='145' y='0' width='90' depth='10' height='150'/>
+</home>)"));
+  // 2 m of rise in steps of at most 5 cm: 40 pieces of 10 cm, but no step inside the
+  // door: its nine pieces are one.
+  ASSERT_EQ(p.walls.size(), 32u);
+  double along = 0, last_h = HUGE_VAL;
+  int with_door = 0;
+  for (size_t k = 0; k < p.walls.size(); ++k) {
+    const Wall& w = p.walls[k];
+    ASSERT_EQ(w.centre.size(), 2u);
+    EXPECT_NEAR(w.centre[0].x, along, 1e-9) << "pieces follow each other";
+    const double len = w.centre[1].x - w.centre[0].x;
+    along += len;
+    // Constant height: the sloped top's mean over the piece, below the ceiling.
+    const double mid = (w.centre[0].x + w.centre[1].x) / 2;
+    EXPECT_NEAR(w.height, 2.5 - 2.0 * mid / 4, 1e-9);
+    EXPECT_LT(w.height, last_h);
+    if (w.openings.empty()) {
+      EXPECT_NEAR(len, 0.1, 1e-9);
+    }
+    if (k > 0 && w.openings.empty() && p.walls[k - 1].openings.empty()) {
+      EXPECT_LE(last_h - w.height, 0.05 + 1e-9);
+    }
+    last_h = w.height;
+    with_door += int(w.openings.size());
+    if (!w.openings.empty()) {
+      EXPECT_NEAR(w.centre[0].x + w.openings[0].at, 1.0, 1e-6);
+      EXPECT_NEAR(w.openings[0].width, 0.9, 1e-6);
+    }
+  }
+  EXPECT_NEAR(along, 4, 1e-9);
+  EXPECT_EQ(with_door, 1);
+  bool said = false;
+  for (const std::string& w : p.warnings) said |= contains(w, "1 sloped wall(s) (heightAtEnd) stepped into 32 pieces");
+  EXPECT_TRUE(said);
+  EXPECT_EQ(cells_are_valid(build_cells(p)), "");
+}
+
+TEST(SweetHome, LevelsStackAsStoreysAndAStaircaseCutsTheFloorAbove) {
+  TempDir dir;
+  const std::string box = R"(
+  <wall id='s$' level='$' wallAtStart='w$' wallAtEnd='e$' xStart='0' yStart='400' xEnd='600' yEnd='400' thickness='20'/>
+  <wall id='e$' level='$' wallAtStart='s$' wallAtEnd='n$' xStart='600' yStart='400' xEnd='600' yEnd='0' thickness='20'/>
+  <wall id='n$' level='$' wallAtStart='e$' wallAtEnd='w$' xStart='600' yStart='0' xEnd='0' yEnd='0' thickness='20'/>
+  <wall id='w$' level='$' wallAtStart='n$' wallAtEnd='s$' xStart='0' yStart='0' xEnd='0' yEnd='400' thickness='20'/>
+  <room level='$' name='Room $'><point x='10' y='10'/><point x='590' y='10'/><point x='590' y='390'/><point x='10' y='390'/></room>)";
+  auto on = [&](const std::string& level) {
+    std::string s = box;
+    for (size_t k; (k = s.find('$')) != std::string::npos;) s.replace(k, 1, level);
+    return s;
+  };
+  const Plan p = read_sweet_home(dir.write("Home.xml", R"(<home wallHeight='250'>
+  <level id='up' name='Upper' elevation='262' floorThickness='12' height='250' elevationIndex='0'/>
+  <level id='down' name='Ground' elevation='0' floorThickness='12' height='250' elevationIndex='0'/>
+  <level id='loft' name='Loft' elevation='262' floorThickness='12' height='200' elevationIndex='1'/>
+  <pieceOfFurniture level='down' name='Staircase' x='300' y='200' width='90' depth='200' height='262'
+      staircaseCutOutShape='M0,0 v1 h1 v-1 z'/>)" + on("down") + on("up") + "\n</home>"));
+  // Sorted by elevation; the loft at the upper level's elevation is merged into it.
+  ASSERT_EQ(p.storeys.size(), 2u);
+  EXPECT_EQ(p.storeys[0].name, "Ground");
+  EXPECT_EQ(p.storeys[1].name, "Upper + Loft");
+  EXPECT_NEAR(p.storeys[0].slab, 0.12, 1e-9);
+  EXPECT_NEAR(p.storeys[1].elevation, p.storeys[0].elevation + p.storeys[0].height + p.storeys[0].slab, 1e-12);
+  EXPECT_NEAR(p.storeys[1].elevation, 2.62, 1e-9);
+  bool merged = false;
+  for (const std::string& w : p.warnings) merged |= contains(w, "merged into one storey");
+  EXPECT_TRUE(merged);
+  // The staircase: a box object, and a hole in the upper floor of its footprint.
+  ASSERT_EQ(p.objects.size(), 1u);
+  EXPECT_NEAR(p.objects[0].box.x, 0.9, 1e-12);
+  EXPECT_NEAR(p.objects[0].position.y, -2.0, 1e-12);
+  ASSERT_EQ(p.floor_openings.size(), 1u);
+  EXPECT_EQ(p.floor_openings[0].storey, 1);
+  EXPECT_NEAR(std::fabs(signed_area(p.floor_openings[0].outline)), 0.9 * 2.0, 1e-9);
+  EXPECT_GT(signed_area(p.floor_openings[0].outline), 0);
+  const CellComplex c = build_cells(p);
+  EXPECT_EQ(cells_are_valid(c), "");
+  int stair_portals = 0;
+  for (const Portal& q : c.portals) stair_portals += q.kind == PortalKind::Stairwell;
+  EXPECT_GT(stair_portals, 0);
+}
+
+// ---------------------------------------------------------------------------------
+// Odd data is repaired with a warning; what cannot be read is a PlanError naming the
+// file, the element and its line.
+
+TEST(SweetHome, LevelsReachingIntoTheFloorAboveAreCut) {
+  TempDir dir;
+  const Plan p = read_sweet_home(dir.write("Home.xml", R"(<home>
+  <level id='a' name='Ground' elevation='0' floorThickness='12' height='300'/>
+  <level id='b' name='Upper' elevation='262' floorThickness='12' height='250'/>
+  <wall id='w' level='a' xStart='0' yStart='0' xEnd='100' yEnd='0' thickness='10'/>
+  <wall id='v' level='b' xStart='0' yStart='0' xEnd='100' yEnd='0' thickness='10' height='400'/>
+</home>)"));
+  ASSERT_EQ(p.storeys.size(), 2u);
+  // 3 m high, but the upper floor (12 cm thick) starts at 2.62 m: 2.5 m high.
+  EXPECT_NEAR(p.storeys[0].height, 2.5, 1e-9);
+  EXPECT_NEAR(p.storeys[0].slab, 0.12, 1e-9);
+  EXPECT_NEAR(p.storeys[1].elevation, 2.62, 1e-9);
+  EXPECT_NEAR(p.storeys[1].slab, 0.12, 1e-9);  // the top level: its own floor thickness
+  bool cut = false, taller = false;
+  for (const std::string& w : p.warnings) {
+    cut |= contains(w, "level 'Ground' (3 m high) reaches into the floor of level 'Upper' at 2.62 m: cut to 2.5 m");
+    taller |= contains(w, "1 wall(s) taller than their storey cut to its ceiling");  // v, 4 m high
+  }
+  EXPECT_TRUE(cut);
+  EXPECT_TRUE(taller);
+  for (const Wall& w : p.walls) EXPECT_EQ(w.height, -1) << w.name;
+}
+
+TEST(SweetHome, FurnitureBecomesBoxesTurnedTheWayTheyStand) {
+  TempDir dir;
+  const Plan p = read_sweet_home(dir.write("Home.xml", small_home(R"(
+  <pieceOfFurniture name='Bed' x='150' y='100' elevation='10' angle='1.5707964' width='160' depth='200' height='50'/>
+  <furnitureGroup name='Set' x='500' y='200' width='100' depth='100' height='80'>
+    <pieceOfFurniture name='Chair' x='480' y='200' width='40' depth='40' height='80'/>
+    <doorOrWindow name='Back door' x='600' y='200' angle='4.712389' width='80' depth='20' height='200'/>
+  </furnitureGroup>
+  <pieceOfFurniture name='Hidden' x='100' y='100' width='10' depth='10' height='10' visible='false'/>
+)")));
+  ASSERT_EQ(p.objects.size(), 2u);
+  const Object& bed = p.objects[0];
+  EXPECT_EQ(bed.name, "Bed");
+  EXPECT_TRUE(bed.mesh.empty());
+  EXPECT_NEAR(bed.position.x, 1.5, 1e-12);
+  EXPECT_NEAR(bed.position.y, -1.0, 1e-12);
+  EXPECT_NEAR(bed.position.z, 0.1, 1e-12);
+  EXPECT_NEAR(bed.box.x, 1.6, 1e-12);
+  EXPECT_NEAR(bed.box.y, 2.0, 1e-12);
+  EXPECT_NEAR(bed.box.z, 0.5, 1e-12);
+  // A quarter turn clockwise on the y-down screen is a quarter turn clockwise in plan too.
+  EXPECT_NEAR(bed.rotation_deg.z, -90, 1e-5);
+  EXPECT_EQ(p.objects[1].name, "Chair");  // from inside the group
+  // The group's door is cut into the east wall (x = 6 m, drawn northwards from y = −4 m).
+  const Wall* ring = wall_named(p, "s+e+n+1 more");
+  ASSERT_NE(ring, nullptr);
+  bool back_door = false;
+  for (const Opening& o : ring->openings)
+    if (o.name == "Back door") {
+      back_door = true;
+      EXPECT_NEAR(o.at, 6 + 2 - 0.4, 1e-6);  // the south side is 6 m long
+      EXPECT_EQ(o.kind, OpeningKind::Door);
+    }
+  EXPECT_TRUE(back_door);
+}
+
+TEST(SweetHome, OddDataIsDroppedWithAWarning) {
+  TempDir dir;
+  const Plan p = read_sweet_home(dir.write("Home.xml", small_home(R"(
+  <wall id='nan' xStart='NaN' yStart='0' xEnd='100' yEnd='0' thickness='10'/>
+  <wall id='dot' xStart='50' yStart='50' xEnd='50' yEnd='50' thickness='10'/>
+  <doorOrWindow name='Floating' x='200' y='200' width='80' depth='10' height='200'/>
+)")));
+  auto warned = [&](const std::string& what) {
+    for (const std::string& w : p.warnings)
+      if (contains(w, what)) return true;
+    return false;
+  };
+  EXPECT_TRUE(warned("(wall 'nan'): a coordinate"));
+  EXPECT_TRUE(warned("(wall 'dot'): the wall has length 0"));
+  EXPECT_TRUE(warned("(doorOrWindow 'Floating'): lies in no wall"));
+  EXPECT_EQ(p.walls.size(), 2u);
+}
+
+TEST(SweetHome, MalformedHomesGiveAPlanErrorNamingFileElementAndLine) {
+  TempDir dir;
+  auto error_of = [](const std::string& path) -> std::string {
+    try {
+      read_sweet_home(path);
+    } catch (const PlanError& e) {
+      return e.what();
+    }
+    return "(no error)";
+  };
+  // Not a zip.
+  const std::string fake = dir.write("fake.sh3d", "this is not a zip archive at all");
+  EXPECT_TRUE(contains(error_of(fake), fake + ": not a Sweet Home 3D .sh3d file: not a zip archive"))
+      << error_of(fake);
+  // A zip without Home.xml: one holding only the serialized "Home", one holding nothing of a home.
+  const std::string old = dir.zip("old.sh3d", {{"Home", "serialized"}});
+  EXPECT_TRUE(contains(error_of(old), "no Home.xml entry, only a serialized Java 'Home' entry")) << error_of(old);
+  const std::string other = dir.zip("other.sh3d", {{"readme.txt", "hello"}});
+  EXPECT_TRUE(contains(error_of(other), other + ": the archive holds no Home.xml entry")) << error_of(other);
+  // XML syntax error: its line.
+  const std::string broken = dir.write("broken.xml", "<home>\n  <wall id='a'\n  <room/>\n</home>\n");
+  EXPECT_TRUE(contains(error_of(broken), broken + ":3:")) << error_of(broken);
+  EXPECT_TRUE(contains(error_of(broken), "XML syntax error")) << error_of(broken);
+  // ... also inside a .sh3d, where the file is the archive's entry.
+  const std::string broken_zip = dir.zip("broken.sh3d", {{"Home.xml", "<home>\n<wall\n"}});
+  EXPECT_TRUE(contains(error_of(broken_zip), broken_zip + ":Home.xml:")) << error_of(broken_zip);
+  // Not a home.
+  EXPECT_TRUE(contains(error_of(dir.write("svg.xml", "<svg/>")), "root element is <svg>, not <home>"));
+  // A wall without xStart: the wall's id and line.
+  try {
+    read_sweet_home(dir.write("nox.xml", "<home>\n\n  <wall id='w7' yStart='0' xEnd='100' yEnd='0' thickness='10'/>\n</home>"));
+    ADD_FAILURE() << "no error";
+  } catch (const PlanError& e) {
+    EXPECT_EQ(e.where().line, 3);
+    EXPECT_EQ(e.where().element, "wall 'w7'");
+    EXPECT_TRUE(contains(e.what(), "nox.xml:3:3 (wall 'w7'): wall 'w7' has no 'xStart' attribute")) << e.what();
+  }
+  // A door whose width is not a number.
+  const std::string bad_door = dir.write("door.xml", small_home(
+      "  <doorOrWindow name='Garage door' x='10' y='200' width='wide' depth='10' height='200'/>\n"));
+  EXPECT_TRUE(contains(error_of(bad_door), "(doorOrWindow 'Garage door'): attribute 'width' of doorOrWindow "
+                                           "'Garage door' is not a number: \"wide\""))
+      << error_of(bad_door);
+  EXPECT_TRUE(contains(error_of(bad_door), "door.xml:13:3")) << error_of(bad_door);
+  // A wall on a level the home does not define.
+  const std::string no_level = dir.write("level.xml", R"(<home>
+  <level id='l0' name='Ground' elevation='0' floorThickness='12' height='250'/>
+  <wall id='w1' level='l9' xStart='0' yStart='0' xEnd='100' yEnd='0' thickness='10'/>
+</home>)");
+  EXPECT_TRUE(contains(error_of(no_level), "level.xml:3:3 (wall 'w1'): wall 'w1' is on level 'l9', which the home "
+                                           "does not define"))
+      << error_of(no_level);
+  // No file at all.
+  EXPECT_TRUE(contains(error_of(dir.write("x", "") + "-missing.sh3d"), "cannot open home"));
+}
+
+}  // namespace avenues

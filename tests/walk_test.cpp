@@ -1,0 +1,473 @@
+// Avenues — the walkthrough window (`avenues walk`), run for real under a virtual X server.
+//
+// Each test starts its own Xvfb (on a display number Xvfb picks itself, -displayfd), runs the
+// real `avenues` binary in it with a key-event script (or real X key events sent by xdotool),
+// and checks what the window showed — its screenshots, read back from the framebuffer by the
+// viewer — against the offline renders `avenues view` writes for the same eye. Without Xvfb
+// installed, the window tests skip with a message.
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <pugixml.hpp>
+
+#include "render/raster.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+const std::string kBinary = AVENUES_BINARY;
+std::string plan(const std::string& name) { return std::string(AVENUES_SOURCE_DIR) + "/plans/" + name; }
+
+std::string quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+bool on_path(const std::string& program) {
+  return std::system(("command -v " + program + " >/dev/null 2>&1").c_str()) == 0;
+}
+
+/// An Xvfb of its own, 1280×720×24, stopped (and killed with the test process) at the end.
+class VirtualDisplay {
+ public:
+  VirtualDisplay() {
+    if (!on_path("Xvfb")) {
+      why_ = "Xvfb is not installed (apt-get install xvfb)";
+      return;
+    }
+    int fds[2];
+    if (pipe(fds) != 0) {
+      why_ = "pipe failed";
+      return;
+    }
+    pid_ = fork();
+    if (pid_ == 0) {
+      prctl(PR_SET_PDEATHSIG, SIGKILL);  // never outlive the test
+      close(fds[0]);
+      const int devnull = open("/dev/null", O_RDWR);
+      dup2(devnull, 0), dup2(devnull, 1), dup2(devnull, 2);
+      const std::string fd = std::to_string(fds[1]);
+      execlp("Xvfb", "Xvfb", "-displayfd", fd.c_str(), "-screen", "0", "1280x720x24", "-nolisten", "tcp", "-noreset",
+             static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    close(fds[1]);
+    // Xvfb writes its display number once it is ready.
+    std::string number;
+    pollfd p{fds[0], POLLIN, 0};
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+    while (std::chrono::steady_clock::now() < deadline) {
+      if (poll(&p, 1, 200) <= 0) continue;
+      char c = 0;
+      if (read(fds[0], &c, 1) != 1) break;
+      if (c == '\n') break;
+      number += c;
+    }
+    close(fds[0]);
+    if (number.empty()) {
+      why_ = "Xvfb did not start";
+      stop();
+      return;
+    }
+    display_ = ":" + number;
+  }
+  ~VirtualDisplay() { stop(); }
+  bool ok() const { return !display_.empty(); }
+  const std::string& why() const { return why_; }
+  const std::string& display() const { return display_; }
+
+ private:
+  void stop() {
+    if (pid_ <= 0) return;
+    kill(pid_, SIGTERM);
+    int status = 0;
+    for (int i = 0; i < 50 && waitpid(pid_, &status, WNOHANG) == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (waitpid(pid_, &status, WNOHANG) == 0) {
+      kill(pid_, SIGKILL);
+      waitpid(pid_, &status, 0);
+    }
+    pid_ = -1;
+  }
+  pid_t pid_ = -1;
+  std::string display_, why_;
+};
+
+struct Outcome {
+  int status = -1;
+  std::string out, err;
+};
+
+class WalkWindow : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / ("avenues-walk-" + std::to_string(::getpid()) + "-" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+
+  /// Starts the virtual display; false (the test skips) when Xvfb is missing.
+  bool start_display() {
+    x_ = std::make_unique<VirtualDisplay>();
+    return x_->ok();
+  }
+
+  /// Runs `avenues ARGS` in the test's directory, on the virtual display if one was started.
+  Outcome run(const std::string& args, int timeout_s = 120) {
+    const fs::path out = dir_ / ".stdout", err = dir_ / ".stderr";
+    const std::string env = x_ && x_->ok() ? "DISPLAY=" + x_->display() + " " : "env -u DISPLAY -u WAYLAND_DISPLAY ";
+    const std::string cmd = "cd " + quote(dir_.string()) + " && " + env + "timeout " + std::to_string(timeout_s) + " " +
+                            quote(kBinary) + " " + args + " >" + quote(out.string()) + " 2>" + quote(err.string()) +
+                            " </dev/null";
+    const int rc = std::system(cmd.c_str());
+    Outcome r;
+    r.status = (rc != -1 && WIFEXITED(rc)) ? WEXITSTATUS(rc) : -1;
+    r.out = slurp(out);
+    r.err = slurp(err);
+    return r;
+  }
+
+  fs::path path(const std::string& name) const { return dir_ / name; }
+  void write(const std::string& name, const std::string& text) { std::ofstream(dir_ / name) << text; }
+  json read_json(const std::string& name) const { return json::parse(slurp(dir_ / name)); }
+
+  /// Samples (of the RGB pictures) that differ by more than one level; -1 for different sizes.
+  static long differing(const avenues::Image& a, const avenues::Image& b) {
+    const avenues::Image x = avenues::rgb_of(a), y = avenues::rgb_of(b);
+    if (x.width != y.width || x.height != y.height) return -1;
+    long n = 0;
+    for (size_t i = 0; i < x.data.size(); ++i) n += std::abs(int(x.data[i]) - int(y.data[i])) > 1;
+    return n;
+  }
+
+  /// `avenues view PLAN <the screenshot's pose> -o NAME.png [extra]`, read back.
+  avenues::Image offline(const std::string& plan_file, const json& shot, const std::string& name,
+                         const std::string& extra = "") {
+    const Outcome r = run("view " + quote(plan_file) + " " + shot["view_options"].get<std::string>() + " " + extra + " -o " + name);
+    EXPECT_EQ(r.status, 0) << r.err;
+    return avenues::read_image(path(name).string());
+  }
+
+  fs::path dir_;
+  std::unique_ptr<VirtualDisplay> x_;
+};
+
+#define NEED_DISPLAY()                                               \
+  do {                                                               \
+    if (!start_display()) GTEST_SKIP() << x_->why();                 \
+  } while (0)
+
+}  // namespace
+
+// The heart of it: a real window, scripted keys and mouse move the eye, and the window's own
+// framebuffer, read back, is the offline render of the same eye.
+TEST_F(WalkWindow, ScriptedWalkShowsTheOfflineRenderOfTheSameEye) {
+  NEED_DISPLAY();
+  write("walk.txt",
+        "# walk in, turn, look about, run a little\n"
+        "0  down W\n40 up W\n41 down RIGHT\n60 up RIGHT\n61 look 30 12\n"
+        "62 down LEFT_SHIFT\n62 down W\n75 up W\n75 up LEFT_SHIFT\n"
+        "80 screenshot shot.png\n80 quit\n");
+  const Outcome r = run("walk " + quote(plan("jones-house.toml")) + " --size 640x360 --no-hud --script walk.txt --stats-json s.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json s = read_json("s.json");
+  ASSERT_EQ(s["screenshots"].size(), 1u);
+  const json shot = s["screenshots"][0];
+  EXPECT_EQ(s["frames"], 81);
+  // The eye moved away from where the walk starts (the plan's viewpoint).
+  const Outcome v = run("view " + quote(plan("jones-house.toml")) + " --stats-json start.json");
+  ASSERT_EQ(v.status, 0) << v.err;
+  const json start = read_json("start.json");
+  const double dx = shot["eye"][0].get<double>() - start["eye"][0].get<double>();
+  const double dy = shot["eye"][1].get<double>() - start["eye"][1].get<double>();
+  EXPECT_GT(std::hypot(dx, dy), 0.5) << shot.dump();
+  EXPECT_NE(shot["yaw"].get<double>(), 0);
+  const avenues::Image window = avenues::read_image(path("shot.png").string());
+  EXPECT_EQ(window.width, 640);
+  EXPECT_EQ(window.height, 360);
+  const avenues::Image picture = offline(plan("jones-house.toml"), shot, "offline.png");
+  EXPECT_EQ(differing(window, picture), 0) << "the window and `avenues view " << shot["view_options"] << "` differ";
+}
+
+TEST_F(WalkWindow, StereoSideBySideAndAnaglyphMatchTheOfflineStereoPictures) {
+  NEED_DISPLAY();
+  write("stereo.txt",
+        "0 down W\n20 up W\n21 tap B\n22 screenshot sbs.png\n23 tap B\n24 screenshot anaglyph.png\n25 quit\n");
+  const Outcome r = run("walk " + quote(plan("two-storey-house.toml")) + " --size 640x360 --no-hud --script stereo.txt --stats-json s.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json s = read_json("s.json");
+  ASSERT_EQ(s["screenshots"].size(), 2u);
+  const json sbs = s["screenshots"][0], ana = s["screenshots"][1];
+  EXPECT_EQ(sbs["stereo"], "side-by-side");
+  EXPECT_EQ(ana["stereo"], "anaglyph");
+  // Side by side: each eye gets half the window.
+  std::string half = sbs["view_options"].get<std::string>();
+  half.replace(half.find("--size 640x360"), 14, "--size 320x360");
+  const Outcome v = run("view " + quote(plan("two-storey-house.toml")) + " " + half + " --stereo parallel -o sbs-offline.png");
+  ASSERT_EQ(v.status, 0) << v.err;
+  EXPECT_EQ(differing(avenues::read_image(path("sbs.png").string()), avenues::read_image(path("sbs-offline.png").string())), 0);
+  const avenues::Image a = offline(plan("two-storey-house.toml"), ana, "anaglyph-offline.png", "--stereo anaglyph");
+  EXPECT_EQ(differing(avenues::read_image(path("anaglyph.png").string()), a), 0);
+}
+
+TEST_F(WalkWindow, ResizedWindowRendersAtItsNewSize) {
+  NEED_DISPLAY();
+  write("resize.txt", "0 resize 500 300\n2 down LEFT\n12 up LEFT\n13 screenshot small.png\n13 quit\n");
+  const Outcome r = run("walk " + quote(plan("office-corridor.toml")) + " --size 640x360 --no-hud --script resize.txt --stats-json s.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json shot = read_json("s.json")["screenshots"][0];
+  const avenues::Image window = avenues::read_image(path("small.png").string());
+  EXPECT_EQ(window.width, 500);
+  EXPECT_EQ(window.height, 300);
+  EXPECT_EQ(differing(window, offline(plan("office-corridor.toml"), shot, "offline.png")), 0);
+}
+
+TEST_F(WalkWindow, ProgressiveDisplayBuildsTheViewCellByCell) {
+  NEED_DISPLAY();
+  write("progressive.txt", "0 screenshot first.png\n1 screenshot second.png\n200 screenshot done.png\n200 quit\n");
+  const Outcome r = run("walk " + quote(plan("jones-house.toml")) +
+                        " --size 480x270 --no-hud --progressive --script progressive.txt --stats-json s.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json s = read_json("s.json");
+  ASSERT_GE(s["last"]["avenues"].get<int>(), 3);
+  const avenues::Image full = offline(plan("jones-house.toml"), s["screenshots"][2], "offline.png");
+  const avenues::Image first = avenues::read_image(path("first.png").string());
+  const avenues::Image second = avenues::read_image(path("second.png").string());
+  // The first frame shows the eye's cell alone, the next one more, the last the whole view.
+  EXPECT_GT(differing(first, full), 0);
+  EXPECT_GT(differing(first, second), 0);
+  EXPECT_GT(differing(second, full), 0);
+  EXPECT_EQ(differing(avenues::read_image(path("done.png").string()), full), 0);
+}
+
+TEST_F(WalkWindow, HiddenLineModeShowsInkOnPaper) {
+  NEED_DISPLAY();
+  write("lines.txt", "0 tap L\n1 screenshot lines.png\n2 tap L\n3 screenshot halftone.png\n3 quit\n");
+  const Outcome r = run("walk " + quote(plan("jones-house.toml")) + " --size 640x360 --no-hud --script lines.txt --stats-json s.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const avenues::Image lines = avenues::grey_of(avenues::read_image(path("lines.png").string()));
+  long ink = 0, paper = 0;
+  for (uint8_t v : lines.data) ink += v < 128, paper += v > 250;
+  const double n = double(lines.data.size());
+  EXPECT_GT(ink / n, 0.002) << "no lines drawn";
+  EXPECT_LT(ink / n, 0.2);
+  EXPECT_GT(paper / n, 0.7);
+  EXPECT_EQ(read_json("s.json")["screenshots"][0]["style"], "lines");
+  EXPECT_EQ(differing(avenues::read_image(path("halftone.png").string()),
+                      offline(plan("jones-house.toml"), read_json("s.json")["screenshots"][1], "offline.png")),
+            0);
+}
+
+TEST_F(WalkWindow, StatusLineAndHelpDrawOverThePictureOnly) {
+  NEED_DISPLAY();
+  write("hud.txt", "0 screenshot hud.png\n1 tap H\n2 screenshot help.png\n2 quit\n");
+  const Outcome r = run("walk " + quote(plan("jones-house.toml")) + " --size 640x360 --script hud.txt --stats-json s.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const avenues::Image bare = offline(plan("jones-house.toml"), read_json("s.json")["screenshots"][0], "offline.png");
+  const avenues::Image hud = avenues::read_image(path("hud.png").string());
+  const avenues::Image help = avenues::read_image(path("help.png").string());
+  ASSERT_EQ(hud.width, bare.width);
+  // The status line covers the top-left corner and nothing of the bottom half.
+  long top_left = 0, bottom = 0, help_centre = 0;
+  for (int y = 0; y < hud.height; ++y)
+    for (int x = 0; x < hud.width; ++x)
+      for (int k = 0; k < 3; ++k) {
+        const size_t i = (size_t(y) * size_t(hud.width) + size_t(x)) * 3 + size_t(k);
+        const bool differs = hud.data[i] != bare.data[i];
+        if (y < 40 && x < 200) top_left += differs;
+        if (y > hud.height / 2) bottom += differs;
+        if (std::abs(y - hud.height / 2) < 20 && std::abs(x - hud.width / 2) < 100) help_centre += help.data[i] != hud.data[i];
+      }
+  EXPECT_GT(top_left, 1000);
+  EXPECT_EQ(bottom, 0);
+  EXPECT_GT(help_centre, 1000) << "the help did not show";
+}
+
+// Jones's sense switches latch: on, they move the eye along the world's axes at 1 m/s and
+// change the picture's scale by 1.25 a second, every frame, until switched off. Here z+
+// climbs the stairwell, x+ walks off it onto the landing, scale+ zooms in.
+TEST_F(WalkWindow, SenseSwitchesLatchAndMoveTheEyeUpTheStairwell) {
+  NEED_DISPLAY();
+  write("switches.txt",
+        "0 tap 5\n240 tap 5\n241 tap 1\n301 tap 1\n302 tap 7\n362 tap 7\n363 pose\n363 quit\n");
+  const Outcome r = run("walk " + quote(plan("two-storey-house.toml")) +
+                        " --eye 0.9,2.2,1.6 --look 0.9,5,1.6 --fov 60 --size 320x180 --script switches.txt --stats-json s.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json last = read_json("s.json")["last"];
+  EXPECT_EQ(last["room"], "landing");
+  EXPECT_EQ(last["storey"], "upper");
+  EXPECT_NEAR(last["eye"][0].get<double>(), 1.9, 1e-9);
+  EXPECT_NEAR(last["eye"][1].get<double>(), 2.2, 1e-9);
+  EXPECT_NEAR(last["eye"][2].get<double>(), 2.9 + 1.6, 1e-9);
+  const double want_fov = 2 * std::atan(std::tan(30 * M_PI / 180) / 1.25) * 180 / M_PI;
+  EXPECT_NEAR(last["fov"].get<double>(), want_fov, 1e-6);
+  EXPECT_NE(r.out.find("pose: --eye "), std::string::npos) << r.out;
+}
+
+TEST_F(WalkWindow, ExportsAndKeyframesFromTheWindow) {
+  NEED_DISPLAY();
+  write("export.txt",
+        "5 screenshot shot.png\n5 tap F2\n6 tap F3\n7 tap F4\n8 tap K\n"
+        "9 down W\n60 up W\n61 tap K\n62 down RIGHT\n80 up RIGHT\n81 tap K\n82 quit\n");
+  const Outcome r = run("walk " + quote(plan("jones-house.toml")) +
+                        " --size 480x270 --script export.txt --stats-json s.json --out-dir out --record keys.txt");
+  ASSERT_EQ(r.status, 0) << r.err;
+  // F2: the picture as shown, without the status line: the offline render of that eye.
+  ASSERT_TRUE(fs::exists(path("out/jones-house-0001.png"))) << r.out;
+  EXPECT_EQ(differing(avenues::read_image(path("out/jones-house-0001.png").string()),
+                      offline(plan("jones-house.toml"), read_json("s.json")["screenshots"][0], "offline.png")),
+            0);
+  // F3: the hidden-line drawing; F4: a stereo pair as a picture and as two drawings.
+  pugi::xml_document svg;
+  ASSERT_TRUE(svg.load_file(path("out/jones-house-0002.svg").c_str())) << r.out;
+  EXPECT_TRUE(svg.child("svg")) << "not an SVG drawing";
+  const avenues::Image pair = avenues::read_image(path("out/jones-house-0003-stereo.png").string());
+  EXPECT_EQ(pair.width, 2 * 480);
+  EXPECT_TRUE(fs::exists(path("out/jones-house-0004-stereo-left.svg")));
+  EXPECT_TRUE(fs::exists(path("out/jones-house-0004-stereo-right.svg")));
+  EXPECT_NE(r.out.find("wrote out/jones-house-0001.png"), std::string::npos) << r.out;
+  // K: three keyframes, which `avenues path --keys` follows.
+  std::istringstream keys(slurp(path("keys.txt")));
+  int frames = 0;
+  for (std::string line; std::getline(keys, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream words(line);
+    double v[6];
+    for (double& x : v) ASSERT_TRUE(words >> x) << line;
+    ++frames;
+  }
+  EXPECT_EQ(frames, 3);
+  const Outcome p = run("path " + quote(plan("jones-house.toml")) + " --keys keys.txt -o frames --format svg --size 160x90 --step 0.5");
+  ASSERT_EQ(p.status, 0) << p.err;
+  EXPECT_TRUE(fs::exists(path("frames/frame-0001.svg")));
+}
+
+// A thousand frames of random input (keys held and let go, switches, mode and style toggles,
+// mouse looks, resizes) from a fixed seed: no crash, the eye always somewhere, and memory
+// flat from frame 100 to frame 1000.
+TEST_F(WalkWindow, ThousandFramesOfRandomInputWithoutACrashOrALeak) {
+  NEED_DISPLAY();
+  for (const char* name : {"jones-house.toml", "two-storey-house.toml"}) {
+    const Outcome r = run("walk " + quote(plan(name)) + " --size 640x360 --random-input 1971 --frames 1000 --stats-json s.json", 300);
+    ASSERT_EQ(r.status, 0) << name << ": " << r.err;
+    const json s = read_json("s.json");
+    EXPECT_EQ(s["frames"], 1000);
+    EXPECT_FALSE(s["last"]["room"].get<std::string>().empty());
+    const long at100 = s["rss_kb"]["frame_100"], last = s["rss_kb"]["last"];
+    ASSERT_GT(at100, 0);
+    // Pictures and textures follow the window's size (random resizes up to 1160 × 680), so
+    // allow for a few frames' worth of buffers; a leak of a frame's picture per frame would
+    // be gigabytes.
+    EXPECT_LT(last - at100, 24 * 1024) << name << ": resident memory grew from " << at100 << " kB to " << last << " kB";
+  }
+}
+
+// Real X key events (xdotool, through the X server like a keyboard's): the main job opens the
+// window when there is a display, W walks, Escape quits; nothing is written offline.
+TEST_F(WalkWindow, MainJobOpensTheWindowAndRealKeysWalk) {
+  NEED_DISPLAY();
+  if (!on_path("xdotool")) GTEST_SKIP() << "xdotool is not installed (apt-get install xdotool)";
+  const std::string env = "DISPLAY=" + x_->display() + " ";
+  // Starts `avenues ARGS` in the background; its pid is killed at the end whatever happens.
+  std::vector<pid_t> started;
+  struct Reaper {
+    std::vector<pid_t>& pids;
+    ~Reaper() {
+      for (pid_t p : pids) kill(p, SIGTERM);
+    }
+  } reaper{started};
+  auto start = [&](const std::string& args, const std::string& name) {
+    const std::string cmd = "cd " + quote(dir_.string()) + " && { " + env + "timeout 120 " + quote(kBinary) + " " + args +
+                            " >" + name + ".out 2>" + name + ".err </dev/null & echo $! >" + name + ".pid; }";
+    EXPECT_EQ(std::system(cmd.c_str()), 0);
+    const pid_t pid = std::stoi(slurp(path(name + ".pid")));
+    started.push_back(pid);
+    return pid;
+  };
+  // The window, once it is on the screen, gets the focus; then W is held and Escape pressed.
+  auto walk_and_quit = [&](pid_t pid, const std::string& more) {
+    const std::string xdo = env + "timeout 20 xdotool ";
+    bool focused = false;
+    for (int i = 0; i < 100 && !focused && kill(pid, 0) == 0; ++i) {
+      focused = std::system((xdo + "search --onlyvisible --name '^Avenues - jones-house$' windowfocus --sync "
+                                   ">/dev/null 2>&1").c_str()) == 0;
+      if (!focused) std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    }
+    EXPECT_TRUE(focused) << "no window appeared";
+    EXPECT_EQ(std::system((xdo + "keydown w sleep 0.6 keyup w sleep 0.3 " + more + " key Escape").c_str()), 0);
+    bool exited = false;
+    for (int i = 0; i < 200 && !exited; ++i) {
+      exited = kill(pid, 0) != 0;
+      if (!exited) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    EXPECT_TRUE(exited) << "Escape did not close the window";
+  };
+  walk_and_quit(start(quote(plan("jones-house.toml")) + " --out-dir out", "main"), "");
+  const std::string out = slurp(path("main.out"));
+  EXPECT_NE(out.find("opening the walkthrough window"), std::string::npos) << out << slurp(path("main.err"));
+  EXPECT_FALSE(fs::exists(path("out/jones-house-plan.svg"))) << "the offline job ran as well";
+  // The same with a walk that reports where it ended: real key events moved the eye, and a
+  // drag with the left button held turned it (0.15 degrees a pixel, to the right).
+  walk_and_quit(start("walk " + quote(plan("jones-house.toml")) + " --stats-json s.json", "walk"),
+                "mousemove 640 360 sleep 0.2 mousedown 1 sleep 0.2 mousemove_relative 200 0 sleep 0.3 mouseup 1 sleep 0.2");
+  ASSERT_TRUE(fs::exists(path("s.json"))) << slurp(path("walk.err"));
+  const Outcome v = run("view " + quote(plan("jones-house.toml")) + " --stats-json start.json");
+  ASSERT_EQ(v.status, 0);
+  const json s = read_json("s.json"), s0 = read_json("start.json");
+  const double moved = std::hypot(s["last"]["eye"][0].get<double>() - s0["eye"][0].get<double>(),
+                                  s["last"]["eye"][1].get<double>() - s0["eye"][1].get<double>());
+  EXPECT_GT(moved, 0.2) << "holding W for 0.6 s did not walk";
+  const double yaw0 = std::atan2(s0["look"][1].get<double>() - s0["eye"][1].get<double>(),
+                                 s0["look"][0].get<double>() - s0["eye"][0].get<double>()) * 180 / M_PI;
+  EXPECT_NEAR(s["last"]["yaw"].get<double>(), yaw0 - 200 * 0.15, 1.0) << "the drag did not turn the eye";
+}
+
+// Without a display the main job keeps to its offline work; a bad script names its line.
+TEST_F(WalkWindow, WithoutADisplayWalkSaysSoAndBadScriptsNameTheLine) {
+  Outcome r = run("walk " + quote(plan("jones-house.toml")) + " --frames 3");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("cannot open the walkthrough window: no display"), std::string::npos) << r.err;
+  write("bad.txt", "0 down W\n\n5 press Q\n");
+  r = run("walk " + quote(plan("jones-house.toml")) + " --script bad.txt");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("bad.txt:3"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("unknown event 'press'"), std::string::npos) << r.err;
+  write("bad-key.txt", "7 down NOPE\n");
+  r = run("walk " + quote(plan("jones-house.toml")) + " --script bad-key.txt");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("bad-key.txt:1"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("unknown key 'NOPE'"), std::string::npos) << r.err;
+  r = run(quote(plan("jones-house.toml")) + " --out-dir out");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(path("out/jones-house-plan.svg")));
+  EXPECT_EQ(r.out.find("opening the walkthrough window"), std::string::npos);
+}
