@@ -124,7 +124,8 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
   }
   bands.push_back({Band::Kind::Sky, bands.back().z1, outline.z_top, -1, true});
   for (Band b : bands) {
-    if (b.z0 < 0 && b.z1 > 0) {
+    // No ground to tell from air when the outside is solid (a Doom map's void): no split.
+    if (b.z0 < 0 && b.z1 > 0 && !plan.outside_solid) {
       Band lo = b, hi = b;
       lo.z1 = 0;
       hi.z0 = 0;
