@@ -98,7 +98,7 @@ int main(int argc, char** argv) {
 
   WalkOptions walk_opt;
   CLI::App* walk = app.add_subcommand("walk", "walk through PLAN in a window (H in the window lists the controls)");
-  walk->add_option("PLAN", walk_opt.plan, "plan (.toml) or saved cells (.cells); default: the bundled plan");
+  walk->add_option("PLAN", walk_opt.plan, "plan (.toml, .cells, FILE.wad:MAP01, ...); default: the bundled plan");
   walk->add_option("--size", walk_opt.size, "the window's size in pixels")->type_name("WxH")->capture_default_str();
   walk->add_option("--eye", walk_opt.eye, "where to start; default: the plan's viewpoint")->type_name("X,Y,Z");
   walk->add_option("--look", walk_opt.look, "what to look at first")->type_name("X,Y,Z");

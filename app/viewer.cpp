@@ -21,6 +21,36 @@ Viewer* viewer_of(GLFWwindow* w) { return static_cast<Viewer*>(glfwGetWindowUser
 
 }  // namespace
 
+struct Viewer::FramebufferApi {
+  PFNGLGENFRAMEBUFFERSPROC gen = nullptr;
+  PFNGLDELETEFRAMEBUFFERSPROC del = nullptr;
+  PFNGLBINDFRAMEBUFFERPROC bind = nullptr;
+  PFNGLFRAMEBUFFERTEXTURE2DPROC attach = nullptr;
+  PFNGLCHECKFRAMEBUFFERSTATUSPROC status = nullptr;
+  PFNGLBLITFRAMEBUFFERPROC blit = nullptr;
+  GLuint read_fbo = 0;
+  GLuint attached = 0;  ///< the texture attached to read_fbo
+
+  /// The entry points of the current context, or null when it has none.
+  static std::unique_ptr<FramebufferApi> load() {
+    const char* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+    const bool core30 = version && std::atoi(version) >= 3;
+    if (!core30 && !glfwExtensionSupported("GL_ARB_framebuffer_object")) return nullptr;
+    auto api = std::make_unique<FramebufferApi>();
+    api->gen = reinterpret_cast<PFNGLGENFRAMEBUFFERSPROC>(glfwGetProcAddress("glGenFramebuffers"));
+    api->del = reinterpret_cast<PFNGLDELETEFRAMEBUFFERSPROC>(glfwGetProcAddress("glDeleteFramebuffers"));
+    api->bind = reinterpret_cast<PFNGLBINDFRAMEBUFFERPROC>(glfwGetProcAddress("glBindFramebuffer"));
+    api->attach = reinterpret_cast<PFNGLFRAMEBUFFERTEXTURE2DPROC>(glfwGetProcAddress("glFramebufferTexture2D"));
+    api->status = reinterpret_cast<PFNGLCHECKFRAMEBUFFERSTATUSPROC>(glfwGetProcAddress("glCheckFramebufferStatus"));
+    api->blit = reinterpret_cast<PFNGLBLITFRAMEBUFFERPROC>(glfwGetProcAddress("glBlitFramebuffer"));
+    if (!api->gen || !api->del || !api->bind || !api->attach || !api->status || !api->blit) return nullptr;
+    api->gen(1, &api->read_fbo);
+    return api;
+  }
+};
+
+Viewer::Viewer() = default;
+
 std::unique_ptr<Viewer> Viewer::open(int width, int height, const std::string& title, bool vsync, std::string& why) {
   const char* display = std::getenv("DISPLAY");
   const char* wayland = std::getenv("WAYLAND_DISPLAY");
@@ -49,6 +79,7 @@ std::unique_ptr<Viewer> Viewer::open(int width, int height, const std::string& t
   glfwSetKeyCallback(w, on_key);
   glfwSetWindowFocusCallback(w, on_focus);
   glfwSetCursorPosCallback(w, on_cursor);
+  v->fbo_ = FramebufferApi::load();
   return v;
 }
 
@@ -78,6 +109,7 @@ void Viewer::on_cursor(GLFWwindow* w, double x, double y) {
 Viewer::~Viewer() {
   if (!window_) return;
   glfwMakeContextCurrent(window_);
+  if (fbo_) fbo_->del(1, &fbo_->read_fbo);
   if (frame_tex_.id) glDeleteTextures(1, &frame_tex_.id);
   for (Texture& t : panel_tex_)
     if (t.id) glDeleteTextures(1, &t.id);
@@ -148,8 +180,10 @@ void Viewer::draw(const Image& frame, bool frame_changed, const std::vector<cons
   int fw = 0, fh = 0;
   framebuffer_size(fw, fh);
   glViewport(0, 0, fw, fh);
-  glClearColor(0, 0, 0, 1);
-  glClear(GL_COLOR_BUFFER_BIT);
+  if (frame.width < fw || frame.height < fh) {  // black where the picture does not reach
+    glClearColor(0, 0, 0, 1);
+    glClear(GL_COLOR_BUFFER_BIT);
+  }
   glMatrixMode(GL_PROJECTION);
   glLoadIdentity();
   glOrtho(0, fw, fh, 0, -1, 1);  // rows from the top, like the picture
@@ -159,9 +193,35 @@ void Viewer::draw(const Image& frame, bool frame_changed, const std::vector<cons
   glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
   glDisable(GL_BLEND);
   if (frame.width > 0 && frame.height > 0) {
-    if (frame_changed || frame_tex_.width != frame.width || frame_tex_.height != frame.height)
-      upload(frame_tex_, frame.width, frame.height, frame.channels == 1 ? GL_LUMINANCE : GL_RGB, frame.data.data());
-    quad(frame_tex_, 0, 0);
+    if (frame_changed || frame_tex_.width != frame.width || frame_tex_.height != frame.height) {
+      // As BGRA, the layout drivers take without converting. For the blit, rows from the
+      // bottom as OpenGL counts them, so that the copy needs no flip.
+      const size_t n = size_t(frame.width) * size_t(frame.height), w = size_t(frame.width);
+      bgra_.resize(n * 4);
+      for (int y = 0; y < frame.height; ++y) {
+        const uint8_t* src = frame.row(y);
+        uint8_t* dst = bgra_.data() + size_t(fbo_ ? frame.height - 1 - y : y) * w * 4;
+        if (frame.channels == 1)
+          for (size_t i = 0; i < w; ++i) dst[4 * i] = dst[4 * i + 1] = dst[4 * i + 2] = src[i], dst[4 * i + 3] = 255;
+        else
+          for (size_t i = 0; i < w; ++i)
+            dst[4 * i] = src[3 * i + 2], dst[4 * i + 1] = src[3 * i + 1], dst[4 * i + 2] = src[3 * i], dst[4 * i + 3] = 255;
+      }
+      upload(frame_tex_, frame.width, frame.height, GL_BGRA, bgra_.data());
+    }
+    if (fbo_) {
+      // Texel (i, j) to pixel (i, fh - frame.height + j): the picture's top row at the top.
+      fbo_->bind(GL_READ_FRAMEBUFFER, fbo_->read_fbo);
+      if (fbo_->attached != frame_tex_.id) {
+        fbo_->attach(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, frame_tex_.id, 0);
+        fbo_->attached = frame_tex_.id;
+      }
+      fbo_->bind(GL_DRAW_FRAMEBUFFER, 0);
+      fbo_->blit(0, 0, frame.width, frame.height, 0, fh - frame.height, frame.width, fh, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+      fbo_->bind(GL_READ_FRAMEBUFFER, 0);
+    } else {
+      quad(frame_tex_, 0, 0);
+    }
   }
   if (panel_tex_.size() < panels.size()) panel_tex_.resize(panels.size());
   glEnable(GL_BLEND);

@@ -3,10 +3,12 @@
 // The picture is made by Avenues itself (the half-tone renderer, or the hidden-line drawing
 // rasterised); the window only shows it: the picture is uploaded as a texture and drawn
 // pixel for pixel (nearest texel, one texel per pixel) in the window's top-left corner, so
-// what the window shows is the picture exactly. Overlay panels (the status line, the help)
-// are premultiplied BGRA pictures blended on top, uploaded only when they change. OpenGL
-// 1.1 entry points only (the fixed-function pipeline), which every driver has, Mesa's
-// llvmpipe under Xvfb included.
+// what the window shows is the picture exactly. Where the driver has framebuffer objects
+// (OpenGL 3.0, or ARB_framebuffer_object) the texture is copied with glBlitFramebuffer —
+// for a software driver such as Mesa's llvmpipe under Xvfb a plain copy, not a textured
+// quad run through its shader JIT; otherwise it is drawn as a textured quad with OpenGL
+// 1.1's fixed-function pipeline. Overlay panels (the status line, the help) are
+// premultiplied BGRA pictures blended on top, uploaded only when they change.
 #pragma once
 
 #include <cstdint>
@@ -59,14 +61,14 @@ class Viewer {
   void capture_mouse(bool on);
   bool mouse_captured() const { return captured_; }
 
-  /// Draws the frame (pixel for pixel at the top-left; black around it) and the panels.
+  /// Draws the frame (pixel for pixel at the top-left; black where it does not reach) and the panels.
   void draw(const Image& frame, bool frame_changed, const std::vector<const OverlayPanel*>& panels);
   /// What was just drawn, read back from the framebuffer (before swap): RGB, rows from the top.
   Image read_back() const;
   void swap();
 
  private:
-  Viewer() = default;
+  Viewer();
   struct Texture {
     unsigned id = 0;
     int width = 0, height = 0;
@@ -79,8 +81,13 @@ class Viewer {
   static void on_focus(GLFWwindow* w, int focused);
   static void on_cursor(GLFWwindow* w, double x, double y);
 
+  /// OpenGL 3.0's framebuffer objects, when the driver has them (looked up at open()).
+  struct FramebufferApi;
+  std::unique_ptr<FramebufferApi> fbo_;
+
   GLFWwindow* window_ = nullptr;
   Texture frame_tex_;
+  std::vector<uint8_t> bgra_;  ///< the frame as BGRA, the layout the driver takes without conversion
   std::vector<Texture> panel_tex_;
   bool captured_ = false;
   double last_x_ = 0, last_y_ = 0;

@@ -438,7 +438,7 @@ TEST_F(WalkWindow, MainJobOpensTheWindowAndRealKeysWalk) {
   // The same with a walk that reports where it ended: real key events moved the eye, and a
   // drag with the left button held turned it (0.15 degrees a pixel, to the right).
   walk_and_quit(start("walk " + quote(plan("jones-house.toml")) + " --stats-json s.json", "walk"),
-                "mousemove 640 360 sleep 0.2 mousedown 1 sleep 0.2 mousemove_relative 200 0 sleep 0.3 mouseup 1 sleep 0.2");
+                "mousemove 600 300 sleep 0.2 mousedown 1 sleep 0.2 mousemove_relative 200 0 sleep 0.3 mouseup 1 sleep 0.2");
   ASSERT_TRUE(fs::exists(path("s.json"))) << slurp(path("walk.err"));
   const Outcome v = run("view " + quote(plan("jones-house.toml")) + " --stats-json start.json");
   ASSERT_EQ(v.status, 0);
