@@ -4,6 +4,7 @@
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -51,13 +52,16 @@ bool whole_number(const std::string& t) {
 /// OFF file is checked here first, strictly — the header, then every vertex line (three
 /// or more numbers) and every face line (a count, that many vertex indices, optional
 /// colour numbers), one per line as every OFF writer puts them — and the reading is
-/// left to OpenMesh.
-void check_off(const std::string& path) {
+/// left to OpenMesh. OpenMesh's reader also loses every face after a comment or a blank
+/// line, so the checked lines, without comments and blank lines, are what it is given:
+/// the returned text (empty for a binary OFF file, which OpenMesh reads from the file).
+std::string check_off(const std::string& path) {
   auto bad = [&](const std::string& what) { throw std::runtime_error("cannot read mesh " + path + ": " + what); };
   std::ifstream in(path, std::ios::binary);
   std::string line;
   int lineno = 0;
   std::vector<std::string> tok;
+  std::string clean;
   auto next_line = [&]() {
     while (std::getline(in, line)) {
       ++lineno;
@@ -68,15 +72,20 @@ void check_off(const std::string& path) {
       if (hash != std::string::npos) line.erase(hash);
       std::istringstream ls(line);
       tok.assign(std::istream_iterator<std::string>(ls), std::istream_iterator<std::string>());
-      if (!tok.empty()) return true;
+      if (!tok.empty()) {
+        for (const std::string& t : tok) clean += t + ' ';
+        clean.back() = '\n';
+        return true;
+      }
     }
     return false;
   };
   auto at = [&]() { return "line " + std::to_string(lineno) + ": "; };
-  if (!next_line()) return;  // empty: OpenMesh refuses it
+  if (!next_line()) return {};  // empty: OpenMesh refuses it
   // [ST][C][N][4][n]OFF [BINARY], the counts on this line or the next.
   if (!std::regex_match(tok[0], std::regex("(ST)?C?N?4?n?OFF"))) bad("it does not start with an OFF header");
-  if (line.find("BINARY") != std::string::npos || tok[0].find("nOFF") != std::string::npos) return;
+  const std::string header = tok[0];
+  if (line.find("BINARY") != std::string::npos || tok[0].find("nOFF") != std::string::npos) return {};
   std::vector<std::string> counts(tok.begin() + 1, tok.end());
   if (counts.empty()) {
     if (!next_line()) bad("it ends before its vertex and face counts");
@@ -87,6 +96,8 @@ void check_off(const std::string& path) {
   if (counts.size() < 2 || !whole_integer(counts[0], nv) || !whole_integer(counts[1], nf) || nv < 0 || nf < 0 ||
       nv > kMax || nf > kMax)
     bad(at() + "the vertex and face counts are not two whole numbers");
+  // OpenMesh reads the header again: give it the counts alone, in the usual form.
+  clean = header + "\n" + std::to_string(nv) + " " + std::to_string(nf) + " 0\n";
   for (long long i = 0; i < nv; ++i) {
     if (!next_line()) bad("it ends after " + std::to_string(i) + " of its " + std::to_string(nv) + " vertices");
     if (tok.size() < 3) bad(at() + "a vertex needs three coordinates");
@@ -105,19 +116,66 @@ void check_off(const std::string& path) {
     }
     for (size_t j = size_t(k) + 1; j < tok.size(); ++j)
       if (!whole_number(tok[j])) bad(at() + "'" + tok[j] + "' is not a colour number");
+    // OpenMesh takes a face's colour numbers for more faces: Avenues does not use face
+    // colours, so the face goes on with its count and vertices alone.
+    if (tok.size() > size_t(k) + 1) {
+      size_t line_start = clean.find_last_of('\n', clean.size() - 2);
+      clean.resize(line_start == std::string::npos ? 0 : line_start + 1);
+      for (size_t j = 0; j <= size_t(k); ++j) clean += tok[j] + (j == size_t(k) ? '\n' : ' ');
+    }
   }
+  return clean;
 }
 
 }  // namespace
+
+void smooth_corner_normals(Mesh& m, double crease_deg) {
+  // Each polygon's normal, area-weighted: the sum of its triangles' cross products.
+  size_t polygons = 0;
+  for (int p : m.polygon_of) polygons = std::max(polygons, size_t(p) + 1);
+  auto polygon = [&](size_t t) { return t < m.polygon_of.size() ? size_t(m.polygon_of[t]) : polygons + t; };
+  std::vector<Vec3> normal(polygons + m.triangles.size(), Vec3{0, 0, 0});
+  for (size_t t = 0; t < m.triangles.size(); ++t) {
+    const auto& tr = m.triangles[t];
+    const Vec3 a = m.vertices[size_t(tr[0])], b = m.vertices[size_t(tr[1])], c = m.vertices[size_t(tr[2])];
+    normal[polygon(t)] = normal[polygon(t)] + cross(b - a, c - a);
+  }
+  std::vector<Vec3> unit(normal.size(), Vec3{0, 0, 0});
+  for (size_t p = 0; p < normal.size(); ++p)
+    if (const double l = length(normal[p]); l > 0) unit[p] = (1.0 / l) * normal[p];
+  // The polygons around each vertex, each once.
+  std::vector<std::vector<size_t>> around(m.vertices.size());
+  for (size_t t = 0; t < m.triangles.size(); ++t)
+    for (int v : m.triangles[t]) {
+      auto& list = around[size_t(v)];
+      if (std::find(list.begin(), list.end(), polygon(t)) == list.end()) list.push_back(polygon(t));
+    }
+  const double cos_crease = std::cos(crease_deg * 3.14159265358979323846 / 180);
+  m.corner_normals.assign(3 * m.triangles.size(), Vec3{0, 0, 1});
+  for (size_t t = 0; t < m.triangles.size(); ++t) {
+    const Vec3 own = unit[polygon(t)];
+    if (length(own) == 0) continue;  // a zero-area polygon: never shaded
+    for (size_t k = 0; k < 3; ++k) {
+      Vec3 sum{0, 0, 0};
+      for (size_t q : around[size_t(m.triangles[t][k])])
+        if (dot(unit[q], own) >= cos_crease) sum = sum + normal[q];
+      const double l = length(sum);
+      m.corner_normals[3 * t + k] = l > 0 ? (1.0 / l) * sum : own;
+    }
+  }
+}
 
 Mesh load_mesh(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) throw std::runtime_error("cannot read mesh " + path + ": no such file");
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-  if (ext == ".off") check_off(path);
+  const std::string off_text = ext == ".off" ? check_off(path) : std::string();
   PolyMesh pm;
   OpenMesh::IO::Options opt;
-  if (!OpenMesh::IO::read_mesh(pm, path, opt))
+  std::istringstream off_stream(off_text);
+  const bool read = off_text.empty() ? OpenMesh::IO::read_mesh(pm, path, opt)
+                                     : OpenMesh::IO::read_mesh(pm, off_stream, ".off", opt);
+  if (!read)
     throw std::runtime_error("cannot read mesh " + path + ": not a mesh OpenMesh can read (OBJ, OFF, PLY, STL)");
   if (pm.n_faces() == 0) throw std::runtime_error("mesh " + path + " has no faces");
   Mesh m;
@@ -130,24 +188,17 @@ Mesh load_mesh(const std::string& path) {
   }
   // Triangulate each polygon as a fan (OpenMesh keeps polygons; convex ones are the rule).
   int poly = 0;
-  std::vector<Vec3> normal_sum(m.vertices.size(), Vec3{0, 0, 0});
   for (auto f : pm.faces()) {
     std::vector<int> idx;
     for (auto v : pm.fv_range(f)) idx.push_back(v.idx());
     if (idx.size() < 3) continue;
-    Vec3 n{0, 0, 0};  // Newell's normal, area-weighted
-    for (size_t k = 0; k < idx.size(); ++k) n = n + cross(m.vertices[size_t(idx[k])], m.vertices[size_t(idx[(k + 1) % idx.size()])]);
-    for (int i : idx) normal_sum[size_t(i)] = normal_sum[size_t(i)] + n;
     for (size_t k = 1; k + 1 < idx.size(); ++k) {
       m.triangles.push_back({idx[0], idx[k], idx[k + 1]});
       m.polygon_of.push_back(poly);
     }
     ++poly;
   }
-  for (Vec3 n : normal_sum) {
-    double l = length(n);
-    m.vertex_normals.push_back(l > 0 ? (1.0 / l) * n : Vec3{0, 0, 1});
-  }
+  smooth_corner_normals(m);
   // Closed: every polygon edge is shared by exactly two polygons, in opposite directions.
   std::map<std::pair<int, int>, int> edges;
   for (auto f : pm.faces()) {
@@ -176,10 +227,7 @@ Mesh box_mesh(Vec3 size) {
     m.polygon_of.push_back(q);
     m.polygon_of.push_back(q);
   }
-  for (Vec3 v : m.vertices) {
-    Vec3 n{v.x / std::max(x, 1e-12), v.y / std::max(y, 1e-12), v.z > 0 ? 1.0 : -1.0};
-    m.vertex_normals.push_back((1.0 / length(n)) * n);
-  }
+  smooth_corner_normals(m);
   m.closed = true;
   return m;
 }
@@ -213,7 +261,7 @@ Mesh place(const Mesh& mesh, const Object& o, double floor_z) {
   Mesh m = mesh;
   const Vec3 at = o.position + Vec3{0, 0, floor_z};
   for (Vec3& v : m.vertices) v = rotate({v.x * o.scale.x, v.y * o.scale.y, v.z * o.scale.z}, o.rotation_deg) + at;
-  for (Vec3& n : m.vertex_normals) {
+  for (Vec3& n : m.corner_normals) {
     Vec3 r = rotate({n.x / o.scale.x, n.y / o.scale.y, n.z / o.scale.z}, o.rotation_deg);
     double l = length(r);
     n = l > 0 ? (1.0 / l) * r : n;
