@@ -227,7 +227,6 @@ Mesh crow_mesh(const CrowObject& o) {
   Mesh m;
   m.path = o.path;
   m.vertices = o.points;
-  std::vector<Vec3> normal_sum(m.vertices.size(), Vec3{0, 0, 0});
   std::map<std::pair<int, int>, int> edges;
   for (size_t k = 0; k < o.polygons.size(); ++k) {
     // Crow lists polygons clockwise seen from outside; a Mesh wants counter-clockwise.
@@ -235,7 +234,6 @@ Mesh crow_mesh(const CrowObject& o) {
     Vec3 n{0, 0, 0};  // Newell's normal, area-weighted
     for (size_t i = 0; i < poly.size(); ++i)
       n = n + cross(m.vertices[size_t(poly[i])], m.vertices[size_t(poly[(i + 1) % poly.size()])]);
-    for (int i : poly) normal_sum[size_t(i)] = normal_sum[size_t(i)] + n;
     for (const auto& t : triangulate(m.vertices, poly, n)) {
       m.triangles.push_back(t);
       m.polygon_of.push_back(int(k));
@@ -245,10 +243,7 @@ Mesh crow_mesh(const CrowObject& o) {
       edges[{std::min(a, b), std::max(a, b)}]++;
     }
   }
-  for (Vec3 n : normal_sum) {
-    const double l = length(n);
-    m.vertex_normals.push_back(l > 0 ? (1.0 / l) * n : Vec3{0, 0, 1});
-  }
+  smooth_corner_normals(m);
   for (const auto& [e, count] : edges) m.boundary_edges += count == 1;
   m.closed = m.boundary_edges == 0;
   return m;

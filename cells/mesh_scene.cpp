@@ -661,12 +661,9 @@ std::vector<Mesh> mesh_components(const Mesh& mesh) {
     std::array<int, 3> nt{};
     for (int k = 0; k < 3; ++k) {
       auto [v, added] = vmap[c].try_emplace(t[size_t(k)], int(m.vertices.size()));
-      if (added) {
-        m.vertices.push_back(mesh.vertices[size_t(t[size_t(k)])]);
-        if (size_t(t[size_t(k)]) < mesh.vertex_normals.size())
-          m.vertex_normals.push_back(mesh.vertex_normals[size_t(t[size_t(k)])]);
-      }
+      if (added) m.vertices.push_back(mesh.vertices[size_t(t[size_t(k)])]);
       nt[size_t(k)] = v->second;
+      if (3 * i + size_t(k) < mesh.corner_normals.size()) m.corner_normals.push_back(mesh.corner_normals[3 * i + size_t(k)]);
     }
     m.triangles.push_back(nt);
     const int poly = i < mesh.polygon_of.size() ? mesh.polygon_of[i] : int(i);

@@ -20,10 +20,19 @@ struct Mesh {
   std::vector<Vec3> vertices;              ///< [m]
   std::vector<std::array<int, 3>> triangles;  ///< counter-clockwise seen from outside
   std::vector<int> polygon_of;             ///< per triangle: the input polygon it came from
-  std::vector<Vec3> vertex_normals;        ///< unit, averaged over incident polygons (for smooth shading)
+  /// Per triangle corner (3 per triangle, in order): the unit normal smooth shading uses
+  /// there, averaged over the polygons around the corner's vertex that meet the triangle's
+  /// polygon at less than a crease angle (smooth_corner_normals): a box keeps flat faces,
+  /// a torus cut into polygons is shaded as the smooth surface it stands for.
+  std::vector<Vec3> corner_normals;
   bool closed = false;                     ///< every edge shared by exactly two polygons
   int boundary_edges = 0;                  ///< edges with one polygon (0 when closed)
 };
+
+/// Fills m.corner_normals from its triangles (and polygon_of): at each corner, the
+/// area-weighted normals of the polygons around the vertex whose normals lie within
+/// `crease_deg` of the corner's own polygon's, summed and made unit.
+void smooth_corner_normals(Mesh& m, double crease_deg = 45);
 
 /// Reads a mesh; the format follows the extension. Throws std::runtime_error naming the
 /// file for a missing, unreadable or empty mesh.

@@ -39,15 +39,17 @@ std::string names(const std::vector<std::string>& all) {
 
 /// A mesh is curved when some triangle's corners carry normals other than its own, each
 /// within 45° of it (the builder's test for Gouraud under Auto, scene_screen.cpp, triangle
-/// by triangle): a smooth surface cut into polygons, not a box's crease.
+/// by triangle): a smooth surface cut into polygons. A box's corners keep their faces'
+/// normals (smooth_corner_normals averages only across edges under 45°), so it is flat.
 bool curved(const Mesh& m) {
-  for (const auto& t : m.triangles) {
+  for (size_t i = 0; i < m.triangles.size() && 3 * i + 2 < m.corner_normals.size(); ++i) {
+    const auto& t = m.triangles[i];
     const Vec3 a = m.vertices[size_t(t[0])], b = m.vertices[size_t(t[1])], c = m.vertices[size_t(t[2])];
     const Vec3 n = cross(b - a, c - a);
     const double l = length(n);
     if (!(l > 0)) continue;
     double min_cos = 1;
-    for (int v : t) min_cos = std::min(min_cos, dot(m.vertex_normals[size_t(v)], (1 / l) * n));
+    for (size_t k = 0; k < 3; ++k) min_cos = std::min(min_cos, dot(m.corner_normals[3 * i + k], (1 / l) * n));
     if (!(min_cos > 1 - 1e-9) && min_cos >= kCurvedCos) return true;
   }
   return false;

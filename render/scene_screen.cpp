@@ -250,7 +250,8 @@ bool ScreenSceneBuilder::add_face(const std::vector<Vec3>& polygon, const Plane&
   return add(cam, n, d, shade, where, source);
 }
 
-void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<int>& corners, const Material& material,
+void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<int>& corners,
+                                          const std::vector<Vec3>& corner_normals, const Material& material,
                                           Placement where, const PolygonSource& source) {
   std::vector<Vec3> cam;
   Vec3 n{0, 0, 0}, centroid{0, 0, 0};
@@ -280,10 +281,10 @@ void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<in
   // Smooth: a flat part of the mesh (every corner's normal the polygon's) is lit exactly
   // from its plane; a curved part by Gouraud over each triangle. Auto: the flat part flat.
   double min_cos = 1;
-  for (int c : corners) min_cos = std::min(min_cos, dot(mesh.vertex_normals[size_t(c)], (1 / area) * n));
+  for (const Vec3& cn : corner_normals) min_cos = std::min(min_cos, dot(cn, (1 / area) * n));
   bool planar = min_cos > 1 - 1e-9;
   // Auto: curved means a smooth surface cut into polygons — corner normals near the
-  // polygon's own; a box's corner normals (averaged over a right angle) are a crease.
+  // polygon's own (a box's corners keep their faces' normals: plans/mesh.h).
   if (options_.shading.model == ShadingModel::Auto && min_cos < kCurvedCos) planar = true;
   if (planar) {
     const bool smooth = options_.shading.model == ShadingModel::Smooth;
@@ -303,7 +304,7 @@ void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<in
     std::array<Vec3, 3> points, normals;
     for (size_t i = 0; i < 3; ++i) {
       points[i] = cam[c[i]];
-      normals[i] = camera_dir(mesh.vertex_normals[size_t(corners[c[i]])]);
+      normals[i] = camera_dir(corner_normals[c[i]]);
     }
     const Vec3 tn = cross(points[1] - points[0], points[2] - points[0]);
     const double td = -dot(tn, points[0]);
@@ -327,7 +328,17 @@ void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<in
 
 void ScreenSceneBuilder::add_mesh(const Mesh& mesh, const MeshPaint& paint, Placement where, PolygonSource source) {
   const size_t n = mesh.triangles.size();
+  // Meshes made here and there all carry corner normals; one that does not gets them now.
+  Mesh with_normals;
+  const Mesh* m = &mesh;
+  if (mesh.corner_normals.size() != 3 * n) {
+    with_normals = mesh;
+    smooth_corner_normals(with_normals);
+    m = &with_normals;
+  }
+  const std::vector<Vec3>& cn = m->corner_normals;
   std::vector<int> corners;
+  std::vector<Vec3> normals;
   for (size_t t = 0; t < n;) {
     const int polygon = mesh.polygon_of[t];
     size_t end = t + 1;
@@ -337,17 +348,19 @@ void ScreenSceneBuilder::add_mesh(const Mesh& mesh, const MeshPaint& paint, Plac
     // The input polygon again, from its fan (render/mesh.h triangulates a polygon a, b, c,
     // d, ... as abc, acd, ...); a polygon that was not a fan goes triangle by triangle.
     corners.assign(mesh.triangles[t].begin(), mesh.triangles[t].end());
+    normals.assign(cn.begin() + std::ptrdiff_t(3 * t), cn.begin() + std::ptrdiff_t(3 * t + 3));
     bool fan = true;
     for (size_t k = t + 1; k < end && fan; ++k) {
       fan = mesh.triangles[k][0] == corners[0] && mesh.triangles[k][1] == corners.back();
       corners.push_back(mesh.triangles[k][2]);
+      normals.push_back(cn[3 * k + 2]);
     }
     if (fan) {
-      add_mesh_polygon(mesh, corners, material, where, source);
+      add_mesh_polygon(mesh, corners, normals, material, where, source);
     } else {
       for (size_t k = t; k < end; ++k)
-        add_mesh_polygon(mesh, {mesh.triangles[k][0], mesh.triangles[k][1], mesh.triangles[k][2]}, material, where,
-                         source);
+        add_mesh_polygon(mesh, {mesh.triangles[k][0], mesh.triangles[k][1], mesh.triangles[k][2]},
+                         {cn[3 * k], cn[3 * k + 1], cn[3 * k + 2]}, material, where, source);
     }
     t = end;
   }

@@ -121,8 +121,9 @@ class ScreenSceneBuilder {
   bool add_lit(const std::vector<Vec3>& points, Vec3 n, double d, const SurfaceShade& shade, Placement where,
                const PolygonSource& source, size_t pieces_before);
   Vec3 camera_dir(Vec3 v) const { return {dot(v, camera_.right), dot(v, camera_.up), dot(v, camera_.forward)}; }
-  void add_mesh_polygon(const Mesh& mesh, const std::vector<int>& corners, const Material& material,
-                        Placement where, const PolygonSource& source);
+  /// One input polygon of a mesh: its corners and, per corner, the normal for smooth shading.
+  void add_mesh_polygon(const Mesh& mesh, const std::vector<int>& corners, const std::vector<Vec3>& normals,
+                        const Material& material, Placement where, const PolygonSource& source);
 
   Camera camera_;
   SceneOptions options_;

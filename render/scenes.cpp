@@ -273,18 +273,13 @@ std::vector<PaperScene> paper_scenes() {
 }
 
 Mesh mesh_of(const PaperScene& s) {
-  // As render/mesh.cpp reads a file: fans, Newell normals summed per vertex, closedness.
+  // As plans/mesh.cpp reads a file: fans, corner normals, closedness.
   Mesh m;
   m.path = "plans/scenes/" + s.name + ".off";
   m.vertices = s.vertices;
-  std::vector<Vec3> normal_sum(m.vertices.size(), Vec3{0, 0, 0});
   std::map<std::pair<int, int>, int> edges;
   for (size_t p = 0; p < s.polygons.size(); ++p) {
     const std::vector<int>& idx = s.polygons[p];
-    Vec3 n{0, 0, 0};
-    for (size_t k = 0; k < idx.size(); ++k)
-      n = n + cross(m.vertices[size_t(idx[k])], m.vertices[size_t(idx[(k + 1) % idx.size()])]);
-    for (int i : idx) normal_sum[size_t(i)] = normal_sum[size_t(i)] + n;
     for (size_t k = 1; k + 1 < idx.size(); ++k) {
       m.triangles.push_back({idx[0], idx[k], idx[k + 1]});
       m.polygon_of.push_back(int(p));
@@ -294,10 +289,7 @@ Mesh mesh_of(const PaperScene& s) {
       edges[{std::min(a, b), std::max(a, b)}]++;
     }
   }
-  for (Vec3 n : normal_sum) {
-    const double l = length(n);
-    m.vertex_normals.push_back(l > 0 ? (1.0 / l) * n : Vec3{0, 0, 1});
-  }
+  smooth_corner_normals(m);
   for (const auto& [e, count] : edges) m.boundary_edges += count == 1;
   m.closed = m.boundary_edges == 0;
   return m;
