@@ -2,11 +2,12 @@
 //
 //   avenues view PLAN [--eye X,Y,Z] [--look X,Y,Z | --yaw DEG --pitch DEG] [--fov DEG]
 //                     [--size WxH] [--kernel float|double|filtered|exact]
-//                     [--stats-json FILE] [--overlay FILE.svg]
+//                     [--stats-json FILE] [--overlay FILE.svg] [-o FILE] [--explain]
 //
 // Finds the eye's cell (an eye inside a wall or slab is an error naming the wall), runs
 // Jones's traversal in the chosen kernel, and writes what was asked for: the statistics
-// as one JSON object, and the overlay (masks, plan and avenue tree) as SVG.
+// as one JSON object, and the overlay (masks, plan and avenue tree) as SVG. --explain lists
+// the effects the scene calls for (render/effects.h) before anything is drawn.
 #include <cmath>
 #include <iostream>
 #include <sstream>
@@ -105,6 +106,8 @@ nlohmann::json view_stats(const LoadedPlan& plan, const ViewSetup& v, const Visi
 }
 
 int run_view(const ViewOptions& opt) {
+  if (opt.lights != "plan" && opt.lights != "eye")
+    throw std::runtime_error("--lights wants plan or eye, not '" + opt.lights + "'");
   LoadedPlan plan = load_plan_source(opt.plan);
   ViewSetup v = set_up_view(plan, opt);
   VisibleSet vs = find_visible(plan.complex, v.camera, v.eye_cell, v.kernel);
@@ -114,6 +117,7 @@ int run_view(const ViewOptions& opt) {
     throw std::runtime_error("--stereo and --frames need -o FILE");
   if (opt.frames > 0 && (opt.to_eye.empty() || opt.to_look.empty()))
     throw std::runtime_error("--frames needs --to-eye X,Y,Z and --to-look X,Y,Z");
+  if (opt.explain) std::cout << "effects:\n" << explain_view_effects(plan, opt);
   if (!opt.output.empty()) write_view_output(plan, v, vs, opt, stats);
   if (!opt.stats_json.empty()) write_file_atomically(opt.stats_json, stats.dump(2) + "\n");
   std::cout << "eye in cell " << vs.eye_cell << " (" << stats["eye_room"].get<std::string>() << "): "

@@ -60,6 +60,10 @@ struct ViewOptions {
   int samples = 1;                     ///< half-tone: samples per pixel, 1, 4 or 16
   std::string shading = "flat";        ///< half-tone: flat or smooth
   std::string dither = "none";         ///< half-tone: none, bayer or fs
+  std::string lights = "plan";         ///< plan (its point lights, with shadows) or eye (the light at the eye only)
+  double falloff = 5;                  ///< [m] smooth shading: the distance law from here; <= 0: off
+  bool shadow_lines = false;           ///< drawings: outline the shadows of the plan's point lights
+  bool explain = false;                ///< list which effects the view calls for, and why
 };
 
 /// `avenues path PLAN --through ROOM,ROOM,... -o DIR`: a batch walkthrough through named rooms.
@@ -133,6 +137,9 @@ int run_view(const ViewOptions& opt);
 /// adds what it measured to `stats`.
 void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs, const ViewOptions& opt,
                        nlohmann::json& stats);
+/// With --explain: each effect of the half-tone on or off and why (render/effects.h), one
+/// per line, and for a drawing whether shadow outlines are drawn.
+std::string explain_view_effects(const LoadedPlan& plan, const ViewOptions& opt);
 /// "X,Y,Z" → Vec3; throws std::runtime_error naming the option otherwise.
 Vec3 parse_vec3(const std::string& s, const char* option);
 

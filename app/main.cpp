@@ -75,8 +75,14 @@ int main(int argc, char** argv) {
   view->add_option("--stereo", view_opt.stereo,
                    "a stereo pair: parallel or cross (side by side), pair (two drawings) or anaglyph (pictures)");
   view->add_option("--samples", view_opt.samples, "half-tone: samples per pixel, 1, 4 or 16")->capture_default_str();
-  view->add_option("--shading", view_opt.shading, "half-tone: flat (Bouknight) or smooth (Wylie)")->capture_default_str();
+  view->add_option("--shading", view_opt.shading, "half-tone: flat (Bouknight), smooth (Wylie) or auto (smooth on curved meshes only)")->capture_default_str();
   view->add_option("--dither", view_opt.dither, "half-tone: none, bayer or fs (1-bit for print)")->capture_default_str();
+  view->add_option("--lights", view_opt.lights, "plan (its point lights, casting shadows) or eye (the light at the eye)")
+      ->capture_default_str();
+  view->add_option("--falloff", view_opt.falloff, "[m] smooth shading: things farther than this are dimmed; 0: off")
+      ->capture_default_str();
+  view->add_flag("--shadow-lines", view_opt.shadow_lines, "drawings: outline the shadows of the plan's point lights");
+  view->add_flag("--explain", view_opt.explain, "list each effect (depth, implicit lines, shadows, ...) as on or off, and why");
   view->add_option("--interocular", view_opt.interocular, "[m] distance between the eyes")->capture_default_str();
   view->add_option("--converge", view_opt.converge, "[m] distance at which the two views coincide")
       ->capture_default_str();

@@ -8,6 +8,7 @@
 // eyes, off-axis, never toe-in) and --frames N (a straight walk to --to-eye/--to-look,
 // one numbered file per frame).
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 
@@ -15,6 +16,7 @@
 
 #include "app/commands.h"
 #include "render/drawing.h"
+#include "render/effects.h"
 #include "render/halftone.h"
 #include "render/raster.h"
 #include "render/scene_objects.h"
@@ -55,9 +57,14 @@ HalftoneOptions halftone_options(const ViewOptions& opt) {
   if (o.samples != 1 && o.samples != 4 && o.samples != 16)
     throw std::runtime_error("--samples wants 1, 4 or 16, not " + std::to_string(opt.samples));
   if (!parse_shading(opt.shading, o.shading.model))
-    throw std::runtime_error("--shading wants flat or smooth, not '" + opt.shading + "'");
+    throw std::runtime_error("--shading wants flat, smooth or auto, not '" + opt.shading + "'");
   if (!parse_dither(opt.dither, o.dither))
     throw std::runtime_error("--dither wants none, bayer or fs, not '" + opt.dither + "'");
+  if (opt.lights == "plan") o.lights = Lights::Plan;
+  else if (opt.lights == "eye") o.lights = Lights::Eye;
+  else throw std::runtime_error("--lights wants plan or eye, not '" + opt.lights + "'");
+  if (!std::isfinite(opt.falloff)) throw std::runtime_error("--falloff wants a distance in metres");
+  o.shading.falloff_start = opt.falloff;
   return o;
 }
 
@@ -111,6 +118,19 @@ void write_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet&
 
 }  // namespace
 
+std::string explain_view_effects(const LoadedPlan& plan, const ViewOptions& opt) {
+  const CellComplex& c = plan.complex;
+  const HalftoneOptions o = halftone_options(opt);
+  std::string out = explain_effects(prepare_effects(c, place_objects(c), o).plan);
+  if (!opt.output.empty() && is_drawing(opt.output))
+    out += std::string("shadow outlines: ") + (opt.shadow_lines ? "on" : "off") + " \u2014 " +
+           (opt.shadow_lines ? (c.lights.empty() ? "asked for, but the plan has no light to cast them"
+                                                 : "asked for (--shadow-lines)")
+                             : "not asked for (--shadow-lines)") +
+           "\n";
+  return out;
+}
+
 void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs, const ViewOptions& opt,
                        nlohmann::json& stats) {
   const std::string& path = opt.output;
@@ -120,7 +140,9 @@ void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const Visible
     throw std::runtime_error("cannot write '" + path + "': unknown picture format '" + lower_extension(path) +
                              "' (drawings: " + drawing_extensions() + "; half-tone pictures: " + raster_extensions() +
                              ")");
-  const LineScene scene = prepare_line_scene(c);
+  LineOptions line_options;
+  line_options.shadows = opt.shadow_lines;
+  const LineScene scene = prepare_line_scene(c, line_options);
 
   if (opt.frames > 0) {
     // A straight walk, one drawing per frame; every frame's eye is checked before any is written.
@@ -131,7 +153,7 @@ void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const Visible
     for (size_t k = 0; k < frames.size(); ++k) {
       auto t0 = std::chrono::steady_clock::now();
       VisibleSet fv = find_visible(c, frames[k].camera, frames[k].cell, v.kernel);
-      Drawing d = draw_view(c, scene, frames[k].camera, fv);
+      Drawing d = draw_view(c, scene, frames[k].camera, fv, line_options);
       render_us += micros_since(t0);
       lines += write_drawing(d, frame_path(path, int(k), int(frames.size()))).lines;
     }
@@ -151,7 +173,8 @@ void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const Visible
     auto t0 = std::chrono::steady_clock::now();
     VisibleSet lv = find_visible(c, rig.left, rig.left_at.cell, v.kernel);
     VisibleSet rv = find_visible(c, rig.right, rig.right_at.cell, v.kernel);
-    Drawing left = draw_view(c, scene, rig.left, lv), right = draw_view(c, scene, rig.right, rv);
+    Drawing left = draw_view(c, scene, rig.left, lv, line_options),
+            right = draw_view(c, scene, rig.right, rv, line_options);
     const double render_us = micros_since(t0);
     add_drawing_stats(stats, write_stereo_drawing(left, right, layout, path), render_us, path);
     stats["stereo"] = {{"layout", to_string(layout)},
@@ -167,7 +190,7 @@ void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const Visible
   }
 
   auto t0 = std::chrono::steady_clock::now();
-  Drawing d = draw_view(c, scene, v.camera, vs);
+  Drawing d = draw_view(c, scene, v.camera, vs, line_options);
   const double render_us = micros_since(t0);
   add_drawing_stats(stats, write_drawing(d, path), render_us, path);
 }

@@ -64,7 +64,9 @@ class Cli : public ::testing::Test {
   /// Runs `avenues ARGS` with the temporary directory as working directory.
   Outcome run(const std::string& args) {
     const fs::path out = dir_ / ".stdout", err = dir_ / ".stderr";
-    std::string cmd = "cd " + quote(dir_.string()) + " && " + quote(kBinary) + " " + args + " >" +
+    // No display: the main job must take its file-writing path whatever the caller's session has.
+    std::string cmd = "cd " + quote(dir_.string()) + " && env -u DISPLAY -u WAYLAND_DISPLAY " + quote(kBinary) + " " +
+                      args + " >" +
                       quote(out.string()) + " 2>" + quote(err.string()) + " </dev/null";
     int rc = std::system(cmd.c_str());
     Outcome r;
@@ -420,6 +422,66 @@ TEST_F(Cli, ViewRejectsBadOptions) {
     EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
     EXPECT_FALSE(fs::exists(path("s.json"))) << args;
   }
+}
+
+TEST_F(Cli, ViewExplainSaysWhichEffectsTheSceneCallsForAndWhy) {
+  // A line per effect, on or off and why, for scenes with and without each effect.
+  auto effects = [&](const std::string& plan, const std::string& args) {
+    Outcome r = run("view " + quote(plan) + " --explain " + args);
+    EXPECT_EQ(r.status, 0) << r.err;
+    std::map<std::string, std::string> on;
+    std::istringstream in(r.out);
+    for (std::string line; std::getline(in, line);) {
+      const size_t colon = line.find(": o");
+      if (colon == std::string::npos || line.rfind("eye in", 0) == 0) continue;
+      on[line.substr(0, colon)] = line.substr(colon + 2, line.substr(colon + 2, 3) == "on " ? 2 : 3);
+    }
+    return on;
+  };
+  // Jones's house: no objects, one coloured lamp away from the eye.
+  auto house = effects(kPlan, "");
+  EXPECT_EQ(house["depth"], "off");
+  EXPECT_EQ(house["implicit lines"], "off");
+  EXPECT_EQ(house["shadows"], "on");
+  EXPECT_EQ(house["smooth shading"], "off");
+  EXPECT_EQ(house["distance falloff"], "off");
+  EXPECT_EQ(house["coloured light"], "on");
+  EXPECT_EQ(house.size(), 6u);
+  // The same lit from the eye, smooth: no shadows, no colour; the distance law only while asked.
+  auto eye = effects(kPlan, "--lights eye --shading smooth");
+  EXPECT_EQ(eye["shadows"], "off");
+  EXPECT_EQ(eye["coloured light"], "off");
+  EXPECT_EQ(eye["smooth shading"], "on");
+  EXPECT_EQ(eye["distance falloff"], "on");
+  EXPECT_EQ(effects(kPlan, "--lights eye --shading smooth --falloff 0")["distance falloff"], "off");
+  // A table: depth in its cell, but nothing crosses.
+  const std::string room = std::string(AVENUES_SOURCE_DIR) + "/plans/furnished-room.toml";
+  auto furnished = effects(room, "");
+  EXPECT_EQ(furnished["depth"], "on");
+  EXPECT_EQ(furnished["implicit lines"], "off");
+  EXPECT_EQ(furnished["shadows"], "off");
+  // Two tables pushed through each other, and a curved mesh with auto shading.
+  std::string plan = slurp(room);
+  const std::string table = std::string(AVENUES_SOURCE_DIR) + "/plans/meshes/table.off";
+  const std::string torus = std::string(AVENUES_SOURCE_DIR) + "/plans/scenes/torus.off";
+  size_t at = plan.find("mesh = \"meshes/table.off\"");
+  ASSERT_NE(at, std::string::npos);
+  plan.replace(at, std::string("mesh = \"meshes/table.off\"").size(), "mesh = \"" + table + "\"");
+  write("crossing.toml", plan + "\n[[object]]\nname = \"second table\"\nmesh = \"" + table +
+                             "\"\nposition = [2.9, 2.4, 0.02]\nrotation = 40\n");
+  auto crossing = effects(path("crossing.toml").string(), "");
+  EXPECT_EQ(crossing["depth"], "on");
+  EXPECT_EQ(crossing["implicit lines"], "on");
+  write("torus.toml", plan + "\n[[object]]\nname = \"ring\"\nmesh = \"" + torus +
+                          "\"\nposition = [1.2, 3.0, 0.5]\nscale = 0.3\n");
+  EXPECT_EQ(effects(path("torus.toml").string(), "--shading auto")["smooth shading"], "on");
+  EXPECT_EQ(effects(path("torus.toml").string(), "--shading flat")["smooth shading"], "off");
+  EXPECT_EQ(effects(room, "--shading auto")["smooth shading"], "off");
+  // A drawing says whether the shadow outlines are drawn.
+  Outcome r = run("view " + quote(kPlan) + " --explain --shadow-lines -o d.svg");
+  EXPECT_NE(r.out.find("shadow outlines: on"), std::string::npos) << r.out;
+  EXPECT_NE(slurp(path("d.svg")).find("shadow"), std::string::npos);
+  EXPECT_EQ(run("view " + quote(kPlan) + " --lights sun").status, 2);
 }
 
 TEST_F(Cli, ViewWritesTheDrawingInEveryFormatWithItsStats) {
