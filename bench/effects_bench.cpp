@@ -10,13 +10,18 @@
 // with and without its table), the implicit-line search (searched, as the bare pipeline does,
 // or skipped because nothing crosses), shadows (a lamp, per frame with the shadows prepared
 // once, or cast every frame, against the same plan lit from the eye), smooth shading, the
-// distance law and coloured light. One thread, 1280 × 720, one sample per pixel; the
-// visible set is found once, outside the timing.
+// distance law and coloured light. Each pair renders the effect off and on frame for frame in
+// turn and reports both medians and their ratio (on_over_off), so that the load of a shared
+// machine falls on both alike. One thread, 1280 × 720, one sample per pixel; the visible set
+// is found once, outside the timing.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <vector>
 
 #include "cells/build_cells.h"
 #include "render/effects.h"
@@ -33,6 +38,7 @@ constexpr int kWidth = 1280, kHeight = 720;
 
 enum class Scene {
   House,      ///< jones-house.toml, its lamp taken out: no lights, no objects
+  Corridor,   ///< office-corridor.toml, its lamps taken out: no lights, no objects, 24 offices
   Furnished,  ///< furnished-room.toml: a table, no lights
   Lamp,       ///< furnished-room.toml with a white lamp over the table
   Coloured,   ///< the same lamp, warm white (1, 0.85, 0.7)
@@ -42,7 +48,9 @@ const CellComplex& scene_complex(Scene s) {
   static std::map<Scene, std::unique_ptr<CellComplex>> cache;
   auto& slot = cache[s];
   if (slot) return *slot;
-  const std::string file = s == Scene::House ? "jones-house.toml" : "furnished-room.toml";
+  const std::string file = s == Scene::House      ? "jones-house.toml"
+                           : s == Scene::Corridor ? "office-corridor.toml"
+                                                  : "furnished-room.toml";
   Plan p = read_plan((fs::path(AVENUES_SOURCE_DIR) / "plans" / file).string());
   p.lights.clear();
   if (s == Scene::Lamp || s == Scene::Coloured) {
@@ -66,31 +74,72 @@ struct Case {
   Lights lights = Lights::Plan;
 };
 
-void effects_frame(benchmark::State& state, Case k) {
-  const CellComplex& c = scene_complex(k.scene);
-  const Viewpoint vp = default_viewpoint(c);
-  const Camera cam = Camera::look_at(vp.eye, vp.look, vp.fov_deg, kWidth, kHeight);
-  const VisibleSet visible = find_visible(c, cam, c.locate(vp.eye).cell);
-  const std::vector<PlacedObject> objects = k.objects ? place_objects(c) : std::vector<PlacedObject>{};
-  HalftoneOptions o;
-  o.threads = 1;
-  o.plan_effects = k.plan;
-  o.shading.model = k.shading;
-  o.shading.falloff_start = k.falloff_start;
-  o.lights = k.lights;
-  const SceneEffects effects = prepare_effects(c, objects, o);
-  Image frame;
-  RenderStats stats;
-  for (auto _ : state) {
-    if (k.prepared) render_view(c, objects, effects, cam, visible, o, frame, &stats);
-    else render_view(c, objects, cam, visible, o, frame, &stats);
-    benchmark::DoNotOptimize(frame.data.data());
-    benchmark::ClobberMemory();
+/// One way of rendering one scene, set up outside the timing.
+class Frame {
+ public:
+  explicit Frame(Case k) : k_(k), c_(scene_complex(k.scene)) {
+    const Viewpoint vp = default_viewpoint(c_);
+    cam_ = Camera::look_at(vp.eye, vp.look, vp.fov_deg, kWidth, kHeight);
+    visible_ = find_visible(c_, cam_, c_.locate(vp.eye).cell);
+    if (k.objects) objects_ = place_objects(c_);
+    o_.threads = 1;
+    o_.plan_effects = k.plan;
+    o_.shading.model = k.shading;
+    o_.shading.falloff_start = k.falloff_start;
+    o_.lights = k.lights;
+    effects_ = prepare_effects(c_, objects_, o_);
   }
-  state.counters["depth_sorts"] = double(stats.depth_sorts);
-  state.counters["implicit_lines"] = double(stats.implicit_lines);
-  state.counters["light_pieces"] = double(stats.light_pieces);
-  state.counters["effects_us"] = stats.effects_us;
+  /// [ms] one frame.
+  double render() {
+    const auto t0 = std::chrono::steady_clock::now();
+    if (k_.prepared) render_view(c_, objects_, effects_, cam_, visible_, o_, frame_, &stats_);
+    else render_view(c_, objects_, cam_, visible_, o_, frame_, &stats_);
+    benchmark::DoNotOptimize(frame_.data.data());
+    benchmark::ClobberMemory();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  }
+  const RenderStats& stats() const { return stats_; }
+
+ private:
+  Case k_;
+  const CellComplex& c_;
+  Camera cam_;
+  VisibleSet visible_;
+  std::vector<PlacedObject> objects_;
+  HalftoneOptions o_;
+  SceneEffects effects_;
+  Image frame_;
+  RenderStats stats_;
+};
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0 : v[v.size() / 2];
+}
+
+/// The effect off (a) and on (b), frame for frame in turn, in the same process: the medians
+/// of each [ms] and their ratio b / a, so that the load of a shared machine falls on both alike.
+void effects_pair(benchmark::State& state, Case a, Case b) {
+  Frame fa(a), fb(b);
+  std::vector<double> ta, tb;
+  bool a_first = true;
+  for (auto _ : state) {
+    if (a_first) {
+      ta.push_back(fa.render());
+      tb.push_back(fb.render());
+    } else {
+      tb.push_back(fb.render());
+      ta.push_back(fa.render());
+    }
+    a_first = !a_first;
+  }
+  const double ma = median(ta), mb = median(tb);
+  state.counters["off_ms"] = ma;
+  state.counters["on_ms"] = mb;
+  state.counters["on_over_off"] = ma > 0 ? mb / ma : 0;
+  state.counters["depth_sorts"] = double(fb.stats().depth_sorts);
+  state.counters["light_pieces"] = double(fb.stats().light_pieces);
+  state.counters["effects_us"] = fb.stats().effects_us;
 }
 
 /// Deciding the effects and casting the shadows alone (once per scene).
@@ -107,9 +156,7 @@ void effects_prepare(benchmark::State& state, Scene s) {
   state.counters["shadow_polygons"] = double(shadow_polygons);
 }
 
-void with_repetitions(benchmark::internal::Benchmark* b) {
-  b->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(9)->ReportAggregatesOnly(true);
-}
+void pairs(benchmark::internal::Benchmark* b) { b->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(200); }
 
 Case bare(Case k) {
   k.plan = false;
@@ -118,24 +165,32 @@ Case bare(Case k) {
 
 }  // namespace
 
-// No lights, no objects: planned against bare (the 3% target).
-BENCHMARK_CAPTURE(effects_frame, Effects_none_bare, bare(Case{}))->Apply(with_repetitions);
-BENCHMARK_CAPTURE(effects_frame, Effects_none_planned, Case{})->Apply(with_repetitions);
-// Depth resolution: the furnished room without and with its table (search skipped: no crossing).
-BENCHMARK_CAPTURE(effects_frame, Effects_depth_off, Case{Scene::Furnished, true, false, false})->Apply(with_repetitions);
-BENCHMARK_CAPTURE(effects_frame, Effects_depth_on, Case{Scene::Furnished})->Apply(with_repetitions);
-// The implicit-line search the bare pipeline makes wherever objects stand.
-BENCHMARK_CAPTURE(effects_frame, Effects_depth_on_implicit_search, bare(Case{Scene::Furnished}))->Apply(with_repetitions);
-// Shadows: one lamp, lit from the eye instead; shadows prepared once; cast every frame.
-BENCHMARK_CAPTURE(effects_frame, Effects_shadows_off,
-                  Case{Scene::Lamp, true, true, true, ShadingModel::Flat, 5, Lights::Eye})->Apply(with_repetitions);
-BENCHMARK_CAPTURE(effects_frame, Effects_shadows_on, Case{Scene::Lamp, true, true})->Apply(with_repetitions);
-BENCHMARK_CAPTURE(effects_frame, Effects_shadows_on_cast_each_frame, Case{Scene::Lamp})->Apply(with_repetitions);
+// No lights, no objects: bare (a) against planned (b) — the 3% target.
+BENCHMARK_CAPTURE(effects_pair, Effects_none_bare_vs_planned, bare(Case{}), Case{})->Apply(pairs);
+BENCHMARK_CAPTURE(effects_pair, Effects_none_bare_vs_planned_corridor, bare(Case{Scene::Corridor}), Case{Scene::Corridor})
+    ->Apply(pairs);
+// Depth resolution: the furnished room without (a) and with (b) its table.
+BENCHMARK_CAPTURE(effects_pair, Effects_depth, Case{Scene::Furnished, true, false, false}, Case{Scene::Furnished})
+    ->Apply(pairs);
+// The implicit-line search: skipped because nothing crosses (a), searched as the bare pipeline does (b).
+BENCHMARK_CAPTURE(effects_pair, Effects_implicit_line_search, Case{Scene::Furnished}, bare(Case{Scene::Furnished}))
+    ->Apply(pairs);
+// Shadows: the lamp's plan lit from the eye (a), by the lamp with shadows prepared once (b).
+BENCHMARK_CAPTURE(effects_pair, Effects_shadows,
+                  Case{Scene::Lamp, true, true, true, ShadingModel::Flat, 5, Lights::Eye}, Case{Scene::Lamp, true, true})
+    ->Apply(pairs);
+// Shadows prepared once (a) or cast every frame (b).
+BENCHMARK_CAPTURE(effects_pair, Effects_shadows_cast_each_frame, Case{Scene::Lamp, true, true}, Case{Scene::Lamp})
+    ->Apply(pairs);
 BENCHMARK_CAPTURE(effects_prepare, Effects_prepare_lamp, Scene::Lamp)->Unit(benchmark::kMicrosecond);
-// Smooth shading and the distance law (the light at the eye).
-BENCHMARK_CAPTURE(effects_frame, Effects_smooth_no_falloff,
-                  Case{Scene::House, true, false, true, ShadingModel::Smooth, 0})->Apply(with_repetitions);
-BENCHMARK_CAPTURE(effects_frame, Effects_smooth_falloff, Case{Scene::House, true, false, true, ShadingModel::Smooth})
-    ->Apply(with_repetitions);
-// Coloured light: the lamp warm white against white (shadows prepared once, both).
-BENCHMARK_CAPTURE(effects_frame, Effects_coloured_light, Case{Scene::Coloured, true, true})->Apply(with_repetitions);
+// Smooth shading: flat (a) against smooth without the distance law (b), the light at the eye.
+BENCHMARK_CAPTURE(effects_pair, Effects_smooth, Case{Scene::House},
+                  Case{Scene::House, true, false, true, ShadingModel::Smooth, 0})
+    ->Apply(pairs);
+// The distance law: smooth without (a) and with (b).
+BENCHMARK_CAPTURE(effects_pair, Effects_falloff, Case{Scene::House, true, false, true, ShadingModel::Smooth, 0},
+                  Case{Scene::House, true, false, true, ShadingModel::Smooth})
+    ->Apply(pairs);
+// Coloured light: the lamp white (a) and warm white (b), shadows prepared once.
+BENCHMARK_CAPTURE(effects_pair, Effects_coloured_light, Case{Scene::Lamp, true, true}, Case{Scene::Coloured, true, true})
+    ->Apply(pairs);

@@ -57,6 +57,7 @@ struct PolygonLook {
   std::array<float, 3> colour{};   ///< the material's colour (RGB, or luminance in [0])
   bool constant = false;
   bool lit = false;                ///< a Lit shade lit per sample (lit_samples)
+  bool piecewise = false;          ///< lit, every term constant: one colour per run lit alike (lit_runs)
   int light_channels = 1;          ///< lit: intensities per sample, 1 or 3 (coloured light)
 };
 
@@ -116,6 +117,42 @@ class BandPainter {
   /// A Lit shade: the secondary scan says, per light, which samples it reaches (its lit
   /// pieces, less its shadow polygons); lit_samples adds up the lights there.
   const float* light_lit(const Span& sp, int row, const SurfaceShade& shade, int channels) {
+    const LightTerm* terms = mask_lights(sp, shade);
+    const size_t p = size_t(sp.polygon);
+    lit_samples(shade.lit_ambient, terms, shade.terms, masks_.data(), scene_.polygons[p].depth, scene_.raster, row,
+                sp.x0, sp.x1, channels, intensity_.data());
+    return intensity_.data();
+  }
+
+  /// A flat Lit shade (every light's term constant): the span cut into runs lit alike (the
+  /// masks do not change within a run), each of one colour: f(from, to, linear colour).
+  template <class F>
+  void lit_runs(const Span& sp, const PolygonLook& look, F f) {
+    const SurfaceShade& shade = scene_.shades[size_t(sp.polygon)];
+    const LightTerm* terms = mask_lights(sp, shade);
+    const int n = sp.x1 - sp.x0;
+    for (int i = 0; i < n;) {
+      int j = i + 1;
+      for (; j < n; ++j) {
+        bool same = true;
+        for (int t = 0; t < shade.terms && same; ++t) same = !masks_[size_t(t)] || masks_[size_t(t)][j] == masks_[size_t(t)][i];
+        if (!same) break;
+      }
+      std::array<float, 3> light = shade.lit_ambient;
+      for (int t = 0; t < shade.terms; ++t)
+        if (!masks_[size_t(t)] || masks_[size_t(t)][i])
+          for (size_t c = 0; c < 3; ++c) light[c] += terms[t].diffuse * terms[t].colour[c];
+      std::array<float, 3> linear{};
+      for (size_t c = 0; c < 3; ++c)
+        linear[c] = look.colour[c] * std::min(light[look.light_channels == 3 ? c : 0], 1.0f);
+      f(sp.x0 + i, sp.x0 + j, linear);
+      i = j;
+    }
+  }
+
+  /// Per light term of the span's shade, which of its samples the light reaches (masks_;
+  /// nullptr: all), from the secondary scan's spans of its pieces. Returns the terms.
+  const LightTerm* mask_lights(const Span& sp, const SurfaceShade& shade) {
     const int n = sp.x1 - sp.x0;
     const LightTerm* terms = scene_.light_terms.data() + shade.first_term;
     masks_.resize(size_t(shade.terms));
@@ -138,10 +175,7 @@ class BandPainter {
       for (int32_t i = term.first_piece; i < shadows; ++i) mark(i, 1);
       for (int32_t i = shadows; i < shadows + term.shadow_pieces; ++i) mark(i, 0);
     }
-    const size_t p = size_t(sp.polygon);
-    lit_samples(shade.lit_ambient, terms, shade.terms, masks_.data(), scene_.polygons[p].depth, scene_.raster, row,
-                sp.x0, sp.x1, channels, intensity_.data());
-    return intensity_.data();
+    return terms;
   }
 
   /// One sample per pixel: straight into the picture.
@@ -150,6 +184,12 @@ class BandPainter {
     if (sp.polygon >= 0) pixels_ += sp.x1 - sp.x0;
     uint8_t* at = dst + size_t(sp.x0) * size_t(ch_);
     if (look.constant) return fill_pixels(at, size_t(sp.x1 - sp.x0), look.code, ch_);
+    if (look.piecewise)
+      return lit_runs(sp, look, [&](int from, int to, const std::array<float, 3>& linear) {
+        std::array<uint8_t, 3> code{};
+        for (size_t c = 0; c < 3; ++c) code[c] = encoder_(linear[c]);
+        fill_pixels(dst + size_t(from) * size_t(ch_), size_t(to - from), code, ch_);
+      });
     const float* in = light(sp, row);
     if (look.light_channels == 3) {
       for (int i = 0; i < sp.x1 - sp.x0; ++i)
@@ -165,6 +205,14 @@ class BandPainter {
   void add_span(const Span& sp, int row) {
     const PolygonLook& look = look_of(sp.polygon);
     if (sp.polygon >= 0) pixels_ += sp.x1 - sp.x0;
+    if (look.piecewise)
+      return lit_runs(sp, look, [&](int from, int to, const std::array<float, 3>& linear) {
+        for (int px = from / s_; px * s_ < to; ++px) {
+          const float k = float(std::min(to, (px + 1) * s_) - std::max(from, px * s_));
+          float* sum = &sum_[size_t(px) * size_t(ch_)];
+          for (int c = 0; c < ch_; ++c) sum[c] += k * linear[size_t(c)];
+        }
+      });
     const float* in = look.constant ? nullptr : light(sp, row);
     for (int px = sp.x0 / s_; px * s_ < sp.x1; ++px) {
       const int from = std::max(sp.x0, px * s_), to = std::min(sp.x1, (px + 1) * s_);
@@ -239,6 +287,9 @@ PolygonLook look_of(const SurfaceShade& shade, const std::vector<LightTerm>& ter
     for (float& i : intensity) i = std::min(i, 1.0f);
     if (!shade.coloured) intensity[1] = intensity[2] = intensity[0];
     look.lit = !look.constant;
+    look.piecewise = look.lit;
+    for (int32_t t = shade.first_term; t < shade.first_term + shade.terms; ++t)
+      look.piecewise &= terms[size_t(t)].kind == LightTerm::Kind::Constant;
   }
   for (size_t c = 0; c < 3; ++c) {
     look.linear[c] = look.colour[c] * intensity[c];

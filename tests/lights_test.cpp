@@ -345,6 +345,45 @@ TEST(Shadows, LightThroughADoorIsTheDoorwaysProjection) {
   EXPECT_EQ(t.wrong, 0) << t.lit << " lit, " << t.dark << " dark, " << t.boundary << " on the outline";
 }
 
+TEST(Shadows, ACurvedMeshUnderALampIsLitOnTheSideFacingIt) {
+  // Smooth: Gouraud from the vertex normals, turned to the side the eye sees. A torus lying
+  // under the lamp, seen from above: most of what the eye sees of it faces the lamp and is lit.
+  Plan p = box_under_a_light();
+  Object torus;
+  torus.name = "torus";
+  torus.mesh = avenues::testing::plan_path("scenes/torus.off");
+  torus.position = {2, 2, 0.6};
+  torus.scale = {0.3, 0.3, 0.3};
+  p.objects = {torus};
+  const CellComplex c = build_cells(p);
+  const Camera cam = Camera::look_at({3.2, 3.2, 2.6}, {2, 2, 0.6}, 50, 160, 120);
+  const VisibleSet vs = find_visible(c, cam, c.locate(cam.eye).cell);
+  const std::vector<PlacedObject> objects = place_objects(c);
+  HalftoneOptions o;
+  o.colour = false;
+  o.shading.model = ShadingModel::Smooth;
+  const SceneEffects e = prepare_effects(c, objects, o);
+  SceneOptions so = scene_options(o);
+  so.shading = e.plan.shading;
+  so.lighting = &e.plan.lighting;
+  so.shadows = &e.shadows;
+  const ScreenScene scene = screen_scene_of_view(c, objects, cam, vs, so);
+  long gouraud = 0;
+  for (const LightTerm& t : scene.light_terms) gouraud += t.kind == LightTerm::Kind::Gouraud;
+  EXPECT_GT(gouraud, 100);
+  Image im;
+  std::vector<int32_t> items;
+  render_scene(scene, o, im, nullptr, &items);
+  long seen = 0, lit = 0;
+  for (size_t i = 0; i < items.size(); ++i) {
+    if (items[i] < 0 || scene.sources[size_t(items[i])].kind != PolygonSource::Kind::Object) continue;
+    ++seen;
+    lit += im.data[i] > unlit_code() + 2;
+  }
+  EXPECT_GT(seen, 1000);
+  EXPECT_GT(lit, seen / 2) << lit << " of " << seen;
+}
+
 TEST(Shadows, TheSamePictureOnAnyNumberOfThreads) {
   const CellComplex c = build_cells(box_under_a_light());
   const Camera cam = Camera::look_at({5.6, 5.6, 2.7}, {3.0, 3.0, 0.0}, 70, 160, 120);
