@@ -33,10 +33,22 @@ struct Outline2 {
 Outline2 footprint_of(const Triangulation& T, const std::vector<int32_t>& boundary) {
   const size_t m = boundary.size();
   auto from = [&](int32_t h) { return T.vert[size_t(T.tri[size_t(h / 3)][size_t((h % 3 + 1) % 3)])]; };
+  // Points that rounded to one (a wall top whose corners lie within rounding of each other)
+  // come as runs of equal points: the first of a run stands for it, and a corner is judged
+  // against its nearest distinct neighbours — else both points of a corner would be dropped.
+  auto distinct = [&](size_t k, bool forward) {
+    const Vec2 here = from(boundary[k]);
+    for (size_t j = 1; j < m; ++j) {
+      const Vec2 q = from(boundary[forward ? (k + j) % m : (k + m - j) % m]);
+      if (q.x != here.x || q.y != here.y) return q;
+    }
+    return here;
+  };
   std::vector<uint8_t> keep(m);
   for (size_t k = 0; k < m; ++k) {
-    Vec2 prev = from(boundary[(k + m - 1) % m]), here = from(boundary[k]), next = from(boundary[(k + 1) % m]);
-    keep[k] = orientation(prev, here, next) != 0;
+    const Vec2 here = from(boundary[k]), before = from(boundary[(k + m - 1) % m]);
+    if (here.x == before.x && here.y == before.y) continue;  // a repeat: its run's first stands for it
+    keep[k] = orientation(distinct(k, false), here, distinct(k, true)) != 0;
   }
   size_t first = 0;
   while (first < m && !keep[first]) ++first;

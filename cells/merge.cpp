@@ -107,6 +107,36 @@ Pieces merge_convex(const Triangulation& T, const std::vector<int32_t>& label, c
   }
   std::sort(cand.begin(), cand.end());
 
+  // Two convex pieces joined convexly at both ends of their shared chain are convex —
+  // unless rounding has put two of their corners on one point: then the merged boundary
+  // passes the point twice (a pinch), and the piece would be two. A run of equal points
+  // in a row is only a zero-length side (footprint_of drops it); equal points apart are a pinch.
+  std::vector<std::pair<Vec2, size_t>> corners;
+  auto pinched = [&](const std::vector<int32_t>& cycle) {
+    corners.clear();
+    for (size_t k = 0; k < cycle.size(); ++k) corners.push_back({T.vert[size_t(from(cycle[k]))], k});
+    std::sort(corners.begin(), corners.end(), [](const auto& x, const auto& y) {
+      return x.first.x < y.first.x || (x.first.x == y.first.x && (x.first.y < y.first.y ||
+                                                                  (x.first.y == y.first.y && x.second < y.second)));
+    });
+    const size_t m = cycle.size();
+    for (size_t i = 0; i < corners.size();) {
+      size_t j = i + 1;
+      while (j < corners.size() && corners[j].first.x == corners[i].first.x && corners[j].first.y == corners[i].first.y)
+        ++j;
+      // corners[i..j) share a point: a run when they are consecutive around the cycle.
+      size_t breaks = 0;
+      for (size_t k = i; k < j; ++k) {
+        const size_t next = (corners[k].second + 1) % m;
+        bool in_group = false;
+        for (size_t l = i; l < j && !in_group; ++l) in_group = corners[l].second == next;
+        breaks += !in_group;
+      }
+      if (j - i > 1 && breaks > 1) return true;
+      i = j;
+    }
+    return false;
+  };
   std::vector<int32_t> merged;
   for (auto [neg_len, h] : cand) {
     (void)neg_len;
@@ -152,6 +182,7 @@ Pieces merge_convex(const Triangulation& T, const std::vector<int32_t>& label, c
     merged.clear();
     for (size_t k = 0; k < np - len_p; ++k) merged.push_back(bp[(s + len_p + k) % np]);
     for (size_t k = 0; k < nq - len_q; ++k) merged.push_back(bq[(sq + len_q + k) % nq]);
+    if (pinched(merged)) continue;
     parent[size_t(Q)] = P;
     bp.swap(merged);
     std::vector<int32_t>().swap(bnd[size_t(Q)]);

@@ -198,7 +198,8 @@ Outline make_outline(const Plan& plan) {
           r.open.push_back({floor + o.sill, floor + o.head});
         }
         r.open = unite(r.open);
-        const Vec2 a = c[i] + sp.s0 * dir[i], b = c[i] + sp.s1 * dir[i];
+        // At the segment's ends, its very corners (c[i] + len * dir[i] is not c[i + 1] in doubles).
+        const Vec2 a = sp.s0 > 0 ? c[i] + sp.s0 * dir[i] : c[i], b = sp.s1 < len ? c[i] + sp.s1 * dir[i] : c[i + 1];
         if (h == 0) {
           r.sheet = true;
           r.poly = {a, b};

@@ -48,6 +48,14 @@ void find_edges(FurniturePiece& p) {
   for (size_t i = 0; i < sides.size();) {
     size_t j = i;
     while (j < sides.size() && sides[j].lo == sides[i].lo && sides[j].hi == sides[i].hi) ++j;
+    // A side only of polygons of no area (a needle, the walls of a box of no height) is
+    // no edge of anything seen: it would be drawn as a line of its own.
+    bool flat_only = true;
+    for (size_t k = i; k < j && flat_only; ++k) flat_only = length(p.polygon_normal[size_t(sides[k].polygon)]) == 0;
+    if (flat_only) {
+      i = j;
+      continue;
+    }
     FurnitureEdge e;
     e.v[0] = sides[i].lo;
     e.v[1] = sides[i].hi;

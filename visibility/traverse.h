@@ -102,9 +102,13 @@ class Traversal {
     for (Vec2 m : mask) c = c + (1.0 / double(mask.size())) * m;
     const Vec3 inside = dir(c);
     for (size_t i = 0; i < mask.size(); ++i) {
-      Vec3 p = cross(dir(mask[i]), dir(mask[(i + 1) % mask.size()]));
+      const Vec3 a = dir(mask[i]), b = dir(mask[(i + 1) % mask.size()]);
+      Vec3 p = cross(a, b);
       const double l = length(p);
-      if (!(l > 0)) continue;
+      // Two mask vertices that (nearly) coincide give no plane: a normal from a cross
+      // product this short is all rounding, and could cull what the mask sees. Skipping
+      // a plane only makes the cull more conservative.
+      if (!(l > 1e-9 * length(a) * length(b))) continue;
       p = (1.0 / l) * p;
       n.push_back(dot(p, inside) < 0 ? -1.0 * p : p);
     }
