@@ -28,6 +28,7 @@
 #include <optional>
 #include <sstream>
 
+#include <GLFW/glfw3.h>
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
@@ -162,6 +163,9 @@ class Session {
     Clock::time_point last_start = Clock::now();
     double smoothed_work = 0, smoothed_render = 0;
     Clock::time_point hud_refreshed = Clock::now() - std::chrono::seconds(1);
+    GamepadState scripted_pad;
+    // Triggers rest at -1, as GLFW reports them.
+    scripted_pad.axes[GLFW_GAMEPAD_AXIS_LEFT_TRIGGER] = scripted_pad.axes[GLFW_GAMEPAD_AXIS_RIGHT_TRIGGER] = -1;
     for (long frame = 0; !quit && !viewer_.should_close(); ++frame) {
       if (opt_.frames > 0 && frame >= opt_.frames) break;
       // Wait for input only when nothing would change without it.
@@ -175,7 +179,6 @@ class Session {
       if (in.focus_lost) controls_.release_all();
       for (const auto& [key, down] : in.keys) controls_.key(key, down);
       controls_.look(in.look_dx, in.look_dy);
-      controls_.gamepad(in.gamepad);
       // The script's events for this frame.
       std::vector<std::string> shots;
       for (; next_event < events.size() && events[next_event].frame <= frame; ++next_event) {
@@ -189,8 +192,18 @@ class Session {
           case ScriptEvent::What::Screenshot: shots.push_back(e.path); break;
           case ScriptEvent::What::Pose: std::cout << "pose: " << pose_text() << "\n"; break;
           case ScriptEvent::What::Quit: quit = true; break;
+          case ScriptEvent::What::PadAxis:
+            scripted_pad.present = true;
+            scripted_pad.axes[size_t(e.key)] = float(e.x);
+            break;
+          case ScriptEvent::What::PadButton:
+            scripted_pad.present = true;
+            scripted_pad.buttons[size_t(e.key)] = uint8_t(e.x);
+            break;
         }
       }
+      // A scripted pad stands in for a real one, as GLFW would report it.
+      controls_.gamepad(scripted_pad.present && !in.gamepad.present ? scripted_pad : in.gamepad);
       for (Action a : controls_.take_commands()) command(a, quit);
       step(controls_.motion(dt), dt);
 
@@ -263,7 +276,8 @@ class Session {
 
   void draw(bool rendered) {
     std::vector<const OverlayPanel*> panels;
-    if (hud_on_) panels.push_back(&hud_panel_);
+    // The help, while shown, stands in for the status line (it would cover it).
+    if (hud_on_ && !help_on_) panels.push_back(&hud_panel_);
     if (help_on_) panels.push_back(&help_panel_);
     viewer_.draw(frame_, rendered, panels);
   }

@@ -117,6 +117,49 @@ int key_code(const std::string& name) {
   return -1;
 }
 
+namespace {
+const std::pair<const char*, int> kPadAxes[] = {
+    {"LEFT_X", GLFW_GAMEPAD_AXIS_LEFT_X},           {"LEFT_Y", GLFW_GAMEPAD_AXIS_LEFT_Y},
+    {"RIGHT_X", GLFW_GAMEPAD_AXIS_RIGHT_X},         {"RIGHT_Y", GLFW_GAMEPAD_AXIS_RIGHT_Y},
+    {"LEFT_TRIGGER", GLFW_GAMEPAD_AXIS_LEFT_TRIGGER}, {"RIGHT_TRIGGER", GLFW_GAMEPAD_AXIS_RIGHT_TRIGGER}};
+const std::pair<const char*, int> kPadButtons[] = {
+    {"A", GLFW_GAMEPAD_BUTTON_A},
+    {"B", GLFW_GAMEPAD_BUTTON_B},
+    {"X", GLFW_GAMEPAD_BUTTON_X},
+    {"Y", GLFW_GAMEPAD_BUTTON_Y},
+    {"LEFT_BUMPER", GLFW_GAMEPAD_BUTTON_LEFT_BUMPER},
+    {"RIGHT_BUMPER", GLFW_GAMEPAD_BUTTON_RIGHT_BUMPER},
+    {"BACK", GLFW_GAMEPAD_BUTTON_BACK},
+    {"START", GLFW_GAMEPAD_BUTTON_START},
+    {"GUIDE", GLFW_GAMEPAD_BUTTON_GUIDE},
+    {"LEFT_THUMB", GLFW_GAMEPAD_BUTTON_LEFT_THUMB},
+    {"RIGHT_THUMB", GLFW_GAMEPAD_BUTTON_RIGHT_THUMB},
+    {"DPAD_UP", GLFW_GAMEPAD_BUTTON_DPAD_UP},
+    {"DPAD_RIGHT", GLFW_GAMEPAD_BUTTON_DPAD_RIGHT},
+    {"DPAD_DOWN", GLFW_GAMEPAD_BUTTON_DPAD_DOWN},
+    {"DPAD_LEFT", GLFW_GAMEPAD_BUTTON_DPAD_LEFT}};
+}  // namespace
+
+int gamepad_axis_code(const std::string& name) {
+  for (const auto& [n, code] : kPadAxes)
+    if (n == name) return code;
+  return -1;
+}
+
+int gamepad_button_code(const std::string& name) {
+  for (const auto& [n, code] : kPadButtons)
+    if (n == name) return code;
+  return -1;
+}
+
+std::string gamepad_names() {
+  std::string out = "axes";
+  for (const auto& [n, code] : kPadAxes) out += std::string(code == 0 ? " " : ", ") + n;
+  out += "; buttons";
+  for (const auto& [n, code] : kPadButtons) out += std::string(code == 0 ? " " : ", ") + n;
+  return out;
+}
+
 std::string key_names() {
   return "A..Z, 0..9, F1..F12, UP, DOWN, LEFT, RIGHT, PAGE_UP, PAGE_DOWN, HOME, END, ESCAPE, TAB, SPACE, ENTER, "
          "LEFT_SHIFT, RIGHT_SHIFT, EQUAL, MINUS, KP_ADD, KP_SUBTRACT, INSERT, DELETE";

@@ -49,6 +49,13 @@ int key_code(const std::string& name);
 /// The names key_code() knows, for messages.
 std::string key_names();
 
+/// GLFW_GAMEPAD_AXIS_* and GLFW_GAMEPAD_BUTTON_* by their names without the prefix
+/// ("LEFT_Y", "A", "DPAD_UP"); -1 for other names.
+int gamepad_axis_code(const std::string& name);
+int gamepad_button_code(const std::string& name);
+/// The names those know, for messages.
+std::string gamepad_names();
+
 /// The switches' names, in order: x+, x−, y+, y−, z+, z−, scale+, scale−.
 const std::array<const char*, 8>& switch_names();
 

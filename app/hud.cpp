@@ -11,6 +11,27 @@ namespace avenues::app {
 
 namespace {
 
+/// The panel's size [px] for these lines at this size of type.
+void measure(const std::vector<std::string>& lines, double font_px, int& w, int& h) {
+  cairo_surface_t* scratch = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1);
+  cairo_t* m = cairo_create(scratch);
+  cairo_select_font_face(m, "monospace", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(m, font_px);
+  cairo_font_extents_t fe;
+  cairo_font_extents(m, &fe);
+  double text_w = 0;
+  for (const std::string& l : lines) {
+    cairo_text_extents_t te;
+    cairo_text_extents(m, l.c_str(), &te);
+    text_w = std::max(text_w, te.x_advance);
+  }
+  cairo_destroy(m);
+  cairo_surface_destroy(scratch);
+  const double pad = std::round(font_px * 0.6), line_h = std::ceil(fe.height);
+  w = std::max(1, int(std::ceil(text_w + 2 * pad)));
+  h = std::max(1, int(std::ceil(line_h * double(lines.size()) + 2 * pad)));
+}
+
 void draw_panel(OverlayPanel& panel, const std::vector<std::string>& lines, double font_px, int x, int y,
                 bool centred_in, int win_w, int win_h) {
   // Measure on a scratch surface, then draw at the measured size.
@@ -77,8 +98,12 @@ void set_text_panel(OverlayPanel& panel, const std::vector<std::string>& lines, 
 
 void set_centred_text_panel(OverlayPanel& panel, const std::vector<std::string>& lines, int width, int height,
                             double font_px) {
-  // Smaller type in a small window, so that every line fits (down to 8 px).
-  font_px = std::clamp(std::floor((height - 24) / (1.2 * double(lines.size() + 1))), 8.0, font_px);
+  // Smaller type in a small window, so that every line fits, wide and high (down to 7 px).
+  for (; font_px > 7; font_px -= 0.5) {
+    int w = 0, h = 0;
+    measure(lines, font_px, w, h);
+    if (w <= width - 8 && h <= height - 8) break;
+  }
   const std::string src = joined(lines, font_px);
   if (src == panel.source && panel.width > 0) {
     panel.x = std::max(0, (width - panel.width) / 2);

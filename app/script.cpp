@@ -27,7 +27,8 @@ std::vector<ScriptEvent> read_script(const std::string& path) {
       throw PlanError({path, n, 0, element}, message);
     };
     if (!(words >> e.frame) || e.frame < 0) fail("frame", "a script line starts with a frame number (0 or more)");
-    if (!(words >> what)) fail("event", "the frame number wants an event: down, up, tap, look, resize, screenshot, pose or quit");
+    if (!(words >> what))
+      fail("event", "the frame number wants an event: down, up, tap, look, resize, screenshot, pose, pad or quit");
     if (what == "down" || what == "up" || what == "tap") {
       e.what = what == "down" ? ScriptEvent::What::Down : what == "up" ? ScriptEvent::What::Up : ScriptEvent::What::Tap;
       std::string key;
@@ -46,12 +47,26 @@ std::vector<ScriptEvent> read_script(const std::string& path) {
     } else if (what == "screenshot") {
       e.what = ScriptEvent::What::Screenshot;
       if (!(words >> e.path)) fail("screenshot", "'screenshot' wants a file name (.png)");
+    } else if (what == "pad") {
+      std::string name;
+      if (!(words >> name)) fail("pad", "'pad' wants an axis or a button and its value: LEFT_Y -1, A 1");
+      e.key = gamepad_axis_code(name);
+      e.what = ScriptEvent::What::PadAxis;
+      if (e.key < 0) {
+        e.key = gamepad_button_code(name);
+        e.what = ScriptEvent::What::PadButton;
+      }
+      if (e.key < 0) fail(name, "unknown gamepad axis or button '" + name + "' (" + gamepad_names() + ")");
+      if (!(words >> e.x) || !(e.x >= -1 && e.x <= 1) ||
+          (e.what == ScriptEvent::What::PadButton && e.x != 0 && e.x != 1))
+        fail(name, e.what == ScriptEvent::What::PadAxis ? "an axis wants a value from -1 to 1"
+                                                         : "a button wants 1 (down) or 0 (up)");
     } else if (what == "pose") {
       e.what = ScriptEvent::What::Pose;
     } else if (what == "quit") {
       e.what = ScriptEvent::What::Quit;
     } else {
-      fail(what, "unknown event '" + what + "' (down, up, tap, look, resize, screenshot, pose, quit)");
+      fail(what, "unknown event '" + what + "' (down, up, tap, look, resize, screenshot, pose, pad, quit)");
     }
     if (!(words >> std::ws).eof()) fail(what, "too many words for '" + what + "'");
     events.push_back(e);

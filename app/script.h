@@ -12,9 +12,14 @@
 //   150  resize 800 450    the window is resized
 //   180  screenshot a.png  the frame as shown is read back and written (PNG)
 //   181  pose              the eye, heading, pitch and field of view are printed
+//   200  pad LEFT_Y -1     a gamepad's stick or trigger moves to a value in [-1, 1], or a
+//   230  pad A 1           button goes down (1) or up (0): the scripted pad stands in for
+//                          a real one, as GLFW would report it, until the script ends
 //   240  quit
 //
-// Key names are GLFW's without the prefix (W, UP, PAGE_UP, F2, 1, KP_ADD, ...).
+// Key names are GLFW's without the prefix (W, UP, PAGE_UP, F2, 1, KP_ADD, ...); so are
+// the gamepad's axes (LEFT_X, LEFT_Y, RIGHT_X, RIGHT_Y, LEFT_TRIGGER, RIGHT_TRIGGER) and
+// buttons (A, B, X, Y, LEFT_BUMPER, ..., BACK, START, GUIDE, DPAD_UP, ...).
 #pragma once
 
 #include <cstdint>
@@ -25,10 +30,10 @@
 namespace avenues::app {
 
 struct ScriptEvent {
-  enum class What : uint8_t { Down, Up, Tap, Look, Resize, Screenshot, Pose, Quit } what = What::Tap;
+  enum class What : uint8_t { Down, Up, Tap, Look, Resize, Screenshot, Pose, Quit, PadAxis, PadButton } what = What::Tap;
   long frame = 0;      ///< >= 0
-  int key = -1;        ///< GLFW key code (Down, Up, Tap)
-  double x = 0, y = 0; ///< Look: [px]; Resize: width, height
+  int key = -1;        ///< GLFW key code (Down, Up, Tap); GLFW gamepad axis or button (PadAxis, PadButton)
+  double x = 0, y = 0; ///< Look: [px]; Resize: width, height; PadAxis: value; PadButton: 0 or 1
   std::string path;    ///< Screenshot
   int line = 0;        ///< in the file, for messages
 };

@@ -333,6 +333,35 @@ TEST_F(WalkWindow, SenseSwitchesLatchAndMoveTheEyeUpTheStairwell) {
   EXPECT_NE(r.out.find("pose: --eye "), std::string::npos) << r.out;
 }
 
+// The gamepad, through the same path as GLFW's gamepad state (a scripted pad stands in for a
+// real one): the left stick walks, the right stick turns, a button is a command.
+TEST_F(WalkWindow, AGamepadsSticksWalkTurnAndItsButtonsCommand) {
+  NEED_DISPLAY();
+  write("pad.txt",
+        "0 pad LEFT_Y -1\n60 pad LEFT_Y 0\n"          // stick forward for one second (60 frames of 1/60 s)
+        "61 pad RIGHT_X -1\n91 pad RIGHT_X 0\n"       // stick left for half a second
+        "92 pad A 1\n93 pad A 0\n"                    // A: fly mode
+        "94 pad RIGHT_TRIGGER 1\n124 pad RIGHT_TRIGGER -1\n"  // climb for half a second
+        "125 pose\n125 quit\n");
+  const Outcome r = run("walk " + quote(plan("jones-house.toml")) +
+                        " --eye 2,1.5,1.6 --look 2,5,1.6 --fov 60 --size 320x180 --script pad.txt --stats-json s.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json last = read_json("s.json")["last"];
+  // Forward at the walking speed (1.4 m/s) for the 60 frames the stick was held.
+  EXPECT_NEAR(last["eye"][0].get<double>(), 2.0, 1e-9);
+  EXPECT_NEAR(last["eye"][1].get<double>(), 1.5 + 1.4, 1e-6);
+  // Turned left (anticlockwise) at 90°/s for 30 frames; A flipped walking to flying, and the
+  // right trigger then climbed at 1.2 m/s for 30 frames.
+  EXPECT_NEAR(last["yaw"].get<double>(), 90 + 45, 1e-6);
+  EXPECT_EQ(last["mode"], "fly");
+  EXPECT_NEAR(last["eye"][2].get<double>(), 1.6 + 0.6, 1e-6);
+  write("bad.txt", "0 pad LEFT_Z 1\n");
+  const Outcome named = run("walk " + quote(plan("jones-house.toml")) + " --script bad.txt");
+  EXPECT_EQ(named.status, 2);
+  EXPECT_NE(named.err.find("bad.txt:1"), std::string::npos) << named.err;
+  EXPECT_NE(named.err.find("LEFT_Z"), std::string::npos) << named.err;
+}
+
 TEST_F(WalkWindow, ExportsAndKeyframesFromTheWindow) {
   NEED_DISPLAY();
   write("export.txt",
