@@ -154,11 +154,18 @@ int run_path(const PathOptions& opt) {
   if (opt.format == "png" && have_ffmpeg()) {
     const fs::path dir(opt.out_dir);
     const std::string digits = std::to_string(std::max(4, int(std::to_string(frames.size()).size())));
+    // Written under another name and renamed when whole: never a partial walk.mp4.
+    const fs::path mp4 = dir / "walk.mp4", part = dir / "walk.mp4.part";
     const std::string cmd = "ffmpeg -loglevel error -y -framerate 25 -i '" + (dir / ("frame-%0" + digits + "d.png")).string() +
-                            "' -pix_fmt yuv420p -vf 'scale=trunc(iw/2)*2:trunc(ih/2)*2' '" + (dir / "walk.mp4").string() +
+                            "' -pix_fmt yuv420p -vf 'scale=trunc(iw/2)*2:trunc(ih/2)*2' -f mp4 '" + part.string() +
                             "' </dev/null";
-    if (std::system(cmd.c_str()) == 0) std::cout << "wrote " << (dir / "walk.mp4").string() << "\n";
-    else std::cerr << "avenues: ffmpeg could not make the MP4; the frames are there\n";
+    std::error_code mp4_error;
+    if (std::system(cmd.c_str()) == 0 && (fs::rename(part, mp4, mp4_error), !mp4_error)) {
+      std::cout << "wrote " << mp4.string() << "\n";
+    } else {
+      fs::remove(part, mp4_error);
+      std::cerr << "avenues: ffmpeg could not make the MP4; the frames are there\n";
+    }
   }
   return 0;
 }
