@@ -1,4 +1,4 @@
-// Avenues — reading Crow's tables 1a and 1b (see crow.h) and making scenes of them.
+// Avenues — reading Crow's tables 1a and 1b (see crow.h); the scene of one is crow_scene.cpp.
 #include "cells/crow.h"
 
 #include <algorithm>
@@ -265,27 +265,6 @@ std::vector<RealLine> crow_lines(const CrowObject& o) {
       add(a, b);
     }
   return out;
-}
-
-CellComplex read_crow_scene(const std::string& path, const MeshSceneParams& params) {
-  const CrowObject o = read_crow(path);
-  CellComplex c;
-  try {
-    if (o.table == CrowObject::Table::Polygons) {
-      c = build_mesh_scene({crow_mesh(o)}, params);
-    } else {
-      MeshSceneParams p = params;
-      for (Vec3 q : o.points) p.include.add(q);
-      c = build_mesh_scene({}, p);
-      add_real_lines(c, crow_lines(o));
-    }
-  } catch (const PlanError&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw std::runtime_error(path + ": " + e.what());
-  }
-  c.plan_name = std::filesystem::path(path).stem().string();
-  return c;
 }
 
 }  // namespace avenues
