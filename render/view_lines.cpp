@@ -2,6 +2,7 @@
 #include "render/view_lines.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "render/interval_clip.h"
@@ -21,10 +22,26 @@ constexpr double kOnFace = 1e-9;  ///< [m] furniture lying on a cell's face belo
 
 /// The mask's edges as camera-space half-spaces s·P >= 0 (interval_clip.h): the left side of the
 /// edge p→q of a counter-clockwise mask, cross(q − p, (X/Z, Y/Z) − p) >= 0, times Z.
+///
+/// An exact mask may keep two vertices a rounding apart (two nearly parallel portal edges,
+/// both kept in exact arithmetic). The edge between them has a direction made of rounding
+/// noise, and its half-plane would cut lines at random; so a vertex within kSameVertex of
+/// the last one kept is skipped, and its neighbours' edges bound the mask there (what is
+/// lost is a corner smaller than a millionth of a pixel).
 void mask_sides(const std::vector<Vec2>& mask, std::vector<Vec3>& sides) {
+  constexpr double kSameVertex = 1e-9;  ///< on the picture plane (x = X/Z): ~1e-6 px at 1920 px across 90°
   sides.clear();
-  for (size_t k = 0; k < mask.size(); ++k) {
-    const Vec2 p = mask[k], q = mask[(k + 1) % mask.size()];
+  std::vector<Vec2> kept;
+  kept.reserve(mask.size());
+  auto same = [&](Vec2 a, Vec2 b) {
+    return std::fabs(a.x - b.x) + std::fabs(a.y - b.y) <= kSameVertex * (1 + std::fabs(a.x) + std::fabs(a.y));
+  };
+  for (Vec2 v : mask)
+    if (kept.empty() || !same(v, kept.back())) kept.push_back(v);
+  while (kept.size() > 1 && same(kept.front(), kept.back())) kept.pop_back();
+  if (kept.size() < 3) kept = mask;  // a mask that small: as it is
+  for (size_t k = 0; k < kept.size(); ++k) {
+    const Vec2 p = kept[k], q = kept[(k + 1) % kept.size()];
     const double dx = q.x - p.x, dy = q.y - p.y;
     sides.push_back({-dy, dx, dy * p.x - dx * p.y});
   }
