@@ -461,10 +461,21 @@ int run_bench_accuracy(const AccuracyOptions& opt) {
           if (q.view == r.view && q.width == r.width && q.shading == m)
             dat += fmt("%.4g", q.ms) + " " + fmt("%.4g", std::max(q.rms, 1e-3)) + " " + std::to_string(q.samples) + "\n";
         dat += "\n\n";
+        // Colour by view, dashes by shading, point by size: 18 series stay told apart.
+        int view_index = 0, size_index = 0;
+        std::vector<std::string> views;
+        std::vector<int> widths;
+        for (const RenderRow& q : rrows) {
+          if (std::find(views.begin(), views.end(), q.view) == views.end()) views.push_back(q.view);
+          if (std::find(widths.begin(), widths.end(), q.width) == widths.end()) widths.push_back(q.width);
+        }
+        view_index = int(std::find(views.begin(), views.end(), r.view) - views.begin());
+        size_index = int(std::find(widths.begin(), widths.end(), r.width) - widths.begin());
         plots += std::string(plots.empty() ? "plot " : ", ") + "'" + (figs / "render.dat").string() + "' index " +
-                 std::to_string(block) + " using 1:2 with linespoints title '" + std::to_string(r.width) + "×" +
-                 std::to_string(r.height) + " " + to_string(m) + "', '' index " + std::to_string(block) +
-                 " using 1:2:3 with labels offset 1,0.6 notitle";
+                 std::to_string(block) + " using 1:2 with linespoints lc " + std::to_string(view_index + 1) + " dt " +
+                 (m == ShadingModel::Flat ? "1" : "2") + " pt " + std::to_string(5 + 2 * size_index) + " title '" +
+                 r.view + " " + std::to_string(r.width) + "×" + std::to_string(r.height) + " " + to_string(m) +
+                 "', '' index " + std::to_string(block) + " using 1:2:3 with labels offset 1,0.6 notitle";
         ++block;
       }
     write_text(figs / "render.dat", dat);
