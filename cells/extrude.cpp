@@ -36,18 +36,23 @@ Outline2 footprint_of(const Triangulation& T, const std::vector<int32_t>& bounda
   // Points that rounded to one (a wall top whose corners lie within rounding of each other)
   // come as runs of equal points: the first of a run stands for it, and a corner is judged
   // against its nearest distinct neighbours — else both points of a corner would be dropped.
+  // Points a rounding apart (distinct in the exact triangulation, within a few ulps once
+  // rounded) count as one too: the turn they make is noise.
+  auto same = [](Vec2 a, Vec2 b) {
+    return std::fabs(a.x - b.x) + std::fabs(a.y - b.y) <= 1e-12 * (1 + std::fabs(a.x) + std::fabs(a.y));
+  };
   auto distinct = [&](size_t k, bool forward) {
     const Vec2 here = from(boundary[k]);
     for (size_t j = 1; j < m; ++j) {
       const Vec2 q = from(boundary[forward ? (k + j) % m : (k + m - j) % m]);
-      if (q.x != here.x || q.y != here.y) return q;
+      if (!same(q, here)) return q;
     }
     return here;
   };
   std::vector<uint8_t> keep(m);
   for (size_t k = 0; k < m; ++k) {
     const Vec2 here = from(boundary[k]), before = from(boundary[(k + m - 1) % m]);
-    if (here.x == before.x && here.y == before.y) continue;  // a repeat: its run's first stands for it
+    if (same(here, before)) continue;  // a repeat: its run's first stands for it
     keep[k] = orientation(distinct(k, false), here, distinct(k, true)) != 0;
   }
   size_t first = 0;
