@@ -178,37 +178,111 @@ Mesh load_mesh(const std::string& path) {
   if (!read)
     throw std::runtime_error("cannot read mesh " + path + ": not a mesh OpenMesh can read (OBJ, OFF, PLY, STL)");
   if (pm.n_faces() == 0) throw std::runtime_error("mesh " + path + " has no faces");
-  Mesh m;
-  m.path = path;
+  std::vector<Vec3> vertices;
   for (auto v : pm.vertices()) {
     auto p = pm.point(v);
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
       throw std::runtime_error("mesh " + path + " has a vertex that is not a finite number");
-    m.vertices.push_back({p[0], p[1], p[2]});
+    vertices.push_back({p[0], p[1], p[2]});
   }
-  // Triangulate each polygon as a fan (OpenMesh keeps polygons; convex ones are the rule).
-  int poly = 0;
+  // OpenMesh keeps polygons; convex ones are the rule.
+  std::vector<std::vector<int>> polygons;
   for (auto f : pm.faces()) {
-    std::vector<int> idx;
-    for (auto v : pm.fv_range(f)) idx.push_back(v.idx());
-    if (idx.size() < 3) continue;
-    for (size_t k = 1; k + 1 < idx.size(); ++k) {
-      m.triangles.push_back({idx[0], idx[k], idx[k + 1]});
-      m.polygon_of.push_back(poly);
+    polygons.emplace_back();
+    for (auto v : pm.fv_range(f)) polygons.back().push_back(v.idx());
+  }
+  return mesh_of_polygons(path, std::move(vertices), std::move(polygons));
+}
+
+namespace {
+
+/// Puts into each polygon's edges the vertices lying on them (T-junctions), in order along
+/// the edge; `inserted` says, per polygon corner, whether it was put in here.
+void insert_t_junctions(const std::vector<Vec3>& v, std::vector<std::vector<int>>& polygons,
+                        std::vector<std::vector<uint8_t>>& inserted) {
+  // The vertices in use, by x, to find those within an edge's box quickly.
+  std::vector<uint8_t> used(v.size(), 0);
+  for (const auto& p : polygons)
+    for (int i : p) used[size_t(i)] = 1;
+  std::vector<int> by_x;
+  for (size_t i = 0; i < v.size(); ++i)
+    if (used[i]) by_x.push_back(int(i));
+  std::sort(by_x.begin(), by_x.end(), [&](int a, int b) { return v[size_t(a)].x < v[size_t(b)].x; });
+  inserted.assign(polygons.size(), {});
+  std::vector<std::pair<double, int>> on_edge;
+  for (size_t pi = 0; pi < polygons.size(); ++pi) {
+    const std::vector<int> p = polygons[pi];
+    if (p.size() < 3) continue;
+    std::vector<int> out;
+    std::vector<uint8_t> flags;
+    for (size_t k = 0; k < p.size(); ++k) {
+      const int ia = p[k], ib = p[(k + 1) % p.size()];
+      out.push_back(ia);
+      flags.push_back(0);
+      const Vec3 a = v[size_t(ia)], d = v[size_t(ib)] - a;
+      const double l2 = dot(d, d);
+      if (!(l2 > 0)) continue;
+      // On the edge: strictly between its ends, within 1e-9 of its length of its line.
+      const double tol = 1e-9 * std::sqrt(l2);
+      const double x0 = std::min(a.x, a.x + d.x) - tol, x1 = std::max(a.x, a.x + d.x) + tol;
+      auto it = std::lower_bound(by_x.begin(), by_x.end(), x0, [&](int i, double x) { return v[size_t(i)].x < x; });
+      on_edge.clear();
+      for (; it != by_x.end() && v[size_t(*it)].x <= x1; ++it) {
+        const int iv = *it;
+        if (iv == ia || iv == ib) continue;
+        const Vec3 w = v[size_t(iv)] - a;
+        const double t = dot(w, d) / l2;
+        if (!(t > 1e-9 && t < 1 - 1e-9)) continue;
+        const Vec3 off = w - t * d;
+        if (dot(off, off) > tol * tol) continue;
+        if (std::find(p.begin(), p.end(), iv) != p.end()) continue;  // a corner of this polygon already
+        on_edge.push_back({t, iv});
+      }
+      std::sort(on_edge.begin(), on_edge.end());
+      for (const auto& [t, iv] : on_edge) {
+        if (out.back() == iv) continue;
+        out.push_back(iv);
+        flags.push_back(1);
+      }
     }
-    ++poly;
+    polygons[pi] = std::move(out);
+    inserted[pi] = std::move(flags);
+  }
+}
+
+}  // namespace
+
+Mesh mesh_of_polygons(std::string path, std::vector<Vec3> vertices, std::vector<std::vector<int>> polygons) {
+  Mesh m;
+  m.path = std::move(path);
+  m.vertices = std::move(vertices);
+  std::vector<std::vector<uint8_t>> inserted;
+  insert_t_junctions(m.vertices, polygons, inserted);
+  // Each polygon a fan, from a corner of its own with no vertex put into either side of it:
+  // a fan from beside such a vertex would hold a triangle of no area.
+  for (size_t pi = 0; pi < polygons.size(); ++pi) {
+    const std::vector<int>& p = polygons[pi];
+    const size_t n = p.size();
+    if (n < 3) continue;  // no triangle; its number stays its own (paint is by polygon number)
+    size_t apex = 0;
+    for (size_t i = 0; i < n; ++i)
+      if (!inserted[pi][i] && !inserted[pi][(i + 1) % n] && !inserted[pi][(i + n - 1) % n]) {
+        apex = i;
+        break;
+      }
+    for (size_t k = 1; k + 1 < n; ++k) {
+      m.triangles.push_back({p[apex], p[(apex + k) % n], p[(apex + k + 1) % n]});
+      m.polygon_of.push_back(int(pi));
+    }
   }
   smooth_corner_normals(m);
-  // Closed: every polygon edge is shared by exactly two polygons, in opposite directions.
+  // Closed: every polygon edge is shared by exactly two polygons.
   std::map<std::pair<int, int>, int> edges;
-  for (auto f : pm.faces()) {
-    std::vector<int> idx;
-    for (auto v : pm.fv_range(f)) idx.push_back(v.idx());
-    for (size_t k = 0; k < idx.size(); ++k) {
-      int a = idx[k], b = idx[(k + 1) % idx.size()];
+  for (const auto& p : polygons)
+    for (size_t k = 0; k < p.size() && p.size() >= 3; ++k) {
+      const int a = p[k], b = p[(k + 1) % p.size()];
       edges[{std::min(a, b), std::max(a, b)}]++;
     }
-  }
   for (auto& [e, count] : edges) m.boundary_edges += count == 1;
   m.closed = m.boundary_edges == 0;
   return m;

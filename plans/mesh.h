@@ -34,6 +34,14 @@ struct Mesh {
 /// `crease_deg` of the corner's own polygon's, summed and made unit.
 void smooth_corner_normals(Mesh& m, double crease_deg = 45);
 
+/// A mesh of convex polygons (vertex indices, counter-clockwise seen from outside), as every
+/// reader makes it: a vertex lying on another polygon's edge (a T-junction) is put into that
+/// edge too, so that polygons meet vertex to vertex and their shared edges are one line on
+/// any raster; each polygon is cut into a fan of triangles (from a corner whose sides have
+/// no such vertex, where there is one); corner normals; closedness. Polygons of fewer than
+/// three vertices make no triangles (the others keep their numbers, Mesh::polygon_of).
+Mesh mesh_of_polygons(std::string path, std::vector<Vec3> vertices, std::vector<std::vector<int>> polygons);
+
 /// Reads a mesh; the format follows the extension. Throws std::runtime_error naming the
 /// file for a missing, unreadable or empty mesh.
 Mesh load_mesh(const std::string& path);

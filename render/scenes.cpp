@@ -273,26 +273,8 @@ std::vector<PaperScene> paper_scenes() {
 }
 
 Mesh mesh_of(const PaperScene& s) {
-  // As plans/mesh.cpp reads a file: fans, corner normals, closedness.
-  Mesh m;
-  m.path = "plans/scenes/" + s.name + ".off";
-  m.vertices = s.vertices;
-  std::map<std::pair<int, int>, int> edges;
-  for (size_t p = 0; p < s.polygons.size(); ++p) {
-    const std::vector<int>& idx = s.polygons[p];
-    for (size_t k = 1; k + 1 < idx.size(); ++k) {
-      m.triangles.push_back({idx[0], idx[k], idx[k + 1]});
-      m.polygon_of.push_back(int(p));
-    }
-    for (size_t k = 0; k < idx.size(); ++k) {
-      const int a = idx[k], b = idx[(k + 1) % idx.size()];
-      edges[{std::min(a, b), std::max(a, b)}]++;
-    }
-  }
-  smooth_corner_normals(m);
-  for (const auto& [e, count] : edges) m.boundary_edges += count == 1;
-  m.closed = m.boundary_edges == 0;
-  return m;
+  // As plans/mesh.cpp reads a file.
+  return mesh_of_polygons("plans/scenes/" + s.name + ".off", s.vertices, s.polygons);
 }
 
 std::string off_text(const PaperScene& s) {

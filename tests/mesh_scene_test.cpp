@@ -172,13 +172,15 @@ TEST(MeshScene, RandomViewsBetweenTwoBoxesInARoomAgreeWithRayCasting) {
 TEST(MeshScene, PaperScenesGiveValidCellsAndAgreeWithRayCasting) {
   // Every bundled scene but the ripple torus, whose 225 crossing plates take minutes to
   // decompose. Closed solids leave the box minus their volume; the open ones (the cottage's
-  // sheets, the bottomless cubes) are repaired with one warning per component.
+  // sheets, the bottomless cubes) are repaired with one warning per component. (The
+  // cottage's walls, roof and chimney touch in T-junctions, which the reader joins: they
+  // are one component of 11 polygons, not three.)
   struct Scene {
     const char* name;
     size_t warnings;
   };
   for (const Scene& s : {Scene{"wylie-tetrahedron.off", 0}, Scene{"wylie-cube.off", 0}, Scene{"crow-object.off", 0},
-                         Scene{"torus.off", 0}, Scene{"cubes.off", 32}, Scene{"cottage.off", 10}}) {
+                         Scene{"torus.off", 0}, Scene{"cubes.off", 32}, Scene{"cottage.off", 7}}) {
     SCOPED_TRACE(s.name);
     const CellComplex c = read_mesh_scene(scene_path(s.name));
     ASSERT_EQ(cells_are_valid(c), "");
