@@ -40,12 +40,15 @@
 #include "cells/atomic_file.h"
 #include "cells/build_cells.h"
 #include "cells/cell_complex.h"
+#include "plans/mesh.h"
 
 namespace avenues {
 namespace {
 
 constexpr char kMagic[8] = {'A', 'V', 'C', 'E', 'L', 'L', 'S', '\0'};
-constexpr uint32_t kVersion = 2;  // 2: Cell::prism (mesh scenes' general convex cells), Face::portals_overlap
+// 2: Cell::prism (mesh scenes' general convex cells), Face::portals_overlap;
+// 3: Object::box and Object::model (Sweet Home's furniture), Light::kind.
+constexpr uint32_t kVersion = 3;
 constexpr size_t kHeaderSize = 32;
 
 uint64_t checksum(const unsigned char* p, size_t n) {
@@ -152,10 +155,27 @@ void write_complex(Writer& w, const CellComplex& c) {
     w.str(o.name); w.str(o.mesh); w.i32(o.storey);
     w.vec3(o.position); w.vec3(o.rotation_deg); w.vec3(o.scale);
     w.i32(o.material); w.loc(o.where);
+    w.vec3(o.box);
+    // A model that came with the plan is saved with it: its vertices and triangles.
+    w.u8(o.model ? 1 : 0);
+    if (o.model) {
+      const Mesh& m = *o.model;
+      w.str(m.path);
+      w.count(m.vertices.size(), "model vertices");
+      for (const Vec3& v : m.vertices) w.vec3(v);
+      w.count(m.triangles.size(), "model triangles");
+      for (size_t t = 0; t < m.triangles.size(); ++t) {
+        for (int i : m.triangles[t]) w.i32(i);
+        w.i32(t < m.polygon_of.size() ? m.polygon_of[t] : int32_t(t));
+      }
+      w.u8(m.closed ? 1 : 0);
+      w.i32(m.boundary_edges);
+    }
   }
   w.count(c.lights.size(), "lights");
   for (const Light& l : c.lights) {
     w.str(l.name); w.vec3(l.position); w.f64(l.intensity); w.colour(l.colour); w.loc(l.where);
+    w.u8(static_cast<uint8_t>(l.kind));
   }
   w.vec3(c.far_box.lo); w.vec3(c.far_box.hi);
   w.u8(c.view ? 1 : 0);
@@ -297,8 +317,8 @@ constexpr size_t kMinCellLine = 4 + 8 + 8;
 constexpr size_t kMinCell = 1 + 4 + 4 + 4 + 16 + 4 + 4 + 4 + 4;
 constexpr size_t kMinPortal = 8 + 4 + 32 + 1 + 4;
 constexpr size_t kMinLine = 48 + 1;
-constexpr size_t kMinObject = 4 + 4 + 4 + 72 + 4 + kMinLoc;
-constexpr size_t kMinLight = 4 + 24 + 8 + 24 + kMinLoc;
+constexpr size_t kMinObject = 4 + 4 + 4 + 72 + 4 + kMinLoc + 24 + 1;
+constexpr size_t kMinLight = 4 + 24 + 8 + 24 + kMinLoc + 1;
 constexpr size_t kMinTiming = 4 + 8;
 constexpr size_t kMinSolid = 4 + 16 + 4;
 
@@ -382,6 +402,28 @@ void read_complex(Reader& r, CellComplex& c) {
     o.scale = r.vec3("object");
     o.material = r.i32("object");
     o.where = r.loc("object");
+    o.box = r.vec3("object");
+    if (r.u8("object") != 0) {
+      Mesh m;
+      m.path = r.str("model");
+      m.vertices.resize(r.count(24, "model vertices"));
+      for (Vec3& v : m.vertices) v = r.vec3("model");
+      const size_t triangles = r.count(16, "model triangles");
+      m.triangles.resize(triangles);
+      m.polygon_of.resize(triangles);
+      for (size_t t = 0; t < triangles; ++t) {
+        for (int& i : m.triangles[t]) {
+          i = r.i32("model");
+          if (i < 0 || size_t(i) >= m.vertices.size()) r.fail("a model's triangle names a vertex it does not have");
+        }
+        m.polygon_of[t] = r.i32("model");
+        if (m.polygon_of[t] < 0) r.fail("a model's triangle has a negative polygon number");
+      }
+      m.closed = r.u8("model") != 0;
+      m.boundary_edges = r.i32("model");
+      smooth_corner_normals(m);
+      o.model = std::make_shared<const Mesh>(std::move(m));
+    }
   }
   c.lights.resize(r.count(kMinLight, "lights"));
   for (Light& l : c.lights) {
@@ -390,6 +432,7 @@ void read_complex(Reader& r, CellComplex& c) {
     l.intensity = r.finite("light");
     l.colour = r.colour("light");
     l.where = r.loc("light");
+    l.kind = r.kind(LightKind::Ambient, "light kind");
   }
   // An empty box is stored as ±infinity: not checked for finiteness.
   c.far_box.lo = {r.f64("far box"), r.f64("far box"), r.f64("far box")};

@@ -15,13 +15,16 @@
 //      across a real corner the opening is cut in parts, so that every opening lies on
 //      one straight segment as outline.cpp wants;
 //   5. sloped walls → pieces of constant height, never cut inside an opening;
-//   6. rooms, furniture (boxes; the .obj models inside a .sh3d are not read), staircase
-//      cut-outs (floor openings), the observer camera.
+//   6. rooms, furniture (each piece's OBJ model, read once with OpenMesh and fitted to the
+//      piece; a box of its size where the model is not at hand), staircase cut-outs
+//      (floor openings), the observer camera.
 // Mistakes the file cannot be read past (no Home.xml, XML syntax, a wall without its
 // coordinates, a number that is not a number, a level that does not exist) are
 // PlanErrors; odd but readable data (NaN, zero-length walls, a window in no wall) is
 // repaired or dropped with a line in Plan::warnings.
 #include "cells/sweet_home.h"
+
+#include "plans/mesh.h"
 
 #include <pugixml.hpp>
 #include <zip.h>
@@ -37,6 +40,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <functional>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -111,50 +115,78 @@ bool has_sh3d_extension(const std::string& path) {
   return ext == ".sh3d";
 }
 
-/// The "Home.xml" entry of a .sh3d archive held in memory.
-std::string home_xml_of_zip(const std::string& path, const std::string& bytes) {
+/// A .sh3d archive held in memory (libzip), for its Home.xml and the models beside it.
+class ZipArchive {
+ public:
+  ZipArchive(const std::string& path, const std::string& bytes) : path_(path) {
+    const SourceLoc at{path, 0, 0, ""};
+    zip_error_t err;
+    zip_error_init(&err);
+    zip_source_t* src = zip_source_buffer_create(bytes.data(), bytes.size(), 0, &err);
+    if (!src) {
+      const std::string why = zip_error_strerror(&err);
+      zip_error_fini(&err);
+      throw PlanError(at, "cannot read the archive: " + why);
+    }
+    zip_t* za = zip_open_from_source(src, ZIP_RDONLY, &err);
+    if (!za) {
+      zip_source_free(src);
+      const std::string why = zip_error_strerror(&err);
+      zip_error_fini(&err);
+      throw PlanError(at, "not a Sweet Home 3D .sh3d file: not a zip archive (" + why + ")");
+    }
+    zip_error_fini(&err);
+    archive_.reset(za);
+  }
+  bool has(const std::string& name) const { return zip_name_locate(archive_.get(), name.c_str(), 0) >= 0; }
+  /// The entry's bytes; nullopt when there is no such entry. A damaged entry: PlanError.
+  std::optional<std::string> entry(const std::string& name) const {
+    const zip_int64_t idx = zip_name_locate(archive_.get(), name.c_str(), 0);
+    if (idx < 0) return std::nullopt;
+    const SourceLoc at{path_, 0, 0, ""};
+    zip_file_t* f = zip_fopen_index(archive_.get(), zip_uint64_t(idx), 0);
+    if (!f) throw PlanError(at, "cannot open " + name + " in the archive: " + std::string(zip_strerror(archive_.get())));
+    std::string out;
+    std::vector<char> buf(1 << 16);
+    for (;;) {
+      const zip_int64_t n = zip_fread(f, buf.data(), buf.size());
+      if (n < 0) {
+        const std::string why = zip_file_strerror(f);
+        zip_fclose(f);
+        throw PlanError(at, "cannot read " + name + " in the archive: " + why);
+      }
+      if (n == 0) break;
+      out.append(buf.data(), size_t(n));
+    }
+    zip_fclose(f);
+    return out;
+  }
+
+ private:
+  struct Discard {
+    void operator()(zip_t* z) const { zip_discard(z); }
+  };
+  std::string path_;
+  std::unique_ptr<zip_t, Discard> archive_;
+};
+
+/// The "Home.xml" entry of a .sh3d archive.
+std::string home_xml_of_zip(const std::string& path, const ZipArchive& zip) {
   const SourceLoc at{path, 0, 0, ""};
-  zip_error_t err;
-  zip_error_init(&err);
-  zip_source_t* src = zip_source_buffer_create(bytes.data(), bytes.size(), 0, &err);
-  if (!src) {
-    const std::string why = zip_error_strerror(&err);
-    zip_error_fini(&err);
-    throw PlanError(at, "cannot read the archive: " + why);
-  }
-  zip_t* za = zip_open_from_source(src, ZIP_RDONLY, &err);
-  if (!za) {
-    zip_source_free(src);
-    const std::string why = zip_error_strerror(&err);
-    zip_error_fini(&err);
-    throw PlanError(at, "not a Sweet Home 3D .sh3d file: not a zip archive (" + why + ")");
-  }
-  zip_error_fini(&err);
-  std::unique_ptr<zip_t, void (*)(zip_t*)> archive(za, &zip_discard);
-  const zip_int64_t idx = zip_name_locate(za, "Home.xml", 0);
-  if (idx < 0) {
-    if (zip_name_locate(za, "Home", 0) >= 0)
+  std::optional<std::string> xml = zip.entry("Home.xml");
+  if (!xml) {
+    if (zip.has("Home"))
       throw PlanError(at, "the archive holds no Home.xml entry, only a serialized Java 'Home' entry, which Avenues "
                           "does not read (save the home again with Sweet Home 3D 5.3 or later, which writes Home.xml)");
     throw PlanError(at, "the archive holds no Home.xml entry: not a Sweet Home 3D home");
   }
-  zip_file_t* f = zip_fopen_index(za, zip_uint64_t(idx), 0);
-  if (!f) throw PlanError(at, "cannot open Home.xml in the archive: " + std::string(zip_strerror(za)));
-  std::string out;
-  std::vector<char> buf(1 << 16);
-  for (;;) {
-    const zip_int64_t n = zip_fread(f, buf.data(), buf.size());
-    if (n < 0) {
-      const std::string why = zip_file_strerror(f);
-      zip_fclose(f);
-      throw PlanError(at, "cannot read Home.xml in the archive: " + why);
-    }
-    if (n == 0) break;
-    out.append(buf.data(), size_t(n));
-  }
-  zip_fclose(f);
-  return out;
+  return std::move(*xml);
 }
+
+/// Where a piece's model is found: an entry of the .sh3d archive, or beside a bare Home.xml
+/// (the model's path under the XML's folder, or its file name in a "models" folder there,
+/// where .ci/install-deps puts the models of Sweet Home's catalogue). Returns its bytes.
+using ModelSource = std::function<std::optional<std::string>(const std::string& model)>;
 
 /// Byte offset → 1-based line and column.
 class LineIndex {
@@ -258,6 +290,8 @@ struct PieceIn {
   bool door_or_window = false;
   std::string cut_out;    ///< a staircase's staircaseCutOutShape (SVG path in the unit square)
   bool mirrored = false;
+  std::string model;      ///< its model: an entry of the .sh3d archive, or a catalogue path
+  std::array<double, 9> model_rotation{1, 0, 0, 0, 1, 0, 0, 0, 1};  ///< row-major, applied to the model first
 };
 
 /// A door or window on its way into the wall it sits in.
@@ -268,8 +302,8 @@ struct Hole {
 
 class HomeReader {
  public:
-  HomeReader(std::string path, std::string file, const std::string& text)
-      : path_(std::move(path)), file_(std::move(file)), lines_(text) {}
+  HomeReader(std::string path, std::string file, const std::string& text, ModelSource models)
+      : path_(std::move(path)), file_(std::move(file)), lines_(text), models_(std::move(models)) {}
 
   Plan read(pugi::xml_node home);
 
@@ -334,8 +368,13 @@ class HomeReader {
   void add_furniture();
   void read_camera(pugi::xml_node home);
 
+  std::shared_ptr<const Mesh> model_of(const PieceIn& p);
+
   std::string path_, file_;
   LineIndex lines_;
+  ModelSource models_;
+  std::map<std::string, std::shared_ptr<const Mesh>> models_read_;  ///< by model name, as read (nullptr: none)
+  int models_missing_ = 0;       ///< pieces left boxes because their model is not at hand
   Plan plan_;
   double wall_height_ = 2.5;   ///< [m] the home's default wall height
   bool has_levels_ = false;
@@ -697,6 +736,15 @@ void HomeReader::collect_pieces(pugi::xml_node parent, const std::string& level)
     p.door_or_window = kind == "doorOrWindow";
     p.cut_out = n.attribute("staircaseCutOutShape").as_string();
     p.mirrored = n.attribute("modelMirrored").as_bool();
+    p.model = n.attribute("model").as_string();
+    if (const std::string r = n.attribute("modelRotation").as_string(); !r.empty()) {
+      std::istringstream in(r);
+      std::array<double, 9> m{};
+      bool ok = true;
+      for (double& v : m) ok = ok && (in >> v) && std::isfinite(v);
+      if (ok && (in >> std::ws).eof()) p.model_rotation = m;
+      else warn(n, element, "modelRotation is not nine numbers: the model is used unrotated");
+    }
     pieces_.push_back(std::move(p));
   }
 }
@@ -1116,6 +1164,74 @@ std::vector<Vec2> cut_out_outline(const PieceIn& p) {
   return out;
 }
 
+/// The piece's model fitted to it as Sweet Home fits it: turned by modelRotation, its
+/// bounds scaled to the piece's width (x), height (y, up) and depth (z, towards the front),
+/// mirrored if asked, in the piece's own axes (base centred on the origin, z up, the front
+/// towards −y in plan). nullptr when the piece names no model or it is not at hand: a box
+/// of its size stands in.
+std::shared_ptr<const Mesh> HomeReader::model_of(const PieceIn& p) {
+  if (p.model.empty() || p.width <= 0 || p.depth <= 0 || p.height <= 0) return nullptr;
+  auto [it, fresh] = models_read_.try_emplace(p.model);
+  if (fresh) {
+    std::string ext = std::filesystem::path(p.model).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    std::optional<std::string> bytes = models_ ? models_(p.model) : std::nullopt;
+    if (!bytes) {
+      plan_.warnings.push_back(p.where.str() + ": model " + p.model + " is not at hand: a box of the piece's size stands in");
+    } else if (ext != ".obj") {
+      plan_.warnings.push_back(p.where.str() + ": model " + p.model + " is not an OBJ file (only those are read): a box stands in");
+    } else {
+      try {
+        it->second = std::make_shared<const Mesh>(read_mesh_bytes(*bytes, ext, path_ + ":" + p.model));
+      } catch (const std::runtime_error& e) {
+        plan_.warnings.push_back(p.where.str() + ": " + e.what() + ": a box of the piece's size stands in");
+      }
+    }
+  }
+  if (!it->second) {
+    ++models_missing_;
+    return nullptr;
+  }
+  const Mesh& raw = *it->second;
+  const auto& r = p.model_rotation;
+  std::vector<Vec3> turned;
+  Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (const Vec3& v : raw.vertices) {
+    const Vec3 t{r[0] * v.x + r[1] * v.y + r[2] * v.z, r[3] * v.x + r[4] * v.y + r[5] * v.z,
+                 r[6] * v.x + r[7] * v.y + r[8] * v.z};
+    lo = {std::min(lo.x, t.x), std::min(lo.y, t.y), std::min(lo.z, t.z)};
+    hi = {std::max(hi.x, t.x), std::max(hi.y, t.y), std::max(hi.z, t.z)};
+    turned.push_back(t);
+  }
+  auto fit = [](double v, double a, double b, double size, bool from_base) {
+    const double extent = b - a;
+    const double k = extent > 0 ? size / extent : 0;
+    return from_base ? (v - a) * k : (v - 0.5 * (a + b)) * k;
+  };
+  Mesh m = raw;
+  m.path = path_ + ":" + p.model + " as " + fmt(p.width * 100) + " x " + fmt(p.depth * 100) + " x " + fmt(p.height * 100) +
+           " cm" + (p.mirrored ? ", mirrored" : "");
+  for (size_t i = 0; i < turned.size(); ++i) {
+    const Vec3 t = turned[i];
+    const double x = fit(t.x, lo.x, hi.x, p.width, false) * (p.mirrored ? -1 : 1);
+    const double up = fit(t.y, lo.y, hi.y, p.height, true), front = fit(t.z, lo.z, hi.z, p.depth, false);
+    m.vertices[i] = {x, -front, up};  // Sweet Home's z (towards the front) is the plan's −y
+  }
+  if (p.mirrored) {
+    // A mirror turns polygons inside out: each polygon's fan a, b, c, ... is made again as
+    // the fan of a, ..., c, b (its triangles in reverse order, each turned).
+    for (size_t t = 0; t < m.triangles.size();) {
+      size_t end = t + 1;
+      while (end < m.triangles.size() && m.polygon_of[end] == m.polygon_of[t]) ++end;
+      std::reverse(m.triangles.begin() + std::ptrdiff_t(t), m.triangles.begin() + std::ptrdiff_t(end));
+      for (size_t k = t; k < end; ++k) std::swap(m.triangles[k][1], m.triangles[k][2]);
+      t = end;
+    }
+  }
+  smooth_corner_normals(m);
+  return std::make_shared<const Mesh>(std::move(m));
+}
+
 void HomeReader::add_furniture() {
   for (const PieceIn& p : pieces_) {
     if (p.door_or_window) continue;
@@ -1126,6 +1242,7 @@ void HomeReader::add_furniture() {
     o.rotation_deg = {0, 0, p.angle * 180 / std::numbers::pi};
     o.box = {p.width, p.depth, p.height};
     o.where = p.where;
+    o.model = model_of(p);
     plan_.objects.push_back(o);
     if (p.cut_out.empty() || p.width <= 0 || p.depth <= 0) continue;
     // A staircase cuts the floors of the storeys it climbs into.
@@ -1190,6 +1307,9 @@ Plan HomeReader::read(pugi::xml_node home) {
   add_furniture();
   read_camera(home);
 
+  if (models_missing_ > 0)
+    plan_.warnings.push_back(file_ + ": " + std::to_string(models_missing_) +
+                             " piece(s) of furniture drawn as boxes of their size: their models are not at hand");
   if (walls_cut_ > 0)
     plan_.warnings.push_back(file_ + ": " + std::to_string(walls_cut_) +
                              " wall(s) taller than their storey cut to its ceiling");
@@ -1205,13 +1325,29 @@ Plan HomeReader::read(pugi::xml_node home) {
 Plan read_sweet_home(const std::string& path) {
   const std::string bytes = read_bytes(path);
   std::string text, file = path;
+  std::unique_ptr<ZipArchive> zip;
+  ModelSource models;
   if (looks_like_zip(bytes) || has_sh3d_extension(path)) {
     if (!looks_like_zip(bytes))
       throw PlanError(SourceLoc{path, 0, 0, ""}, "not a Sweet Home 3D .sh3d file: not a zip archive");
-    text = home_xml_of_zip(path, bytes);
+    zip = std::make_unique<ZipArchive>(path, bytes);
+    text = home_xml_of_zip(path, *zip);
     file = path + ":Home.xml";
+    models = [&zip](const std::string& model) { return zip->entry(model); };
   } else {
     text = bytes;
+    const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+    models = [dir](const std::string& model) -> std::optional<std::string> {
+      for (const std::filesystem::path& f : {dir / model, dir / "models" / std::filesystem::path(model).filename()}) {
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(f, ec)) continue;
+        std::ifstream in(f, std::ios::binary);
+        std::ostringstream s;
+        s << in.rdbuf();
+        if (in.good() || in.eof()) return s.str();
+      }
+      return std::nullopt;
+    };
   }
   pugi::xml_document doc;
   const pugi::xml_parse_result parsed = doc.load_buffer(text.data(), text.size(), pugi::parse_default);
@@ -1227,7 +1363,7 @@ Plan read_sweet_home(const std::string& path) {
                     "not a Sweet Home 3D home: the root element is <" + std::string(root ? root.name() : "") +
                         ">, not <home>");
   }
-  return HomeReader(path, file, text).read(home);
+  return HomeReader(path, file, text, std::move(models)).read(home);
 }
 
 }  // namespace avenues

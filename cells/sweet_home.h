@@ -10,8 +10,10 @@
 //                      pieces of constant height (cells are vertical prisms),
 //   <doorOrWindow>     into openings of the wall they sit in (also inside furniture groups),
 //   <room>             into rooms labelled at a point well inside their polygon,
-//   <pieceOfFurniture> into boxes of the piece's size (the models are not read),
-//                      and a staircase's cut-out into holes in the floors it climbs through,
+//   <pieceOfFurniture> into objects: the piece's OBJ model (an entry of the .sh3d, or
+//                      beside a bare Home.xml at the path it names) fitted to the
+//                      piece as Sweet Home fits it, else a box of its size with a
+//                      warning; a staircase's cut-out into holes in the floors it climbs through,
 //   <observerCamera>   into the plan's viewpoint.
 // Sweet Home lengths are centimetres with y pointing down the screen; a point (x, y)
 // becomes (x/100, −y/100) m, which keeps counter-clockwise polygons counter-clockwise

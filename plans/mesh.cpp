@@ -3,6 +3,7 @@
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/System/omstream.hh>
 
 #include <algorithm>
 #include <cctype>
@@ -165,6 +166,31 @@ void smooth_corner_normals(Mesh& m, double crease_deg) {
   }
 }
 
+namespace {
+Mesh mesh_of_openmesh(const PolyMesh& pm, const std::string& path);
+
+/// OpenMesh talks while it reads (a material its OBJ file names but does not define, a face
+/// it refuses): not to Avenues' users, who get Avenues' own messages. Quiet while alive.
+class QuietOpenMesh {
+ public:
+  QuietOpenMesh() : log_(::omlog().is_enabled()), err_(::omerr().is_enabled()), out_(::omout().is_enabled()) {
+    ::omlog().disable();
+    ::omerr().disable();
+    ::omout().disable();
+  }
+  ~QuietOpenMesh() {
+    if (log_) ::omlog().enable();
+    if (err_) ::omerr().enable();
+    if (out_) ::omout().enable();
+  }
+  QuietOpenMesh(const QuietOpenMesh&) = delete;
+  QuietOpenMesh& operator=(const QuietOpenMesh&) = delete;
+
+ private:
+  bool log_, err_, out_;
+};
+}  // namespace
+
 Mesh load_mesh(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) throw std::runtime_error("cannot read mesh " + path + ": no such file");
   std::string ext = std::filesystem::path(path).extension().string();
@@ -172,11 +198,30 @@ Mesh load_mesh(const std::string& path) {
   const std::string off_text = ext == ".off" ? check_off(path) : std::string();
   PolyMesh pm;
   OpenMesh::IO::Options opt;
+  const QuietOpenMesh quiet;
   std::istringstream off_stream(off_text);
   const bool read = off_text.empty() ? OpenMesh::IO::read_mesh(pm, path, opt)
                                      : OpenMesh::IO::read_mesh(pm, off_stream, ".off", opt);
   if (!read)
     throw std::runtime_error("cannot read mesh " + path + ": not a mesh OpenMesh can read (OBJ, OFF, PLY, STL)");
+  return mesh_of_openmesh(pm, path);
+}
+
+Mesh read_mesh_bytes(const std::string& bytes, const std::string& ext, const std::string& name) {
+  if (ext != ".obj") throw std::runtime_error("cannot read mesh " + name + ": only OBJ models are read from memory");
+  for (char ch : bytes)
+    if (ch == '\0') throw std::runtime_error("cannot read mesh " + name + ": an OBJ file holds no NUL bytes");
+  PolyMesh pm;
+  OpenMesh::IO::Options opt;
+  const QuietOpenMesh quiet;
+  std::istringstream in(bytes);
+  if (!OpenMesh::IO::read_mesh(pm, in, ext, opt)) throw std::runtime_error("cannot read mesh " + name + ": not an OBJ mesh");
+  return mesh_of_openmesh(pm, name);
+}
+
+namespace {
+
+Mesh mesh_of_openmesh(const PolyMesh& pm, const std::string& path) {
   if (pm.n_faces() == 0) throw std::runtime_error("mesh " + path + " has no faces");
   std::vector<Vec3> vertices;
   for (auto v : pm.vertices()) {
@@ -193,8 +238,6 @@ Mesh load_mesh(const std::string& path) {
   }
   return mesh_of_polygons(path, std::move(vertices), std::move(polygons));
 }
-
-namespace {
 
 /// Puts into each polygon's edges the vertices lying on them (T-junctions), in order along
 /// the edge; `inserted` says, per polygon corner, whether it was put in here.
@@ -313,10 +356,12 @@ std::string mesh_key_of_box(Vec3 size) {
 }
 
 std::string mesh_key(const Object& object) {
+  if (object.model) return "model " + object.model->path;
   return object.mesh.empty() ? mesh_key_of_box(object.box) : object.mesh;
 }
 
 Mesh load_object_mesh(const Object& object) {
+  if (object.model) return *object.model;
   if (object.mesh.empty()) {
     if (!(object.box.x > 0 && object.box.y > 0 && object.box.z > 0))
       throw std::runtime_error(object.where.str() + ": object '" + object.name + "' has neither a mesh nor a box size");

@@ -46,14 +46,20 @@ Mesh mesh_of_polygons(std::string path, std::vector<Vec3> vertices, std::vector<
 /// file for a missing, unreadable or empty mesh.
 Mesh load_mesh(const std::string& path);
 
+/// Reads a mesh held in memory (a model inside an archive): `ext` is its format (".obj"),
+/// `name` what messages call it. Throws std::runtime_error naming it when it cannot be read.
+Mesh read_mesh_bytes(const std::string& bytes, const std::string& ext, const std::string& name);
+
 /// A box `size` large (x by y, z high), its base centred on the origin: furniture known
 /// only by its dimensions. Its path is mesh_key_of_box(size).
 Mesh box_mesh(Vec3 size);
 std::string mesh_key_of_box(Vec3 size);
-/// What identifies an object's mesh, for loading each only once: its file, or its box.
+/// What identifies an object's mesh, for loading each only once: its file, its model's
+/// name, or its box.
 std::string mesh_key(const Object& object);
 
-/// The mesh of a plan's object (a box when it names no file, Object::box); a failure names the object's place in the plan too
+/// The mesh of a plan's object (its model, Object::model; a box when it names no file,
+/// Object::box); a failure names the object's place in the plan too
 /// ("house.toml:62:1 (object 'table'): cannot read mesh ...").
 Mesh load_object_mesh(const Object& object);
 

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -17,6 +18,8 @@
 #include "plans/geometry.h"
 
 namespace avenues {
+
+struct Mesh;  // plans/mesh.h
 
 /// Where an element came from: "house.toml:12:3 (wall 'north')".
 struct SourceLoc {
@@ -127,6 +130,9 @@ struct Object {
   /// With no mesh: the object is a box this size [m] (x by y, z high), its base centred
   /// on `position` (furniture whose model is not at hand). Scale and rotation apply.
   Vec3 box{0, 0, 0};
+  /// A mesh that came with the plan rather than from a file of its own (a model inside a
+  /// Sweet Home 3D home), in the object's axes like a file's; `mesh` then only names it.
+  std::shared_ptr<const Mesh> model;
   MaterialId material = -1;
   SourceLoc where;
 };

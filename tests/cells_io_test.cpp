@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "cells/build_cells.h"
+#include "plans/mesh.h"
 #include "plans/plan.h"
 #include "render/plan_drawing.h"
 
@@ -128,6 +129,7 @@ void expect_same(const CellComplex& a, const CellComplex& b) {
     EXPECT_EQ(a.lights[i].name, b.lights[i].name);
     EXPECT_TRUE(same(a.lights[i].position, b.lights[i].position));
     EXPECT_TRUE(same(a.lights[i].intensity, b.lights[i].intensity));
+    EXPECT_EQ(a.lights[i].kind, b.lights[i].kind);
   }
   EXPECT_TRUE(same(a.far_box.lo, b.far_box.lo));
   EXPECT_TRUE(same(a.far_box.hi, b.far_box.hi));
@@ -192,6 +194,43 @@ TEST_F(CellsIo, RoundTripKeepsEveryField) {
   const fs::path q = dir_ / "again.cells";
   save_cells(loaded, q.string());
   EXPECT_EQ(slurp(p), slurp(q));
+}
+
+// What a plan from elsewhere carries: furniture as boxes of a size, furniture with its own
+// model (a Sweet Home piece's), an ambient light. All of it survives saving and loading.
+TEST_F(CellsIo, BoxesModelsAndAmbientLightSurvive) {
+  Plan plan = read_plan(kPlan);
+  Object boxed;
+  boxed.name = "crate";
+  boxed.box = {0.6, 0.4, 0.5};
+  boxed.position = {2, 2, 0};
+  Object modelled = boxed;
+  modelled.name = "stool";
+  modelled.position = {2.5, 3, 0};
+  modelled.model = std::make_shared<const Mesh>(box_mesh({0.3, 0.3, 0.45}));
+  plan.objects = {boxed, modelled};
+  Light ambient;
+  ambient.name = "sky light";
+  ambient.kind = LightKind::Ambient;
+  ambient.intensity = 0.2;
+  plan.lights.push_back(ambient);
+  const CellComplex c = build_cells(plan);
+  const fs::path p = dir_ / "furnished.cells";
+  save_cells(c, p.string());
+  const CellComplex loaded = load_cells(p.string());
+  expect_same(c, loaded);
+  ASSERT_EQ(loaded.objects.size(), 2u);
+  EXPECT_TRUE(same(loaded.objects[0].box, boxed.box));
+  EXPECT_FALSE(loaded.objects[0].model);
+  ASSERT_TRUE(loaded.objects[1].model);
+  const Mesh& m = *loaded.objects[1].model;
+  EXPECT_EQ(m.vertices, modelled.model->vertices);
+  EXPECT_EQ(m.triangles, modelled.model->triangles);
+  EXPECT_EQ(m.polygon_of, modelled.model->polygon_of);
+  EXPECT_EQ(m.corner_normals.size(), 3 * m.triangles.size());
+  EXPECT_TRUE(m.closed);
+  EXPECT_EQ(mesh_key(loaded.objects[1]), mesh_key(modelled));
+  EXPECT_EQ(loaded.lights.back().kind, LightKind::Ambient);
 }
 
 TEST_F(CellsIo, LoadedComplexLocatesLikeTheBuiltOne) {

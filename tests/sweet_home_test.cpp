@@ -25,6 +25,8 @@
 
 #include "cells/build_cells.h"
 #include "cells/sweet_home.h"
+#include "plans/mesh.h"
+#include "render/view_lines.h"
 #include "ray_oracle.h"
 #include "visibility/visible_set.h"
 
@@ -501,6 +503,115 @@ TEST(SweetHome, FurnitureBecomesBoxesTurnedTheWayTheyStand) {
       EXPECT_EQ(o.kind, OpeningKind::Door);
     }
   EXPECT_TRUE(back_door);
+}
+
+/// An L-shaped block as an OBJ file, in Sweet Home's model axes (y up, z towards the
+/// front), 2 × 1 × 3 units and off the origin: 8 + 4 vertices, every face a quad.
+std::string l_block_obj() {
+  // The L in the x–y plane (a 2-wide foot, a 1-wide upright 3 high), extruded along z 1 deep.
+  const double xy[6][2] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 3}, {0, 3}};
+  std::string obj = "# an L\nmtllib missing.mtl\nusemtl nowhere\n";
+  for (double z : {10.0, 11.0})
+    for (const auto& p : xy) obj += "v " + std::to_string(p[0] + 5) + " " + std::to_string(p[1] - 2) + " " + std::to_string(z) + "\n";
+  // Front (z = 11, facing +z) and back (z = 10) as two quads each, then the six sides.
+  obj += "f 7 8 9 10\nf 7 10 11 12\nf 1 4 3 2\nf 1 6 5 4\n";
+  for (int k = 0; k < 6; ++k) {
+    const int a = k + 1, b = (k + 1) % 6 + 1;
+    obj += "f " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(b + 6) + " " + std::to_string(a + 6) + "\n";
+  }
+  return obj;
+}
+
+/// Signed volume of a closed mesh: positive when its triangles face outwards.
+double signed_volume(const Mesh& m) {
+  double v = 0;
+  for (const auto& t : m.triangles)
+    v += dot(m.vertices[size_t(t[0])], cross(m.vertices[size_t(t[1])], m.vertices[size_t(t[2])])) / 6;
+  return v;
+}
+
+// A piece's model, inside the .sh3d or beside a bare Home.xml, is read and fitted to the
+// piece as Sweet Home fits it: its bounds scaled to width × depth × height, its front
+// (Sweet Home's +z) towards the plan's −y before the piece's angle turns it; mirrored, it
+// is still closed and faces outwards. A model that is not at hand leaves a box and a warning.
+TEST(SweetHome, FurnitureModelsAreReadAndFittedToTheirPieces) {
+  TempDir dir;
+  const std::string pieces = R"(
+  <pieceOfFurniture name='L' model='1/l.obj' x='100' y='100' width='80' depth='40' height='120'/>
+  <pieceOfFurniture name='Mirrored L' model='1/l.obj' modelMirrored='true' x='200' y='100' width='80' depth='40' height='120'/>
+  <pieceOfFurniture name='Turned L' model='1/l.obj' x='300' y='300' angle='1.5707964' width='80' depth='40' height='120'/>
+  <pieceOfFurniture name='Lost' model='2/lost.obj' x='100' y='300' width='50' depth='50' height='50'/>
+)";
+  const std::string sh3d = dir.zip("models.sh3d", {{"Home.xml", small_home(pieces)}, {"1/l.obj", l_block_obj()}});
+  const Plan p = read_sweet_home(sh3d);
+  std::map<std::string, const Object*> by_name;
+  for (const Object& o : p.objects) by_name[o.name] = &o;
+  ASSERT_EQ(by_name.size(), 4u);
+  for (const char* name : {"L", "Mirrored L", "Turned L"}) {
+    SCOPED_TRACE(name);
+    const Object& o = *by_name[name];
+    ASSERT_TRUE(o.model);
+    const Mesh& m = *o.model;
+    EXPECT_TRUE(m.closed);
+    EXPECT_EQ(m.vertices.size(), 12u);
+    Vec3 lo{1e9, 1e9, 1e9}, hi{-1e9, -1e9, -1e9};
+    for (const Vec3& v : m.vertices) {
+      lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
+      hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
+    }
+    EXPECT_NEAR(lo.x, -0.4, 1e-9);
+    EXPECT_NEAR(hi.x, 0.4, 1e-9);
+    EXPECT_NEAR(lo.y, -0.2, 1e-9);
+    EXPECT_NEAR(hi.y, 0.2, 1e-9);
+    EXPECT_NEAR(lo.z, 0, 1e-9);
+    EXPECT_NEAR(hi.z, 1.2, 1e-9);
+    // An L of 4 of its 6 unit squares: 4/6 of the box's volume, facing outwards.
+    EXPECT_NEAR(signed_volume(m), 0.8 * 0.4 * 1.2 * 4 / 6, 1e-9);
+    // The foot (model x from 0 to 2, y below 1) lies along the plan's x; mirrored, to the other side.
+    const bool mirrored = std::string(name) == "Mirrored L";
+    int foot_far_side = 0;
+    for (const Vec3& v : m.vertices)
+      if (v.z < 0.5 && std::fabs(std::fabs(v.x) - 0.4) < 1e-9) foot_far_side += (v.x > 0) != mirrored;
+    EXPECT_EQ(foot_far_side, 4);
+    // Sweet Home's front (+z) is the plan's −y: the vertices of the front face are at y = −0.2.
+    EXPECT_NEAR(o.rotation_deg.z, std::string(name) == "Turned L" ? -90.0 : 0.0, 1e-4);
+  }
+  // The same model is read once and shared.
+  EXPECT_EQ(by_name["L"]->model->triangles.size(), by_name["Turned L"]->model->triangles.size());
+  EXPECT_FALSE(by_name["Lost"]->model);
+  EXPECT_NEAR(by_name["Lost"]->box.x, 0.5, 1e-12);
+  int lost = 0;
+  for (const std::string& w : p.warnings) lost += contains(w, "(pieceOfFurniture 'Lost'): model 2/lost.obj is not at hand");
+  EXPECT_EQ(lost, 1);
+  // Beside a bare Home.xml, the model is found at the path the piece names.
+  fs::create_directories(fs::path(dir.write("x", "")).parent_path() / "1");
+  dir.write("1/l.obj", l_block_obj());
+  const Plan bare = read_sweet_home(dir.write("Home.xml", small_home(pieces)));
+  for (const Object& o : bare.objects) {
+    EXPECT_TRUE(o.name == "Lost" || o.model) << o.name;
+  }
+  // A drawing of them: the models' silhouettes and creases are drawn.
+  const CellComplex c = build_cells(p);
+  const Camera cam = Camera::look_at({2, -3.5, 1.6}, {1.5, -1, 0.5}, 70, 320, 180);
+  const VisibleSet vs = find_visible(c, cam, c.locate(cam.eye).cell);
+  int furniture = 0;
+  for (const Stroke& st : draw_view(c, prepare_line_scene(c), cam, vs).strokes) furniture += st.layer == Layer::Furniture;
+  EXPECT_GT(furniture, 12);
+}
+
+// The example homes' furniture comes from Sweet Home's catalogue; .ci/install-deps puts
+// those models beside the homes. Every piece of every home then has its model.
+TEST(SweetHome, TheExampleHomesFurnitureHasItsModels) {
+  if (!fs::exists(kExamples / "com/eteks/sweethome3d/io/resources/armchair.obj"))
+    GTEST_SKIP() << "the catalogue's models are not in " << kExamples << " (run .ci/install-deps as root)";
+  for (const char* home : kHomes) {
+    SCOPED_TRACE(home);
+    const Plan p = read_sweet_home((kExamples / (std::string(home) + ".xml")).string());
+    size_t with_model = 0;
+    for (const Object& o : p.objects) with_model += o.model != nullptr;
+    EXPECT_EQ(with_model, p.objects.size());
+    for (const std::string& w : p.warnings) EXPECT_FALSE(contains(w, "not at hand")) << w;
+  }
 }
 
 TEST(SweetHome, OddDataIsDroppedWithAWarning) {
