@@ -110,7 +110,7 @@ EffectPlan plan_effects(const CellComplex& complex, const std::vector<PlacedObje
     const Interpenetration ip = find_interpenetration(complex, objects);
     p.interpenetration_pairs = ip.pairs_tested;
     p.implicit_lines.on = ip.found;
-    p.implicit_lines.why = ip.found ? ip.what + " interpenetrate"
+    p.implicit_lines.why = ip.found ? ip.what
                                     : "no two polygons interpenetrate (" +
                                           plural(ip.pairs_tested, "pair", "pairs") + " of triangles tested at load)";
   }

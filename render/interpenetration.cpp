@@ -133,9 +133,9 @@ Interpenetration find_interpenetration(const CellComplex& complex, const std::ve
     auto name = [&](int a, int b) {
       if (a < 0 || (b >= 0 && b < a)) std::swap(a, b);  // the object first, the earlier object first
       const std::string first = "object '" + objects[size_t(a)].name + "'";
-      if (b < 0) return first + " and a face of its cell";
+      if (b < 0) return first + " and a face of its cell cross";
       if (a == b) return first + " passes through itself";
-      return first + " and object '" + objects[size_t(b)].name + "'";
+      return first + " and object '" + objects[size_t(b)].name + "' cross";
     };
     if (sweep(tris, out, name)) return out;
   }
@@ -152,7 +152,7 @@ Interpenetration find_interpenetration(const std::vector<Mesh>& meshes) {
   };
   sweep(tris, out, [&](int a, int b) {
     if (b < a) std::swap(a, b);
-    return a == b ? label(a) + " passes through itself" : label(a) + " and " + label(b);
+    return a == b ? label(a) + " passes through itself" : label(a) + " and " + label(b) + " cross";
   });
   return out;
 }

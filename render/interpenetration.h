@@ -30,7 +30,7 @@ namespace avenues {
 
 struct Interpenetration {
   bool found = false;
-  std::string what;        ///< the first crossing found, named ("object 'table' and a face of its cell")
+  std::string what;        ///< the first crossing found, as a clause ("object 'table' and a face of its cell cross")
   long pairs_tested = 0;   ///< triangle pairs whose boxes met and were tested
 };
 

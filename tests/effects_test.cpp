@@ -95,9 +95,9 @@ TEST(Effects, DepthOnlyWhereObjectsStandAndImplicitLinesOnlyWhereTheyCross) {
   EXPECT_EQ(line(e, "implicit lines").rfind("implicit lines: off \u2014 no two polygons interpenetrate (", 0), 0u) << e;
   // Two boxes through each other; a box sunk into the floor.
   e = explain(room_with({box("a", {2, 2, 0}), box("b", {2.5, 2.4, 0.3})}, {}));
-  EXPECT_EQ(line(e, "implicit lines"), "implicit lines: on \u2014 object 'a' and object 'b' interpenetrate");
+  EXPECT_EQ(line(e, "implicit lines"), "implicit lines: on \u2014 object 'a' and object 'b' cross");
   e = explain(room_with({box("sunk", {3, 3, -0.2})}, {}));
-  EXPECT_EQ(line(e, "implicit lines"), "implicit lines: on \u2014 object 'sunk' and a face of its cell interpenetrate");
+  EXPECT_EQ(line(e, "implicit lines"), "implicit lines: on \u2014 object 'sunk' and a face of its cell cross");
 }
 
 TEST(Effects, ShadowsOnlyForLightsAwayFromTheEye) {
