@@ -1338,6 +1338,11 @@ Plan read_sweet_home(const std::string& path) {
     text = bytes;
     const std::filesystem::path dir = std::filesystem::path(path).parent_path();
     models = [dir](const std::string& model) -> std::optional<std::string> {
+      // Only below the home's folder: a home names no file elsewhere on the machine.
+      const std::filesystem::path rel(model);
+      if (rel.empty() || rel.is_absolute() || rel.has_root_name()) return std::nullopt;
+      for (const auto& part : rel)
+        if (part == "..") return std::nullopt;
       for (const std::filesystem::path& f : {dir / model, dir / "models" / std::filesystem::path(model).filename()}) {
         std::error_code ec;
         if (!std::filesystem::is_regular_file(f, ec)) continue;

@@ -585,11 +585,20 @@ TEST(SweetHome, FurnitureModelsAreReadAndFittedToTheirPieces) {
   EXPECT_EQ(lost, 1);
   // Beside a bare Home.xml, the model is found at the path the piece names.
   fs::create_directories(fs::path(dir.write("x", "")).parent_path() / "1");
-  dir.write("1/l.obj", l_block_obj());
+  const std::string model_file = dir.write("1/l.obj", l_block_obj());
   const Plan bare = read_sweet_home(dir.write("Home.xml", small_home(pieces)));
   for (const Object& o : bare.objects) {
     EXPECT_TRUE(o.name == "Lost" || o.model) << o.name;
   }
+  // But only below the home's folder: a home names no file elsewhere on the machine.
+  const Plan elsewhere = read_sweet_home(dir.write(
+      "Elsewhere.xml", small_home("<pieceOfFurniture name='Far' model='" + model_file +
+                                  "' x='100' y='100' width='80' depth='40' height='120'/>\n"
+                                  "<pieceOfFurniture name='Up' model='../" + fs::path(model_file).parent_path().parent_path().filename().string() +
+                                  "/1/l.obj' x='200' y='100' width='80' depth='40' height='120'/>\n")));
+  ASSERT_EQ(elsewhere.objects.size(), 2u);
+  EXPECT_FALSE(elsewhere.objects[0].model);
+  EXPECT_FALSE(elsewhere.objects[1].model);
   // A drawing of them: the models' silhouettes and creases are drawn.
   const CellComplex c = build_cells(p);
   const Camera cam = Camera::look_at({2, -3.5, 1.6}, {1.5, -1, 0.5}, 70, 320, 180);
