@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "app/commands.h"
+#include "render/effects.h"
 #include "render/drawing.h"
 #include "render/halftone.h"
 #include "render/raster.h"
@@ -134,6 +135,7 @@ int run_path(const PathOptions& opt) {
   const std::vector<PlacedObject> objects = opt.format == "png" ? place_objects(c) : std::vector<PlacedObject>{};
   HalftoneOptions halftone;
   halftone.samples = 4;
+  const SceneEffects effects = prepare_effects(c, objects, halftone, kernel);  // once for every frame
   Image picture;
   const auto t0 = std::chrono::steady_clock::now();
   for (size_t k = 0; k < frames.size(); ++k) {
@@ -142,7 +144,7 @@ int run_path(const PathOptions& opt) {
     if (opt.format == "svg") {
       write_drawing(draw_view(c, scene, frames[k].camera, vs), file);
     } else {
-      render_view(c, objects, frames[k].camera, vs, halftone, picture);
+      render_view(c, objects, effects, frames[k].camera, vs, halftone, picture);
       write_image(picture, file);
     }
     if (terminal)

@@ -41,6 +41,7 @@
 #include "cells/doom_map.h"
 #include "render/halftone.h"
 #include "render/raster.h"
+#include "render/effects.h"
 #include "render/scene_objects.h"
 #include "render/view_lines.h"
 #include "visibility/stereo.h"
@@ -151,6 +152,9 @@ class Session {
     progressive_ = opt.progressive;
     hud_on_ = opt.hud;
     objects_ = place_objects(c_);
+    // Which effects the scene calls for, decided once (and its shadows cast once): deciding
+    // means testing the furniture's triangles for crossings, far too dear for every frame.
+    effects_ = prepare_effects(c_, objects_, halftone_, kernel_);
     record_path_ = opt.record.empty() ? (fs::path(opt.out_dir) / (plan.stem + "-keys.txt")).string() : opt.record;
   }
 
@@ -389,7 +393,7 @@ class Session {
     const VisibleSet part = partial ? prefix(vs, shown_) : VisibleSet{};
     const VisibleSet& use = partial ? part : vs;
     if (lines_) raster_of_drawing(draw_view(c_, line_scene(), cam, use), out);
-    else render_view(c_, objects_, cam, use, halftone_, out);
+    else render_view(c_, objects_, effects_, cam, use, halftone_, out);
   }
 
   /// Renders the view when it changed; false when the last frame still stands.
@@ -604,6 +608,7 @@ class Session {
   Controls controls_;
   Kernel kernel_ = Kernel::Double;
   HalftoneOptions halftone_;
+  SceneEffects effects_;
   StereoOptions stereo_opt_;
   std::vector<PlacedObject> objects_;
   std::optional<LineScene> scene_;

@@ -250,6 +250,19 @@ bool ScreenSceneBuilder::add_face(const std::vector<Vec3>& polygon, const Plane&
   return add(cam, n, d, shade, where, source);
 }
 
+bool ScreenSceneBuilder::may_show(const std::array<Vec3, 8>& corners) const {
+  if (!cull_) return true;
+  Vec2 lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
+  for (const Vec3& w : corners) {
+    const Vec3 c = camera_.camera_from_world(w);
+    if (!(c.z >= camera_.near)) return true;  // reaches the near plane: cannot tell here
+    const Vec2 q{c.x / c.z, c.y / c.z};
+    lo = {std::min(lo.x, q.x), std::min(lo.y, q.y)};
+    hi = {std::max(hi.x, q.x), std::max(hi.y, q.y)};
+  }
+  return !(hi.x < cull_lo_.x || lo.x > cull_hi_.x || hi.y < cull_lo_.y || lo.y > cull_hi_.y);
+}
+
 void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<int>& corners,
                                           const std::vector<Vec3>& corner_normals, const Material& material,
                                           Placement where, const PolygonSource& source) {
@@ -263,6 +276,21 @@ void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<in
   }
   const double area = length(n);
   if (!(area > 0)) return;
+  if (cull_) {
+    // Wholly beyond the near plane and outside the mask's box: it cannot show.
+    Vec2 lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
+    bool in_front = true;
+    for (const Vec3& c : cam) {
+      if (!(c.z >= camera_.near)) {
+        in_front = false;
+        break;
+      }
+      const Vec2 q{c.x / c.z, c.y / c.z};
+      lo = {std::min(lo.x, q.x), std::min(lo.y, q.y)};
+      hi = {std::max(hi.x, q.x), std::max(hi.y, q.y)};
+    }
+    if (in_front && (hi.x < cull_lo_.x || lo.x > cull_hi_.x || hi.y < cull_lo_.y || lo.y > cull_hi_.y)) return;
+  }
   centroid = (1.0 / double(cam.size())) * centroid;
   const Vec3 nc = camera_dir(n);
   const double d = -dot(nc, centroid);

@@ -95,6 +95,16 @@ class ScreenSceneBuilder {
   /// its plane; a curved one by Gouraud over its triangles. Polygons of a closed mesh
   /// facing away from the eye are dropped when options.cull_back_faces.
   void add_mesh(const Mesh& mesh, const MeshPaint& paint, Placement where, PolygonSource source);
+  /// From now on, mesh polygons wholly in front of the near plane and wholly outside this
+  /// box of the picture plane (x = X/Z, y = Y/Z) are not added: the mask they would be
+  /// clipped to lies inside it, so they could not show. Until no_cull().
+  void cull_outside(Vec2 lo, Vec2 hi) {
+    cull_ = true;
+    cull_lo_ = lo, cull_hi_ = hi;
+  }
+  void no_cull() { cull_ = false; }
+  /// Whether a box of points (camera space) could show inside the cull box (true without one).
+  bool may_show(const std::array<Vec3, 8>& corners) const;
 
  private:
   /// Steps 2–5 for a polygon already in camera space on the plane n·P + d = 0.
@@ -129,6 +139,8 @@ class ScreenSceneBuilder {
   SceneOptions options_;
   ScreenScene& out_;
   double guard_ = 0;  ///< [samples] the guard band's width around the window
+  bool cull_ = false;
+  Vec2 cull_lo_, cull_hi_;
   std::vector<Vec3> near_cut_;
   std::vector<Vec2> raster_, guard_cut_;
 };
