@@ -14,6 +14,7 @@
 // From the window: F2 writes the picture as shown (PNG), F3 the hidden-line drawing (SVG),
 // F4 a stereo pair, through the same code as `avenues view -o`; K appends a keyframe that
 // `avenues path --keys` follows.
+#include <malloc.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -654,6 +655,11 @@ bool run_session(const LoadedPlan& plan, const WalkOptions& opt, const std::vect
   if (!parse_size(opt.size, w, h)) throw std::runtime_error("--size wants WIDTHxHEIGHT in pixels, not '" + opt.size + "'");
   std::unique_ptr<Viewer> viewer = Viewer::open(w, h, "Avenues - " + plan.stem, opt.vsync, why);
   if (!viewer) return false;
+  // A frame's screen scene is built and freed every frame, its big arrays beyond glibc's
+  // mmap threshold: each frame would map them afresh and fault every page in. Kept in the
+  // heap instead, the same memory serves frame after frame.
+  mallopt(M_MMAP_THRESHOLD, 256 << 20);
+  mallopt(M_TRIM_THRESHOLD, 512 << 20);
   Session session(plan, opt, *viewer);
   session.run(events, report);
   return true;
