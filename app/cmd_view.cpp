@@ -108,6 +108,7 @@ nlohmann::json view_stats(const LoadedPlan& plan, const ViewSetup& v, const Visi
 int run_view(const ViewOptions& opt) {
   if (opt.lights != "plan" && opt.lights != "eye")
     throw std::runtime_error("--lights wants plan or eye, not '" + opt.lights + "'");
+  if (!std::isfinite(opt.falloff)) throw std::runtime_error("--falloff wants a distance in metres");
   LoadedPlan plan = load_plan_source(opt.plan);
   ViewSetup v = set_up_view(plan, opt);
   VisibleSet vs = find_visible(plan.complex, v.camera, v.eye_cell, v.kernel);
