@@ -83,11 +83,36 @@ int32_t ScreenSceneBuilder::add_clip(const std::vector<Vec2>& picture_polygon, d
   return int32_t(out_.clips.size() - 1);
 }
 
+namespace {
+
+/// Whether the box around a fixed-point outline holds the centre (i + ½, j + ½) of some
+/// sample. A sample is inside a polygon only if its centre is (scanline.h), so a polygon
+/// whose box holds none (a far piece of furniture's tiny triangle) colours nothing, takes
+/// part in no depth resolution and is better never put on the raster.
+bool covers_a_sample_centre(const std::vector<FixedPoint>& outline) {
+  int64_t x0 = outline[0].x, x1 = x0, y0 = outline[0].y, y1 = y0;
+  for (const FixedPoint& p : outline) {
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x);
+    y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+  }
+  constexpr int64_t half = kSubpixelOne / 2;
+  // The first centre at or after lo, and whether it is at or before hi (floor division).
+  auto holds_centre = [](int64_t lo, int64_t hi) {
+    const int64_t a = lo - half;
+    const int64_t i = a >= 0 ? (a + kSubpixelOne - 1) / kSubpixelOne : -((-a) / kSubpixelOne);
+    return i * kSubpixelOne + half <= hi;
+  };
+  return holds_centre(x0, x1) && holds_centre(y0, y1);
+}
+
+}  // namespace
+
 bool ScreenSceneBuilder::add(const std::vector<Vec3>& points, Vec3 n, double d, const SurfaceShade& shade,
                              Placement where, const PolygonSource& source) {
   if (!(std::fabs(d) > 0)) return false;  // the plane passes through the eye: seen edge-on
   ScreenPolygon poly;
   if (!project(points, poly)) return false;
+  if (!covers_a_sample_centre(poly.outline)) return false;  // it could colour no sample
   // 1/Z on the raster: n·(d_xy·Z) + d = 0 with d_xy = (x, y, 1), x = x0 + step·u, y = y0 − step·v.
   const RasterMap& m = out_.raster;
   poly.depth = {-n.x * m.step / d, n.y * m.step / d, -(n.x * m.x0 + n.y * m.y0 + n.z) / d};

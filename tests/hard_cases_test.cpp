@@ -901,3 +901,26 @@ TEST(HardCases, AMaskWithNearlyEqualVerticesDrawsAsIfTheyWereOne) {
     }
   }
 }
+
+// Stable and cheap: a polygon smaller than a sample (a far piece of furniture's triangle)
+// that holds no sample's centre colours nothing, so the scene builder leaves it off the
+// raster; one that holds a centre, however small, stays. Kernels: none.
+TEST(HardCases, APolygonBetweenSampleCentresIsLeftOffTheRaster) {
+  const Camera cam = Camera::look_at({0, 0, 0}, {0, 10, 0}, 60, 64, 48);
+  // A triangle a tenth of a sample across, facing the eye, around the point seen at raster `at`.
+  auto speck = [&](Vec2 at) {
+    const Vec3 centre = 5.0 * cam.ray_through_raster(at);
+    const double r = 0.1 * length(5.0 * cam.ray_through_raster({at.x + 1, at.y}) - centre);
+    return mesh_from({centre + Vec3{-r, 0, -r}, centre + Vec3{r, 0, -r}, centre + Vec3{0, 0, r}}, {{0, 1, 2}});
+  };
+  SceneOptions so;
+  so.cull_back_faces = false;
+  for (Vec2 at : {Vec2{20.5, 17.5}, Vec2{3.5, 40.5}}) {  // on a sample's centre: kept, and painted
+    const ScreenScene scene = screen_scene_of_meshes({speck(at)}, {}, cam, so);
+    ASSERT_EQ(scene.polygons.size(), 1u) << at.x << ", " << at.y;
+    const std::vector<int> count = engine_coverage(scene.raster.width, scene.raster.height, scene.polygons);
+    EXPECT_EQ(count[size_t(at.y) * size_t(cam.width) + size_t(at.x)], 1);
+  }
+  for (Vec2 at : {Vec2{20, 17}, Vec2{3, 40}, Vec2{30.0, 10.5}})  // between centres: left off
+    EXPECT_EQ(screen_scene_of_meshes({speck(at)}, {}, cam, so).polygons.size(), 0u) << at.x << ", " << at.y;
+}
