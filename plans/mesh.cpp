@@ -6,6 +6,7 @@
 #include <OpenMesh/Core/System/omstream.hh>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -243,14 +244,19 @@ Mesh mesh_of_openmesh(const PolyMesh& pm, const std::string& path) {
 /// the edge; `inserted` says, per polygon corner, whether it was put in here.
 void insert_t_junctions(const std::vector<Vec3>& v, std::vector<std::vector<int>>& polygons,
                         std::vector<std::vector<uint8_t>>& inserted) {
-  // The vertices in use, by x, to find those within an edge's box quickly.
+  // The vertices in use, sorted along each axis: an edge looks in the thinnest slab around
+  // it (along the axis it spans least), so that few vertices are tried.
   std::vector<uint8_t> used(v.size(), 0);
   for (const auto& p : polygons)
     for (int i : p) used[size_t(i)] = 1;
-  std::vector<int> by_x;
-  for (size_t i = 0; i < v.size(); ++i)
-    if (used[i]) by_x.push_back(int(i));
-  std::sort(by_x.begin(), by_x.end(), [&](int a, int b) { return v[size_t(a)].x < v[size_t(b)].x; });
+  auto coord = [](const Vec3& p, int axis) { return axis == 0 ? p.x : axis == 1 ? p.y : p.z; };
+  std::array<std::vector<int>, 3> by;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (size_t i = 0; i < v.size(); ++i)
+      if (used[i]) by[size_t(axis)].push_back(int(i));
+    std::sort(by[size_t(axis)].begin(), by[size_t(axis)].end(),
+              [&](int a, int b) { return coord(v[size_t(a)], axis) < coord(v[size_t(b)], axis); });
+  }
   inserted.assign(polygons.size(), {});
   std::vector<std::pair<double, int>> on_edge;
   for (size_t pi = 0; pi < polygons.size(); ++pi) {
@@ -267,10 +273,14 @@ void insert_t_junctions(const std::vector<Vec3>& v, std::vector<std::vector<int>
       if (!(l2 > 0)) continue;
       // On the edge: strictly between its ends, within 1e-9 of its length of its line.
       const double tol = 1e-9 * std::sqrt(l2);
-      const double x0 = std::min(a.x, a.x + d.x) - tol, x1 = std::max(a.x, a.x + d.x) + tol;
-      auto it = std::lower_bound(by_x.begin(), by_x.end(), x0, [&](int i, double x) { return v[size_t(i)].x < x; });
+      const int axis = std::fabs(d.x) <= std::fabs(d.y) ? (std::fabs(d.x) <= std::fabs(d.z) ? 0 : 2)
+                                                         : (std::fabs(d.y) <= std::fabs(d.z) ? 1 : 2);
+      const std::vector<int>& order = by[size_t(axis)];
+      const double c0 = std::min(coord(a, axis), coord(a + d, axis)) - tol, c1 = std::max(coord(a, axis), coord(a + d, axis)) + tol;
+      auto it = std::lower_bound(order.begin(), order.end(), c0,
+                                 [&](int i, double c) { return coord(v[size_t(i)], axis) < c; });
       on_edge.clear();
-      for (; it != by_x.end() && v[size_t(*it)].x <= x1; ++it) {
+      for (; it != order.end() && coord(v[size_t(*it)], axis) <= c1; ++it) {
         const int iv = *it;
         if (iv == ia || iv == ib) continue;
         const Vec3 w = v[size_t(iv)] - a;
