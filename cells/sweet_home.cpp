@@ -24,6 +24,7 @@
 // repaired or dropped with a line in Plan::warnings.
 #include "cells/sweet_home.h"
 
+#include "plans/arc.h"
 #include "plans/mesh.h"
 
 #include <pugixml.hpp>
@@ -208,35 +209,6 @@ class LineIndex {
 };
 
 // --- geometry of walls -------------------------------------------------------------------
-
-/// Appends to `out` (which ends at a) the arc from a through m to b: the circle through
-/// the three points in n >= 2 equal pieces whose sagitta r(1 − cos(θ/2)) is at most tol
-/// (as plans/plan_reader.cpp does for `through` arcs); b exactly. False if collinear.
-bool tessellate_arc(Vec2 a, Vec2 m, Vec2 b, double tol, std::vector<Vec2>& out) {
-  const Vec2 u = m - a, v = b - a;
-  const double c = cross(u, v);
-  if (!(std::fabs(c) > 1e-9 * length(u) * length(v))) return false;
-  const double uu = dot(u, u), vv = dot(v, v);
-  const Vec2 o{(v.y * uu - u.y * vv) / (2 * c), (u.x * vv - v.x * uu) / (2 * c)};
-  const Vec2 centre = a + o;
-  const double r = length(o);
-  const double a0 = std::atan2(a.y - centre.y, a.x - centre.x);
-  double sweep = std::atan2(b.y - centre.y, b.x - centre.x) - a0;
-  const double two_pi = 2 * std::numbers::pi;
-  if (c > 0) {
-    while (sweep <= 0) sweep += two_pi;
-  } else {
-    while (sweep >= 0) sweep -= two_pi;
-  }
-  const double max_piece = tol >= r ? std::numbers::pi : 2 * std::acos(1 - tol / r);
-  const double n = std::clamp(std::ceil(std::fabs(sweep) / max_piece - 1e-9), 2.0, 10000.0);
-  for (int i = 1; i < int(n); ++i) {
-    const double t = a0 + sweep * double(i) / n;
-    out.push_back({centre.x + r * std::cos(t), centre.y + r * std::sin(t)});
-  }
-  out.push_back(b);
-  return true;
-}
 
 /// The part of polyline c from distance s0 to s1 along it (s0 < s1), with its arc flags.
 void sub_polyline(const std::vector<Vec2>& c, const std::vector<bool>& arc, double s0, double s1,
@@ -531,8 +503,11 @@ void HomeReader::read_walls(pugi::xml_node home) {
       // getArcCircleCenter, solved for the arc's midpoint).
       const double k = std::tan(*arc / 4) / 2;  // sagitta / chord
       const Vec2 m = plan_point((xs + xe) / 2 + k * (ye - ys), (ys + ye) / 2 + k * (xs - xe));
-      if (tessellate_arc(a, m, b, plan_.arc_tolerance, d.wall.centre))
+      // The circle through the three points, in pieces within the plan's tolerance (at most 10,000).
+      if (const std::optional<Arc> curve = arc_through(a, m, b)) {
+        curve->append(static_cast<long>(std::min(curve->pieces_for(plan_.arc_tolerance), 10000.0)), b, d.wall.centre);
         d.wall.from_arc.assign(d.wall.centre.size() - 1, true);
+      }
     }
     if (d.wall.centre.size() == 1) {
       d.wall.centre.push_back(b);

@@ -36,6 +36,8 @@
 
 #include "plans/plan.h"
 
+#include "plans/arc.h"
+
 namespace avenues {
 namespace {
 
@@ -561,44 +563,6 @@ void Reader::read_walls(const toml::table& root) {
     throw PlanError(SourceLoc{file_, 1, 1, "plan"}, "the plan has no walls (add [[wall]] sections)");
 }
 
-/// Appends the arc from `a` through `m` to `b` to `out` (which ends at `a`): the circle
-/// through the three points, cut into n >= 2 equal pieces whose sagitta
-/// r·(1 − cos(θ/2)) is at most `tol`. `b` is appended exactly.
-/// Returns the arc length, or a negative number if the points are collinear.
-double tessellate_arc(Vec2 a, Vec2 m, Vec2 b, double tol, std::vector<Vec2>& out, long& pieces) {
-  const Vec2 u = m - a, v = b - a;
-  const double c = cross(u, v);
-  if (!(std::fabs(c) > 1e-9 * length(u) * length(v))) return -1;
-  // Circumcentre relative to a (the standard formula, translated for precision).
-  const double uu = dot(u, u), vv = dot(v, v);
-  const Vec2 o{(v.y * uu - u.y * vv) / (2 * c), (u.x * vv - v.x * uu) / (2 * c)};
-  const Vec2 centre = a + o;
-  const double r = length(o);
-  // Points a, m, b in counter-clockwise order around the triangle are met in that
-  // order going counter-clockwise round the circle, so the sweep's sign is c's.
-  const double a0 = std::atan2(a.y - centre.y, a.x - centre.x);
-  double sweep = std::atan2(b.y - centre.y, b.x - centre.x) - a0;
-  const double two_pi = 2 * std::numbers::pi;
-  if (c > 0) {
-    while (sweep <= 0) sweep += two_pi;
-  } else {
-    while (sweep >= 0) sweep -= two_pi;
-  }
-  const double max_piece = tol >= r ? std::numbers::pi : 2 * std::acos(1 - tol / r);
-  const double n = std::max(2.0, std::ceil(std::fabs(sweep) / max_piece - 1e-9));
-  if (n > kMaxArcPieces) {
-    pieces = -1;
-    return r * std::fabs(sweep);
-  }
-  pieces = static_cast<long>(n);
-  for (long i = 1; i < pieces; ++i) {
-    const double t = a0 + sweep * static_cast<double>(i) / n;
-    out.push_back({centre.x + r * std::cos(t), centre.y + r * std::sin(t)});
-  }
-  out.push_back(b);
-  return r * std::fabs(sweep);
-}
-
 void Reader::read_wall(const toml::table& t, int index) {
   auto given = Element(*this, t, element_name("wall", {}, index)).name_key();
   Element e(*this, t, element_name("wall", given, index));
@@ -643,18 +607,19 @@ void Reader::read_wall(const toml::table& t, int index) {
       const Vec2 m = e.point2_of(ae.need("through"), "'through' of arc " + std::to_string(i + 1));
       const Vec2 b = e.point2_of(ae.need("to"), "'to' of arc " + std::to_string(i + 1));
       const Vec2 a = w.centre.back();
-      long count = 0;
-      const double arc_len = tessellate_arc(a, m, b, plan_.arc_tolerance, w.centre, count);
-      if (arc_len < 0)
+      const std::optional<Arc> arc_of = arc_through(a, m, b);
+      if (!arc_of)
         e.fail_at(n, "the arc from (" + fmt(a.x / unit_) + ", " + fmt(a.y / unit_) + ") through (" +
                          fmt(m.x / unit_) + ", " + fmt(m.y / unit_) + ") to (" + fmt(b.x / unit_) + ", " +
                          fmt(b.y / unit_) + ") is degenerate: its 'through' point is collinear with (or " +
                          "equal to an end of) its chord; use a straight segment");
-      if (count < 0)
+      const double arc_pieces = arc_of->pieces_for(plan_.arc_tolerance);
+      if (arc_pieces > kMaxArcPieces)
         e.fail_at(n, "the arc would need more than " + std::to_string(kMaxArcPieces) +
                          " pieces for 'arc_tolerance' " + len(plan_.arc_tolerance));
+      arc_of->append(static_cast<long>(arc_pieces), b, w.centre);
       piece.arc = true;
-      piece.len = arc_len;
+      piece.len = arc_of->length();
     } else {
       const Vec2 p = e.point2_of(n, label);
       if (i > 0 && p == w.centre.back())
