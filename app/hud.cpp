@@ -11,8 +11,14 @@ namespace avenues::app {
 
 namespace {
 
-/// The panel's size [px] for these lines at this size of type.
-void measure(const std::vector<std::string>& lines, double font_px, int& w, int& h) {
+/// Where a panel's text goes: its size [px], the margin around the text and the lines' pitch.
+struct PanelLayout {
+  int w = 1, h = 1;
+  double pad = 0, line_h = 0, ascent = 0;
+};
+
+/// Measures the lines at this size of type on a scratch surface.
+PanelLayout measure(const std::vector<std::string>& lines, double font_px) {
   cairo_surface_t* scratch = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1);
   cairo_t* m = cairo_create(scratch);
   cairo_select_font_face(m, "monospace", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
@@ -27,31 +33,20 @@ void measure(const std::vector<std::string>& lines, double font_px, int& w, int&
   }
   cairo_destroy(m);
   cairo_surface_destroy(scratch);
-  const double pad = std::round(font_px * 0.6), line_h = std::ceil(fe.height);
-  w = std::max(1, int(std::ceil(text_w + 2 * pad)));
-  h = std::max(1, int(std::ceil(line_h * double(lines.size()) + 2 * pad)));
+  PanelLayout out;
+  out.pad = std::round(font_px * 0.6);
+  out.line_h = std::ceil(fe.height);
+  out.ascent = fe.ascent;
+  out.w = std::max(1, int(std::ceil(text_w + 2 * out.pad)));
+  out.h = std::max(1, int(std::ceil(out.line_h * double(lines.size()) + 2 * out.pad)));
+  return out;
 }
 
 void draw_panel(OverlayPanel& panel, const std::vector<std::string>& lines, double font_px, int x, int y,
                 bool centred_in, int win_w, int win_h) {
-  // Measure on a scratch surface, then draw at the measured size.
-  cairo_surface_t* scratch = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1);
-  cairo_t* m = cairo_create(scratch);
-  cairo_select_font_face(m, "monospace", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-  cairo_set_font_size(m, font_px);
-  cairo_font_extents_t fe;
-  cairo_font_extents(m, &fe);
-  double text_w = 0;
-  for (const std::string& l : lines) {
-    cairo_text_extents_t te;
-    cairo_text_extents(m, l.c_str(), &te);
-    text_w = std::max(text_w, te.x_advance);
-  }
-  cairo_destroy(m);
-  cairo_surface_destroy(scratch);
-
-  const double pad = std::round(font_px * 0.6), line_h = std::ceil(fe.height);
-  const int w = std::max(1, int(std::ceil(text_w + 2 * pad))), h = std::max(1, int(std::ceil(line_h * double(lines.size()) + 2 * pad)));
+  const PanelLayout layout = measure(lines, font_px);
+  const int w = layout.w, h = layout.h;
+  const double pad = layout.pad, line_h = layout.line_h;
   cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, w, h);
   cairo_t* cr = cairo_create(s);
   cairo_set_source_rgba(cr, 0.05, 0.05, 0.08, 0.72);
@@ -60,7 +55,7 @@ void draw_panel(OverlayPanel& panel, const std::vector<std::string>& lines, doub
   cairo_set_font_size(cr, font_px);
   cairo_set_source_rgb(cr, 0.95, 0.95, 0.9);
   for (size_t i = 0; i < lines.size(); ++i) {
-    cairo_move_to(cr, pad, pad + fe.ascent + line_h * double(i));
+    cairo_move_to(cr, pad, pad + layout.ascent + line_h * double(i));
     cairo_show_text(cr, lines[i].c_str());
   }
   cairo_destroy(cr);
@@ -100,9 +95,8 @@ void set_centred_text_panel(OverlayPanel& panel, const std::vector<std::string>&
                             double font_px) {
   // Smaller type in a small window, so that every line fits, wide and high (down to 7 px).
   for (; font_px > 7; font_px -= 0.5) {
-    int w = 0, h = 0;
-    measure(lines, font_px, w, h);
-    if (w <= width - 8 && h <= height - 8) break;
+    const PanelLayout layout = measure(lines, font_px);
+    if (layout.w <= width - 8 && layout.h <= height - 8) break;
   }
   const std::string src = joined(lines, font_px);
   if (src == panel.source && panel.width > 0) {
