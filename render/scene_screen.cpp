@@ -190,58 +190,16 @@ bool ScreenSceneBuilder::add_pieces(const SurfaceLight& s, LightTerm& term) {
 
 SurfaceShade ScreenSceneBuilder::lit_planar_shade(const Material& m, Vec3 n, double d, Vec3 centroid, bool per_sample,
                                                   const PolygonSource& source) {
-  const Lighting& lighting = *options_.lighting;
-  SurfaceShade shade;
-  shade.kind = SurfaceShade::Kind::Lit;
-  shade.colour = material_colour(m);
-  shade.lit_ambient = lighting.ambient;
-  shade.coloured = lighting.coloured;
-  shade.first_term = int32_t(out_.light_terms.size());
-  for (size_t k = 0; k < lighting.points.size(); ++k) {
-    const SurfaceLight* s = surface_light(k, source);
-    if (!s) continue;
-    const PointLight& light = lighting.points[k];
-    LightTerm term;
-    if (!planar_light_term(m, n, d, centroid, camera_.camera_from_world(light.position), light, lighting, per_sample,
-                           term))
-      continue;
-    const size_t pieces = out_.pieces.size();
-    if (!add_pieces(*s, term)) {
-      out_.pieces.resize(pieces);
-      continue;
-    }
-    out_.light_terms.push_back(term);
-  }
-  shade.terms = int32_t(out_.light_terms.size()) - shade.first_term;
-  return shade;
+  return lit_shade(m, source, [&](const PointLight& light, Vec3 at, LightTerm& term) {
+    return planar_light_term(m, n, d, centroid, at, light, *options_.lighting, per_sample, term);
+  });
 }
 
 SurfaceShade ScreenSceneBuilder::lit_gouraud_shade(const Material& m, const std::array<Vec3, 3>& points,
                                                    const std::array<Vec3, 3>& normals, const PolygonSource& source) {
-  const Lighting& lighting = *options_.lighting;
-  SurfaceShade shade;
-  shade.kind = SurfaceShade::Kind::Lit;
-  shade.colour = material_colour(m);
-  shade.lit_ambient = lighting.ambient;
-  shade.coloured = lighting.coloured;
-  shade.first_term = int32_t(out_.light_terms.size());
-  for (size_t k = 0; k < lighting.points.size(); ++k) {
-    const SurfaceLight* s = surface_light(k, source);
-    if (!s) continue;
-    const PointLight& light = lighting.points[k];
-    LightTerm term;
-    if (!gouraud_light_term(m, points, normals, camera_.camera_from_world(light.position), light, lighting,
-                            out_.raster, term))
-      continue;
-    const size_t pieces = out_.pieces.size();
-    if (!add_pieces(*s, term)) {
-      out_.pieces.resize(pieces);
-      continue;
-    }
-    out_.light_terms.push_back(term);
-  }
-  shade.terms = int32_t(out_.light_terms.size()) - shade.first_term;
-  return shade;
+  return lit_shade(m, source, [&](const PointLight& light, Vec3 at, LightTerm& term) {
+    return gouraud_light_term(m, points, normals, at, light, *options_.lighting, out_.raster, term);
+  });
 }
 
 bool ScreenSceneBuilder::add_lit(const std::vector<Vec3>& points, Vec3 n, double d, const SurfaceShade& shade,

@@ -122,6 +122,34 @@ class ScreenSceneBuilder {
   /// The same for a Gouraud triangle (corners and unit vertex normals in camera space).
   SurfaceShade lit_gouraud_shade(const Material& m, const std::array<Vec3, 3>& points,
                                  const std::array<Vec3, 3>& normals, const PolygonSource& source);
+  /// A Lit shade of material m for the surface `source` came from: a term per point light
+  /// that reaches it, made by term_of(light, its position in camera space, term) (false:
+  /// no light there), with its lit pieces and shadow polygons on the raster.
+  template <class TermOf>
+  SurfaceShade lit_shade(const Material& m, const PolygonSource& source, TermOf term_of) {
+    const Lighting& lighting = *options_.lighting;
+    SurfaceShade shade;
+    shade.kind = SurfaceShade::Kind::Lit;
+    shade.colour = material_colour(m);
+    shade.lit_ambient = lighting.ambient;
+    shade.coloured = lighting.coloured;
+    shade.first_term = int32_t(out_.light_terms.size());
+    for (size_t k = 0; k < lighting.points.size(); ++k) {
+      const SurfaceLight* s = surface_light(k, source);
+      if (!s) continue;
+      const PointLight& light = lighting.points[k];
+      LightTerm term;
+      if (!term_of(light, camera_.camera_from_world(light.position), term)) continue;
+      const size_t pieces = out_.pieces.size();
+      if (!add_pieces(*s, term)) {
+        out_.pieces.resize(pieces);
+        continue;
+      }
+      out_.light_terms.push_back(term);
+    }
+    shade.terms = int32_t(out_.light_terms.size()) - shade.first_term;
+    return shade;
+  }
   /// What light k does to the surface `source` came from; nullptr: nothing.
   const SurfaceLight* surface_light(size_t k, const PolygonSource& source) const;
   /// Puts a surface's lit pieces and shadow polygons on the raster for `term`; false if the
