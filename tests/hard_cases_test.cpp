@@ -16,6 +16,7 @@
 
 #include "cells/build_cells.h"
 #include "ray_oracle.h"
+#include "test_meshes.h"
 #include "render/halftone.h"
 #include "render/scanline.h"
 #include "render/scene_screen.h"
@@ -26,6 +27,8 @@
 #include "visibility/visible_set.h"
 
 using namespace avenues;
+using avenues::testing::mesh_from;
+using avenues::testing::nearest_triangle;
 using avenues::testing::room_named;
 using avenues::testing::wall;
 
@@ -517,34 +520,6 @@ ScreenScene bare_scene(int w, int h, std::vector<ScreenPolygon> polys) {
   return s;
 }
 
-/// Möller–Trumbore: distance along dir to the nearest triangle of the meshes (inf if none).
-double nearest_hit(const std::vector<Mesh>& meshes, Vec3 o, Vec3 dir) {
-  double best = std::numeric_limits<double>::infinity();
-  for (const Mesh& m : meshes)
-    for (const auto& t : m.triangles) {
-      const Vec3 a = m.vertices[size_t(t[0])], b = m.vertices[size_t(t[1])], c = m.vertices[size_t(t[2])];
-      const Vec3 e1 = b - a, e2 = c - a, p = cross(dir, e2);
-      const double det = dot(e1, p);
-      if (std::fabs(det) < 1e-300) continue;
-      const Vec3 s = o - a;
-      const double u = dot(s, p) / det;
-      if (u < 0 || u > 1) continue;
-      const Vec3 q = cross(s, e1);
-      const double v = dot(dir, q) / det;
-      if (v < 0 || u + v > 1) continue;
-      const double tt = dot(e2, q) / det;
-      if (tt > 0 && tt < best) best = tt;
-    }
-  return best;
-}
-
-Mesh mesh_from(std::vector<Vec3> vertices, std::vector<std::vector<int>> polygons) {
-  PaperScene s;
-  s.vertices = std::move(vertices);
-  s.polygons = std::move(polygons);
-  return mesh_of(s);
-}
-
 bool finite(const RasterPlane& p) { return std::isfinite(p.a) && std::isfinite(p.b) && std::isfinite(p.c); }
 
 }  // namespace
@@ -646,7 +621,7 @@ TEST(HardCases, TJunctionsOfAMeshThroughTheSceneBuilder) {
     for (int j = 0; j < cam.height; ++j)
       for (int i = 0; i < cam.width; ++i) {
         const Vec3 dir = cam.ray_through_raster({i + 0.5, j + 0.5});
-        const double t = nearest_hit(meshes, cam.eye, dir);
+        const double t = nearest_triangle(meshes, cam.eye, dir);
         // Where the ray meets the wall's plane, and how far that is from its outer border.
         const double tp = -cam.eye.y / dir.y;
         const Vec3 p = cam.eye + tp * dir;

@@ -14,10 +14,13 @@
 #include "render/scene_screen.h"
 #include "render/scenes.h"
 #include "tests/ray_oracle.h"
+#include "tests/test_meshes.h"
 #include "visibility/viewpoint.h"
 
 namespace fs = std::filesystem;
 using namespace avenues;
+using avenues::testing::mesh_from;
+using avenues::testing::nearest_triangle;
 
 namespace {
 
@@ -85,34 +88,6 @@ void expect_exactly_once(int w, int h, const std::vector<ScreenPolygon>& polys, 
       wrong += count[size_t(y) * size_t(w) + size_t(x)] != (inside ? 1 : 0);
     }
   EXPECT_EQ(wrong, 0);
-}
-
-Mesh mesh(std::vector<Vec3> vertices, std::vector<std::vector<int>> polygons) {
-  PaperScene s;
-  s.vertices = std::move(vertices);
-  s.polygons = std::move(polygons);
-  return mesh_of(s);
-}
-
-/// Möller–Trumbore: the distance along dir to the nearest triangle of the meshes (or inf).
-double nearest_triangle(const std::vector<Mesh>& meshes, Vec3 o, Vec3 dir) {
-  double best = std::numeric_limits<double>::infinity();
-  for (const Mesh& m : meshes)
-    for (const auto& t : m.triangles) {
-      const Vec3 a = m.vertices[size_t(t[0])], b = m.vertices[size_t(t[1])], c = m.vertices[size_t(t[2])];
-      const Vec3 e1 = b - a, e2 = c - a, p = cross(dir, e2);
-      const double det = dot(e1, p);
-      if (std::fabs(det) < 1e-300) continue;
-      const Vec3 s = o - a;
-      const double u = dot(s, p) / det;
-      if (u < 0 || u > 1) continue;
-      const Vec3 q = cross(s, e1);
-      const double v = dot(dir, q) / det;
-      if (v < 0 || u + v > 1) continue;
-      const double tt = dot(e2, q) / det;
-      if (tt > 0 && tt < best) best = tt;
-    }
-  return best;
 }
 
 /// Compares the item buffer's depth at every pixel centre with a reference distance along
@@ -373,7 +348,7 @@ struct Pair {
       // A big square through the origin on the plane with normal n.
       const Vec3 a = length(cross(n, {0, 0, 1})) > 1e-3 ? cross(n, {0, 0, 1}) : cross(n, {1, 0, 0});
       const Vec3 u = (1 / length(a)) * a, v0 = cross(n, u), v = (1 / length(v0)) * v0;
-      meshes.push_back(mesh({-20 * u - 20 * v, 20 * u - 20 * v, 20 * u + 20 * v, -20 * u + 20 * v}, {{0, 1, 2, 3}}));
+      meshes.push_back(mesh_from({-20 * u - 20 * v, 20 * u - 20 * v, 20 * u + 20 * v, -20 * u + 20 * v}, {{0, 1, 2, 3}}));
     }
     SceneOptions so;
     so.cull_back_faces = false;
