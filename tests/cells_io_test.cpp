@@ -15,20 +15,17 @@
 #include "plans/mesh.h"
 #include "plans/plan.h"
 #include "render/plan_drawing.h"
+#include "tests/test_files.h"
 
 namespace fs = std::filesystem;
 using namespace avenues;
+
+using avenues::testing::slurp;
 
 namespace {
 
 const std::string kPlan = std::string(AVENUES_SOURCE_DIR) + "/plans/jones-house.toml";
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 void spit(const fs::path& p, const std::string& bytes) { std::ofstream(p, std::ios::binary) << bytes; }
 
 bool same(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }

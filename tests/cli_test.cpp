@@ -21,27 +21,18 @@
 
 #include "cells/build_cells.h"
 #include "plans/plan.h"
+#include "tests/test_files.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+
+using avenues::testing::quote;
+using avenues::testing::slurp;
 
 namespace {
 
 const std::string kBinary = AVENUES_BINARY;
 const std::string kPlan = std::string(AVENUES_SOURCE_DIR) + "/plans/jones-house.toml";
-
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 struct Outcome {
   int status = -1;

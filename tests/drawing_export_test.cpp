@@ -22,11 +22,14 @@
 #include "render/drawing.h"
 #include "render/stereo_drawing.h"
 #include "render/view_lines.h"
+#include "tests/test_files.h"
 #include "visibility/viewpoint.h"
 #include "visibility/visible_set.h"
 
 namespace fs = std::filesystem;
 using namespace avenues;
+
+using avenues::testing::slurp;
 
 namespace {
 
@@ -49,13 +52,6 @@ class DrawingExport : public ::testing::Test {
   }
   fs::path dir_;
 };
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 /// The furnished room from its viewpoint: both layers, both weights.
 const Drawing& room_drawing() {

@@ -6,14 +6,11 @@
 
 #include <gtest/gtest.h>
 
-namespace {
+#include "tests/test_files.h"
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using avenues::testing::slurp;
+
+namespace {
 
 /// The lines of the README's ```sh blocks.
 std::vector<std::string> sh_commands(const std::string& readme) {

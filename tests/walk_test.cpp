@@ -27,27 +27,18 @@
 #include <pugixml.hpp>
 
 #include "render/raster.h"
+#include "tests/test_files.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+
+using avenues::testing::quote;
+using avenues::testing::slurp;
 
 namespace {
 
 const std::string kBinary = AVENUES_BINARY;
 std::string plan(const std::string& name) { return std::string(AVENUES_SOURCE_DIR) + "/plans/" + name; }
-
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 bool on_path(const std::string& program) {
   return std::system(("command -v " + program + " >/dev/null 2>&1").c_str()) == 0;
