@@ -215,13 +215,7 @@ void ScanlineEngine::touch(Extent& x, const ActiveEdge& a) {
 void ScanlineEngine::scan(std::vector<Span>& out) {
   out.clear();
   out_ = &out;
-  row_centre_ = row_ + 0.5;
-  if (!active_.empty()) {
-    ++counters_.scanlines;
-    counters_.intersections += long(active_.size());
-    counters_.active_max = std::max(counters_.active_max, int(active_.size()));
-  }
-  for (const ActiveEdge& a : active_) touch(a.clip ? clip_extent_[size_t(a.owner)] : polygon_extent_[size_t(a.owner)], a);
+  extents_of_row();
   spans_of_polygons(true);
   walk();
   counters_.spans += long(out.size());
@@ -229,6 +223,12 @@ void ScanlineEngine::scan(std::vector<Span>& out) {
 }
 
 void ScanlineEngine::scan_coverage() {
+  extents_of_row();
+  spans_of_polygons(false);
+  next_row();
+}
+
+void ScanlineEngine::extents_of_row() {
   row_centre_ = row_ + 0.5;
   if (!active_.empty()) {
     ++counters_.scanlines;
@@ -236,8 +236,6 @@ void ScanlineEngine::scan_coverage() {
     counters_.active_max = std::max(counters_.active_max, int(active_.size()));
   }
   for (const ActiveEdge& a : active_) touch(a.clip ? clip_extent_[size_t(a.owner)] : polygon_extent_[size_t(a.owner)], a);
-  spans_of_polygons(false);
-  next_row();
 }
 
 void ScanlineEngine::spans_of_polygons(bool sort) {

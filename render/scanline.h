@@ -199,6 +199,8 @@ class ScanlineEngine {
   void enter(const EdgeTable::Edge& e, int row);
   void enter_polygon(int32_t p);
   void touch(Extent& x, const ActiveEdge& a);
+  /// This row's counters, and each polygon's and clip region's extent from its active edges.
+  void extents_of_row();
   void spans_of_polygons(bool sort);
   void walk();
   void next_row();
