@@ -131,17 +131,10 @@ bool random_camera(const CellComplex& c, std::mt19937& rng, Camera& cam, CellId&
   return false;
 }
 
-double point_segment(Vec2 p, Vec2 a, Vec2 b) {
-  const Vec2 d = b - a;
-  const double l2 = dot(d, d);
-  const double t = l2 > 0 ? std::clamp(dot(p - a, d) / l2, 0.0, 1.0) : 0.0;
-  return length(p - (a + t * d));
-}
-
 /// Distance [px] from p to the boundary of polygon q.
 double to_boundary(Vec2 p, const std::vector<Vec2>& q) {
   double best = HUGE_VAL;
-  for (size_t i = 0; i < q.size(); ++i) best = std::min(best, point_segment(p, q[i], q[(i + 1) % q.size()]));
+  for (size_t i = 0; i < q.size(); ++i) best = std::min(best, distance_to_segment(p, q[i], q[(i + 1) % q.size()]));
   return best;
 }
 

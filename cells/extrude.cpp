@@ -70,12 +70,6 @@ Outline2 footprint_of(const Triangulation& T, const std::vector<int32_t>& bounda
 
 Vec3 at(Vec2 p, double z) { return {p.x, p.y, z}; }
 
-double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
-  Vec2 d = b - a;
-  double t = std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0);
-  return length(p - (a + t * d));
-}
-
 MaterialId wall_material(const Plan& plan, int wall) {
   return wall >= 0 ? plan.walls[size_t(wall)].material : -1;
 }

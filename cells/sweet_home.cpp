@@ -69,13 +69,6 @@ std::string fmt(double v) {
   return buf;
 }
 
-double dist_to_segment(Vec2 p, Vec2 a, Vec2 b) {
-  const Vec2 d = b - a;
-  const double dd = dot(d, d);
-  const double t = dd > 0 ? std::clamp(dot(p - a, d) / dd, 0.0, 1.0) : 0.0;
-  return length(p - (a + t * d));
-}
-
 double polyline_length(const std::vector<Vec2>& c) {
   double l = 0;
   for (size_t i = 0; i + 1 < c.size(); ++i) l += length(c[i + 1] - c[i]);
@@ -657,7 +650,7 @@ void HomeReader::stretch_free_ends() {
         if (j == i || o.storey != w.storey || o.thickness <= 0) continue;
         for (size_t k = 0; k + 1 < o.centre.size(); ++k) {
           const Vec2 a = o.centre[k], b = o.centre[k + 1];
-          if (dist_to_segment(p, a, b) <= o.thickness / 2 + 1e-9) {
+          if (distance_to_segment(p, a, b) <= o.thickness / 2 + 1e-9) {
             inside = true;  // already touches: outline.cpp caps it into the other wall
             break;
           }
@@ -795,7 +788,7 @@ size_t insert_vertex(std::vector<Vec2>& c, std::vector<bool>& arc, Vec2 p, doubl
   size_t best = from;
   double best_d = HUGE_VAL;
   for (size_t i = from; i + 1 < c.size(); ++i) {
-    const double d = dist_to_segment(p, c[i], c[i + 1]);
+    const double d = distance_to_segment(p, c[i], c[i + 1]);
     if (d < best_d) best_d = d, best = i;
   }
   if (length(p - c[best]) <= snap) return best;
@@ -854,7 +847,7 @@ void HomeReader::cut_openings() {
       if (i1 > i0 + 1) {
         double dev = 0;
         bool arc = false;
-        for (size_t k = i0 + 1; k < i1; ++k) dev = std::max(dev, dist_to_segment(w.centre[k], w.centre[i0], w.centre[i1]));
+        for (size_t k = i0 + 1; k < i1; ++k) dev = std::max(dev, distance_to_segment(w.centre[k], w.centre[i0], w.centre[i1]));
         for (size_t k = i0; k < i1; ++k) arc |= w.from_arc[k];
         if (dev <= std::max(plan_.arc_tolerance, w.thickness / 4)) {  // else a real corner: parts
           w.centre.erase(w.centre.begin() + long(i0) + 1, w.centre.begin() + long(i1));
@@ -987,10 +980,10 @@ Vec2 label_point(const std::vector<Vec2>& poly, const std::vector<const Wall*>& 
     }
   auto clearance = [&](Vec2 p) {
     double c = HUGE_VAL;
-    for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) c = std::min(c, dist_to_segment(p, poly[j], poly[i]));
+    for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) c = std::min(c, distance_to_segment(p, poly[j], poly[i]));
     for (const Wall* w : near)
       for (size_t k = 0; k + 1 < w->centre.size(); ++k)
-        c = std::min(c, dist_to_segment(p, w->centre[k], w->centre[k + 1]) - w->thickness / 2);
+        c = std::min(c, distance_to_segment(p, w->centre[k], w->centre[k + 1]) - w->thickness / 2);
     return c;
   };
   Vec2 best = centroid(poly);

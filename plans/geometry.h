@@ -5,6 +5,7 @@
 // boundary, and nothing downstream of it sees a CGAL type.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -20,6 +21,13 @@ struct Vec2 {
 inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
 inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
 inline double length(Vec2 a) { return std::hypot(a.x, a.y); }
+/// Distance from p to the segment a–b (to a, when a and b coincide).
+inline double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 d = b - a;
+  const double dd = dot(d, d);
+  const double t = dd > 0 ? std::clamp(dot(p - a, d) / dd, 0.0, 1.0) : 0.0;
+  return length(p - (a + t * d));
+}
 
 struct Vec3 {
   double x = 0, y = 0, z = 0;  ///< [m]

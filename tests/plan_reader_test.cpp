@@ -39,17 +39,11 @@ int opening_count(const Plan& p) {
 // ---------------------------------------------------------------------------------
 // Physical sanity, checked independently of cells/.
 
-double dist_to_segment(Vec2 p, Vec2 a, Vec2 b) {
-  const Vec2 d = b - a;
-  const double t = std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0);
-  return length(p - (a + t * d));
-}
-
 /// Distance from p to the centre line of wall w, skipping segment `skip`.
 double dist_to_wall(Vec2 p, const Wall& w, int skip = -1) {
   double best = HUGE_VAL;
   for (size_t s = 0; s + 1 < w.centre.size(); ++s)
-    if (static_cast<int>(s) != skip) best = std::min(best, dist_to_segment(p, w.centre[s], w.centre[s + 1]));
+    if (static_cast<int>(s) != skip) best = std::min(best, distance_to_segment(p, w.centre[s], w.centre[s + 1]));
   return best;
 }
 
@@ -84,7 +78,7 @@ class StoreyRaster {
         const int j0 = py(std::min(a.y, b.y) - r) - 1, j1 = py(std::max(a.y, b.y) + r) + 1;
         for (int j = std::max(j0, 0); j <= std::min(j1, ny_ - 1); ++j)
           for (int i = std::max(i0, 0); i <= std::min(i1, nx_ - 1); ++i)
-            if (dist_to_segment(centre(i, j), a, b) <= r) solid_[idx(i, j)] = 1;
+            if (distance_to_segment(centre(i, j), a, b) <= r) solid_[idx(i, j)] = 1;
       }
     }
   }

@@ -75,12 +75,6 @@ struct GenWall {
   std::string openings;  ///< TOML of its [[wall.opening]] tables
 };
 
-double distance_to_segment(Vec2 p, Vec2 a, Vec2 b) {
-  const Vec2 d = b - a;
-  const double t = std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0);
-  return length(p - (a + t * d));
-}
-
 bool inside_polygon(Vec2 p, const std::vector<Vec2>& poly) {
   bool in = false;
   for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++)
