@@ -93,18 +93,19 @@ void set_text_panel(OverlayPanel& panel, const std::vector<std::string>& lines, 
 
 void set_centred_text_panel(OverlayPanel& panel, const std::vector<std::string>& lines, int width, int height,
                             double font_px) {
-  // Smaller type in a small window, so that every line fits, wide and high (down to 7 px).
-  for (; font_px > 7; font_px -= 0.5) {
-    const PanelLayout layout = measure(lines, font_px);
-    if (layout.w <= width - 8 && layout.h <= height - 8) break;
-  }
-  const std::string src = joined(lines, font_px);
+  // Fitted and drawn again only when the text or the window changes.
+  const std::string src = std::to_string(width) + "x" + std::to_string(height) + " " + joined(lines, font_px);
   if (src == panel.source && panel.width > 0) {
     panel.x = std::max(0, (width - panel.width) / 2);
     panel.y = std::max(0, (height - panel.height) / 2);
     return;
   }
   panel.source = src;
+  // Smaller type in a small window, so that every line fits, wide and high (down to 7 px).
+  for (; font_px > 7; font_px -= 0.5) {
+    const PanelLayout layout = measure(lines, font_px);
+    if (layout.w <= width - 8 && layout.h <= height - 8) break;
+  }
   draw_panel(panel, lines, font_px, 0, 0, true, width, height);
 }
 
