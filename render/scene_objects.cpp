@@ -28,7 +28,10 @@ std::vector<PlacedObject> place_objects(const CellComplex& complex) {
     p.name = o.name;
     p.mesh = place(it->second, o, floor_z);
     Vec3 centroid{0, 0, 0};
-    for (Vec3 v : p.mesh.vertices) centroid = centroid + v;
+    for (Vec3 v : p.mesh.vertices) {
+      centroid = centroid + v;
+      p.bounds.add(v);
+    }
     centroid = (1.0 / double(p.mesh.vertices.size())) * centroid;
     const Location at = complex.locate(centroid, hint);
     if (at.what == Location::What::Cell) p.cell = hint = at.cell;

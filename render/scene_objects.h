@@ -24,6 +24,7 @@ struct PlacedObject {
   Mesh mesh;               ///< world coordinates [m]
   CellId cell = kNoCell;   ///< kNoCell: its centroid lies in a solid or outside the far box; never drawn
   MeshPaint paint;
+  Box3 bounds;             ///< of the placed mesh's vertices
 };
 
 /// Loads every object of the complex (render/mesh.h, each file read once), places it on

@@ -233,10 +233,11 @@ bool ScreenSceneBuilder::add_face(const std::vector<Vec3>& polygon, const Plane&
   return add(cam, n, d, shade, where, source);
 }
 
-bool ScreenSceneBuilder::may_show(const std::array<Vec3, 8>& corners) const {
+bool ScreenSceneBuilder::may_show(const Box3& box) const {
   if (!cull_) return true;
   Vec2 lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
-  for (const Vec3& w : corners) {
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 w{k & 1 ? box.hi.x : box.lo.x, k & 2 ? box.hi.y : box.lo.y, k & 4 ? box.hi.z : box.lo.z};
     const Vec3 c = camera_.camera_from_world(w);
     if (!(c.z >= camera_.near)) return true;  // reaches the near plane: cannot tell here
     const Vec2 q{c.x / c.z, c.y / c.z};

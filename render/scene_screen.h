@@ -103,8 +103,8 @@ class ScreenSceneBuilder {
     cull_lo_ = lo, cull_hi_ = hi;
   }
   void no_cull() { cull_ = false; }
-  /// Whether a box of points (camera space) could show inside the cull box (true without one).
-  bool may_show(const std::array<Vec3, 8>& corners) const;
+  /// Whether a world box could show inside the cull box (true without one).
+  bool may_show(const Box3& box) const;
 
  private:
   /// Steps 2–5 for a polygon already in camera space on the plane n·P + d = 0.

@@ -15,10 +15,8 @@
 //     other, inside the mask only.
 #include "render/scene_screen.h"
 
-#include <array>
 #include <cmath>
 #include <map>
-#include <optional>
 
 namespace avenues {
 
@@ -42,22 +40,6 @@ ScreenScene screen_scene_of_view(const CellComplex& complex, const std::vector<P
   std::map<CellId, std::vector<size_t>> objects_in;
   for (size_t i = 0; i < objects.size(); ++i)
     if (objects[i].cell != kNoCell) objects_in[objects[i].cell].push_back(i);
-  // An object's bounding box, found when first needed: a cell seen through many avenues
-  // draws its objects in each, but only where that avenue's mask can show them.
-  std::vector<std::optional<std::array<Vec3, 8>>> box_of(objects.size());
-  auto box = [&](size_t o) -> const std::array<Vec3, 8>& {
-    if (!box_of[o]) {
-      Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-      for (const Vec3& v : objects[o].mesh.vertices) {
-        lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
-        hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
-      }
-      std::array<Vec3, 8> c;
-      for (int k = 0; k < 8; ++k) c[size_t(k)] = {k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y, k & 4 ? hi.z : lo.z};
-      box_of[o] = c;
-    }
-    return *box_of[o];
-  };
   for (size_t i = 0; i < visible.avenues.size(); ++i) {
     const Avenue& avenue = visible.avenues[i];
     if (avenue.mask.size() < 3) continue;
@@ -97,7 +79,7 @@ ScreenScene screen_scene_of_view(const CellComplex& complex, const std::vector<P
     const double margin = 2 * out.raster.step;
     b.cull_outside({lo.x - margin, lo.y - margin}, {hi.x + margin, hi.y + margin});
     for (size_t o : in->second) {
-      if (!b.may_show(box(o))) continue;
+      if (!b.may_show(objects[o].bounds)) continue;  // a cell seen through many avenues: not through this one
       source.mesh = int(o);
       b.add_mesh(objects[o].mesh, objects[o].paint, where, source);
     }
