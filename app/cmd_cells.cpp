@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "core/number_format.h"
 #include "cells/build_cells.h"
 #include "render/plan_drawing.h"
 
@@ -53,12 +54,6 @@ Stats count(const CellComplex& c) {
   return s;
 }
 
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
 std::string by_kind(const std::map<std::string, int>& m) {
   std::string out;
   for (const auto& [kind, n] : m) {
@@ -102,19 +97,19 @@ void print_summary(std::ostream& out, const LoadedPlan& plan) {
   out << "plan      " << (c.plan_name.empty() ? plan.stem : c.plan_name) << "  (" << plan.path << ")\n";
   out << "storeys   " << c.storeys.size();
   for (size_t i = 0; i < c.storeys.size(); ++i)
-    out << (i ? ", " : ": ") << c.storeys[i].name << " at " << fmt("%.2f", c.storeys[i].elevation) << " m";
+    out << (i ? ", " : ": ") << c.storeys[i].name << " at " << format_number("%.2f", c.storeys[i].elevation) << " m";
   out << "\n";
   out << "rooms     " << c.rooms.size() << " (" << s.named_rooms << " named, " << s.unnamed_rooms << " unnamed)\n";
   out << "cells     " << c.cells.size() << " (" << by_kind(s.cells_by_kind) << ")\n";
   out << "portals   " << c.portals.size() << " (" << by_kind(s.portals_by_kind) << ")\n";
   out << "opaque    " << s.opaque_faces << " faces\n";
   out << "lines     " << c.lines.size() << " real lines\n";
-  out << "per room  " << fmt("%.2f", s.cells_per_room) << " cells";
+  out << "per room  " << format_number("%.2f", s.cells_per_room) << " cells";
   if (s.max_cells > 0) out << " (most: " << s.max_cells << " in '" << s.max_room << "')";
   out << "\n";
   out << "seconds  ";
-  for (const StageTime& t : plan.stages) out << " " << t.stage << " " << fmt("%.3f", t.seconds) << ",";
-  out << " total " << fmt("%.3f", plan.seconds()) << "\n";
+  for (const StageTime& t : plan.stages) out << " " << t.stage << " " << format_number("%.3f", t.seconds) << ",";
+  out << " total " << format_number("%.3f", plan.seconds()) << "\n";
 }
 
 int run_cells(const CellsOptions& opt) {

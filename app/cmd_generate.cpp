@@ -6,7 +6,7 @@
 #include <string>
 
 #include "app/commands.h"
-#include "cells/atomic_file.h"
+#include "core/atomic_file.h"
 #include "plans/generate.h"
 
 namespace avenues::app {

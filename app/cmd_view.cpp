@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
-#include "cells/atomic_file.h"
+#include "core/atomic_file.h"
 #include "render/overlay_drawing.h"
 #include "visibility/viewpoint.h"
 #include "visibility/visible_set.h"

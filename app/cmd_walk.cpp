@@ -33,13 +33,14 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "core/angles.h"
 #include "app/controls.h"
 #include "app/hud.h"
 #include "app/line_raster.h"
 #include "app/script.h"
 #include "app/viewer.h"
-#include "cells/atomic_file.h"
-#include "cells/doom_map.h"
+#include "core/atomic_file.h"
+#include "plans/formats/doom_map.h"
 #include "render/halftone.h"
 #include "render/raster.h"
 #include "render/effects.h"
@@ -55,7 +56,6 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-constexpr double kDeg = 3.14159265358979323846 / 180;
 constexpr double kMinFov = 5, kMaxFov = 150;  // [deg]
 
 enum class StereoMode : uint8_t { Mono, SideBySide, Anaglyph };
@@ -145,8 +145,8 @@ class Session {
       throw std::runtime_error("--interocular and --converge must be positive lengths");
     const ViewSetup v = set_up_view(plan, view_options());
     const Vec3 f = v.camera.forward;
-    yaw_ = std::atan2(f.y, f.x) / kDeg;
-    pitch_ = std::asin(std::clamp(f.z, -1.0, 1.0)) / kDeg;
+    yaw_ = deg_from_rad(std::atan2(f.y, f.x));
+    pitch_ = deg_from_rad(std::asin(std::clamp(f.z, -1.0, 1.0)));
     fov_ = v.viewpoint.fov_deg;
     walker_.set_mode(opt.fly ? MoveMode::Fly : MoveMode::Walk);
     lines_ = opt.lines;
@@ -353,10 +353,10 @@ class Session {
     pitch_ = std::clamp(pitch_ + m.pitch, -89.0, 89.0);
     if (m.zoom != 1) {
       // The picture's scale is 1/tan(fov/2): zoom multiplies it.
-      const double scale = 1 / std::tan(fov_ * kDeg / 2) * m.zoom;
-      fov_ = std::clamp(2 * std::atan(1 / scale) / kDeg, kMinFov, kMaxFov);
+      const double scale = 1 / std::tan(rad_from_deg(fov_) / 2) * m.zoom;
+      fov_ = std::clamp(deg_from_rad(2 * std::atan(1 / scale)), kMinFov, kMaxFov);
     }
-    const double y = yaw_ * kDeg, p = pitch_ * kDeg;
+    const double y = rad_from_deg(yaw_), p = rad_from_deg(pitch_);
     const Vec3 heading{std::cos(y), std::sin(y), 0}, right{std::sin(y), -std::cos(y), 0};
     // Walking goes along the heading; flying goes where the eye looks.
     const Vec3 ahead = walker_.mode() == MoveMode::Fly ? Vec3{std::cos(p) * std::cos(y), std::cos(p) * std::sin(y), std::sin(p)} : heading;

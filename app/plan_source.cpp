@@ -12,9 +12,9 @@
 
 #include "cells/build_cells.h"
 #include "cells/crow.h"
-#include "cells/doom_map.h"
+#include "plans/formats/doom_map.h"
 #include "cells/mesh_scene.h"
-#include "cells/sweet_home.h"
+#include "plans/formats/sweet_home.h"
 #include "plans/plan.h"
 
 #ifndef AVENUES_SOURCE_DIR
@@ -27,10 +27,6 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kDefaultPlan = "jones-house.toml";
-
-double since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 /// A saved complex starts with the magic "AVCELLS\0", whatever its name.
 bool looks_like_cells(const std::string& path) {
@@ -113,14 +109,14 @@ LoadedPlan load_plan_source(const std::string& plan) {
 
   auto t0 = std::chrono::steady_clock::now();
   auto decompose = [&](const Plan& parsed, const char* stage) {
-    out.stages.push_back({stage, since(t0)});
+    out.stages.push_back({stage, seconds_since(t0)});
     out.complex = build_cells(parsed);
     for (const StageTime& t : out.complex.timings) out.stages.push_back(t);
   };
   switch (spec.format) {
     case PlanFormat::Cells:
       out.complex = load_cells(spec.file);
-      out.stages.push_back({"load cells", since(t0)});
+      out.stages.push_back({"load cells", seconds_since(t0)});
       return out;
     case PlanFormat::Toml: decompose(read_plan(spec.file), "read plan"); break;
     case PlanFormat::DoomMap: {

@@ -1,30 +1,9 @@
 // Avenues — build_cells: the pipeline of passes (see build_cells.h).
 #include "cells/build_cells.h"
 
-#include <chrono>
-
 #include "cells/passes.h"
 
 namespace avenues {
-
-namespace {
-
-/// Times a stage into the complex's timings (Recast's rcScopedTimer, in spirit).
-class ScopedTimer {
- public:
-  ScopedTimer(CellComplex& c, const char* stage) : c_(c), stage_(stage), t0_(std::chrono::steady_clock::now()) {}
-  ~ScopedTimer() {
-    std::chrono::duration<double> dt = std::chrono::steady_clock::now() - t0_;
-    c_.timings.push_back({stage_, dt.count()});
-  }
-
- private:
-  CellComplex& c_;
-  const char* stage_;
-  std::chrono::steady_clock::time_point t0_;
-};
-
-}  // namespace
 
 CellComplex build_cells(const Plan& plan, [[maybe_unused]] const CellParams& params) {
   using namespace detail;
@@ -41,32 +20,32 @@ CellComplex build_cells(const Plan& plan, [[maybe_unused]] const CellParams& par
 
   Outline outline;
   {
-    ScopedTimer t(out, "outline");
+    ScopedStageTimer t(out.timings, "outline");
     outline = make_outline(plan);
   }
   out.far_box.add({outline.lo.x, outline.lo.y, outline.z_bottom});
   out.far_box.add({outline.hi.x, outline.hi.y, outline.z_top});
   Triangulation tri;
   {
-    ScopedTimer t(out, "triangulate");
+    ScopedStageTimer t(out.timings, "triangulate");
     std::vector<Vec2> labels;
     for (const Room& r : plan.rooms) labels.push_back(r.label.value_or(outline.lo - Vec2{1, 1}));  // unlabelled: outside the box
     tri = triangulate(outline, labels);
   }
   Classes cls;
   {
-    ScopedTimer t(out, "classify");
+    ScopedStageTimer t(out.timings, "classify");
     cls = classify(plan, outline, tri);
     out.rooms = cls.rooms;
     out.warnings.insert(out.warnings.end(), cls.warnings.begin(), cls.warnings.end());
   }
   Layout layout;
   {
-    ScopedTimer t(out, "merge+extrude");
+    ScopedStageTimer t(out.timings, "merge+extrude");
     layout = extrude(plan, outline, tri, cls, out);
   }
   {
-    ScopedTimer t(out, "lines");
+    ScopedStageTimer t(out.timings, "lines");
     real_lines(outline, tri, cls, layout, out);
   }
   // Solids, for naming what a point is inside; then the spatial index.
@@ -79,7 +58,7 @@ CellComplex build_cells(const Plan& plan, [[maybe_unused]] const CellParams& par
     out.solids.push_back({r.poly, s.elevation, s.elevation + s.height, what});
   }
   {
-    ScopedTimer t(out, "index");
+    ScopedStageTimer t(out.timings, "index");
     out.index();
   }
 #ifndef NDEBUG

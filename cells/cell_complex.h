@@ -16,7 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "plans/geometry.h"
+#include "core/geometry.h"
+#include "core/stage_timer.h"
 #include "plans/plan.h"
 
 namespace avenues {
@@ -128,12 +129,6 @@ struct Location {
   enum class What : uint8_t { Cell, Solid, OutsideBox } what = What::OutsideBox;
   CellId cell = kNoCell;
   std::string solid;  ///< for Solid: what it is inside, e.g. "wall 'north' (plan.toml:12)"
-};
-
-/// Seconds spent per stage of the build, for `avenues cells`.
-struct StageTime {
-  std::string stage;
-  double seconds = 0;
 };
 
 struct CellComplex {

@@ -37,7 +37,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "cells/atomic_file.h"
+#include "core/atomic_file.h"
 #include "cells/build_cells.h"
 #include "cells/cell_complex.h"
 #include "plans/mesh.h"

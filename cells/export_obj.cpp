@@ -14,7 +14,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "cells/atomic_file.h"
+#include "core/atomic_file.h"
 #include "cells/build_cells.h"
 #include "cells/cell_complex.h"
 

@@ -50,19 +50,6 @@ using EPlane = K::Plane_3;
 using Nef = CGAL::Nef_polyhedron_3<K>;
 using SurfaceMesh = CGAL::Surface_mesh<EPoint>;
 
-class Timer {
- public:
-  Timer(CellComplex& c, const char* stage) : c_(c), stage_(stage), t0_(std::chrono::steady_clock::now()) {}
-  ~Timer() {
-    c_.timings.push_back({stage_, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count()});
-  }
-
- private:
-  CellComplex& c_;
-  const char* stage_;
-  std::chrono::steady_clock::time_point t0_;
-};
-
 Vec3 to_vec(const EPoint& p) {
   return {CGAL::to_double(CGAL::exact(p.x())), CGAL::to_double(CGAL::exact(p.y())),
           CGAL::to_double(CGAL::exact(p.z()))};
@@ -726,7 +713,7 @@ CellComplex build_mesh_scene(const std::vector<Mesh>& meshes, const MeshScenePar
   std::vector<Solid> solids;
   Nef free;
   {
-    Timer t(out, "solids");
+    ScopedStageTimer t(out.timings, "solids");
     for (const Mesh& mesh : meshes) {
       std::vector<Mesh> parts = mesh_components(mesh);
       const std::string file = mesh.path.empty() ? std::string("mesh") : mesh.path;
@@ -751,7 +738,7 @@ CellComplex build_mesh_scene(const std::vector<Mesh>& meshes, const MeshScenePar
   const double fov = 2 * std::atan(length(box.hi - box.lo) / 2 / length(middle - eye)) * 180 / 3.14159265358979323846;
   out.view = Viewpoint{eye, middle, std::clamp(fov, 40.0, 120.0)};
   {
-    Timer t(out, "free");
+    ScopedStageTimer t(out.timings, "free");
     CGAL::Nef_nary_union_3<Nef> all;
     bool any = false;
     for (const Solid& s : solids) {
@@ -775,15 +762,15 @@ CellComplex build_mesh_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     if (any) free = (free - all.get_union()).regularization();
   }
   {
-    Timer t(out, "decompose");
+    ScopedStageTimer t(out.timings, "decompose");
     CGAL::convex_decomposition_3(free);
   }
   {
-    Timer t(out, "cells");
+    ScopedStageTimer t(out.timings, "cells");
     build_cells_of(free, out);
   }
   {
-    Timer t(out, "lines");
+    ScopedStageTimer t(out.timings, "lines");
     std::vector<RealLine> lines;
     for (const Solid& s : solids) {
       std::vector<RealLine> l = feature_edges(s);

@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-#include "plans/geometry.h"
+#include "core/geometry.h"
 
 namespace avenues {
 

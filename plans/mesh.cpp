@@ -1,5 +1,6 @@
 // Avenues — reading meshes with OpenMesh (see mesh.h).
 #include "plans/mesh.h"
+#include "core/angles.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
@@ -24,10 +25,9 @@ namespace avenues {
 
 namespace {
 using PolyMesh = OpenMesh::PolyMesh_ArrayKernelT<>;
-constexpr double kDeg = 3.14159265358979323846 / 180;
 
 Vec3 rotate(Vec3 p, Vec3 deg) {
-  const double ax = deg.x * kDeg, ay = deg.y * kDeg, az = deg.z * kDeg;
+  const double ax = rad_from_deg(deg.x), ay = rad_from_deg(deg.y), az = rad_from_deg(deg.z);
   Vec3 q{p.x, std::cos(ax) * p.y - std::sin(ax) * p.z, std::sin(ax) * p.y + std::cos(ax) * p.z};
   q = {std::cos(ay) * q.x + std::sin(ay) * q.z, q.y, -std::sin(ay) * q.x + std::cos(ay) * q.z};
   return {std::cos(az) * q.x - std::sin(az) * q.y, std::sin(az) * q.x + std::cos(az) * q.y, q.z};

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "plans/geometry.h"
+#include "core/geometry.h"
 #include "plans/plan.h"
 
 namespace avenues {

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "plans/geometry.h"
+#include "core/geometry.h"
 
 namespace avenues {
 

@@ -35,6 +35,7 @@
 #include <unordered_set>
 
 #include "plans/plan.h"
+#include "core/number_format.h"
 
 #include "plans/arc.h"
 
@@ -47,13 +48,6 @@ constexpr double kAbsurdLength = 1e8;
 constexpr double kSlack = 1e-9;
 /// An arc needing more pieces than this has a tolerance too fine for its radius.
 constexpr long kMaxArcPieces = 100000;
-
-/// A number for messages: short, but exact enough to find in the file.
-std::string fmt(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
 
 /// Levenshtein distance, for "did you mean" hints on misspelt keys and names.
 int edit_distance(std::string_view a, std::string_view b) {
@@ -219,7 +213,7 @@ class Reader {
   // --- units ----------------------------------------------------------------------
   double unit() const { return unit_; }
   /// A length in metres, printed back in the plan's units: "4.5 m", "12 ft".
-  std::string len(double metres) const { return fmt(metres / unit_) + " " + unit_name_; }
+  std::string len(double metres) const { return format_number(metres / unit_) + " " + unit_name_; }
 
  private:
   friend class Element;
@@ -307,14 +301,14 @@ class Element {
     if (auto* i = n.as_integer()) v = static_cast<double>(i->get());
     else if (auto* f = n.as_floating_point()) v = f->get();
     else fail_at(n, label + " must be a number, not " + type_name(n));
-    if (!std::isfinite(v)) fail_at(n, label + " must be a finite number, not " + fmt(v));
+    if (!std::isfinite(v)) fail_at(n, label + " must be a finite number, not " + format_number(v));
     return v;
   }
   /// A number in the plan's units, converted to metres; absurd magnitudes refused.
   double length_of(const toml::node& n, const std::string& label) const {
     const double v = number_of(n, label) * r_.unit();
     if (std::fabs(v) > kAbsurdLength)
-      fail_at(n, label + " is " + r_.len(v) + ", beyond the " + fmt(kAbsurdLength) +
+      fail_at(n, label + " is " + r_.len(v) + ", beyond the " + format_number(kAbsurdLength) +
                      " m any building could measure");
     return v;
   }
@@ -348,7 +342,7 @@ class Element {
     if (!a || a->size() != 3) fail_at(n, label + " must be [r, g, b] or \"#rrggbb\"");
     for (size_t i = 0; i < 3; ++i) {
       c[i] = number_of(*a->get(i), label);
-      if (c[i] < 0 || c[i] > 1) fail_at(*a->get(i), label + " components must be in [0, 1], not " + fmt(c[i]));
+      if (c[i] < 0 || c[i] > 1) fail_at(*a->get(i), label + " components must be in [0, 1], not " + format_number(c[i]));
     }
     return c;
   }
@@ -489,7 +483,7 @@ void Reader::read_materials(const toml::table& root) {
     m.name = name;
     m.where = loc(k.source(), element);
     if (auto r = e.number("reflectance")) {
-      if (*r < 0 || *r > 1) e.fail("reflectance", "'reflectance' must be in [0, 1], not " + fmt(*r));
+      if (*r < 0 || *r > 1) e.fail("reflectance", "'reflectance' must be in [0, 1], not " + format_number(*r));
       m.reflectance = *r;
     }
     if (auto* c = e.get("colour")) m.colour = e.colour_of(*c, "'colour'");
@@ -609,9 +603,9 @@ void Reader::read_wall(const toml::table& t, int index) {
       const Vec2 a = w.centre.back();
       const std::optional<Arc> arc_of = arc_through(a, m, b);
       if (!arc_of)
-        e.fail_at(n, "the arc from (" + fmt(a.x / unit_) + ", " + fmt(a.y / unit_) + ") through (" +
-                         fmt(m.x / unit_) + ", " + fmt(m.y / unit_) + ") to (" + fmt(b.x / unit_) + ", " +
-                         fmt(b.y / unit_) + ") is degenerate: its 'through' point is collinear with (or " +
+        e.fail_at(n, "the arc from (" + format_number(a.x / unit_) + ", " + format_number(a.y / unit_) + ") through (" +
+                         format_number(m.x / unit_) + ", " + format_number(m.y / unit_) + ") to (" + format_number(b.x / unit_) + ", " +
+                         format_number(b.y / unit_) + ") is degenerate: its 'through' point is collinear with (or " +
                          "equal to an end of) its chord; use a straight segment");
       const double arc_pieces = arc_of->pieces_for(plan_.arc_tolerance);
       if (arc_pieces > kMaxArcPieces)
@@ -646,7 +640,7 @@ void Reader::read_wall(const toml::table& t, int index) {
     const Vec2 q1 = w.centre[s2], d2 = w.centre[s2 + 1] - q1;
     const double den = cross(d1, d2);
     const Vec2 p = den != 0 ? p1 + std::clamp(cross(q1 - p1, d2) / den, 0.0, 1.0) * d1 : q1;
-    const std::string near = " (near (" + fmt(p.x / unit_) + ", " + fmt(p.y / unit_) + "))";
+    const std::string near = " (near (" + format_number(p.x / unit_) + ", " + format_number(p.y / unit_) + "))";
     if (s2 == s1 + 1 || (closed && s1 == 0 && s2 + 2 == static_cast<int>(w.centre.size())))
       e.fail_at(*path->get(seg_entry[s2]), "the centre line of " + e.name() +
                                                " crosses itself: it doubles back on itself at path entry " +
@@ -892,9 +886,9 @@ void Reader::read_lights(const toml::table& root) {
     }
     if (l.kind == LightKind::Ambient) l.intensity = 0.1;  // Bouknight's BACK, unless given
     if (auto k = e.number("intensity")) {
-      if (*k <= 0) e.fail("intensity", "'intensity' must be > 0, not " + fmt(*k));
+      if (*k <= 0) e.fail("intensity", "'intensity' must be > 0, not " + format_number(*k));
       if (l.kind == LightKind::Ambient && *k > 1)
-        e.fail("intensity", "an ambient light's 'intensity' is a share of full light, at most 1, not " + fmt(*k));
+        e.fail("intensity", "an ambient light's 'intensity' is a share of full light, at most 1, not " + format_number(*k));
       l.intensity = *k;
     }
     if (auto* c = e.get("colour")) l.colour = e.colour_of(*c, "'colour'");
@@ -917,7 +911,7 @@ void Reader::read_view(const toml::table& root) {
   v.look = e.point3_of(e.need("look"), "'look'");
   if (v.eye == v.look) e.fail("look", "'look' must differ from 'eye'");
   if (auto f = e.number("fov")) {
-    if (!(*f > 0 && *f <= 179)) e.fail("fov", "'fov' must be in (0, 179] degrees, not " + fmt(*f));
+    if (!(*f > 0 && *f <= 179)) e.fail("fov", "'fov' must be in (0, 179] degrees, not " + format_number(*f));
     v.fov_deg = *f;
   }
   plan_.view = v;

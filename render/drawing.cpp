@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "cells/atomic_file.h"
+#include "core/atomic_file.h"
 #include "render/drawing_formats.h"
 
 namespace avenues {

@@ -11,7 +11,7 @@
 //   .dxf         dxflib: named layers, standard DXF lineweights, millimetres, y up;
 //   .hpgl, .plt  HPGL for pen plotters: one pen per weight, strokes chained and ordered
 //                nearest-end-first to cut the pen's travel in the air (pen_order.h).
-// Every file is written at once or not at all (cells/atomic_file.h).
+// Every file is written at once or not at all (core/atomic_file.h).
 #pragma once
 
 #include <cstddef>
@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "plans/geometry.h"
+#include "core/geometry.h"
 
 namespace avenues {
 

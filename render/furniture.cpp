@@ -1,5 +1,6 @@
 // Avenues — furniture (see furniture.h).
 #include "render/furniture.h"
+#include "core/angles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +11,6 @@ namespace avenues {
 
 namespace {
 
-constexpr double kDeg = 180 / 3.14159265358979323846;
 constexpr double kBehind = 1e-9;  ///< [m] a point hides only if this far behind a polygon's plane (not on it)
 
 Vec3 unit(Vec3 v) {
@@ -66,7 +66,7 @@ void find_edges(FurniturePiece& p) {
     if (boundary || e.polygon[1] >= 0) {  // not a diagonal inside one polygon
       if (e.polygon[1] >= 0) {
         const double c = dot(p.polygon_normal[size_t(e.polygon[0])], p.polygon_normal[size_t(e.polygon[1])]);
-        e.dihedral_deg = std::acos(std::clamp(c, -1.0, 1.0)) * kDeg;
+        e.dihedral_deg = deg_from_rad(std::acos(std::clamp(c, -1.0, 1.0)));
       }
       p.edges.push_back(e);
     }

@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "cells/atomic_file.h"
+#include "core/atomic_file.h"
 
 namespace avenues {
 

@@ -14,7 +14,7 @@
 #include <array>
 #include <vector>
 
-#include "plans/geometry.h"
+#include "core/geometry.h"
 
 namespace avenues {
 

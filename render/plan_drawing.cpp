@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "cells/atomic_file.h"
+#include "core/atomic_file.h"
 
 namespace avenues {
 namespace {

@@ -13,7 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "cells/atomic_file.h"
+#include "core/atomic_file.h"
 #include "render/raster.h"
 
 namespace avenues {

@@ -7,7 +7,7 @@
 // space, x to the right and y up, so the map is a scale and a flip of y.
 #pragma once
 
-#include "plans/geometry.h"
+#include "core/geometry.h"
 #include "visibility/camera.h"
 
 namespace avenues {

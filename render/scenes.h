@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "plans/geometry.h"
+#include "core/geometry.h"
 #include "plans/plan.h"
 #include "render/halftone.h"
 #include "plans/mesh.h"

@@ -30,7 +30,7 @@
 #include <cstdint>
 #include <string>
 
-#include "plans/geometry.h"
+#include "core/geometry.h"
 #include "plans/plan.h"
 #include "render/raster_map.h"
 

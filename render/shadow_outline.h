@@ -12,7 +12,7 @@
 #include <array>
 #include <vector>
 
-#include "plans/geometry.h"
+#include "core/geometry.h"
 #include "render/shadows.h"
 
 namespace avenues {

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "cells/atomic_file.h"
+#include "core/atomic_file.h"
 
 namespace avenues {
 

@@ -313,7 +313,7 @@ TEST(Cells, ASheetMeetingAFlatWallDrawsTheCornerOnItsOwnSideOnly) {
 }
 
 // --- Rooms with their own floor and ceiling, named by wall sides, a solid outside:
-// what an imported Doom map needs (cells/doom_map.h builds such plans from sectors).
+// what an imported Doom map needs (plans/formats/doom_map.h builds such plans from sectors).
 namespace {
 
 /// Two 4 m × 4 m "sectors" sharing the line x = 4, walls of no thickness, no labels:

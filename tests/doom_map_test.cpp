@@ -1,4 +1,4 @@
-// Tests of cells/doom_map: Doom maps as plans. A hand-written WAD (bytes laid out here)
+// Tests of plans/formats/doom_map: Doom maps as plans. A hand-written WAD (bytes laid out here)
 // shows the heights — a portal spans exactly the overlap of two sectors' heights, a
 // sky sector has the sky above it, a closed door is solid — and each malformed input
 // gives a PlanError naming the file and the lump or element. Then every map of Debian's
@@ -20,7 +20,7 @@
 #include <unistd.h>
 
 #include "cells/build_cells.h"
-#include "cells/doom_map.h"
+#include "plans/formats/doom_map.h"
 #include "ray_oracle.h"
 #include "visibility/visible_set.h"
 

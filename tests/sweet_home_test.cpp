@@ -1,4 +1,4 @@
-// Tests of the Sweet Home 3D importer (cells/sweet_home.cpp).
+// Tests of the Sweet Home 3D importer (plans/formats/sweet_home.cpp).
 //
 //   * the nine example homes Debian's sweethome3d ships (bare Home.xml) read and build
 //     valid cells; every room they name owns cells or is accounted for by a warning;
@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "cells/build_cells.h"
-#include "cells/sweet_home.h"
+#include "plans/formats/sweet_home.h"
 #include "plans/mesh.h"
 #include "render/view_lines.h"
 #include "ray_oracle.h"

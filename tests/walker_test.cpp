@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "cells/build_cells.h"
-#include "cells/doom_map.h"
+#include "plans/formats/doom_map.h"
 #include "test_plans.h"
 #include "visibility/viewpoint.h"
 #include "visibility/walker.h"

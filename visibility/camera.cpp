@@ -1,5 +1,6 @@
 // Avenues — the camera (see camera.h).
 #include "visibility/camera.h"
+#include "core/angles.h"
 
 #include <cmath>
 
@@ -7,7 +8,6 @@ namespace avenues {
 
 namespace {
 Vec3 normalize(Vec3 v) { return (1.0 / length(v)) * v; }
-constexpr double kDeg = 3.14159265358979323846 / 180;
 }  // namespace
 
 Camera Camera::look_at(Vec3 eye, Vec3 look, double fov_deg, int width, int height) {
@@ -27,12 +27,12 @@ Camera Camera::look_at(Vec3 eye, Vec3 look, double fov_deg, int width, int heigh
 }
 
 Camera Camera::yaw_pitch(Vec3 eye, double yaw_deg, double pitch_deg, double fov_deg, int width, int height) {
-  double y = yaw_deg * kDeg, p = pitch_deg * kDeg;
+  double y = rad_from_deg(yaw_deg), p = rad_from_deg(pitch_deg);
   Vec3 dir{std::cos(p) * std::cos(y), std::cos(p) * std::sin(y), std::sin(p)};
   return look_at(eye, eye + dir, fov_deg, width, height);
 }
 
-double Camera::half_width() const { return std::tan(fov_deg * kDeg / 2); }
+double Camera::half_width() const { return std::tan(rad_from_deg(fov_deg) / 2); }
 double Camera::half_height() const { return half_width() * height / width; }
 
 Vec2 Camera::raster_from_image(Vec2 xy) const {

@@ -10,7 +10,7 @@
 // its sample at the centre (i + ½, j + ½).
 #pragma once
 
-#include "plans/geometry.h"
+#include "core/geometry.h"
 
 namespace avenues {
 

@@ -1,10 +1,10 @@
-// Fuzz target: the Sweet Home 3D reader (cells/sweet_home.h), as a bare Home.xml or, when
+// Fuzz target: the Sweet Home 3D reader (plans/formats/sweet_home.h), as a bare Home.xml or, when
 // the input starts like a zip, as a .sh3d. A refusal is a PlanError naming the file and
 // element; anything else is a finding.
 #include <cstdint>
 #include <string>
 
-#include "cells/sweet_home.h"
+#include "plans/formats/sweet_home.h"
 #include "fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

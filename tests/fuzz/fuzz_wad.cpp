@@ -1,10 +1,10 @@
-// Fuzz target: the Doom WAD reader (cells/doom_map.h). Any input must be read, repaired
+// Fuzz target: the Doom WAD reader (plans/formats/doom_map.h). Any input must be read, repaired
 // with warnings, or refused with a PlanError naming the file and lump; anything else is
 // a finding. Every map the directory lists is read (at most four, to keep runs short).
 #include <cstdint>
 #include <string>
 
-#include "cells/doom_map.h"
+#include "plans/formats/doom_map.h"
 #include "fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -1,5 +1,5 @@
 // Avenues — reading a WAD's header, directory and lumps (see wad_file.h).
-#include "cells/wad_file.h"
+#include "plans/formats/wad_file.h"
 
 #include <algorithm>
 #include <fstream>

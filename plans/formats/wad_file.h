@@ -3,7 +3,7 @@
 // A WAD is a 12-byte header ("IWAD" or "PWAD", the number of lumps, the offset of the
 // directory), the lumps' bytes, and a directory of 16-byte entries (offset, size, an
 // 8-character name), all little-endian. A map is a marker lump ("MAP01", "E1M1") followed
-// by its lumps (THINGS, LINEDEFS, ...); cells/doom_map.cpp reads those. This file knows
+// by its lumps (THINGS, LINEDEFS, ...); plans/formats/doom_map.cpp reads those. This file knows
 // only the container: it checks the header and directory against the file's size when
 // opening, and each lump when it is read, so a damaged file is a PlanError naming the
 // file and the lump, never a read past the end.

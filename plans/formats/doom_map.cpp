@@ -8,7 +8,7 @@
 //   SECTORS  26 bytes: floor, ceiling (int16), floor flat, ceiling flat (8 chars), light, special, tag
 //   THINGS   10 bytes: x, y, angle [deg], type, flags (int16)
 //            20 bytes in Hexen: tid, x, y, z, angle, type, flags (int16), special, 5 args (uint8)
-#include "cells/doom_map.h"
+#include "plans/formats/doom_map.h"
 
 #include <algorithm>
 #include <array>
@@ -22,7 +22,7 @@
 #include <optional>
 #include <set>
 
-#include "cells/wad_file.h"
+#include "plans/formats/wad_file.h"
 
 namespace avenues {
 

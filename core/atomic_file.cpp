@@ -1,19 +1,11 @@
-// Avenues — writing an output file all at once or not at all.
-//
-// Every file Avenues writes (saved cells, OBJ, SVG, generated plans) goes through
-// write_file_atomically(): the bytes go to a temporary file in the same directory,
-// which is renamed over the target only once it is complete. A failure (a full disk,
-// a missing directory, an exception while producing the bytes) never leaves a partial
-// output file behind. Header-only so that every module downstream of cells/ can use it.
-#pragma once
+// Avenues — writing an output file all at once or not at all (core/atomic_file.h).
+#include "core/atomic_file.h"
 
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
-#include <string>
-#include <string_view>
 #include <system_error>
 
 #include <fcntl.h>
@@ -25,7 +17,7 @@ namespace avenues {
 
 /// Writes `bytes` to `path` via a temporary file in the same directory and a rename.
 /// Throws std::runtime_error naming the file on failure; the target is then untouched.
-inline void write_file_atomically(const std::string& path, std::string_view bytes) {
+void write_file_atomically(const std::string& path, std::string_view bytes) {
   namespace fs = std::filesystem;
   auto fail = [&](const std::string& what, int err) {
     throw std::runtime_error("cannot write " + path + ": " + what +

@@ -22,7 +22,8 @@
 // coordinates, a number that is not a number, a level that does not exist) are
 // PlanErrors; odd but readable data (NaN, zero-length walls, a window in no wall) is
 // repaired or dropped with a line in Plan::warnings.
-#include "cells/sweet_home.h"
+#include "plans/formats/sweet_home.h"
+#include "core/number_format.h"
 
 #include "plans/arc.h"
 #include "plans/mesh.h"
@@ -62,12 +63,6 @@ constexpr double kDoorSill = 0.05;      ///< [m] a door or window reaching this 
 constexpr double kParallelSin = 0.26;   ///< sin 15°: how far a piece may turn from its wall
 constexpr double kMinOpening = 0.01;    ///< [m] narrower or lower openings (and lower walls) are dropped
 constexpr double kDefaultSlab = 0.12;   ///< [m] Sweet Home's default floor thickness
-
-std::string fmt(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
 
 double polyline_length(const std::vector<Vec2>& c) {
   double l = 0;
@@ -382,7 +377,7 @@ void HomeReader::read_levels(pugi::xml_node home) {
     l.node = n;
     if (!sane(l.elevation) || !sane(l.floor) || !sane(l.height) || l.height <= 0 || l.floor < 0)
       fail(n, element, element + " has an elevation, floorThickness or height that makes no sense (" +
-                           fmt(l.elevation) + ", " + fmt(l.floor) + ", " + fmt(l.height) + ")");
+                           format_number(l.elevation) + ", " + format_number(l.floor) + ", " + format_number(l.height) + ")");
     l.elevation *= kCm, l.floor *= kCm, l.height *= kCm;
     levels.push_back(l);
   }
@@ -421,7 +416,7 @@ void HomeReader::read_levels(pugi::xml_node home) {
     }
     if (grp.size() > 1)
       plan_.warnings.push_back(s.where.str() + ": levels '" + s.name + "' share the elevation " +
-                               fmt(grp.front()->elevation) + " m: merged into one storey " + fmt(s.height) +
+                               format_number(grp.front()->elevation) + " m: merged into one storey " + format_number(s.height) +
                                " m high");
     if (g + 1 < groups.size()) {
       // The slab is the gap up to the next level's floor (its floorThickness, if the
@@ -431,9 +426,9 @@ void HomeReader::read_levels(pugi::xml_node home) {
       if (s.height + next.floor > gap + 1e-6) {
         const double slab = std::clamp(next.floor, 0.0, gap / 2);
         const double h = gap - slab;
-        plan_.warnings.push_back(s.where.str() + ": level '" + s.name + "' (" + fmt(s.height) +
+        plan_.warnings.push_back(s.where.str() + ": level '" + s.name + "' (" + format_number(s.height) +
                                  " m high) reaches into the floor of level '" + next.name + "' at " +
-                                 fmt(next.elevation) + " m: cut to " + fmt(h) + " m");
+                                 format_number(next.elevation) + " m: cut to " + format_number(h) + " m");
         s.height = h;
       }
       s.slab = gap - s.height;
@@ -473,7 +468,7 @@ void HomeReader::read_walls(pugi::xml_node home) {
       continue;
     }
     if (th < 0) {
-      warn(n, element, "negative thickness " + fmt(th) + " cm: wall dropped");
+      warn(n, element, "negative thickness " + format_number(th) + " cm: wall dropped");
       continue;
     }
     const Vec2 a = plan_point(xs, ys), b = plan_point(xe, ye);
@@ -1177,7 +1172,7 @@ std::shared_ptr<const Mesh> HomeReader::model_of(const PieceIn& p) {
     return from_base ? (v - a) * k : (v - 0.5 * (a + b)) * k;
   };
   Mesh m = raw;
-  m.path = path_ + ":" + p.model + " as " + fmt(p.width * 100) + " x " + fmt(p.depth * 100) + " x " + fmt(p.height * 100) +
+  m.path = path_ + ":" + p.model + " as " + format_number(p.width * 100) + " x " + format_number(p.depth * 100) + " x " + format_number(p.height * 100) +
            " cm" + (p.mirrored ? ", mirrored" : "");
   for (size_t i = 0; i < turned.size(); ++i) {
     const Vec3 t = turned[i];
@@ -1284,7 +1279,7 @@ Plan HomeReader::read(pugi::xml_node home) {
   if (sloped_ > 0)
     plan_.warnings.push_back(file_ + ": " + std::to_string(sloped_) + " sloped wall(s) (heightAtEnd) stepped into " +
                              std::to_string(steps_) + " pieces of constant height, steps of at most " +
-                             fmt(kStep * 100) + " cm: cells are vertical prisms");
+                             format_number(kStep * 100) + " cm: cells are vertical prisms");
   return std::move(plan_);
 }
 
