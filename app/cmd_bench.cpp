@@ -1,10 +1,10 @@
 // Avenues — `avenues bench papers`: the papers' scenes (Bouknight 1969, Wylie 1967,
 // Crow 1981) rendered at 512 × 512 by the scanline engine, our counts and times beside
-// the figures the papers give (render/scenes.h has the table and its sources).
+// the figures the papers give (app/paper_bench.h has the table, render/scenes.h the scenes and their sources).
 #include <iostream>
 
 #include "app/commands.h"
-#include "render/scenes.h"
+#include "app/paper_bench.h"
 
 namespace avenues::app {
 

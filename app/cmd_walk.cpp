@@ -36,7 +36,7 @@
 #include "core/angles.h"
 #include "app/controls.h"
 #include "app/hud.h"
-#include "app/line_raster.h"
+#include "render/line_raster.h"
 #include "app/script.h"
 #include "app/viewer.h"
 #include "core/atomic_file.h"
@@ -163,14 +163,11 @@ class Session {
   void run(const std::vector<ScriptEvent>& events, WalkReport& report) {
     const bool scripted = !events.empty() || opt_.frames > 0;
     const double fixed_dt = opt_.dt > 0 ? opt_.dt : scripted ? 1.0 / 60 : 0;
-    size_t next_event = 0;
+    ScriptPlayer script(events);
     bool quit = false, final_shot = false;
     Clock::time_point last_start = Clock::now();
     double smoothed_work = 0, smoothed_render = 0;
     Clock::time_point hud_refreshed = Clock::now() - std::chrono::seconds(1);
-    GamepadState scripted_pad;
-    // Triggers rest at -1, as GLFW reports them.
-    scripted_pad.axes[GLFW_GAMEPAD_AXIS_LEFT_TRIGGER] = scripted_pad.axes[GLFW_GAMEPAD_AXIS_RIGHT_TRIGGER] = -1;
     for (long frame = 0; !quit && !viewer_.should_close(); ++frame) {
       if (opt_.frames > 0 && frame >= opt_.frames) break;
       // Wait for input only when nothing would change without it.
@@ -185,30 +182,13 @@ class Session {
       for (const auto& [key, down] : in.keys) controls_.key(key, down);
       controls_.look(in.look_dx, in.look_dy);
       // The script's events for this frame.
-      std::vector<std::string> shots;
-      for (; next_event < events.size() && events[next_event].frame <= frame; ++next_event) {
-        const ScriptEvent& e = events[next_event];
-        switch (e.what) {
-          case ScriptEvent::What::Down: controls_.key(e.key, true); break;
-          case ScriptEvent::What::Up: controls_.key(e.key, false); break;
-          case ScriptEvent::What::Tap: controls_.key(e.key, true), controls_.key(e.key, false); break;
-          case ScriptEvent::What::Look: controls_.look(e.x, e.y); break;
-          case ScriptEvent::What::Resize: resize_window(int(e.x), int(e.y)); break;
-          case ScriptEvent::What::Screenshot: shots.push_back(e.path); break;
-          case ScriptEvent::What::Pose: std::cout << "pose: " << pose_text() << "\n"; break;
-          case ScriptEvent::What::Quit: quit = true; break;
-          case ScriptEvent::What::PadAxis:
-            scripted_pad.present = true;
-            scripted_pad.axes[size_t(e.key)] = float(e.x);
-            break;
-          case ScriptEvent::What::PadButton:
-            scripted_pad.present = true;
-            scripted_pad.buttons[size_t(e.key)] = uint8_t(e.x);
-            break;
-        }
-      }
+      const ScriptPlayer::Requests asked = script.play(frame, controls_);
+      for (const auto& [rw, rh] : asked.resizes) resize_window(rw, rh);
+      for (int k = 0; k < asked.poses; ++k) std::cout << "pose: " << pose_text() << "\n";
+      quit |= asked.quit;
+      const std::vector<std::string>& shots = asked.screenshots;
       // A scripted pad stands in for a real one, as GLFW would report it.
-      controls_.gamepad(scripted_pad.present && !in.gamepad.present ? scripted_pad : in.gamepad);
+      controls_.gamepad(script.pad().present && !in.gamepad.present ? script.pad() : in.gamepad);
       for (Action a : controls_.take_commands()) command(a, quit);
       step(controls_.motion(dt), dt);
 
@@ -374,12 +354,7 @@ class Session {
     out.portals_tested = vs.portals_tested;
     out.micros = vs.micros;
     out.avenues.assign(vs.avenues.begin(), vs.avenues.begin() + long(std::min(k, vs.avenues.size())));
-    for (const Avenue& a : out.avenues) {
-      out.cells.push_back(a.cell);
-      out.max_depth = std::max(out.max_depth, a.depth);
-    }
-    std::sort(out.cells.begin(), out.cells.end());
-    out.cells.erase(std::unique(out.cells.begin(), out.cells.end()), out.cells.end());
+    out.collect_cells();
     return out;
   }
 
@@ -388,10 +363,10 @@ class Session {
     return *scene_;
   }
 
-  /// One eye's picture of `vs` (the first `k` avenues in progressive display) into `out`.
-  void picture(const Camera& cam, const VisibleSet& vs, Image& out) {
-    const bool partial = progressive_ && shown_ < vs.avenues.size();
-    const VisibleSet part = partial ? prefix(vs, shown_) : VisibleSet{};
+  /// One eye's picture of `vs` into `out`: its first `shown` avenues in progressive display.
+  void picture(const Camera& cam, const VisibleSet& vs, size_t shown, Image& out) {
+    const bool partial = progressive_ && shown < vs.avenues.size();
+    const VisibleSet part = partial ? prefix(vs, shown) : VisibleSet{};
     const VisibleSet& use = partial ? part : vs;
     if (lines_) raster_of_drawing(draw_view(c_, line_scene(), cam, use), out);
     else render_view(c_, objects_, effects_, cam, use, halftone_, out);
@@ -432,13 +407,10 @@ class Session {
       shown_ = std::min(full_.avenues.size(), shown_ + size_t(opt_.progressive_rate));
     }
     if (shown_mode_ == StereoMode::Mono) {
-      picture(cam_, full_, frame_);
+      picture(cam_, full_, shown_, frame_);
     } else {
-      picture(rig_.left, full_, left_);
-      const size_t keep = shown_;
-      if (progressive_) shown_ = std::min(shown_, right_.avenues.size());
-      picture(rig_.right, right_, right_img_);
-      shown_ = keep;
+      picture(rig_.left, full_, shown_, left_);
+      picture(rig_.right, right_, std::min(shown_, right_.avenues.size()), right_img_);
       frame_ = stereo_composite(left_, right_img_,
                                 shown_mode_ == StereoMode::Anaglyph ? StereoComposite::Anaglyph : StereoComposite::Parallel);
     }

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <GLFW/glfw3.h>
+
 #include "app/controls.h"
 #include "plans/plan.h"
 
@@ -95,6 +97,37 @@ std::string random_script(uint32_t seed, long frames) {
     if (u(rng) < 0.004) out << f << " resize " << 160 + std::lround(1000 * u(rng)) << " " << 120 + std::lround(560 * u(rng)) << "\n";
   }
   return out.str();
+}
+
+ScriptPlayer::ScriptPlayer(std::vector<ScriptEvent> events) : events_(std::move(events)) {
+  // Triggers rest at -1, as GLFW reports them.
+  pad_.axes[GLFW_GAMEPAD_AXIS_LEFT_TRIGGER] = pad_.axes[GLFW_GAMEPAD_AXIS_RIGHT_TRIGGER] = -1;
+}
+
+ScriptPlayer::Requests ScriptPlayer::play(long frame, Controls& controls) {
+  Requests r;
+  for (; next_ < events_.size() && events_[next_].frame <= frame; ++next_) {
+    const ScriptEvent& e = events_[next_];
+    switch (e.what) {
+      case ScriptEvent::What::Down: controls.key(e.key, true); break;
+      case ScriptEvent::What::Up: controls.key(e.key, false); break;
+      case ScriptEvent::What::Tap: controls.key(e.key, true), controls.key(e.key, false); break;
+      case ScriptEvent::What::Look: controls.look(e.x, e.y); break;
+      case ScriptEvent::What::Resize: r.resizes.emplace_back(int(e.x), int(e.y)); break;
+      case ScriptEvent::What::Screenshot: r.screenshots.push_back(e.path); break;
+      case ScriptEvent::What::Pose: ++r.poses; break;
+      case ScriptEvent::What::Quit: r.quit = true; break;
+      case ScriptEvent::What::PadAxis:
+        pad_.present = true;
+        pad_.axes[size_t(e.key)] = float(e.x);
+        break;
+      case ScriptEvent::What::PadButton:
+        pad_.present = true;
+        pad_.buttons[size_t(e.key)] = uint8_t(e.x);
+        break;
+    }
+  }
+  return r;
 }
 
 }  // namespace avenues::app

@@ -25,7 +25,10 @@
 #include <cstdint>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "app/controls.h"
 
 namespace avenues::app {
 
@@ -45,5 +48,32 @@ std::vector<ScriptEvent> read_script(const std::string& path);
 /// The script's text for `frames` frames of random input from `seed`: keys held and let go,
 /// switches flipped, mouse looks, mode and style toggles, resizes (no exports, no quit).
 std::string random_script(uint32_t seed, long frames);
+
+/// Replays a script frame by frame without a window: key, mouse and gamepad events go to
+/// the controls (the scripted gamepad is kept here, as GLFW would report it); what only
+/// the window can do is handed back, in file order.
+class ScriptPlayer {
+ public:
+  explicit ScriptPlayer(std::vector<ScriptEvent> events);
+
+  /// What a frame's events ask of the window.
+  struct Requests {
+    std::vector<std::pair<int, int>> resizes;  ///< [px] width, height
+    std::vector<std::string> screenshots;      ///< paths
+    int poses = 0;                             ///< "pose" lines to print
+    bool quit = false;
+  };
+  /// Plays every event up to and including `frame` (events of a frame come before it is drawn).
+  Requests play(long frame, Controls& controls);
+  /// The scripted gamepad (present once a "pad" event was played; triggers rest at -1).
+  const GamepadState& pad() const { return pad_; }
+  /// True when the script holds any event at all.
+  bool empty() const { return events_.empty(); }
+
+ private:
+  std::vector<ScriptEvent> events_;
+  size_t next_ = 0;
+  GamepadState pad_;
+};
 
 }  // namespace avenues::app

@@ -5,7 +5,7 @@
 
 namespace avenues {
 
-CellComplex build_cells(const Plan& plan, [[maybe_unused]] const CellParams& params) {
+CellComplex build_cells(const Plan& plan, const CellParams&) {
   using namespace detail;
   if (plan.walls.empty()) throw PlanError({plan.source, 0, 0, ""}, "the plan has no walls");
   if (plan.storeys.empty()) throw PlanError({plan.source, 0, 0, ""}, "the plan has no storeys");
@@ -61,15 +61,7 @@ CellComplex build_cells(const Plan& plan, [[maybe_unused]] const CellParams& par
     ScopedStageTimer t(out.timings, "index");
     out.index();
   }
-#ifndef NDEBUG
-  const bool check = true;
-#else
-  const bool check = params.validate;
-#endif
-  if (check) {
-    std::string why = cells_are_valid(out);
-    if (!why.empty()) throw std::logic_error("cell complex of '" + plan.name + "' is invalid: " + why);
-  }
+  check_complex(out, "'" + plan.name + "'");
   return out;
 }
 

@@ -23,9 +23,9 @@
 
 namespace avenues {
 
-struct CellParams {
-  bool validate = false;  ///< run cells_are_valid() after building (always on in debug builds)
-};
+/// Parameters of the plan decomposition (none yet: the passes take what they need from
+/// the plan itself).
+struct CellParams {};
 
 /// Builds the cell complex. Throws PlanError for plan mistakes found only now
 /// (a room label inside a wall, a room open to the outside, ...).
@@ -35,6 +35,12 @@ CellComplex build_cells(const Plan& plan, const CellParams& params = {});
 /// overlap, free volume accounted for, convex portals lying in a face of both cells,
 /// no portal joining a cell to itself. Returns "" when valid, else what is wrong.
 std::string cells_are_valid(const CellComplex& complex);
+
+/// In builds with invariant checks (core/check.h: -DAVENUES_INVARIANTS=ON, the default
+/// for Debug), runs cells_are_valid and throws InvariantError naming `what` (the plan or
+/// file) when the complex is invalid; otherwise does nothing. Every builder and loader
+/// of complexes calls it on what it returns.
+void check_complex(const CellComplex& complex, const std::string& what);
 
 /// Saves / loads a decomposed complex (binary, versioned). Throws std::runtime_error
 /// naming the file on failure; load_cells rebuilds the spatial index.

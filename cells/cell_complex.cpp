@@ -165,4 +165,15 @@ Location CellComplex::locate(Vec3 p, CellId hint) const {
   return loc;
 }
 
+CellId CellComplex::largest_cell_of(RoomId room) const {
+  CellId best = kNoCell;
+  for (CellId id = 0; id < CellId(cells.size()); ++id) {
+    const Cell& cell = cells[size_t(id)];
+    if (cell.kind == CellKind::Room && cell.room == room &&
+        (best == kNoCell || signed_area(cell.footprint) > signed_area(cells[size_t(best)].footprint)))
+      best = id;
+  }
+  return best;
+}
+
 }  // namespace avenues

@@ -5,11 +5,11 @@
 // transparent faces. ... Each cell is required to be a convex polyhedron, ... each
 // opening ... a convex polygon, ... shared by two adjacent cells."
 //
-// Every cell Avenues builds is a vertical prism: a convex footprint (counter-
-// clockwise, seen from above) between two heights. Plain structs linked by typed
+// A plan's cells are vertical prisms: a convex footprint (counter-clockwise, seen from
+// above) between two heights; a mesh scene's are general convex polyhedra (Cell::prism). Plain structs linked by typed
 // indices (Recast/Godot style); the CellComplex owns every array, cells never point
 // at each other. All coordinates are doubles in metres, rounded once from the exact
-// CGAL construction in cells/decompose.cpp.
+// CGAL construction (cells/triangulate.cpp for plans, cells/mesh_scene.cpp for meshes).
 #pragma once
 
 #include <cstdint>
@@ -152,6 +152,10 @@ struct CellComplex {
   /// walk through portals; a spatial index catches the rest. Points on a shared face
   /// go to either cell. Solid reports name the element when known.
   Location locate(Vec3 p, CellId hint = kNoCell) const;
+
+  /// The room's largest cell of kind Room (by footprint area): where a person stands in
+  /// it. kNoCell when the room has no such cell.
+  CellId largest_cell_of(RoomId room) const;
 
   /// Builds the spatial index used by locate(); done by build_cells and load_cells.
   void index();

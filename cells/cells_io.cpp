@@ -583,6 +583,7 @@ CellComplex load_cells(const std::string& path) {
   read_complex(r, c);
   check_indices(c, r);
   c.index();
+  check_complex(c, path);
   return c;
 }
 

@@ -20,6 +20,8 @@
 // Avenues' own structs.
 #include "cells/mesh_scene.h"
 
+#include "cells/build_cells.h"
+
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Nef_nary_union_3.h>
 #include <CGAL/Nef_polyhedron_3.h>
@@ -783,6 +785,7 @@ CellComplex build_mesh_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     add_real_lines(out, lines);
   }
   out.index();
+  check_complex(out, "a mesh scene");
   return out;
 }
 

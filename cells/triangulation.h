@@ -1,6 +1,7 @@
 // Avenues — pass 2 of build_cells: one exact constrained triangulation of all outlines.
 //
-// The only CGAL-heavy translation unit sits behind this header (triangulate.cpp).
+// The plan decomposition's CGAL-heavy translation unit sits behind this header
+// (triangulate.cpp; mesh scenes have their own, mesh_scene.cpp).
 // What comes out is plain arrays (Recast style): vertices rounded once to doubles,
 // counter-clockwise triangles with their neighbours, and for each triangle and edge
 // what covers it. Why a triangulation and not Boolean operations plus a partition:

@@ -5,17 +5,11 @@
 #include <sstream>
 
 #include "cells/build_cells.h"
+#include "core/check.h"
 
 namespace avenues {
 
 namespace {
-
-/// Area of a planar 3D polygon.
-double area3(const std::vector<Vec3>& p) {
-  Vec3 s{0, 0, 0};
-  for (size_t i = 0; i < p.size(); ++i) s = s + cross(p[i], p[(i + 1) % p.size()]);
-  return length(s) / 2;
-}
 
 /// Part of convex polygon `a` inside convex counter-clockwise polygon `b`.
 std::vector<Vec2> clip(std::vector<Vec2> a, const std::vector<Vec2>& b) {
@@ -152,9 +146,9 @@ std::string cells_are_valid(const CellComplex& c) {
     for (size_t k = 0; k < cell.faces.size(); ++k) {
       const Face& face = cell.faces[k];
       double covered = 0;
-      for (const OpaquePoly& o : face.opaque) covered += area3(o.poly);
-      for (PortalId p : face.portals) covered += area3(c.portals[size_t(p)].poly);
-      double whole = area3(face.poly);
+      for (const OpaquePoly& o : face.opaque) covered += polygon_area(o.poly);
+      for (PortalId p : face.portals) covered += polygon_area(c.portals[size_t(p)].poly);
+      double whole = polygon_area(face.poly);
       if (std::fabs(covered - whole) > 1e-6 * std::max(1.0, whole))
         return fail("face ", k, " of cell ", i, " has area ", whole, " but opaque + portals cover ", covered);
     }
@@ -166,7 +160,7 @@ std::string cells_are_valid(const CellComplex& c) {
     if (portal.cell[0] == portal.cell[1]) return fail("portal ", p, " joins cell ", portal.cell[0], " to itself");
     for (CellId id : portal.cell)
       if (id < 0 || id >= CellId(c.cells.size())) return fail("portal ", p, " names no cell");
-    if (portal.poly.size() < 3 || area3(portal.poly) <= 0) return fail("portal ", p, " is degenerate");
+    if (portal.poly.size() < 3 || polygon_area(portal.poly) <= 0) return fail("portal ", p, " is degenerate");
     for (Vec3 v : portal.poly)
       if (std::fabs(portal.plane.eval(v)) > eps) return fail("portal ", p, " is not planar");
     // Convex, and counter-clockwise about its normal.
@@ -222,6 +216,13 @@ std::string cells_are_valid(const CellComplex& c) {
       }
     }
   return {};
+}
+
+void check_complex(const CellComplex& complex, const std::string& what) {
+  if constexpr (kInvariantChecks) {
+    const std::string why = cells_are_valid(complex);
+    AVENUES_CHECK(why.empty(), "the cell complex of " + what + " is invalid: " + why);
+  }
 }
 
 }  // namespace avenues

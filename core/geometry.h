@@ -42,6 +42,41 @@ inline Vec3 cross(Vec3 a, Vec3 b) {
 }
 inline double length(Vec3 a) { return std::sqrt(dot(a, a)); }
 
+/// Closed containment of q, lying in the plane of the convex polygon `poly` (either
+/// orientation) whose normal is n: no edge has q farther than `tol` [m] on its outer side
+/// while another has it farther than `tol` on its inner side.
+inline bool in_convex_polygon(const std::vector<Vec3>& poly, Vec3 n, Vec3 q, double tol) {
+  bool pos = false, neg = false;
+  for (size_t k = 0; k < poly.size(); ++k) {
+    const Vec3 a = poly[k], b = poly[(k + 1) % poly.size()];
+    const double s = dot(cross(b - a, q - a), n) / length(b - a);  // signed distance of q from the edge
+    pos |= s > tol;
+    neg |= s < -tol;
+  }
+  return !(pos && neg);
+}
+
+/// Sutherland–Hodgman cut of a planar polygon to the half-space f(X) >= 0 (f affine).
+template <class F>
+std::vector<Vec3> cut_polygon(const std::vector<Vec3>& in, F f) {
+  std::vector<Vec3> out;
+  const size_t n = in.size();
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3 a = in[i], b = in[(i + 1) % n];
+    const double fa = f(a), fb = f(b);
+    if (fa >= 0) out.push_back(a);
+    if ((fa >= 0) != (fb >= 0)) out.push_back(a + (fa / (fa - fb)) * (b - a));
+  }
+  return out;
+}
+
+/// Area [m²] of a planar polygon in space (convex, or simple and fanned from its first vertex).
+inline double polygon_area(const std::vector<Vec3>& p) {
+  Vec3 n{0, 0, 0};
+  for (size_t i = 0; i + 2 < p.size(); ++i) n = n + cross(p[i + 1] - p[0], p[i + 2] - p[0]);
+  return 0.5 * length(n);
+}
+
 /// Signed area [m²] of a simple polygon: positive when counter-clockwise.
 inline double signed_area(const std::vector<Vec2>& p) {
   double a = 0;

@@ -73,12 +73,6 @@ struct Opening {
   SourceLoc where;
 };
 
-/// One segment of a wall's centre line: straight to `to`, or an arc through `through`.
-struct WallVertex {
-  Vec2 p;                       ///< [m] end point of the segment reaching it (or the start point)
-  std::optional<Vec2> through;  ///< [m] a point on the arc from the previous vertex to p
-};
-
 /// A wall: a centre-line polyline with thickness, standing on one storey's floor.
 /// Arcs are tessellated into straight pieces (Plan::arc_tolerance) by the reader, so
 /// `centre` holds straight segments only; `arc_segments` marks which came from arcs.

@@ -9,23 +9,10 @@ namespace {
 
 constexpr double kOnPlane = 1e-7;  ///< [m] a line lies in a face's plane (coordinates are snapped to 1 nm)
 constexpr double kProbe = 1e-4;    ///< [m] how far from the line a face is probed (openings are centimetres wide)
+constexpr double kInPolygon = 1e-9; ///< [m] a probe this close to a polygon's edge is inside it
 constexpr double kEdgeOn = 1e-9;   ///< |cos| below which a surface is seen edge-on
 
 Vec3 unit(Vec3 v) { return (1.0 / length(v)) * v; }
-
-/// Closed containment of q, lying in the polygon's plane with normal n, in the convex
-/// polygon (either orientation).
-bool in_convex(const std::vector<Vec3>& poly, Vec3 n, Vec3 q) {
-  bool pos = false, neg = false;
-  for (size_t k = 0; k < poly.size(); ++k) {
-    const Vec3 a = poly[k], b = poly[(k + 1) % poly.size()];
-    const Vec3 e = b - a;
-    const double s = dot(cross(e, q - a), n) / length(e);  // signed distance of q from the edge
-    pos |= s > 1e-9;
-    neg |= s < -1e-9;
-  }
-  return !(pos && neg);
-}
 
 }  // namespace
 
@@ -46,7 +33,7 @@ LineFaces line_faces(const CellComplex& c) {
         const Vec3 w = unit(cross(f.plane.n, u));  // in the face, perpendicular to the line
         for (Vec3 side : {w, -1.0 * w}) {
           bool opaque = false;
-          for (const OpaquePoly& op : f.opaque) opaque = opaque || in_convex(op.poly, f.plane.n, m + kProbe * side);
+          for (const OpaquePoly& op : f.opaque) opaque = opaque || in_convex_polygon(op.poly, f.plane.n, m + kProbe * side, kInPolygon);
           if (!opaque) continue;
           ++opaque_sides;
           bool known = false;

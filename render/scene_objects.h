@@ -27,7 +27,7 @@ struct PlacedObject {
   Box3 bounds;             ///< of the placed mesh's vertices
 };
 
-/// Loads every object of the complex (render/mesh.h, each file read once), places it on
+/// Loads every object of the complex (plans/mesh.h, each file read once), places it on
 /// its storey, and finds the cell holding the centroid of its vertices. Throws
 /// std::runtime_error naming the mesh file when one cannot be read.
 std::vector<PlacedObject> place_objects(const CellComplex& complex);

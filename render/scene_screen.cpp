@@ -357,7 +357,7 @@ void ScreenSceneBuilder::add_mesh(const Mesh& mesh, const MeshPaint& paint, Plac
     while (end < n && mesh.polygon_of[end] == polygon) ++end;
     source.polygon = polygon;
     const Material& material = paint.of_polygon(polygon);
-    // The input polygon again, from its fan (render/mesh.h triangulates a polygon a, b, c,
+    // The input polygon again, from its fan (plans/mesh.h triangulates a polygon a, b, c,
     // d, ... as abc, acd, ...); a polygon that was not a fan goes triangle by triangle.
     corners.assign(mesh.triangles[t].begin(), mesh.triangles[t].end());
     normals.assign(cn.begin() + std::ptrdiff_t(3 * t), cn.begin() + std::ptrdiff_t(3 * t + 3));

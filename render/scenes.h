@@ -1,4 +1,4 @@
-// Avenues — the papers' test scenes, and the table that runs them beside the papers' figures.
+// Avenues — the papers' test scenes (app/paper_bench.h runs them beside the papers' figures).
 //
 // Bouknight 1969 timed LINESCAN on four scenes at 512 × 512 on a CDC 1604 (Figs. 8–11):
 // an A-frame cottage, a torus, a "ripple" torus and an array of cubes. Wylie 1967 drew a
@@ -45,21 +45,5 @@ std::vector<PaperScene> paper_scenes();
 Mesh mesh_of(const PaperScene& scene);
 /// The scene's OFF file (as bundled in plans/scenes/).
 std::string off_text(const PaperScene& scene);
-
-/// One row of the papers' table: our render of a scene beside the paper's figures.
-struct PaperBenchRow {
-  std::string scene;
-  long polygons = 0, edges = 0;  ///< the scene's polygons and polygon edges (Bouknight counts them per polygon)
-  double our_ms = 0;             ///< [ms] median render time (polygons to picture)
-  RenderStats stats;             ///< of one render
-  double paper_seconds = -1;
-  std::string paper_machine, paper_figures;
-};
-
-/// Renders every scene at 512 × 512 as Bouknight did: grey, flat shading (his Appendix 3),
-/// no back faces removed, `repeats` times (median time), on `threads` threads (0: all).
-std::vector<PaperBenchRow> bench_papers(int threads = 0, int repeats = 5);
-/// The rows as a Markdown table, our figures beside the papers'.
-std::string papers_table(const std::vector<PaperBenchRow>& rows);
 
 }  // namespace avenues

@@ -9,9 +9,6 @@ namespace avenues {
 
 namespace {
 
-using detail::cut_to;
-using detail::polygon_area;
-
 /// Relative size below which a piece is a sliver of rounding, not a region.
 constexpr double kSliver = 1e-9;
 
@@ -103,7 +100,7 @@ class LightCaster {
         for (const auto& part : s.parts) {
           std::vector<Vec3> piece = part;
           for (const Vec3& n : cone) {
-            piece = cut_to(piece, [&](Vec3 x) { return dot(n, x - light_); });
+            piece = cut_polygon(piece, [&](Vec3 x) { return dot(n, x - light_); });
             if (piece.size() < 3) break;
           }
           if (piece.size() >= 3 && polygon_area(piece) > kSliver * polygon_area(part)) out.lit.push_back(std::move(piece));
@@ -164,14 +161,14 @@ std::vector<Vec3> shadow_on(const std::vector<Vec3>& surface, const std::vector<
   if (h == 0) return {};  // the light in the occluder's plane: it casts nothing
   if (h < 0) n = -1.0 * n;
   // Beyond the occluder's plane, away from the light.
-  std::vector<Vec3> out = cut_to(surface, [&](Vec3 x) { return -dot(n, x - occluder[0]); });
+  std::vector<Vec3> out = cut_polygon(surface, [&](Vec3 x) { return -dot(n, x - occluder[0]); });
   Vec3 c{0, 0, 0};
   for (Vec3 v : occluder) c = c + (1.0 / double(occluder.size())) * v;
   // Inside the planes through the light and each edge.
   for (size_t i = 0; i < occluder.size() && out.size() >= 3; ++i) {
     Vec3 m = cross(occluder[i] - light, occluder[(i + 1) % occluder.size()] - light);
     if (dot(m, c - light) < 0) m = -1.0 * m;
-    out = cut_to(out, [&](Vec3 x) { return dot(m, x - light); });
+    out = cut_polygon(out, [&](Vec3 x) { return dot(m, x - light); });
   }
   if (out.size() < 3 || !(polygon_area(out) > kSliver * polygon_area(surface))) return {};
   return out;

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "cells/build_cells.h"
+#include "core/check.h"
 #include "plans/generate.h"
 
 using namespace avenues;
@@ -58,4 +59,25 @@ TEST(CellInvariants, GeneratedOffices) {
   for (auto [rows, cols] : {std::pair{1, 1}, {2, 3}, {3, 3}, {5, 5}, {10, 10}, {7, 12}})
     expect_invariants(parse_plan(generate_office_toml(rows, cols),
                                  "office-" + std::to_string(rows) + "x" + std::to_string(cols)));
+}
+
+// check_complex (core/check.h's second tier): in builds with invariant checks every
+// builder and loader validates what it returns; a broken complex is an InvariantError
+// naming what it was built from, never a silent wrong answer.
+TEST(CellsInvariants, CheckComplexCatchesABrokenComplexInCheckedBuilds) {
+  const Plan plan = read_plan(std::string(AVENUES_SOURCE_DIR) + "/plans/jones-house.toml");
+  CellComplex c = build_cells(plan);  // valid: passes the check in every build
+  ASSERT_FALSE(c.portals.empty());
+  c.portals[0].cell[1] = c.portals[0].cell[0];  // a portal joining a cell to itself
+  ASSERT_NE(cells_are_valid(c), "");
+  if (kInvariantChecks) {
+    try {
+      check_complex(c, "jones-house");
+      FAIL() << "no InvariantError";
+    } catch (const InvariantError& e) {
+      EXPECT_NE(std::string(e.what()).find("jones-house"), std::string::npos) << e.what();
+    }
+  } else {
+    EXPECT_NO_THROW(check_complex(c, "jones-house"));
+  }
 }

@@ -14,6 +14,7 @@
 #include "render/halftone.h"
 #include "render/raster.h"
 #include "render/raster_srgb.h"
+#include "app/paper_bench.h"
 #include "render/scenes.h"
 #include "visibility/viewpoint.h"
 

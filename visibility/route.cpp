@@ -26,18 +26,6 @@ bool walkable(const CellComplex& c, const Portal& p, CellId from, const RouteOpt
   return lo - floor <= o.max_step && hi - lo >= o.min_height;
 }
 
-/// The room's largest cell on the ground of its band (where a person stands).
-CellId room_cell(const CellComplex& c, RoomId r) {
-  CellId best = kNoCell;
-  for (CellId id = 0; id < CellId(c.cells.size()); ++id) {
-    const Cell& cell = c.cells[size_t(id)];
-    if (cell.kind == CellKind::Room && cell.room == r &&
-        (best == kNoCell || signed_area(cell.footprint) > signed_area(c.cells[size_t(best)].footprint)))
-      best = id;
-  }
-  return best;
-}
-
 Vec3 at_eye(const CellComplex& c, CellId id, Vec2 p, const RouteOptions& o) {
   return {p.x, p.y, c.cells[size_t(id)].z0 + o.eye_height};
 }
@@ -58,7 +46,7 @@ std::vector<Vec3> route_through(const CellComplex& c, const std::vector<std::str
     rooms.push_back(found);
   }
   if (rooms.empty()) throw std::runtime_error("a route needs at least one room");
-  CellId here = room_cell(c, rooms[0]);
+  CellId here = c.largest_cell_of(rooms[0]);
   if (here == kNoCell) throw std::runtime_error("room '" + names[0] + "' has no cell to stand in");
   std::vector<Vec3> points{at_eye(c, here, centroid(c.cells[size_t(here)].footprint), o)};
 

@@ -13,11 +13,12 @@
 #include <vector>
 
 #include "cells/cell_complex.h"
+#include "visibility/viewpoint.h"
 
 namespace avenues {
 
 struct RouteOptions {
-  double eye_height = 1.6;   ///< [m] above each cell's floor
+  double eye_height = kEyeHeight;   ///< [m] above each cell's floor
   double min_height = 1.9;   ///< [m] a portal lower than this cannot be walked through
   double max_step = 0.35;    ///< [m] a portal whose bottom is higher above the floor cannot be stepped into
 };

@@ -30,6 +30,7 @@
 
 #include "cells/cell_complex.h"
 #include "visibility/camera.h"
+#include "visibility/walker.h"
 
 namespace avenues {
 
@@ -90,49 +91,6 @@ struct StereoRig {
 
 namespace detail {
 
-/// Closed containment of q, lying in the plane of the convex polygon with normal n.
-inline bool in_convex_3d(const std::vector<Vec3>& poly, Vec3 n, Vec3 q, double tol) {
-  bool pos = false, neg = false;
-  for (size_t k = 0; k < poly.size(); ++k) {
-    const Vec3 a = poly[k], b = poly[(k + 1) % poly.size()];
-    const double s = dot(cross(b - a, q - a), n) / length(b - a);
-    pos |= s > tol;
-    neg |= s < -tol;
-  }
-  return !(pos && neg);
-}
-
-/// Walks the segment a→b through the cells from `cell` (which holds a), crossing portals
-/// (transparent faces, doors, ...): true if an opaque face stops it before b.
-inline bool opaque_between(const CellComplex& c, CellId cell, Vec3 a, Vec3 b) {
-  constexpr double kTol = 1e-9;  // [m]
-  const Vec3 d = b - a;
-  double t = 0;
-  for (size_t steps = 0; steps < c.cells.size(); ++steps) {
-    const Cell& here = c.cells[size_t(cell)];
-    // Where the segment leaves this convex cell: the first face it crosses outwards.
-    double t_exit = 1;
-    for (const Face& f : here.faces) {
-      const double rate = dot(f.plane.n, d);
-      if (rate > 0) t_exit = std::min(t_exit, -f.plane.eval(a) / rate);
-    }
-    if (t_exit >= 1) return false;
-    t = std::max(t, t_exit);
-    const Vec3 q = a + t * d;
-    CellId next = kNoCell;
-    for (const Face& f : here.faces) {
-      if (!(dot(f.plane.n, d) > 0) || std::fabs(f.plane.eval(q)) > kTol) continue;
-      for (PortalId pi : f.portals) {
-        const Portal& p = c.portals[size_t(pi)];
-        if (in_convex_3d(p.poly, p.plane.n, q, kTol)) next = p.other(cell);
-      }
-    }
-    if (next == kNoCell) return true;
-    cell = next;
-  }
-  return false;
-}
-
 inline std::string place_name(const CellComplex& c, CellId id) {
   const Cell& cell = c.cells[size_t(id)];
   return cell.room >= 0 ? "room '" + c.rooms[size_t(cell.room)].name + "'" : std::string(to_string(cell.kind));
@@ -165,7 +123,7 @@ inline StereoRig stereo_rig(const CellComplex& complex, const Camera& centre, co
     rig.inside = at.solid;
   }
   if (rig.problem == StereoRig::Problem::None && rig.eyes_apart()) {
-    if (detail::opaque_between(complex, rig.left_at.cell, rig.left.eye, rig.right.eye)) {
+    if (cast_segment(complex, rig.left_at.cell, rig.left.eye, rig.right.eye).blocked) {
       rig.problem = StereoRig::Problem::WallBetweenEyes;
       rig.inside = "the left eye in " + detail::place_name(complex, rig.left_at.cell) + ", the right eye in " +
                    detail::place_name(complex, rig.right_at.cell);

@@ -39,6 +39,17 @@ std::vector<PortalId> VisibleSet::path(int avenue) const {
   return p;
 }
 
+void VisibleSet::collect_cells() {
+  cells.clear();
+  max_depth = 0;
+  for (const Avenue& a : avenues) {
+    cells.push_back(a.cell);
+    max_depth = std::max(max_depth, a.depth);
+  }
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+}
+
 VisibleSet find_visible(const CellComplex& complex, const Camera& camera, CellId eye_cell, Kernel kernel) {
   switch (kernel) {
     case Kernel::Float: return detail::traverse_with<float>(complex, camera, eye_cell);

@@ -258,9 +258,7 @@ VisibleSet traverse_with(const CellComplex& c, const Camera& cam, CellId eye_cel
   auto t0 = std::chrono::steady_clock::now();
   Traversal<T>(c, cam, out).run(eye_cell);
   out.micros = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
-  for (const Avenue& a : out.avenues) out.cells.push_back(a.cell);
-  std::sort(out.cells.begin(), out.cells.end());
-  out.cells.erase(std::unique(out.cells.begin(), out.cells.end()), out.cells.end());
+  out.collect_cells();
   return out;
 }
 

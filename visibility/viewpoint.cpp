@@ -12,12 +12,7 @@ Viewpoint default_viewpoint(const CellComplex& c) {
   for (int pass = 0; pass < 2 && best == kNoCell; ++pass)
     for (size_t r = 0; r < c.rooms.size() && best == kNoCell; ++r) {
       if (pass == 0 && !c.rooms[r].named) continue;
-      for (CellId id = 0; id < CellId(c.cells.size()); ++id) {
-        const Cell& cell = c.cells[size_t(id)];
-        if (cell.kind == CellKind::Room && cell.room == RoomId(r) &&
-            (best == kNoCell || signed_area(cell.footprint) > signed_area(c.cells[size_t(best)].footprint)))
-          best = id;
-      }
+      best = c.largest_cell_of(RoomId(r));
     }
   Viewpoint v;
   v.fov_deg = 60;

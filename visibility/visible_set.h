@@ -36,6 +36,8 @@ struct VisibleSet {
   double micros = 0;            ///< [µs] time of the traversal
   /// The avenue's portals from the eye outwards.
   std::vector<PortalId> path(int avenue) const;
+  /// Sets `cells` to the distinct cells of `avenues`, ascending, and `max_depth`.
+  void collect_cells();
 };
 
 /// Jones's recursive search of the avenues of sight from `camera.eye`, which lies in

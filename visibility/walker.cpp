@@ -62,7 +62,7 @@ SegmentCast cast_segment(const CellComplex& complex, CellId from, Vec3 a, Vec3 b
       if (!(dot(f.plane.n, d) > 0) || std::fabs(f.plane.eval(q)) > kTol * scale) continue;
       for (PortalId pi : f.portals) {
         const Portal& p = complex.portals[size_t(pi)];
-        if (detail::in_convex_3d(p.poly, p.plane.n, q, kTol)) {
+        if (in_convex_polygon(p.poly, p.plane.n, q, kTol)) {
           next = p.other(cell);
           stair = p.kind == PortalKind::Stairwell;
           break;

@@ -25,6 +25,7 @@
 #include <cstdint>
 
 #include "cells/cell_complex.h"
+#include "visibility/viewpoint.h"
 
 namespace avenues {
 
@@ -48,7 +49,7 @@ enum class MoveMode : uint8_t {
 const char* to_string(MoveMode m);
 
 struct WalkerOptions {
-  double eye_height = 1.6;    ///< [m] > step_height: the eye above the floor (walk mode)
+  double eye_height = kEyeHeight;    ///< [m] > step_height: the eye above the floor (walk mode)
   double step_height = 0.35;  ///< [m] >= 0: the highest floor step taken in one stride
   double clearance = 0.15;    ///< [m] >= 0: kept between the eye and a wall
   double fall_speed = 4;      ///< [m/s] > 0: how fast the eye comes down to a lower floor

@@ -1,6 +1,6 @@
 // Avenues — a hidden-line drawing as a picture, for the walkthrough window.
 //
-// render/ puts drawings on paper (SVG, PDF, DXF, HPGL); the window wants pixels. Cairo draws
+// The exporters put drawings on paper (SVG, PDF, DXF, HPGL); the window wants pixels. Cairo draws
 // the strokes, antialiased, in black on white at the drawing's own raster coordinates (one
 // unit a pixel), outlines 2 px and creases 1 px wide, furniture a little lighter — the same
 // look as the SVG page at screen size.
@@ -9,10 +9,10 @@
 #include "render/drawing.h"
 #include "render/raster.h"
 
-namespace avenues::app {
+namespace avenues {
 
 /// The drawing as an RGB picture of drawing.width × drawing.height pixels, into `out`
 /// (its storage reused).
 void raster_of_drawing(const Drawing& drawing, Image& out);
 
-}  // namespace avenues::app
+}  // namespace avenues

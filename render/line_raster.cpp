@@ -1,11 +1,11 @@
 // Avenues — a hidden-line drawing as a picture (see line_raster.h).
-#include "app/line_raster.h"
+#include "render/line_raster.h"
 
 #include <cairo.h>
 
 #include <cstring>
 
-namespace avenues::app {
+namespace avenues {
 
 void raster_of_drawing(const Drawing& drawing, Image& out) {
   const int w = drawing.width, h = drawing.height;
@@ -50,4 +50,4 @@ void raster_of_drawing(const Drawing& drawing, Image& out) {
   cairo_surface_destroy(s);
 }
 
-}  // namespace avenues::app
+}  // namespace avenues

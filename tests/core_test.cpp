@@ -1,0 +1,109 @@
+// Tests of core/: what every module shares (angles, number formatting, stage timers,
+// geometry predicates, atomic files, invariant checks).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "core/angles.h"
+#include "core/atomic_file.h"
+#include "core/check.h"
+#include "core/geometry.h"
+#include "core/number_format.h"
+#include "core/stage_timer.h"
+
+namespace avenues {
+namespace {
+
+TEST(Angles, ConversionsAreNamedForWhatTheyReturn) {
+  EXPECT_DOUBLE_EQ(rad_from_deg(180), std::numbers::pi);
+  EXPECT_DOUBLE_EQ(rad_from_deg(90), std::numbers::pi / 2);
+  EXPECT_DOUBLE_EQ(deg_from_rad(std::numbers::pi / 4), 45);
+  EXPECT_NEAR(deg_from_rad(rad_from_deg(37.5)), 37.5, 1e-12);
+  static_assert(rad_from_deg(0) == 0);
+}
+
+TEST(NumberFormat, ShortForMessagesExactWhereAsked) {
+  EXPECT_EQ(format_number(2.5), "2.5");
+  EXPECT_EQ(format_number(1e300), "1e+300");
+  EXPECT_EQ(format_number(0.1234567), "0.123457");
+  EXPECT_EQ(format_number("%.3f", 2.0), "2.000");
+}
+
+TEST(StageTimer, AppendsItsStageEvenWhenUnwinding) {
+  std::vector<StageTime> t;
+  { ScopedStageTimer s(t, "one"); }
+  try {
+    ScopedStageTimer s(t, "two");
+    throw std::runtime_error("x");
+  } catch (const std::runtime_error&) {
+  }
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_EQ(t[0].stage, "one");
+  EXPECT_EQ(t[1].stage, "two");
+  EXPECT_GE(t[0].seconds, 0);
+}
+
+TEST(Geometry, PointInConvexPolygonIsClosedAndOrientationFree) {
+  const std::vector<Vec3> square{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  const Vec3 n{0, 0, 1};
+  EXPECT_TRUE(in_convex_polygon(square, n, {0.5, 0.5, 0}, 1e-9));
+  EXPECT_TRUE(in_convex_polygon(square, n, {1, 0.5, 0}, 1e-9));  // on an edge
+  EXPECT_TRUE(in_convex_polygon(square, n, {0, 0, 0}, 1e-9));    // at a corner
+  EXPECT_FALSE(in_convex_polygon(square, n, {1.01, 0.5, 0}, 1e-9));
+  const std::vector<Vec3> clockwise(square.rbegin(), square.rend());
+  EXPECT_TRUE(in_convex_polygon(clockwise, n, {0.5, 0.5, 0}, 1e-9));
+  EXPECT_FALSE(in_convex_polygon(clockwise, n, {-0.5, 0.5, 0}, 1e-9));
+}
+
+TEST(Geometry, CutPolygonAndItsArea) {
+  const std::vector<Vec3> square{{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}};
+  EXPECT_DOUBLE_EQ(polygon_area(square), 4);
+  const std::vector<Vec3> half = cut_polygon(square, [](Vec3 p) { return 1 - p.x; });  // x <= 1
+  EXPECT_DOUBLE_EQ(polygon_area(half), 2);
+  EXPECT_TRUE(cut_polygon(square, [](Vec3 p) { return -1 - p.x; }).empty());
+  // Far from the origin the area keeps its digits (fanned from the first vertex).
+  std::vector<Vec3> far = square;
+  for (Vec3& p : far) p = p + Vec3{5.4e6, 5.4e6, 0};
+  EXPECT_NEAR(polygon_area(far), 4, 1e-6);
+}
+
+TEST(AtomicFile, WritesWholeOrLeavesTheTargetAlone) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "avenues-core-test";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string target = (dir / "out.txt").string();
+  write_file_atomically(target, "first");
+  write_file_atomically(target, "second");
+  std::ifstream in(target);
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_EQ(text.str(), "second");
+  EXPECT_THROW(write_file_atomically((dir / "missing" / "x.txt").string(), "x"), std::runtime_error);
+  EXPECT_THROW(write_file_atomically(dir.string(), "x"), std::runtime_error);  // a directory
+  size_t files = 0;
+  for (const auto& e : fs::directory_iterator(dir)) files += e.is_regular_file();
+  EXPECT_EQ(files, 1u);  // no temporary left behind
+  fs::remove_all(dir);
+}
+
+TEST(Check, AFailedCheckNamesWhatAndWhere) {
+  try {
+    AVENUES_CHECK(1 + 1 == 3, std::string("arithmetic holds"));
+    FAIL() << "no throw";
+  } catch (const InvariantError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("arithmetic holds"), std::string::npos) << what;
+    EXPECT_NE(what.find("core_test.cpp:"), std::string::npos) << what;
+  }
+  AVENUES_CHECK(true, std::string("never built"));
+  int evaluated = 0;
+  AVENUES_DCHECK(++evaluated > 0, std::string("counts"));
+  EXPECT_EQ(evaluated, kInvariantChecks ? 1 : 0);
+}
+
+}  // namespace
+}  // namespace avenues
