@@ -401,11 +401,17 @@ int run_path(const PathOptions& opt) {
   if (!failure.empty()) throw std::runtime_error(failure + "; the frames done are complete: run again with --resume to finish the walk");
 
   const int n = int(walk.frames.size());
-  std::cout << "wrote " << n << " frames: " << frame_path(pattern, 0, n) << " ... " << frame_path(pattern, n - 1, n);
+  char took[32];
+  std::snprintf(took, sizeof took, "%.2f", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  std::cout << "wrote " << n << " frames in " << took << " s: " << frame_path(pattern, 0, n) << " ... "
+            << frame_path(pattern, n - 1, n);
   if (mpi.ranks() > 1) {
     char sent[96];
-    std::snprintf(sent, sizeof sent, "%.1f MB broadcast in %.3f s", double(broadcast_bytes) / 1e6, broadcast_s);
-    std::cout << " (" << todo.size() << " rendered on " << mpi.ranks() << " ranks; the complex and cameras, " << sent << ")";
+    std::snprintf(sent, sizeof sent, "%.3g MB broadcast in %.3g s", double(broadcast_bytes) / 1e6, broadcast_s);
+    std::string each;
+    for (int64_t r : mpi.rendered()) each += (each.empty() ? "" : " + ") + std::to_string(r);
+    std::cout << " (" << todo.size() << " rendered on " << mpi.ranks() << " ranks: " << each << "; the complex and cameras, "
+              << sent << ")";
   }
   std::cout << "\n";
   if (!settings->svg) {

@@ -86,11 +86,11 @@ bool MpiWalk::broadcast(std::string& bytes, bool ok) {
 
 std::string MpiWalk::share(const std::vector<int64_t>& todo, int64_t frames,
                            const std::function<void(int64_t)>& render, const std::function<void(int64_t)>& progress) {
+  rendered_.assign(size_t(ranks_), 0);
   if (ranks_ == 1) {
-    int64_t done = 0;
     for (int64_t k : todo) {
       render(k);
-      progress(++done);
+      progress(++rendered_[0]);
     }
     return "";
   }
@@ -144,6 +144,7 @@ std::string MpiWalk::share(const std::vector<int64_t>& todo, int64_t frames,
     const int64_t n = ++done;
     std::lock_guard<std::mutex> hold(lock);
     working[size_t(rank)] = -1;
+    ++rendered_[size_t(rank)];
     progress(n);
   };
   // Stopped by the launcher (a rank died) or the user: what was in progress, then out.
@@ -242,10 +243,10 @@ bool MpiWalk::broadcast(std::string&, bool ok) { return ok; }
 
 std::string MpiWalk::share(const std::vector<int64_t>& todo, int64_t, const std::function<void(int64_t)>& render,
                            const std::function<void(int64_t)>& progress) {
-  int64_t done = 0;
+  rendered_.assign(1, 0);
   for (int64_t k : todo) {
     render(k);
-    progress(++done);
+    progress(++rendered_[0]);
   }
   return "";
 }

@@ -49,11 +49,14 @@ class MpiWalk {
   /// exception from render() goes straight to the caller.
   std::string share(const std::vector<int64_t>& todo, int64_t frames, const std::function<void(int64_t)>& render,
                     const std::function<void(int64_t)>& progress);
+  /// On rank 0 after share(): how many frames each rank rendered.
+  const std::vector<int64_t>& rendered() const { return rendered_; }
 
  private:
   int rank_ = 0, ranks_ = 1, local_ranks_ = 1;
   bool initialised_ = false;
   bool threads_ = false;  ///< MPI lets rank 0 answer from a thread while it renders
+  std::vector<int64_t> rendered_;
 };
 
 }  // namespace avenues::app
