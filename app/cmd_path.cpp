@@ -13,6 +13,7 @@
 // spread over the ranks (app/mpi_walk.h); they are the same files, byte for byte.
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -381,6 +382,42 @@ int run_path(const PathOptions& opt) {
     }
   }
 
+  // Rank 0 makes the film as the frames appear, in order (a frame that exists is whole),
+  // while the ranks render: by the last frame most of the film is encoded.
+  const int n = int(walk.frames.size());
+  const fs::path mp4 = dir / "walk.mp4";
+  std::atomic<bool> walk_over{false};
+  std::string film_error;
+  std::thread filming;
+  if (mpi.rank() == 0 && !settings->svg)
+    filming = std::thread([&] {
+      try {
+        std::optional<Film> film;
+        for (int k = 0; k < n; ++k) {
+          const std::string frame = frame_path(pattern, k, n);
+          std::error_code ec;
+          while (!fs::is_regular_file(frame, ec)) {
+            if (walk_over && !fs::is_regular_file(frame, ec)) return;  // the walk stopped short: no film
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+          }
+          const Image picture = read_image(frame);
+          if (!film) film.emplace(mp4.string(), picture.width, picture.height);
+          film->add(picture);
+        }
+        film->finish();
+      } catch (const std::exception& e) {
+        film_error = e.what();
+      }
+    });
+  struct JoinFilm {  // on every way out, an exception from a frame included
+    std::atomic<bool>& over;
+    std::thread& thread;
+    ~JoinFilm() {
+      over = true;
+      if (thread.joinable()) thread.join();
+    }
+  } join_film{walk_over, filming};
+
   const bool terminal = ::isatty(STDERR_FILENO);
   const auto t0 = std::chrono::steady_clock::now();
   auto last_line = t0;
@@ -399,12 +436,14 @@ int run_path(const PathOptions& opt) {
           last_line = now;
         }
       });
+  const double frames_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  walk_over = true;
+  if (filming.joinable()) filming.join();
   if (mpi.rank() != 0) return failure.empty() ? 0 : 2;  // rank 0 reports the failure
   if (!failure.empty()) throw std::runtime_error(failure + "; the frames done are complete: run again with --resume to finish the walk");
 
-  const int n = int(walk.frames.size());
   char took[32];
-  std::snprintf(took, sizeof took, "%.2f", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  std::snprintf(took, sizeof took, "%.2f", frames_s);
   std::cout << "wrote " << n << " frames in " << took << " s: " << frame_path(pattern, 0, n) << " ... "
             << frame_path(pattern, n - 1, n);
   if (mpi.ranks() > 1) {
@@ -418,10 +457,7 @@ int run_path(const PathOptions& opt) {
   }
   std::cout << "\n";
   if (!settings->svg) {
-    std::vector<std::string> frames;
-    for (int k = 0; k < n; ++k) frames.push_back(frame_path(pattern, k, n));
-    const fs::path mp4 = dir / "walk.mp4";
-    write_film(frames, mp4.string());
+    if (!film_error.empty()) throw std::runtime_error(film_error + " (the frames are complete)");
     std::cout << "wrote " << mp4.string() << "\n";
   }
   return 0;

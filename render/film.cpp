@@ -201,21 +201,4 @@ int Film::width() const { return impl_->width; }
 int Film::height() const { return impl_->height; }
 long Film::frames() const { return impl_->frames; }
 
-std::string write_film(const std::vector<std::string>& frames, const std::string& path, const FilmOptions& options) {
-  if (frames.empty()) throw std::runtime_error("cannot write the film " + path + ": no frames");
-  Image picture = read_image(frames[0]);
-  const int width = picture.width, height = picture.height;
-  Film film(path, width, height, options);
-  for (size_t k = 0; k < frames.size(); ++k) {
-    if (k > 0) picture = read_image(frames[k]);
-    if (picture.width != width || picture.height != height)
-      throw std::runtime_error("cannot write the film " + path + ": " + frames[k] + " is " +
-                               std::to_string(picture.width) + " x " + std::to_string(picture.height) +
-                               " pixels, " + frames[0] + " " + std::to_string(width) + " x " + std::to_string(height));
-    film.add(picture);
-  }
-  film.finish();
-  return film.codec();
-}
-
 }  // namespace avenues

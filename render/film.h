@@ -53,10 +53,4 @@ class Film {
   std::unique_ptr<Impl> impl_;
 };
 
-/// The pictures in the files `frames` (read_image), in order, as the film `path`. The
-/// first frame sets the size; one of another size is an error naming it. Returns the
-/// codec used ("h264" or "mpeg4").
-std::string write_film(const std::vector<std::string>& frames, const std::string& path,
-                       const FilmOptions& options = {});
-
 }  // namespace avenues

@@ -236,6 +236,16 @@ TEST_F(Path, AWalkOwnsItsOutput) {
   EXPECT_FALSE(fs::exists(path("walk/walk.mp4")));
 }
 
+// A frame that cannot be written stops the walk (exit 2): the frames before it are
+// complete, and there is no film, not even its temporary file.
+TEST_F(Path, AFailedFrameLeavesCompleteFramesAndNoFilm) {
+  fs::create_directories(path("walk/frame-0004.png"));
+  Outcome r = avenues(walk_args("walk", "0.3", "64x36"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("cannot write walk/frame-0004.png: is a directory"), std::string::npos) << r.err;
+  EXPECT_EQ(names("walk"), (std::vector<std::string>{"frame-0001.png", "frame-0002.png", "frame-0003.png", "frame-0004.png"}));
+}
+
 TEST_F(Path, ResumeRendersOnlyTheMissingFrames) {
   ASSERT_EQ(avenues(walk_args("walk", "0.5", "96x54")).status, 0);
   const auto whole = frames("walk");
