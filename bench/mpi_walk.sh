@@ -58,5 +58,5 @@ echo "broadcast: the 100 x 100 office"
 "$avenues" cells "$work/office.toml" --save "$work/office.cells" >/dev/null
 for ((i = 1; i <= repeats; ++i)); do
   "$mpirun" --allow-run-as-root --oversubscribe -np 2 "$avenues" path "$work/office.cells" --through "r0_0,r0_1" \
-    --format svg --size 64x36 --step 1 -o "$work/office" | grep -o '([^)]*broadcast[^)]*)'
+    --format svg --size 64x36 --step 1 -o "$work/office" | grep -o '[0-9]* rendered on .*'
 done
