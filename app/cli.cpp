@@ -3,7 +3,7 @@
 //   avenues [PLAN]                                  the main job
 //   avenues cells PLAN [--json] [--svg F] [--save F.cells]
 //   avenues export PLAN -o FILE.obj
-//   avenues path [PLAN] --through ROOM,ROOM,... [-o DIR] [--format png|svg]
+//   avenues path [PLAN] --through ROOM,ROOM,... [-o DIR] [--format png|svg]   (also under mpirun / srun)
 //   avenues view PLAN [--eye X,Y,Z --look X,Y,Z] [--kernel K] [--stats-json F] [--overlay F.svg]
 //   avenues walk [PLAN] [--script FILE] [--frames N --screenshot F.png] ...
 //   avenues bench papers | accuracy [--quick] | walk [PLAN...]
@@ -103,6 +103,14 @@ int run_cli(int argc, char** argv) {
   path->add_option("--size", path_opt.size, "frame size in pixels")->type_name("WxH")->capture_default_str();
   path->add_option("--fov", path_opt.fov, "horizontal field of view in degrees")->capture_default_str();
   path->add_option("--kernel", path_opt.kernel, "arithmetic of the traversal")->capture_default_str();
+  path->add_option("--samples", path_opt.samples, "half-tone: samples per pixel, 1, 4 or 16")->capture_default_str();
+  path->add_option("--shading", path_opt.shading, "half-tone: flat, smooth or auto")->capture_default_str();
+  path->add_option("--stereo", path_opt.stereo, "stereo frames: anaglyph, parallel or cross (drawings: parallel or cross)");
+  path->add_option("--interocular", path_opt.interocular, "[m] distance between the eyes")->capture_default_str();
+  path->add_option("--converge", path_opt.converge, "[m] distance at which the two views coincide")->capture_default_str();
+  path->add_option("--threads", path_opt.threads, "rendering threads of a process (0: all cores; under MPI each rank its share)");
+  path->add_flag("--resume", path_opt.resume, "keep the frames already in the directory; render only the missing ones");
+  path->add_option("--max-frames", path_opt.max_frames, "refuse a walk of more frames than this")->capture_default_str();
 
   WalkOptions walk_opt;
   CLI::App* walk = app.add_subcommand("walk", "walk through PLAN in a window (H in the window lists the controls)");

@@ -4,33 +4,53 @@
 // centres as waypoints, a Catmull–Rom curve through them), one frame every --step metres,
 // each looking a metre ahead along the path; or it follows recorded keyframes (eye and
 // point looked at), straight between them. Frames are PNG half-tone pictures or SVG
-// drawings, numbered in DIR; on a terminal a progress bar shows the frame and the time
-// left. With PNG frames and ffmpeg on the PATH, DIR/walk.mp4 as well.
+// drawings (or stereo pairs of them), numbered in DIR; on a terminal a progress bar shows
+// the frames done and the time left. With PNG frames, DIR/walk.mp4 as well (render/film.h).
+//
+// A walk owns its output: the frames, film and leftover temporary files of an earlier walk
+// in DIR are removed before the first frame is written (with --resume, the frames this
+// walk would write are kept and not rendered again). Under mpirun or srun the frames are
+// spread over the ranks (app/mpi_walk.h); they are the same files, byte for byte.
 #include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
+#include <optional>
+#include <regex>
+#include <set>
 #include <sstream>
+#include <thread>
+#include <type_traits>
 
 #include "app/commands.h"
+#include "app/mpi_walk.h"
+#include "cells/build_cells.h"
 #include "render/effects.h"
 #include "render/drawing.h"
+#include "render/film.h"
 #include "render/halftone.h"
 #include "render/raster.h"
 #include "render/scene_objects.h"
+#include "render/stereo_drawing.h"
 #include "render/view_lines.h"
 #include "render/walkthrough.h"
 #include "visibility/route.h"
+#include "visibility/stereo.h"
 
 namespace avenues::app {
 
 namespace fs = std::filesystem;
 
 namespace {
+
+constexpr double kMinStep = 0.001;  ///< [m] the shortest --step: a millimetre
 
 std::vector<std::string> split_names(const std::string& s) {
   std::vector<std::string> out;
@@ -40,15 +60,14 @@ std::vector<std::string> split_names(const std::string& s) {
   return out;
 }
 
-bool have_ffmpeg() { return std::system("command -v ffmpeg >/dev/null 2>&1") == 0; }
-
-/// "[#####.....]  12/40  0:03 left" on one terminal line, redrawn in place.
-void progress(int done, int total, double seconds) {
-  const int width = 30, filled = total > 0 ? done * width / total : width;
-  const double left = done > 0 ? seconds / done * (total - done) : 0;
-  std::fprintf(stderr, "\r[%s%s] %d/%d  %d:%02d left ", std::string(size_t(filled), '#').c_str(),
-               std::string(size_t(width - filled), '.').c_str(), done, total, int(left) / 60, int(left) % 60);
-  if (done == total) std::fprintf(stderr, "\n");
+/// "[#####.....]  12/40  0:03 left": on a terminal one line redrawn in place; otherwise
+/// (a rank of an MPI job, whose output goes to the launcher or a log) a line each time.
+void progress(int64_t done, int64_t total, double seconds, bool terminal) {
+  const int64_t width = 30, filled = total > 0 ? done * width / total : width;
+  const double left = done > 0 ? seconds / double(done) * double(total - done) : 0;
+  std::fprintf(stderr, "%s[%s%s] %lld/%lld  %d:%02d left%s", terminal ? "\r" : "", std::string(size_t(filled), '#').c_str(),
+               std::string(size_t(width - filled), '.').c_str(), static_cast<long long>(done),
+               static_cast<long long>(total), int(left) / 60, int(left) % 60, terminal && done < total ? " " : "\n");
   std::fflush(stderr);
 }
 
@@ -75,29 +94,111 @@ std::vector<std::pair<Vec3, Vec3>> read_keys(const std::string& file) {
   return keys;
 }
 
-int run_path(const PathOptions& opt) {
-  LoadedPlan plan = load_plan_source(opt.plan);
-  const CellComplex& c = plan.complex;
+namespace {
+
+/// How a walk's frames are drawn: the options, checked once (by every rank alike).
+struct PathSettings {
+  bool svg = false;                ///< hidden-line drawings, else half-tone pictures
+  int width = 0, height = 0;       ///< [px]
+  Kernel kernel = Kernel::Double;
+  HalftoneOptions halftone;
+  bool stereo = false;
+  StereoComposite composite = StereoComposite::Anaglyph;  ///< pictures
+  StereoLayout layout = StereoLayout::Parallel;           ///< drawings
+  StereoOptions eyes;
+};
+
+PathSettings path_settings(const PathOptions& opt, const MpiWalk& mpi) {
+  PathSettings s;
   if (opt.format != "png" && opt.format != "svg") throw std::runtime_error("--format wants png or svg, not '" + opt.format + "'");
-  int w = 0, h = 0;
-  if (!parse_size(opt.size, w, h)) throw std::runtime_error("--size wants WIDTHxHEIGHT in pixels, not '" + opt.size + "'");
+  s.svg = opt.format == "svg";
+  if (!parse_size(opt.size, s.width, s.height)) throw std::runtime_error("--size wants WIDTHxHEIGHT in pixels, not '" + opt.size + "'");
   if (!(opt.fov > 0 && opt.fov <= 179)) throw std::runtime_error("--fov must lie in (0, 179] degrees");
-  Kernel kernel;
-  if (!parse_kernel(opt.kernel, kernel)) throw std::runtime_error("--kernel wants float, double, filtered or exact");
+  if (!parse_kernel(opt.kernel, s.kernel)) throw std::runtime_error("--kernel wants float, double, filtered or exact");
+  s.halftone.samples = opt.samples;
+  if (opt.samples != 1 && opt.samples != 4 && opt.samples != 16)
+    throw std::runtime_error("--samples wants 1, 4 or 16, not " + std::to_string(opt.samples));
+  if (!parse_shading(opt.shading, s.halftone.shading.model))
+    throw std::runtime_error("--shading wants flat, smooth or auto, not '" + opt.shading + "'");
+  if (opt.threads < 0) throw std::runtime_error("--threads wants a number of threads (0: as many as there are cores)");
+  // A process's threads; in an MPI job each rank takes its share of its machine's cores.
+  s.halftone.threads = opt.threads;
+  if (opt.threads == 0 && mpi.ranks() > 1)
+    s.halftone.threads = std::max(1, int(std::thread::hardware_concurrency()) / std::max(1, mpi.local_ranks()));
+  if (!opt.stereo.empty()) {
+    s.stereo = true;
+    if (s.svg ? !parse_stereo_layout(opt.stereo, s.layout) || s.layout == StereoLayout::Pair
+              : !parse_stereo_composite(opt.stereo, s.composite))
+      throw std::runtime_error(std::string("--stereo wants ") +
+                               (s.svg ? "parallel or cross for drawn frames" : "anaglyph, parallel or cross for pictures") +
+                               ", not '" + opt.stereo + "'");
+    if (!(std::isfinite(opt.interocular) && opt.interocular > 0))
+      throw std::runtime_error("--interocular must be a positive length in metres");
+    if (!(std::isfinite(opt.converge) && opt.converge > 0))
+      throw std::runtime_error("--converge must be a positive length in metres");
+    s.eyes = {opt.interocular, opt.converge};
+  }
+  return s;
+}
+
+/// Every frame's camera (and with --stereo each eye's), worked out once, on rank 0.
+struct Walk {
+  std::vector<WalkFrame> frames;
+  std::vector<WalkFrame> left, right;  ///< --stereo: the eyes of each frame; else empty
+};
+static_assert(std::is_trivially_copyable_v<WalkFrame>, "a walk is broadcast as its bytes");
+
+void append_frames(std::string& out, const std::vector<WalkFrame>& frames) {
+  const uint64_t n = frames.size();
+  out.append(reinterpret_cast<const char*>(&n), sizeof n);
+  out.append(reinterpret_cast<const char*>(frames.data()), frames.size() * sizeof(WalkFrame));
+}
+
+/// Reads what append_frames wrote at `at`, moving `at` past it.
+std::vector<WalkFrame> take_frames(std::string_view bytes, size_t& at) {
+  uint64_t n = 0;
+  if (bytes.size() - at < sizeof n) throw std::runtime_error("the walk's bytes are cut short");
+  std::memcpy(&n, bytes.data() + at, sizeof n);
+  at += sizeof n;
+  if (n > (bytes.size() - at) / sizeof(WalkFrame)) throw std::runtime_error("the walk's bytes are cut short");
+  std::vector<WalkFrame> frames(static_cast<size_t>(n));
+  std::memcpy(static_cast<void*>(frames.data()), bytes.data() + at, size_t(n) * sizeof(WalkFrame));
+  at += size_t(n) * sizeof(WalkFrame);
+  return frames;
+}
+
+/// The frames of the walk the options ask for. Throws naming the option or the frame.
+Walk plan_walk(const CellComplex& c, const PathOptions& opt, const PathSettings& s) {
   if (opt.through.empty() == opt.keys.empty()) throw std::runtime_error("give either --through ROOMS or --keys FILE");
-  if (!(opt.step > 0)) throw std::runtime_error("--step must be a positive length");
+  if (!(std::isfinite(opt.step) && opt.step >= kMinStep))
+    throw std::runtime_error("--step must be a length of at least 0.001 m (1 mm), not " + std::to_string(opt.step));
+  if (opt.max_frames < 2 || opt.max_frames > std::numeric_limits<int>::max())
+    throw std::runtime_error("--max-frames wants a number of frames from 2 to " +
+                             std::to_string(std::numeric_limits<int>::max()));
+  // The frame count first, in 64 bits, before any frame is made.
+  auto check_count = [&](int64_t n) {
+    if (n > opt.max_frames)
+      throw std::runtime_error("a walk with --step " + std::to_string(opt.step) + " would have " + std::to_string(n) +
+                               " frames, more than --max-frames " + std::to_string(opt.max_frames) +
+                               "; lengthen --step, or raise --max-frames to make it");
+  };
   std::vector<Vec3> eyes, looks;  // looks: empty for a route (look ahead along it)
   if (!opt.through.empty()) {
-    eyes = smooth_path(c, route_through(c, split_names(opt.through)), opt.step);
+    const std::vector<Vec3> waypoints = route_through(c, split_names(opt.through));
+    check_count(path_points(waypoints, opt.step));
+    eyes = smooth_path(c, waypoints, opt.step);
   } else {
     // Recorded keyframes: straight between them, one frame every --step metres of eye travel.
     const auto keys = read_keys(opt.keys);
+    std::vector<Vec3> key_eyes;
+    for (const auto& k : keys) key_eyes.push_back(k.first);
+    check_count(path_points(key_eyes, opt.step));
     eyes.push_back(keys[0].first);
     looks.push_back(keys[0].second);
     for (size_t i = 0; i + 1 < keys.size(); ++i) {
-      const int n = std::max(1, int(std::ceil(length(keys[i + 1].first - keys[i].first) / opt.step)));
-      for (int s = 1; s <= n; ++s) {
-        const double t = double(s) / n;
+      const int64_t n = stretch_points(keys[i].first, keys[i + 1].first, opt.step);
+      for (int64_t k = 1; k <= n; ++k) {
+        const double t = double(k) / double(n);
         eyes.push_back(keys[i].first + t * (keys[i + 1].first - keys[i].first));
         looks.push_back(keys[i].second + t * (keys[i + 1].second - keys[i].second));
       }
@@ -107,7 +208,7 @@ int run_path(const PathOptions& opt) {
 
   // Every frame's camera first (a frame whose eye would leave free space is an error
   // before anything is written), looking a metre ahead along the path.
-  std::vector<WalkFrame> frames;
+  Walk walk;
   CellId hint = kNoCell;
   Vec3 last_dir = eyes[1] - eyes[0];
   for (size_t k = 0; k < eyes.size(); ++k) {
@@ -117,57 +218,247 @@ int run_path(const PathOptions& opt) {
     dir.z = 0;
     if (length(dir) > 1e-6) last_dir = dir;
     const Location at = c.locate(eyes[k], hint);
+    const std::string frame = "frame " + std::to_string(k + 1) + " of the path: ";
     if (at.what != Location::What::Cell)
-      throw std::runtime_error("frame " + std::to_string(k + 1) + " of the path: the eye is " +
+      throw std::runtime_error(frame + "the eye is " +
                                (at.what == Location::What::Solid ? "inside " + at.solid : std::string("outside the far box")));
     WalkFrame f;
-    f.camera = Camera::look_at(eyes[k], looks.empty() ? eyes[k] + last_dir : looks[k], opt.fov, w, h);
+    f.camera = Camera::look_at(eyes[k], looks.empty() ? eyes[k] + last_dir : looks[k], opt.fov, s.width, s.height);
     f.cell = hint = at.cell;
-    frames.push_back(f);
+    walk.frames.push_back(f);
+    if (s.stereo) {
+      const StereoRig rig = stereo_rig(c, f.camera, s.eyes);
+      if (rig.problem != StereoRig::Problem::None) throw std::runtime_error(frame + rig.message());
+      walk.left.push_back({rig.left, rig.left_at.cell});
+      walk.right.push_back({rig.right, rig.right_at.cell});
+    }
+  }
+  return walk;
+}
+
+/// Draws frames and writes them: what every rank prepares once (the line scene, or the
+/// placed objects and the scene's effects) and then does for each frame it is given.
+class FrameWriter {
+ public:
+  FrameWriter(const CellComplex& c, const PathSettings& s, const Walk& walk, const std::string& pattern)
+      : c_(c), s_(s), walk_(walk), pattern_(pattern) {
+    if (s.svg) {
+      scene_ = prepare_line_scene(c);
+    } else {
+      objects_ = place_objects(c);
+      effects_.emplace(prepare_effects(c, objects_, s.halftone, s.kernel));  // once for every frame
+    }
   }
 
-  std::error_code ec;
-  fs::create_directories(opt.out_dir, ec);
-  if (ec) throw std::runtime_error("cannot create the output directory " + opt.out_dir + ": " + ec.message());
-  const std::string pattern = (fs::path(opt.out_dir) / ("frame." + opt.format)).string();
-  const bool terminal = ::isatty(STDERR_FILENO);
-  const LineScene scene = opt.format == "svg" ? prepare_line_scene(c) : LineScene{};
-  const std::vector<PlacedObject> objects = opt.format == "png" ? place_objects(c) : std::vector<PlacedObject>{};
-  HalftoneOptions halftone;
-  halftone.samples = 4;
-  const SceneEffects effects = prepare_effects(c, objects, halftone, kernel);  // once for every frame
-  Image picture;
-  const auto t0 = std::chrono::steady_clock::now();
-  for (size_t k = 0; k < frames.size(); ++k) {
-    const VisibleSet vs = find_visible(c, frames[k].camera, frames[k].cell, kernel);
-    const std::string file = frame_path(pattern, int(k), int(frames.size()));
-    if (opt.format == "svg") {
-      write_drawing(draw_view(c, scene, frames[k].camera, vs), file);
+  std::string file(int64_t k) const { return frame_path(pattern_, int(k), int(walk_.frames.size())); }
+
+  void write(int64_t k) {
+    const size_t i = size_t(k);
+    if (s_.svg && s_.stereo) {
+      write_stereo_drawing(draw(walk_.left[i]), draw(walk_.right[i]), s_.layout, file(k));
+    } else if (s_.svg) {
+      write_drawing(draw(walk_.frames[i]), file(k));
+    } else if (s_.stereo) {
+      render(walk_.left[i], picture_);
+      render(walk_.right[i], second_);
+      write_image(stereo_composite(picture_, second_, s_.composite), file(k));
     } else {
-      render_view(c, objects, effects, frames[k].camera, vs, halftone, picture);
-      write_image(picture, file);
+      render(walk_.frames[i], picture_);
+      write_image(picture_, file(k));
     }
-    if (terminal)
-      progress(int(k + 1), int(frames.size()),
-               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }
-  std::cout << "wrote " << frames.size() << " frames: " << frame_path(pattern, 0, int(frames.size())) << " ... "
-            << frame_path(pattern, int(frames.size()) - 1, int(frames.size())) << "\n";
-  if (opt.format == "png" && have_ffmpeg()) {
-    const fs::path dir(opt.out_dir);
-    const std::string digits = std::to_string(std::max(4, int(std::to_string(frames.size()).size())));
-    // Written under another name and renamed when whole: never a partial walk.mp4.
-    const fs::path mp4 = dir / "walk.mp4", part = dir / "walk.mp4.part";
-    const std::string cmd = "ffmpeg -loglevel error -y -framerate 25 -i '" + (dir / ("frame-%0" + digits + "d.png")).string() +
-                            "' -pix_fmt yuv420p -vf 'scale=trunc(iw/2)*2:trunc(ih/2)*2' -f mp4 '" + part.string() +
-                            "' </dev/null";
-    std::error_code mp4_error;
-    if (std::system(cmd.c_str()) == 0 && (fs::rename(part, mp4, mp4_error), !mp4_error)) {
-      std::cout << "wrote " << mp4.string() << "\n";
-    } else {
-      fs::remove(part, mp4_error);
-      std::cerr << "avenues: ffmpeg could not make the MP4; the frames are there\n";
+
+ private:
+  Drawing draw(const WalkFrame& f) const {
+    return draw_view(c_, scene_, f.camera, find_visible(c_, f.camera, f.cell, s_.kernel));
+  }
+  void render(const WalkFrame& f, Image& out) const {
+    render_view(c_, objects_, *effects_, f.camera, find_visible(c_, f.camera, f.cell, s_.kernel), s_.halftone, out);
+  }
+
+  const CellComplex& c_;
+  const PathSettings& s_;
+  const Walk& walk_;
+  std::string pattern_;
+  LineScene scene_;
+  std::vector<PlacedObject> objects_;
+  std::optional<SceneEffects> effects_;
+  Image picture_, second_;
+};
+
+/// Makes DIR this walk's: removes the frames, the film and the temporary files an earlier
+/// walk left there (only those: a frame is "frame-" digits ".png" or ".svg"). With
+/// `resume`, the frames this walk writes are kept. Returns the frames still to render.
+std::vector<int64_t> claim_output(const fs::path& dir, const std::vector<std::string>& names, bool resume) {
+  static const std::regex walk_file(R"((frame-[0-9]+\.(png|svg)|walk\.mp4)|\.(frame-[0-9]+\.(png|svg)|walk\.mp4)\.tmp-[A-Za-z0-9]{6}|walk\.mp4\.part)");
+  const std::set<std::string> ours(names.begin(), names.end());
+  std::vector<int64_t> todo;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (!std::regex_match(name, walk_file) || !fs::is_regular_file(e.symlink_status())) continue;
+    if (resume && ours.count(name)) continue;
+    if (!fs::remove(e.path(), ec) || ec)
+      throw std::runtime_error("cannot remove " + e.path().string() + " (left by an earlier walk): " + ec.message());
+  }
+  if (ec) throw std::runtime_error("cannot read the output directory " + dir.string() + ": " + ec.message());
+  for (size_t k = 0; k < names.size(); ++k)
+    if (!resume || !fs::is_regular_file(dir / names[k], ec)) todo.push_back(int64_t(k));
+  return todo;
+}
+
+}  // namespace
+
+int run_path(const PathOptions& opt) {
+  MpiWalk mpi;  // rank 0 of 1 unless started by mpirun or srun
+
+  // Rank 0 reads the plan, works out the walk and readies DIR; the others get the
+  // complex and the walk from it, as bytes.
+  std::optional<LoadedPlan> plan;
+  std::optional<CellComplex> received;
+  std::optional<PathSettings> settings;
+  Walk walk;
+  std::optional<FrameWriter> writer;
+  std::vector<int64_t> todo;
+  const fs::path dir(opt.out_dir);
+  const std::string pattern = (dir / ("frame." + opt.format)).string();
+  std::string shared;
+  auto broadcast_start = std::chrono::steady_clock::now();
+  double serialised_s = 0;  // of the broadcast, making the complex's bytes
+  if (mpi.rank() == 0) {
+    try {
+      plan.emplace(load_plan_source(opt.plan));
+      settings.emplace(path_settings(opt, mpi));
+      walk = plan_walk(plan->complex, opt, *settings);
+      writer.emplace(plan->complex, *settings, walk, pattern);
+      std::error_code ec;
+      fs::create_directories(dir, ec);
+      if (ec) throw std::runtime_error("cannot create the output directory " + opt.out_dir + ": " + ec.message());
+      std::vector<std::string> names;
+      for (size_t k = 0; k < walk.frames.size(); ++k) names.push_back(fs::path(writer->file(int64_t(k))).filename().string());
+      todo = claim_output(dir, names, opt.resume);
+      if (opt.resume)
+        std::cout << "resuming: " << walk.frames.size() - todo.size() << " of " << walk.frames.size()
+                  << " frames are already in " << opt.out_dir << "\n";
+      if (mpi.ranks() > 1) {
+        broadcast_start = std::chrono::steady_clock::now();
+        const std::string cells = cells_bytes(plan->complex);
+        serialised_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - broadcast_start).count();
+        const uint64_t n = cells.size();
+        shared.append(reinterpret_cast<const char*>(&n), sizeof n);
+        shared += cells;
+        append_frames(shared, walk.frames);
+        append_frames(shared, walk.left);
+        append_frames(shared, walk.right);
+      }
+    } catch (...) {
+      mpi.broadcast(shared, false);  // the others stop; this rank says why
+      throw;
     }
+  }
+  if (!mpi.broadcast(shared, true)) return 2;  // rank 0 failed, and says so
+  const double broadcast_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - broadcast_start).count();
+  const size_t broadcast_bytes = shared.size();
+
+  // Every other rank: the complex and the walk from rank 0's bytes. A failure here is
+  // reported (by rank 0) as this rank's failure at the first frame it is given.
+  std::string setup_error;
+  if (mpi.rank() != 0) {
+    try {
+      uint64_t n = 0;
+      if (shared.size() < sizeof n) throw std::runtime_error("the walk's bytes are cut short");
+      std::memcpy(&n, shared.data(), sizeof n);
+      if (n > shared.size() - sizeof n) throw std::runtime_error("the walk's bytes are cut short");
+      received.emplace(cells_from_bytes(std::string_view(shared).substr(sizeof n, size_t(n)), "the complex from rank 0"));
+      size_t at = sizeof n + size_t(n);
+      walk.frames = take_frames(shared, at);
+      walk.left = take_frames(shared, at);
+      walk.right = take_frames(shared, at);
+      shared = std::string();
+      settings.emplace(path_settings(opt, mpi));
+      writer.emplace(*received, *settings, walk, pattern);
+    } catch (const std::exception& e) {
+      setup_error = e.what();
+    }
+  }
+
+  // Rank 0 makes the film as the frames appear, in order (a frame that exists is whole),
+  // while the ranks render: by the last frame most of the film is encoded.
+  const int n = int(walk.frames.size());
+  const fs::path mp4 = dir / "walk.mp4";
+  std::atomic<bool> walk_over{false};
+  std::string film_error;
+  std::thread filming;
+  if (mpi.rank() == 0 && !settings->svg)
+    filming = std::thread([&] {
+      try {
+        std::optional<Film> film;
+        for (int k = 0; k < n; ++k) {
+          const std::string frame = frame_path(pattern, k, n);
+          std::error_code ec;
+          while (!fs::is_regular_file(frame, ec)) {
+            if (walk_over && !fs::is_regular_file(frame, ec)) return;  // the walk stopped short: no film
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+          }
+          const Image picture = read_image(frame);
+          if (!film) film.emplace(mp4.string(), picture.width, picture.height);
+          film->add(picture);
+        }
+        film->finish();
+      } catch (const std::exception& e) {
+        film_error = e.what();
+      }
+    });
+  struct JoinFilm {  // on every way out, an exception from a frame included
+    std::atomic<bool>& over;
+    std::thread& thread;
+    ~JoinFilm() {
+      over = true;
+      if (thread.joinable()) thread.join();
+    }
+  } join_film{walk_over, filming};
+
+  const bool terminal = ::isatty(STDERR_FILENO);
+  const auto t0 = std::chrono::steady_clock::now();
+  auto last_line = t0;
+  const int64_t total = int64_t(todo.size());
+  const std::string failure = mpi.share(
+      todo, int64_t(walk.frames.size()),
+      [&](int64_t k) {
+        if (!writer) throw std::runtime_error(setup_error);
+        writer->write(k);
+      },
+      [&](int64_t done) {
+        const auto now = std::chrono::steady_clock::now();
+        // A terminal sees every frame; a log (an MPI job's) a line every ten seconds and the last.
+        if (terminal || (mpi.ranks() > 1 && (done == total || now - last_line > std::chrono::seconds(10)))) {
+          progress(done, total, std::chrono::duration<double>(now - t0).count(), terminal);
+          last_line = now;
+        }
+      });
+  const double frames_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  walk_over = true;
+  if (filming.joinable()) filming.join();
+  if (mpi.rank() != 0) return failure.empty() ? 0 : 2;  // rank 0 reports the failure
+  if (!failure.empty()) throw std::runtime_error(failure + "; the frames done are complete: run again with --resume to finish the walk");
+
+  char took[32];
+  std::snprintf(took, sizeof took, "%.2f", frames_s);
+  std::cout << "wrote " << n << " frames in " << took << " s: " << frame_path(pattern, 0, n) << " ... "
+            << frame_path(pattern, n - 1, n);
+  if (mpi.ranks() > 1) {
+    char sent[128];
+    std::snprintf(sent, sizeof sent, "%.3g MB broadcast in %.3g s (%.3g s making the bytes)", double(broadcast_bytes) / 1e6,
+                  broadcast_s, serialised_s);
+    std::string each;
+    for (int64_t r : mpi.rendered()) each += (each.empty() ? "" : " + ") + std::to_string(r);
+    std::cout << " (" << todo.size() << " rendered on " << mpi.ranks() << " ranks: " << each << "; the complex and cameras, "
+              << sent << ")";
+  }
+  std::cout << "\n";
+  if (!settings->svg) {
+    if (!film_error.empty()) throw std::runtime_error(film_error + " (the frames are complete)");
+    std::cout << "wrote " << mp4.string() << "\n";
   }
   return 0;
 }

@@ -77,7 +77,16 @@ struct PathOptions {
   std::string size = "640x360";
   double fov = 70;                ///< [deg]
   std::string kernel = "double";
+  int samples = 4;                ///< half-tone: samples per pixel, 1, 4 or 16
+  std::string shading = "flat";   ///< half-tone: flat, smooth or auto
+  std::string stereo;             ///< "": mono; pictures: anaglyph, parallel, cross; drawings: parallel, cross
+  double interocular = 0.065;     ///< [m]
+  double converge = 2.0;          ///< [m]
+  int threads = 0;                ///< a process's rendering threads; 0: all cores (under MPI: each rank its share)
+  bool resume = false;            ///< keep the frames already in out_dir and render only the others
+  int64_t max_frames = 1000000;   ///< refuse a longer walk
 };
+/// Under mpirun or srun, the frames are spread over the ranks (app/mpi_walk.h).
 int run_path(const PathOptions& opt);
 
 /// Keyframes from a text file: one per line, "EX EY EZ LX LY LZ" (eye, then the point it

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include "cells/cell_complex.h"
 #include "plans/plan.h"
@@ -46,6 +47,11 @@ void check_complex(const CellComplex& complex, const std::string& what);
 /// naming the file on failure; load_cells rebuilds the spatial index.
 void save_cells(const CellComplex& complex, const std::string& path);
 CellComplex load_cells(const std::string& path);
+/// The same bytes in memory (what an MPI walk broadcasts to its ranks): cells_bytes() is
+/// the whole file save_cells() writes; cells_from_bytes() checks and reads them as
+/// load_cells() does, `name` standing for the file in its messages.
+std::string cells_bytes(const CellComplex& complex);
+CellComplex cells_from_bytes(std::string_view bytes, const std::string& name);
 
 /// Writes the opaque surfaces as a Wavefront OBJ triangle mesh, one group per cell
 /// named "cell<id>", so other tools can read the building.

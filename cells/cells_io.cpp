@@ -30,6 +30,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <fcntl.h>
@@ -535,7 +536,7 @@ class MappedFile {
 
 }  // namespace
 
-void save_cells(const CellComplex& complex, const std::string& path) {
+std::string cells_bytes(const CellComplex& complex) {
   Writer payload;
   payload.buf.reserve(1 << 16);
   write_complex(payload, complex);
@@ -549,42 +550,50 @@ void save_cells(const CellComplex& complex, const std::string& path) {
   file.u64(payload.buf.size());
   file.u64(checksum(data, payload.buf.size()));
   file.buf.append(payload.buf);
-  write_file_atomically(path, file.buf);
+  return std::move(file.buf);
 }
 
-CellComplex load_cells(const std::string& path) {
-  const MappedFile file(path);
-  const unsigned char* data = file.data();
-  const size_t file_size = file.size();
+CellComplex cells_from_bytes(std::string_view bytes, const std::string& name) {
+  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+  const size_t file_size = bytes.size();
 
   if (file_size < sizeof kMagic || std::memcmp(data, kMagic, sizeof kMagic) != 0)
-    throw std::runtime_error(path + ": not an Avenues cells file (no AVCELLS header)");
-  Reader header(path, data, data + file_size);
+    throw std::runtime_error(name + ": not an Avenues cells file (no AVCELLS header)");
+  Reader header(name, data, data + file_size);
   header.need(kHeaderSize, "header");
   for (size_t i = 0; i < sizeof kMagic; ++i) header.u8("header");
   uint32_t version = header.u32("header");
   if (version != kVersion)
-    throw std::runtime_error(path + ": cells file format version " + std::to_string(version) +
+    throw std::runtime_error(name + ": cells file format version " + std::to_string(version) +
                              ", this avenues reads version " + std::to_string(kVersion) +
                              "; rebuild it from the plan");
   header.u32("header");
   uint64_t size = header.u64("header");
   uint64_t sum = header.u64("header");
   if (size != file_size - kHeaderSize)
-    throw std::runtime_error(path + ": corrupt cells file: header announces " + std::to_string(size) +
+    throw std::runtime_error(name + ": corrupt cells file: header announces " + std::to_string(size) +
                              " bytes of cells, the file holds " + std::to_string(file_size - kHeaderSize) +
                              (size > file_size - kHeaderSize ? " (truncated?)" : ""));
   const unsigned char* payload = data + kHeaderSize;
   if (checksum(payload, size) != sum)
-    throw std::runtime_error(path + ": corrupt cells file: checksum mismatch");
+    throw std::runtime_error(name + ": corrupt cells file: checksum mismatch");
 
-  Reader r(path, payload, payload + size);
+  Reader r(name, payload, payload + size);
   CellComplex c;
   read_complex(r, c);
   check_indices(c, r);
   c.index();
   check_complex(c, path);
   return c;
+}
+
+void save_cells(const CellComplex& complex, const std::string& path) {
+  write_file_atomically(path, cells_bytes(complex));
+}
+
+CellComplex load_cells(const std::string& path) {
+  const MappedFile file(path);
+  return cells_from_bytes({reinterpret_cast<const char*>(file.data()), file.size()}, path);
 }
 
 }  // namespace avenues

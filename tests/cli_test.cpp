@@ -566,24 +566,7 @@ TEST_F(Cli, PathWalksThroughTheNamedRoomsAndWritesFrames) {
   EXPECT_FALSE(fs::exists(path("none")));
 }
 
-TEST_F(Cli, PathMakesAnMp4OfItsFramesWhenFfmpegIsThere) {
-  if (std::system("command -v ffmpeg >/dev/null 2>&1 && command -v ffprobe >/dev/null 2>&1") != 0)
-    GTEST_SKIP() << "ffmpeg is not installed (apt-get install ffmpeg; .ci/install-deps installs it)";
-  Outcome r = run("path " + quote(kPlan) + " --through L,K -o walk --size 161x91 --step 0.5");
-  ASSERT_EQ(r.status, 0) << r.err;
-  long pngs = 0;
-  for (const auto& e : fs::directory_iterator(path("walk"))) pngs += e.path().extension() == ".png";
-  ASSERT_TRUE(fs::exists(path("walk/walk.mp4"))) << r.out << r.err;
-  EXPECT_FALSE(fs::exists(path("walk/walk.mp4.part")));
-  EXPECT_NE(r.out.find("walk.mp4"), std::string::npos) << r.out;
-  // Every frame is in the film, at an even size (161 x 91 rounded down for yuv420p).
-  const std::string cmd = "cd " + quote(path("").string()) +
-                          " && ffprobe -v error -count_frames -select_streams v:0 -show_entries "
-                          "stream=codec_name,width,height,nb_read_frames -of csv=p=0 walk/walk.mp4 > probe.txt";
-  ASSERT_EQ(std::system(cmd.c_str()), 0);
-  const std::string info = slurp(path("probe.txt"));
-  EXPECT_EQ(info.substr(0, info.find('\n')), "h264,160,90," + std::to_string(pngs)) << info;
-}
+// The film of a walk: path_test.cpp.
 
 TEST_F(Cli, PathFollowsRecordedKeyframes) {
   write("keys.txt", "# eye, then the point looked at\n1.5 3 1.6  5 3 1.4\n\n3.0 2 1.6  5 1.6 1.4\n4.5 1.6 1.6  8 1.5 1.4\n");

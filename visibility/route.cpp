@@ -109,12 +109,12 @@ std::vector<Vec3> smooth_path(const CellComplex& c, const std::vector<Vec3>& w, 
   for (size_t i = 0; i + 1 < w.size(); ++i) {
     // Catmull–Rom between w[i] and w[i+1], with the neighbours as tangent guides.
     const Vec3 p0 = i > 0 ? w[i - 1] : w[i], p1 = w[i], p2 = w[i + 1], p3 = i + 2 < w.size() ? w[i + 2] : w[i + 1];
-    const int n = std::max(1, int(std::ceil(length(p2 - p1) / step)));
+    const int64_t n = stretch_points(p1, p2, step);
     std::vector<Vec3> seg;
     bool free = true;
     CellId hint = kNoCell;
-    for (int s = 1; s <= n && free; ++s) {
-      const double t = double(s) / n, t2 = t * t, t3 = t2 * t;
+    for (int64_t s = 1; s <= n && free; ++s) {
+      const double t = double(s) / double(n), t2 = t * t, t3 = t2 * t;
       const Vec3 q = 0.5 * ((2 * t2 - t3 - t) * 1.0 * p0 + (3 * t3 - 5 * t2 + 2) * 1.0 * p1 +
                             (4 * t2 - 3 * t3 + t) * 1.0 * p2 + (t3 - t2) * 1.0 * p3);
       const Location at = c.locate(q, hint);
@@ -124,11 +124,25 @@ std::vector<Vec3> smooth_path(const CellComplex& c, const std::vector<Vec3>& w, 
     }
     if (!free) {  // the curve would cut a jamb: walk this stretch straight
       seg.clear();
-      for (int s = 1; s <= n; ++s) seg.push_back(p1 + (double(s) / n) * (p2 - p1));
+      for (int64_t s = 1; s <= n; ++s) seg.push_back(p1 + (double(s) / double(n)) * (p2 - p1));
     }
     out.insert(out.end(), seg.begin(), seg.end());
   }
   return out;
+}
+
+int64_t stretch_points(Vec3 a, Vec3 b, double step) {
+  const double n = std::ceil(length(b - a) / step);
+  // Beyond 2^62 (or NaN) the count is "too many" anyway: keep it representable.
+  if (!(n < 4.6e18)) return int64_t(1) << 62;
+  return std::max<int64_t>(1, int64_t(n));
+}
+
+int64_t path_points(const std::vector<Vec3>& w, double step) {
+  if (w.empty()) return 0;
+  int64_t n = 1;
+  for (size_t i = 0; i + 1 < w.size(); ++i) n = std::min(n + stretch_points(w[i], w[i + 1], step), int64_t(1) << 62);
+  return n;
 }
 
 }  // namespace avenues

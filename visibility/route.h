@@ -9,6 +9,7 @@
 // centre of every portal crossed, and the centre of the cell by which each room is entered.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -33,5 +34,13 @@ std::vector<Vec3> route_through(const CellComplex& complex, const std::vector<st
 /// waypoint is passed exactly); where a point of the curve would leave free space the
 /// straight line between the two waypoints is used instead.
 std::vector<Vec3> smooth_path(const CellComplex& complex, const std::vector<Vec3>& waypoints, double step);
+
+/// How many points smooth_path() gives for these waypoints and step (and how many a walk
+/// straight between them, one point every `step` metres, has): 1 for the first, then for
+/// each stretch ceil(length / step), at least 1. Counted in 64 bits without making the
+/// points, so a caller can refuse a walk too long to make; a huge count comes back as is.
+int64_t path_points(const std::vector<Vec3>& waypoints, double step);
+/// The points of the stretch from a to b: ceil(|b - a| / step), at least 1.
+int64_t stretch_points(Vec3 a, Vec3 b, double step);
 
 }  // namespace avenues

@@ -1,0 +1,402 @@
+// Avenues — `avenues path`, run as a person (or a cluster job) would run it.
+//
+// The real executable, started by argv (posix_spawn: no shell sees the arguments), in a
+// fresh temporary directory; the film is read back with libavformat; the MPI walks run
+// under the real mpirun (Open MPI), on 2 and 3 ranks, and one rank is killed mid-walk.
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+extern "C" {
+#include <libavcodec/avcodec.h>
+#include <libavformat/avformat.h>
+}
+
+#include "tests/test_files.h"
+
+extern char** environ;
+
+namespace fs = std::filesystem;
+using avenues::testing::slurp;
+
+namespace {
+
+const std::string kBinary = AVENUES_BINARY;
+const std::string kHouse = std::string(AVENUES_SOURCE_DIR) + "/plans/jones-house.toml";
+
+struct Outcome {
+  int status = -1;  ///< the exit status; 128 + N for a process killed by signal N
+  std::string out, err;
+};
+
+/// What libavformat finds in a film: its video stream's codec and size, and its frames.
+struct FilmInfo {
+  std::string codec;
+  int width = 0, height = 0;
+  long frames = 0;
+};
+
+FilmInfo probe_film(const fs::path& path) {
+  FilmInfo info;
+  AVFormatContext* format = nullptr;
+  if (avformat_open_input(&format, path.c_str(), nullptr, nullptr) < 0) return info;
+  if (avformat_find_stream_info(format, nullptr) >= 0) {
+    const int video = av_find_best_stream(format, AVMEDIA_TYPE_VIDEO, -1, -1, nullptr, 0);
+    if (video >= 0) {
+      const AVCodecParameters* p = format->streams[video]->codecpar;
+      info.codec = avcodec_get_name(p->codec_id);
+      info.width = p->width;
+      info.height = p->height;
+      AVPacket* packet = av_packet_alloc();
+      while (av_read_frame(format, packet) >= 0) {
+        info.frames += packet->stream_index == video;  // one coded picture a packet
+        av_packet_unref(packet);
+      }
+      av_packet_free(&packet);
+    }
+  }
+  avformat_close_input(&format);
+  return info;
+}
+
+class Path : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / ("avenues-path-" + std::to_string(::getpid()) + "-" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+
+  /// Starts argv[0] (looked up on PATH) in the temporary directory, output to files.
+  pid_t start(const std::vector<std::string>& args, const std::string& tag) {
+    std::vector<char*> argv;
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t files;
+    posix_spawn_file_actions_init(&files);
+    posix_spawn_file_actions_addchdir_np(&files, dir_.c_str());
+    posix_spawn_file_actions_addopen(&files, 0, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&files, 1, (dir_ / (".out-" + tag)).c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&files, 2, (dir_ / (".err-" + tag)).c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    pid_t pid = -1;
+    const int rc = posix_spawnp(&pid, argv[0], &files, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&files);
+    EXPECT_EQ(rc, 0) << "cannot start " << args[0];
+    return rc == 0 ? pid : -1;
+  }
+  Outcome finish(pid_t pid, const std::string& tag) {
+    Outcome r;
+    int status = 0;
+    if (pid > 0 && ::waitpid(pid, &status, 0) == pid)
+      r.status = WIFEXITED(status) ? WEXITSTATUS(status) : WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
+    r.out = slurp(dir_ / (".out-" + tag));
+    r.err = slurp(dir_ / (".err-" + tag));
+    fs::remove(dir_ / (".out-" + tag));
+    fs::remove(dir_ / (".err-" + tag));
+    return r;
+  }
+  /// `avenues ARGS`, to the end.
+  Outcome avenues(std::vector<std::string> args) {
+    args.insert(args.begin(), kBinary);
+    return finish(start(args, "run"), "run");
+  }
+#ifdef AVENUES_MPIRUN
+  static std::vector<std::string> mpirun(int ranks, std::vector<std::string> args) {
+    std::vector<std::string> cmd = {AVENUES_MPIRUN, "--allow-run-as-root", "--oversubscribe", "-np",
+                                    std::to_string(ranks), kBinary};
+    cmd.insert(cmd.end(), args.begin(), args.end());
+    return cmd;
+  }
+  Outcome avenues_mpi(int ranks, std::vector<std::string> args) { return finish(start(mpirun(ranks, args), "mpi"), "mpi"); }
+#endif
+
+  /// The frames in `sub` (frame-NNNN.EXT), by name, with their bytes.
+  std::map<std::string, std::string> frames(const std::string& sub) const {
+    std::map<std::string, std::string> out;
+    static const std::regex frame(R"(frame-[0-9]+\.(png|svg))");
+    for (const auto& e : fs::directory_iterator(dir_ / sub))
+      if (std::regex_match(e.path().filename().string(), frame)) out[e.path().filename().string()] = slurp(e.path());
+    return out;
+  }
+  /// Every name in `sub`, hidden ones included.
+  std::vector<std::string> names(const std::string& sub) const {
+    std::vector<std::string> out;
+    for (const auto& e : fs::directory_iterator(dir_ / sub)) out.push_back(e.path().filename().string());
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+  fs::path path(const std::string& name) const { return dir_ / name; }
+
+  fs::path dir_;
+};
+
+/// A short walk through Jones's house: its arguments before -o.
+std::vector<std::string> walk_args(const std::string& out, const std::string& step = "0.5",
+                                   const std::string& size = "161x91") {
+  return {"path", kHouse, "--through", "L,K", "--step", step, "--size", size, "-o", out};
+}
+
+}  // namespace
+
+TEST_F(Path, FilmHasEveryFrameAtAnEvenSize) {
+  Outcome r = avenues(walk_args("walk"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const size_t n = frames("walk").size();
+  ASSERT_GE(n, 5u);
+  EXPECT_NE(r.out.find("walk.mp4"), std::string::npos) << r.out;
+  // 161 x 91 scaled to the even size below for yuv420p; H.264 where libavcodec has libx264.
+  const FilmInfo film = probe_film(path("walk/walk.mp4"));
+  EXPECT_TRUE(film.codec == "h264" || film.codec == "mpeg4") << film.codec;
+  EXPECT_EQ(film.width, 160);
+  EXPECT_EQ(film.height, 90);
+  EXPECT_EQ(film.frames, long(n));
+  for (const std::string& name : names("walk")) EXPECT_EQ(name.find(".tmp-"), std::string::npos) << name;
+}
+
+// Issue 13, item 1: the film was made by a shell command with the output folder in quotes.
+TEST_F(Path, NoShellSeesTheOutputName) {
+  for (const std::string out : {"inj';touch PWNED;'", "it's", "sp ace $(touch PWNED2)"}) {
+    Outcome r = avenues(walk_args(out, "1.0", "64x36"));
+    ASSERT_EQ(r.status, 0) << out << "\n" << r.err;
+    const size_t n = frames(out).size();
+    EXPECT_GE(n, 2u) << out;
+    EXPECT_EQ(probe_film(path(out) / "walk.mp4").frames, long(n)) << out;
+  }
+  EXPECT_FALSE(fs::exists(path("PWNED")));
+  EXPECT_FALSE(fs::exists(path("PWNED2")));
+  EXPECT_FALSE(fs::exists(fs::current_path() / "PWNED"));
+}
+
+// Issue 13, item 5: --step 1e-6 ran forever; --step 1e-9 with --keys overflowed an int.
+TEST_F(Path, RefusesAStepThatIsNoLengthOrAWalkTooLong) {
+  std::ofstream(path("keys.txt")) << "1.5 3 1.6  5 3 1.4\n3.0 2 1.6  5 1.6 1.4\n";
+  for (const std::string step : {"1e-6", "1e-9", "0", "-0.5", "nan", "inf"}) {
+    for (bool keys : {false, true}) {
+      std::vector<std::string> args = {"path", kHouse, "--step", step, "-o", "none"};
+      if (keys) args.insert(args.end(), {"--keys", "keys.txt"});
+      else args.insert(args.end(), {"--through", "L,K"});
+      Outcome r = avenues(args);
+      EXPECT_EQ(r.status, 2) << step << (keys ? " --keys" : "");
+      EXPECT_NE(r.err.find("--step must be a length of at least 0.001 m"), std::string::npos) << r.err;
+      EXPECT_FALSE(fs::exists(path("none"))) << step;
+    }
+  }
+  // A millimetre is a step, but that walk is longer than the limit asked for...
+  Outcome r = avenues({"path", kHouse, "--through", "L,K,D", "--step", "0.001", "--max-frames", "1000", "-o", "none"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("more than --max-frames 1000"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("none")));
+  // ... and so is a step of a metre through the keyframes above a limit of 2.
+  Outcome keyed = avenues({"path", kHouse, "--keys", "keys.txt", "--step", "0.1", "--max-frames", "2", "-o", "none"});
+  EXPECT_EQ(keyed.status, 2);
+  EXPECT_NE(keyed.err.find("would have 20 frames"), std::string::npos) << keyed.err;  // 1 + ceil(1.80 / 0.1)
+  EXPECT_EQ(avenues({"path", kHouse, "--keys", "keys.txt", "--max-frames", "1", "-o", "none"}).status, 2);
+  EXPECT_FALSE(fs::exists(path("none")));
+}
+
+// Issue 13, items 9 and 11: a second walk into the same folder left the first one's frames,
+// and its film had them all.
+TEST_F(Path, AWalkOwnsItsOutput) {
+  ASSERT_EQ(avenues(walk_args("walk", "0.25", "64x36")).status, 0);
+  const size_t first = frames("walk").size();
+  // What a killed walk leaves (a frame being written) and what is not the walk's.
+  std::ofstream(path("walk/.frame-0003.png.tmp-a1B2c3")) << "half a frame";
+  std::ofstream(path("walk/notes.txt")) << "mine";
+  fs::create_directories(path("walk/frame-sketches"));
+  Outcome r = avenues(walk_args("walk", "1.0", "64x36"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const size_t second = frames("walk").size();
+  ASSERT_LT(second, first);
+  EXPECT_EQ(probe_film(path("walk/walk.mp4")).frames, long(second));
+  std::vector<std::string> expected = {"frame-sketches", "notes.txt", "walk.mp4"};
+  for (size_t k = 1; k <= second; ++k) expected.push_back("frame-000" + std::to_string(k) + ".png");
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(names("walk"), expected);
+  // Drawn frames replace the pictures, and there is no film of drawings.
+  ASSERT_EQ(avenues({"path", kHouse, "--through", "L,K", "--step", "1.0", "--format", "svg", "-o", "walk"}).status, 0);
+  for (const std::string& name : names("walk")) EXPECT_EQ(name.find(".png"), std::string::npos) << name;
+  EXPECT_FALSE(fs::exists(path("walk/walk.mp4")));
+}
+
+// A frame that cannot be written stops the walk (exit 2): the frames before it are
+// complete, and there is no film, not even its temporary file.
+TEST_F(Path, AFailedFrameLeavesCompleteFramesAndNoFilm) {
+  fs::create_directories(path("walk/frame-0004.png"));
+  Outcome r = avenues(walk_args("walk", "0.3", "64x36"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("cannot write walk/frame-0004.png: is a directory"), std::string::npos) << r.err;
+  EXPECT_EQ(names("walk"), (std::vector<std::string>{"frame-0001.png", "frame-0002.png", "frame-0003.png", "frame-0004.png"}));
+}
+
+TEST_F(Path, ResumeRendersOnlyTheMissingFrames) {
+  ASSERT_EQ(avenues(walk_args("walk", "0.5", "96x54")).status, 0);
+  const auto whole = frames("walk");
+  ASSERT_GE(whole.size(), 5u);
+  fs::remove(path("walk/frame-0002.png"));
+  fs::remove(path("walk/frame-0005.png"));
+  fs::remove(path("walk/walk.mp4"));
+  const auto kept = fs::last_write_time(path("walk/frame-0001.png"));
+  Outcome r = avenues({"path", kHouse, "--through", "L,K", "--step", "0.5", "--size", "96x54", "-o", "walk", "--resume"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("resuming: " + std::to_string(whole.size() - 2) + " of " + std::to_string(whole.size())),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(frames("walk"), whole);
+  EXPECT_EQ(fs::last_write_time(path("walk/frame-0001.png")), kept);
+  EXPECT_EQ(probe_film(path("walk/walk.mp4")).frames, long(whole.size()));
+}
+
+TEST_F(Path, StereoFramesAndOptionsAreChecked) {
+  Outcome r = avenues({"path", kHouse, "--through", "L,K", "--step", "1.0", "--size", "64x36", "--stereo", "parallel",
+                       "-o", "pair"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(probe_film(path("pair/walk.mp4")).width, 128);  // the two eyes side by side
+  for (const std::vector<std::string>& bad : std::vector<std::vector<std::string>>{
+           {"--stereo", "pair"}, {"--samples", "3"}, {"--threads", "-1"}, {"--shading", "glossy"},
+           {"--stereo", "cross", "--interocular", "nan"}}) {
+    std::vector<std::string> args = {"path", kHouse, "--through", "L,K", "-o", "none"};
+    args.insert(args.end(), bad.begin(), bad.end());
+    Outcome b = avenues(args);
+    EXPECT_EQ(b.status, 2) << bad[0];
+    EXPECT_NE(b.err.find(bad[bad.size() - 2]), std::string::npos) << b.err;
+    EXPECT_FALSE(fs::exists(path("none")));
+  }
+}
+
+// --- under MPI: mpirun -np N avenues path ... (app/mpi_walk.h) ---------------------------
+
+#ifdef AVENUES_MPIRUN
+
+TEST_F(Path, MpiWalksAreByteIdenticalToOneProcess) {
+  const std::vector<std::string> args = {"path", kHouse, "--through", "L,K,D", "--step", "0.4", "--size", "96x54"};
+  auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> a = args;
+    a.insert(a.end(), extra.begin(), extra.end());
+    return a;
+  };
+  ASSERT_EQ(avenues(with({"-o", "one"})).status, 0);
+  const auto one = frames("one");
+  ASSERT_GE(one.size(), 10u);
+  for (int ranks : {2, 3}) {
+    const std::string out = "ranks" + std::to_string(ranks);
+    Outcome r = avenues_mpi(ranks, with({"-o", out}));
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(frames(out), one) << ranks << " ranks";
+    EXPECT_NE(r.out.find("on " + std::to_string(ranks) + " ranks"), std::string::npos) << r.out;
+    EXPECT_EQ(probe_film(path(out) / "walk.mp4").frames, long(one.size()));
+    // One progress bar, rank 0's, ending at every frame.
+    EXPECT_NE(r.err.find("] " + std::to_string(one.size()) + "/" + std::to_string(one.size())), std::string::npos) << r.err;
+  }
+  // Stereo frames (an anaglyph) and drawings.
+  ASSERT_EQ(avenues(with({"--stereo", "anaglyph", "-o", "s1"})).status, 0);
+  ASSERT_EQ(avenues_mpi(2, with({"--stereo", "anaglyph", "-o", "s2"})).status, 0);
+  EXPECT_EQ(frames("s2"), frames("s1"));
+  ASSERT_EQ(avenues(with({"--format", "svg", "--stereo", "cross", "-o", "d1"})).status, 0);
+  ASSERT_EQ(avenues_mpi(3, with({"--format", "svg", "--stereo", "cross", "-o", "d3"})).status, 0);
+  EXPECT_EQ(frames("d3"), frames("d1"));
+  EXPECT_FALSE(frames("d1").empty());
+}
+
+TEST_F(Path, MpiBadInputIsReportedOnceByRankZero) {
+  Outcome r = avenues_mpi(2, {"path", kHouse, "--through", "L,Attic", "-o", "none"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("no room 'Attic'"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("no room 'Attic'"), r.err.rfind("no room 'Attic'")) << r.err;
+  EXPECT_FALSE(fs::exists(path("none")));
+}
+
+// A rank whose frame cannot be written (here the frame's name is taken by a folder) stops
+// the walk, named with its frame; --resume, the folder gone, finishes it.
+TEST_F(Path, MpiRankThatFailsStopsTheWalkAndResumeFinishesIt) {
+  const std::vector<std::string> args = {"path", kHouse, "--through", "L,K", "--step", "0.3", "--size", "64x36", "-o", "walk"};
+  ASSERT_EQ(avenues({"path", kHouse, "--through", "L,K", "--step", "0.3", "--size", "64x36", "-o", "one"}).status, 0);
+  fs::create_directories(path("walk/frame-0004.png"));
+  Outcome r = avenues_mpi(2, args);
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_TRUE(std::regex_search(r.err, std::regex("avenues: rank [01] failed at frame 4 \\(of [0-9]+\\): cannot write")))
+      << r.err;
+  EXPECT_NE(r.err.find("--resume"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("walk/walk.mp4")));
+  fs::remove(path("walk/frame-0004.png"));
+  std::vector<std::string> again = args;
+  again.push_back("--resume");
+  Outcome resumed = avenues_mpi(2, again);
+  ASSERT_EQ(resumed.status, 0) << resumed.err;
+  EXPECT_EQ(frames("walk"), frames("one"));
+  EXPECT_EQ(probe_film(path("walk/walk.mp4")).frames, long(frames("one").size()));
+}
+
+namespace {
+
+/// The process of the MPI rank `rank` whose command line names `marker`, or -1.
+pid_t rank_process(int rank, const std::string& marker) {
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    const std::string pid = e.path().filename().string();
+    if (pid.find_first_not_of("0123456789") != std::string::npos) continue;
+    const std::string cmdline = slurp(e.path() / "cmdline"), env = slurp(e.path() / "environ");
+    if (cmdline.find(marker) == std::string::npos || cmdline.find("mpirun") != std::string::npos) continue;
+    if (env.find(std::string("OMPI_COMM_WORLD_RANK=") + std::to_string(rank) + '\0') != std::string::npos)
+      return pid_t(std::stol(pid));
+  }
+  return -1;
+}
+
+}  // namespace
+
+// A rank killed mid-walk (SIGKILL: it cannot report) stops the job; rank 0 says which
+// frames were in progress, and --resume keeps the frames done and completes the film.
+// (That the frames of an MPI walk are those of one process is shown above.)
+TEST_F(Path, MpiRankKilledMidWalkAndResumeCompletesTheFilm) {
+  const std::string out = "killed-" + std::to_string(::getpid());  // names this job's processes
+  const std::vector<std::string> args = {"path", kHouse, "--through", "L,K,D", "--step", "0.05", "--size", "160x90", "-o", out};
+  const pid_t job = start(mpirun(2, args), "killed");
+  ASSERT_GT(job, 0);
+  // Wait for a few frames, then kill rank 1.
+  pid_t victim = -1;
+  for (int tries = 0; tries < 1200 && victim < 0; ++tries) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(25));
+    if (fs::exists(path(out)) && frames(out).size() >= 3) victim = rank_process(1, out);
+  }
+  ASSERT_GT(victim, 0) << "rank 1 never showed up";
+  ASSERT_EQ(::kill(victim, SIGKILL), 0);
+  Outcome r = finish(job, "killed");
+  const size_t done = frames(out).size();
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("rank 1"), std::string::npos) << r.err;  // mpirun names the rank that died
+  EXPECT_TRUE(std::regex_search(r.err, std::regex("in progress: frame [0-9]+ on rank [01]"))) << r.err;  // rank 0
+  EXPECT_NE(r.err.find("--resume"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path(out) / "walk.mp4"));
+
+  std::vector<std::string> again = args;
+  again.push_back("--resume");
+  Outcome resumed = avenues_mpi(2, again);
+  ASSERT_EQ(resumed.status, 0) << resumed.err;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(resumed.out, m, std::regex("resuming: ([0-9]+) of ([0-9]+) frames"))) << resumed.out;
+  const size_t kept = std::stoul(m[1]), total = std::stoul(m[2]);
+  EXPECT_GE(kept, done);  // every complete frame kept (and those finished as the job stopped)
+  ASSERT_LT(kept, total) << "the walk ended before rank 1 was killed";
+  EXPECT_EQ(frames(out).size(), total);
+  EXPECT_EQ(probe_film(path(out) / "walk.mp4").frames, long(total));
+  for (const std::string& name : names(out)) EXPECT_EQ(name.find(".tmp-"), std::string::npos) << name;
+}
+
+#endif
