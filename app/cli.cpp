@@ -144,6 +144,10 @@ int run_cli(int argc, char** argv) {
   walk->add_option("--shading", walk_opt.shading, "half-tone: flat or smooth")->capture_default_str();
   walk->add_option("--kernel", walk_opt.kernel, "arithmetic of the traversal")->capture_default_str();
   walk->add_option("--interocular", walk_opt.interocular, "[m] distance between the eyes")->capture_default_str();
+  walk->add_option("--frame-budget", walk_opt.frame_budget_ms,
+                   "[ms] while the eye moves, drop samples, then resolution, to keep frames under this; "
+                   "full detail again when it stops (0: never)")
+      ->capture_default_str();
   walk->add_option("--converge", walk_opt.converge, "[m] distance at which the two views coincide")
       ->capture_default_str();
 
@@ -167,6 +171,9 @@ int run_cli(int argc, char** argv) {
   bench_walk->add_option("PLAN", bench_walk_plans, "plans to walk through; default: the bundled plans");
   bench_walk->add_option("--frames", bench_walk_frames, "frames per plan")->capture_default_str();
   bench_walk->add_option("--size", bench_walk_size, "the window's size")->type_name("WxH")->capture_default_str();
+  double bench_walk_budget = 1000.0 / 60;
+  bench_walk->add_option("--frame-budget", bench_walk_budget, "[ms] the walkthrough's frame budget; 0: none")
+      ->capture_default_str();
 
   GenerateOfficeOptions office_opt;
   CLI::App* generate = app.add_subcommand("generate", "write a generated plan");
@@ -189,7 +196,7 @@ int run_cli(int argc, char** argv) {
     if (*view) return run_view(view_opt);
     if (*papers) return run_bench_papers(bench_threads, bench_repeats);
     if (*bench_accuracy) return run_bench_accuracy(accuracy);
-    if (*bench_walk) return run_bench_walk(bench_walk_plans, bench_walk_frames, bench_walk_size);
+    if (*bench_walk) return run_bench_walk(bench_walk_plans, bench_walk_frames, bench_walk_size, bench_walk_budget);
     if (*walk) return run_walk(walk_opt);
     if (*path) return run_path(path_opt);
     if (*office) return run_generate_office(office_opt);

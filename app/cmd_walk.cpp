@@ -8,7 +8,8 @@
 // the view itself — the scanline half-tone picture, or the hidden-line drawing rasterised
 // by Cairo — mono, side by side or as an anaglyph; and the window shows that picture pixel
 // for pixel (app/viewer.h), with the status line and the help over it (app/hud.h). A frame
-// is rendered again only when the view changed. Progressive display (Jones tried it: the
+// is rendered again only when the view changed, and while the eye moves at the detail the
+// frame budget allows (app/frame_budget.h), at full detail once it stops. Progressive display (Jones tried it: the
 // picture builds up as the lines are computed) shows the avenues' cells one swap at a time.
 //
 // From the window: F2 writes the picture as shown (PNG), F3 the hidden-line drawing (SVG),
@@ -35,6 +36,7 @@
 #include "app/commands.h"
 #include "core/angles.h"
 #include "app/controls.h"
+#include "app/frame_budget.h"
 #include "app/hud.h"
 #include "render/line_raster.h"
 #include "app/script.h"
@@ -115,6 +117,8 @@ struct WalkReport {
   std::vector<double> render_ms;  ///< visibility, render and composition, for frames that rendered
   std::vector<double> show_ms;    ///< upload, blit and overlays, every frame
   std::vector<double> swap_ms;    ///< glfwSwapBuffers, every frame
+  long reduced_frames = 0;        ///< frames rendered below full detail to keep to the frame budget
+  long refined_frames = 0;        ///< frames rendered again at full detail once the eye stopped
   long rss_kb_100 = 0, rss_kb_last = 0;
   double cpu_s_10 = 0, cpu_s_last = 0;  ///< [s] CPU time of the process (all threads) after frame 10, and at the end
   nlohmann::json last;            ///< the last pose and view
@@ -126,7 +130,7 @@ struct WalkReport {
 class Session {
  public:
   Session(const LoadedPlan& plan, const WalkOptions& opt, Viewer& viewer)
-      : plan_(plan), c_(plan.complex), opt_(opt), viewer_(viewer),
+      : plan_(plan), c_(plan.complex), opt_(opt), viewer_(viewer), budget_(opt.frame_budget_ms, opt.samples),
         walker_(c_, start_eye(plan, opt), walker_options(c_, start_eye(plan, opt), opt.plan)) {
     if (!parse_kernel(opt.kernel, kernel_))
       throw std::runtime_error("--kernel wants float, double, filtered or exact, not '" + opt.kernel + "'");
@@ -140,6 +144,8 @@ class Session {
     else if (opt.stereo == "anaglyph") stereo_ = StereoMode::Anaglyph;
     else throw std::runtime_error("--stereo wants mono, side-by-side or anaglyph, not '" + opt.stereo + "'");
     if (opt.progressive_rate < 1) throw std::runtime_error("--progressive-rate must be at least 1");
+    if (!(opt.frame_budget_ms >= 0 && opt.frame_budget_ms < 1e6))
+      throw std::runtime_error("--frame-budget wants a time in milliseconds, 0 or more (0: no budget)");
     stereo_opt_ = {opt.interocular, opt.converge};
     if (!(opt.interocular > 0 && opt.converge > 0))
       throw std::runtime_error("--interocular and --converge must be positive lengths");
@@ -198,6 +204,8 @@ class Session {
       const Clock::time_point r0 = Clock::now();
       const bool rendered = render(w, h);
       if (rendered) {
+        if (shown_detail_ != budget_.full()) ++report.reduced_frames;
+        else if (refining_) ++report.refined_frames;
         report.render_ms.push_back(ms_since(r0));
         smoothed_render = smoothed_render == 0 ? report.render_ms.back() : 0.9 * smoothed_render + 0.1 * report.render_ms.back();
       }
@@ -221,6 +229,7 @@ class Session {
       report.swap_ms.push_back(ms_since(s0));
       const double work = ms_since(polled);
       report.work_ms.push_back(work);
+      if (rendered) budget_.measured(work, moving_);
       smoothed_work = smoothed_work == 0 ? work : 0.9 * smoothed_work + 0.1 * work;
       if (frame == 99) report.rss_kb_100 = resident_kb();
       if (frame == 9) report.cpu_s_10 = cpu_seconds();
@@ -264,7 +273,7 @@ class Session {
     // The help, while shown, stands in for the status line (it would cover it).
     if (hud_on_ && !help_on_) panels.push_back(&hud_panel_);
     if (help_on_) panels.push_back(&help_panel_);
-    viewer_.draw(frame_, rendered, panels);
+    viewer_.draw(frame_, rendered, panels, shown_detail_.scale);
   }
 
   bool progressive_pending() const { return progressive_ && shown_ < full_.avenues.size(); }
@@ -372,13 +381,20 @@ class Session {
     else render_view(c_, objects_, effects_, cam, use, halftone_, out);
   }
 
-  /// Renders the view when it changed; false when the last frame still stands.
-  bool render(int w, int h) {
-    const bool view_changed = moving_ || force_render_ || w != frame_w_ || h != frame_h_ || first_;
+  /// Renders the view when it changed (or its detail did); false when the last frame still stands.
+  bool render(int window_w, int window_h) {
+    const Detail detail = budget_.next(moving_);
+    refining_ = !moving_ && shown_detail_ != detail;
+    const bool view_changed = moving_ || force_render_ || window_w != frame_w_ || window_h != frame_h_ || first_ ||
+                              detail != shown_detail_;
     if (!view_changed && !progressive_pending()) return false;
     first_ = false;
     force_render_ = false;
-    frame_w_ = w, frame_h_ = h;
+    frame_w_ = window_w, frame_h_ = window_h;
+    // Rendered at 1/scale of the window along each side, each pixel shown as a block.
+    shown_detail_ = detail;
+    halftone_.samples = detail.samples;
+    const int w = std::max(1, window_w / detail.scale), h = std::max(1, window_h / detail.scale);
     const CellId cell = walker_.cell();
     StereoMode mode = stereo_;
     if (view_changed) {
@@ -432,6 +448,9 @@ class Session {
                      " | " + to_string(shown_mode_);
     if (progressive_) l1 += " | progressive " + std::to_string(shown_) + "/" + std::to_string(full_.avenues.size());
     lines.push_back(l1 + "    H: help");
+    if (shown_detail_ != budget_.full())
+      lines.push_back("over the " + fixed(budget_.budget_ms(), 1) + " ms frame budget (" + fixed(budget_.last_ms(), 1) +
+                      " ms): " + to_string(shown_detail_) + " while moving, full detail when the eye stops");
     lines.push_back("frame " + fixed(work_ms, 1) + " ms, render " + fixed(render_ms, 1) + " ms | " +
                     std::to_string(full_.cells.size()) + " cells seen through " + std::to_string(full_.avenues.size()) +
                     " avenues");
@@ -442,6 +461,7 @@ class Session {
     if (!sw.empty()) lines.push_back("sense switches on: " + sw);
     if (!message_.empty()) lines.push_back(message_);
     set_text_panel(hud_panel_, lines, 8, 8);
+    status_ = lines;
     if (help_on_) set_centred_text_panel(help_panel_, help_lines(), w, h);
   }
 
@@ -460,7 +480,9 @@ class Session {
             {"storey", cell.storey >= 0 && size_t(cell.storey) < c_.storeys.size() ? c_.storeys[size_t(cell.storey)].name : ""},
             {"visible_cells", full_.cells.size()},
             {"avenues", full_.avenues.size()},
-            {"size", {frame_w_, frame_h_}}};
+            {"size", {frame_w_, frame_h_}},
+            {"detail", {{"samples", shown_detail_.samples}, {"scale", shown_detail_.scale}}},
+            {"status", status_}};
   }
 
   /// The pose as `avenues view` options that reproduce the view.
@@ -577,6 +599,9 @@ class Session {
   const CellComplex& c_;
   const WalkOptions& opt_;
   Viewer& viewer_;
+  FrameBudget budget_;
+  Detail shown_detail_;   ///< what the frame on screen was rendered at
+  bool refining_ = false; ///< this frame renders the still view again at full detail
   Walker walker_;
   Controls controls_;
   Kernel kernel_ = Kernel::Double;
@@ -598,6 +623,7 @@ class Session {
   size_t shown_ = 0;  ///< avenues drawn (progressive display)
   Image frame_, left_, right_img_;
   OverlayPanel hud_panel_, help_panel_;
+  std::vector<std::string> status_;  ///< the status line's text, as last set
   std::string message_;
   Clock::time_point message_until_;
   std::string record_path_;
@@ -612,6 +638,8 @@ void write_stats(const std::string& path, const LoadedPlan& plan, const WalkRepo
   j["work_ms"] = to_json(percentiles(r.work_ms));
   j["render_ms"] = to_json(percentiles(r.render_ms));
   j["rendered_frames"] = r.render_ms.size();
+  j["reduced_frames"] = r.reduced_frames;
+  j["refined_frames"] = r.refined_frames;
   j["show_ms"] = to_json(percentiles(r.show_ms));
   j["swap_ms"] = to_json(percentiles(r.swap_ms));
   j["rss_kb"] = {{"frame_100", r.rss_kb_100}, {"last", r.rss_kb_last}};
@@ -671,7 +699,7 @@ int run_walk(const WalkOptions& opt) {
   return status;
 }
 
-int run_bench_walk(const std::vector<std::string>& plans, long frames, const std::string& size) {
+int run_bench_walk(const std::vector<std::string>& plans, long frames, const std::string& size, double frame_budget_ms) {
   if (frames < 20) throw std::runtime_error("--frames must be at least 20");
   std::vector<std::string> files = plans;
   if (files.empty())
@@ -679,14 +707,16 @@ int run_bench_walk(const std::vector<std::string>& plans, long frames, const std
       files.push_back((fs::path(default_plan_path()).parent_path() / (std::string(p) + ".toml")).string());
   const char* display = std::getenv("DISPLAY");
   std::cout << "walkthrough window, " << size << " half-tone, flat shading, 1 sample, status line on, no vsync; "
-            << frames << " frames per plan walking forward while turning 90 deg/s (the first 10 not counted); DISPLAY="
+            << frames << " frames per plan walking forward while turning 90 deg/s (the first 10 not counted); frame budget "
+            << (frame_budget_ms > 0 ? fixed(frame_budget_ms, 1) + " ms" : std::string("off")) << "; DISPLAY="
             << (display ? display : "") << "\n"
             << "frame: period from one frame's start to the next (percentiles); render: visibility and half-tone;\n"
             << "show: texture upload, blit and status line; swap: glfwSwapBuffers (medians); CPU/frame: this\n"
-            << "process's CPU time (all threads, Mesa's included; not the X server's) per frame\n\n";
+            << "process's CPU time (all threads, Mesa's included; not the X server's) per frame; reduced: frames\n"
+            << "rendered below full detail to keep to the budget\n\n";
   std::cout << std::left << std::setw(24) << "plan" << std::right << std::setw(10) << "median" << std::setw(10) << "p95"
             << std::setw(10) << "p99" << std::setw(8) << "fps" << std::setw(12) << "render" << std::setw(10) << "show"
-            << std::setw(10) << "swap" << std::setw(12) << "CPU/frame" << "\n";
+            << std::setw(10) << "swap" << std::setw(12) << "CPU/frame" << std::setw(9) << "reduced" << "\n";
   // Walk forward and turn right the whole time: a new view every frame, sliding along walls.
   std::vector<ScriptEvent> events(2);
   events[0].what = events[1].what = ScriptEvent::What::Down;
@@ -698,6 +728,7 @@ int run_bench_walk(const std::vector<std::string>& plans, long frames, const std
     opt.size = size;
     opt.frames = frames + 10;
     opt.vsync = false;
+    opt.frame_budget_ms = frame_budget_ms;
     WalkReport report;
     std::string why;
     if (!run_session(plan, opt, events, report, why)) throw std::runtime_error("cannot open the walkthrough window: " + why);
@@ -709,7 +740,8 @@ int run_bench_walk(const std::vector<std::string>& plans, long frames, const std
               << std::setw(7) << fixed(f.p95, 2) << " ms" << std::setw(7) << fixed(f.p99, 2) << " ms" << std::setw(8)
               << fixed(1000 / f.median, 0) << std::setw(9) << fixed(r.median, 2) << " ms" << std::setw(7)
               << fixed(sh.median, 2) << " ms" << std::setw(7) << fixed(sw.median, 2) << " ms" << std::setw(9)
-              << fixed(1000 * (report.cpu_s_last - report.cpu_s_10) / double(frames), 2) << " ms\n";
+              << fixed(1000 * (report.cpu_s_last - report.cpu_s_10) / double(frames), 2) << " ms" << std::setw(8)
+              << fixed(100.0 * double(report.reduced_frames) / double(report.work_ms.size()), 0) << "%\n";
   }
   return 0;
 }

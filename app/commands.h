@@ -119,6 +119,7 @@ struct WalkOptions {
   std::string kernel = "double";
   double interocular = 0.065;          ///< [m]
   double converge = 2.0;               ///< [m]
+  double frame_budget_ms = 1000.0 / 60;  ///< [ms] >= 0: while moving, less detail to keep frames under it (app/frame_budget.h); 0: never
 };
 int run_walk(const WalkOptions& opt);
 /// The walkthrough window on a loaded plan. Returns false, with the reason in `why`, when no
@@ -128,7 +129,7 @@ bool run_walkthrough(const LoadedPlan& plan, const WalkOptions& opt, int& status
 /// `avenues bench papers [--threads N] [--repeats N]`: the papers' scenes beside their figures.
 int run_bench_papers(int threads, int repeats);
 /// `avenues bench walk [PLAN...] [--frames N] [--size WxH]`: frame times of the walkthrough window.
-int run_bench_walk(const std::vector<std::string>& plans, long frames, const std::string& size);
+int run_bench_walk(const std::vector<std::string>& plans, long frames, const std::string& size, double frame_budget_ms);
 /// The camera and eye cell a view option set resolves to.
 struct ViewSetup {
   Viewpoint viewpoint;

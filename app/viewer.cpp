@@ -3,6 +3,7 @@
 
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 
@@ -163,24 +164,25 @@ void Viewer::upload(Texture& t, int w, int h, unsigned format, const uint8_t* pi
   }
 }
 
-void Viewer::quad(const Texture& t, int x, int y) {
+void Viewer::quad(const Texture& t, int x, int y, int scale) {
   // Texel (i, j) on pixel (x + i, y + j): corners on pixel edges, so every pixel centre
   // samples its texel's centre.
   glBindTexture(GL_TEXTURE_2D, t.id);
   glBegin(GL_QUADS);
   glTexCoord2f(0, 0), glVertex2i(x, y);
-  glTexCoord2f(1, 0), glVertex2i(x + t.width, y);
-  glTexCoord2f(1, 1), glVertex2i(x + t.width, y + t.height);
-  glTexCoord2f(0, 1), glVertex2i(x, y + t.height);
+  glTexCoord2f(1, 0), glVertex2i(x + scale * t.width, y);
+  glTexCoord2f(1, 1), glVertex2i(x + scale * t.width, y + scale * t.height);
+  glTexCoord2f(0, 1), glVertex2i(x, y + scale * t.height);
   glEnd();
 }
 
-void Viewer::draw(const Image& frame, bool frame_changed, const std::vector<const OverlayPanel*>& panels) {
+void Viewer::draw(const Image& frame, bool frame_changed, const std::vector<const OverlayPanel*>& panels, int scale) {
+  scale = std::max(1, scale);
   glfwMakeContextCurrent(window_);
   int fw = 0, fh = 0;
   framebuffer_size(fw, fh);
   glViewport(0, 0, fw, fh);
-  if (frame.width < fw || frame.height < fh) {  // black where the picture does not reach
+  if (scale * frame.width < fw || scale * frame.height < fh) {  // black where the picture does not reach
     glClearColor(0, 0, 0, 1);
     glClear(GL_COLOR_BUFFER_BIT);
   }
@@ -210,17 +212,19 @@ void Viewer::draw(const Image& frame, bool frame_changed, const std::vector<cons
       upload(frame_tex_, frame.width, frame.height, GL_BGRA, bgra_.data());
     }
     if (fbo_) {
-      // Texel (i, j) to pixel (i, fh - frame.height + j): the picture's top row at the top.
+      // Texel (i, j) to pixel (i, fh - frame.height + j), or to a scale × scale block there:
+      // the picture's top row at the top.
       fbo_->bind(GL_READ_FRAMEBUFFER, fbo_->read_fbo);
       if (fbo_->attached != frame_tex_.id) {
         fbo_->attach(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, frame_tex_.id, 0);
         fbo_->attached = frame_tex_.id;
       }
       fbo_->bind(GL_DRAW_FRAMEBUFFER, 0);
-      fbo_->blit(0, 0, frame.width, frame.height, 0, fh - frame.height, frame.width, fh, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+      fbo_->blit(0, 0, frame.width, frame.height, 0, fh - scale * frame.height, scale * frame.width, fh,
+                 GL_COLOR_BUFFER_BIT, GL_NEAREST);
       fbo_->bind(GL_READ_FRAMEBUFFER, 0);
     } else {
-      quad(frame_tex_, 0, 0);
+      quad(frame_tex_, 0, 0, scale);
     }
   }
   if (panel_tex_.size() < panels.size()) panel_tex_.resize(panels.size());

@@ -61,8 +61,9 @@ class Viewer {
   void capture_mouse(bool on);
   bool mouse_captured() const { return captured_; }
 
-  /// Draws the frame (pixel for pixel at the top-left; black where it does not reach) and the panels.
-  void draw(const Image& frame, bool frame_changed, const std::vector<const OverlayPanel*>& panels);
+  /// Draws the frame (pixel for pixel at the top-left, or each of its pixels as a `scale` ×
+  /// `scale` block; black where it does not reach) and the panels.
+  void draw(const Image& frame, bool frame_changed, const std::vector<const OverlayPanel*>& panels, int scale = 1);
   /// What was just drawn, read back from the framebuffer (before swap): RGB, rows from the top.
   Image read_back() const;
   void swap();
@@ -75,7 +76,7 @@ class Viewer {
     uint64_t version = ~uint64_t(0);
   };
   void upload(Texture& t, int w, int h, unsigned format, const uint8_t* pixels);
-  static void quad(const Texture& t, int x, int y);
+  static void quad(const Texture& t, int x, int y, int scale = 1);
   // GLFW's callbacks (the window's user pointer is the viewer).
   static void on_key(GLFWwindow* w, int key, int scancode, int action, int mods);
   static void on_focus(GLFWwindow* w, int focused);

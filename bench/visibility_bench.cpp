@@ -6,8 +6,16 @@
 // plans at 1920x1080, reported beside a brute force that tests every cell against the
 // view frustum; flat in building size: the same local view in a 10x10 and a 100x100
 // office within 1.3x of each other.
+//
+// Random views (issue 18): eyes anywhere in free space (rooms, outside, above the roof)
+// looking any way, in the bundled plans, Debian's nine Sweet Home 3D example homes and
+// Freedoom maps; the median and p99 traversal per view and the avenues per view, pruned
+// (TraverseParams::prune_covered) and unpruned, side by side in one run:
+//
+//   ./build/bench/avenues_bench --benchmark_filter=VisibilityRandom
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -15,6 +23,8 @@
 #include <random>
 
 #include "cells/build_cells.h"
+#include "cells/doom_map.h"
+#include "cells/sweet_home.h"
 #include "plans/generate.h"
 #include "visibility/visible_set.h"
 
@@ -24,13 +34,23 @@ using namespace avenues;
 namespace {
 
 /// Complexes are built once per process and shared by the benchmarks.
+/// Keys: "office:N" (a generated N × N office), "sh3d:PATH" (a Sweet Home home),
+/// "wad:PATH:MAP" (a Doom map), else a bundled plan's file name.
 const CellComplex& complex_of(const std::string& key) {
   static std::map<std::string, std::unique_ptr<CellComplex>> cache;
   auto& slot = cache[key];
   if (!slot) {
-    Plan p = key.rfind("office:", 0) == 0
-                 ? parse_plan(generate_office_toml(std::stoi(key.substr(7)), std::stoi(key.substr(7))), key)
-                 : read_plan((fs::path(AVENUES_SOURCE_DIR) / "plans" / key).string());
+    Plan p;
+    if (key.rfind("office:", 0) == 0) {
+      p = parse_plan(generate_office_toml(std::stoi(key.substr(7)), std::stoi(key.substr(7))), key);
+    } else if (key.rfind("sh3d:", 0) == 0) {
+      p = read_sweet_home(key.substr(5));
+    } else if (key.rfind("wad:", 0) == 0) {
+      const size_t colon = key.rfind(':');
+      p = read_doom_map(key.substr(4, colon - 4), key.substr(colon + 1));
+    } else {
+      p = read_plan((fs::path(AVENUES_SOURCE_DIR) / "plans" / key).string());
+    }
     slot = std::make_unique<CellComplex>(build_cells(p));
   }
   return *slot;
@@ -98,7 +118,87 @@ void local_view(benchmark::State& state, int size) {
   state.counters["cells"] = double(c.cells.size());
 }
 
+/// Eyes uniform in the box of every cell but the sky, and 3 m above it, kept where they
+/// are in free space; directions uniform on the sphere; 60° at 1280 × 720.
+std::vector<std::pair<Camera, CellId>> free_views(const CellComplex& c, int n) {
+  Box3 box;
+  for (const Cell& cell : c.cells)
+    if (cell.kind != CellKind::Sky) box.add(cell.bounds().lo), box.add(cell.bounds().hi);
+  box.hi.z += 3;
+  std::mt19937 rng(18);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<std::pair<Camera, CellId>> out;
+  for (int tries = 0; int(out.size()) < n && tries < 1000 * n; ++tries) {
+    const Vec3 eye{box.lo.x + u(rng) * (box.hi.x - box.lo.x), box.lo.y + u(rng) * (box.hi.y - box.lo.y),
+                   box.lo.z + u(rng) * (box.hi.z - box.lo.z)};
+    const Location at = c.locate(eye);
+    if (at.what != Location::What::Cell) continue;
+    const double yaw = 360 * u(rng), pitch = std::asin(2 * u(rng) - 1) * 180 / M_PI;
+    out.push_back({Camera::yaw_pitch(eye, yaw, std::clamp(pitch, -89.9, 89.9), 60, 1280, 720), at.cell});
+  }
+  return out;
+}
+
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  const size_t k = std::min(v.size() - 1, size_t(q * double(v.size())));
+  std::nth_element(v.begin(), v.begin() + long(k), v.end());
+  return v[k];
+}
+
+/// Every view once per iteration; the traversal's own time per view (VisibleSet::micros).
+void random_views(benchmark::State& state, const std::string& key, bool prune) {
+  const CellComplex& c = complex_of(key);
+  const auto vs = free_views(c, 200);
+  TraverseParams params;
+  params.prune_covered = prune;
+  std::vector<double> micros;
+  double avenues = 0, most = 0, cells = 0, pruned = 0;
+  for (auto _ : state) {
+    for (const auto& [cam, cell] : vs) {
+      VisibleSet v = find_visible(c, cam, cell, params);
+      micros.push_back(v.micros);
+      avenues += double(v.avenues.size());
+      pruned += double(v.avenues_pruned);
+      most = std::max(most, double(v.avenues.size()));
+      cells += double(v.cells.size());
+      benchmark::DoNotOptimize(v);
+    }
+  }
+  const double views = double(micros.size());
+  state.counters["median_us"] = quantile(micros, 0.5);
+  state.counters["p99_us"] = quantile(micros, 0.99);
+  state.counters["avenues"] = avenues / views;
+  state.counters["avenues_max"] = most;
+  state.counters["pruned"] = pruned / views;
+  state.counters["visible_cells"] = cells / views;
+  state.counters["cells"] = double(c.cells.size());
+  state.counters["views"] = double(vs.size());
+}
+
 int register_all() {
+  {
+    std::vector<std::pair<std::string, std::string>> plans;  // (name, key)
+    for (const char* plan : {"jones-house", "two-storey-house", "office-corridor", "curved-walls", "furnished-room"})
+      plans.push_back({plan, std::string(plan) + ".toml"});
+    const fs::path homes = "/usr/local/share/avenues/sweethome3d-examples";
+    for (const char* home : {"1BedroomApartmentWithRoundWall", "2BedroomApartment", "2BedroomApartmentWithBowWindow",
+                             "2BedroomHouseWithBasement", "3BedroomApartment", "3BedroomHouseWithAttic",
+                             "3BedroomHouseWithMezzanine", "4BedroomHouse", "Studio"})
+      if (fs::exists(homes / (std::string(home) + ".xml")))
+        plans.push_back({home, "sh3d:" + (homes / (std::string(home) + ".xml")).string()});
+    for (const char* map : {"freedoom2.wad:MAP01", "freedoom1.wad:E1M1", "freedoom2.wad:MAP12"}) {
+      const std::string m(map);
+      const std::string wad = "/usr/share/games/doom/" + m.substr(0, m.find(':'));
+      if (fs::exists(wad)) plans.push_back({m, "wad:" + wad + m.substr(m.find(':'))});
+    }
+    for (const auto& [name, key] : plans)
+      for (bool prune : {false, true})
+        benchmark::RegisterBenchmark(("VisibilityRandom/" + name + (prune ? "/pruned" : "/unpruned")).c_str(),
+                                     [key = key, prune](benchmark::State& s) { random_views(s, key, prune); })
+            ->Unit(benchmark::kMillisecond)
+            ->Iterations(3);
+  }
   for (const char* plan : {"jones-house.toml", "two-storey-house.toml", "office-corridor.toml", "curved-walls.toml"}) {
     for (Kernel k : {Kernel::Float, Kernel::Double, Kernel::Filtered, Kernel::Exact})
       benchmark::RegisterBenchmark((std::string("Visibility/") + plan + "/" + to_string(k)).c_str(),

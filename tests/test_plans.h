@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,24 @@ inline Wall wall(const std::string& name, std::vector<Vec2> centre, double thick
   w.centre = std::move(centre);
   w.from_arc.assign(w.centre.size() - 1, false);
   return w;
+}
+
+/// A random eye inside a random room or outside cell, at a height within the cell.
+inline Vec3 random_eye(const CellComplex& c, std::mt19937& rng, CellId& cell) {
+  std::uniform_int_distribution<size_t> pick(0, c.cells.size() - 1);
+  std::uniform_real_distribution<double> u(0.05, 0.95);
+  for (;;) {
+    cell = CellId(pick(rng));
+    const Cell& k = c.cells[size_t(cell)];
+    if (k.kind != CellKind::Room && k.kind != CellKind::Outside) continue;
+    // A random convex combination of the footprint's vertices.
+    std::vector<double> w(k.footprint.size());
+    double sum = 0;
+    for (double& x : w) sum += (x = u(rng));
+    Vec2 p{0, 0};
+    for (size_t i = 0; i < w.size(); ++i) p = p + (w[i] / sum) * k.footprint[i];
+    return {p.x, p.y, k.z0 + u(rng) * (k.z1 - k.z0)};
+  }
 }
 
 }  // namespace avenues::testing

@@ -20,27 +20,7 @@ using avenues::testing::room_named;
 using avenues::testing::check_visible_set;
 using avenues::testing::OracleResult;
 
-namespace {
-
-/// A random eye inside a random room or outside cell, at a height within the cell.
-Vec3 random_eye(const CellComplex& c, std::mt19937& rng, CellId& cell) {
-  std::uniform_int_distribution<size_t> pick(0, c.cells.size() - 1);
-  std::uniform_real_distribution<double> u(0.05, 0.95);
-  for (;;) {
-    cell = CellId(pick(rng));
-    const Cell& k = c.cells[size_t(cell)];
-    if (k.kind != CellKind::Room && k.kind != CellKind::Outside) continue;
-    // A random convex combination of the footprint's vertices.
-    std::vector<double> w(k.footprint.size());
-    double sum = 0;
-    for (double& x : w) sum += (x = u(rng));
-    Vec2 p{0, 0};
-    for (size_t i = 0; i < w.size(); ++i) p = p + (w[i] / sum) * k.footprint[i];
-    return {p.x, p.y, k.z0 + u(rng) * (k.z1 - k.z0)};
-  }
-}
-
-}  // namespace
+using avenues::testing::random_eye;
 
 TEST(Visibility, JonesKitchenIsSeenThroughTheDoorAndSeparatelyThroughTheHatch) {
   CellComplex c = build_cells(read_plan(plan_path("jones-house.toml")));

@@ -209,6 +209,43 @@ TEST_F(WalkWindow, ScriptedWalkShowsTheOfflineRenderOfTheSameEye) {
   EXPECT_EQ(differing(window, picture), 0) << "the window and `avenues view " << shot["view_options"] << "` differ";
 }
 
+// The frame budget (app/frame_budget.h): with a budget no frame can keep, walking drops the
+// samples and then the resolution (the window shows each rendered pixel as a block) and
+// the status line says so; once the eye stops, the view is rendered again at full detail —
+// the offline render of the same eye.
+TEST_F(WalkWindow, OverItsFrameBudgetTheWalkDropsDetailAndRestoresItWhenTheEyeStops) {
+  NEED_DISPLAY();
+  write("budget.txt", "0 down W\n12 screenshot moving.png\n13 up W\n20 screenshot still.png\n20 quit\n");
+  const Outcome r = run("walk " + quote(plan("two-storey-house.toml")) +
+                        " --size 640x360 --no-hud --samples 4 --frame-budget 0.001 --script budget.txt --stats-json s.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json s = read_json("s.json");
+  ASSERT_EQ(s["screenshots"].size(), 2u);
+  const json moving = s["screenshots"][0], still = s["screenshots"][1];
+  // Over budget every frame: 4 samples, 1, half resolution, then a quarter.
+  EXPECT_EQ(moving["detail"]["samples"], 1);
+  EXPECT_EQ(moving["detail"]["scale"], 4);
+  bool says = false;
+  for (const json& line : moving["status"]) says |= line.get<std::string>().find("frame budget") != std::string::npos;
+  EXPECT_TRUE(says) << moving["status"].dump();
+  EXPECT_GE(s["reduced_frames"].get<long>(), 10);
+  EXPECT_GE(s["refined_frames"].get<long>(), 1);
+  // The moving picture is made of 4 × 4 blocks.
+  const avenues::Image shot = avenues::rgb_of(avenues::read_image(path("moving.png").string()));
+  long off_block = 0;
+  for (int y = 0; y < shot.height; ++y)
+    for (int x = 0; x < shot.width; ++x)
+      for (int k = 0; k < 3; ++k)
+        off_block += shot.row(y)[3 * x + k] != shot.row(y - y % 4)[3 * (x - x % 4) + k];
+  EXPECT_EQ(off_block, 0);
+  // Still: full detail, the offline render of the same eye with the same samples.
+  EXPECT_EQ(still["detail"]["samples"], 4);
+  EXPECT_EQ(still["detail"]["scale"], 1);
+  const avenues::Image window = avenues::read_image(path("still.png").string());
+  const avenues::Image picture = offline(plan("two-storey-house.toml"), still, "offline.png", "--samples 4");
+  EXPECT_EQ(differing(window, picture), 0) << "the still window and `avenues view " << still["view_options"] << "` differ";
+}
+
 TEST_F(WalkWindow, StereoSideBySideAndAnaglyphMatchTheOfflineStereoPictures) {
   NEED_DISPLAY();
   write("stereo.txt",

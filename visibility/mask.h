@@ -116,6 +116,45 @@ class Mask {
     return true;
   }
 
+  /// True only when this mask certainly lies inside `outer` (closed): every vertex inside
+  /// every half-plane of `outer` (convex in convex). Exact number types decide it exactly. In
+  /// floating point a vertex must lie inside by more than the evaluation's rounding bound,
+  /// so a mask touching `outer`'s boundary from inside, or equal to it, is not taken as
+  /// inside: the answer errs only towards "not inside".
+  bool inside(const Mask& outer) const {
+    if (empty() || outer.empty()) return false;
+    for (size_t k = 0; k < h_.size(); ++k) {
+      const Point2T<T> v = vertex(k);
+      for (const HalfPlane<T>& l : outer.h_) {
+        const T s = l.a * v.x + l.b * v.y + l.c;
+        if constexpr (std::is_floating_point_v<T>) {
+          const T bound = kSignBound * (std::fabs(l.a * v.x) + std::fabs(l.b * v.y) + std::fabs(l.c));
+          if (!(s > bound)) return false;
+        } else {
+          if (s < T(0)) return false;
+        }
+      }
+    }
+    return true;
+  }
+
+  /// The same cycle of half-planes, coefficient for coefficient (from the same index on):
+  /// the same region, exactly, in any number type.
+  bool same_as(const Mask& o) const {
+    const size_t n = h_.size();
+    if (n < 3 || o.h_.size() != n) return false;
+    for (size_t shift = 0; shift < n; ++shift) {
+      bool all = true;
+      for (size_t k = 0; k < n && all; ++k) {
+        const HalfPlane<T>& p = h_[k];
+        const HalfPlane<T>& q = o.h_[(k + shift) % n];
+        all = p.a == q.a && p.b == q.b && p.c == q.c;
+      }
+      if (all) return true;
+    }
+    return false;
+  }
+
   /// Twice the signed area (positive for a proper counter-clockwise mask).
   T area2() const {
     T a(0);

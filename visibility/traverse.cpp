@@ -50,14 +50,21 @@ void VisibleSet::collect_cells() {
   cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
 }
 
-VisibleSet find_visible(const CellComplex& complex, const Camera& camera, CellId eye_cell, Kernel kernel) {
-  switch (kernel) {
-    case Kernel::Float: return detail::traverse_with<float>(complex, camera, eye_cell);
-    case Kernel::Double: return detail::traverse_with<double>(complex, camera, eye_cell);
-    case Kernel::Filtered: return detail::traverse_filtered(complex, camera, eye_cell);
-    case Kernel::Exact: return detail::traverse_exact(complex, camera, eye_cell);
+VisibleSet find_visible(const CellComplex& complex, const Camera& camera, CellId eye_cell, const TraverseParams& params) {
+  const bool prune = params.prune_covered;
+  switch (params.kernel) {
+    case Kernel::Float: return detail::traverse_with<float>(complex, camera, eye_cell, prune);
+    case Kernel::Double: return detail::traverse_with<double>(complex, camera, eye_cell, prune);
+    case Kernel::Filtered: return detail::traverse_filtered(complex, camera, eye_cell, prune);
+    case Kernel::Exact: return detail::traverse_exact(complex, camera, eye_cell, prune);
   }
   return {};
+}
+
+VisibleSet find_visible(const CellComplex& complex, const Camera& camera, CellId eye_cell, Kernel kernel) {
+  TraverseParams params;
+  params.kernel = kernel;
+  return find_visible(complex, camera, eye_cell, params);
 }
 
 std::vector<CellId> frustum_cells(const CellComplex& complex, const Camera& cam) {

@@ -8,9 +8,23 @@
 // portals seen from behind first; unlike it there is no depth cap — a cell already on the
 // current avenue is never entered again (a straight ray cannot revisit a convex cell),
 // which bounds the search even where rounding errs.
+//
+// Avenues that add nothing (TraverseParams::prune_covered): an avenue into a cell whose
+// mask lies inside the mask of an avenue already found into that cell shows nothing the
+// other does not, and neither does anything beyond it (every ray through it passes the
+// same portals beyond the cell as the other's rays do), so it is not followed. The test is
+// convex in convex, exact in the exact kernels and conservative in float and double
+// (Mask::inside); an exactly equal mask (Mask::same_as) counts as inside in every kernel.
+// The union of masks per cell, and so every drawing made from them, is unchanged. In exact
+// arithmetic in a complex whose cells do not overlap, two avenues into one cell see
+// disjoint sets of rays (a ray's chain of cells is unique), so what this prunes are the
+// near-duplicates rounding and degenerate portals (stacked, or met edge-on) make. Measured
+// (docs/PERFORMANCE.md, issue 18) on 3,400 random views of 17 plans, homes and Doom maps, it
+// pruned nothing and cost time (the bookkeeping per avenue), so it is off by default.
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 
@@ -38,7 +52,8 @@ T dotT(const Vec3T<T>& a, const Vec3T<T>& b) { return a.x * b.x + a.y * b.y + a.
 template <class T>
 class Traversal {
  public:
-  Traversal(const CellComplex& c, const Camera& cam, VisibleSet& out) : c_(c), out_(out) {
+  Traversal(const CellComplex& c, const Camera& cam, bool prune_covered, VisibleSet& out)
+      : c_(c), out_(out), prune_(prune_covered) {
     eye_ = in(cam.eye);
     right_ = in(cam.right);
     up_ = in(cam.up);
@@ -53,9 +68,26 @@ class Traversal {
     thread_local std::vector<uint8_t> on_path;
     if (on_path.size() < c.cells.size()) on_path.assign(c.cells.size(), 0);
     on_path_ = on_path.data();
+    // Per cell: the last avenue found into it (-1: none), chained back through reached_
+    // (the same per-thread, all-clear-between-traversals rule as on_path).
+    thread_local std::vector<int32_t> last_into;
+    if (last_into.size() < c.cells.size()) last_into.assign(c.cells.size(), -1);
+    last_into_ = last_into.data();
   }
 
   void run(CellId start) {
+    // The marks are cleared even when the traversal throws (an exact kernel out of memory,
+    // say): a visit's own clearing is skipped by the unwinding, so clear every cell any
+    // avenue reached. Harmless when they are clear already.
+    struct ClearMarks {
+      Traversal& t;
+      ~ClearMarks() {
+        for (const Avenue& a : t.out_.avenues) {
+          t.on_path_[size_t(a.cell)] = 0;
+          t.last_into_[size_t(a.cell)] = -1;
+        }
+      }
+    } clear{*this};
     Mask<T> m = window_;
     visit(start, m, -1, -1, 0);
   }
@@ -79,6 +111,10 @@ class Traversal {
     out_.avenues.push_back(std::move(a));
     out_.max_depth = std::max(out_.max_depth, depth);
     on_path_[size_t(cell)] = 1;
+    if (prune_) {
+      reached_.push_back({mask, box_of(mask_here), last_into_[size_t(cell)]});
+      last_into_[size_t(cell)] = self;
+    }
     // Each face's portals; on a long side face (a corridor's wall of doors) only those
     // within the stretch of wall the mask can see (portals are sorted along side faces).
     const Cell& cl = c_.cells[size_t(cell)];
@@ -228,8 +264,37 @@ class Traversal {
         if (!alive) return;
       }
       if (!(m.area2() > T(0))) return;
+      if (prune_ && covered(other, m)) {
+        ++out_.avenues_pruned;
+        return;
+      }
       visit(other, m, self, pi, depth + 1);
     }
+  }
+
+  /// The box of a mask's vertices (in double: x0, y0, x1, y1), grown by far more than their rounding.
+  static std::array<double, 4> box_of(const std::vector<Vec2>& mask, bool grown = true) {
+    std::array<double, 4> b{HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (Vec2 v : mask) b = {std::min(b[0], v.x), std::min(b[1], v.y), std::max(b[2], v.x), std::max(b[3], v.y)};
+    if (!grown) return b;
+    const double grow = 1e-9 * (1 + std::max({std::fabs(b[0]), std::fabs(b[1]), std::fabs(b[2]), std::fabs(b[3])}));
+    return {b[0] - grow, b[1] - grow, b[2] + grow, b[3] + grow};
+  }
+
+  /// Whether an avenue already found into `cell` has a mask that holds m. The boxes first:
+  /// masks of one cell are mostly disjoint, and a box not inside another's (grown) box
+  /// rules containment out without the kernel's arithmetic (a wrong "no" only keeps an avenue).
+  bool covered(CellId cell, const Mask<T>& m) const {
+    if (last_into_[size_t(cell)] < 0) return false;
+    std::vector<Vec2> v;
+    for (const auto& p : m.polygon()) v.push_back({to_double_of(p.x), to_double_of(p.y)});
+    const std::array<double, 4> box = box_of(v, false);
+    for (int32_t a = last_into_[size_t(cell)]; a >= 0; a = reached_[size_t(a)].earlier) {
+      const Reached& r = reached_[size_t(a)];
+      if (box[0] < r.box[0] || box[1] < r.box[1] || box[2] > r.box[2] || box[3] > r.box[3]) continue;
+      if (m.same_as(r.mask) || m.inside(r.mask)) return true;
+    }
+    return false;
   }
 
   /// Closed point-in-convex-polygon test of the eye, which lies in the polygon's plane.
@@ -247,22 +312,32 @@ class Traversal {
   Vec3T<T> eye_, right_, up_, forward_;
   Mask<T> window_;
   uint8_t* on_path_ = nullptr;  ///< per cell: on the current avenue (thread-local buffer)
+  bool prune_ = true;           ///< TraverseParams::prune_covered
+  /// Per avenue (same index), when pruning: its mask in T and the avenue found into the
+  /// same cell before it (-1: none).
+  struct Reached {
+    Mask<T> mask;
+    std::array<double, 4> box;  ///< box_of its mask: x0, y0, x1, y1
+    int32_t earlier;
+  };
+  std::vector<Reached> reached_;
+  int32_t* last_into_ = nullptr;  ///< per cell: the last avenue into it (thread-local buffer)
   Vec3 eye_d_;                 ///< the eye in double, for culling only
   Camera cam_;
 };
 
 template <class T>
-VisibleSet traverse_with(const CellComplex& c, const Camera& cam, CellId eye_cell) {
+VisibleSet traverse_with(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered) {
   VisibleSet out;
   out.eye_cell = eye_cell;
   auto t0 = std::chrono::steady_clock::now();
-  Traversal<T>(c, cam, out).run(eye_cell);
+  Traversal<T>(c, cam, prune_covered, out).run(eye_cell);
   out.micros = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
   out.collect_cells();
   return out;
 }
 
-VisibleSet traverse_exact(const CellComplex& c, const Camera& cam, CellId eye_cell);
-VisibleSet traverse_filtered(const CellComplex& c, const Camera& cam, CellId eye_cell);
+VisibleSet traverse_exact(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered);
+VisibleSet traverse_filtered(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered);
 
 }  // namespace avenues::detail

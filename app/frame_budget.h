@@ -1,0 +1,75 @@
+// Avenues — the walkthrough's frame budget: while the eye moves, a frame that ran over its
+// budget (16.7 ms for 60 fps) makes the next ones cheaper — fewer samples per pixel, then
+// fewer pixels (each rendered sample shown as a 2 × 2, then 4 × 4 block) — and frames well
+// under it, for long enough, bring detail back one step; when the eye stops, the view is
+// rendered once more at full detail (progressive refinement, as a still picture should be).
+//
+// The walkthrough measures its own frames (from the poll of events to the swap) and tells
+// the budget after each one; the budget answers what detail the next frame gets.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace avenues::app {
+
+/// What a frame is rendered at.
+struct Detail {
+  int samples = 1;  ///< half-tone samples per pixel: 1, 4 or 16
+  int scale = 1;    ///< window pixels per rendered pixel along each side: 1, 2 or 4
+  bool operator==(const Detail& o) const { return samples == o.samples && scale == o.scale; }
+  bool operator!=(const Detail& o) const { return !(*this == o); }
+};
+
+/// "4 samples", "half resolution, 1 sample": what a reduced detail gives up, for the status line.
+inline std::string to_string(const Detail& d) {
+  std::string s = d.scale == 1 ? "" : d.scale == 2 ? "half resolution, " : d.scale == 4 ? "quarter resolution, " : "";
+  return s + std::to_string(d.samples) + (d.samples == 1 ? " sample" : " samples");
+}
+
+class FrameBudget {
+ public:
+  /// `budget_ms` <= 0: no budget (every frame at full detail). `samples`: the full detail's.
+  FrameBudget(double budget_ms, int samples) : budget_ms_(budget_ms) {
+    ladder_.push_back({samples, 1});
+    if (samples > 4) ladder_.push_back({4, 1});
+    if (samples > 1) ladder_.push_back({1, 1});
+    ladder_.push_back({1, 2});
+    ladder_.push_back({1, 4});
+  }
+
+  double budget_ms() const { return budget_ms_; }
+  const Detail& full() const { return ladder_.front(); }
+  /// The detail of the next frame: full when the eye is still (or there is no budget).
+  Detail next(bool moving) const { return moving && budget_ms_ > 0 ? ladder_[level_] : full(); }
+
+  /// After a frame (of `work_ms`) rendered at next(moving): over budget while moving, one
+  /// step less detail at once; under half the budget for kSettle frames running, one step
+  /// more (so the detail does not flicker between two steps every frame).
+  void measured(double work_ms, bool moving) {
+    last_ms_ = work_ms;
+    if (!moving || budget_ms_ <= 0) return;
+    if (work_ms > budget_ms_) {
+      if (level_ + 1 < ladder_.size()) ++level_;
+      fast_frames_ = 0;
+    } else if (work_ms < 0.5 * budget_ms_ && level_ > 0) {
+      if (++fast_frames_ >= kSettle) --level_, fast_frames_ = 0;
+    } else {
+      fast_frames_ = 0;
+    }
+  }
+  /// [ms] the last frame measured.
+  double last_ms() const { return last_ms_; }
+
+  /// Frames in a row under half the budget before detail comes back one step (half a second at 60 fps).
+  static constexpr int kSettle = 30;
+
+ private:
+  double budget_ms_;
+  std::vector<Detail> ladder_;  ///< from full detail down
+  size_t level_ = 0;            ///< into ladder_: the detail while moving
+  int fast_frames_ = 0;
+  double last_ms_ = 0;
+};
+
+}  // namespace avenues::app

@@ -1,0 +1,45 @@
+// Tests of the walkthrough's frame budget (app/frame_budget.h): the steps it drops detail
+// by, when it brings detail back, and that a still eye always gets full detail.
+#include <gtest/gtest.h>
+
+#include "app/frame_budget.h"
+
+using avenues::app::Detail;
+using avenues::app::FrameBudget;
+
+TEST(FrameBudget, OverBudgetWhileMovingDropsSamplesThenResolutionOneStepAFrame) {
+  FrameBudget b(16.7, 16);
+  const Detail steps[] = {{16, 1}, {4, 1}, {1, 1}, {1, 2}, {1, 4}, {1, 4}};
+  for (const Detail& d : steps) {
+    EXPECT_EQ(b.next(true), d) << to_string(b.next(true));
+    EXPECT_EQ(b.next(false), (Detail{16, 1})) << "a still eye gets full detail";
+    b.measured(40, true);
+  }
+  EXPECT_EQ(to_string(b.next(true)), "quarter resolution, 1 sample");
+  // One sample asked for: resolution is all there is to drop.
+  FrameBudget one(16.7, 1);
+  one.measured(20, true);
+  EXPECT_EQ(one.next(true), (Detail{1, 2}));
+}
+
+TEST(FrameBudget, DetailComesBackOneStepAfterHalfASecondWellUnderBudget) {
+  FrameBudget b(16.7, 4);
+  b.measured(30, true), b.measured(30, true);
+  ASSERT_EQ(b.next(true), (Detail{1, 2}));
+  for (int i = 0; i + 1 < FrameBudget::kSettle; ++i) b.measured(5, true);
+  EXPECT_EQ(b.next(true), (Detail{1, 2})) << "not before kSettle fast frames";
+  b.measured(12, true);  // under budget but not well under: the count starts again
+  for (int i = 0; i + 1 < FrameBudget::kSettle; ++i) b.measured(5, true);
+  EXPECT_EQ(b.next(true), (Detail{1, 2}));
+  b.measured(5, true);
+  EXPECT_EQ(b.next(true), (Detail{1, 1}));
+  // Frames of a still eye (the refinement) teach the budget nothing.
+  b.measured(100, false);
+  EXPECT_EQ(b.next(true), (Detail{1, 1}));
+}
+
+TEST(FrameBudget, NoBudgetMeansFullDetailAlways) {
+  FrameBudget b(0, 4);
+  b.measured(100, true);
+  EXPECT_EQ(b.next(true), (Detail{4, 1}));
+}
