@@ -2,6 +2,8 @@
 #include "visibility/traverse.h"
 
 #include <algorithm>
+#include <cmath>
+#include <stdexcept>
 
 namespace avenues {
 
@@ -39,14 +41,31 @@ std::vector<PortalId> VisibleSet::path(int avenue) const {
   return p;
 }
 
-VisibleSet find_visible(const CellComplex& complex, const Camera& camera, CellId eye_cell, Kernel kernel) {
+namespace {
+VisibleSet traverse(const CellComplex& complex, const Camera& camera, CellId eye_cell, Kernel kernel, const Plane* cut) {
   switch (kernel) {
-    case Kernel::Float: return detail::traverse_with<float>(complex, camera, eye_cell);
-    case Kernel::Double: return detail::traverse_with<double>(complex, camera, eye_cell);
-    case Kernel::Filtered: return detail::traverse_filtered(complex, camera, eye_cell);
-    case Kernel::Exact: return detail::traverse_exact(complex, camera, eye_cell);
+    case Kernel::Float: return detail::traverse_with<float>(complex, camera, eye_cell, cut);
+    case Kernel::Double: return detail::traverse_with<double>(complex, camera, eye_cell, cut);
+    case Kernel::Filtered: return detail::traverse_filtered(complex, camera, eye_cell, cut);
+    case Kernel::Exact: return detail::traverse_exact(complex, camera, eye_cell, cut);
   }
   return {};
+}
+}  // namespace
+
+VisibleSet find_visible(const CellComplex& complex, const Camera& camera, CellId eye_cell, Kernel kernel) {
+  return traverse(complex, camera, eye_cell, kernel, nullptr);
+}
+
+bool cut_plane_usable(const Camera& camera, const Plane& cut) {
+  const double n = length(cut.n);
+  return n > 0 && std::isfinite(n) && std::isfinite(cut.d) && std::fabs(dot(cut.n, camera.forward)) > 1e-6 * n;
+}
+
+VisibleSet find_visible_from_cut(const CellComplex& complex, const Camera& camera, const Plane& cut, Kernel kernel) {
+  if (!camera.is_parallel()) throw std::invalid_argument("find_visible_from_cut needs a parallel projection");
+  if (!cut_plane_usable(camera, cut)) throw std::invalid_argument("the cut plane is parallel to the direction of view");
+  return traverse(complex, camera, kNoCell, kernel, &cut);
 }
 
 std::vector<CellId> frustum_cells(const CellComplex& complex, const Camera& cam) {

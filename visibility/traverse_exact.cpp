@@ -16,12 +16,12 @@ double to_double_of<CGAL::Gmpq>(const CGAL::Gmpq& x) { return x.to_double(); }
 template <>
 double to_double_of<Lazy>(const Lazy& x) { return CGAL::to_double(x); }
 
-VisibleSet traverse_exact(const CellComplex& c, const Camera& cam, CellId eye_cell) {
-  return traverse_with<CGAL::Gmpq>(c, cam, eye_cell);
+VisibleSet traverse_exact(const CellComplex& c, const Camera& cam, CellId eye_cell, const Plane* cut) {
+  return traverse_with<CGAL::Gmpq>(c, cam, eye_cell, cut);
 }
 
-VisibleSet traverse_filtered(const CellComplex& c, const Camera& cam, CellId eye_cell) {
-  return traverse_with<Lazy>(c, cam, eye_cell);
+VisibleSet traverse_filtered(const CellComplex& c, const Camera& cam, CellId eye_cell, const Plane* cut) {
+  return traverse_with<Lazy>(c, cam, eye_cell, cut);
 }
 
 }  // namespace avenues::detail
