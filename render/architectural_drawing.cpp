@@ -143,6 +143,8 @@ ArchitecturalView axonometric_view(const CellComplex& c, double azimuth_deg, dou
   return s;
 }
 
+// Closed: a polygon touching the plane along an edge gives that edge (a jamb of a window whose
+// sill lies exactly in the cut), so that the wall's outline closes there too.
 bool cut_segment(const std::vector<Vec3>& poly, const Plane& cut, Vec3& a, Vec3& b) {
   const double scale = length(cut.n);
   std::vector<Vec3> at;
