@@ -5,6 +5,7 @@
 //   avenues export PLAN -o FILE.obj
 //   avenues path [PLAN] --through ROOM,ROOM,... [-o DIR] [--format png|svg]   (also under mpirun / srun)
 //   avenues view PLAN [--eye X,Y,Z --look X,Y,Z] [--kernel K] [--stats-json F] [--overlay F.svg]
+//   avenues drawing PLAN --plan S | --section X1,Y1,X2,Y2 | --elevation D | --axonometric AZ,ALT -o FILE
 //   avenues walk [PLAN] [--script FILE] [--frames N --screenshot F.png] ...
 //   avenues bench papers | accuracy [--quick] | walk [PLAN...]
 //   avenues generate office --rooms ROWSxCOLS -o FILE.toml
@@ -91,6 +92,38 @@ int run_cli(int argc, char** argv) {
   view->add_option("--frames", view_opt.frames, "write N frames of a straight walk to --to-eye/--to-look");
   view->add_option("--to-eye", view_opt.to_eye, "where the walk ends")->type_name("X,Y,Z");
   view->add_option("--to-look", view_opt.to_look, "what the walk's last frame looks at")->type_name("X,Y,Z");
+
+  view->add_option("--projection", view_opt.projection, "perspective or parallel (rays along the direction of view)")
+      ->capture_default_str();
+  view->add_option("--view-width", view_opt.view_width, "[m] with --projection parallel: the picture's width");
+
+  DrawingOptions drawing_opt;
+  CLI::App* drawing = app.add_subcommand("drawing", "an architect's drawing: plan, section, elevation or axonometric");
+  drawing->add_option("PLAN", drawing_opt.plan, "plan (.toml) or saved cells (.cells)")->required();
+  auto* kind_plan = drawing->add_option("--plan", drawing_opt.storey, "a plan of this storey (name or index), cut at --cut-height")
+                        ->type_name("STOREY");
+  auto* kind_section = drawing->add_option("--section", drawing_opt.section, "a vertical cut along the line, looking to its left")
+                           ->type_name("X1,Y1,X2,Y2");
+  auto* kind_elevation = drawing->add_option("--elevation", drawing_opt.elevation,
+                                             "from outside: north, south, east, west or DEG (where the viewer stands, "
+                                             "anticlockwise from +x)");
+  auto* kind_axo = drawing->add_option("--axonometric", drawing_opt.axonometric,
+                                       "parallel from above: viewer's azimuth (anticlockwise from +x) and altitude [deg]")
+                       ->type_name("AZ,ALT");
+  kind_plan->excludes(kind_section, kind_elevation, kind_axo);
+  kind_section->excludes(kind_elevation, kind_axo);
+  kind_elevation->excludes(kind_axo);
+  drawing->add_option("--cut-height", drawing_opt.cut_height,
+                      "[m] plan: above the storey's floor (default 1.2); axonometric: a horizontal cut above the first "
+                      "storey's floor");
+  drawing->add_option("--scale", drawing_opt.scale, "paper scale, 1:20 to 1:500")->capture_default_str();
+  drawing->add_option("--kernel", drawing_opt.kernel, "arithmetic: float, double, filtered or exact")->capture_default_str();
+  drawing->add_option("-o,--output", drawing_opt.output,
+                      "by extension: .svg .pdf .eps .dxf .hpgl .plt (vector) or .png .pgm .ppm (picture)")
+      ->required()
+      ->type_name("FILE");
+  drawing->add_option("--stats-json", drawing_opt.stats_json, "write visible cells, timings and the picture's frame as JSON")
+      ->type_name("FILE");
 
   PathOptions path_opt;
   CLI::App* path = app.add_subcommand("path", "write the frames of a walk through named rooms (a batch walkthrough)");
@@ -194,6 +227,7 @@ int run_cli(int argc, char** argv) {
     if (*cells) return run_cells(cells_opt);
     if (*exp) return run_export(export_opt);
     if (*view) return run_view(view_opt);
+    if (*drawing) return run_drawing(drawing_opt);
     if (*papers) return run_bench_papers(bench_threads, bench_repeats);
     if (*bench_accuracy) return run_bench_accuracy(accuracy);
     if (*bench_walk) return run_bench_walk(bench_walk_plans, bench_walk_frames, bench_walk_size, bench_walk_budget);

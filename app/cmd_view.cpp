@@ -17,6 +17,7 @@
 #include "app/commands.h"
 #include "core/atomic_file.h"
 #include "render/overlay_drawing.h"
+#include "render/raster.h"
 #include "visibility/viewpoint.h"
 #include "visibility/visible_set.h"
 
@@ -74,6 +75,15 @@ ViewSetup set_up_view(const LoadedPlan& plan, const ViewOptions& opt) {
     if (length(vp.look - vp.eye) == 0) throw std::runtime_error("--look must differ from the eye");
     v.camera = Camera::look_at(vp.eye, vp.look, vp.fov_deg, w, h);
   }
+  if (opt.projection == "parallel") {
+    if (!(opt.view_width > 0 && std::isfinite(opt.view_width)))
+      throw std::runtime_error("--projection parallel needs --view-width M, the picture's width in metres (> 0)");
+    v.camera = Camera::parallel(vp.eye, vp.eye + v.camera.forward, opt.view_width, w, h);
+  } else if (opt.projection != "perspective") {
+    throw std::runtime_error("--projection wants perspective or parallel, not '" + opt.projection + "'");
+  } else if (opt.view_width != 0) {
+    throw std::runtime_error("--view-width needs --projection parallel");
+  }
   v.viewpoint = vp;
   Location loc = c.locate(vp.eye);
   if (loc.what == Location::What::OutsideBox)
@@ -90,7 +100,13 @@ nlohmann::json view_stats(const LoadedPlan& plan, const ViewSetup& v, const Visi
   j["plan"] = plan.path;
   j["eye"] = {v.viewpoint.eye.x, v.viewpoint.eye.y, v.viewpoint.eye.z};
   j["look"] = {v.viewpoint.look.x, v.viewpoint.look.y, v.viewpoint.look.z};
-  j["fov"] = v.viewpoint.fov_deg;
+  j["projection"] = v.camera.is_parallel() ? "parallel" : "perspective";
+  if (v.camera.is_parallel()) {
+    j["view_width"] = v.camera.view_width;
+    j["cells_cut"] = vs.cut_cells.size();
+  } else {
+    j["fov"] = v.viewpoint.fov_deg;
+  }
   j["size"] = {v.camera.width, v.camera.height};
   j["kernel"] = to_string(v.kernel);
   j["eye_cell"] = vs.eye_cell;
@@ -111,6 +127,13 @@ int run_view(const ViewOptions& opt) {
   if (!std::isfinite(opt.falloff)) throw std::runtime_error("--falloff wants a distance in metres");
   LoadedPlan plan = load_plan_source(opt.plan);
   ViewSetup v = set_up_view(plan, opt);
+  if (v.camera.is_parallel()) {
+    if (!opt.overlay.empty() || !opt.stereo.empty() || opt.frames > 0)
+      throw std::runtime_error("--overlay, --stereo and --frames need --projection perspective");
+    if (!opt.output.empty() && is_raster_path(opt.output))
+      throw std::runtime_error("cannot write '" + opt.output +
+                               "': a parallel view is drawn as lines (use avenues drawing for a picture)");
+  }
   VisibleSet vs = find_visible(plan.complex, v.camera, v.eye_cell, v.kernel);
   nlohmann::json stats = view_stats(plan, v, vs);
   if (!opt.overlay.empty()) write_overlay_svg(plan.complex, v.camera, vs, opt.overlay);

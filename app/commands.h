@@ -64,7 +64,22 @@ struct ViewOptions {
   double falloff = 5;                  ///< [m] smooth shading: the distance law from here; <= 0: off
   bool shadow_lines = false;           ///< drawings: outline the shadows of the plan's point lights
   bool explain = false;                ///< list which effects the view calls for, and why
+  std::string projection = "perspective";  ///< perspective or parallel
+  double view_width = 0;               ///< [m] > 0 with a parallel projection: the picture's width
 };
+
+/// `avenues drawing PLAN (--plan STOREY | --section X1,Y1,X2,Y2 | --elevation DIR | --axonometric AZ,ALT) -o FILE`
+struct DrawingOptions {
+  std::string plan, output, stats_json;
+  std::string storey;                  ///< --plan: a storey's name or index
+  std::string section;                 ///< "X1,Y1,X2,Y2"
+  std::string elevation;               ///< north, south, east, west or degrees
+  std::string axonometric;             ///< "AZIMUTH,ALTITUDE" [deg]
+  std::optional<double> cut_height;    ///< [m] above the storey's floor (plan: default 1.2)
+  std::string scale = "1:50";          ///< paper scale 1:20 ... 1:500
+  std::string kernel = "double";
+};
+int run_drawing(const DrawingOptions& opt);
 
 /// `avenues path PLAN --through ROOM,ROOM,... -o DIR`: a batch walkthrough through named rooms.
 struct PathOptions {

@@ -35,10 +35,7 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-bool is_drawing(const std::string& path) {
-  const std::string ext = lower_extension(path);
-  return ext == ".svg" || ext == ".pdf" || ext == ".eps" || ext == ".dxf" || ext == ".hpgl" || ext == ".plt";
-}
+bool is_drawing(const std::string& path) { return is_drawing_path(path); }
 
 double micros_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();

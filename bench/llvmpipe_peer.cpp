@@ -165,7 +165,10 @@ void LlvmpipePeer::set_view(const Camera& cam) {
   glLoadIdentity();
   // The window on the picture plane Z = 1, scaled to the near plane. GL's window rows go
   // bottom to top, so top = shift_y + hh lands on Avenues' row 0 (see read_rgba).
-  glFrustum((cam.shift_x - hw) * n, (cam.shift_x + hw) * n, (cam.shift_y - hh) * n, (cam.shift_y + hh) * n, n, f);
+  if (cam.is_parallel())  // a parallel projection: the same window, from the picture plane through the eye on
+    glOrtho(cam.shift_x - hw, cam.shift_x + hw, cam.shift_y - hh, cam.shift_y + hh, 0, f);
+  else
+    glFrustum((cam.shift_x - hw) * n, (cam.shift_x + hw) * n, (cam.shift_y - hh) * n, (cam.shift_y + hh) * n, n, f);
   // Eye space: x = right, y = up, z = −forward (GL looks down −z).
   const Vec3 r = cam.right, u = cam.up, fw = cam.forward, e = cam.eye;
   const double m[16] = {r.x, u.x, -fw.x, 0, r.y, u.y, -fw.y, 0, r.z, u.z, -fw.z, 0,

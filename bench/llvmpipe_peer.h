@@ -8,7 +8,8 @@
 // The projection is the camera's own: an off-axis glFrustum from its window on the picture
 // plane (shift_x ± half_width, shift_y ± half_height, times the near distance) and the
 // camera's basis as the modelview, so that GL's pixel (i, r) (rows from the bottom) is
-// Avenues' pixel (i, height − 1 − r). Each triangle is one flat grey from its material
+// Avenues' pixel (i, height − 1 − r). A parallel camera gets glOrtho over the same window,
+// from its picture plane on (a plan's or section's cut plane passes through its eye). Each triangle is one flat grey from its material
 // (reflectance × luminance, dimmed by a fixed per-orientation factor so that floors, walls
 // and ceilings differ). For checking, draw_ids() paints each triangle with the index of
 // what it came from (a cell's face, or an object's input polygon), as Avenues' item

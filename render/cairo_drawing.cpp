@@ -41,7 +41,30 @@ std::string cairo_bytes(const Drawing& d, const Page& page, bool eps, const std:
     cairo_scale(cr.get(), kPointsPerMm, kPointsPerMm);
     cairo_set_source_rgb(cr.get(), 0, 0, 0);
     cairo_set_line_cap(cr.get(), CAIRO_LINE_CAP_ROUND);
-    for (Weight weight : {Weight::Outline, Weight::Crease}) {
+    if (!d.fill.empty()) {  // the poché, under every stroke
+      cairo_set_fill_rule(cr.get(), CAIRO_FILL_RULE_EVEN_ODD);
+      for (const auto& ring : d.fill) {
+        for (size_t k = 0; k < ring.size(); ++k) {
+          const Vec2 p = page.from_raster_y_down(ring[k]);
+          if (k == 0) cairo_move_to(cr.get(), p.x, p.y);
+          else cairo_line_to(cr.get(), p.x, p.y);
+        }
+        cairo_close_path(cr.get());
+      }
+      cairo_set_source_rgb(cr.get(), 0.55, 0.55, 0.55);
+      cairo_fill(cr.get());
+      cairo_set_source_rgb(cr.get(), 0, 0, 0);
+    }
+    cairo_select_font_face(cr.get(), "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    for (const Label& l : d.labels) {
+      cairo_set_font_size(cr.get(), page.mm(l.height) * 1.4);
+      cairo_text_extents_t e;
+      cairo_text_extents(cr.get(), l.text.c_str(), &e);
+      const Vec2 p = page.from_raster_y_down(l.at);
+      cairo_move_to(cr.get(), p.x - e.width / 2 - e.x_bearing, p.y + page.mm(l.height) / 2);
+      cairo_show_text(cr.get(), l.text.c_str());
+    }
+    for (Weight weight : {Weight::Cut, Weight::Outline, Weight::Crease}) {
       cairo_set_line_width(cr.get(), page.pen(weight));
       for (const Stroke& s : d.strokes) {
         if (s.weight != weight) continue;

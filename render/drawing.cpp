@@ -12,14 +12,28 @@
 
 namespace avenues {
 
-const char* to_string(Weight w) { return w == Weight::Outline ? "outline" : "crease"; }
+const char* to_string(Weight w) { return w == Weight::Outline ? "outline" : w == Weight::Cut ? "cut" : "crease"; }
 const char* to_string(Layer l) {
   switch (l) {
     case Layer::Architecture: return "architecture";
     case Layer::Furniture: return "furniture";
     case Layer::Shadows: return "shadows";
+    case Layer::Cut: return "cut";
+    case Layer::Beyond: return "beyond";
+    case Layer::Annotation: return "annotation";
   }
   return "?";
+}
+
+std::vector<Layer> layers_drawn(const Drawing& d) {
+  std::vector<Layer> out{Layer::Architecture, Layer::Furniture};
+  for (Layer l : {Layer::Shadows, Layer::Cut, Layer::Beyond, Layer::Annotation}) {
+    bool used = std::any_of(d.strokes.begin(), d.strokes.end(), [&](const Stroke& s) { return s.layer == l; });
+    used |= l == Layer::Cut && !d.fill.empty();
+    used |= l == Layer::Annotation && !d.labels.empty();
+    if (used) out.push_back(l);
+  }
+  return out;
 }
 
 namespace {
@@ -33,9 +47,14 @@ struct Extension {
 constexpr Extension kExtensions[] = {{".svg", Format::Svg}, {".pdf", Format::Pdf},   {".eps", Format::Eps},
                                      {".dxf", Format::Dxf}, {".hpgl", Format::Hpgl}, {".plt", Format::Hpgl}};
 
-Format format_of(const std::string& path) {
+std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
+  return ext;
+}
+
+Format format_of(const std::string& path) {
+  const std::string ext = lower_extension(path);
   for (const Extension& e : kExtensions)
     if (ext == e.ext) return e.format;
   throw std::runtime_error("cannot write drawing " + path + ": unknown extension '" + ext + "' (use " +
@@ -43,6 +62,11 @@ Format format_of(const std::string& path) {
 }
 
 }  // namespace
+
+bool is_drawing_path(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  return std::any_of(std::begin(kExtensions), std::end(kExtensions), [&](const Extension& e) { return ext == e.ext; });
+}
 
 std::string drawing_extensions() {
   std::string s;
@@ -57,7 +81,7 @@ Page page_for(const Drawing& d, const PageOptions& o, const std::string& path) {
   if (!(d.width > 0 && d.height > 0)) fail("the drawing has no size");
   if (!(o.margin_mm >= 0 && std::isfinite(o.margin_mm))) fail("the margin must be >= 0 mm");
   if (!(o.width_mm > 2 * o.margin_mm && std::isfinite(o.width_mm))) fail("the page must be wider than its two margins");
-  if (!(o.outline_mm > 0 && o.crease_mm > 0)) fail("pen widths must be > 0 mm");
+  if (!(o.outline_mm > 0 && o.crease_mm > 0 && o.cut_mm > 0)) fail("pen widths must be > 0 mm");
   Page p;
   p.margin = o.margin_mm;
   p.scale = (o.width_mm - 2 * o.margin_mm) / d.width;
@@ -65,6 +89,7 @@ Page page_for(const Drawing& d, const PageOptions& o, const std::string& path) {
   p.height = d.height * p.scale + 2 * o.margin_mm;
   p.outline = o.outline_mm;
   p.crease = o.crease_mm;
+  p.cut = o.cut_mm;
   return p;
 }
 

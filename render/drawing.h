@@ -27,6 +27,7 @@ namespace avenues {
 enum class Weight : uint8_t {
   Outline,  ///< the eye sees past the line: silhouettes, edges of openings (line_weight.h)
   Crease,   ///< surfaces meet at the line on both sides of it: wall–floor, a table's edge seen from above
+  Cut,      ///< where a cut plane passes through solid (a plan's or section's walls): the heaviest pen
 };
 const char* to_string(Weight w);
 
@@ -35,7 +36,13 @@ enum class Layer : uint8_t {
   Architecture,  ///< real lines of the cell complex (walls, floors, openings)
   Furniture,     ///< edges of the plan's objects
   Shadows,       ///< outlines of the shadows the plan's point lights cast (optional: LineOptions::shadows)
+  Cut,           ///< an architect's drawing: outlines of what the cut plane passes through, and their fill
+  Beyond,        ///< an architect's drawing: real lines seen beyond the cut
+  Annotation,    ///< an architect's drawing: room names and areas
 };
+/// The layers a drawing shows, in drawing order: architecture and furniture always, the
+/// others when something is drawn on them.
+std::vector<Layer> layers_drawn(const struct Drawing& drawing);
 const char* to_string(Layer l);
 
 struct Stroke {
@@ -44,9 +51,20 @@ struct Stroke {
   Layer layer = Layer::Architecture;
 };
 
+/// Text on the drawing (Layer::Annotation), centred on `at`.
+struct Label {
+  Vec2 at;             ///< [px] raster coordinates of the text's centre
+  std::string text;    ///< UTF-8, one line
+  double height = 10;  ///< [px] > 0: the height of its capitals
+};
+
 struct Drawing {
   int width = 0, height = 0;     ///< [px] > 0: the page in raster units (the camera's image size)
   std::vector<Stroke> strokes;   ///< each visible piece of line once; none overlaps another
+  /// The cut's fill ("poché", Layer::Cut): closed rings [px], filled by the even-odd rule, so a
+  /// ring inside another is a hole (the picture's window, then the free space the cut crosses).
+  std::vector<std::vector<Vec2>> fill;
+  std::vector<Label> labels;     ///< Layer::Annotation
   std::string title;             ///< for the file's metadata; may be empty
 };
 
@@ -57,6 +75,7 @@ struct PageOptions {
   double margin_mm = 10;    ///< [mm] >= 0: blank border on every side
   double outline_mm = 0.5;  ///< [mm] > 0: pen width of outlines (ISO 128 pairs 0.5 with 0.25)
   double crease_mm = 0.25;  ///< [mm] > 0: pen width of creases
+  double cut_mm = 0.7;      ///< [mm] > 0: pen width of cut outlines (ISO 128: 0.7, 0.5, 0.25)
 };
 
 struct DrawingStats {
@@ -67,6 +86,8 @@ struct DrawingStats {
 
 /// The extensions write_drawing() understands, for messages: ".svg, .pdf, .eps, .dxf, .hpgl, .plt".
 std::string drawing_extensions();
+/// True if the path's extension (any case) is one write_drawing() understands.
+bool is_drawing_path(const std::string& path);
 
 /// Writes the drawing to `path` in the format its extension names (case-insensitive), at once
 /// or not at all. Throws std::runtime_error naming the file: for an unknown extension (listing

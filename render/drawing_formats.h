@@ -14,13 +14,14 @@ struct Page {
   double scale = 1;               ///< [mm/px] > 0
   double margin = 0;              ///< [mm]
   double width = 0, height = 0;   ///< [mm] the whole page, margins included
-  double outline = 0.5, crease = 0.25;  ///< [mm] pen widths
+  double outline = 0.5, crease = 0.25, cut = 0.7;  ///< [mm] pen widths
 
   /// Page coordinates with y down from the top edge (SVG, Cairo).
   Vec2 from_raster_y_down(Vec2 px) const { return {margin + px.x * scale, margin + px.y * scale}; }
   /// Page coordinates with y up from the bottom edge (DXF, HPGL).
   Vec2 from_raster_y_up(Vec2 px) const { return {margin + px.x * scale, height - margin - px.y * scale}; }
-  double pen(Weight w) const { return w == Weight::Outline ? outline : crease; }
+  double pen(Weight w) const { return w == Weight::Outline ? outline : w == Weight::Cut ? cut : crease; }
+  double mm(double px) const { return px * scale; }
 };
 
 /// The page for `drawing`; throws std::runtime_error naming `path` if the options or the

@@ -84,14 +84,11 @@ std::string dxf_bytes(const Drawing& d, const Page& page) {
     dxf.writeLinetype(dw, DL_LinetypeData("BYLAYER", "", 0, 0, 0.0));
     dxf.writeLinetype(dw, DL_LinetypeData("CONTINUOUS", "Solid line", 0, 0, 0.0));
     dw.tableEnd();
-    const bool shadows =
-        std::any_of(d.strokes.begin(), d.strokes.end(), [](const Stroke& s) { return s.layer == Layer::Shadows; });
-    dw.tableLayers(shadows ? 4 : 3);
+    const std::vector<Layer> layers = layers_drawn(d);
+    dw.tableLayers(int(layers.size()) + 1);
     dxf.writeLayer(dw, DL_LayerData("0", 0), DL_Attributes("", DL_Codes::black, -3, "CONTINUOUS", 1.0));
-    for (Layer layer : {Layer::Architecture, Layer::Furniture, Layer::Shadows})
-      if (layer != Layer::Shadows || shadows)
-        dxf.writeLayer(dw, DL_LayerData(to_string(layer), 0),
-                       DL_Attributes("", DL_Codes::black, -3, "CONTINUOUS", 1.0));
+    for (Layer layer : layers)
+      dxf.writeLayer(dw, DL_LayerData(to_string(layer), 0), DL_Attributes("", DL_Codes::black, -3, "CONTINUOUS", 1.0));
     dw.tableEnd();
     dw.tableStyle(1);
     dxf.writeStyle(dw, DL_StyleData("standard", 0, 2.5, 1.0, 0.0, 0, 2.5, "txt", ""));
@@ -114,12 +111,16 @@ std::string dxf_bytes(const Drawing& d, const Page& page) {
     dw.sectionEnd();
 
     dw.sectionEntities();
-    const int outline = nearest_lineweight(page.outline), crease = nearest_lineweight(page.crease);
     for (const Stroke& s : d.strokes) {
       const Vec2 a = page.from_raster_y_up(s.a), b = page.from_raster_y_up(s.b);
       dxf.writeLine(dw, DL_LineData(a.x, a.y, 0.0, b.x, b.y, 0.0),
-                    DL_Attributes(to_string(s.layer), 256, s.weight == Weight::Outline ? outline : crease,
-                                  "BYLAYER", 1.0));
+                    DL_Attributes(to_string(s.layer), 256, nearest_lineweight(page.pen(s.weight)), "BYLAYER", 1.0));
+    }
+    for (const Label& l : d.labels) {  // middle-centred (72 = 1, 73 = 2)
+      const Vec2 p = page.from_raster_y_up(l.at);
+      const double h = page.mm(l.height);
+      dxf.writeText(dw, DL_TextData(p.x, p.y, 0.0, p.x, p.y, 0.0, h, 1.0, 0, 1, 2, l.text, "standard", 0.0),
+                    DL_Attributes(to_string(Layer::Annotation), 256, nearest_lineweight(page.crease), "BYLAYER", 1.0));
     }
     dw.sectionEnd();
     dxf.writeObjects(dw);

@@ -16,9 +16,28 @@ void raster_of_drawing(const Drawing& drawing, Image& out) {
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  if (!drawing.fill.empty()) {  // an architect's cut: grey, even-odd, under the lines
+    cairo_set_fill_rule(cr, CAIRO_FILL_RULE_EVEN_ODD);
+    for (const auto& ring : drawing.fill) {
+      for (size_t k = 0; k < ring.size(); ++k)
+        (k == 0 ? cairo_move_to : cairo_line_to)(cr, ring[k].x, ring[k].y);
+      cairo_close_path(cr);
+    }
+    cairo_set_source_rgb(cr, 0.55, 0.55, 0.55);
+    cairo_fill(cr);
+  }
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  for (const Label& l : drawing.labels) {
+    cairo_set_font_size(cr, l.height * 1.4);
+    cairo_text_extents_t e;
+    cairo_text_extents(cr, l.text.c_str(), &e);
+    cairo_move_to(cr, l.at.x - e.width / 2 - e.x_bearing, l.at.y + l.height / 2);
+    cairo_show_text(cr, l.text.c_str());
+  }
   // One path per (layer, weight), stroked once: far fewer calls than a stroke per line.
-  for (const Layer layer : {Layer::Architecture, Layer::Furniture})
-    for (const Weight weight : {Weight::Crease, Weight::Outline}) {
+  for (const Layer layer : layers_drawn(drawing))
+    for (const Weight weight : {Weight::Crease, Weight::Outline, Weight::Cut}) {
+      if (layer == Layer::Shadows) continue;  // the window never showed them
       bool any = false;
       for (const Stroke& st : drawing.strokes) {
         if (st.layer != layer || st.weight != weight) continue;
@@ -29,7 +48,7 @@ void raster_of_drawing(const Drawing& drawing, Image& out) {
       if (!any) continue;
       const double ink = layer == Layer::Furniture ? 0.3 : 0;
       cairo_set_source_rgb(cr, ink, ink, ink);
-      cairo_set_line_width(cr, weight == Weight::Outline ? 2 : 1);
+      cairo_set_line_width(cr, weight == Weight::Cut ? 3 : weight == Weight::Outline ? 2 : 1);
       cairo_stroke(cr);
     }
   cairo_destroy(cr);

@@ -54,12 +54,14 @@ LineFaces line_faces(const CellComplex& c) {
   return out;
 }
 
-Weight line_weight(const CellComplex& c, const LineFaces& faces, LineId id, Vec3 eye) {
+namespace {
+
+/// The test of line_weight.h with n the normal of Π.
+Weight weight_about(const CellComplex& c, const LineFaces& faces, LineId id, Vec3 n) {
   const RealLine& l = c.lines[size_t(id)];
   const int32_t first = faces.start[size_t(id)], last = faces.start[size_t(id) + 1];
   // No face found (never expected): fall back on the line's kind.
   if (first == last) return l.kind == LineKind::Concave ? Weight::Crease : Weight::Outline;
-  const Vec3 n = cross(l.a - eye, l.b - l.a);  // normal of Π, the plane through the eye and the line
   const double nn = length(n);
   if (!(nn > 0)) return Weight::Crease;  // seen end-on: a point
   bool pos = false, neg = false;
@@ -69,6 +71,18 @@ Weight line_weight(const CellComplex& c, const LineFaces& faces, LineId id, Vec3
     neg |= s < -kEdgeOn;
   }
   return pos && neg ? Weight::Crease : Weight::Outline;
+}
+
+}  // namespace
+
+Weight line_weight(const CellComplex& c, const LineFaces& faces, LineId id, Vec3 eye) {
+  const RealLine& l = c.lines[size_t(id)];
+  return weight_about(c, faces, id, cross(l.a - eye, l.b - l.a));  // Π through the eye and the line
+}
+
+Weight line_weight_along(const CellComplex& c, const LineFaces& faces, LineId id, Vec3 direction) {
+  const RealLine& l = c.lines[size_t(id)];
+  return weight_about(c, faces, id, cross(direction, l.b - l.a));  // Π through the line, along the rays
 }
 
 }  // namespace avenues

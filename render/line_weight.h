@@ -49,5 +49,7 @@ LineFaces line_faces(const CellComplex& complex);
 
 /// Outline or crease, for the line `id` seen from `eye` (see above).
 Weight line_weight(const CellComplex& complex, const LineFaces& faces, LineId id, Vec3 eye);
+/// The same for parallel rays along `direction`: Π contains the line and the direction.
+Weight line_weight_along(const CellComplex& complex, const LineFaces& faces, LineId id, Vec3 direction);
 
 }  // namespace avenues

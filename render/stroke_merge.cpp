@@ -32,9 +32,15 @@ struct Item {
   uint32_t order; ///< index of the input stroke
 };
 
-int rank_of(const Stroke& s) { return (s.weight == Weight::Outline ? 0 : 2) + (s.layer == Layer::Architecture ? 0 : 1); }
+/// Heavier pens first (cut, outline, crease), then layers in their order (architecture first).
+constexpr int kLayers = 8;
+int rank_of(const Stroke& s) {
+  const int w = s.weight == Weight::Cut ? 0 : s.weight == Weight::Outline ? 1 : 2;
+  return w * kLayers + int(s.layer);
+}
 Stroke stroke_of(int rank, const Piece& p) {
-  return {p.lo.p, p.hi.p, rank < 2 ? Weight::Outline : Weight::Crease, rank % 2 == 0 ? Layer::Architecture : Layer::Furniture};
+  const int w = rank / kLayers;
+  return {p.lo.p, p.hi.p, w == 0 ? Weight::Cut : w == 1 ? Weight::Outline : Weight::Crease, Layer(rank % kLayers)};
 }
 
 /// Merges pieces sorted by lo.s that overlap or touch.

@@ -29,13 +29,33 @@ std::string svg_bytes(const Drawing& d, const Page& page) {
   o += " width=\"" + num(page.width) + "mm\" height=\"" + num(page.height) + "mm\"";
   o += " viewBox=\"0 0 " + num(page.width) + " " + num(page.height) + "\">\n";
   if (!d.title.empty()) o += "<title>" + xml_escape(d.title) + "</title>\n";
-  const bool shadows = std::any_of(d.strokes.begin(), d.strokes.end(), [](const Stroke& s) { return s.layer == Layer::Shadows; });
-  for (Layer layer : {Layer::Architecture, Layer::Furniture, Layer::Shadows}) {
-    if (layer == Layer::Shadows && !shadows) continue;  // an optional layer: there only when drawn
+  for (Layer layer : layers_drawn(d)) {
     const std::string name = to_string(layer);
     o += "<g id=\"" + name + "\" inkscape:groupmode=\"layer\" inkscape:label=\"" + name +
          "\" fill=\"none\" stroke=\"#000\" stroke-linecap=\"round\">\n";
-    for (Weight weight : {Weight::Outline, Weight::Crease}) {
+    if (layer == Layer::Cut && !d.fill.empty()) {  // the poché, under its outlines
+      o += "<path class=\"fill\" fill=\"#888\" fill-rule=\"evenodd\" stroke=\"none\" d=\"";
+      for (const auto& ring : d.fill)
+        for (size_t k = 0; k < ring.size(); ++k) {
+          const Vec2 p = page.from_raster_y_down(ring[k]);
+          o += k == 0 ? 'M' : 'L';
+          o += num(p.x);
+          o += ' ';
+          o += num(p.y);
+          o += k + 1 == ring.size() ? 'Z' : ' ';
+        }
+      o += "\"/>\n";
+    }
+    if (layer == Layer::Annotation) {
+      for (const Label& l : d.labels) {
+        const Vec2 p = page.from_raster_y_down(l.at);
+        o += "<text x=\"" + num(p.x) + "\" y=\"" + num(p.y + page.mm(l.height) / 2) + "\" font-size=\"" +
+             num(page.mm(l.height) * 1.4) + "\" font-family=\"sans-serif\" text-anchor=\"middle\" fill=\"#000\" "
+             "stroke=\"none\">" + xml_escape(l.text) + "</text>\n";
+      }
+    }
+    for (Weight weight : {Weight::Cut, Weight::Outline, Weight::Crease}) {
+      if (weight == Weight::Cut && layer != Layer::Cut) continue;
       o += "<g class=\"" + std::string(to_string(weight)) + "\" stroke-width=\"" + num(page.pen(weight)) + "\">\n";
       for (const Stroke& s : d.strokes) {
         if (s.layer != layer || s.weight != weight) continue;

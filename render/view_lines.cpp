@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include "render/interval_clip.h"
 #include "render/shadow_outline.h"
@@ -47,15 +48,36 @@ void mask_sides(const std::vector<Vec2>& mask, std::vector<Vec3>& sides) {
   }
 }
 
-/// Cuts the camera-space segment p0→p1 (parameters of `s`) to the near plane and the mask.
-bool clip_to_avenue(Interval& s, Vec3 p0, Vec3 p1, double near, const std::vector<Vec3>& sides) {
-  if (!clip_interval(s, p0.z - near, p1.z - near)) return false;
+/// How world points reach the picture: in homogeneous picture coordinates (camera space for
+/// a perspective, (X, Y, 1) for a parallel projection: both linear along a segment, and the
+/// image point is (x/z, y/z)), and how far beyond the near plane they lie (parallel: beyond
+/// the cut plane, or the picture plane when there is none).
+struct Projector {
+  const Camera& cam;
+  Plane beyond;  ///< parallel: eval >= 0 beyond the plane the rays start from
+  Projector(const Camera& c, const std::optional<Plane>& cut) : cam(c) {
+    beyond = cut ? *cut : Plane{c.forward, -dot(c.forward, c.eye)};
+    if (dot(beyond.n, c.forward) < 0) beyond = {-1.0 * beyond.n, -beyond.d};
+  }
+  Vec3 picture(Vec3 world) const {
+    const Vec3 p = cam.camera_from_world(world);
+    return cam.is_parallel() ? Vec3{p.x, p.y, 1} : p;
+  }
+  double depth(Vec3 world) const {
+    return cam.is_parallel() ? beyond.eval(world) : cam.camera_from_world(world).z - cam.near;
+  }
+};
+
+/// Cuts the world segment w0→w1 (parameters of `s`) to the near plane and the mask.
+bool clip_to_avenue(Interval& s, const Projector& pr, Vec3 w0, Vec3 w1, const std::vector<Vec3>& sides) {
+  if (!clip_interval(s, pr.depth(w0), pr.depth(w1))) return false;
+  const Vec3 p0 = pr.picture(w0), p1 = pr.picture(w1);
   for (const Vec3& n : sides)
     if (!clip_interval(s, dot(n, p0), dot(n, p1))) return false;
   return true;
 }
 
-/// Appends the strokes of the intervals of camera-space segment p0→p1.
+/// Appends the strokes of the intervals of segment p0→p1 in homogeneous picture coordinates.
 void add_strokes(const Camera& cam, Vec3 p0, Vec3 p1, const std::vector<Interval>& intervals, Weight weight, Layer layer,
                  std::vector<Stroke>& out) {
   const Vec3 d = p1 - p0;
@@ -89,6 +111,7 @@ struct SeenEdge {
 void draw_shadow_outlines(const CellComplex& c, const LineScene& scene, const Camera& cam, const VisibleSet& vs,
                           const std::vector<Occluder>& occluders, std::vector<Stroke>& out) {
   if (scene.shadows.lights.empty()) return;
+  const Projector pr(cam, std::nullopt);
   std::vector<std::array<Vec3, 2>> segments;  // every outline segment of every face seen, once
   std::map<std::pair<size_t, int32_t>, std::pair<int32_t, int32_t>> of_face;  // (light, global face) -> segments
   std::vector<Vec3> sides;
@@ -111,7 +134,7 @@ void draw_shadow_outlines(const CellComplex& c, const LineScene& scene, const Ca
         for (int32_t i = it->second.first; i < it->second.second; ++i) {
           Interval iv{0, 1};
           const auto& e = segments[size_t(i)];
-          if (clip_to_avenue(iv, cam.camera_from_world(e[0]), cam.camera_from_world(e[1]), cam.near, sides))
+          if (clip_to_avenue(iv, pr, e[0], e[1], sides))
             pieces.push_back({i, iv});
         }
       }
@@ -141,6 +164,7 @@ LineScene prepare_line_scene(const CellComplex& complex, const LineOptions& opti
 Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& cam, const VisibleSet& vs,
                   const LineOptions& options) {
   Drawing d;
+  const Projector pr(cam, options.cut);
   d.width = cam.width;
   d.height = cam.height;
   d.title = c.plan_name;
@@ -149,7 +173,7 @@ Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& ca
   std::vector<SeenEdge> seen;
   std::vector<int32_t> seen_start;  // per piece, into `seen`; empty unless drawn
   std::vector<Occluder> occluders;
-  if (options.furniture) {
+  if (options.furniture && !cam.is_parallel()) {
     const auto& pieces = scene.furniture.pieces;
     seen_start.assign(pieces.size() + 1, 0);
     for (size_t i = 0; i < pieces.size(); ++i) {
@@ -181,7 +205,7 @@ Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& ca
       const CellLine& cl = cell.lines[k];
       const RealLine& l = c.lines[size_t(cl.line)];
       Interval s{cl.t0, cl.t1};
-      if (clip_to_avenue(s, cam.camera_from_world(l.a), cam.camera_from_world(l.b), cam.near, sides))
+      if (clip_to_avenue(s, pr, l.a, l.b, sides))
         lines.push_back({cl.line, s});
     }
     if (seen.empty()) continue;
@@ -197,7 +221,7 @@ Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& ca
           const Plane& pl = cell.faces[f].plane;
           alive = clip_interval(s, kOnFace - pl.eval(w0), kOnFace - pl.eval(w1));
         }
-        if (alive && clip_to_avenue(s, cam.camera_from_world(w0), cam.camera_from_world(w1), cam.near, sides))
+        if (alive && clip_to_avenue(s, pr, w0, w1, sides))
           edges.push_back({k, s});
       }
     }
@@ -208,9 +232,11 @@ Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& ca
   detail::merge_intervals(lines, kTouch);
   for_each_line(lines, intervals, [&](int32_t id, std::vector<Interval>& s) {
     const RealLine& l = c.lines[size_t(id)];
-    const Vec3 p0 = cam.camera_from_world(l.a), p1 = cam.camera_from_world(l.b);
-    hide_behind(occluders, p0, p1, s);
-    add_strokes(cam, p0, p1, s, line_weight(c, scene.faces, id, cam.eye), Layer::Architecture, d.strokes);
+    const Vec3 p0 = pr.picture(l.a), p1 = pr.picture(l.b);
+    if (!cam.is_parallel()) hide_behind(occluders, p0, p1, s);
+    const Weight w = cam.is_parallel() ? line_weight_along(c, scene.faces, id, cam.forward)
+                                       : line_weight(c, scene.faces, id, cam.eye);
+    add_strokes(cam, p0, p1, s, w, Layer::Architecture, d.strokes);
   });
   detail::merge_intervals(edges, kTouch);
   for_each_line(edges, intervals, [&](int32_t k, std::vector<Interval>& s) {
@@ -223,7 +249,7 @@ Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& ca
     add_strokes(cam, p0, p1, s, se.weight, Layer::Furniture, d.strokes);
   });
   merge_collinear(d.strokes);
-  if (options.shadows) draw_shadow_outlines(c, scene, cam, vs, occluders, d.strokes);
+  if (options.shadows && !cam.is_parallel()) draw_shadow_outlines(c, scene, cam, vs, occluders, d.strokes);
   return d;
 }
 

@@ -15,9 +15,13 @@
 // one id; a line seen through two avenues gives disjoint pieces); then strokes that lie on one
 // line of the picture are merged or trimmed so that none overlaps another (stroke_merge.h).
 // Weights follow line_weight.h (architecture) and furniture.h (objects).
+// A parallel projection (camera.h) draws the same way, its strokes clipped to the cut plane
+// instead of the near plane, its weights from the direction of view.
 // Edges of artificial transparent faces are never drawn: they are not real lines, and the
 // cell complex lists only real lines.
 #pragma once
+
+#include <optional>
 
 #include "cells/cell_complex.h"
 #include "render/drawing.h"
@@ -36,6 +40,10 @@ struct LineOptions {
   /// Outline the shadows the plan's point lights cast on the faces of cells (Layer::Shadows;
   /// shadow_outline.h). Needs a LineScene prepared with this option.
   bool shadows = false;
+  /// Parallel projection only: draw what lies beyond this plane (the cut the visible set was
+  /// searched from, find_visible_from_cut); none: beyond the picture plane. Furniture and
+  /// shadow outlines are drawn in perspective only.
+  std::optional<Plane> cut;
 };
 
 /// What drawing a complex needs besides its cells, prepared once and shared by every view

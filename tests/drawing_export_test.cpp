@@ -22,6 +22,7 @@
 #include "render/drawing.h"
 #include "render/stereo_drawing.h"
 #include "render/view_lines.h"
+#include "tests/drawing_readers.h"
 #include "tests/test_files.h"
 #include "visibility/viewpoint.h"
 #include "visibility/visible_set.h"
@@ -30,6 +31,9 @@ namespace fs = std::filesystem;
 using namespace avenues;
 
 using avenues::testing::slurp;
+using avenues::testing::DxfCounter;
+using avenues::testing::parse_hpgl;
+using avenues::testing::Plot;
 
 namespace {
 
@@ -77,51 +81,6 @@ Drawing random_drawing(int n, unsigned seed) {
                           i % 5 ? Layer::Architecture : Layer::Furniture});
   }
   return dr;
-}
-
-/// Counts what dxflib reads back.
-struct DxfCounter : DL_CreationAdapter {
-  int lines = 0, polyline_vertices = 0;
-  std::set<std::string> layers_used, layers_declared;
-  std::set<int> weights;
-  std::vector<DL_LineData> line_data;
-  void addLayer(const DL_LayerData& d) override { layers_declared.insert(d.name); }
-  void addLine(const DL_LineData& d) override {
-    ++lines;
-    line_data.push_back(d);
-    layers_used.insert(getAttributes().getLayer());
-    weights.insert(getAttributes().getWidth());
-  }
-  void addVertex(const DL_VertexData&) override { ++polyline_vertices; }
-};
-
-/// HPGL read back: pen-down segments, pen-up travel [plotter units].
-struct Plot {
-  int segments = 0;
-  double travel = 0;
-  std::set<int> pens;
-};
-Plot parse_hpgl(const std::string& text) {
-  Plot p;
-  double x = 0, y = 0;
-  std::stringstream in(text);
-  std::string cmd;
-  while (std::getline(in, cmd, ';')) {
-    cmd.erase(0, cmd.find_first_not_of(" \n\r\t"));
-    if (cmd.size() < 2) continue;
-    const std::string op = cmd.substr(0, 2);
-    std::vector<double> v;
-    std::stringstream args(cmd.substr(2));
-    std::string num;
-    while (std::getline(args, num, ',')) v.push_back(std::stod(num));
-    if (op == "SP") p.pens.insert(int(v.at(0)));
-    for (size_t k = 0; k + 1 < v.size() && (op == "PU" || op == "PD"); k += 2) {
-      if (op == "PU") p.travel += std::hypot(v[k] - x, v[k + 1] - y);
-      else ++p.segments;
-      x = v[k], y = v[k + 1];
-    }
-  }
-  return p;
 }
 
 }  // namespace

@@ -93,4 +93,66 @@ inline OracleResult check_visible_set(const CellComplex& c, const Camera& cam, c
   return r;
 }
 
+/// A picture's frame on the plane its parallel rays start from: pixel (i, j) of nx × ny
+/// (rows from the bottom here) starts its ray at origin + ((i + ½)/nx)·right + ((j + ½)/ny)·up.
+struct ParallelFrame {
+  Vec3 origin, right, up, direction;
+  int nx = 0, ny = 0;
+};
+
+/// The frame of a parallel camera's picture on the cut plane (the rays through the window's
+/// corners, followed along forward to the cut).
+inline ParallelFrame frame_on_cut(const Camera& cam, const Plane& cut) {
+  const double hw = cam.half_width(), hh = cam.half_height(), nf = dot(cut.n, cam.forward);
+  auto onto = [&](Vec3 p) { return p + (-cut.eval(p) / nf) * cam.forward; };
+  ParallelFrame f;
+  f.origin = onto(cam.eye + (cam.shift_x - hw) * cam.right + (cam.shift_y - hh) * cam.up);
+  f.right = onto(cam.eye + (cam.shift_x + hw) * cam.right + (cam.shift_y - hh) * cam.up) - f.origin;
+  f.up = onto(cam.eye + (cam.shift_x - hw) * cam.right + (cam.shift_y + hh) * cam.up) - f.origin;
+  f.direction = cam.forward;
+  f.nx = cam.width, f.ny = cam.height;
+  return f;
+}
+
+/// Parallel rays (one per pixel centre, every `step` pixels) from the frame: each cell a ray
+/// crosses before its first opaque hit must be in vs.cells (counted in `missing`).
+inline OracleResult check_parallel_rays(const CellComplex& c, const ParallelFrame& f, const std::vector<CellId>& cells,
+                                        int step = 1) {
+  OracleResult r;
+  std::vector<uint8_t> visible(c.cells.size(), 0);
+  for (CellId id : cells) visible[size_t(id)] = 1;
+  for (int j = step / 2; j < f.ny; j += step)
+    for (int i = step / 2; i < f.nx; i += step) {
+      const Vec3 o = f.origin + ((i + 0.5) / f.nx) * f.right + ((j + 0.5) / f.ny) * f.up;
+      const double t = first_hit(c, o, f.direction);
+      ++r.rays;
+      for (CellId id = 0; id < CellId(c.cells.size()); ++id)
+        if (!visible[size_t(id)] && length_inside(c.cells[size_t(id)], o, f.direction, 0, t) > 1e-6) ++r.missing;
+    }
+  return r;
+}
+
+/// check_parallel_rays for a parallel search from `cut`, and the converse: each avenue
+/// beyond the cut whose mask covers more than a pixel has its cell entered by the ray
+/// through the mask's centroid (counted in `extra`).
+inline OracleResult check_parallel_visible_set(const CellComplex& c, const Camera& cam, const Plane& cut,
+                                               const VisibleSet& vs, int step = 1) {
+  OracleResult r = check_parallel_rays(c, frame_on_cut(cam, cut), vs.cells, step);
+  const double px2 = (cam.width / (2 * cam.half_width())) * (cam.height / (2 * cam.half_height()));
+  const double nf = dot(cut.n, cam.forward);
+  for (const Avenue& a : vs.avenues) {
+    double area = 0, cx = 0, cy = 0;
+    for (size_t m = 0; m < a.mask.size(); ++m) {
+      const Vec2 p = a.mask[m], q = a.mask[(m + 1) % a.mask.size()];
+      const double w = cross(p, q);
+      area += w / 2, cx += (p.x + q.x) * w / 6, cy += (p.y + q.y) * w / 6;
+    }
+    if (area * px2 <= 1 || a.depth == 0) continue;
+    Vec3 o = cam.eye + (cx / area) * cam.right + (cy / area) * cam.up;
+    o = o + (-cut.eval(o) / nf) * cam.forward;
+    if (!(length_inside(c.cells[size_t(a.cell)], o, cam.forward, 0, first_hit(c, o, cam.forward)) > 0)) ++r.extra;
+  }
+  return r;
+}
+
 }  // namespace avenues::testing

@@ -32,7 +32,14 @@ Camera Camera::yaw_pitch(Vec3 eye, double yaw_deg, double pitch_deg, double fov_
   return look_at(eye, eye + dir, fov_deg, width, height);
 }
 
-double Camera::half_width() const { return std::tan(rad_from_deg(fov_deg) / 2); }
+Camera Camera::parallel(Vec3 eye, Vec3 look, double view_width, int width, int height) {
+  Camera c = look_at(eye, look, 60, width, height);
+  c.projection = Projection::Parallel;
+  c.view_width = view_width;
+  return c;
+}
+
+double Camera::half_width() const { return is_parallel() ? view_width / 2 : std::tan(rad_from_deg(fov_deg) / 2); }
 double Camera::half_height() const { return half_width() * height / width; }
 
 Vec2 Camera::raster_from_image(Vec2 xy) const {
@@ -46,8 +53,15 @@ Vec2 Camera::image_from_raster(Vec2 px) const {
 }
 
 Vec3 Camera::ray_through_raster(Vec2 px) const {
+  if (is_parallel()) return forward;
   Vec2 xy = image_from_raster(px);
   return xy.x * right + xy.y * up + forward;
+}
+
+Vec3 Camera::ray_origin_at_raster(Vec2 px) const {
+  if (!is_parallel()) return eye;
+  Vec2 xy = image_from_raster(px);
+  return eye + xy.x * right + xy.y * up;
 }
 
 }  // namespace avenues

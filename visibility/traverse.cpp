@@ -2,6 +2,8 @@
 #include "visibility/traverse.h"
 
 #include <algorithm>
+#include <cmath>
+#include <stdexcept>
 
 namespace avenues {
 
@@ -50,15 +52,35 @@ void VisibleSet::collect_cells() {
   cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
 }
 
-VisibleSet find_visible(const CellComplex& complex, const Camera& camera, CellId eye_cell, const TraverseParams& params) {
+namespace {
+VisibleSet traverse(const CellComplex& complex, const Camera& camera, CellId eye_cell, const TraverseParams& params,
+                    const Plane* cut) {
   const bool prune = params.prune_covered;
   switch (params.kernel) {
-    case Kernel::Float: return detail::traverse_with<float>(complex, camera, eye_cell, prune);
-    case Kernel::Double: return detail::traverse_with<double>(complex, camera, eye_cell, prune);
-    case Kernel::Filtered: return detail::traverse_filtered(complex, camera, eye_cell, prune);
-    case Kernel::Exact: return detail::traverse_exact(complex, camera, eye_cell, prune);
+    case Kernel::Float: return detail::traverse_with<float>(complex, camera, eye_cell, prune, cut);
+    case Kernel::Double: return detail::traverse_with<double>(complex, camera, eye_cell, prune, cut);
+    case Kernel::Filtered: return detail::traverse_filtered(complex, camera, eye_cell, prune, cut);
+    case Kernel::Exact: return detail::traverse_exact(complex, camera, eye_cell, prune, cut);
   }
   return {};
+}
+}  // namespace
+
+VisibleSet find_visible(const CellComplex& complex, const Camera& camera, CellId eye_cell, const TraverseParams& params) {
+  return traverse(complex, camera, eye_cell, params, nullptr);
+}
+
+bool cut_plane_usable(const Camera& camera, const Plane& cut) {
+  const double n = length(cut.n);
+  return n > 0 && std::isfinite(n) && std::isfinite(cut.d) && std::fabs(dot(cut.n, camera.forward)) > 1e-6 * n;
+}
+
+VisibleSet find_visible_from_cut(const CellComplex& complex, const Camera& camera, const Plane& cut, Kernel kernel) {
+  if (!camera.is_parallel()) throw std::invalid_argument("find_visible_from_cut needs a parallel projection");
+  if (!cut_plane_usable(camera, cut)) throw std::invalid_argument("the cut plane is parallel to the direction of view");
+  TraverseParams params;
+  params.kernel = kernel;
+  return traverse(complex, camera, kNoCell, params, &cut);
 }
 
 VisibleSet find_visible(const CellComplex& complex, const Camera& camera, CellId eye_cell, Kernel kernel) {

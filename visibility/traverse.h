@@ -21,6 +21,13 @@
 // near-duplicates rounding and degenerate portals (stacked, or met edge-on) make. Measured
 // (docs/PERFORMANCE.md, issue 18) on 3,400 random views of 17 plans, homes and Doom maps, it
 // pruned nothing and cost time (the bookkeeping per avenue), so it is off by default.
+//
+// The projection is a parameter of the camera. Perspective: rays from the eye, and the
+// plane of a portal edge passes through the eye. Parallel: every ray runs along forward
+// from a point of the picture plane, so the avenues are prisms, not cones; the plane of a
+// portal edge contains the direction, and a mask is the portals projected orthographically.
+// A parallel search starts on a cut plane (run_cut): each cell the plane crosses is seen
+// through its own cross-section, convex as the cell is, and the search goes on from there.
 #pragma once
 
 #include <algorithm>
@@ -61,6 +68,7 @@ class Traversal {
     const double hw = cam.half_width(), hh = cam.half_height();
     eye_d_ = cam.eye;
     cam_ = cam;
+    parallel_ = cam.is_parallel();
     window_ = Mask<T>::window(T(cam.shift_x - hw), T(cam.shift_x + hw), T(cam.shift_y - hh), T(cam.shift_y + hh));
     // Cells on the current avenue. Every visit clears its mark on the way out, so the
     // buffer is all zero between traversals: keep it per thread, and never clear a
@@ -76,28 +84,77 @@ class Traversal {
   }
 
   void run(CellId start) {
-    // The marks are cleared even when the traversal throws (an exact kernel out of memory,
-    // say): a visit's own clearing is skipped by the unwinding, so clear every cell any
-    // avenue reached. Harmless when they are clear already.
-    struct ClearMarks {
-      Traversal& t;
-      ~ClearMarks() {
-        for (const Avenue& a : t.out_.avenues) {
-          t.on_path_[size_t(a.cell)] = 0;
-          t.last_into_[size_t(a.cell)] = -1;
-        }
-      }
-    } clear{*this};
+    ClearMarks clear{*this};
     Mask<T> m = window_;
     visit(start, m, -1, -1, 0);
   }
 
+  /// A parallel search from a cut plane (its normal not perpendicular to forward): every
+  /// cell the closed plane meets is a root, its mask the window clipped to the cell's
+  /// cross-section projected on the picture plane. A point (x, y) of the picture starts its
+  /// ray at o + t·f on the cut, o = eye + x·r + y·u, t = −(n_c·o + d_c)/(n_c·f); it lies in
+  /// face (n, d) when n·o + d + t·(n·f) <= 0, i.e., times k = n_c·f > 0, when
+  /// k·(n·o + d) − (n·f)·(n_c·o + d_c) <= 0: a half-plane of degree 2 in the input planes.
+  void run_cut(Plane cut) {
+    ClearMarks clear{*this};
+    if (dot(cut.n, cam_.forward) < 0) cut = {-1.0 * cut.n, -cut.d};
+    const Vec3T<T> nc = in(cut.n);
+    const T dc = T(cut.d), k = dotT(nc, forward_);
+    const T cr = dotT(nc, right_), cu = dotT(nc, up_), ce = dotT(nc, eye_) + dc;
+    const double hw = cam_.half_width(), hh = cam_.half_height();
+    for (CellId id = 0; id < CellId(c_.cells.size()); ++id) {
+      const Cell& cl = c_.cells[size_t(id)];
+      // In double, with a margin: does the box meet the plane, and the window?
+      const Box3 b = cl.bounds();
+      double lo = HUGE_VAL, hi = -HUGE_VAL, x0 = HUGE_VAL, x1 = -HUGE_VAL, y0 = HUGE_VAL, y1 = -HUGE_VAL;
+      for (int corner = 0; corner < 8; ++corner) {
+        const Vec3 p{corner & 1 ? b.hi.x : b.lo.x, corner & 2 ? b.hi.y : b.lo.y, corner & 4 ? b.hi.z : b.lo.z};
+        const double e = cut.eval(p), x = dot(p - eye_d_, cam_.right), y = dot(p - eye_d_, cam_.up);
+        lo = std::min(lo, e), hi = std::max(hi, e);
+        x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+      }
+      const double margin = 1e-6 * (1 + length(b.hi - b.lo) + std::fabs(cut.d));
+      if (lo > margin || hi < -margin) continue;
+      if (x1 < cam_.shift_x - hw - margin || x0 > cam_.shift_x + hw + margin || y1 < cam_.shift_y - hh - margin ||
+          y0 > cam_.shift_y + hh + margin)
+        continue;
+      Mask<T> m = window_;
+      bool alive = true;
+      for (size_t f = 0; f < cl.faces.size() && alive; ++f) {
+        const Vec3T<T> n = in(cl.faces[f].plane.n);
+        const T d = T(cl.faces[f].plane.d), a = dotT(n, forward_);
+        alive = m.clip({a * cr - k * dotT(n, right_), a * cu - k * dotT(n, up_), a * ce - k * (dotT(n, eye_) + d)});
+      }
+      if (!alive || !(m.area2() > T(0))) continue;
+      out_.cut_cells.push_back(id);
+      visit(id, m, -1, -1, 0);
+    }
+  }
+
  private:
+  /// The marks are cleared even when the traversal throws (an exact kernel out of memory,
+  /// say): a visit's own clearing is skipped by the unwinding, so clear every cell any
+  /// avenue reached. Harmless when they are clear already.
+  struct ClearMarks {
+    Traversal& t;
+    ~ClearMarks() {
+      for (const Avenue& a : t.out_.avenues) {
+        t.on_path_[size_t(a.cell)] = 0;
+        t.last_into_[size_t(a.cell)] = -1;
+      }
+    }
+  };
+
   static Vec3T<T> in(Vec3 v) { return {T(v.x), T(v.y), T(v.z)}; }
 
-  /// Picture-plane half-plane of the world plane through the eye with normal n:
-  /// directions d = x·right + y·up + forward with n·d >= 0.
-  HalfPlane<T> trace(const Vec3T<T>& n) const { return {dotT(n, right_), dotT(n, up_), dotT(n, forward_)}; }
+  /// Picture-plane half-plane of the world plane with normal n through point p, which
+  /// contains the rays' source: perspective, the plane passes through the eye, and it keeps
+  /// directions d = x·right + y·up + forward with n·d >= 0; parallel, it contains forward,
+  /// and it keeps the rays from o = eye + x·right + y·up with n·(o − p) >= 0.
+  HalfPlane<T> trace(const Vec3T<T>& n, const Vec3T<T>& p) const {
+    if (parallel_) return {dotT(n, right_), dotT(n, up_), dotT(n, sub(eye_, p))};
+    return {dotT(n, right_), dotT(n, up_), dotT(n, forward_)};
+  }
 
   void visit(CellId cell, const Mask<T>& mask, int parent, PortalId via, int depth) {
     const int self = int(out_.avenues.size());
@@ -118,7 +175,7 @@ class Traversal {
     // Each face's portals; on a long side face (a corridor's wall of doors) only those
     // within the stretch of wall the mask can see (portals are sorted along side faces).
     const Cell& cl = c_.cells[size_t(cell)];
-    const std::vector<Vec3> cone = cone_planes(mask_here);
+    const std::vector<Plane> cone = cone_planes(mask_here);
     for (size_t f = 0; f < cl.faces.size(); ++f) {
       const auto& ps = cl.faces[f].portals;
       size_t lo = 0, hi = ps.size();
@@ -129,16 +186,26 @@ class Traversal {
     on_path_[size_t(cell)] = 0;
   }
 
-  /// The mask's cone as inward normals of planes through the eye (world space, double).
-  std::vector<Vec3> cone_planes(const std::vector<Vec2>& mask) const {
-    std::vector<Vec3> n;
+  /// The mask's cone (perspective) or prism (parallel) as inward planes n·(v − eye) + d >= 0
+  /// (world space, double): through the eye, d = 0; along forward, through a mask vertex.
+  std::vector<Plane> cone_planes(const std::vector<Vec2>& mask) const {
+    std::vector<Plane> n;
     if (mask.size() < 3) return n;
-    auto dir = [&](Vec2 m) { return m.x * cam_.right + m.y * cam_.up + cam_.forward; };
+    auto dir = [&](Vec2 m) { return m.x * cam_.right + m.y * cam_.up + (parallel_ ? Vec3{0, 0, 0} : cam_.forward); };
     Vec2 c{0, 0};
     for (Vec2 m : mask) c = c + (1.0 / double(mask.size())) * m;
     const Vec3 inside = dir(c);
     for (size_t i = 0; i < mask.size(); ++i) {
       const Vec3 a = dir(mask[i]), b = dir(mask[(i + 1) % mask.size()]);
+      if (parallel_) {
+        Vec3 p = cross(b - a, cam_.forward);
+        const double l = length(p);
+        if (!(l > 1e-9 * (1 + length(a) + length(b)))) continue;  // as below: too short to give a plane
+        p = (1.0 / l) * p;
+        if (dot(p, inside - a) < 0) p = -1.0 * p;
+        n.push_back({p, -dot(p, a)});
+        continue;
+      }
       Vec3 p = cross(a, b);
       const double l = length(p);
       // Two mask vertices that (nearly) coincide give no plane: a normal from a cross
@@ -146,7 +213,7 @@ class Traversal {
       // a plane only makes the cull more conservative.
       if (!(l > 1e-9 * length(a) * length(b))) continue;
       p = (1.0 / l) * p;
-      n.push_back(dot(p, inside) < 0 ? -1.0 * p : p);
+      n.push_back({dot(p, inside) < 0 ? -1.0 * p : p, 0});
     }
     return n;
   }
@@ -154,13 +221,13 @@ class Traversal {
   /// A cheap, conservative cull before the kernel's exact work: true when every vertex of
   /// the portal lies clearly outside one plane of the mask's cone (by more than a margin far
   /// above double rounding), so no ray through the mask can pass the portal.
-  bool surely_outside(const std::vector<Vec3>& cone, PortalId pi) const {
+  bool surely_outside(const std::vector<Plane>& cone, PortalId pi) const {
     const Portal& p = c_.portals[size_t(pi)];
-    for (const Vec3& n : cone) {
+    for (const Plane& n : cone) {
       bool all_out = true;
       for (const Vec3& v : p.poly) {
         const Vec3 d = v - eye_d_;
-        if (dot(n, d) >= -1e-9 * (1 + std::fabs(d.x) + std::fabs(d.y) + std::fabs(d.z))) {
+        if (n.eval(d) >= -1e-9 * (1 + std::fabs(d.x) + std::fabs(d.y) + std::fabs(d.z) + std::fabs(n.d))) {
           all_out = false;
           break;
         }
@@ -181,6 +248,7 @@ class Traversal {
     const Vec2 a = cl.footprint[k], b = cl.footprint[(k + 1) % n];
     const Vec2 u = (1.0 / length(b - a)) * (b - a);
     const Vec3 nrm = cl.faces[k].plane.n;
+    if (parallel_) return side_range_parallel(cl, k, a, u, mask, lo, hi);
     // Signed distance from the eye to the face's plane: positive when the eye is on the
     // cell's side (its own cell), negative beyond it (a cell seen through portals). A ray d
     // meets the plane ahead when h / (n·d) > 0.
@@ -210,8 +278,33 @@ class Traversal {
       lo = hi = 0;
       return;
     }
-    const double margin = 1e-6 * (1 + std::fabs(se) + length(b - a));
-    smin -= margin, smax += margin;
+    portal_range(cl, k, a, u, smin - 1e-6 * (1 + std::fabs(se) + length(b - a)),
+                 smax + 1e-6 * (1 + std::fabs(se) + length(b - a)), lo, hi);
+  }
+
+  /// The same for parallel rays: a ray from o along f meets the face's plane at an affine
+  /// function of the mask point, so the mask's vertices bound the stretch (hits behind the
+  /// ray's start only widen it); a face parallel to the rays keeps them all.
+  void side_range_parallel(const Cell& cl, size_t k, Vec2 a, Vec2 u, const std::vector<Vec2>& mask, size_t& lo,
+                           size_t& hi) const {
+    const Plane& pl = cl.faces[k].plane;
+    const double nf = dot(pl.n, cam_.forward);
+    if (!(std::fabs(nf) > 1e-9)) return;
+    double smin = HUGE_VAL, smax = -HUGE_VAL;
+    for (Vec2 m : mask) {
+      const Vec3 o = eye_d_ + m.x * cam_.right + m.y * cam_.up;
+      const Vec3 hit = o + (-pl.eval(o) / nf) * cam_.forward;
+      const double s = dot(Vec2{hit.x, hit.y} - a, u);
+      smin = std::min(smin, s), smax = std::max(smax, s);
+    }
+    if (!std::isfinite(smin) || !std::isfinite(smax)) return;
+    const double margin = 1e-6 * (1 + std::fabs(smin) + std::fabs(smax));
+    portal_range(cl, k, a, u, smin - margin, smax + margin, lo, hi);
+  }
+
+  /// The index range [lo, hi) of side face k's portals that meet the stretch [smin, smax]
+  /// of the face's line (coordinate along u from footprint vertex a).
+  void portal_range(const Cell& cl, size_t k, Vec2 a, Vec2 u, double smin, double smax, size_t& lo, size_t& hi) const {
     const auto& ps = cl.faces[k].portals;
     auto extent = [&](PortalId p, bool hi_end) {
       double s = hi_end ? -HUGE_VAL : HUGE_VAL;
@@ -241,25 +334,29 @@ class Traversal {
       // Which side of the portal's plane is the eye on? Exactly, from input vertices.
       const Vec3T<T> v0 = in(p.poly[0]), v1 = in(p.poly[1]), v2 = in(p.poly[2]);
       const Vec3T<T> N = crossT(sub(v1, v0), sub(v2, v0));  // points into p.cell[1]
-      const T s = dotT(N, sub(eye_, v0));
+      // Parallel: the eye is at infinity behind the picture, s = N·(−f).
+      const T s = parallel_ ? -dotT(N, forward_) : dotT(N, sub(eye_, v0));
       const bool from_first = cell == p.cell[0];
       Mask<T> m = mask;
+      if (s == T(0) && parallel_) return;  // parallel rays never cross a portal seen edge-on
       if (s == T(0)) {
         // The eye stands in the portal's plane: through it, if it stands in the portal,
         // lies the whole half-space on the far side; otherwise it is seen edge-on.
         if (!eye_in_polygon(p, N)) return;
         const Vec3T<T> toward = from_first ? N : Vec3T<T>{-N.x, -N.y, -N.z};
-        if (!m.clip(trace(toward))) return;
+        if (!m.clip(trace(toward, eye_))) return;
       } else {
         if ((s < T(0)) != from_first) return;  // seen from behind
         // Rays through the portal: inside every plane through the eye and an edge.
-        // With the eye behind N (s < 0) the edge normals (a-e)×(b-e) point inwards.
+        // With the eye behind N (s < 0) the edge normals (a-e)×(b-e) point inwards; for
+        // parallel rays their limit as the eye recedes along −f, f×(b−a).
         bool alive = true;
         const size_t n = p.poly.size();
         for (size_t k = 0; k < n && alive; ++k) {
-          Vec3T<T> e = crossT(sub(in(p.poly[k]), eye_), sub(in(p.poly[(k + 1) % n]), eye_));
+          const Vec3T<T> a = in(p.poly[k]), b = in(p.poly[(k + 1) % n]);
+          Vec3T<T> e = parallel_ ? crossT(forward_, sub(b, a)) : crossT(sub(a, eye_), sub(b, eye_));
           if (s > T(0)) e = {-e.x, -e.y, -e.z};
-          alive = m.clip(trace(e));
+          alive = m.clip(trace(e, a));
         }
         if (!alive) return;
       }
@@ -324,20 +421,29 @@ class Traversal {
   int32_t* last_into_ = nullptr;  ///< per cell: the last avenue into it (thread-local buffer)
   Vec3 eye_d_;                 ///< the eye in double, for culling only
   Camera cam_;
+  bool parallel_ = false;      ///< cam_.projection == Projection::Parallel
 };
 
+/// Perspective: the search from the eye's cell. Parallel: from the cut plane, or without
+/// one from the picture plane through the eye.
 template <class T>
-VisibleSet traverse_with(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered) {
+VisibleSet traverse_with(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered,
+                         const Plane* cut = nullptr) {
   VisibleSet out;
   out.eye_cell = eye_cell;
   auto t0 = std::chrono::steady_clock::now();
-  Traversal<T>(c, cam, prune_covered, out).run(eye_cell);
+  if (cam.is_parallel())
+    Traversal<T>(c, cam, prune_covered, out).run_cut(cut ? *cut : Plane{cam.forward, -dot(cam.forward, cam.eye)});
+  else
+    Traversal<T>(c, cam, prune_covered, out).run(eye_cell);
   out.micros = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
   out.collect_cells();
   return out;
 }
 
-VisibleSet traverse_exact(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered);
-VisibleSet traverse_filtered(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered);
+VisibleSet traverse_exact(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered,
+                          const Plane* cut = nullptr);
+VisibleSet traverse_filtered(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered,
+                             const Plane* cut = nullptr);
 
 }  // namespace avenues::detail

@@ -16,12 +16,14 @@ double to_double_of<CGAL::Gmpq>(const CGAL::Gmpq& x) { return x.to_double(); }
 template <>
 double to_double_of<Lazy>(const Lazy& x) { return CGAL::to_double(x); }
 
-VisibleSet traverse_exact(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered) {
-  return traverse_with<CGAL::Gmpq>(c, cam, eye_cell, prune_covered);
+VisibleSet traverse_exact(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered,
+                          const Plane* cut) {
+  return traverse_with<CGAL::Gmpq>(c, cam, eye_cell, prune_covered, cut);
 }
 
-VisibleSet traverse_filtered(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered) {
-  return traverse_with<Lazy>(c, cam, eye_cell, prune_covered);
+VisibleSet traverse_filtered(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered,
+                             const Plane* cut) {
+  return traverse_with<Lazy>(c, cam, eye_cell, prune_covered, cut);
 }
 
 }  // namespace avenues::detail

@@ -24,12 +24,13 @@ struct Avenue {
   int parent = -1;         ///< index of the avenue this one extends; -1 for the eye's cell
   PortalId portal = -1;    ///< the portal crossed last; -1 for the eye's cell
   int depth = 0;           ///< portals crossed
-  std::vector<Vec2> mask;  ///< convex, counter-clockwise, on the picture plane (x = X/Z, y = Y/Z)
+  std::vector<Vec2> mask;  ///< convex, counter-clockwise, on the picture plane (x = X/Z, y = Y/Z; parallel: x = X, y = Y)
 };
 
 struct VisibleSet {
   CellId eye_cell = kNoCell;
-  std::vector<Avenue> avenues;  ///< depth-first order; avenues[0] is the eye's cell
+  std::vector<Avenue> avenues;  ///< depth-first order; avenues[0] is the eye's cell (parallel: one root per cut cell)
+  std::vector<CellId> cut_cells;  ///< parallel: the cells the cut plane crosses, ascending (the roots)
   std::vector<CellId> cells;    ///< distinct visible cells, ascending
   long portals_tested = 0;      ///< portals examined (facing test and clipping)
   long avenues_pruned = 0;      ///< avenues not followed: mask inside one already found into the cell
@@ -57,6 +58,17 @@ struct TraverseParams {
 VisibleSet find_visible(const CellComplex& complex, const Camera& camera, CellId eye_cell, const TraverseParams& params);
 VisibleSet find_visible(const CellComplex& complex, const Camera& camera, CellId eye_cell,
                         Kernel kernel = Kernel::Double);
+
+/// A parallel search from a cut plane (camera.projection == Parallel): every cell the
+/// closed plane meets inside the window is seen through its own cross-section (an avenue of
+/// depth 0), and the search goes on through portals beyond it, along camera.forward. Rays
+/// start on the cut, so nothing on the near side of it is seen. With a parallel camera,
+/// find_visible() is this search from the picture plane through the eye.
+/// Throws std::invalid_argument when the camera is not parallel or !cut_plane_usable().
+VisibleSet find_visible_from_cut(const CellComplex& complex, const Camera& camera, const Plane& cut,
+                                 Kernel kernel = Kernel::Double);
+/// A cut plane a parallel search can start from: finite, and not parallel to the rays.
+bool cut_plane_usable(const Camera& camera, const Plane& cut);
 
 /// The peer a renderer without cells would use: every cell whose bounding box meets the
 /// view frustum (tests every cell; no occlusion at all).
