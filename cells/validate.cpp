@@ -10,10 +10,11 @@ namespace avenues {
 
 namespace {
 
-/// Area of a planar 3D polygon.
+/// Area of a planar 3D polygon (a fan from its first vertex: no cancellation of large
+/// products far from the origin).
 double area3(const std::vector<Vec3>& p) {
   Vec3 s{0, 0, 0};
-  for (size_t i = 0; i < p.size(); ++i) s = s + cross(p[i], p[(i + 1) % p.size()]);
+  for (size_t i = 1; i + 1 < p.size(); ++i) s = s + cross(p[i] - p[0], p[i + 1] - p[0]);
   return length(s) / 2;
 }
 
@@ -62,7 +63,7 @@ std::string polyhedron_problem(const Cell& cell, double eps) {
       if (std::fabs(f.plane.eval(a)) > eps) return (why << "face " << k << " is not planar", why.str());
       if (dot(cross(b - a, d - b), f.plane.n) > eps * length(b - a))
         return (why << "face " << k << " is not convex (or not counter-clockwise seen from inside)", why.str());
-      s = s + cross(a, b);
+      s = s + cross(a - all.front(), b - all.front());  // about a vertex of the cell: no large products
     }
     for (const OpaquePoly& o : f.opaque)
       for (Vec3 v : o.poly)
