@@ -82,7 +82,7 @@ void decompose(benchmark::State& state, const std::vector<Mesh>& meshes, MeshSce
   if (!viking.empty()) {
     benchmark::RegisterBenchmark("soup/viking-room/bsp", decompose, viking, MeshSceneMethod::Bsp)
         ->Unit(benchmark::kSecond)
-        ->Iterations(3);
+        ->Iterations(1);
     benchmark::RegisterBenchmark("soup/viking-room/nef", decompose, viking, MeshSceneMethod::Nef)
         ->Unit(benchmark::kSecond)
         ->Iterations(1);

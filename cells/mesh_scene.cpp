@@ -702,8 +702,18 @@ void add_real_lines(CellComplex& c, const std::vector<RealLine>& lines) {
       if (lb.lo.x > b.hi.x + tol || lb.hi.x < b.lo.x - tol || lb.lo.y > b.hi.y + tol || lb.hi.y < b.lo.y - tol ||
           lb.lo.z > b.hi.z + tol || lb.hi.z < b.lo.z - tol)
         continue;
-      // The stretch inside every face's plane (grown by tol): a + t·s <= tol.
+      // The stretch inside every face's plane (grown by tol): a + t·s <= tol; and within
+      // the cell's heights (grown by tol), which near an acute edge of a cell the grown
+      // planes alone do not keep.
       double t0 = 0, t1 = 1;
+      const Cell& cell = c.cells[i];
+      const double dz = l.b.z - l.a.z;
+      if (std::fabs(dz) > 1e-300) {
+        const double s0 = (cell.z0 - tol - l.a.z) / dz, s1 = (cell.z1 + tol - l.a.z) / dz;
+        t0 = std::max(t0, std::min(s0, s1)), t1 = std::min(t1, std::max(s0, s1));
+      } else if (l.a.z < cell.z0 - tol || l.a.z > cell.z1 + tol) {
+        continue;
+      }
       for (const Face& f : c.cells[i].faces) {
         const double a = f.plane.eval(l.a), s = f.plane.eval(l.b) - a;
         if (std::fabs(s) < 1e-300) {

@@ -469,14 +469,14 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
       for (auto& [other, piece] : pieces) {
         Contact c;
         c.other = other;
+        // Only the fragments meeting the piece's bounds can cover part of it (a big
+        // face may hold thousands of fragments and face thousands of small leaves).
+        const Box3 pb = approx_bounds(piece);
         std::vector<Poly> open{std::move(piece)};
         for (const auto& [f, fb] : cover) {
+          if (!boxes_meet(fb, pb, b.tol)) continue;
           std::vector<Poly> next;
           for (Poly& r : open) {
-            if (!boxes_meet(fb, approx_bounds(r), b.tol)) {
-              next.push_back(std::move(r));
-              continue;
-            }
             Poly in = subtract(std::move(r), f->poly, next);
             if (in.v.size() >= 3) {
               c.opaque.push_back(std::move(in));
