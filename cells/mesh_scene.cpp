@@ -21,6 +21,7 @@
 #include "cells/mesh_scene.h"
 
 #include "cells/build_cells.h"
+#include "cells/soup_bsp.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Nef_nary_union_3.h>
@@ -371,6 +372,8 @@ struct FaceBuild {
   std::map<CellId, std::vector<Nef::Vertex_const_handle>> toward;  ///< portal vertices per neighbour
 };
 
+}  // namespace
+
 /// Cells that rounding to double leaves without a shape: thinner than `1e-9 · scale`
 /// (the tolerance cells_are_valid allows coordinates rounded once) across some face, or
 /// with no outline from above. Where shallow solids cross (the ripple torus) the exact
@@ -442,6 +445,8 @@ void drop_slivers(CellComplex& out) {
                 dropped, thin, std::max(thinnest, 0.0));
   out.warnings.push_back(what);
 }
+
+namespace {
 
 /// The cells, faces and portals of the decomposed free space (see the file comment).
 void build_cells_of(const Nef& free, CellComplex& out) {
@@ -595,29 +600,37 @@ void build_cells_of(const Nef& free, CellComplex& out) {
   drop_slivers(out);
 }
 
-/// The feature edges of a solid: between triangles of different polygons whose planes differ.
-std::vector<RealLine> feature_edges(const Solid& s) {
+/// The feature edges of triangles (v, tris, polygon_of): between triangles of different
+/// polygons whose planes differ; with `open_edges`, also the edges of one triangle only
+/// (the border of a sheet).
+std::vector<RealLine> feature_edges(const std::vector<Vec3>& v, const std::vector<std::array<int, 3>>& tris,
+                                    const std::vector<int>& polygon_of, bool open_edges) {
   std::map<std::pair<int, int>, std::vector<size_t>> edge;
-  for (size_t t = 0; t < s.tris.size(); ++t)
+  for (size_t t = 0; t < tris.size(); ++t)
     for (int k = 0; k < 3; ++k) {
-      int a = s.tris[t][size_t(k)], b = s.tris[t][size_t((k + 1) % 3)];
+      int a = tris[t][size_t(k)], b = tris[t][size_t((k + 1) % 3)];
       edge[{std::min(a, b), std::max(a, b)}].push_back(t);
     }
+  auto poly = [&](size_t t) { return t < polygon_of.size() ? polygon_of[t] : int(t); };
   std::vector<RealLine> lines;
   for (const auto& [e, ts] : edge) {
-    if (ts.size() != 2 || s.polygon_of[ts[0]] == s.polygon_of[ts[1]]) continue;
-    Vec3 n1 = tri_normal(s.v, s.tris[ts[0]]), n2 = tri_normal(s.v, s.tris[ts[1]]);
+    const Vec3 a = v[size_t(e.first)], b = v[size_t(e.second)];
+    if (ts.size() == 1) {
+      if (open_edges && length(tri_normal(v, tris[ts[0]])) > 0) lines.push_back({a, b, LineKind::Sheet});
+      continue;
+    }
+    if (ts.size() != 2 || poly(ts[0]) == poly(ts[1])) continue;
+    Vec3 n1 = tri_normal(v, tris[ts[0]]), n2 = tri_normal(v, tris[ts[1]]);
     const double l1 = length(n1), l2 = length(n2);
     if (!(l1 > 0 && l2 > 0)) continue;
     n1 = (1.0 / l1) * n1, n2 = (1.0 / l2) * n2;
     if (dot(n1, n2) > 1 - 1e-10) continue;  // coplanar
     // Convex when the second triangle's far vertex lies below the first's plane.
-    const auto& t2 = s.tris[ts[1]];
+    const auto& t2 = tris[ts[1]];
     int far = t2[0];
-    for (int v : t2)
-      if (v != e.first && v != e.second) far = v;
-    const Vec3 a = s.v[size_t(e.first)], b = s.v[size_t(e.second)];
-    lines.push_back({a, b, dot(n1, s.v[size_t(far)] - a) < 0 ? LineKind::Convex : LineKind::Concave});
+    for (int w : t2)
+      if (w != e.first && w != e.second) far = w;
+    lines.push_back({a, b, dot(n1, v[size_t(far)] - a) < 0 ? LineKind::Convex : LineKind::Concave});
   }
   return lines;
 }
@@ -690,8 +703,18 @@ void add_real_lines(CellComplex& c, const std::vector<RealLine>& lines) {
       if (lb.lo.x > b.hi.x + tol || lb.hi.x < b.lo.x - tol || lb.lo.y > b.hi.y + tol || lb.hi.y < b.lo.y - tol ||
           lb.lo.z > b.hi.z + tol || lb.hi.z < b.lo.z - tol)
         continue;
-      // The stretch inside every face's plane (grown by tol): a + t·s <= tol.
+      // The stretch inside every face's plane (grown by tol): a + t·s <= tol; and within
+      // the cell's heights (grown by tol), which near an acute edge of a cell the grown
+      // planes alone do not keep.
       double t0 = 0, t1 = 1;
+      const Cell& cell = c.cells[i];
+      const double dz = l.b.z - l.a.z;
+      if (std::fabs(dz) > 1e-300) {
+        const double s0 = (cell.z0 - tol - l.a.z) / dz, s1 = (cell.z1 + tol - l.a.z) / dz;
+        t0 = std::max(t0, std::min(s0, s1)), t1 = std::min(t1, std::max(s0, s1));
+      } else if (l.a.z < cell.z0 - tol || l.a.z > cell.z1 + tol) {
+        continue;
+      }
       for (const Face& f : c.cells[i].faces) {
         const double a = f.plane.eval(l.a), s = f.plane.eval(l.b) - a;
         if (std::fabs(s) < 1e-300) {
@@ -708,9 +731,63 @@ void add_real_lines(CellComplex& c, const std::vector<RealLine>& lines) {
   }
 }
 
+namespace {
+
+/// The far box around `box` (the scene's contents) with margin m, and a first view from a
+/// corner of the margin (free, whatever the scene is), looking at the middle of the
+/// scene, wide enough to take in the sphere around it.
+void frame_scene(CellComplex& out, const Box3& box, double m) {
+  out.far_box.lo = box.lo - Vec3{m, m, m};
+  out.far_box.hi = box.hi + Vec3{m, m, m};
+  const Vec3 middle = 0.5 * (box.lo + box.hi);
+  const Vec3 eye{box.lo.x - m / 2, box.lo.y - m / 2, middle.z};
+  const double fov = 2 * std::atan(length(box.hi - box.lo) / 2 / length(middle - eye)) * 180 / 3.14159265358979323846;
+  out.view = Viewpoint{eye, middle, std::clamp(fov, 40.0, 120.0)};
+}
+
+/// MeshSceneMethod::Bsp: the meshes' triangles as one soup (soup_bsp.h).
+CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshSceneParams& params) {
+  CellComplex out;
+  std::vector<SoupTriangle> soup;
+  std::vector<size_t> mesh_of;  // per soup triangle
+  Box3 box = params.include;
+  for (size_t i = 0; i < meshes.size(); ++i) {
+    const Mesh& m = meshes[i];
+    for (const auto& t : m.triangles) {
+      soup.push_back({{m.vertices[size_t(t[0])], m.vertices[size_t(t[1])], m.vertices[size_t(t[2])]}, -1});
+      mesh_of.push_back(i);
+      for (Vec3 p : soup.back().p) box.add(p);
+    }
+  }
+  if (!(box.lo.x <= box.hi.x)) throw std::invalid_argument("mesh scene: no triangles and nothing to include");
+  frame_scene(out, box, params.margin);
+  const SoupBspStats stats = decompose_soup(soup, out.far_box, out);
+  std::map<size_t, size_t> dropped;  // mesh -> triangles with no area
+  for (size_t t : stats.degenerate) dropped[mesh_of[t]]++;
+  for (const auto& [mesh, count] : dropped)
+    out.warnings.push_back((meshes[mesh].path.empty() ? std::string("mesh") : meshes[mesh].path) + ": " +
+                           std::to_string(count) + " triangles with no area (corners on a line): dropped");
+  drop_slivers(out);
+  {
+    ScopedStageTimer t(out.timings, "lines");
+    std::vector<RealLine> lines;
+    for (const Mesh& m : meshes) {
+      std::vector<RealLine> l = feature_edges(m.vertices, m.triangles, m.polygon_of, true);
+      lines.insert(lines.end(), l.begin(), l.end());
+    }
+    add_real_lines(out, lines);
+  }
+  out.index();
+  check_complex(out, "a mesh scene (soup BSP)");
+  return out;
+}
+
+}  // namespace
+
 CellComplex build_mesh_scene(const std::vector<Mesh>& meshes, const MeshSceneParams& params) {
   if (!(params.margin > 0)) throw std::invalid_argument("mesh scene: margin must be > 0");
   if (!(params.sheet_thickness > 0)) throw std::invalid_argument("mesh scene: sheet thickness must be > 0");
+  if (params.method == MeshSceneMethod::Bsp) return build_soup_scene(meshes, params);
   CellComplex out;
   std::vector<Solid> solids;
   Nef free;
@@ -730,15 +807,7 @@ CellComplex build_mesh_scene(const std::vector<Mesh>& meshes, const MeshScenePar
   for (const Solid& s : solids)
     for (Vec3 p : s.v) box.add(p);
   if (!(box.lo.x <= box.hi.x)) throw std::invalid_argument("mesh scene: no solids and nothing to include");
-  const double m = params.margin;
-  out.far_box.lo = box.lo - Vec3{m, m, m};
-  out.far_box.hi = box.hi + Vec3{m, m, m};
-  // A first view from a corner of the margin (free, whatever the solids are), looking at
-  // the middle of the scene, wide enough to take in the sphere around it.
-  const Vec3 middle = 0.5 * (box.lo + box.hi);
-  const Vec3 eye{box.lo.x - m / 2, box.lo.y - m / 2, middle.z};
-  const double fov = 2 * std::atan(length(box.hi - box.lo) / 2 / length(middle - eye)) * 180 / 3.14159265358979323846;
-  out.view = Viewpoint{eye, middle, std::clamp(fov, 40.0, 120.0)};
+  frame_scene(out, box, params.margin);
   {
     ScopedStageTimer t(out.timings, "free");
     CGAL::Nef_nary_union_3<Nef> all;
@@ -775,7 +844,7 @@ CellComplex build_mesh_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     ScopedStageTimer t(out.timings, "lines");
     std::vector<RealLine> lines;
     for (const Solid& s : solids) {
-      std::vector<RealLine> l = feature_edges(s);
+      std::vector<RealLine> l = feature_edges(s.v, s.tris, s.polygon_of, false);
       lines.insert(lines.end(), l.begin(), l.end());
       // What a point inside the solid is in, by its bounding box (for locate()).
       Box3 b;

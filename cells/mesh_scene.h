@@ -1,13 +1,15 @@
-// Avenues — meshes as whole scenes: the free space around a set of solids as convex cells.
+// Avenues — meshes as whole scenes: the free space around a set of polygons as convex cells.
 //
 // Jones 1971 leaves the general case open: "the scene ... may ... be a set of unconnected
 // objects". Plans become prism cells (cells/build_cells.h); a scene given only as meshes
-// (the papers' test scenes, Crow's objects) has no storeys, walls or rooms to extrude, so
-// its free space is cut up in 3D instead: the far box minus the union of the solids, as
-// exact CGAL Nef polyhedra, decomposed by CGAL::convex_decomposition_3 into convex
-// polyhedra. Those become cells with Cell::prism == false; every face between two of
-// them is a portal, every face on a solid or on the far box is opaque. Only
-// mesh_scene.cpp sees CGAL; coordinates are rounded to double once, at the end.
+// (the papers' test scenes, Crow's objects, any OBJ a user has) has no storeys, walls or
+// rooms to extrude, so its free space is cut up in 3D instead, into cells with
+// Cell::prism == false. By default (MeshSceneMethod::Bsp) the triangles are taken as a
+// soup, every one opaque from both sides, and the far box is cut by a BSP of their own
+// planes (cells/soup_bsp.h, after Teller 1992); the former path (MeshSceneMethod::Nef)
+// takes each connected component as a closed solid, the far box minus their union as
+// exact CGAL Nef polyhedra, decomposed by CGAL::convex_decomposition_3. Either way every
+// face between two cells is a portal, and coordinates are rounded to double once, at the end.
 #pragma once
 
 #include <string>
@@ -18,17 +20,35 @@
 
 namespace avenues {
 
+/// How a mesh scene's free space is cut into cells.
+enum class MeshSceneMethod : uint8_t {
+  /// A BSP of the polygons themselves (cells/soup_bsp.h): every polygon an opaque surface
+  /// seen from both sides, nothing closed or repaired; free space is all the rest of the
+  /// far box, including the insides of closed meshes.
+  Bsp,
+  /// The far box minus the meshes as closed solids (CGAL Nef polyhedra), open parts
+  /// repaired into hulls and plates: the former path, kept for comparison.
+  Nef,
+};
+
 struct MeshSceneParams {
+  MeshSceneMethod method = MeshSceneMethod::Bsp;
   double margin = 2.0;  ///< [m] > 0: the far box reaches this far beyond the meshes' bounds
-  /// [m] > 0: a component that is not closed and lies flat (all its points within this
-  /// distance of one plane) becomes a plate this thick, centred on that plane.
+  /// [m] > 0, Nef only: a component that is not closed and lies flat (all its points
+  /// within this distance of one plane) becomes a plate this thick, centred on that plane.
   double sheet_thickness = 0.01;
   /// [m] the far box encloses this box too (with the margin): lines with no surfaces,
   /// e.g. Crow's wire objects. Empty by default.
   Box3 include;
 };
 
-/// Free space around solids: the far box minus the union of the meshes as CGAL Nef
+/// The free space of meshes as convex cells (Cell::prism = false, CellKind::Outside), by
+/// params.method. Bsp: every triangle is opaque from both sides (CellComplex::warnings
+/// counts those with no area, dropped); faces of the far box are opaque; portals
+/// (PortalKind::Open) are the rest of the cells' boundaries. Real lines: the edges between
+/// polygons that are not coplanar, and the open edges of surfaces (LineKind::Sheet).
+///
+/// Nef: free space around solids, the far box minus the union of the meshes as CGAL Nef
 /// polyhedra, decomposed by CGAL::convex_decomposition_3 into convex cells (Cell::prism =
 /// false, CellKind::Outside). Faces of the solids and of the far box are opaque, every
 /// other face is a portal (PortalKind::Open). Each connected component of each mesh is a
@@ -50,6 +70,11 @@ CellComplex read_mesh_scene(const std::string& path, const MeshSceneParams& para
 /// that lies in the cell (on its boundary, or through it, for lines with no surfaces).
 /// Stretches outside every cell (inside solids) belong to no cell.
 void add_real_lines(CellComplex& complex, const std::vector<RealLine>& lines);
+
+/// Drops cells that rounding to double leaves without a shape (thinner than 1e-9 of the
+/// far box's scale across some face, or with no outline from above); the portals into
+/// them become opaque pieces of their neighbours' faces, and one warning counts them.
+void drop_slivers(CellComplex& complex);
 
 /// The connected components of a mesh (triangles joined by shared vertices), each a mesh
 /// of its own with the vertices it uses; polygon_of is kept (renumbered from 0).

@@ -56,7 +56,7 @@ std::string polyhedron_problem(const Cell& cell, double eps) {
       if (std::fabs(f.plane.eval(a)) > eps) return (why << "face " << k << " is not planar", why.str());
       if (dot(cross(b - a, d - b), f.plane.n) > eps * length(b - a))
         return (why << "face " << k << " is not convex (or not counter-clockwise seen from inside)", why.str());
-      s = s + cross(a, b);
+      s = s + cross(a - all.front(), b - all.front());  // about a vertex of the cell: no large products
     }
     for (const OpaquePoly& o : f.opaque)
       for (Vec3 v : o.poly)

@@ -146,7 +146,9 @@ TEST(Crow, AConcavePolygonIsCutIntoTrianglesInsideIt) {
 }
 
 TEST(Crow, APolygonObjectIsTheSolidOfAMeshScene) {
-  const CellComplex c = read_crow_scene(scene_path("crow-table-1b.crow"));
+  MeshSceneParams nef;  // closed solids: the Nef path (the soup BSP keeps the inside as free space)
+  nef.method = MeshSceneMethod::Nef;
+  const CellComplex c = read_crow_scene(scene_path("crow-table-1b.crow"), nef);
   EXPECT_EQ(cells_are_valid(c), "");
   EXPECT_TRUE(c.warnings.empty());
   EXPECT_EQ(c.plan_name, "crow-table-1b");

@@ -1,6 +1,7 @@
 // Tests of cells/mesh_scene.h: meshes as whole scenes, their free space cut into convex
-// cells by CGAL's Nef polyhedra, checked by cells_are_valid, by volume, and by the
-// ray-casting oracle on random views.
+// cells by CGAL's Nef polyhedra (MeshSceneMethod::Nef, the former path; the soup BSP that
+// is now the default has its own tests, soup_bsp_test.cpp), checked by cells_are_valid,
+// by volume, and by the ray-casting oracle on random views.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,6 +20,12 @@ using avenues::testing::check_visible_set;
 using avenues::testing::OracleResult;
 
 namespace {
+
+/// The Nef path's parameters (margin etc. as given).
+MeshSceneParams nef(MeshSceneParams p = {}) {
+  p.method = MeshSceneMethod::Nef;
+  return p;
+}
 
 std::string scene_path(const std::string& name) {
   return (std::filesystem::path(AVENUES_SOURCE_DIR) / "plans" / "scenes" / name).string();
@@ -113,7 +120,7 @@ void expect_views_agree_with_rays(const CellComplex& c, int views, unsigned seed
 }  // namespace
 
 TEST(MeshScene, ACubeInABoxGivesValidConvexCellsFillingTheFreeSpace) {
-  const CellComplex c = build_mesh_scene({box_at({1, 1, 1}, {0, 0, 0})});
+  const CellComplex c = build_mesh_scene({box_at({1, 1, 1}, {0, 0, 0})}, nef());
   EXPECT_EQ(cells_are_valid(c), "");
   EXPECT_TRUE(c.warnings.empty());
   // The far box is the cube's bounds grown by the margin (2 m).
@@ -153,7 +160,7 @@ TEST(MeshScene, ACubeInABoxGivesValidConvexCellsFillingTheFreeSpace) {
 }
 
 TEST(MeshScene, RandomViewsAroundACubeAgreeWithRayCasting) {
-  const CellComplex c = build_mesh_scene({box_at({1, 1, 1}, {0, 0, 0})});
+  const CellComplex c = build_mesh_scene({box_at({1, 1, 1}, {0, 0, 0})}, nef());
   ASSERT_EQ(cells_are_valid(c), "");
   expect_views_agree_with_rays(c, 16, 1971);
 }
@@ -162,7 +169,7 @@ TEST(MeshScene, RandomViewsBetweenTwoBoxesInARoomAgreeWithRayCasting) {
   // A table and a cupboard; the far box, 0.5 m beyond them, stands for the room's walls.
   MeshSceneParams params;
   params.margin = 0.5;
-  const CellComplex c = build_mesh_scene({box_at({1.6, 0.9, 0.75}, {0, 0, 0}), box_at({0.6, 1.2, 2.0}, {2.2, 0.8, 0})}, params);
+  const CellComplex c = build_mesh_scene({box_at({1.6, 0.9, 0.75}, {0, 0, 0}), box_at({0.6, 1.2, 2.0}, {2.2, 0.8, 0})}, nef(params));
   ASSERT_EQ(cells_are_valid(c), "");
   EXPECT_NEAR(free_volume(c), box_volume(c.far_box) - 1.6 * 0.9 * 0.75 - 0.6 * 1.2 * 2.0, 1e-9 * box_volume(c.far_box));
   EXPECT_EQ(c.lines.size(), 24u);
@@ -182,7 +189,7 @@ TEST(MeshScene, PaperScenesGiveValidCellsAndAgreeWithRayCasting) {
   for (const Scene& s : {Scene{"wylie-tetrahedron.off", 0}, Scene{"wylie-cube.off", 0}, Scene{"crow-object.off", 0},
                          Scene{"torus.off", 0}, Scene{"cubes.off", 32}, Scene{"cottage.off", 7}}) {
     SCOPED_TRACE(s.name);
-    const CellComplex c = read_mesh_scene(scene_path(s.name));
+    const CellComplex c = read_mesh_scene(scene_path(s.name), nef());
     ASSERT_EQ(cells_are_valid(c), "");
     EXPECT_EQ(c.warnings.size(), s.warnings);
     EXPECT_EQ(c.plan_name, std::filesystem::path(s.name).stem().string());
@@ -232,7 +239,7 @@ TEST(MeshScene, ACubeMissingAFaceIsClosedByItsHullAndReported) {
   open.path = "open-cube.obj";
   open.triangles.resize(10);  // the last two triangles are one side
   open.polygon_of.resize(10);
-  const CellComplex c = build_mesh_scene({open});
+  const CellComplex c = build_mesh_scene({open}, nef());
   ASSERT_EQ(c.warnings.size(), 1u);
   EXPECT_NE(c.warnings[0].find("open-cube.obj"), std::string::npos) << c.warnings[0];
   EXPECT_NE(c.warnings[0].find("not closed"), std::string::npos) << c.warnings[0];
@@ -249,7 +256,7 @@ TEST(MeshScene, AFlatOpenComponentBecomesAThinPlateAndIsReported) {
   quad.polygon_of = {0, 0};
   MeshSceneParams params;
   params.sheet_thickness = 0.02;
-  const CellComplex c = build_mesh_scene({quad}, params);
+  const CellComplex c = build_mesh_scene({quad}, nef(params));
   ASSERT_EQ(c.warnings.size(), 1u);
   EXPECT_NE(c.warnings[0].find("sheet"), std::string::npos) << c.warnings[0];
   EXPECT_EQ(cells_are_valid(c), "");
@@ -273,7 +280,7 @@ TEST(MeshScene, EachConnectedComponentIsASolid) {
     EXPECT_EQ(m.triangles.size(), 12u);
     EXPECT_TRUE(m.closed);
   }
-  const CellComplex c = build_mesh_scene({two});
+  const CellComplex c = build_mesh_scene({two}, nef());
   EXPECT_EQ(cells_are_valid(c), "");
   EXPECT_NEAR(free_volume(c), box_volume(c.far_box) - 2, 1e-9 * box_volume(c.far_box));
 }

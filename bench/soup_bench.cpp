@@ -1,0 +1,105 @@
+// Avenues — how fast a mesh scene's free space is decomposed: the soup BSP (the default,
+// cells/soup_bsp.h) against the former Nef path, in one run (Google Benchmark).
+//
+//   ./build/bench/avenues_bench --benchmark_filter='soup/'
+//   AVENUES_OUTSIDE=/path/to/shared/outside ./build/bench/avenues_bench --benchmark_filter='soup/'
+//
+// Targets (docs/PERFORMANCE.md): the Viking room (3,828 faces, not closed) in <= 5 s; on a
+// k x k grid of open boxes (k = 4..64, 10 k^2 triangles) the time per triangle growing no
+// faster than log n. The Nef path runs once on the Viking room and on the small grids
+// (it takes minutes beyond). Counters: triangles, cells, portals.
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "cells/mesh_scene.h"
+
+using namespace avenues;
+
+namespace {
+
+std::string outside(const std::string& name) {
+  const char* env = std::getenv("AVENUES_OUTSIDE");
+  return ((env ? std::filesystem::path(env) : std::filesystem::path(AVENUES_SOURCE_DIR) / ".." / "shared" / "outside") /
+          name)
+      .string();
+}
+
+/// k x k open boxes (a floor and four walls each, 1 m, open at the top) 2 m apart.
+Mesh open_boxes(int k) {
+  Mesh m;
+  m.path = "open-boxes-" + std::to_string(k);
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k; ++j) {
+      const double x = 2.0 * i, y = 2.0 * j;
+      const Vec3 c[8] = {{x, y, 0}, {x + 1, y, 0}, {x + 1, y + 1, 0}, {x, y + 1, 0},
+                         {x, y, 1}, {x + 1, y, 1}, {x + 1, y + 1, 1}, {x, y + 1, 1}};
+      const int b = int(m.vertices.size());
+      m.vertices.insert(m.vertices.end(), c, c + 8);
+      const int quads[5][4] = {{0, 3, 2, 1}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+      for (const auto& q : quads) {
+        const int poly = m.polygon_of.empty() ? 0 : m.polygon_of.back() + 1;
+        m.triangles.push_back({b + q[0], b + q[1], b + q[2]});
+        m.triangles.push_back({b + q[0], b + q[2], b + q[3]});
+        m.polygon_of.push_back(poly), m.polygon_of.push_back(poly);
+      }
+    }
+  return m;
+}
+
+void decompose(benchmark::State& state, const std::vector<Mesh>& meshes, MeshSceneMethod method) {
+  MeshSceneParams params;
+  params.method = method;
+  CellComplex c;
+  for (auto _ : state) {
+    try {
+      c = build_mesh_scene(meshes, params);
+    } catch (const std::exception& e) {
+      state.SkipWithError(e.what());
+      break;
+    }
+    benchmark::DoNotOptimize(c.cells.data());
+  }
+  size_t triangles = 0;
+  for (const Mesh& m : meshes) triangles += m.triangles.size();
+  state.counters["triangles"] = double(triangles);
+  state.counters["cells"] = double(c.cells.size());
+  state.counters["portals"] = double(c.portals.size());
+  state.counters["us_per_triangle"] = benchmark::Counter(1e-6 * double(triangles),
+                                                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+[[maybe_unused]] const bool registered = [] {
+  std::vector<Mesh> viking;
+  try {
+    viking.push_back(load_mesh(outside("meshes/viking-room/viking_room.obj")));
+  } catch (const std::exception&) {
+  }
+  if (!viking.empty()) {
+    benchmark::RegisterBenchmark("soup/viking-room/bsp", decompose, viking, MeshSceneMethod::Bsp)
+        ->Unit(benchmark::kSecond)
+        ->Iterations(1);
+    benchmark::RegisterBenchmark("soup/viking-room/nef", decompose, viking, MeshSceneMethod::Nef)
+        ->Unit(benchmark::kSecond)
+        ->Iterations(1);
+  }
+  for (int k : {4, 8, 16, 32, 64}) {
+    const std::vector<Mesh> boxes{open_boxes(k)};
+    benchmark::RegisterBenchmark(("soup/open-boxes-" + std::to_string(k) + "/bsp").c_str(), decompose, boxes,
+                                 MeshSceneMethod::Bsp)
+        ->Unit(benchmark::kSecond)
+        ->Iterations(1);
+    if (k <= 8)
+      benchmark::RegisterBenchmark(("soup/open-boxes-" + std::to_string(k) + "/nef").c_str(), decompose, boxes,
+                                   MeshSceneMethod::Nef)
+          ->Unit(benchmark::kSecond)
+          ->Iterations(1);
+  }
+  return true;
+}();
+
+}  // namespace

@@ -1,0 +1,588 @@
+// Avenues — a polygon soup's free space as the leaves of a BSP of its polygons (see
+// soup_bsp.h).
+//
+// Exactness. Every polygon is kept "plane-based": its supporting plane, and for each edge
+// the plane that cuts it there (its inside on that plane's negative side). A vertex is the
+// meeting point of the support and the planes of its two edges, so every vertex anywhere
+// in the tree is the meeting of three planes of the input (a triangle's support or edge
+// planes, or the far box's): coordinates never grow with the number of cuts, and every
+// side test is an exact predicate (CGAL's Epeck: interval filters, exact rationals when
+// they cannot decide, e.g. for the many vertices lying exactly on a plane).
+//
+// The stages, timed into CellComplex::timings:
+//   decompose — a cell (the far box to start with) with its triangle fragments: while a
+//               fragment lies inside the cell (not on its boundary), cut the cell by the
+//               plane of one (the cheapest by splits and balance, axis-aligned preferred,
+//               estimated in doubles on a sample); fragments on that plane go to both sides
+//               as boundary. A cell all of whose fragments lie on its boundary is a leaf.
+//   cells     — each leaf face not on the far box is pushed down the other side of the
+//               node that made it, into the pieces facing each neighbouring leaf; each piece
+//               minus the leaf's fragments on that face is portal, the rest opaque. Rounded
+//               to double once.
+#include "cells/soup_bsp.h"
+
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/convex_hull_2.h>
+#include <CGAL/intersections.h>
+
+#include <boost/container/small_vector.hpp>
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+namespace avenues {
+
+namespace {
+
+using K = CGAL::Exact_predicates_exact_constructions_kernel;
+using FT = K::FT;
+using P3 = K::Point_3;
+using P2 = K::Point_2;
+using Pl = K::Plane_3;
+using CGAL::ON_NEGATIVE_SIDE;
+using CGAL::ON_ORIENTED_BOUNDARY;
+using CGAL::ON_POSITIVE_SIDE;
+using Side = CGAL::Oriented_side;
+using Sides = boost::container::small_vector<Side, 16>;
+
+constexpr int kInterior = INT_MIN;  ///< a fragment not (yet) on any cell boundary
+
+/// A convex polygon: edge i runs from v[i] to v[i+1] on plane e[i], the polygon on e[i]'s
+/// negative side. No three consecutive vertices are collinear.
+struct Poly {
+  Pl support;
+  std::vector<P3> v;
+  std::vector<Pl> e;
+};
+
+/// A piece of an input triangle in a cell.
+struct Frag {
+  Poly poly;
+  int tri = -1;
+  int on = kInterior;  ///< the node whose plane it lies on (a boundary fragment), or kInterior
+};
+
+/// A face of a cell: its polygon with an outward support; `id` the node whose plane made
+/// it (the neighbours lie in that node's child `toward`), or -1-k for far-box face k.
+struct CellFace {
+  Poly poly;
+  int id = -1;
+  int toward = 0;
+};
+
+struct Node {
+  Pl plane;
+  int child[2] = {-1, -1};  ///< negative side, positive side
+  int leaf = -1;
+};
+
+P3 meet(const Pl& a, const Pl& b, const Pl& c) {
+  const auto r = CGAL::intersection(a, b, c);
+  if (r)
+    if (const P3* p = boost::get<P3>(&*r)) return *p;
+  throw std::logic_error("soup bsp: three planes of a vertex do not meet in a point");
+}
+
+enum class Where { Neg, Pos, On, Both };
+
+/// The part of p not on side `drop` of the plane the signs `s` were taken against; its new
+/// edge lies on `cut` (that plane oriented with the kept part on its negative side).
+void clip(const Poly& p, const Sides& s, const Pl& cut, Side drop, Poly& out) {
+  const Side keep = drop == ON_POSITIVE_SIDE ? ON_NEGATIVE_SIDE : ON_POSITIVE_SIDE;
+  out.support = p.support;
+  out.v.clear();
+  out.e.clear();
+  const size_t n = p.v.size();
+  for (size_t i = 0; i < n; ++i) {
+    const size_t j = (i + 1) % n;
+    if (s[i] != drop) {
+      out.v.push_back(p.v[i]);
+      out.e.push_back(s[i] == ON_ORIENTED_BOUNDARY && s[j] == drop ? cut : p.e[i]);
+    }
+    if ((s[i] == keep && s[j] == drop) || (s[i] == drop && s[j] == keep)) {
+      out.v.push_back(meet(p.support, p.e[i], cut));
+      out.e.push_back(s[i] == keep ? cut : p.e[i]);
+    }
+  }
+}
+
+/// Where p lies against h; when it crosses, its parts on each side (either may be null).
+Where split(const Poly& p, const Pl& h, Poly* neg, Poly* pos) {
+  Sides s(p.v.size());
+  bool any_neg = false, any_pos = false;
+  for (size_t i = 0; i < p.v.size(); ++i) {
+    s[i] = h.oriented_side(p.v[i]);
+    any_neg |= s[i] == ON_NEGATIVE_SIDE;
+    any_pos |= s[i] == ON_POSITIVE_SIDE;
+  }
+  if (!any_neg && !any_pos) return Where::On;
+  if (!any_pos) return Where::Neg;
+  if (!any_neg) return Where::Pos;
+  if (neg) clip(p, s, h, ON_POSITIVE_SIDE, *neg);
+  if (pos) clip(p, s, h.opposite(), ON_NEGATIVE_SIDE, *pos);
+  return Where::Both;
+}
+
+/// The axis along which h's normal is largest (h is never parallel to it).
+int dominant_axis(const Pl& h) {
+  const FT a = CGAL::abs(h.a()), b = CGAL::abs(h.b()), c = CGAL::abs(h.c());
+  if (a >= b && a >= c) return 0;
+  return b >= c ? 1 : 2;
+}
+
+/// Far-box face k (axis k/2, the high side when k is odd), outward.
+Pl box_plane(const Box3& box, int k) {
+  const int axis = k / 2;
+  const bool hi = k % 2 == 1;
+  const double at = axis == 0 ? (hi ? box.hi.x : box.lo.x) : axis == 1 ? (hi ? box.hi.y : box.lo.y) : (hi ? box.hi.z : box.lo.z);
+  FT n[3] = {0, 0, 0};
+  n[axis] = hi ? 1 : -1;
+  return Pl(n[0], n[1], n[2], hi ? FT(-at) : FT(at));
+}
+
+/// The plane h cut by the far box's faces across its dominant axis: a quad on h.
+Poly quad_on(const Pl& h, const Box3& box) {
+  const int k = dominant_axis(h), u = (k + 1) % 3, w = (k + 2) % 3;
+  const Pl ulo = box_plane(box, 2 * u), uhi = box_plane(box, 2 * u + 1);
+  const Pl wlo = box_plane(box, 2 * w), whi = box_plane(box, 2 * w + 1);
+  Poly q;
+  q.support = h;
+  q.v = {meet(h, ulo, wlo), meet(h, uhi, wlo), meet(h, uhi, whi), meet(h, ulo, whi)};
+  q.e = {wlo, uhi, whi, ulo};
+  return q;
+}
+
+/// h inside a convex cell: the far box's quad on h, cut by each face plane of the cell.
+/// Empty when h misses the cell's interior.
+Poly section(const Pl& h, const std::vector<CellFace>& faces, const Box3& box) {
+  Poly q = quad_on(h, box);
+  Poly part;
+  for (const CellFace& f : faces) {
+    const Where w = split(q, f.poly.support, &part, nullptr);
+    if (w == Where::Pos) return {};
+    if (w == Where::Both) std::swap(q, part);
+  }
+  return q;
+}
+
+/// True when the vertices run counter-clockwise about the support's normal.
+bool ccw_about_normal(const Poly& p) {
+  return CGAL::orientation(p.v[0], p.v[1], p.v[2], p.v[0] + p.support.orthogonal_vector()) == CGAL::POSITIVE;
+}
+
+/// An exact point rounded to double once: the middle of its interval when that is
+/// tight, else from its exact value (which then tightens the interval, so that every
+/// later rounding of the point gives the same double).
+Vec3 rounded(const P3& q) {
+  const auto& a = CGAL::approx(q);
+  auto tight = [](const CGAL::Interval_nt<false>& i) { return i.sup() - i.inf() <= 1e-12 * std::max(1.0, std::fabs(i.inf())); };
+  if (!tight(a.x()) || !tight(a.y()) || !tight(a.z())) CGAL::exact(q);
+  const auto& b = CGAL::approx(q);
+  return {CGAL::to_double(b.x()), CGAL::to_double(b.y()), CGAL::to_double(b.z())};
+}
+
+std::vector<Vec3> rounded(const Poly& p, bool reverse) {
+  std::vector<Vec3> out;
+  out.reserve(p.v.size());
+  for (const P3& q : p.v) out.push_back(rounded(q));
+  if (reverse) std::reverse(out.begin(), out.end());
+  return out;
+}
+
+/// Area [m²] of a rounded convex polygon, as a fan from its first vertex.
+double area_of(const std::vector<Vec3>& p) {
+  Vec3 s{0, 0, 0};
+  for (size_t i = 1; i + 1 < p.size(); ++i) s = s + cross(p[i] - p[0], p[i + 1] - p[0]);
+  return length(s) / 2;
+}
+
+/// Approximate bounds of a polygon (interval midpoints), for cheap rejection.
+Box3 approx_bounds(const Poly& p) {
+  Box3 b;
+  for (const P3& q : p.v) {
+    const auto& a = CGAL::approx(q);
+    b.add({CGAL::to_double(a.x()), CGAL::to_double(a.y()), CGAL::to_double(a.z())});
+  }
+  return b;
+}
+
+bool boxes_meet(const Box3& a, const Box3& b, double tol) {
+  return a.lo.x <= b.hi.x + tol && b.lo.x <= a.hi.x + tol && a.lo.y <= b.hi.y + tol && b.lo.y <= a.hi.y + tol &&
+         a.lo.z <= b.hi.z + tol && b.lo.z <= a.hi.z + tol;
+}
+
+/// A triangle as a plane-based polygon: its edge planes hold the edge and the support's
+/// dominant axis (small coefficients: differences of input coordinates).
+Poly triangle_poly(const P3& a, const P3& b, const P3& c) {
+  Poly p;
+  p.support = Pl(a, b, c);
+  const int k = dominant_axis(p.support);
+  const K::Vector_3 axis(k == 0 ? 1 : 0, k == 1 ? 1 : 0, k == 2 ? 1 : 0);
+  p.v = {a, b, c};
+  for (int i = 0; i < 3; ++i) {
+    const P3 &s = p.v[size_t(i)], &t = p.v[size_t((i + 1) % 3)], &o = p.v[size_t((i + 2) % 3)];
+    Pl e(s, t, s + axis);
+    if (e.oriented_side(o) == ON_POSITIVE_SIDE) e = e.opposite();
+    p.e.push_back(e);
+  }
+  return p;
+}
+
+/// The approximate plane of a triangle, for choosing splitters in doubles.
+struct ApproxPlane {
+  Vec3 n;
+  double d = 0;
+  bool axis = false;  ///< exactly perpendicular to an axis
+};
+
+struct Builder {
+  const Box3& box;
+  std::vector<Node> nodes;
+  std::vector<ApproxPlane> approx;
+  std::vector<Pl> support_of;  ///< per triangle, its exact plane
+  double tol = 0;              ///< [m] "on a plane" in the cost estimate
+
+  struct Leaf {
+    std::vector<CellFace> faces;
+    std::vector<Frag> frags;  ///< all on its boundary
+  };
+  std::vector<Leaf> leaves;
+  SoupBspStats stats;
+
+  /// The splitter for a cell: the plane of one of its interior fragments, the cheapest by
+  /// 8·splits + |front − back| on a sample, non-axis-aligned planes paying extra.
+  int choose(const std::vector<Frag>& frags, const std::vector<size_t>& interior) const {
+    constexpr size_t kCandidates = 12, kSample = 64;
+    const size_t m = interior.size();
+    const size_t cstep = std::max<size_t>(1, m / kCandidates), sstep = std::max<size_t>(1, m / kSample);
+    int best = -1;
+    double best_cost = HUGE_VAL;
+    for (size_t ci = 0; ci < m; ci += cstep) {
+      const int tri = frags[interior[ci]].tri;
+      const ApproxPlane& h = approx[size_t(tri)];
+      double front = 0, back = 0, cut = 0, on = 0;
+      for (size_t si = 0; si < m; si += sstep) {
+        bool neg = false, pos = false;
+        for (const P3& q : frags[interior[si]].poly.v) {
+          const auto& a = CGAL::approx(q);
+          const double s = dot(h.n, Vec3{CGAL::to_double(a.x()), CGAL::to_double(a.y()), CGAL::to_double(a.z())}) + h.d;
+          neg |= s < -tol, pos |= s > tol;
+        }
+        if (neg && pos) cut += 1;
+        else if (neg) back += 1;
+        else if (pos) front += 1;
+        else on += 1;
+      }
+      const double n = front + back + cut + on;
+      const double cost = 8 * cut + std::fabs(front - back) - on + (h.axis ? 0 : 0.25 * n);
+      if (cost < best_cost) best_cost = cost, best = tri;
+    }
+    return best;
+  }
+
+  void build(std::vector<CellFace> root_faces, std::vector<Frag> root_frags) {
+    struct Task {
+      int node;
+      std::vector<CellFace> faces;
+      std::vector<Frag> frags;
+      int depth;
+    };
+    nodes.emplace_back();
+    std::vector<Task> stack;
+    stack.push_back({0, std::move(root_faces), std::move(root_frags), 0});
+    while (!stack.empty()) {
+      Task t = std::move(stack.back());
+      stack.pop_back();
+      std::vector<size_t> interior;
+      for (size_t i = 0; i < t.frags.size(); ++i)
+        if (t.frags[i].on == kInterior) interior.push_back(i);
+      if (interior.empty()) {
+        nodes[size_t(t.node)].leaf = int(leaves.size());
+        stats.depth = std::max(stats.depth, t.depth);
+        stats.fragments += t.frags.size();
+        leaves.push_back({std::move(t.faces), std::move(t.frags)});
+        continue;
+      }
+      const int id = t.node;
+      const Pl h = support_of[size_t(choose(t.frags, interior))];
+      nodes[size_t(id)].plane = h;
+      ++stats.nodes;
+      Task neg{int(nodes.size()), {}, {}, t.depth + 1}, pos{int(nodes.size()) + 1, {}, {}, t.depth + 1};
+      nodes[size_t(id)].child[0] = neg.node, nodes[size_t(id)].child[1] = pos.node;
+      nodes.emplace_back();
+      nodes.emplace_back();
+      // The cell's faces, cut; then the new face on h, outward for each side.
+      Poly cap = section(h, t.faces, box);
+      if (cap.v.size() < 3) throw std::logic_error("soup bsp: a splitting plane misses its cell");
+      for (CellFace& f : t.faces) {
+        CellFace a{{}, f.id, f.toward}, b{{}, f.id, f.toward};
+        switch (split(f.poly, h, &a.poly, &b.poly)) {
+          case Where::Neg: neg.faces.push_back(std::move(f)); break;
+          case Where::Pos: pos.faces.push_back(std::move(f)); break;
+          case Where::Both:
+            neg.faces.push_back(std::move(a));
+            pos.faces.push_back(std::move(b));
+            break;
+          case Where::On: throw std::logic_error("soup bsp: a splitting plane holds a face of its cell");
+        }
+      }
+      neg.faces.push_back({cap, id, 1});
+      cap.support = h.opposite();
+      pos.faces.push_back({std::move(cap), id, 0});
+      for (Frag& f : t.frags) {
+        Frag a{{}, f.tri, f.on}, b{{}, f.tri, f.on};
+        switch (split(f.poly, h, &a.poly, &b.poly)) {
+          case Where::Neg: neg.frags.push_back(std::move(f)); break;
+          case Where::Pos: pos.frags.push_back(std::move(f)); break;
+          case Where::Both:
+            neg.frags.push_back(std::move(a));
+            pos.frags.push_back(std::move(b));
+            break;
+          case Where::On:
+            f.on = id;
+            neg.frags.push_back(f);
+            pos.frags.push_back(std::move(f));
+            break;
+        }
+      }
+      stack.push_back(std::move(pos));
+      stack.push_back(std::move(neg));
+    }
+    stats.leaves = leaves.size();
+  }
+
+  /// The pieces of face f (of leaf `self`) facing each leaf below `node`.
+  void neighbours(int node, const Poly& f, int self, std::vector<std::pair<int, Poly>>& out) const {
+    std::vector<std::pair<int, Poly>> stack{{node, f}};
+    while (!stack.empty()) {
+      auto [n, p] = std::move(stack.back());
+      stack.pop_back();
+      const Node& nd = nodes[size_t(n)];
+      if (nd.leaf >= 0) {
+        if (nd.leaf != self) out.emplace_back(nd.leaf, std::move(p));
+        continue;
+      }
+      Poly a, b;
+      switch (split(p, nd.plane, &a, &b)) {
+        case Where::Neg: stack.emplace_back(nd.child[0], std::move(p)); break;
+        case Where::Pos: stack.emplace_back(nd.child[1], std::move(p)); break;
+        case Where::Both:
+          stack.emplace_back(nd.child[0], std::move(a));
+          stack.emplace_back(nd.child[1], std::move(b));
+          break;
+        case Where::On: throw std::logic_error("soup bsp: a face lies on a plane of the other side");
+      }
+    }
+  }
+};
+
+/// `piece` minus convex `hole` (same plane): the convex pieces outside it go to `rest`;
+/// the part inside is returned (empty when they do not overlap).
+Poly subtract(Poly piece, const Poly& hole, std::vector<Poly>& rest) {
+  Poly in, out;
+  for (const Pl& e : hole.e) {
+    switch (split(piece, e, &in, &out)) {
+      case Where::Neg: break;
+      case Where::Pos:
+      case Where::On:
+        rest.push_back(std::move(piece));
+        return {};
+      case Where::Both:
+        rest.push_back(std::move(out));
+        std::swap(piece, in);
+        break;
+    }
+  }
+  return piece;
+}
+
+/// What leaf `self` sees across one face toward leaf `other`.
+struct Contact {
+  int other = -1;
+  std::vector<Poly> opaque;  ///< covered by the leaf's fragments on the face
+  std::vector<MaterialId> material;
+  std::vector<Poly> open;    ///< not covered: portals (from the lower-numbered leaf)
+};
+
+}  // namespace
+
+SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Box3& box, CellComplex& out) {
+  const double scale = std::max({1.0, std::fabs(box.lo.x), std::fabs(box.hi.x), std::fabs(box.lo.y), std::fabs(box.hi.y),
+                                 std::fabs(box.lo.z), std::fabs(box.hi.z)});
+  Builder b{box, {}, {}, {}, 1e-12 * scale, {}, {}};
+  std::vector<Frag> frags;
+  std::vector<CellFace> root;
+  std::vector<MaterialId> material;
+  {
+    ScopedStageTimer timer(out.timings, "decompose");
+    for (size_t i = 0; i < triangles.size(); ++i) {
+      const SoupTriangle& t = triangles[i];
+      const P3 a(t.p[0].x, t.p[0].y, t.p[0].z), c1(t.p[1].x, t.p[1].y, t.p[1].z), c2(t.p[2].x, t.p[2].y, t.p[2].z);
+      if (CGAL::collinear(a, c1, c2)) {
+        b.stats.degenerate.push_back(i);
+        continue;
+      }
+      Frag f;
+      f.poly = triangle_poly(a, c1, c2);
+      f.tri = int(b.support_of.size());
+      b.support_of.push_back(f.poly.support);
+      ApproxPlane h;
+      h.n = cross(t.p[1] - t.p[0], t.p[2] - t.p[0]);
+      h.n = (1.0 / length(h.n)) * h.n;
+      h.d = -dot(h.n, t.p[0]);
+      h.axis = (t.p[0].x == t.p[1].x && t.p[1].x == t.p[2].x) || (t.p[0].y == t.p[1].y && t.p[1].y == t.p[2].y) ||
+               (t.p[0].z == t.p[1].z && t.p[1].z == t.p[2].z);
+      b.approx.push_back(h);
+      material.push_back(t.material);
+      frags.push_back(std::move(f));
+    }
+    b.stats.triangles = frags.size();
+    // The far box as a cell: each face the quad on its plane, cut by the others.
+    std::vector<CellFace> faces;
+    for (int k = 0; k < 6; ++k) faces.push_back({quad_on(box_plane(box, k), box), -1 - k, 0});
+    for (int k = 0; k < 6; ++k) {
+      std::vector<CellFace> others;
+      for (int j = 0; j < 6; ++j)
+        if (j != k) others.push_back(faces[size_t(j)]);
+      root.push_back({section(box_plane(box, k), others, box), -1 - k, 0});
+    }
+    b.build(std::move(root), std::move(frags));
+  }
+
+  ScopedStageTimer timer(out.timings, "cells");
+  // What each leaf sees across each face, exact.
+  std::vector<std::vector<std::vector<Contact>>> contacts(b.leaves.size());
+  for (size_t l = 0; l < b.leaves.size(); ++l) {
+    const Builder::Leaf& leaf = b.leaves[l];
+    contacts[l].resize(leaf.faces.size());
+    for (size_t k = 0; k < leaf.faces.size(); ++k) {
+      const CellFace& face = leaf.faces[k];
+      if (face.id < 0) continue;  // the far box: opaque
+      std::vector<std::pair<int, Poly>> pieces;
+      b.neighbours(b.nodes[size_t(face.id)].child[face.toward], face.poly, int(l), pieces);
+      std::vector<std::pair<const Frag*, Box3>> cover;
+      for (const Frag& f : leaf.frags)
+        if (f.on == face.id) cover.emplace_back(&f, approx_bounds(f.poly));
+      for (auto& [other, piece] : pieces) {
+        Contact c;
+        c.other = other;
+        // Only the fragments meeting the piece's bounds can cover part of it (a big
+        // face may hold thousands of fragments and face thousands of small leaves).
+        const Box3 pb = approx_bounds(piece);
+        std::vector<Poly> open{std::move(piece)};
+        for (const auto& [f, fb] : cover) {
+          if (!boxes_meet(fb, pb, b.tol)) continue;
+          std::vector<Poly> next;
+          for (Poly& r : open) {
+            Poly in = subtract(std::move(r), f->poly, next);
+            if (in.v.size() >= 3) {
+              c.opaque.push_back(std::move(in));
+              c.material.push_back(material[size_t(f->tri)]);
+            }
+          }
+          open = std::move(next);
+          if (open.empty()) break;
+        }
+        c.open = std::move(open);
+        contacts[l][k].push_back(std::move(c));
+      }
+    }
+  }
+
+  // Portals, from the lower-numbered leaf of each pair: convex, counter-clockwise about
+  // its outward normal. A piece that rounds to no area stays opaque on both sides.
+  const CellId base = CellId(out.cells.size());
+  const double tiny = 1e-18 * scale * scale;  // [m²]
+  struct Shared {
+    std::vector<PortalId> portals;
+    std::vector<std::vector<Vec3>> closed;  ///< counter-clockwise about the lower leaf's outward normal
+  };
+  std::map<std::pair<int, int>, Shared> shared;
+  std::vector<std::vector<Plane>> planes(b.leaves.size());
+  for (size_t l = 0; l < b.leaves.size(); ++l)
+    for (const CellFace& face : b.leaves[l].faces) {
+      const Pl& h = face.poly.support;
+      Vec3 n{CGAL::to_double(h.a()), CGAL::to_double(h.b()), CGAL::to_double(h.c())};
+      n = (1.0 / length(n)) * n;
+      const std::vector<Vec3> poly = rounded(face.poly, false);
+      double d = 0;
+      for (Vec3 p : poly) d -= dot(n, p);
+      planes[l].push_back({n, d / double(poly.size())});
+    }
+  for (size_t l = 0; l < b.leaves.size(); ++l)
+    for (size_t k = 0; k < b.leaves[l].faces.size(); ++k) {
+      const bool about_n = ccw_about_normal(b.leaves[l].faces[k].poly);
+      for (const Contact& c : contacts[l][k]) {
+        if (c.other < int(l)) continue;
+        Shared& s = shared[{int(l), c.other}];
+        for (const Poly& p : c.open) {
+          std::vector<Vec3> poly = rounded(p, !about_n);
+          if (!(area_of(poly) > tiny)) {
+            s.closed.push_back(std::move(poly));
+            continue;
+          }
+          Portal portal;
+          portal.cell[0] = base + CellId(l), portal.cell[1] = base + CellId(c.other);
+          portal.poly = std::move(poly);
+          portal.plane = planes[l][k];
+          portal.kind = PortalKind::Open;
+          s.portals.push_back(PortalId(out.portals.size()));
+          out.portals.push_back(std::move(portal));
+        }
+      }
+    }
+
+  // The cells: faces rounded, counter-clockwise seen from inside (about −n).
+  for (size_t l = 0; l < b.leaves.size(); ++l) {
+    const Builder::Leaf& leaf = b.leaves[l];
+    Cell cell;
+    cell.kind = CellKind::Outside;
+    cell.prism = false;
+    std::vector<P2> xy;
+    cell.z0 = HUGE_VAL, cell.z1 = -HUGE_VAL;
+    for (const CellFace& f : leaf.faces)
+      for (const P3& p : f.poly.v) {
+        xy.emplace_back(p.x(), p.y());
+        const double z = rounded(p).z;
+        cell.z0 = std::min(cell.z0, z), cell.z1 = std::max(cell.z1, z);
+      }
+    std::vector<P2> hull;
+    CGAL::convex_hull_2(xy.begin(), xy.end(), std::back_inserter(hull));
+    for (const P2& p : hull) {
+      const Vec3 q = rounded(P3(p.x(), p.y(), 0));
+      cell.footprint.push_back({q.x, q.y});
+    }
+    for (size_t k = 0; k < leaf.faces.size(); ++k) {
+      const CellFace& cf = leaf.faces[k];
+      const bool about_n = ccw_about_normal(cf.poly);
+      Face face;
+      face.plane = planes[l][k];
+      face.poly = rounded(cf.poly, about_n);
+      if (cf.id < 0) face.opaque.push_back({face.poly, -1});
+      for (const Contact& c : contacts[l][k]) {
+        for (size_t i = 0; i < c.opaque.size(); ++i) face.opaque.push_back({rounded(c.opaque[i], about_n), c.material[i]});
+        const bool lower = int(l) < c.other;
+        const auto it = shared.find(lower ? std::pair{int(l), c.other} : std::pair{c.other, int(l)});
+        if (it == shared.end()) continue;
+        for (PortalId p : it->second.portals) face.portals.push_back(p);
+        for (const std::vector<Vec3>& poly : it->second.closed) {
+          std::vector<Vec3> q = poly;
+          if (lower) std::reverse(q.begin(), q.end());
+          face.opaque.push_back({std::move(q), -1});
+        }
+      }
+      cell.portals.insert(cell.portals.end(), face.portals.begin(), face.portals.end());
+      cell.faces.push_back(std::move(face));
+    }
+    // Faces with the most portals last (Cell::prism == false: in no particular order).
+    std::stable_sort(cell.faces.begin(), cell.faces.end(),
+                     [](const Face& x, const Face& y) { return x.portals.size() < y.portals.size(); });
+    out.cells.push_back(std::move(cell));
+  }
+  return b.stats;
+}
+
+}  // namespace avenues

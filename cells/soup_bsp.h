@@ -1,0 +1,45 @@
+// Avenues — a polygon soup's free space as the leaves of a BSP of its own polygons.
+//
+// Teller 1992 (§3, "Spatial subdivision"): split space by the planes of the scene's
+// polygons until every polygon lies on the boundary of a leaf; the leaves are convex
+// cells, and the parts of leaf boundaries that no polygon covers are the portals. Every
+// polygon is an opaque surface seen from both sides; nothing needs to be closed,
+// oriented or free of intersections: coincident and crossing polygons are cut where they
+// meet, exactly. Only soup_bsp.cpp sees CGAL (exact planes, vertices as the meeting of
+// three planes, so no coordinate grows with the depth of the tree); what leaves it are
+// Avenues' own structs, rounded to double once.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "cells/cell_complex.h"
+
+namespace avenues {
+
+/// One input triangle of the soup.
+struct SoupTriangle {
+  std::array<Vec3, 3> p;    ///< [m] its corners (either orientation: both sides are opaque)
+  MaterialId material = -1; ///< carried onto the opaque pieces it covers
+};
+
+/// What the decomposition did, for benchmarks and messages.
+struct SoupBspStats {
+  size_t triangles = 0;      ///< non-degenerate triangles used
+  std::vector<size_t> degenerate;  ///< input triangles with no area (collinear corners), dropped
+  size_t nodes = 0;          ///< splitting planes in the tree
+  size_t leaves = 0;         ///< cells before rounding
+  size_t fragments = 0;      ///< pieces of triangles in leaves (triangles cut by splits)
+  int depth = 0;             ///< deepest leaf
+};
+
+/// Decomposes `far_box` (which must hold every triangle strictly inside) into the
+/// convex leaves of a BSP of the triangles' planes. Fills out.cells (Cell::prism =
+/// false, CellKind::Outside) and out.portals (PortalKind::Open, convex pieces of the
+/// leaf boundaries no triangle covers); opaque pieces are the parts covered by a
+/// triangle and the far box's faces. Splitting planes: the triangles' own planes, chosen
+/// at each node by a cheap cost (splits and balance on a sample of the node's
+/// triangles, axis-aligned planes preferred). Leaves are not merged.
+SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Box3& far_box, CellComplex& out);
+
+}  // namespace avenues

@@ -1,0 +1,106 @@
+// Avenues tests — checks of a soup BSP scene (cells/soup_bsp.h) shared by soup_bsp_test.cpp
+// and hard_cases_test.cpp: every input triangle kept as opaque surface, and random views
+// against the ray oracle.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <random>
+#include <string>
+
+#include "cells/mesh_scene.h"
+#include "ray_oracle.h"
+#include "visibility/visible_set.h"
+
+namespace avenues::testing {
+
+/// A file from outside (../shared/outside/ beside the project root; AVENUES_OUTSIDE names
+/// another folder, e.g. for a git worktree).
+inline std::string outside_path(const std::string& name) {
+  const char* env = std::getenv("AVENUES_OUTSIDE");
+  const std::filesystem::path dir = env ? std::filesystem::path(env)
+                                        : std::filesystem::path(AVENUES_SOURCE_DIR) / ".." / "shared" / "outside";
+  return (dir / name).string();
+}
+
+/// Input triangles (of some area) with no opaque piece of the complex covering their
+/// centroid, on their plane. Each triangle is looked up among the opaque pieces whose
+/// bounds hold the centroid.
+inline int triangles_missing_from_export(const CellComplex& c, const std::vector<Mesh>& meshes) {
+  struct Piece {
+    const OpaquePoly* op;
+    const Face* face;
+    Box3 box;
+  };
+  std::vector<Piece> pieces;
+  for (const Cell& cell : c.cells)
+    for (const Face& f : cell.faces)
+      for (const OpaquePoly& op : f.opaque) {
+        Box3 b;
+        for (Vec3 p : op.poly) b.add(p);
+        pieces.push_back({&op, &f, b});
+      }
+  std::sort(pieces.begin(), pieces.end(), [](const Piece& a, const Piece& b) { return a.box.lo.x < b.box.lo.x; });
+  const double scale = std::max({1.0, std::fabs(c.far_box.lo.x), std::fabs(c.far_box.hi.x), std::fabs(c.far_box.lo.y),
+                                 std::fabs(c.far_box.hi.y), std::fabs(c.far_box.lo.z), std::fabs(c.far_box.hi.z)});
+  const double tol = 1e-9 * scale;
+  int missing = 0;
+  for (const Mesh& m : meshes)
+    for (const auto& t : m.triangles) {
+      const Vec3 a = m.vertices[size_t(t[0])], b = m.vertices[size_t(t[1])], d = m.vertices[size_t(t[2])];
+      const Vec3 n = cross(b - a, d - a);
+      if (!(length(n) > 1e-20 * scale * scale)) continue;  // no area: dropped, with a warning
+      const Vec3 g = (1.0 / 3) * (a + b + d);
+      bool found = false;
+      for (const Piece& p : pieces) {
+        if (p.box.lo.x > g.x + tol) break;
+        if (!p.box.contains(g, tol) || std::fabs(p.face->plane.eval(g)) > tol) continue;
+        bool in = true;
+        const auto& q = p.op->poly;
+        for (size_t k = 0; k < q.size() && in; ++k)
+          in = dot(cross(q[(k + 1) % q.size()] - q[k], g - q[k]), p.face->plane.n) <= tol * length(q[(k + 1) % q.size()] - q[k]);
+        if (in) {
+          found = true;
+          break;
+        }
+      }
+      missing += !found;
+    }
+  return missing;
+}
+
+/// `views` random views from random cells at `width` × `height`, one ray every `step`
+/// pixels checked against the ray oracle: no missing cell, no extra avenue.
+inline void expect_soup_views_agree_with_rays(const CellComplex& c, int views, unsigned seed, int width, int height,
+                                              int step) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<size_t> pick(0, c.cells.size() - 1);
+  std::uniform_real_distribution<double> yaw(0, 360), pitch(-60, 60), fov(40, 110), w(0.05, 1.0);
+  for (int v = 0; v < views; ++v) {
+    const Cell& cell = c.cells[pick(rng)];
+    Vec3 eye{0, 0, 0};
+    double sum = 0;
+    for (const Face& f : cell.faces)
+      for (Vec3 p : f.poly) {
+        const double k = w(rng);
+        eye = eye + k * p, sum += k;
+      }
+    eye = (1.0 / sum) * eye;
+    const Location loc = c.locate(eye);
+    ASSERT_EQ(loc.what, Location::What::Cell) << "view " << v;
+    const double y = yaw(rng), p = pitch(rng), f = fov(rng);
+    const Camera cam = Camera::yaw_pitch(eye, y, p, f, width, height);
+    SCOPED_TRACE("view " + std::to_string(v) + ": eye " + std::to_string(eye.x) + "," + std::to_string(eye.y) + "," +
+                 std::to_string(eye.z) + " yaw " + std::to_string(y) + " pitch " + std::to_string(p));
+    const VisibleSet vs = find_visible(c, cam, loc.cell, Kernel::Double);
+    const OracleResult r = check_visible_set(c, cam, vs, step);
+    EXPECT_EQ(r.missing, 0);
+    EXPECT_EQ(r.extra, 0);
+  }
+}
+
+}  // namespace avenues::testing
