@@ -583,7 +583,7 @@ CellComplex cells_from_bytes(std::string_view bytes, const std::string& name) {
   read_complex(r, c);
   check_indices(c, r);
   c.index();
-  check_complex(c, path);
+  check_complex(c, name);
   return c;
 }
 
