@@ -57,6 +57,8 @@ void progress(int done, int total, double seconds) {
 /// Keyframes from a text file: one per line, "EX EY EZ LX LY LZ" (eye, then the point it
 /// looks at, in metres), '#' starts a comment. Throws PlanError naming the file and line.
 std::vector<std::pair<Vec3, Vec3>> read_keys(const std::string& file) {
+  if (std::error_code ec; !std::filesystem::is_regular_file(file, ec))
+    throw std::runtime_error("cannot read keyframes " + file + (std::filesystem::exists(file, ec) ? ": not a regular file" : ": no such file"));
   std::ifstream in(file);
   if (!in) throw std::runtime_error("cannot read keyframes " + file);
   std::vector<std::pair<Vec3, Vec3>> keys;
@@ -80,10 +82,9 @@ int run_path(const PathOptions& opt) {
   const CellComplex& c = plan.complex;
   if (opt.format != "png" && opt.format != "svg") throw std::runtime_error("--format wants png or svg, not '" + opt.format + "'");
   int w = 0, h = 0;
-  if (!parse_size(opt.size, w, h)) throw std::runtime_error("--size wants WIDTHxHEIGHT in pixels, not '" + opt.size + "'");
+  size_option(opt.size, w, h);
   if (!(opt.fov > 0 && opt.fov <= 179)) throw std::runtime_error("--fov must lie in (0, 179] degrees");
-  Kernel kernel;
-  if (!parse_kernel(opt.kernel, kernel)) throw std::runtime_error("--kernel wants float, double, filtered or exact");
+  const Kernel kernel = kernel_option(opt.kernel);
   if (opt.through.empty() == opt.keys.empty()) throw std::runtime_error("give either --through ROOMS or --keys FILE");
   if (!(opt.step > 0)) throw std::runtime_error("--step must be a positive length");
   std::vector<Vec3> eyes, looks;  // looks: empty for a route (look ahead along it)
