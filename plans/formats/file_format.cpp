@@ -150,7 +150,9 @@ FileFormat detect_format(const std::string& path, const std::string& head, uint6
     if (size == 84 + 50 * uint64_t(n)) return FileFormat::Stl;
   }
   // No signature: the extension, then what the text looks like.
-  if (const FileFormat by_name = format_of_extension(path); by_name != FileFormat::Unknown) return by_name;
+  // (A TOML plan is text: binary bytes under a .toml name are no plan Avenues knows.)
+  if (const FileFormat by_name = format_of_extension(path); by_name != FileFormat::Unknown)
+    return by_name == FileFormat::Toml && !is_text(h) ? FileFormat::Unknown : by_name;
   if (starts_with(t, "solid") && t.find("facet") != std::string_view::npos) return FileFormat::Stl;
   if (looks_like_obj(t)) return FileFormat::Obj;
   if (is_text(h)) return FileFormat::Toml;
