@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
+#include "core/subprocess.h"
 #include "cells/build_cells.h"
 #include "plans/formats/doom_map.h"
 #include "plans/plan.h"
@@ -377,23 +378,24 @@ std::vector<TessRow> tessellation_study(bool quick) {
 
 void write_text(const fs::path& p, const std::string& text) { write_file_atomically(p.string(), text); }
 
-/// Runs gnuplot on `script` (written beside its data), which writes `svg`.
+/// Runs gnuplot on `script` (written beside its data), which writes `svg`. By argv, in the
+/// script's folder: the scripts name their files without a folder, so no path the user chose
+/// reaches gnuplot's command language (which can run shell commands) or a shell.
 void gnuplot(const fs::path& script, const fs::path& svg) {
-  const std::string cmd = "gnuplot '" + script.string() + "' 2>&1";
-  std::FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (!pipe) throw std::runtime_error("cannot run gnuplot (install gnuplot-nox)");
-  std::string out;
-  char buf[256];
-  while (std::fgets(buf, sizeof buf, pipe)) out += buf;
-  const int status = ::pclose(pipe);
-  if (status != 0 || !fs::exists(svg))
-    throw std::runtime_error("gnuplot failed on " + script.string() + (out.empty() ? "" : ": " + out) +
-                             (status == 127 * 256 ? " (is gnuplot installed? .ci/install-deps installs gnuplot-nox)" : ""));
+  const fs::path dir = script.has_parent_path() ? script.parent_path() : fs::path(".");
+  ProgramResult r;
+  try {
+    r = run_program({"gnuplot", script.filename().string()}, dir.string());
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(std::string(e.what()) + " (.ci/install-deps installs gnuplot-nox)");
+  }
+  if (r.status != 0 || !fs::exists(svg))
+    throw std::runtime_error("gnuplot failed on " + script.string() + (r.output.empty() ? "" : ": " + r.output));
 }
 
 std::string plot_head(const fs::path& svg, const std::string& title, const std::string& xlabel, const std::string& ylabel) {
   return "set terminal svg size 720,440 dynamic font 'sans,11' background '#ffffff'\n"
-         "set output '" + svg.string() + "'\n"
+         "set output '" + svg.filename().string() + "'\n"
          "set title '" + title + "'\nset xlabel '" + xlabel + "'\nset ylabel '" + ylabel + "'\n"
          "set grid\nset key outside right top\nset logscale x\nset format x '%g'\nset format y '%g'\n";
 }
@@ -433,7 +435,7 @@ int run_bench_accuracy(const AccuracyOptions& opt) {
                plot_head(svg, "Visibility kernels: time against error (0 errors drawn at 1e-4)",
                          "median traversal time per view [µs]", "errors per view (cells + mask vertices > 0.5 px + drawings)") +
                    "set logscale y\nset offsets graph 0.1, graph 0.1, graph 0.1, graph 0.1\n"
-                   "plot '" + (figs / "kernels.dat").string() + "' using 2:3 with points pt 7 ps 1.5 notitle, '' using 2:3:1 with labels offset 0,1 notitle\n");
+                   "plot 'kernels.dat' using 2:3 with points pt 7 ps 1.5 notitle, '' using 2:3:1 with labels offset 0,1 notitle\n");
     gnuplot(figs / "kernels.gp", svg);
   }
   {
@@ -459,7 +461,7 @@ int run_bench_accuracy(const AccuracyOptions& opt) {
         }
         view_index = int(std::find(views.begin(), views.end(), r.view) - views.begin());
         size_index = int(std::find(widths.begin(), widths.end(), r.width) - widths.begin());
-        plots += std::string(plots.empty() ? "plot " : ", ") + "'" + (figs / "render.dat").string() + "' index " +
+        plots += std::string(plots.empty() ? "plot " : ", ") + "'render.dat' index " +
                  std::to_string(block) + " using 1:2 with linespoints lc " + std::to_string(view_index + 1) + " dt " +
                  (m == ShadingModel::Flat ? "1" : "2") + " pt " + std::to_string(5 + 2 * size_index) + " title '" +
                  r.view + " " + std::to_string(r.width) + "×" + std::to_string(r.height) + " " + to_string(m) +
@@ -485,7 +487,7 @@ int run_bench_accuracy(const AccuracyOptions& opt) {
                plot_head(svg, "Curved walls: decomposition time against geometric error (labels: tolerance [m])",
                          "decomposition time [ms]", "largest sagitta [mm]") +
                    "set logscale y\nset offsets graph 0.1, graph 0.1, graph 0.1, graph 0.1\n"
-                   "plot '" + (figs / "tessellation.dat").string() + "' using 2:3 with linespoints pt 7 title 'curved-walls', '' using 2:3:1 with labels offset 0,1 notitle\n");
+                   "plot 'tessellation.dat' using 2:3 with linespoints pt 7 title 'curved-walls', '' using 2:3:1 with labels offset 0,1 notitle\n");
     gnuplot(figs / "tessellation.gp", svg);
   }
 

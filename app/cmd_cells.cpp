@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "core/atomic_file.h"
 #include "core/number_format.h"
 #include "cells/build_cells.h"
 #include "render/plan_drawing.h"
@@ -113,6 +114,8 @@ void print_summary(std::ostream& out, const LoadedPlan& plan) {
 }
 
 int run_cells(const CellsOptions& opt) {
+  for (const std::string& f : {opt.save, opt.svg})
+    if (!f.empty()) check_output_path(f);  // a device or FIFO there: refused before the work
   LoadedPlan plan = load_plan_source(opt.plan);
   // Outputs are written before the summary so that a failure to write shows as an
   // error, not after a summary that looked like success.

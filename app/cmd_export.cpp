@@ -3,11 +3,13 @@
 #include <iostream>
 
 #include "app/commands.h"
+#include "core/atomic_file.h"
 #include "cells/build_cells.h"
 
 namespace avenues::app {
 
 int run_export(const ExportOptions& opt) {
+  check_output_path(opt.output);  // a device or FIFO there: refused before the work
   LoadedPlan plan = load_plan_source(opt.plan);
   export_obj(plan.complex, opt.output);
   long long triangles = 0;

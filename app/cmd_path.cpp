@@ -31,6 +31,7 @@
 
 #include "app/commands.h"
 #include "app/mpi_walk.h"
+#include "app/option_checks.h"
 #include "cells/build_cells.h"
 #include "render/effects.h"
 #include "render/drawing.h"
@@ -76,6 +77,8 @@ void progress(int64_t done, int64_t total, double seconds, bool terminal) {
 /// Keyframes from a text file: one per line, "EX EY EZ LX LY LZ" (eye, then the point it
 /// looks at, in metres), '#' starts a comment. Throws PlanError naming the file and line.
 std::vector<std::pair<Vec3, Vec3>> read_keys(const std::string& file) {
+  if (std::error_code ec; !std::filesystem::is_regular_file(file, ec))
+    throw std::runtime_error("cannot read keyframes " + file + (std::filesystem::exists(file, ec) ? ": not a regular file" : ": no such file"));
   std::ifstream in(file);
   if (!in) throw std::runtime_error("cannot read keyframes " + file);
   std::vector<std::pair<Vec3, Vec3>> keys;
@@ -112,12 +115,10 @@ PathSettings path_settings(const PathOptions& opt, const MpiWalk& mpi) {
   PathSettings s;
   if (opt.format != "png" && opt.format != "svg") throw std::runtime_error("--format wants png or svg, not '" + opt.format + "'");
   s.svg = opt.format == "svg";
-  if (!parse_size(opt.size, s.width, s.height)) throw std::runtime_error("--size wants WIDTHxHEIGHT in pixels, not '" + opt.size + "'");
+  size_option(opt.size, s.width, s.height);
   if (!(opt.fov > 0 && opt.fov <= 179)) throw std::runtime_error("--fov must lie in (0, 179] degrees");
-  if (!parse_kernel(opt.kernel, s.kernel)) throw std::runtime_error("--kernel wants float, double, filtered or exact");
-  s.halftone.samples = opt.samples;
-  if (opt.samples != 1 && opt.samples != 4 && opt.samples != 16)
-    throw std::runtime_error("--samples wants 1, 4 or 16, not " + std::to_string(opt.samples));
+  s.kernel = kernel_option(opt.kernel);
+  s.halftone.samples = samples_option(opt.samples);
   if (!parse_shading(opt.shading, s.halftone.shading.model))
     throw std::runtime_error("--shading wants flat, smooth or auto, not '" + opt.shading + "'");
   if (opt.threads < 0) throw std::runtime_error("--threads wants a number of threads (0: as many as there are cores)");

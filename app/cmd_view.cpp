@@ -43,26 +43,12 @@ std::string str(Vec3 v) {
 
 }  // namespace
 
-bool parse_size(const std::string& s, int& w, int& h) {
-  size_t x = s.find('x');
-  if (x == std::string::npos) return false;
-  try {
-    size_t a = 0, b = 0;
-    w = std::stoi(s.substr(0, x), &a);
-    h = std::stoi(s.substr(x + 1), &b);
-    return a == x && b == s.size() - x - 1 && w > 0 && h > 0 && w <= 32768 && h <= 32768;
-  } catch (const std::exception&) {
-    return false;
-  }
-}
-
 ViewSetup set_up_view(const LoadedPlan& plan, const ViewOptions& opt) {
   const CellComplex& c = plan.complex;
   ViewSetup v;
-  if (!parse_kernel(opt.kernel, v.kernel))
-    throw std::runtime_error("--kernel wants float, double, filtered or exact, not '" + opt.kernel + "'");
+  v.kernel = kernel_option(opt.kernel);
   int w = 0, h = 0;
-  if (!parse_size(opt.size, w, h)) throw std::runtime_error("--size wants WIDTHxHEIGHT in pixels, not '" + opt.size + "'");
+  size_option(opt.size, w, h);
   Viewpoint vp = default_viewpoint(c);
   if (!opt.eye.empty()) vp.eye = parse_vec3(opt.eye, "--eye");
   if (!opt.look.empty()) vp.look = parse_vec3(opt.look, "--look");
@@ -85,7 +71,7 @@ ViewSetup set_up_view(const LoadedPlan& plan, const ViewOptions& opt) {
     throw std::runtime_error("--view-width needs --projection parallel");
   }
   v.viewpoint = vp;
-  Location loc = c.locate(vp.eye);
+  Location loc = c.place_eye(v.camera.eye, v.camera.forward);
   if (loc.what == Location::What::OutsideBox)
     throw PlanError({plan.path, 0, 0, ""}, "the eye " + str(vp.eye) + " is outside the far box");
   if (loc.what == Location::What::Solid)
@@ -125,6 +111,8 @@ int run_view(const ViewOptions& opt) {
   if (opt.lights != "plan" && opt.lights != "eye")
     throw std::runtime_error("--lights wants plan or eye, not '" + opt.lights + "'");
   if (!std::isfinite(opt.falloff)) throw std::runtime_error("--falloff wants a distance in metres");
+  for (const std::string& f : {opt.output, opt.stats_json, opt.overlay})
+    if (!f.empty()) check_output_path(f);  // a device or FIFO there: refused before the work
   LoadedPlan plan = load_plan_source(opt.plan);
   ViewSetup v = set_up_view(plan, opt);
   if (v.camera.is_parallel()) {

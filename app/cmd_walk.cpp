@@ -131,12 +131,9 @@ class Session {
  public:
   Session(const LoadedPlan& plan, const WalkOptions& opt, Viewer& viewer)
       : plan_(plan), c_(plan.complex), opt_(opt), viewer_(viewer), budget_(opt.frame_budget_ms, opt.samples),
-        walker_(c_, start_eye(plan, opt), walker_options(c_, start_eye(plan, opt), opt.plan)) {
-    if (!parse_kernel(opt.kernel, kernel_))
-      throw std::runtime_error("--kernel wants float, double, filtered or exact, not '" + opt.kernel + "'");
-    halftone_.samples = opt.samples;
-    if (opt.samples != 1 && opt.samples != 4 && opt.samples != 16)
-      throw std::runtime_error("--samples wants 1, 4 or 16, not " + std::to_string(opt.samples));
+        walker_(c_, start_eye(plan, opt), walker_options(c_, start_eye(plan, opt), plan.format)) {
+    kernel_ = kernel_option(opt.kernel);
+    halftone_.samples = samples_option(opt.samples);
     if (!parse_shading(opt.shading, halftone_.shading.model))
       throw std::runtime_error("--shading wants flat or smooth, not '" + opt.shading + "'");
     if (opt.stereo == "mono") stereo_ = StereoMode::Mono;
@@ -253,9 +250,9 @@ class Session {
   /// Walk mode keeps the eye at the height above its floor it starts at (a plan's view, a
   /// Doom player's 41 units), when that is a person's; else at 1.6 m. A Doom map's player
   /// steps up to 24 map units, its stairs' risers 8 to 24.
-  static WalkerOptions walker_options(const CellComplex& c, Vec3 eye, const std::string& plan_arg) {
+  static WalkerOptions walker_options(const CellComplex& c, Vec3 eye, FileFormat format) {
     WalkerOptions o;
-    if (!plan_arg.empty() && parse_plan_spec(plan_arg).format == PlanFormat::DoomMap) o.step_height = 24 * kDoomUnit;
+    if (format == FileFormat::DoomWad) o.step_height = 24 * kDoomUnit;
     const double above = eye.z - Walker(c, eye, o).floor_below();
     if (above >= 1.0 && above <= 2.2) o.eye_height = above;
     if (!(o.eye_height > o.step_height + 0.1)) o.step_height = o.eye_height / 2;
@@ -652,7 +649,7 @@ void write_stats(const std::string& path, const LoadedPlan& plan, const WalkRepo
 bool run_session(const LoadedPlan& plan, const WalkOptions& opt, const std::vector<ScriptEvent>& events,
                  WalkReport& report, std::string& why) {
   int w = 0, h = 0;
-  if (!parse_size(opt.size, w, h)) throw std::runtime_error("--size wants WIDTHxHEIGHT in pixels, not '" + opt.size + "'");
+  size_option(opt.size, w, h);
   std::unique_ptr<Viewer> viewer = Viewer::open(w, h, "Avenues - " + plan.stem, opt.vsync, why);
   if (!viewer) return false;
   // A frame's screen scene is built and freed every frame, its big arrays beyond glibc's

@@ -14,6 +14,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "app/option_checks.h"
 #include "app/plan_source.h"
 #include "visibility/camera.h"
 #include "visibility/visible_set.h"
@@ -155,7 +156,6 @@ struct ViewSetup {
 /// Resolves options against the plan: default viewpoint, camera, and the eye's cell.
 /// Throws PlanError when the eye is inside a solid or outside the far box.
 ViewSetup set_up_view(const LoadedPlan& plan, const ViewOptions& opt);
-bool parse_size(const std::string& s, int& w, int& h);
 nlohmann::json view_stats(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs);
 int run_view(const ViewOptions& opt);
 /// Writes the view's picture to opt.output by its extension (stereo, walk frames as asked);

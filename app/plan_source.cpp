@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cstring>
 #include <iostream>
+#include <new>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -28,11 +29,20 @@ namespace {
 
 constexpr const char* kDefaultPlan = "jones-house.toml";
 
-/// A saved complex starts with the magic "AVCELLS\0", whatever its name.
-bool looks_like_cells(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  char magic[8] = {};
-  return in.read(magic, sizeof magic) && std::memcmp(magic, "AVCELLS\0", 8) == 0;
+using PlanReader = Plan (*)(const std::string& file);
+
+/// The readers of plans from elsewhere, by format: adding one is one line here (the
+/// formats that yield cells directly, and the Doom maps chosen by name, are in
+/// load_plan_source's switch).
+const std::pair<FileFormat, PlanReader> kPlanReaders[] = {
+    {FileFormat::Toml, [](const std::string& file) { return read_plan(file); }},
+    {FileFormat::SweetHome, [](const std::string& file) { return read_sweet_home(file); }},
+};
+
+PlanReader plan_reader_for(FileFormat f) {
+  for (const auto& [format, reader] : kPlanReaders)
+    if (format == f) return reader;
+  return nullptr;
 }
 
 }  // namespace
@@ -80,19 +90,19 @@ void print_warnings(const std::string& path, const std::vector<std::string>& war
 PlanSpec parse_plan_spec(const std::string& plan) {
   PlanSpec spec;
   spec.file = plan;
-  // FILE.wad:MAP01 — the map after the last colon, when what precedes it is a WAD.
+  // FILE.wad:MAP01 — the map after the last colon, when what precedes it is a WAD (by
+  // name, or by content when PLAN itself names no file).
   const size_t colon = plan.rfind(':');
-  if (colon != std::string::npos && colon > 4 && lower(plan.substr(colon - 4, 4)) == ".wad") {
-    spec.file = plan.substr(0, colon);
-    spec.map = plan.substr(colon + 1);
+  std::error_code ec;
+  if (colon != std::string::npos && colon > 0) {
+    const std::string file = plan.substr(0, colon);
+    if ((colon > 4 && lower(plan.substr(colon - 4, 4)) == ".wad") ||
+        (!fs::exists(plan, ec) && detect_format(file) == FileFormat::DoomWad)) {
+      spec.file = file;
+      spec.map = plan.substr(colon + 1);
+    }
   }
-  const std::string ext = lower(fs::path(spec.file).extension().string());
-  if (ext == ".cells") spec.format = PlanFormat::Cells;
-  else if (ext == ".wad") spec.format = PlanFormat::DoomMap;
-  else if (ext == ".sh3d" || ext == ".xml") spec.format = PlanFormat::SweetHome;
-  else if (ext == ".off" || ext == ".obj" || ext == ".ply" || ext == ".stl") spec.format = PlanFormat::MeshScene;
-  else if (ext == ".crow") spec.format = PlanFormat::Crow;
-  else spec.format = PlanFormat::Toml;
+  spec.format = detect_format(spec.file);
   return spec;
 }
 
@@ -105,7 +115,8 @@ LoadedPlan load_plan_source(const std::string& plan) {
   std::error_code ec;
   if (!fs::exists(p, ec)) throw std::runtime_error(spec.file + ": no such file");
   if (fs::is_directory(p, ec)) throw std::runtime_error(spec.file + ": is a directory, not a plan");
-  if (spec.format != PlanFormat::Cells && looks_like_cells(spec.file)) spec.format = PlanFormat::Cells;
+  if (!fs::is_regular_file(p, ec)) throw std::runtime_error(spec.file + ": not a regular file (a device or FIFO?), not a plan");
+  out.format = spec.format;
 
   auto t0 = std::chrono::steady_clock::now();
   auto decompose = [&](const Plan& parsed, const char* stage) {
@@ -113,33 +124,56 @@ LoadedPlan load_plan_source(const std::string& plan) {
     out.complex = build_cells(parsed);
     for (const StageTime& t : out.complex.timings) out.stages.push_back(t);
   };
-  switch (spec.format) {
-    case PlanFormat::Cells:
-      out.complex = load_cells(spec.file);
-      out.stages.push_back({"load cells", seconds_since(t0)});
-      return out;
-    case PlanFormat::Toml: decompose(read_plan(spec.file), "read plan"); break;
-    case PlanFormat::DoomMap: {
-      if (spec.map.empty()) {
-        const std::vector<std::string> maps = doom_map_names(spec.file);
-        if (maps.empty()) throw PlanError({spec.file, 0, 0, ""}, "the WAD holds no maps");
-        spec.map = maps.front();
-        out.stem += "-" + spec.map;
-        std::cerr << spec.file << ": reading " << spec.map << ", the first of its " << maps.size()
-                  << " maps (name one as " << spec.file << ":" << maps.back() << ")\n";
+  // Memory running out (an allocation, or GMP's: cells/gmp_memory.h) names the file.
+  try {
+    switch (spec.format) {
+      case FileFormat::Cells:
+        out.complex = load_cells(spec.file);
+        out.stages.push_back({"load cells", seconds_since(t0)});
+        return out;
+      case FileFormat::DoomWad: {
+        if (spec.map.empty()) {
+          const std::vector<std::string> maps = doom_map_names(spec.file);
+          if (maps.empty()) throw PlanError({spec.file, 0, 0, ""}, "the WAD holds no maps");
+          spec.map = maps.front();
+          out.stem += "-" + spec.map;
+          std::cerr << spec.file << ": reading " << spec.map << ", the first of its " << maps.size()
+                    << " maps (name one as " << spec.file << ":" << maps.back() << ")\n";
+        }
+        decompose(read_doom_map(spec.file, spec.map), "read map");
+        break;
       }
-      decompose(read_doom_map(spec.file, spec.map), "read map");
-      break;
+      case FileFormat::Off:
+      case FileFormat::Obj:
+      case FileFormat::Ply:
+      case FileFormat::Stl: {
+        // The mesh readers go by the extension: a mesh under another name is named as one.
+        if (format_of_extension(spec.file) != spec.format)
+          throw std::runtime_error(spec.file + " is " + format_name(spec.format) +
+                                   " under another extension: name it as one to read it as a scene");
+        out.complex = read_mesh_scene(spec.file);
+        for (const StageTime& t : out.complex.timings) out.stages.push_back(t);
+        break;
+      }
+      case FileFormat::Crow:
+        out.complex = read_crow_scene(spec.file);
+        for (const StageTime& t : out.complex.timings) out.stages.push_back(t);
+        break;
+      default: {
+        const PlanReader reader = plan_reader_for(spec.format);
+        if (!reader) {
+          if (spec.format == FileFormat::Unknown)
+            throw std::runtime_error(spec.file + " is not a plan Avenues can read: neither TOML text nor a format it " +
+                                     "knows by its content or extension (docs/PLAN_FORMAT.md lists them)");
+          throw std::runtime_error(spec.file + " is " + format_name(spec.format) + ", which Avenues cannot read yet");
+        }
+        decompose(reader(spec.file), "read plan");
+        break;
+      }
     }
-    case PlanFormat::SweetHome: decompose(read_sweet_home(spec.file), "read home"); break;
-    case PlanFormat::MeshScene:
-      out.complex = read_mesh_scene(spec.file);
-      for (const StageTime& t : out.complex.timings) out.stages.push_back(t);
-      break;
-    case PlanFormat::Crow:
-      out.complex = read_crow_scene(spec.file);
-      for (const StageTime& t : out.complex.timings) out.stages.push_back(t);
-      break;
+  } catch (const std::bad_alloc&) {
+    throw std::runtime_error("out of memory while " +
+                             std::string(spec.format == FileFormat::Cells ? "loading " : "decomposing ") + spec.file);
   }
   print_warnings(spec.file, out.complex.warnings);
   return out;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cells/cell_complex.h"
+#include "plans/formats/file_format.h"
 
 namespace avenues::app {
 
@@ -18,17 +19,17 @@ struct LoadedPlan {
   CellComplex complex;
   std::string path;                ///< the file it came from
   std::string stem;                ///< its name without directory and extension
+  FileFormat format = FileFormat::Toml;  ///< what the file was read as (by content, else extension)
   std::vector<StageTime> stages;   ///< what this run spent, per stage
   double seconds() const;          ///< total of stages
 };
 
-enum class PlanFormat { Toml, Cells, DoomMap, SweetHome, MeshScene, Crow };
-
-/// PLAN taken apart: the file, the map inside it (a WAD's), and its format by extension.
+/// PLAN taken apart: the file, the map inside it (a WAD's), and its format (by content
+/// where the file says, else by extension: plans/formats/file_format.h).
 struct PlanSpec {
   std::string file;
   std::string map;   ///< "MAP01" of "doom2.wad:MAP01"; "" for the first map
-  PlanFormat format = PlanFormat::Toml;
+  FileFormat format = FileFormat::Toml;
 };
 PlanSpec parse_plan_spec(const std::string& plan);
 
@@ -37,7 +38,9 @@ PlanSpec parse_plan_spec(const std::string& plan);
 std::string default_plan_path();
 
 /// Loads PLAN ("" = the default plan) and prints its warnings to stderr. Throws
-/// PlanError for plan mistakes and std::runtime_error naming the file for anything else.
+/// PlanError for plan mistakes and std::runtime_error naming the file for anything else,
+/// among them a file of a format Avenues cannot read yet ("FILE is an IFC model, which
+/// Avenues cannot read yet").
 LoadedPlan load_plan_source(const std::string& plan);
 
 }  // namespace avenues::app

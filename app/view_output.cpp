@@ -50,9 +50,7 @@ void add_drawing_stats(nlohmann::json& stats, const DrawingStats& d, double rend
 
 HalftoneOptions halftone_options(const ViewOptions& opt) {
   HalftoneOptions o;
-  o.samples = opt.samples;
-  if (o.samples != 1 && o.samples != 4 && o.samples != 16)
-    throw std::runtime_error("--samples wants 1, 4 or 16, not " + std::to_string(opt.samples));
+  o.samples = samples_option(opt.samples);
   if (!parse_shading(opt.shading, o.shading.model))
     throw std::runtime_error("--shading wants flat, smooth or auto, not '" + opt.shading + "'");
   if (!parse_dither(opt.dither, o.dither))

@@ -16,6 +16,7 @@
 //   6. lines     — the real lines of the architecture, assigned to the cells they bound.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <string_view>
 
@@ -50,8 +51,11 @@ CellComplex load_cells(const std::string& path);
 /// The same bytes in memory (what an MPI walk broadcasts to its ranks): cells_bytes() is
 /// the whole file save_cells() writes; cells_from_bytes() checks and reads them as
 /// load_cells() does, `name` standing for the file in its messages.
-std::string cells_bytes(const CellComplex& complex);
-CellComplex cells_from_bytes(std::string_view bytes, const std::string& name);
+/// Objects' mesh paths are stored relative to `cells_dir` (the folder of the .cells file;
+/// empty: the current folder, which every rank of a walk shares) and read back against it.
+std::string cells_bytes(const CellComplex& complex, const std::filesystem::path& cells_dir = {});
+CellComplex cells_from_bytes(std::string_view bytes, const std::string& name,
+                             const std::filesystem::path& cells_dir = {});
 
 /// Writes the opaque surfaces as a Wavefront OBJ triangle mesh, one group per cell
 /// named "cell<id>", so other tools can read the building.

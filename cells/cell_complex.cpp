@@ -176,4 +176,42 @@ CellId CellComplex::largest_cell_of(RoomId room) const {
   return best;
 }
 
+Location CellComplex::locate(Vec3 p, Vec3 facing, CellId hint) const {
+  const Location loc = locate(p, hint);
+  const double l = length(facing);
+  if (loc.what != Location::What::Cell || !(l > 0) || !std::isfinite(l)) return loc;
+  constexpr double kAhead = 1e-6;  // [m] a step far below any plan's detail, and well above rounding
+  const Vec3 ahead = p + (kAhead / l) * facing;
+  if (cells[size_t(loc.cell)].contains(ahead)) return loc;
+  const Location there = locate(ahead, loc.cell);
+  if (there.what == Location::What::Cell && cells[size_t(there.cell)].contains(p)) return there;
+  return loc;
+}
+
+Location CellComplex::place_eye(Vec3& eye, Vec3 facing, CellId hint) const {
+  const Location loc = locate(eye, facing, hint);
+  if (loc.what != Location::What::Cell) return loc;
+  const Cell& cell = cells[size_t(loc.cell)];
+  constexpr double kStep = 1e-6;  // [m]
+  if (cell.contains(eye, -kStep / 2)) return loc;
+  // A point inside the convex cell: the mean of its corners.
+  Vec3 inner{0, 0, 0};
+  size_t n = 0;
+  if (cell.prism) {
+    const Vec2 g = centroid(cell.footprint);
+    inner = {g.x, g.y, (cell.z0 + cell.z1) / 2};
+    n = 1;
+  } else {
+    for (const Face& f : cell.faces)
+      for (const Vec3& v : f.poly) inner = inner + v, ++n;
+    if (n > 0) inner = (1.0 / double(n)) * inner;
+  }
+  const Vec3 d = inner - eye;
+  const double l = length(d);
+  if (n == 0 || !(l > kStep)) return loc;
+  const Vec3 moved = eye + (kStep / l) * d;
+  if (cell.contains(moved)) eye = moved;
+  return loc;
+}
+
 }  // namespace avenues

@@ -152,6 +152,16 @@ struct CellComplex {
   /// walk through portals; a spatial index catches the rest. Points on a shared face
   /// go to either cell. Solid reports name the element when known.
   Location locate(Vec3 p, CellId hint = kNoCell) const;
+  /// The same for an eye looking along `facing`: an eye on a face of two cells (a sheet
+  /// wall of no thickness, a floor) is on the side it looks to, in the cell that holds both
+  /// it and a point just ahead of it, as an eye in a doorway's plane is in the room it
+  /// looks into. (Looking along the face itself, either cell.)
+  Location locate(Vec3 p, Vec3 facing, CellId hint = kNoCell) const;
+  /// An eye for a view along `facing`, located as above; an eye on its cell's boundary
+  /// (within half a micrometre: on a sheet wall, at a T-junction of sheets, in a doorway's
+  /// plane) is moved a micrometre into the cell, so that the faces it stands on are seen
+  /// from the cell's side, not edge-on from within them. Updates `eye`.
+  Location place_eye(Vec3& eye, Vec3 facing, CellId hint = kNoCell) const;
 
   /// The room's largest cell of kind Room (by footprint area): where a person stands in
   /// it. kNoCell when the room has no such cell.

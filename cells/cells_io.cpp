@@ -48,8 +48,31 @@ namespace {
 
 constexpr char kMagic[8] = {'A', 'V', 'C', 'E', 'L', 'L', 'S', '\0'};
 // 2: Cell::prism (mesh scenes' general convex cells), Face::portals_overlap;
-// 3: Object::box and Object::model (Sweet Home's furniture), Light::kind.
-constexpr uint32_t kVersion = 3;
+// 3: Object::box and Object::model (Sweet Home's furniture), Light::kind;
+// 4: Object::mesh relative to the folder of the .cells file (3: as the plan gave it, i.e.
+//    relative to the folder avenues ran in), so that a saved complex loads from anywhere.
+constexpr uint32_t kVersion = 4;
+constexpr uint32_t kOldestVersion = 3;
+
+/// An object's mesh file as a .cells file in `cells_dir` stores it: relative to that
+/// folder (absolute when there is no relative way, e.g. another root).
+std::string mesh_path_for_file(const std::string& mesh, const std::filesystem::path& cells_dir) {
+  namespace fs = std::filesystem;
+  if (mesh.empty()) return mesh;
+  std::error_code ec;
+  const fs::path abs_mesh = fs::absolute(mesh, ec).lexically_normal();
+  const fs::path abs_dir = fs::absolute(cells_dir, ec).lexically_normal();
+  const fs::path rel = abs_mesh.lexically_relative(abs_dir);
+  return (rel.empty() ? abs_mesh : rel).generic_string();
+}
+
+/// The stored mesh path back as one to open from the current folder.
+std::string mesh_path_from_file(const std::string& stored, const std::filesystem::path& cells_dir) {
+  namespace fs = std::filesystem;
+  const fs::path p(stored);
+  if (stored.empty() || p.is_absolute()) return stored;
+  return (cells_dir / p).lexically_normal().string();
+}
 constexpr size_t kHeaderSize = 32;
 
 uint64_t checksum(const unsigned char* p, size_t n) {
@@ -104,7 +127,7 @@ class Writer {
   void ids(const std::vector<int32_t>& v) { count(v.size(), "indices"); for (int32_t i : v) i32(i); }
 };
 
-void write_complex(Writer& w, const CellComplex& c) {
+void write_complex(Writer& w, const CellComplex& c, const std::filesystem::path& cells_dir) {
   w.str(c.plan_name);
 
   w.count(c.storeys.size(), "storeys");
@@ -153,7 +176,7 @@ void write_complex(Writer& w, const CellComplex& c) {
   for (const RealLine& l : c.lines) { w.vec3(l.a); w.vec3(l.b); w.u8(static_cast<uint8_t>(l.kind)); }
   w.count(c.objects.size(), "objects");
   for (const Object& o : c.objects) {
-    w.str(o.name); w.str(o.mesh); w.i32(o.storey);
+    w.str(o.name); w.str(mesh_path_for_file(o.mesh, cells_dir)); w.i32(o.storey);
     w.vec3(o.position); w.vec3(o.rotation_deg); w.vec3(o.scale);
     w.i32(o.material); w.loc(o.where);
     w.vec3(o.box);
@@ -323,7 +346,7 @@ constexpr size_t kMinLight = 4 + 24 + 8 + 24 + kMinLoc + 1;
 constexpr size_t kMinTiming = 4 + 8;
 constexpr size_t kMinSolid = 4 + 16 + 4;
 
-void read_complex(Reader& r, CellComplex& c) {
+void read_complex(Reader& r, CellComplex& c, uint32_t version, const std::filesystem::path& cells_dir) {
   c.plan_name = r.str("plan name");
 
   c.storeys.resize(r.count(kMinStorey, "storeys"));
@@ -397,6 +420,7 @@ void read_complex(Reader& r, CellComplex& c) {
   for (Object& o : c.objects) {
     o.name = r.str("object");
     o.mesh = r.str("object");
+    if (version >= 4) o.mesh = mesh_path_from_file(o.mesh, cells_dir);
     o.storey = r.i32("object");
     o.position = r.vec3("object");
     o.rotation_deg = r.vec3("object");
@@ -536,10 +560,10 @@ class MappedFile {
 
 }  // namespace
 
-std::string cells_bytes(const CellComplex& complex) {
+std::string cells_bytes(const CellComplex& complex, const std::filesystem::path& cells_dir) {
   Writer payload;
   payload.buf.reserve(1 << 16);
-  write_complex(payload, complex);
+  write_complex(payload, complex, cells_dir);
   const auto* data = reinterpret_cast<const unsigned char*>(payload.buf.data());
 
   Writer file;
@@ -553,7 +577,7 @@ std::string cells_bytes(const CellComplex& complex) {
   return std::move(file.buf);
 }
 
-CellComplex cells_from_bytes(std::string_view bytes, const std::string& name) {
+CellComplex cells_from_bytes(std::string_view bytes, const std::string& name, const std::filesystem::path& cells_dir) {
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
   const size_t file_size = bytes.size();
 
@@ -563,9 +587,10 @@ CellComplex cells_from_bytes(std::string_view bytes, const std::string& name) {
   header.need(kHeaderSize, "header");
   for (size_t i = 0; i < sizeof kMagic; ++i) header.u8("header");
   uint32_t version = header.u32("header");
-  if (version != kVersion)
+  if (version < kOldestVersion || version > kVersion)
     throw std::runtime_error(name + ": cells file format version " + std::to_string(version) +
-                             ", this avenues reads version " + std::to_string(kVersion) +
+                             ", this avenues reads versions " + std::to_string(kOldestVersion) + " to " +
+                             std::to_string(kVersion) +
                              "; rebuild it from the plan");
   header.u32("header");
   uint64_t size = header.u64("header");
@@ -580,7 +605,7 @@ CellComplex cells_from_bytes(std::string_view bytes, const std::string& name) {
 
   Reader r(name, payload, payload + size);
   CellComplex c;
-  read_complex(r, c);
+  read_complex(r, c, version, cells_dir);
   check_indices(c, r);
   c.index();
   check_complex(c, name);
@@ -588,12 +613,13 @@ CellComplex cells_from_bytes(std::string_view bytes, const std::string& name) {
 }
 
 void save_cells(const CellComplex& complex, const std::string& path) {
-  write_file_atomically(path, cells_bytes(complex));
+  write_file_atomically(path, cells_bytes(complex, std::filesystem::path(path).parent_path()));
 }
 
 CellComplex load_cells(const std::string& path) {
   const MappedFile file(path);
-  return cells_from_bytes({reinterpret_cast<const char*>(file.data()), file.size()}, path);
+  return cells_from_bytes({reinterpret_cast<const char*>(file.data()), file.size()}, path,
+                          std::filesystem::path(path).parent_path());
 }
 
 }  // namespace avenues

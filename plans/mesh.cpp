@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -46,6 +47,153 @@ bool whole_number(const std::string& t) {
   char* end = nullptr;
   const double v = std::strtod(t.c_str(), &end);
   return !t.empty() && *end == '\0' && std::isfinite(v);
+}
+
+/// OpenMesh keeps coordinates in single precision: a number beyond it would become
+/// infinite (and the faces around it vanish). The one rule of every mesh reader: a vertex
+/// that is not a finite number of that range, or a face naming a vertex there is not,
+/// refuses the file with a message naming the line (or triangle).
+constexpr double kMaxCoordinate = 1e30;
+bool coordinate(const std::string& t) {
+  char* end = nullptr;
+  const double v = std::strtod(t.c_str(), &end);
+  return !t.empty() && *end == '\0' && std::isfinite(v) && std::abs(v) <= kMaxCoordinate;
+}
+const std::string kCoordinateRule = "is not a coordinate (a finite number of magnitude at most 1e30)";
+
+/// An OBJ file's vertices and faces, checked by the rule above: every "v" line has three
+/// (or four) coordinates, every face index (1-based, or negative: counted back from the
+/// last vertex so far) names a vertex.
+void check_obj(const std::string& bytes, const std::string& name) {
+  auto bad = [&](int line, const std::string& what) {
+    throw std::runtime_error("cannot read mesh " + name + ": line " + std::to_string(line) + ": " + what);
+  };
+  // Positive indices may name vertices listed later; negative ones count back from here.
+  long long total = 0;
+  {
+    std::istringstream count(bytes);
+    std::string l;
+    while (std::getline(count, l)) {
+      std::istringstream ls(l);
+      std::string key;
+      total += (ls >> key) && key == "v";
+    }
+  }
+  std::istringstream in(bytes);
+  std::string line;
+  int lineno = 0;
+  long long vertices = 0;
+  while (std::getline(in, line)) {
+    ++lineno;
+    const size_t hash = line.find('#');
+    if (hash != std::string::npos) line.erase(hash);
+    std::istringstream ls(line);
+    std::string key;
+    if (!(ls >> key)) continue;
+    if (key == "v") {
+      std::string t;
+      int n = 0;
+      while (n < 3 && ls >> t) {
+        if (!coordinate(t)) bad(lineno, "'" + t + "' " + kCoordinateRule);
+        ++n;
+      }
+      if (n < 3) bad(lineno, "a vertex needs three coordinates");
+      ++vertices;
+    } else if (key == "f" || key == "l") {
+      std::string t;
+      while (ls >> t) {
+        long long v = 0;
+        const std::string index = t.substr(0, t.find('/'));
+        if (!whole_integer(index, v) || v == 0 || v > total || v < -vertices)
+          bad(lineno, "face corner '" + t + "' names no vertex (the file has " + std::to_string(total) + ", " +
+                          std::to_string(vertices) + " of them before this line)");
+      }
+    }
+  }
+}
+
+/// A PLY header's element counts, checked against the file's size before OpenMesh
+/// allocates for them: each element takes at least one byte per property (binary) or two
+/// (ASCII: a digit and a separator).
+void check_ply(const std::string& path) {
+  auto bad = [&](const std::string& what) { throw std::runtime_error("cannot read mesh " + path + ": " + what); };
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  bool ascii = false;
+  struct Element { std::string name; long long count = 0; int properties = 0; };
+  std::vector<Element> elements;
+  int lineno = 0;
+  while (std::getline(in, line)) {
+    ++lineno;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::istringstream ls(line);
+    std::string key;
+    ls >> key;
+    if (key == "end_header") break;
+    if (key == "format") {
+      std::string f;
+      ls >> f;
+      ascii = f == "ascii";
+    } else if (key == "element") {
+      Element e;
+      std::string count;
+      ls >> e.name >> count;
+      if (!whole_integer(count, e.count) || e.count < 0)
+        bad("line " + std::to_string(lineno) + ": element '" + e.name + "' has no count");
+      elements.push_back(e);
+    } else if (key == "property" && !elements.empty()) {
+      ++elements.back().properties;
+    }
+    if (lineno > 10000) bad("its header does not end (no end_header in 10000 lines)");
+  }
+  const std::streamoff data_start = in ? static_cast<std::streamoff>(in.tellg()) : 0;
+  const auto body = static_cast<long double>(std::filesystem::file_size(path)) - static_cast<long double>(data_start);
+  long double need = 0;
+  for (const Element& e : elements) {
+    need += static_cast<long double>(e.count) * std::max(1, e.properties) * (ascii ? 2 : 1);
+    if (need > body)
+      bad("its header announces " + std::to_string(e.count) + " " + e.name + " elements, more than its " +
+          std::to_string(static_cast<long long>(std::max<long double>(body, 0))) + " bytes of data can hold");
+  }
+}
+
+/// A binary STL's triangle count against the file's size, and every vertex by the rule
+/// above; an ASCII STL's vertex lines likewise.
+void check_stl(const std::string& path) {
+  auto bad = [&](const std::string& what) { throw std::runtime_error("cannot read mesh " + path + ": " + what); };
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const bool ascii = bytes.compare(0, 5, "solid") == 0 && bytes.find("facet") != std::string::npos &&
+                     bytes.find('\0') == std::string::npos;
+  if (ascii) {
+    std::istringstream lines(bytes);
+    std::string line;
+    int lineno = 0;
+    while (std::getline(lines, line)) {
+      ++lineno;
+      std::istringstream ls(line);
+      std::string key, t;
+      ls >> key;
+      if (key != "vertex") continue;
+      for (int k = 0; k < 3; ++k)
+        if (!(ls >> t) || !coordinate(t)) bad("line " + std::to_string(lineno) + ": '" + t + "' " + kCoordinateRule);
+    }
+    return;
+  }
+  if (bytes.size() < 84) bad("a binary STL file needs 84 bytes of header, this has " + std::to_string(bytes.size()));
+  uint32_t n = 0;
+  for (int k = 3; k >= 0; --k) n = (n << 8) | static_cast<unsigned char>(bytes[80 + size_t(k)]);
+  const uint64_t room = (bytes.size() - 84) / 50;
+  if (n > room)
+    bad("its header announces " + std::to_string(n) + " triangles, its " + std::to_string(bytes.size()) +
+        " bytes hold " + std::to_string(room));
+  for (uint32_t t = 0; t < n; ++t)
+    for (int k = 0; k < 9; ++k) {
+      float v = 0;
+      std::memcpy(&v, bytes.data() + 84 + 50 * size_t(t) + 12 + 4 * size_t(k), 4);
+      if (!std::isfinite(v) || std::abs(v) > kMaxCoordinate)
+        bad("triangle " + std::to_string(t + 1) + " has a vertex that " + kCoordinateRule);
+    }
 }
 
 /// OpenMesh's ASCII OFF reader trusts its input: a negative face size ("-1 1 1"), a
@@ -105,6 +253,8 @@ std::string check_off(const std::string& path) {
     if (tok.size() < 3) bad(at() + "a vertex needs three coordinates");
     for (const std::string& t : tok)
       if (!whole_number(t)) bad(at() + "'" + t + "' is not a number");
+    for (size_t k = 0; k < 3; ++k)
+      if (!coordinate(tok[k])) bad(at() + "'" + tok[k] + "' " + kCoordinateRule);
   }
   for (long long f = 0; f < nf; ++f) {
     if (!next_line()) bad("it ends after " + std::to_string(f) + " of its " + std::to_string(nf) + " faces");
@@ -193,9 +343,21 @@ class QuietOpenMesh {
 }  // namespace
 
 Mesh load_mesh(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) throw std::runtime_error("cannot read mesh " + path + ": no such file");
-  std::string ext = std::filesystem::path(path).extension().string();
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (!fs::exists(st)) throw std::runtime_error("cannot read mesh " + path + ": no such file");
+  if (fs::is_directory(st)) throw std::runtime_error("cannot read mesh " + path + ": it is a directory, not a mesh");
+  if (!fs::is_regular_file(st))
+    throw std::runtime_error("cannot read mesh " + path + ": it is not a regular file (a device or FIFO?)");
+  std::string ext = fs::path(path).extension().string();
   for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  if (ext == ".ply") check_ply(path);
+  if (ext == ".stl") check_stl(path);
+  if (ext == ".obj") {
+    std::ifstream in(path, std::ios::binary);
+    check_obj(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), path);
+  }
   const std::string off_text = ext == ".off" ? check_off(path) : std::string();
   PolyMesh pm;
   OpenMesh::IO::Options opt;
@@ -212,6 +374,7 @@ Mesh read_mesh_bytes(const std::string& bytes, const std::string& ext, const std
   if (ext != ".obj") throw std::runtime_error("cannot read mesh " + name + ": only OBJ models are read from memory");
   for (char ch : bytes)
     if (ch == '\0') throw std::runtime_error("cannot read mesh " + name + ": an OBJ file holds no NUL bytes");
+  check_obj(bytes, name);
   PolyMesh pm;
   OpenMesh::IO::Options opt;
   const QuietOpenMesh quiet;

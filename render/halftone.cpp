@@ -466,7 +466,7 @@ Image render_stereo_view(const CellComplex& complex, const std::vector<PlacedObj
   std::optional<SceneEffects> effects;  // decided once for both eyes
   if (options.plan_effects) effects.emplace(prepare_effects(complex, objects, options));
   for (int k = 0; k < 2; ++k) {
-    const Location at = complex.locate(eyes[k]->eye);
+    const Location at = complex.locate(eyes[k]->eye, eyes[k]->forward);
     if (at.what != Location::What::Cell)
       throw std::runtime_error(std::string(k == 0 ? "the left" : "the right") + " eye is not in free space" +
                                (at.solid.empty() ? std::string() : " (inside " + at.solid + ")"));

@@ -28,7 +28,7 @@ std::vector<WalkFrame> walk_frames(const CellComplex& c, Vec3 from_eye, Vec3 fro
     const Vec3 eye = from_eye + t * (to_eye - from_eye), look = from_look + t * (to_look - from_look);
     const std::string frame = "frame " + std::to_string(k + 1) + " of " + std::to_string(frames) + ": ";
     if (!(length(look - eye) > 0)) throw std::runtime_error(frame + "the eye " + str(eye) + " looks at itself");
-    const Location at = c.locate(eye, hint);
+    const Location at = c.locate(eye, look - eye, hint);
     if (at.what == Location::What::Solid)
       throw std::runtime_error(frame + "the eye " + str(eye) + " is inside " + at.solid);
     if (at.what == Location::What::OutsideBox)
