@@ -13,6 +13,9 @@
 #include "cells/build_cells.h"
 #include "cells/crow.h"
 #include "plans/formats/doom_map.h"
+#include "plans/formats/ifc_building.h"
+#include "plans/assimp_reader.h"
+#include "plans/mesh.h"
 #include "cells/mesh_scene.h"
 #include "plans/formats/sweet_home.h"
 #include "plans/plan.h"
@@ -28,6 +31,8 @@ namespace {
 
 constexpr const char* kDefaultPlan = "jones-house.toml";
 
+MeshAxes g_mesh_axes;  // the command line's --up, --unit (set_mesh_axes)
+
 /// A saved complex starts with the magic "AVCELLS\0", whatever its name.
 bool looks_like_cells(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -36,6 +41,8 @@ bool looks_like_cells(const std::string& path) {
 }
 
 }  // namespace
+
+void set_mesh_axes(const MeshAxes& axes) { g_mesh_axes = axes; }
 
 double LoadedPlan::seconds() const {
   double s = 0;
@@ -92,6 +99,8 @@ PlanSpec parse_plan_spec(const std::string& plan) {
   else if (ext == ".sh3d" || ext == ".xml") spec.format = PlanFormat::SweetHome;
   else if (ext == ".off" || ext == ".obj" || ext == ".ply" || ext == ".stl") spec.format = PlanFormat::MeshScene;
   else if (ext == ".crow") spec.format = PlanFormat::Crow;
+  else if (ext == ".ifc") spec.format = PlanFormat::Ifc;
+  else if (ext != ".toml" && assimp_reads_extension(ext)) spec.format = PlanFormat::MeshScene;
   else spec.format = PlanFormat::Toml;
   return spec;
 }
@@ -132,10 +141,19 @@ LoadedPlan load_plan_source(const std::string& plan) {
       break;
     }
     case PlanFormat::SweetHome: decompose(read_sweet_home(spec.file), "read home"); break;
-    case PlanFormat::MeshScene:
-      out.complex = read_mesh_scene(spec.file);
+    case PlanFormat::Ifc: decompose(read_ifc_building(spec.file), "read IFC"); break;
+    case PlanFormat::MeshScene: {
+      Mesh mesh = load_mesh(spec.file, g_mesh_axes);  // OpenMesh or Assimp; names the file when unreadable
+      out.stages.push_back({"read mesh", seconds_since(t0)});
+      try {
+        out.complex = build_mesh_scene({mesh});
+      } catch (const std::exception& e) {
+        throw std::runtime_error(spec.file + ": " + e.what());
+      }
+      out.complex.plan_name = out.stem;
       for (const StageTime& t : out.complex.timings) out.stages.push_back(t);
       break;
+    }
     case PlanFormat::Crow:
       out.complex = read_crow_scene(spec.file);
       for (const StageTime& t : out.complex.timings) out.stages.push_back(t);
