@@ -303,12 +303,12 @@ class Builder {
     }
     if (levels.empty()) throw PlanError({path_, 0, 0, ""}, "the model has no geometry Avenues can use");
     std::sort(levels.begin(), levels.end(), [](const Level& a, const Level& b) { return a.elevation < b.elevation; });
-    // Storeys closer than 1.5 m apart (a foundation level just below the ground floor) are
-    // one storey: the plan's storeys are bands of at least a room's height.
+    // Storeys closer than 1 m apart (two levels of one floor) are one storey: the plan's
+    // storeys are bands one can stand in (a crawl space of 1.2 m still is one).
     std::vector<Level> kept;
     storey_index_.assign(n, -1);
     for (const Level& l : levels) {
-      if (!kept.empty() && l.elevation - kept.back().elevation < 1.5) {
+      if (!kept.empty() && l.elevation - kept.back().elevation < 1.0) {
         plan_.warnings.push_back("storey '" + storey_names_[l.node] + "' joined to '" + storey_names_[kept.back().node] +
                                  "': its floor is " + format_number(l.elevation - kept.back().elevation) + " m above");
         storey_index_[l.node] = int(kept.size()) - 1;
