@@ -141,7 +141,12 @@ LoadedPlan load_plan_source(const std::string& plan) {
       break;
     }
     case PlanFormat::SweetHome: decompose(read_sweet_home(spec.file), "read home"); break;
-    case PlanFormat::Ifc: decompose(read_ifc_building(spec.file), "read IFC"); break;
+    case PlanFormat::Ifc: {
+      const Plan building = read_ifc_building(spec.file, &out.stages);
+      out.complex = build_cells(building);
+      for (const StageTime& t : out.complex.timings) out.stages.push_back(t);
+      break;
+    }
     case PlanFormat::MeshScene: {
       Mesh mesh = load_mesh(spec.file, g_mesh_axes);  // OpenMesh or Assimp; names the file when unreadable
       out.stages.push_back({"read mesh", seconds_since(t0)});

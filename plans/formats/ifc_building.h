@@ -18,7 +18,9 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
+#include "core/stage_timer.h"
 #include "plans/plan.h"
 
 namespace avenues {
@@ -28,7 +30,9 @@ namespace avenues {
 /// storey (the storey with spaces whose floor is nearest the ground, z = 0), looking along
 /// its longest free direction. Throws PlanError naming the file for a file that is not a
 /// STEP file or is cut short, with Assimp's reason (naming the entity) for what it cannot
-/// read, and for a model with no walls or columns to walk between.
-Plan read_ifc_building(const std::string& path);
+/// read, and for a model with no walls or columns to walk between. When `stages` is given,
+/// the time of Assimp's own import ("assimp import") and of the slicing after it ("IFC to
+/// plan") are appended to it.
+Plan read_ifc_building(const std::string& path, std::vector<StageTime>* stages = nullptr);
 
 }  // namespace avenues
