@@ -26,6 +26,8 @@
 #include <nlohmann/json.hpp>
 #include <pugixml.hpp>
 
+#include "cells/build_cells.h"
+#include "plans/formats/ifc_building.h"
 #include "render/raster.h"
 #include "tests/test_files.h"
 
@@ -207,6 +209,46 @@ TEST_F(WalkWindow, ScriptedWalkShowsTheOfflineRenderOfTheSameEye) {
   EXPECT_EQ(window.height, 360);
   const avenues::Image picture = offline(plan("jones-house.toml"), shot, "offline.png");
   EXPECT_EQ(differing(window, picture), 0) << "the window and `avenues view " << shot["view_options"] << "` differ";
+}
+
+// An IFC building walked for real: from one of the duplex's named spaces through a door
+// (the model's IfcDoor, cut into its wall) into another.
+TEST_F(WalkWindow, DuplexWalkGoesThroughADoorFromOneSpaceIntoAnother) {
+  const std::string model = std::string(AVENUES_SOURCE_DIR) + "/../shared/outside/ifc/duplex.ifc";
+  if (!fs::exists(model)) GTEST_SKIP() << "no " << model;
+  NEED_DISPLAY();
+  const avenues::Plan p = avenues::read_ifc_building(model);
+  const avenues::CellComplex c = avenues::build_cells(p);
+  // A door on the ground floor with a different named room a metre either side of it.
+  std::string from, to, eye, look;
+  for (const avenues::Wall& w : p.walls) {
+    const avenues::Storey& st = p.storeys[size_t(w.storey)];
+    if (std::fabs(st.elevation) > 0.5) continue;
+    const avenues::Vec2 d = (1 / avenues::length(w.centre[1] - w.centre[0])) * (w.centre[1] - w.centre[0]);
+    const avenues::Vec2 n{-d.y, d.x};
+    for (const avenues::Opening& o : w.openings) {
+      if (o.kind != avenues::OpeningKind::Door || o.width < 0.75 || !from.empty()) continue;
+      const avenues::Vec2 m = w.centre[0] + (o.at + o.width / 2) * d;
+      const double z = st.elevation + 1.6;
+      const avenues::Vec2 a = m - (1.0 + w.thickness / 2) * n, b = m + (1.0 + w.thickness / 2) * n;
+      const avenues::Location la = c.locate({a.x, a.y, z}), lb = c.locate({b.x, b.y, z});
+      if (la.what != avenues::Location::What::Cell || lb.what != avenues::Location::What::Cell) continue;
+      const int ra = c.cells[size_t(la.cell)].room, rb = c.cells[size_t(lb.cell)].room;
+      if (ra < 0 || rb < 0 || ra == rb || !c.rooms[size_t(ra)].named || !c.rooms[size_t(rb)].named) continue;
+      from = c.rooms[size_t(ra)].name, to = c.rooms[size_t(rb)].name;
+      eye = std::to_string(a.x) + "," + std::to_string(a.y) + "," + std::to_string(z);
+      look = std::to_string(b.x) + "," + std::to_string(b.y) + "," + std::to_string(z);
+    }
+  }
+  ASSERT_FALSE(from.empty()) << "no door between two named spaces on the ground floor";
+  write("door.txt", "0 screenshot before.png\n0 down W\n90 up W\n91 screenshot after.png\n91 quit\n");
+  const Outcome r = run("walk " + quote(model) + " --eye " + eye + " --look " + look +
+                        " --size 320x180 --no-hud --script door.txt --stats-json s.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json s = read_json("s.json");
+  ASSERT_EQ(s["screenshots"].size(), 2u);
+  EXPECT_EQ(s["screenshots"][0]["room"], from);
+  EXPECT_EQ(s["screenshots"][1]["room"], to) << "walked from '" << from << "' through the door";
 }
 
 TEST_F(WalkWindow, StereoSideBySideAndAnaglyphMatchTheOfflineStereoPictures) {
