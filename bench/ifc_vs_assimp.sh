@@ -7,7 +7,8 @@
 # Usage: bench/ifc_vs_assimp.sh [BUILD_DIR] [RUNS] [MODEL.ifc ...]
 #   BUILD_DIR  holding app/avenues (default: build beside this script's repository)
 #   RUNS       runs per model, the median reported (default 5)
-#   MODEL.ifc  default: ../shared/outside/ifc/{duplex,Office_A_20110811}.ifc and the FZK house
+#   MODEL.ifc  default: ../shared/outside/ifc/{duplex,Office_A_20110811}.ifc (or under
+#              $AVENUES_OUTSIDE) and the FZK house
 set -euo pipefail
 
 here=$(cd "$(dirname "$0")/.." && pwd)
@@ -15,8 +16,10 @@ build=${1:-$here/build}
 runs=${2:-5}
 shift 2 || true
 models=("$@")
+outside=$here/../shared/outside
+[ -d "$outside" ] || outside=${AVENUES_OUTSIDE:-$outside}
 if [ ${#models[@]} -eq 0 ]; then
-  models=("$here/../shared/outside/ifc/duplex.ifc" "$here/../shared/outside/ifc/Office_A_20110811.ifc"
+  models=("$outside/ifc/duplex.ifc" "$outside/ifc/Office_A_20110811.ifc"
           /usr/share/assimp/models/IFC/AC14-FZK-Haus.ifc)
 fi
 avenues=${AVENUES:-$build/app/avenues}
@@ -24,14 +27,15 @@ avenues=${AVENUES:-$build/app/avenues}
 echo "| model | Assimp import | IFC to plan | decompose | total | total / import | cells | named rooms |"
 echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
 for m in "${models[@]}"; do
-  for ((i = 0; i < runs; ++i)); do "$avenues" cells "$m" --json 2>/dev/null; echo; done | python3 -c '
-import json, statistics, sys, os
-runs = [json.loads(l) for l in sys.stdin if l.strip()]
-def stage(r, name): return r["stages"].get(name, 0.0)
-imp = statistics.median(stage(r, "assimp import") for r in runs)
-sl = statistics.median(stage(r, "IFC to plan") for r in runs)
-tot = statistics.median(r["seconds"] for r in runs)
-r = runs[0]
-print(f"| {os.path.basename(sys.argv[1])} | {imp:.2f} s | {sl:.2f} s | {tot - imp - sl:.2f} s | {tot:.2f} s | {tot / imp:.2f} | {r[\"cells\"]} | {r[\"named_rooms\"]} |")
-' "$m"
+  python3 - "$avenues" "$runs" "$m" <<'PY'
+import json, os, statistics, subprocess, sys
+avenues, runs, model = sys.argv[1], int(sys.argv[2]), sys.argv[3]
+out = [json.loads(subprocess.run([avenues, "cells", model, "--json"], capture_output=True, check=True, text=True).stdout)
+       for _ in range(runs)]
+imp = statistics.median(r["stages"].get("assimp import", 0.0) for r in out)
+sl = statistics.median(r["stages"].get("IFC to plan", 0.0) for r in out)
+tot = statistics.median(r["seconds"] for r in out)
+cells, named = out[0]["cells"], out[0]["named_rooms"]
+print(f"| {os.path.basename(model)} | {imp:.2f} s | {sl:.2f} s | {tot - imp - sl:.2f} s | {tot:.2f} s | {tot / imp:.2f} | {cells} | {named} |")
+PY
 done
