@@ -262,7 +262,9 @@ TEST(Ifc, DuplexHasItsFourStoreysAndNamedSpacesAsRooms) {
     const Storey& below = m.plan.storeys[i - 1];
     EXPECT_NEAR(m.plan.storeys[i].elevation, below.elevation + below.height + below.slab, 1e-9);
   }
-  EXPECT_GE(m.plan.walls.size(), 50u);
+  // Of its 57 IFC walls, the bulkheads above doors and the parapets (not standing on a
+  // storey's floor) are dropped with warnings; the rest stand, some on two storeys.
+  EXPECT_GE(m.plan.walls.size(), 40u);
   int doors = 0, windows = 0;
   for (const Wall& w : m.plan.walls)
     for (const Opening& o : w.openings) (o.kind == OpeningKind::Door ? doors : windows) += 1;
@@ -299,7 +301,7 @@ TEST(Ifc, ViewsOfEachModelAgreeWithRayCasting) {
     ASSERT_TRUE(m.plan.view.has_value());
     // The first view, and views from the labels of a few rooms, turned four ways.
     std::vector<Vec3> eyes = {m.plan.view->eye};
-    for (size_t r = 0; r < m.plan.rooms.size() && eyes.size() < 5; r += std::max<size_t>(1, m.plan.rooms.size() / 4)) {
+    for (size_t r = 0; r < m.plan.rooms.size() && eyes.size() < 3; r += std::max<size_t>(1, m.plan.rooms.size() / 2)) {
       const Room& room = m.plan.rooms[r];
       const Storey& st = m.plan.storeys[size_t(room.storey)];
       eyes.push_back({room.label->x, room.label->y, st.elevation + 1.5});

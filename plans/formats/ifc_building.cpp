@@ -566,7 +566,16 @@ class Builder {
       else if (ze < zb + 0.5 && plan_.rooms[r].storey != plan_.rooms[size_t(best)].storey && ze < zb)
         best = int(r);
     }
-    if (best < 0) return;
+    if (best < 0) {
+      // No spaces: outside the building, south of it, looking at its middle.
+      Box3 b;
+      for (const WallShape& w : wall_shape_) b.add({w.rect.centre.x, w.rect.centre.y, w.z0}), b.add({w.rect.centre.x, w.rect.centre.y, w.z1});
+      if (wall_shape_.empty()) return;
+      const Vec3 mid{0.5 * (b.lo.x + b.hi.x), 0.5 * (b.lo.y + b.hi.y), plan_.storeys.front().elevation + kEyeHeight};
+      const double reach = std::clamp(std::max(b.hi.x - b.lo.x, b.hi.y - b.lo.y), 5.0, 0.5 * plan_.far_margin);
+      plan_.view = Viewpoint{{mid.x, b.lo.y - reach, mid.z}, mid, 60};
+      return;
+    }
     const Room& room = plan_.rooms[size_t(best)];
     const Storey& st = plan_.storeys[size_t(room.storey)];
     const Vec2 eye = *room.label;
