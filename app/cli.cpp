@@ -24,6 +24,8 @@
 #include "app/commands.h"
 #include "app/option_checks.h"
 #include "cells/gmp_memory.h"
+#include "app/plan_source.h"
+#include "plans/mesh.h"
 #include "plans/plan.h"
 
 namespace {
@@ -222,6 +224,16 @@ int run_cli(int argc, char** argv) {
   office->add_option("--rooms", office_opt.rooms, "grid size, e.g. 10x10")->required()->type_name("ROWSxCOLS");
   office->add_option("-o,--output", office_opt.output, "the plan file to write")->required()->type_name("FILE.toml")->check(file_name());
 
+  // How a mesh scene in a format that declares no axes (OBJ, PLY, STL, OFF) becomes z-up
+  // metres; formats that declare theirs (glTF, COLLADA, FBX, 3DS, IFC) are read as they say.
+  std::string up_name, unit_name;
+  for (CLI::App* c : {&app, cells, exp, view, path, walk}) {
+    c->add_option("--up", up_name, "mesh scenes: the file's up axis where its format has none (OBJ, PLY, STL, OFF)")
+        ->check(CLI::IsMember({"x", "y", "z"}));
+    c->add_option("--unit", unit_name, "mesh scenes: the file's length unit where its format has none")
+        ->check(CLI::IsMember({"m", "cm", "mm", "in", "ft"}));
+  }
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -230,6 +242,7 @@ int run_cli(int argc, char** argv) {
     return kBadInput;
   }
 
+  set_mesh_axes({up_axis_named(up_name), metres_per_unit_named(unit_name)});
   try {
     if (*cells) return run_cells(cells_opt);
     if (*exp) return run_export(export_opt);

@@ -14,6 +14,9 @@
 #include "cells/build_cells.h"
 #include "cells/crow.h"
 #include "plans/formats/doom_map.h"
+#include "plans/formats/ifc_building.h"
+#include "plans/assimp_reader.h"
+#include "plans/mesh.h"
 #include "cells/mesh_scene.h"
 #include "plans/formats/sweet_home.h"
 #include "plans/plan.h"
@@ -28,6 +31,8 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kDefaultPlan = "jones-house.toml";
+
+MeshAxes g_mesh_axes;  // the command line's --up, --unit (set_mesh_axes)
 
 using PlanReader = Plan (*)(const std::string& file);
 
@@ -46,6 +51,8 @@ PlanReader plan_reader_for(FileFormat f) {
 }
 
 }  // namespace
+
+void set_mesh_axes(const MeshAxes& axes) { g_mesh_axes = axes; }
 
 double LoadedPlan::seconds() const {
   double s = 0;
@@ -103,6 +110,11 @@ PlanSpec parse_plan_spec(const std::string& plan) {
     }
   }
   spec.format = detect_format(spec.file);
+  // Models other readers know only by extension (glTF is JSON, which would pass for text).
+  if ((spec.format == FileFormat::Toml || spec.format == FileFormat::Unknown) &&
+      format_of_extension(spec.file) == FileFormat::Unknown &&
+      assimp_reads_extension(lower(fs::path(spec.file).extension().string())))
+    spec.format = FileFormat::Model;
   return spec;
 }
 
@@ -122,6 +134,18 @@ LoadedPlan load_plan_source(const std::string& plan) {
   auto decompose = [&](const Plan& parsed, const char* stage) {
     out.stages.push_back({stage, seconds_since(t0)});
     out.complex = build_cells(parsed);
+    for (const StageTime& t : out.complex.timings) out.stages.push_back(t);
+  };
+  // A mesh as a whole scene: OpenMesh or Assimp by its format, turned to z-up metres.
+  auto read_mesh = [&](const std::string& file) {
+    Mesh mesh = load_mesh(file, g_mesh_axes);  // names the file when unreadable
+    out.stages.push_back({"read mesh", seconds_since(t0)});
+    try {
+      out.complex = build_mesh_scene({mesh});
+    } catch (const std::exception& e) {
+      throw std::runtime_error(file + ": " + e.what());
+    }
+    out.complex.plan_name = out.stem;
     for (const StageTime& t : out.complex.timings) out.stages.push_back(t);
   };
   // Memory running out (an allocation, or GMP's: cells/gmp_memory.h) names the file.
@@ -151,7 +175,13 @@ LoadedPlan load_plan_source(const std::string& plan) {
         if (format_of_extension(spec.file) != spec.format)
           throw std::runtime_error(spec.file + " is " + format_name(spec.format) +
                                    " under another extension: name it as one to read it as a scene");
-        out.complex = read_mesh_scene(spec.file);
+        read_mesh(spec.file);
+        break;
+      }
+      case FileFormat::Model: read_mesh(spec.file); break;
+      case FileFormat::Ifc: {
+        const Plan building = read_ifc_building(spec.file, &out.stages);
+        out.complex = build_cells(building);
         for (const StageTime& t : out.complex.timings) out.stages.push_back(t);
         break;
       }

@@ -2,9 +2,10 @@
 //
 // PLAN on the command line is a plan (.toml: read and decomposed), a saved complex
 // (.cells: loaded), or a plan from elsewhere (docs/PLAN_FORMAT.md, "Plans from
-// elsewhere"): a Doom map FILE.wad:MAP01, a Sweet Home 3D home (.sh3d, Home.xml), a mesh
-// as a whole scene (.off .obj .ply .stl) or a Crow object (.crow). None means the
-// bundled default plan, plans/jones-house.toml.
+// elsewhere"): a Doom map FILE.wad:MAP01, a Sweet Home 3D home (.sh3d, Home.xml), an IFC
+// building (.ifc), a mesh as a whole scene (.off .obj .ply .stl, and every format Assimp
+// reads: .gltf .glb .dae .fbx .3ds ...) or a Crow object (.crow). None means the bundled
+// default plan, plans/jones-house.toml.
 #pragma once
 
 #include <string>
@@ -36,6 +37,10 @@ PlanSpec parse_plan_spec(const std::string& plan);
 /// The bundled default plan: AVENUES_SOURCE_DIR/plans/jones-house.toml, else
 /// <executable>/../share/avenues/plans/jones-house.toml. Throws if neither exists.
 std::string default_plan_path();
+
+/// The command line's --up and --unit: how a mesh scene whose format declares neither
+/// (OBJ, PLY, STL, OFF) becomes z-up metres. Set once, before loading.
+void set_mesh_axes(const MeshAxes& axes);
 
 /// Loads PLAN ("" = the default plan) and prints its warnings to stderr. Throws
 /// PlanError for plan mistakes and std::runtime_error naming the file for anything else,

@@ -1,5 +1,6 @@
 // Avenues — reading meshes with OpenMesh (see mesh.h).
 #include "plans/mesh.h"
+#include "plans/assimp_reader.h"
 #include "core/angles.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
@@ -342,7 +343,32 @@ class QuietOpenMesh {
 };
 }  // namespace
 
-Mesh load_mesh(const std::string& path) {
+std::optional<char> up_axis_named(const std::string& name) {
+  if (name == "x" || name == "y" || name == "z") return name[0];
+  return std::nullopt;
+}
+
+std::optional<double> metres_per_unit_named(const std::string& name) {
+  if (name == "m") return 1.0;
+  if (name == "cm") return 0.01;
+  if (name == "mm") return 0.001;
+  if (name == "in") return 0.0254;
+  if (name == "ft") return 0.3048;
+  return std::nullopt;
+}
+
+void orient_z_up(Mesh& m, char up, double metres_per_unit) {
+  // Rotations (no mirror), so triangles keep their winding: y up -> (x, -z, y), x up -> (y, z, x).
+  auto turn = [up](Vec3 p) {
+    if (up == 'y') return Vec3{p.x, -p.z, p.y};
+    if (up == 'x') return Vec3{p.y, p.z, p.x};
+    return p;
+  };
+  for (Vec3& v : m.vertices) v = metres_per_unit * turn(v);
+  for (Vec3& n : m.corner_normals) n = turn(n);
+}
+
+Mesh load_mesh(const std::string& path, const MeshAxes& axes) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);
@@ -352,6 +378,11 @@ Mesh load_mesh(const std::string& path) {
     throw std::runtime_error("cannot read mesh " + path + ": it is not a regular file (a device or FIFO?)");
   std::string ext = fs::path(path).extension().string();
   for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  if (ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl") {
+    if (!assimp_reads_extension(ext))
+      throw std::runtime_error("cannot read mesh " + path + ": '" + ext + "' is not a mesh format Avenues reads");
+    return load_assimp_mesh(path, axes);
+  }
   if (ext == ".ply") check_ply(path);
   if (ext == ".stl") check_stl(path);
   if (ext == ".obj") {
@@ -367,7 +398,10 @@ Mesh load_mesh(const std::string& path) {
                                      : OpenMesh::IO::read_mesh(pm, off_stream, ".off", opt);
   if (!read)
     throw std::runtime_error("cannot read mesh " + path + ": not a mesh OpenMesh can read (OBJ, OFF, PLY, STL)");
-  return mesh_of_openmesh(pm, path);
+  Mesh m = mesh_of_openmesh(pm, path);
+  if (axes.up.value_or('z') != 'z' || axes.metres_per_unit.value_or(1) != 1)
+    orient_z_up(m, axes.up.value_or('z'), axes.metres_per_unit.value_or(1));
+  return m;
 }
 
 Mesh read_mesh_bytes(const std::string& bytes, const std::string& ext, const std::string& name) {
@@ -530,7 +564,11 @@ std::string mesh_key_of_box(Vec3 size) {
 
 std::string mesh_key(const Object& object) {
   if (object.model) return "model " + object.model->path;
-  return object.mesh.empty() ? mesh_key_of_box(object.box) : object.mesh;
+  if (object.mesh.empty()) return mesh_key_of_box(object.box);
+  std::string key = object.mesh;
+  if (object.axes.up) key += " up " + std::string(1, *object.axes.up);
+  if (object.axes.metres_per_unit) key += " unit " + std::to_string(*object.axes.metres_per_unit);
+  return key;
 }
 
 Mesh load_object_mesh(const Object& object) {
@@ -541,7 +579,7 @@ Mesh load_object_mesh(const Object& object) {
     return box_mesh(object.box);
   }
   try {
-    return load_mesh(object.mesh);
+    return load_mesh(object.mesh, object.axes);
   } catch (const std::runtime_error& e) {
     const std::string where = object.where.str();
     if (where.empty()) throw;

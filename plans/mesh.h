@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,9 +43,21 @@ void smooth_corner_normals(Mesh& m, double crease_deg = 45);
 /// three vertices make no triangles (the others keep their numbers, Mesh::polygon_of).
 Mesh mesh_of_polygons(std::string path, std::vector<Vec3> vertices, std::vector<std::vector<int>> polygons);
 
-/// Reads a mesh; the format follows the extension. Throws std::runtime_error naming the
-/// file for a missing, unreadable or empty mesh.
-Mesh load_mesh(const std::string& path);
+/// Reads a mesh as z-up metres; the format follows the extension: OBJ, OFF, PLY and STL
+/// through OpenMesh, turned and scaled as `axes` says (default z up, metres); every other
+/// format Assimp reads (glTF 2, COLLADA, FBX, 3DS, ...) through plans/assimp_reader.h, in
+/// the up axis and unit the file declares (`axes` where it declares none). Throws
+/// std::runtime_error naming the file for a missing, unreadable or empty mesh.
+Mesh load_mesh(const std::string& path, const MeshAxes& axes = {});
+
+/// "x", "y", "z" as an up axis; std::nullopt for anything else.
+std::optional<char> up_axis_named(const std::string& name);
+/// One unit in metres: "m" 1, "cm" 0.01, "mm" 0.001, "in" 0.0254, "ft" 0.3048; std::nullopt
+/// for anything else.
+std::optional<double> metres_per_unit_named(const std::string& name);
+/// Turns a mesh whose up axis is `up` ('x', 'y', 'z', right-handed) to z up and scales it
+/// by `metres_per_unit`: y up becomes (x, -z, y), as Blender's Y-up export turned back.
+void orient_z_up(Mesh& m, char up, double metres_per_unit);
 
 /// Reads a mesh held in memory (a model inside an archive): `ext` is its format (".obj"),
 /// `name` what messages call it. Throws std::runtime_error naming it when it cannot be read.

@@ -113,6 +113,14 @@ struct Room {
   SourceLoc where;
 };
 
+/// How a mesh file's coordinates become Avenues' z-up metres, for formats that do not say
+/// (OBJ, PLY, STL, OFF): the file's up axis and its length unit. Unset: z up, metres. A
+/// format that declares its own (glTF, COLLADA, FBX, 3DS, IFC) is read as it declares.
+struct MeshAxes {
+  std::optional<char> up;              ///< 'x', 'y' or 'z': the file's up axis (right-handed)
+  std::optional<double> metres_per_unit;  ///< [m] > 0: one file unit in metres
+};
+
 /// A mesh placed in a room; carried along for the renderer, it does not change cells.
 struct Object {
   std::string name;
@@ -121,6 +129,7 @@ struct Object {
   Vec3 position;                 ///< [m] storey floor is z = 0 for the object
   Vec3 rotation_deg;             ///< [deg] about x, y, z, applied in that order
   Vec3 scale{1, 1, 1};
+  MeshAxes axes;                 ///< the mesh file's up axis and unit (keys 'up', 'unit')
   /// With no mesh: the object is a box this size [m] (x by y, z high), its base centred
   /// on `position` (furniture whose model is not at hand). Scale and rotation apply.
   Vec3 box{0, 0, 0};

@@ -38,6 +38,7 @@
 #include "core/number_format.h"
 
 #include "plans/arc.h"
+#include "plans/mesh.h"
 
 namespace avenues {
 namespace {
@@ -821,7 +822,7 @@ void Reader::read_objects(const toml::table& root) {
   for (size_t i = 0; i < ts.size(); ++i) {
     auto given = Element(*this, *ts[i], element_name("object", {}, static_cast<int>(i))).name_key();
     Element e(*this, *ts[i], element_name("object", given, static_cast<int>(i)));
-    e.allow({"name", "mesh", "storey", "position", "rotation", "scale", "material"});
+    e.allow({"name", "mesh", "storey", "position", "rotation", "scale", "material", "up", "unit"});
     Object o;
     o.name = given.value_or("object " + std::to_string(i + 1));
     o.where = e.loc();
@@ -855,6 +856,15 @@ void Reader::read_objects(const toml::table& root) {
       if (!(o.scale.x > 0 && o.scale.y > 0 && o.scale.z > 0) || o.scale.x > kAbsurdLength ||
           o.scale.y > kAbsurdLength || o.scale.z > kAbsurdLength)
         e.fail("scale", "'scale' factors must be > 0 (and not absurd)");
+    }
+    // The mesh file's axes where its format says none (OBJ, PLY, STL, OFF): plans/mesh.h.
+    if (auto* u = e.get("up")) {
+      o.axes.up = up_axis_named(e.string_of(*u, "'up'"));
+      if (!o.axes.up) e.fail("up", "'up' must be \"x\", \"y\" or \"z\" (the mesh file's up axis)");
+    }
+    if (auto* u = e.get("unit")) {
+      o.axes.metres_per_unit = metres_per_unit_named(e.string_of(*u, "'unit'"));
+      if (!o.axes.metres_per_unit) e.fail("unit", "'unit' must be \"m\", \"cm\", \"mm\", \"in\" or \"ft\"");
     }
     o.material = material(e, "material");
     plan_.objects.push_back(std::move(o));

@@ -641,3 +641,38 @@ TEST_F(Cli, AMeshIsAWholeSceneAndACrowObjectToo) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("broken.off"), std::string::npos) << r.err;
 }
+
+// Every broken file of Assimp's own test models (and one cut short) is refused with exit 2
+// and a message naming it, never a crash or a hang; the two OBJ files OpenMesh reads
+// leniently (a stray index, a stray line) are read.
+TEST_F(Cli, AssimpsInvalidModelsAreClearErrorsNamingTheFile) {
+  const fs::path invalid = "/usr/share/assimp/models/invalid";
+  if (!fs::exists(invalid)) GTEST_SKIP() << "assimp-testmodels not installed (.ci/install-deps)";
+  std::vector<std::string> files;
+  for (const auto& e : fs::directory_iterator(invalid)) files.push_back(e.path().string());
+  write("cut.glb", slurp("/usr/share/assimp/models/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb").substr(0, 300));
+  files.push_back(path("cut.glb").string());
+  for (const std::string& f : files) {
+    SCOPED_TRACE(f);
+    const Outcome r = run("cells " + quote(f));
+    if (f.ends_with("malformed.obj") || f.ends_with("malformed2.obj")) {
+      EXPECT_EQ(r.status, 0) << r.err;
+      continue;
+    }
+    EXPECT_EQ(r.status, 2) << r.out << r.err;
+    EXPECT_NE(r.err.find(f), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("terminate"), std::string::npos) << r.err;
+  }
+}
+
+TEST_F(Cli, IfcModelIsABuildingAndBadUpOrUnitIsRefused) {
+  const std::string model = "/usr/share/assimp/models/IFC/AC14-FZK-Haus.ifc";
+  if (!fs::exists(model)) GTEST_SKIP() << "assimp-testmodels not installed (.ci/install-deps)";
+  const Outcome r = run("cells " + quote(model) + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json j = parse_json(r);
+  EXPECT_EQ(j["storeys"].get<int>(), 2);
+  EXPECT_GE(j["named_rooms"].get<int>(), 5);
+  EXPECT_EQ(run("cells " + quote(model) + " --up w").status, 2);
+  EXPECT_EQ(run("cells " + quote(model) + " --unit furlong").status, 2);
+}

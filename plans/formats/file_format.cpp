@@ -86,6 +86,7 @@ const char* format_name(FileFormat f) {
     case FileFormat::Ply: return "a PLY mesh";
     case FileFormat::Stl: return "an STL mesh";
     case FileFormat::Crow: return "a Crow object";
+    case FileFormat::Model: return "a 3D model";
     case FileFormat::Ifc: return "an IFC model";
     case FileFormat::Dxf: return "a DXF drawing";
     case FileFormat::Png: return "a PNG image";

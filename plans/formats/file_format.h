@@ -27,9 +27,10 @@ enum class FileFormat : uint8_t {
   Ply,
   Stl,
   Crow,       ///< Crow 1981's object tables (.crow)
-  Ifc,        ///< formats Avenues does not read (yet)
-  Dxf,
-  Png,
+  Model,      ///< a 3D model another reader takes by its extension (Assimp: glTF, COLLADA, FBX, 3DS, ...)
+  Ifc,        ///< an IFC model (read through Assimp, plans/formats/ifc_building.h)
+  Dxf,        ///< a DXF drawing
+  Png,        ///< formats Avenues does not read
   Jpeg,
   Pdf,
   Gzip,
@@ -38,7 +39,7 @@ enum class FileFormat : uint8_t {
 /// What a message calls a file of this format: "an IFC model", "a PNG image".
 const char* format_name(FileFormat f);
 
-/// True for the mesh formats (OFF, OBJ, PLY, STL).
+/// True for the mesh formats OpenMesh reads (OFF, OBJ, PLY, STL).
 bool is_mesh_format(FileFormat f);
 
 /// The format `path`'s extension names (case-insensitive); Unknown for none or another.

@@ -1,0 +1,219 @@
+// Avenues — models read with Assimp (see assimp_reader.h). The one translation unit that
+// includes Assimp.
+#include "plans/assimp_reader.h"
+
+#include <assimp/Importer.hpp>
+#include <assimp/commonMetaData.h>
+#include <assimp/config.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+
+#include "core/stage_timer.h"
+
+namespace avenues {
+
+namespace {
+
+/// The axes Assimp's output is in for this file, and what the file itself declared.
+struct OutputAxes {
+  char up = 'z';
+  bool up_negative = false;  ///< FBX's UpAxisSign = -1
+  double metres_per_unit = 1;
+  bool declares_up = false, declares_unit = false;
+};
+
+template <class T>
+bool meta_number(const aiMetadata* meta, const char* key, T& out) {
+  if (!meta) return false;
+  for (unsigned i = 0; i < meta->mNumProperties; ++i) {
+    if (std::string(meta->mKeys[i].C_Str()) != key) continue;
+    const aiMetadataEntry& e = meta->mValues[i];
+    if (!e.mData) return false;
+    switch (e.mType) {
+      case AI_INT32: out = T(*static_cast<const int32_t*>(e.mData)); return true;
+      case AI_UINT64: out = T(*static_cast<const uint64_t*>(e.mData)); return true;
+      case AI_FLOAT: out = T(*static_cast<const float*>(e.mData)); return true;
+      case AI_DOUBLE: out = T(*static_cast<const double*>(e.mData)); return true;
+      default: return false;
+    }
+  }
+  return false;
+}
+
+OutputAxes output_axes(const aiScene& scene, const std::string& format) {
+  OutputAxes a;
+  auto has = [&](const char* s) { return format.find(s) != std::string::npos; };
+  if (has("glTF") || has("Collada") || has("IFC") || has("Industry Foundation")) {
+    // Assimp turns these to Y-up and applies COLLADA's <unit> and IFC's length unit;
+    // glTF is Y-up metres by definition.
+    a.up = 'y';
+    a.declares_up = a.declares_unit = true;
+  } else if (has("3DS")) {
+    a.up = 'y';  // Assimp turns 3DS's z-up to Y-up; the format has no unit
+    a.declares_up = true;
+  } else if (has("FBX")) {
+    int axis = 1, sign = 1;
+    if (meta_number(scene.mMetaData, "UpAxis", axis) && axis >= 0 && axis <= 2) {
+      meta_number(scene.mMetaData, "UpAxisSign", sign);
+      a.up = char('x' + axis);
+      a.up_negative = sign < 0;
+      a.declares_up = true;
+    }
+    double cm = 1;
+    if (meta_number(scene.mMetaData, "UnitScaleFactor", cm) && std::isfinite(cm) && cm > 0) {
+      a.metres_per_unit = cm / 100;  // FBX's unit: centimetres per file unit
+      a.declares_unit = true;
+    }
+  }
+  return a;
+}
+
+/// Assimp's frame (after node transforms) to Avenues' z-up, as a rotation.
+Vec3 z_up(aiVector3D p, char up, bool negative) {
+  const double x = p.x, y = p.y, z = p.z;
+  switch (up) {
+    case 'x': return negative ? Vec3{y, -z, -x} : Vec3{y, z, x};
+    case 'y': return negative ? Vec3{x, z, -y} : Vec3{x, -z, y};
+    default: return negative ? Vec3{x, -y, -z} : Vec3{x, y, z};
+  }
+}
+
+std::array<double, 3> diffuse_of(const aiScene& scene, unsigned material, bool& found) {
+  found = false;
+  if (material >= scene.mNumMaterials || !scene.mMaterials[material]) return {0.8, 0.8, 0.8};
+  const aiMaterial& m = *scene.mMaterials[material];
+  aiColor4D c;
+  if (m.Get(AI_MATKEY_BASE_COLOR, c) == AI_SUCCESS || m.Get(AI_MATKEY_COLOR_DIFFUSE, c) == AI_SUCCESS) {
+    auto clamp = [](float v) { return std::isfinite(v) ? std::min(1.0, std::max(0.0, double(v))) : 0.8; };
+    found = true;
+    return {clamp(c.r), clamp(c.g), clamp(c.b)};
+  }
+  return {0.8, 0.8, 0.8};
+}
+
+void collect(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent_world, int parent,
+             const OutputAxes& axes, double metres, ImportedScene& out, int& dropped, int depth) {
+  if (depth > 256) throw std::runtime_error("the node hierarchy is deeper than 256 (a cycle?)");
+  const aiMatrix4x4 world = parent_world * node.mTransformation;
+  const bool mirrored = world.Determinant() < 0;
+  const int self = int(out.nodes.size());
+  out.nodes.emplace_back();
+  {
+    ImportedNode& n = out.nodes.back();
+    n.name = node.mName.C_Str();
+    n.parent = parent;
+    for (unsigned k = 0; k < node.mNumMeshes; ++k) {
+      if (node.mMeshes[k] >= scene.mNumMeshes) continue;
+      const aiMesh& mesh = *scene.mMeshes[node.mMeshes[k]];
+      if (!n.coloured) n.colour = diffuse_of(scene, mesh.mMaterialIndex, n.coloured);
+      const int base = int(n.vertices.size());
+      std::vector<bool> finite(mesh.mNumVertices);
+      for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+        const Vec3 p = metres * z_up(world * mesh.mVertices[v], axes.up, axes.up_negative);
+        finite[v] = std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+        n.vertices.push_back(finite[v] ? p : Vec3{});
+      }
+      for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+        const aiFace& face = mesh.mFaces[f];
+        if (face.mNumIndices != 3) continue;  // points and lines have no surface
+        const unsigned a = face.mIndices[0], b = face.mIndices[1], c = face.mIndices[2];
+        if (a >= mesh.mNumVertices || b >= mesh.mNumVertices || c >= mesh.mNumVertices ||
+            !finite[a] || !finite[b] || !finite[c]) {
+          ++dropped;
+          continue;
+        }
+        if (mirrored) n.triangles.push_back({base + int(a), base + int(c), base + int(b)});
+        else n.triangles.push_back({base + int(a), base + int(b), base + int(c)});
+      }
+    }
+  }
+  for (unsigned c = 0; c < node.mNumChildren; ++c)
+    if (node.mChildren[c]) collect(scene, *node.mChildren[c], world, self, axes, metres, out, dropped, depth + 1);
+}
+
+}  // namespace
+
+bool assimp_reads_extension(const std::string& ext) {
+  if (ext.size() < 2 || ext[0] != '.') return false;
+  const Assimp::Importer importer;
+  return importer.IsExtensionSupported(ext.c_str());
+}
+
+ImportedScene import_scene(const std::string& path, const ImportOptions& options) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw std::runtime_error("cannot read model " + path + ": no such file");
+  Assimp::Importer importer;
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_IFC_SKIP_SPACE_REPRESENTATIONS, !options.ifc_spaces);
+  // Only triangles are kept: drop points and lines at the source.
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  ImportedScene out;
+  out.path = path;
+  const auto t0 = std::chrono::steady_clock::now();
+  const aiScene* scene = nullptr;
+  try {
+    scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
+                                        aiProcess_ValidateDataStructure);
+  } catch (const std::exception& e) {  // Assimp catches its own; anything else is a reading failure too
+    throw std::runtime_error("cannot read model " + path + ": " + e.what());
+  }
+  out.import_seconds = seconds_since(t0);
+  if (!scene) {
+    std::string why = importer.GetErrorString();
+    if (why.empty()) why = "Assimp gives no reason";
+    throw std::runtime_error("cannot read model " + path + ": " + why);
+  }
+  if (!scene->mRootNode) throw std::runtime_error("cannot read model " + path + ": it has no nodes");
+  aiString format;
+  if (scene->mMetaData) scene->mMetaData->Get(AI_METADATA_SOURCE_FORMAT, format);
+  out.format = format.C_Str();
+
+  OutputAxes axes = output_axes(*scene, out.format);
+  const std::string named = out.format.empty() ? "the format" : out.format;
+  if (options.axes.up) {
+    if (axes.declares_up)
+      out.warnings.push_back("up axis '" + std::string(1, *options.axes.up) + "' ignored: " + named + " declares the file's own");
+    else
+      axes.up = *options.axes.up;
+  }
+  if (options.axes.metres_per_unit) {
+    if (axes.declares_unit) out.warnings.push_back("unit ignored: " + named + " declares the file's own");
+    else axes.metres_per_unit = *options.axes.metres_per_unit;
+  }
+  int dropped = 0;
+  try {
+    collect(*scene, *scene->mRootNode, aiMatrix4x4(), -1, axes, axes.metres_per_unit, out, dropped, 0);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error("cannot read model " + path + ": " + e.what());
+  }
+  if (dropped > 0)
+    out.warnings.push_back(std::to_string(dropped) + " triangles dropped: they name missing or non-finite vertices");
+  return out;
+}
+
+Mesh mesh_of_scene(const ImportedScene& scene) {
+  std::vector<Vec3> vertices;
+  std::vector<std::vector<int>> polygons;
+  for (const ImportedNode& n : scene.nodes) {
+    const int base = int(vertices.size());
+    vertices.insert(vertices.end(), n.vertices.begin(), n.vertices.end());
+    for (const auto& t : n.triangles) polygons.push_back({base + t[0], base + t[1], base + t[2]});
+  }
+  if (polygons.empty()) throw std::runtime_error("mesh " + scene.path + " has no faces (no triangles in any node)");
+  return mesh_of_polygons(scene.path, std::move(vertices), std::move(polygons));
+}
+
+Mesh load_assimp_mesh(const std::string& path, const MeshAxes& axes, std::vector<std::string>* warnings) {
+  ImportOptions options;
+  options.axes = axes;
+  const ImportedScene scene = import_scene(path, options);
+  if (warnings) warnings->insert(warnings->end(), scene.warnings.begin(), scene.warnings.end());
+  return mesh_of_scene(scene);
+}
+
+}  // namespace avenues

@@ -1,0 +1,621 @@
+// Avenues — an IFC building model as a Plan (see ifc_building.h, docs/IFC.md).
+#include "plans/formats/ifc_building.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <optional>
+#include <stdexcept>
+
+#include "core/number_format.h"
+#include "plans/assimp_reader.h"
+#include "plans/mesh.h"
+
+namespace avenues {
+namespace {
+
+constexpr double kMinWall = 0.05;       ///< [m] a footprint shorter than this is no wall
+constexpr double kMinOpening = 0.2;     ///< [m] narrower or lower than this is no opening
+constexpr double kDoorReach = 0.25;     ///< [m] a door's centre may lie this far outside its wall's faces
+constexpr double kMinFill = 0.7;        ///< a wall's hull fills at least this share of its rectangle
+constexpr double kEyeHeight = 1.6;      ///< [m] above the floor
+constexpr size_t kWarningsListed = 40;  ///< dropped elements named one by one; the rest counted
+
+enum class Role { None, Container, Storey, Space, Wall, Door, Window, Object, Skip };
+
+/// "IfcWallStandardCase" of "IfcWallStandardCase_Basic Wall:Interior_2O2Fr$t4X7Zf8NOew3FNld".
+std::string ifc_type(const std::string& node) {
+  if (node.rfind("Ifc", 0) != 0) return {};
+  return node.substr(0, node.find('_'));
+}
+
+/// The element's own name: between the type and the 22-character GUID.
+std::string ifc_name(const std::string& node, const std::string& type) {
+  std::string rest = node.size() > type.size() + 1 ? node.substr(type.size() + 1) : std::string();
+  if (rest.size() >= 23 && rest[rest.size() - 23] == '_') rest.resize(rest.size() - 23);
+  else if (rest.size() == 22) rest.clear();  // only a GUID
+  return rest;
+}
+
+std::string ifc_guid(const std::string& node) { return node.size() >= 22 ? node.substr(node.size() - 22) : node; }
+
+Role role_of(const std::string& type) {
+  if (type.empty() || type == "IfcMappedItem") return Role::None;
+  if (type == "IfcProject" || type == "IfcSite" || type == "IfcBuilding") return Role::Container;
+  if (type == "IfcBuildingStorey") return Role::Storey;
+  if (type == "IfcSpace") return Role::Space;
+  if (type.rfind("IfcWall", 0) == 0 || type == "IfcCurtainWall" || type == "IfcColumn") return Role::Wall;
+  if (type == "IfcDoor") return Role::Door;
+  if (type == "IfcWindow") return Role::Window;
+  // The storeys' floors and ceilings stand for these; an opening element has no surface.
+  if (type == "IfcSlab" || type == "IfcCovering" || type == "IfcOpeningElement" || type == "IfcFooting" ||
+      type == "IfcAnnotation" || type == "IfcGrid")
+    return Role::Skip;
+  return Role::Object;  // furniture, stairs, railings, roofs, beams, members, fittings, proxies
+}
+
+/// One element and the triangles of its node and of its parts.
+struct Element {
+  std::string type, name, guid;
+  Role role = Role::None;
+  int storey = -1;  ///< index into Builder::storey_nodes; -1 outside every storey
+  std::vector<Vec3> vertices;
+  std::vector<std::array<int, 3>> triangles;
+  std::array<double, 3> colour{0.8, 0.8, 0.8};
+  bool coloured = false;
+  Box3 box;
+  std::string label() const { return type + " '" + (name.empty() ? guid : name) + "'"; }
+};
+
+/// Andrew's monotone chain; collinear points dropped.
+std::vector<Vec2> convex_hull(std::vector<Vec2> p) {
+  std::sort(p.begin(), p.end(), [](Vec2 a, Vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  p.erase(std::unique(p.begin(), p.end()), p.end());
+  if (p.size() < 3) return p;
+  std::vector<Vec2> h(2 * p.size());
+  size_t k = 0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    while (k >= 2 && cross(h[k - 1] - h[k - 2], p[i] - h[k - 2]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  for (size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && cross(h[k - 1] - h[k - 2], p[i] - h[k - 2]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  h.resize(k - 1);
+  return h;
+}
+
+/// The smallest rectangle around a convex polygon (one side lies on a hull edge).
+struct Rect {
+  Vec2 centre, along;  ///< along: unit, the long side's direction
+  double length = 0, width = 0, fill = 0;  ///< fill: hull area / rectangle area
+};
+
+std::optional<Rect> min_area_rect(const std::vector<Vec2>& hull) {
+  if (hull.size() < 3) return std::nullopt;
+  const double area = std::fabs(signed_area(hull));
+  std::optional<Rect> best;
+  double best_area = HUGE_VAL;
+  for (size_t i = 0; i < hull.size(); ++i) {
+    Vec2 d = hull[(i + 1) % hull.size()] - hull[i];
+    const double l = length(d);
+    if (l < 1e-9) continue;
+    d = (1 / l) * d;
+    const Vec2 n{-d.y, d.x};
+    double a0 = HUGE_VAL, a1 = -HUGE_VAL, b0 = HUGE_VAL, b1 = -HUGE_VAL;
+    for (Vec2 q : hull) {
+      a0 = std::min(a0, dot(q, d)), a1 = std::max(a1, dot(q, d));
+      b0 = std::min(b0, dot(q, n)), b1 = std::max(b1, dot(q, n));
+    }
+    const double ar = (a1 - a0) * (b1 - b0);
+    if (ar >= best_area) continue;
+    best_area = ar;
+    Rect r;
+    r.centre = (0.5 * (a0 + a1)) * d + (0.5 * (b0 + b1)) * n;
+    if (a1 - a0 >= b1 - b0) r.along = d, r.length = a1 - a0, r.width = b1 - b0;
+    else r.along = n, r.length = b1 - b0, r.width = a1 - a0;
+    r.fill = ar > 0 ? area / ar : 0;
+    best = r;
+  }
+  return best;
+}
+
+std::vector<Vec2> footprint_points(const Element& e) {
+  std::vector<Vec2> p;
+  p.reserve(e.vertices.size());
+  for (Vec3 v : e.vertices) p.push_back({v.x, v.y});
+  return p;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0 : v[v.size() / 2];
+}
+
+/// A wall of the model, before it is put on the storeys it spans.
+struct WallShape {
+  size_t element;
+  Rect rect;
+  double z0, z1;
+};
+
+/// A wall's rectangle as a closed footprint, for point tests.
+bool in_rect(const Rect& r, Vec2 p, double grow) {
+  const Vec2 n{-r.along.y, r.along.x};
+  const Vec2 q = p - r.centre;
+  return std::fabs(dot(q, r.along)) <= r.length / 2 + grow && std::fabs(dot(q, n)) <= r.width / 2 + grow;
+}
+
+/// Distance from p along unit direction d to the first side of r it meets (HUGE_VAL: none).
+double ray_to_rect(const Rect& r, Vec2 p, Vec2 d) {
+  const Vec2 n{-r.along.y, r.along.x};
+  const Vec2 q = p - r.centre;
+  double t0 = 0, t1 = HUGE_VAL;
+  for (auto [axis, half] : {std::pair{r.along, r.length / 2}, std::pair{n, r.width / 2}}) {
+    const double o = dot(q, axis), v = dot(d, axis);
+    if (std::fabs(v) < 1e-12) {
+      if (std::fabs(o) > half) return HUGE_VAL;
+      continue;
+    }
+    double a = (-half - o) / v, b = (half - o) / v;
+    if (a > b) std::swap(a, b);
+    t0 = std::max(t0, a), t1 = std::min(t1, b);
+    if (t0 > t1) return HUGE_VAL;
+  }
+  return t0;
+}
+
+class Builder {
+ public:
+  explicit Builder(const std::string& path) : path_(path) {}
+
+  double import_seconds = 0;  ///< [s] Assimp's ReadFile
+
+  Plan build() {
+    check_step_file();
+    ImportOptions options;
+    options.ifc_spaces = true;
+    ImportedScene scene;
+    try {
+      scene = import_scene(path_, options);
+    } catch (const std::runtime_error& e) {
+      throw PlanError({path_, 0, 0, ""}, std::string("Assimp cannot read this IFC model: ") + e.what());
+    }
+    import_seconds = scene.import_seconds;
+    gather(scene);
+    plan_.name = std::filesystem::path(path_).stem().string();
+    plan_.source = path_;
+    plan_.lenient = true;
+    make_storeys();
+    make_walls();
+    make_openings();
+    make_rooms();
+    make_objects();
+    make_view();
+    if (plan_.walls.empty())
+      throw PlanError({path_, 0, 0, ""}, "the model has no walls or columns to walk between (" +
+                                              std::to_string(elements_.size()) + " elements, none a usable wall)");
+    if (dropped_.size() > kWarningsListed)
+      plan_.warnings.push_back(std::to_string(dropped_.size() - kWarningsListed) + " more elements dropped");
+    return std::move(plan_);
+  }
+
+ private:
+  /// A STEP physical file starts "ISO-10303-21;" and ends "END-ISO-10303-21;": a file cut
+  /// short is an error rather than a building with its last storeys missing.
+  void check_step_file() {
+    std::ifstream in(path_, std::ios::binary);
+    if (!in) throw PlanError({path_, 0, 0, ""}, "cannot open the file");
+    std::string head(64, '\0');
+    in.read(head.data(), std::streamsize(head.size()));
+    head.resize(size_t(in.gcount()));
+    if (head.find("ISO-10303-21") == std::string::npos)
+      throw PlanError({path_, 1, 0, ""}, "not an IFC file: a STEP file (IFC) starts with 'ISO-10303-21;'");
+    in.clear();
+    in.seekg(0, std::ios::end);
+    const std::streamoff size = in.tellg();
+    const std::streamoff tail_size = std::min<std::streamoff>(size, 4096);
+    in.seekg(size - tail_size);
+    std::string tail(size_t(tail_size), '\0');
+    in.read(tail.data(), tail_size);
+    if (tail.find("END-ISO-10303-21") == std::string::npos)
+      throw PlanError({path_, 0, 0, ""}, "the file is cut short: it does not end with 'END-ISO-10303-21;'");
+  }
+
+  void drop(const Element& e, const std::string& why) {
+    dropped_.push_back(e.label());
+    if (dropped_.size() <= kWarningsListed) plan_.warnings.push_back(e.label() + " dropped: " + why);
+  }
+
+  /// Elements from nodes: a node of a placed IFC type starts an element, unless it lies
+  /// inside one (a mapped item, the flights and railings of a stair, the plates of a
+  /// curtain wall), whose triangles it then adds to.
+  void gather(const ImportedScene& scene) {
+    std::vector<int> owner(scene.nodes.size(), -1), storey_of(scene.nodes.size(), -1);
+    for (size_t i = 0; i < scene.nodes.size(); ++i) {
+      const ImportedNode& n = scene.nodes[i];
+      const int p = n.parent;
+      const int parent_owner = p >= 0 ? owner[size_t(p)] : -1;
+      storey_of[i] = p >= 0 ? storey_of[size_t(p)] : -1;
+      const std::string type = ifc_type(n.name);
+      const Role role = role_of(type);
+      const bool inside_part = parent_owner >= 0 && elements_[size_t(parent_owner)].role != Role::Space;
+      if (role == Role::Storey) {
+        storey_of[i] = int(storey_names_.size());
+        std::string name = ifc_name(n.name, type);
+        storey_names_.push_back(name.empty() ? "storey " + std::to_string(storey_names_.size() + 1) : name);
+      }
+      if (inside_part || (role == Role::None && parent_owner >= 0)) {
+        owner[i] = parent_owner;
+      } else if (role != Role::None && role != Role::Container && role != Role::Storey) {
+        owner[i] = int(elements_.size());
+        Element e;
+        e.type = type, e.role = role, e.name = ifc_name(n.name, type), e.guid = ifc_guid(n.name);
+        e.storey = storey_of[i];
+        elements_.push_back(std::move(e));
+      }
+      if (owner[i] < 0 || n.triangles.empty()) continue;
+      Element& e = elements_[size_t(owner[i])];
+      const int base = int(e.vertices.size());
+      for (Vec3 v : n.vertices) e.vertices.push_back(v), e.box.add(v);
+      for (const auto& t : n.triangles) e.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+      if (!e.coloured && n.coloured) e.colour = n.colour, e.coloured = true;
+    }
+    for (const std::string& w : scene.warnings) plan_.warnings.push_back(w);
+  }
+
+  /// Storey elevations from the floors their spaces stand on (else the bottoms of their
+  /// walls, else of anything in them); heights up to the next storey, less the slab.
+  void make_storeys() {
+    const size_t n = std::max<size_t>(storey_names_.size(), 1);
+    if (storey_names_.empty()) storey_names_.push_back("storey 1");  // a model without storeys: one for all
+    for (Element& e : elements_)
+      if (e.storey < 0) e.storey = 0;
+    std::vector<std::vector<double>> space_floor(n), space_top(n), wall_floor(n), any_floor(n), tops(n);
+    for (const Element& e : elements_) {
+      if (e.triangles.empty()) continue;
+      const size_t s = size_t(e.storey);
+      if (e.role == Role::Space) space_floor[s].push_back(e.box.lo.z), space_top[s].push_back(e.box.hi.z);
+      if (e.role == Role::Wall) wall_floor[s].push_back(e.box.lo.z);
+      if (e.role != Role::Skip) any_floor[s].push_back(e.box.lo.z);
+      if (e.role == Role::Wall || e.role == Role::Space) tops[s].push_back(e.box.hi.z);
+    }
+    struct Level {
+      size_t node;
+      double elevation, room_height;
+    };
+    std::vector<Level> levels;
+    for (size_t s = 0; s < n; ++s) {
+      const std::vector<double>& floors = !space_floor[s].empty() ? space_floor[s]
+                                          : !wall_floor[s].empty() ? wall_floor[s]
+                                                                   : any_floor[s];
+      if (floors.empty()) {
+        plan_.warnings.push_back("storey '" + storey_names_[s] + "' dropped: nothing in it has geometry");
+        continue;
+      }
+      const double elevation = median(floors);
+      double height = !space_top[s].empty() ? median(space_top[s]) - elevation
+                                             : (tops[s].empty() ? 2.5 : median(tops[s]) - elevation);
+      levels.push_back({s, elevation, std::clamp(height, 2.0, 12.0)});
+    }
+    if (levels.empty()) throw PlanError({path_, 0, 0, ""}, "the model has no geometry Avenues can use");
+    std::sort(levels.begin(), levels.end(), [](const Level& a, const Level& b) { return a.elevation < b.elevation; });
+    // Storeys closer than 1 m apart (two levels of one floor) are one storey: the plan's
+    // storeys are bands one can stand in (a crawl space of 1.2 m still is one).
+    std::vector<Level> kept;
+    storey_index_.assign(n, -1);
+    for (const Level& l : levels) {
+      if (!kept.empty() && l.elevation - kept.back().elevation < 1.0) {
+        plan_.warnings.push_back("storey '" + storey_names_[l.node] + "' joined to '" + storey_names_[kept.back().node] +
+                                 "': its floor is " + format_number(l.elevation - kept.back().elevation) + " m above");
+        storey_index_[l.node] = int(kept.size()) - 1;
+        continue;
+      }
+      storey_index_[l.node] = int(kept.size());
+      kept.push_back(l);
+    }
+    for (size_t i = 0; i < kept.size(); ++i) {
+      Storey st;
+      st.name = storey_names_[kept[i].node];
+      st.where = {path_, 0, 0, "IfcBuildingStorey '" + st.name + "'"};
+      st.elevation = kept[i].elevation;
+      if (i + 1 < kept.size()) {
+        const double gap = kept[i + 1].elevation - kept[i].elevation;
+        st.slab = std::clamp(gap - kept[i].room_height, 0.05, std::min(0.6, 0.3 * gap));
+        st.height = gap - st.slab;
+      } else {
+        st.height = kept[i].room_height;
+        st.slab = 0.3;
+      }
+      plan_.storeys.push_back(st);
+    }
+    for (Element& e : elements_) e.storey = storey_index_[size_t(e.storey)];
+  }
+
+  /// The storey whose band holds z (its floor to the next storey's floor).
+  int storey_at(double z) const {
+    int best = 0;
+    for (size_t i = 0; i < plan_.storeys.size(); ++i)
+      if (z >= plan_.storeys[i].elevation - 0.05) best = int(i);
+    return best;
+  }
+
+  MaterialId material_of(const Element& e) {
+    if (!e.coloured) return -1;
+    const std::array<int, 3> key{int(std::lround(e.colour[0] * 255)), int(std::lround(e.colour[1] * 255)),
+                                 int(std::lround(e.colour[2] * 255))};
+    auto [it, fresh] = materials_.emplace(key, MaterialId(plan_.materials.size()));
+    if (fresh) {
+      Material m;
+      m.name = "IFC colour " + std::to_string(key[0]) + "," + std::to_string(key[1]) + "," + std::to_string(key[2]);
+      m.colour = e.colour;
+      m.where = {path_, 0, 0, e.label()};
+      plan_.materials.push_back(m);
+    }
+    return it->second;
+  }
+
+  /// Walls and columns: the rectangle around the footprint, on each storey whose band it
+  /// spans at least half of (or 1 m of).
+  void make_walls() {
+    for (size_t i = 0; i < elements_.size(); ++i) {
+      const Element& e = elements_[i];
+      if (e.role != Role::Wall) continue;
+      if (e.triangles.empty()) {
+        drop(e, "no geometry");
+        continue;
+      }
+      const std::optional<Rect> r = min_area_rect(convex_hull(footprint_points(e)));
+      if (!r || r->length < kMinWall || r->width <= 1e-4) {
+        drop(e, "its footprint is not an area");
+        continue;
+      }
+      if (r->fill < kMinFill) {
+        drop(e, "its footprint is not a straight wall (it fills " + format_number("%.0f", 100 * r->fill) +
+                    "% of its rectangle)");
+        continue;
+      }
+      const WallShape shape{i, *r, e.box.lo.z, e.box.hi.z};
+      bool placed = false;
+      for (size_t s = 0; s < plan_.storeys.size(); ++s) {
+        const Storey& st = plan_.storeys[s];
+        const double lo = std::max(shape.z0, st.elevation), hi = std::min(shape.z1, st.elevation + st.height);
+        if (hi - lo < std::min(1.0, 0.5 * st.height)) continue;
+        Wall w;
+        w.name = e.name.empty() ? e.guid : e.name;
+        w.storey = StoreyId(s);
+        w.thickness = r->width;
+        const Vec2 half = (r->length / 2) * r->along;
+        w.centre = {r->centre - half, r->centre + half};
+        w.from_arc = {false};
+        w.height = shape.z1 >= st.elevation + st.height - 0.05 ? -1 : shape.z1 - st.elevation;
+        w.material = material_of(e);
+        w.where = {path_, 0, 0, e.label()};
+        wall_shape_.push_back(shape);
+        plan_.walls.push_back(std::move(w));
+        placed = true;
+      }
+      if (!placed) drop(e, "it stands in no storey's height");
+    }
+  }
+
+  /// Doors and windows: an opening in the wall of their storey nearest their centre, as
+  /// wide as their points reach along it; overlapping openings in one wall are merged.
+  void make_openings() {
+    for (const Element& e : elements_) {
+      if (e.role != Role::Door && e.role != Role::Window) continue;
+      if (e.triangles.empty()) {
+        drop(e, "no geometry");
+        continue;
+      }
+      const int s = storey_at(e.box.lo.z + 0.01);
+      const Storey& st = plan_.storeys[size_t(s)];
+      const std::vector<Vec2> pts = footprint_points(e);
+      const Vec2 c{0.5 * (e.box.lo.x + e.box.hi.x), 0.5 * (e.box.lo.y + e.box.hi.y)};
+      int best = -1;
+      double best_d = HUGE_VAL;
+      for (size_t w = 0; w < plan_.walls.size(); ++w) {
+        const Wall& wall = plan_.walls[w];
+        if (wall.storey != s) continue;
+        const double d = distance_to_segment(c, wall.centre[0], wall.centre[1]);
+        if (d <= wall.thickness / 2 + kDoorReach && d < best_d) best = int(w), best_d = d;
+      }
+      if (best < 0) {
+        drop(e, "it stands in no wall of storey '" + st.name + "'");
+        continue;
+      }
+      Wall& wall = plan_.walls[size_t(best)];
+      const Vec2 a = wall.centre[0], dir = wall.centre[1] - wall.centre[0];
+      const double len = length(dir);
+      double t0 = HUGE_VAL, t1 = -HUGE_VAL;
+      for (Vec2 p : pts) {
+        const double t = dot(p - a, dir) / len;
+        t0 = std::min(t0, t), t1 = std::max(t1, t);
+      }
+      t0 = std::max(t0, 0.0), t1 = std::min(t1, len);
+      const double top = wall.height < 0 ? st.height : std::min(st.height, wall.height);
+      Opening o;
+      o.name = e.name.empty() ? e.guid : e.name;
+      o.kind = e.role == Role::Door ? OpeningKind::Door : OpeningKind::Window;
+      o.at = t0;
+      o.width = t1 - t0;
+      o.sill = std::max(0.0, e.box.lo.z - st.elevation);
+      o.head = std::min(top, e.box.hi.z - st.elevation);
+      if (o.sill < 0.05) o.sill = 0;
+      o.where = {path_, 0, 0, e.label()};
+      if (o.width < kMinOpening || o.head - o.sill < kMinOpening) {
+        drop(e, "it opens less than " + format_number(kMinOpening) + " m of wall '" + wall.name + "'");
+        continue;
+      }
+      add_opening(wall, std::move(o));
+    }
+    for (Wall& w : plan_.walls)
+      std::sort(w.openings.begin(), w.openings.end(), [](const Opening& a, const Opening& b) { return a.at < b.at; });
+  }
+
+  void add_opening(Wall& wall, Opening o) {
+    for (Opening& m : wall.openings) {
+      if (o.at >= m.at + m.width || m.at >= o.at + o.width) continue;
+      plan_.warnings.push_back(o.where.element + ": overlaps " + m.where.element + " in wall '" + wall.name +
+                               "': one opening");
+      const double end = std::max(m.at + m.width, o.at + o.width);
+      m.at = std::min(m.at, o.at);
+      m.width = end - m.at;
+      m.sill = std::min(m.sill, o.sill);
+      m.head = std::max(m.head, o.head);
+      if (o.kind == OpeningKind::Door) m.kind = OpeningKind::Door;
+      return;
+    }
+    wall.openings.push_back(std::move(o));
+  }
+
+  /// Spaces: rooms named as the file names them, labelled at the centre of the largest of
+  /// their floor's triangles that lies in no wall.
+  void make_rooms() {
+    std::map<std::pair<int, std::string>, int> seen;
+    for (const Element& e : elements_) {
+      if (e.role != Role::Space) continue;
+      if (e.triangles.empty()) {
+        drop(e, "no geometry");
+        continue;
+      }
+      const int s = storey_at(e.box.lo.z + 0.01);
+      // Floor triangles: facing down, at the space's bottom.
+      std::vector<std::pair<double, Vec2>> floor;
+      double area = 0;
+      for (const auto& t : e.triangles) {
+        const Vec3 p = e.vertices[size_t(t[0])], q = e.vertices[size_t(t[1])], r = e.vertices[size_t(t[2])];
+        const Vec3 n = cross(q - p, r - p);
+        const double a = 0.5 * length(n);
+        if (a < 1e-6 || std::fabs(n.z) < 0.9 * 2 * a) continue;
+        if (std::max({p.z, q.z, r.z}) > e.box.lo.z + 0.05) continue;
+        area += a;
+        floor.push_back({a, Vec2{(p.x + q.x + r.x) / 3, (p.y + q.y + r.y) / 3}});
+      }
+      std::sort(floor.begin(), floor.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+      std::optional<Vec2> label;
+      for (const auto& [a, c] : floor) {
+        bool in_wall = false;
+        for (size_t w = 0; w < plan_.walls.size() && !in_wall; ++w)
+          in_wall = plan_.walls[w].storey == s && in_rect(wall_shape_[w].rect, c, 0.02);
+        if (!in_wall) {
+          label = c;
+          break;
+        }
+      }
+      if (!label) {
+        drop(e, "no point of its floor lies outside the walls");
+        continue;
+      }
+      Room room;
+      room.name = e.name.empty() ? e.guid : e.name;
+      const int copies = seen[{s, room.name}]++;
+      if (copies > 0) room.name += " (" + std::to_string(copies + 1) + ")";
+      room.storey = s;
+      room.label = label;
+      room.where = {path_, 0, 0, e.label()};
+      room_area_.push_back(area);
+      plan_.rooms.push_back(std::move(room));
+    }
+  }
+
+  /// Everything else with a surface: an object with its own mesh, standing on its storey.
+  void make_objects() {
+    for (const Element& e : elements_) {
+      if (e.role != Role::Object || e.triangles.empty()) continue;
+      const int s = storey_at(e.box.lo.z + 0.01);
+      const double floor = plan_.storeys[size_t(s)].elevation;
+      std::vector<Vec3> v = e.vertices;
+      for (Vec3& p : v) p.z -= floor;
+      std::vector<std::vector<int>> polygons;
+      polygons.reserve(e.triangles.size());
+      for (const auto& t : e.triangles) polygons.push_back({t[0], t[1], t[2]});
+      Object o;
+      o.name = e.name.empty() ? e.guid : e.name;
+      o.mesh = path_ + ":" + e.guid;
+      o.storey = s;
+      o.model = std::make_shared<const Mesh>(mesh_of_polygons(o.mesh, std::move(v), std::move(polygons)));
+      o.material = material_of(e);
+      o.where = {path_, 0, 0, e.label()};
+      plan_.objects.push_back(std::move(o));
+    }
+  }
+
+  /// The first view: at eye height in the largest named space of the entrance storey (the
+  /// storey with rooms whose floor is nearest z = 0), looking the way the walls leave
+  /// most room.
+  void make_view() {
+    int best = -1;
+    for (size_t r = 0; r < plan_.rooms.size(); ++r) {
+      if (best < 0) {
+        best = int(r);
+        continue;
+      }
+      const double ze = std::fabs(plan_.storeys[size_t(plan_.rooms[r].storey)].elevation);
+      const double zb = std::fabs(plan_.storeys[size_t(plan_.rooms[size_t(best)].storey)].elevation);
+      if (ze < zb - 0.5 || (ze < zb + 0.5 && plan_.rooms[r].storey == plan_.rooms[size_t(best)].storey &&
+                            room_area_[r] > room_area_[size_t(best)]))
+        best = int(r);
+      else if (ze < zb + 0.5 && plan_.rooms[r].storey != plan_.rooms[size_t(best)].storey && ze < zb)
+        best = int(r);
+    }
+    if (best < 0) {
+      // No spaces: outside the building, south of it, looking at its middle.
+      Box3 b;
+      for (const WallShape& w : wall_shape_) b.add({w.rect.centre.x, w.rect.centre.y, w.z0}), b.add({w.rect.centre.x, w.rect.centre.y, w.z1});
+      if (wall_shape_.empty()) return;
+      const Vec3 mid{0.5 * (b.lo.x + b.hi.x), 0.5 * (b.lo.y + b.hi.y), plan_.storeys.front().elevation + kEyeHeight};
+      const double reach = std::clamp(std::max(b.hi.x - b.lo.x, b.hi.y - b.lo.y), 5.0, 0.5 * plan_.far_margin);
+      plan_.view = Viewpoint{{mid.x, b.lo.y - reach, mid.z}, mid, 60};
+      return;
+    }
+    const Room& room = plan_.rooms[size_t(best)];
+    const Storey& st = plan_.storeys[size_t(room.storey)];
+    const Vec2 eye = *room.label;
+    double longest = -1;
+    Vec2 look = eye + Vec2{1, 0};
+    for (int k = 0; k < 72; ++k) {
+      const double a = 2 * std::numbers::pi * k / 72;
+      const Vec2 d{std::cos(a), std::sin(a)};
+      double free = 50;
+      for (size_t w = 0; w < plan_.walls.size(); ++w)
+        if (plan_.walls[w].storey == room.storey) free = std::min(free, ray_to_rect(wall_shape_[w].rect, eye, d));
+      if (free > longest) longest = free, look = eye + free * d;
+    }
+    const double z = st.elevation + std::min(kEyeHeight, 0.7 * st.height);
+    plan_.view = Viewpoint{{eye.x, eye.y, z}, {look.x, look.y, z}, 60};
+  }
+
+  std::string path_;
+  Plan plan_;
+  std::vector<Element> elements_;
+  std::vector<std::string> storey_names_;  ///< per IfcBuildingStorey node, in file order
+  std::vector<int> storey_index_;          ///< per node storey: its Plan storey
+  std::vector<WallShape> wall_shape_;      ///< per Plan wall
+  std::vector<double> room_area_;          ///< per Plan room [m²]
+  std::vector<std::string> dropped_;
+  std::map<std::array<int, 3>, MaterialId> materials_;
+};
+
+}  // namespace
+
+Plan read_ifc_building(const std::string& path, std::vector<StageTime>* stages) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Builder b(path);
+  Plan plan = b.build();
+  if (stages) {
+    const double total = seconds_since(t0);
+    stages->push_back({"assimp import", b.import_seconds});
+    stages->push_back({"IFC to plan", total - b.import_seconds});
+  }
+  return plan;
+}
+
+}  // namespace avenues

@@ -1,0 +1,38 @@
+// Avenues — an IFC building model (ISO 16739, as BIM tools export it) as a Plan.
+//
+// Assimp reads the model (plans/assimp_reader.h): it evaluates the IFC geometry, cuts the
+// openings out of the walls, and names each node by its IFC type, name and GUID
+// ("IfcWallStandardCase_Basic Wall:Interior_2O2Fr$t4X7Zf8NOew3FNld"). This reader slices
+// that geometry into the 2.5D plan (docs/IFC.md says why, with the measurements):
+// - each IfcBuildingStorey is a storey, its elevation the floor its spaces (else its
+//   walls) stand on, its height up to the next storey's floor less the slab between;
+// - walls, curtain walls and columns are walls: the centre line and thickness of the
+//   smallest rectangle around their footprint, on every storey their height spans;
+// - IfcDoor and IfcWindow are door and window openings in the wall they stand in, as wide
+//   as they reach along it, from their lowest to their highest point;
+// - IfcSpace is a room, named as the file names it, labelled at a point of its floor;
+// - furniture, stairs, railings, roofs, members and fittings are objects (their meshes, in
+//   their IFC colours) drawn but not cut out of the free space; slabs and coverings are
+//   the storeys' floors and ceilings.
+// Elements whose geometry cannot be used are dropped with one warning each.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/stage_timer.h"
+#include "plans/plan.h"
+
+namespace avenues {
+
+/// Reads an IFC file (STEP physical file, IFC2X3 or the part of IFC4 Assimp reads) as a
+/// lenient Plan, its first view at eye height in the largest named space of the entrance
+/// storey (the storey with spaces whose floor is nearest the ground, z = 0), looking along
+/// its longest free direction. Throws PlanError naming the file for a file that is not a
+/// STEP file or is cut short, with Assimp's reason (naming the entity) for what it cannot
+/// read, and for a model with no walls or columns to walk between. When `stages` is given,
+/// the time of Assimp's own import ("assimp import") and of the slicing after it ("IFC to
+/// plan") are appended to it.
+Plan read_ifc_building(const std::string& path, std::vector<StageTime>* stages = nullptr);
+
+}  // namespace avenues
