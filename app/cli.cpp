@@ -29,6 +29,22 @@ constexpr int kBadInput = 2;
 
 namespace avenues::app {
 
+namespace {
+/// The options that say how a plan from elsewhere is understood (docs/PLAN_FORMAT.md,
+/// "Plans from elsewhere"), on every subcommand that reads a PLAN.
+void add_import_options(CLI::App* app, ImportOptions& o) {
+  app->add_option("--scale", o.scale, "floor-plan annotations (.txt): metres per pixel (default 0.04)")
+      ->check(CLI::PositiveNumber)->type_name("M_PER_PIXEL");
+  app->add_option("--layers", o.layers, "DXF: which layers hold what, overriding the usual names")
+      ->type_name("walls=NAME,...;doors=...;windows=...");
+  app->add_option("--unit", o.unit, "DXF: drawing unit m, cm, mm, in or ft (overrides $INSUNITS)");
+  app->add_option("--storey-height", o.storey_height, "[m] 2D drawings: floor to ceiling")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  app->add_option("--save-plan", o.save_plan, "also write the plan as understood, in Avenues' TOML")
+      ->type_name("FILE.toml");
+}
+}  // namespace
+
 int run_cli(int argc, char** argv) {
   CLI::App app{
       "Avenues: an architectural walkthrough tool. It decomposes a building plan's free\n"
@@ -42,12 +58,14 @@ int run_cli(int argc, char** argv) {
 
   MainJobOptions main_opt;
   app.add_option("PLAN", main_opt.plan, "plan (.toml) or saved cells (.cells); default: the bundled plan");
+  add_import_options(&app, main_opt.import);
   app.add_option("--out-dir", main_opt.out_dir, "where the main job writes its files")
       ->capture_default_str();
 
   CellsOptions cells_opt;
   CLI::App* cells = app.add_subcommand("cells", "decompose PLAN into cells and print a summary");
   cells->add_option("PLAN", cells_opt.plan, "plan (.toml) or saved cells (.cells)")->required();
+  add_import_options(cells, cells_opt.import);
   cells->add_flag("--json", cells_opt.json, "print the summary as one JSON object");
   cells->add_option("--svg", cells_opt.svg, "also write the plan drawing (SVG) to FILE")->type_name("FILE");
   cells->add_option("--save", cells_opt.save, "also save the complex to FILE.cells (loads fast)")
@@ -56,11 +74,13 @@ int run_cli(int argc, char** argv) {
   ExportOptions export_opt;
   CLI::App* exp = app.add_subcommand("export", "write the opaque surfaces as a Wavefront OBJ mesh");
   exp->add_option("PLAN", export_opt.plan, "plan (.toml) or saved cells (.cells)")->required();
+  add_import_options(exp, export_opt.import);
   exp->add_option("-o,--output", export_opt.output, "the OBJ file to write")->required()->type_name("FILE.obj");
 
   ViewOptions view_opt;
   CLI::App* view = app.add_subcommand("view", "find what the eye sees from one viewpoint (Jones's avenues of sight)");
   view->add_option("PLAN", view_opt.plan, "plan (.toml) or saved cells (.cells); default: the bundled plan");
+  add_import_options(view, view_opt.import);
   view->add_option("--eye", view_opt.eye, "eye position; default: the plan's viewpoint")->type_name("X,Y,Z");
   view->add_option("--look", view_opt.look, "centre of interest")->type_name("X,Y,Z");
   view->add_option("--yaw", view_opt.yaw, "heading in degrees anticlockwise from +x (instead of --look)");
@@ -95,6 +115,7 @@ int run_cli(int argc, char** argv) {
   PathOptions path_opt;
   CLI::App* path = app.add_subcommand("path", "write the frames of a walk through named rooms (a batch walkthrough)");
   path->add_option("PLAN", path_opt.plan, "plan (.toml) or saved cells (.cells); default: the bundled plan");
+  add_import_options(path, path_opt.import);
   path->add_option("--through", path_opt.through, "rooms to walk through, in order")->type_name("ROOM,ROOM,...");
   path->add_option("--keys", path_opt.keys, "keyframes to follow: one 'EX EY EZ LX LY LZ' per line")->type_name("FILE");
   path->add_option("-o,--output", path_opt.out_dir, "directory for the numbered frames")->capture_default_str();
@@ -107,6 +128,7 @@ int run_cli(int argc, char** argv) {
   WalkOptions walk_opt;
   CLI::App* walk = app.add_subcommand("walk", "walk through PLAN in a window (H in the window lists the controls)");
   walk->add_option("PLAN", walk_opt.plan, "plan (.toml, .cells, FILE.wad:MAP01, ...); default: the bundled plan");
+  add_import_options(walk, walk_opt.import);
   walk->add_option("--size", walk_opt.size, "the window's size in pixels")->type_name("WxH")->capture_default_str();
   walk->add_option("--eye", walk_opt.eye, "where to start; default: the plan's viewpoint")->type_name("X,Y,Z");
   walk->add_option("--look", walk_opt.look, "what to look at first")->type_name("X,Y,Z");

@@ -8,7 +8,7 @@
 namespace avenues::app {
 
 int run_export(const ExportOptions& opt) {
-  LoadedPlan plan = load_plan_source(opt.plan);
+  LoadedPlan plan = load_plan_source(opt.plan, opt.import);
   export_obj(plan.complex, opt.output);
   long long triangles = 0;
   for (const Cell& cell : plan.complex.cells)

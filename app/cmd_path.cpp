@@ -76,7 +76,7 @@ std::vector<std::pair<Vec3, Vec3>> read_keys(const std::string& file) {
 }
 
 int run_path(const PathOptions& opt) {
-  LoadedPlan plan = load_plan_source(opt.plan);
+  LoadedPlan plan = load_plan_source(opt.plan, opt.import);
   const CellComplex& c = plan.complex;
   if (opt.format != "png" && opt.format != "svg") throw std::runtime_error("--format wants png or svg, not '" + opt.format + "'");
   int w = 0, h = 0;

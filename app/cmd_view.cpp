@@ -109,7 +109,7 @@ int run_view(const ViewOptions& opt) {
   if (opt.lights != "plan" && opt.lights != "eye")
     throw std::runtime_error("--lights wants plan or eye, not '" + opt.lights + "'");
   if (!std::isfinite(opt.falloff)) throw std::runtime_error("--falloff wants a distance in metres");
-  LoadedPlan plan = load_plan_source(opt.plan);
+  LoadedPlan plan = load_plan_source(opt.plan, opt.import);
   ViewSetup v = set_up_view(plan, opt);
   VisibleSet vs = find_visible(plan.complex, v.camera, v.eye_cell, v.kernel);
   nlohmann::json stats = view_stats(plan, v, vs);

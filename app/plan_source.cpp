@@ -13,9 +13,11 @@
 #include "cells/build_cells.h"
 #include "cells/crow.h"
 #include "plans/formats/doom_map.h"
+#include "plans/formats/floorplan_vectors.h"
 #include "cells/mesh_scene.h"
 #include "plans/formats/sweet_home.h"
 #include "plans/plan.h"
+#include "plans/plan_writer.h"
 
 #ifndef AVENUES_SOURCE_DIR
 #define AVENUES_SOURCE_DIR ""
@@ -92,11 +94,12 @@ PlanSpec parse_plan_spec(const std::string& plan) {
   else if (ext == ".sh3d" || ext == ".xml") spec.format = PlanFormat::SweetHome;
   else if (ext == ".off" || ext == ".obj" || ext == ".ply" || ext == ".stl") spec.format = PlanFormat::MeshScene;
   else if (ext == ".crow") spec.format = PlanFormat::Crow;
+  else if (ext == ".txt") spec.format = PlanFormat::FloorplanVectors;
   else spec.format = PlanFormat::Toml;
   return spec;
 }
 
-LoadedPlan load_plan_source(const std::string& plan) {
+LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import) {
   LoadedPlan out;
   PlanSpec spec = parse_plan_spec(plan.empty() ? default_plan_path() : plan);
   out.path = plan.empty() ? spec.file : plan;
@@ -106,10 +109,21 @@ LoadedPlan load_plan_source(const std::string& plan) {
   if (!fs::exists(p, ec)) throw std::runtime_error(spec.file + ": no such file");
   if (fs::is_directory(p, ec)) throw std::runtime_error(spec.file + ": is a directory, not a plan");
   if (spec.format != PlanFormat::Cells && looks_like_cells(spec.file)) spec.format = PlanFormat::Cells;
+  if (spec.format == PlanFormat::Toml && lower(p.extension().string()) != ".toml") {
+    // No telling extension: a few lines of content tell the 2D formats.
+    std::ifstream in(spec.file, std::ios::binary);
+    std::string head(4096, '\0');
+    head.resize(size_t(in.read(head.data(), std::streamsize(head.size())).gcount()));
+    if (looks_like_floorplan_vectors(head)) spec.format = PlanFormat::FloorplanVectors;
+  }
 
   auto t0 = std::chrono::steady_clock::now();
   auto decompose = [&](const Plan& parsed, const char* stage) {
     out.stages.push_back({stage, seconds_since(t0)});
+    if (!import.save_plan.empty()) {
+      write_plan(parsed, import.save_plan);
+      std::cerr << spec.file << ": the plan as understood is in " << import.save_plan << "\n";
+    }
     out.complex = build_cells(parsed);
     for (const StageTime& t : out.complex.timings) out.stages.push_back(t);
   };
@@ -132,6 +146,13 @@ LoadedPlan load_plan_source(const std::string& plan) {
       break;
     }
     case PlanFormat::SweetHome: decompose(read_sweet_home(spec.file), "read home"); break;
+    case PlanFormat::FloorplanVectors: {
+      FloorplanVectorOptions o;
+      if (import.scale > 0) o.metres_per_pixel = import.scale;
+      o.storey_height = import.storey_height;
+      decompose(read_floorplan_vectors(spec.file, o), "read annotations");
+      break;
+    }
     case PlanFormat::MeshScene:
       out.complex = read_mesh_scene(spec.file);
       for (const StageTime& t : out.complex.timings) out.stages.push_back(t);

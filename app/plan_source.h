@@ -3,7 +3,8 @@
 // PLAN on the command line is a plan (.toml: read and decomposed), a saved complex
 // (.cells: loaded), or a plan from elsewhere (docs/PLAN_FORMAT.md, "Plans from
 // elsewhere"): a Doom map FILE.wad:MAP01, a Sweet Home 3D home (.sh3d, Home.xml), a mesh
-// as a whole scene (.off .obj .ply .stl) or a Crow object (.crow). None means the
+// as a whole scene (.off .obj .ply .stl), a Crow object (.crow) or floor-plan
+// annotations (.txt, Raster-to-Vector's format). None means the
 // bundled default plan, plans/jones-house.toml.
 #pragma once
 
@@ -22,7 +23,17 @@ struct LoadedPlan {
   double seconds() const;          ///< total of stages
 };
 
-enum class PlanFormat { Toml, Cells, DoomMap, SweetHome, MeshScene, Crow };
+enum class PlanFormat { Toml, Cells, DoomMap, SweetHome, MeshScene, Crow, FloorplanVectors };
+
+/// How a plan from elsewhere is to be understood (--scale, --layers, --unit,
+/// --storey-height) and whether to save what was understood (--save-plan).
+struct ImportOptions {
+  double scale = 0;           ///< [m per pixel] floor-plan annotations; 0: the reader's default
+  std::string layers;         ///< DXF: "walls=A,B;doors=C;windows=D"
+  std::string unit;           ///< DXF: overrides $INSUNITS ("m", "cm", "mm", "in", "ft")
+  double storey_height = 2.7; ///< [m] of the one storey of a 2D drawing
+  std::string save_plan;      ///< write the Plan read to this TOML file ("" none)
+};
 
 /// PLAN taken apart: the file, the map inside it (a WAD's), and its format by extension.
 struct PlanSpec {
@@ -38,6 +49,6 @@ std::string default_plan_path();
 
 /// Loads PLAN ("" = the default plan) and prints its warnings to stderr. Throws
 /// PlanError for plan mistakes and std::runtime_error naming the file for anything else.
-LoadedPlan load_plan_source(const std::string& plan);
+LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import = {});
 
 }  // namespace avenues::app
