@@ -13,6 +13,7 @@
 #include "cells/build_cells.h"
 #include "cells/crow.h"
 #include "plans/formats/doom_map.h"
+#include "plans/formats/dxf_plan.h"
 #include "plans/formats/floorplan_vectors.h"
 #include "cells/mesh_scene.h"
 #include "plans/formats/sweet_home.h"
@@ -95,6 +96,7 @@ PlanSpec parse_plan_spec(const std::string& plan) {
   else if (ext == ".off" || ext == ".obj" || ext == ".ply" || ext == ".stl") spec.format = PlanFormat::MeshScene;
   else if (ext == ".crow") spec.format = PlanFormat::Crow;
   else if (ext == ".txt") spec.format = PlanFormat::FloorplanVectors;
+  else if (ext == ".dxf") spec.format = PlanFormat::Dxf;
   else spec.format = PlanFormat::Toml;
   return spec;
 }
@@ -115,6 +117,7 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
     std::string head(4096, '\0');
     head.resize(size_t(in.read(head.data(), std::streamsize(head.size())).gcount()));
     if (looks_like_floorplan_vectors(head)) spec.format = PlanFormat::FloorplanVectors;
+    else if (looks_like_dxf(head)) spec.format = PlanFormat::Dxf;
   }
 
   auto t0 = std::chrono::steady_clock::now();
@@ -151,6 +154,12 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
       if (import.scale > 0) o.metres_per_pixel = import.scale;
       o.storey_height = import.storey_height;
       decompose(read_floorplan_vectors(spec.file, o), "read annotations");
+      break;
+    }
+    case PlanFormat::Dxf: {
+      const DxfPlan d = read_dxf_plan(spec.file, {import.layers, import.unit, import.storey_height});
+      for (const std::string& line : d.summary) std::cerr << spec.file << ": " << line << "\n";
+      decompose(d.plan, "read drawing");
       break;
     }
     case PlanFormat::MeshScene:

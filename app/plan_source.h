@@ -3,8 +3,8 @@
 // PLAN on the command line is a plan (.toml: read and decomposed), a saved complex
 // (.cells: loaded), or a plan from elsewhere (docs/PLAN_FORMAT.md, "Plans from
 // elsewhere"): a Doom map FILE.wad:MAP01, a Sweet Home 3D home (.sh3d, Home.xml), a mesh
-// as a whole scene (.off .obj .ply .stl), a Crow object (.crow) or floor-plan
-// annotations (.txt, Raster-to-Vector's format). None means the
+// as a whole scene (.off .obj .ply .stl), a Crow object (.crow), a DXF drawing (.dxf) or
+// floor-plan annotations (.txt, Raster-to-Vector's format). None means the
 // bundled default plan, plans/jones-house.toml.
 #pragma once
 
@@ -23,7 +23,7 @@ struct LoadedPlan {
   double seconds() const;          ///< total of stages
 };
 
-enum class PlanFormat { Toml, Cells, DoomMap, SweetHome, MeshScene, Crow, FloorplanVectors };
+enum class PlanFormat { Toml, Cells, DoomMap, SweetHome, MeshScene, Crow, FloorplanVectors, Dxf };
 
 /// How a plan from elsewhere is to be understood (--scale, --layers, --unit,
 /// --storey-height) and whether to save what was understood (--save-plan).
