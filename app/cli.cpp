@@ -34,7 +34,28 @@ constexpr int kBadInput = 2;
 
 namespace avenues::app {
 
+namespace {
+/// The options that say how a plan from elsewhere is understood (docs/PLAN_FORMAT.md,
+/// "Plans from elsewhere"), on every subcommand that reads a PLAN.
+void add_import_options(CLI::App* app, ImportOptions& o, std::string& unit_seen) {
+  app->add_option("--scale", o.scale, "floor-plan annotations (.txt): metres per pixel (default 0.04)")
+      ->check(CLI::PositiveNumber)->type_name("M_PER_PIXEL");
+  app->add_option("--layers", o.layers, "DXF: which layers hold what, overriding the usual names")
+      ->type_name("walls=NAME,...;doors=...;windows=...");
+  // One --unit for every file that does not say its unit: a DXF drawing (overriding its
+  // $INSUNITS) and a mesh scene in a format without one (OBJ, PLY, STL, OFF).
+  app->add_option("--unit", o.unit, "the file's length unit where it does not say: DXF (overrides $INSUNITS), OBJ, PLY, STL, OFF")
+      ->check(CLI::IsMember({"m", "cm", "mm", "in", "ft"}))
+      ->each([&unit_seen](const std::string& v) { unit_seen = v; });
+  app->add_option("--storey-height", o.storey_height, "[m] 2D drawings: floor to ceiling")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  app->add_option("--save-plan", o.save_plan, "also write the plan as understood, in Avenues' TOML")
+      ->type_name("FILE.toml");
+}
+}  // namespace
+
 int run_cli(int argc, char** argv) {
+  std::string up_name, unit_name;  // mesh scenes' --up and the --unit of any subcommand
   use_throwing_gmp_allocator();  // GMP's exhaustion as std::bad_alloc, not abort()
   CLI::App app{
       "Avenues: an architectural walkthrough tool. It decomposes a building plan's free\n"
@@ -48,12 +69,14 @@ int run_cli(int argc, char** argv) {
 
   MainJobOptions main_opt;
   app.add_option("PLAN", main_opt.plan, "plan (.toml) or saved cells (.cells); default: the bundled plan");
+  add_import_options(&app, main_opt.import, unit_name);
   app.add_option("--out-dir", main_opt.out_dir, "where the main job writes its files")
       ->capture_default_str()->check(file_name());
 
   CellsOptions cells_opt;
   CLI::App* cells = app.add_subcommand("cells", "decompose PLAN into cells and print a summary");
   cells->add_option("PLAN", cells_opt.plan, "plan (.toml) or saved cells (.cells)")->required();
+  add_import_options(cells, cells_opt.import, unit_name);
   cells->add_flag("--json", cells_opt.json, "print the summary as one JSON object");
   cells->add_option("--svg", cells_opt.svg, "also write the plan drawing (SVG) to FILE")->type_name("FILE")->check(file_name());
   cells->add_option("--save", cells_opt.save, "also save the complex to FILE.cells (loads fast)")
@@ -62,11 +85,13 @@ int run_cli(int argc, char** argv) {
   ExportOptions export_opt;
   CLI::App* exp = app.add_subcommand("export", "write the opaque surfaces as a Wavefront OBJ mesh");
   exp->add_option("PLAN", export_opt.plan, "plan (.toml) or saved cells (.cells)")->required();
+  add_import_options(exp, export_opt.import, unit_name);
   exp->add_option("-o,--output", export_opt.output, "the OBJ file to write")->required()->type_name("FILE.obj")->check(file_name());
 
   ViewOptions view_opt;
   CLI::App* view = app.add_subcommand("view", "find what the eye sees from one viewpoint (Jones's avenues of sight)");
   view->add_option("PLAN", view_opt.plan, "plan (.toml) or saved cells (.cells); default: the bundled plan");
+  add_import_options(view, view_opt.import, unit_name);
   view->add_option("--eye", view_opt.eye, "eye position; default: the plan's viewpoint")->type_name("X,Y,Z");
   view->add_option("--look", view_opt.look, "centre of interest")->type_name("X,Y,Z");
   view->add_option("--yaw", view_opt.yaw, "heading in degrees anticlockwise from +x (instead of --look)")
@@ -136,6 +161,7 @@ int run_cli(int argc, char** argv) {
   PathOptions path_opt;
   CLI::App* path = app.add_subcommand("path", "write the frames of a walk through named rooms (a batch walkthrough)");
   path->add_option("PLAN", path_opt.plan, "plan (.toml) or saved cells (.cells); default: the bundled plan");
+  add_import_options(path, path_opt.import, unit_name);
   path->add_option("--through", path_opt.through, "rooms to walk through, in order")->type_name("ROOM,ROOM,...");
   path->add_option("--keys", path_opt.keys, "keyframes to follow: one 'EX EY EZ LX LY LZ' per line")->type_name("FILE")->check(file_name());
   path->add_option("-o,--output", path_opt.out_dir, "directory for the numbered frames")->capture_default_str()->check(file_name());
@@ -156,6 +182,7 @@ int run_cli(int argc, char** argv) {
   WalkOptions walk_opt;
   CLI::App* walk = app.add_subcommand("walk", "walk through PLAN in a window (H in the window lists the controls)");
   walk->add_option("PLAN", walk_opt.plan, "plan (.toml, .cells, FILE.wad:MAP01, ...); default: the bundled plan");
+  add_import_options(walk, walk_opt.import, unit_name);
   walk->add_option("--size", walk_opt.size, "the window's size in pixels")->type_name("WxH")->capture_default_str()->check(size_wxh());
   walk->add_option("--eye", walk_opt.eye, "where to start; default: the plan's viewpoint")->type_name("X,Y,Z");
   walk->add_option("--look", walk_opt.look, "what to look at first")->type_name("X,Y,Z");
@@ -226,12 +253,9 @@ int run_cli(int argc, char** argv) {
 
   // How a mesh scene in a format that declares no axes (OBJ, PLY, STL, OFF) becomes z-up
   // metres; formats that declare theirs (glTF, COLLADA, FBX, 3DS, IFC) are read as they say.
-  std::string up_name, unit_name;
   for (CLI::App* c : {&app, cells, exp, view, path, walk}) {
     c->add_option("--up", up_name, "mesh scenes: the file's up axis where its format has none (OBJ, PLY, STL, OFF)")
         ->check(CLI::IsMember({"x", "y", "z"}));
-    c->add_option("--unit", unit_name, "mesh scenes: the file's length unit where its format has none")
-        ->check(CLI::IsMember({"m", "cm", "mm", "in", "ft"}));
   }
 
   try {

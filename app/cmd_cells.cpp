@@ -116,7 +116,7 @@ void print_summary(std::ostream& out, const LoadedPlan& plan) {
 int run_cells(const CellsOptions& opt) {
   for (const std::string& f : {opt.save, opt.svg})
     if (!f.empty()) check_output_path(f);  // a device or FIFO there: refused before the work
-  LoadedPlan plan = load_plan_source(opt.plan);
+  LoadedPlan plan = load_plan_source(opt.plan, opt.import);
   // Outputs are written before the summary so that a failure to write shows as an
   // error, not after a summary that looked like success.
   std::ostream& note = opt.json ? std::cerr : std::cout;

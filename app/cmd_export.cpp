@@ -10,7 +10,7 @@ namespace avenues::app {
 
 int run_export(const ExportOptions& opt) {
   check_output_path(opt.output);  // a device or FIFO there: refused before the work
-  LoadedPlan plan = load_plan_source(opt.plan);
+  LoadedPlan plan = load_plan_source(opt.plan, opt.import);
   export_obj(plan.complex, opt.output);
   long long triangles = 0;
   for (const Cell& cell : plan.complex.cells)

@@ -328,7 +328,7 @@ int run_path(const PathOptions& opt) {
   double serialised_s = 0;  // of the broadcast, making the complex's bytes
   if (mpi.rank() == 0) {
     try {
-      plan.emplace(load_plan_source(opt.plan));
+      plan.emplace(load_plan_source(opt.plan, opt.import));
       settings.emplace(path_settings(opt, mpi));
       walk = plan_walk(plan->complex, opt, *settings);
       writer.emplace(plan->complex, *settings, walk, pattern);

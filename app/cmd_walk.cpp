@@ -687,7 +687,7 @@ bool run_walkthrough(const LoadedPlan& plan, const WalkOptions& opt, int& status
 }
 
 int run_walk(const WalkOptions& opt) {
-  LoadedPlan plan = load_plan_source(opt.plan);
+  LoadedPlan plan = load_plan_source(opt.plan, opt.import);
   int status = 0;
   std::string why;
   if (!run_walkthrough(plan, opt, status, why))

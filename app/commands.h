@@ -24,6 +24,7 @@ namespace avenues::app {
 /// `avenues cells PLAN [--json] [--svg FILE] [--save FILE.cells]`
 struct CellsOptions {
   std::string plan;
+  ImportOptions import;  ///< how a plan from elsewhere is understood
   bool json = false;
   std::string svg;
   std::string save;
@@ -33,6 +34,7 @@ int run_cells(const CellsOptions& opt);
 /// `avenues export PLAN -o FILE.obj`
 struct ExportOptions {
   std::string plan;
+  ImportOptions import;  ///< how a plan from elsewhere is understood
   std::string output;
 };
 int run_export(const ExportOptions& opt);
@@ -47,6 +49,7 @@ int run_generate_office(const GenerateOfficeOptions& opt);
 /// `avenues view PLAN [--eye X,Y,Z] [--look X,Y,Z] ... [--stats-json FILE] [--overlay FILE.svg] [-o FILE]`
 struct ViewOptions {
   std::string plan;
+  ImportOptions import;  ///< how a plan from elsewhere is understood
   std::string eye, look;               ///< "X,Y,Z"; empty: the plan's default viewpoint
   std::optional<double> yaw, pitch;    ///< [deg] instead of --look
   double fov = -1;                     ///< [deg]; <= 0: the viewpoint's
@@ -85,6 +88,7 @@ int run_drawing(const DrawingOptions& opt);
 /// `avenues path PLAN --through ROOM,ROOM,... -o DIR`: a batch walkthrough through named rooms.
 struct PathOptions {
   std::string plan;
+  ImportOptions import;  ///< how a plan from elsewhere is understood
   std::string through;            ///< "ROOM,ROOM,..."; or
   std::string keys;               ///< a keyframe file: "EX EY EZ LX LY LZ" per line
   std::string out_dir = "avenues-path";
@@ -112,6 +116,7 @@ std::vector<std::pair<Vec3, Vec3>> read_keys(const std::string& file);
 /// `avenues walk [PLAN]`: the interactive walkthrough window.
 struct WalkOptions {
   std::string plan;
+  ImportOptions import;  ///< how a plan from elsewhere is understood
   std::string size = "1280x720";       ///< the window's first size; frames follow the window
   std::string eye, look;               ///< "X,Y,Z"; empty: the plan's default viewpoint
   double fov = -1;                     ///< [deg]; <= 0: the viewpoint's
@@ -171,6 +176,7 @@ Vec3 parse_vec3(const std::string& s, const char* option);
 /// No subcommand: the main job on PLAN (default: the bundled plan).
 struct MainJobOptions {
   std::string plan;
+  ImportOptions import;  ///< how a plan from elsewhere is understood
   std::string out_dir = "avenues-out";
 };
 int run_main_job(const MainJobOptions& opt);

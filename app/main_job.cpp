@@ -65,7 +65,7 @@ int run_offline(const LoadedPlan& plan, const MainJobOptions& opt, bool summary_
 }  // namespace
 
 int run_main_job(const MainJobOptions& opt) {
-  LoadedPlan plan = load_plan_source(opt.plan);
+  LoadedPlan plan = load_plan_source(opt.plan, opt.import);
   const char* display = std::getenv("DISPLAY");
   const char* wayland = std::getenv("WAYLAND_DISPLAY");
   if ((display && *display) || (wayland && *wayland)) {

@@ -17,9 +17,12 @@
 #include "plans/formats/ifc_building.h"
 #include "plans/assimp_reader.h"
 #include "plans/mesh.h"
+#include "plans/formats/dxf_plan.h"
+#include "plans/formats/floorplan_vectors.h"
 #include "cells/mesh_scene.h"
 #include "plans/formats/sweet_home.h"
 #include "plans/plan.h"
+#include "plans/plan_writer.h"
 
 #ifndef AVENUES_SOURCE_DIR
 #define AVENUES_SOURCE_DIR ""
@@ -118,7 +121,7 @@ PlanSpec parse_plan_spec(const std::string& plan) {
   return spec;
 }
 
-LoadedPlan load_plan_source(const std::string& plan) {
+LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import) {
   LoadedPlan out;
   PlanSpec spec = parse_plan_spec(plan.empty() ? default_plan_path() : plan);
   out.path = plan.empty() ? spec.file : plan;
@@ -129,10 +132,22 @@ LoadedPlan load_plan_source(const std::string& plan) {
   if (fs::is_directory(p, ec)) throw std::runtime_error(spec.file + ": is a directory, not a plan");
   if (!fs::is_regular_file(p, ec)) throw std::runtime_error(spec.file + ": not a regular file (a device or FIFO?), not a plan");
   out.format = spec.format;
+  if ((spec.format == FileFormat::Toml || spec.format == FileFormat::Unknown) && lower(p.extension().string()) != ".toml") {
+    // No telling signature: a few lines of content tell floor-plan annotations.
+    std::ifstream in(spec.file, std::ios::binary);
+    std::string head(4096, '\0');
+    head.resize(size_t(in.read(head.data(), std::streamsize(head.size())).gcount()));
+    if (looks_like_floorplan_vectors(head)) spec.format = FileFormat::FloorplanVectors;
+    out.format = spec.format;
+  }
 
   auto t0 = std::chrono::steady_clock::now();
   auto decompose = [&](const Plan& parsed, const char* stage) {
     out.stages.push_back({stage, seconds_since(t0)});
+    if (!import.save_plan.empty()) {
+      write_plan(parsed, import.save_plan);
+      std::cerr << spec.file << ": the plan as understood is in " << import.save_plan << "\n";
+    }
     out.complex = build_cells(parsed);
     for (const StageTime& t : out.complex.timings) out.stages.push_back(t);
   };
@@ -183,6 +198,19 @@ LoadedPlan load_plan_source(const std::string& plan) {
         const Plan building = read_ifc_building(spec.file, &out.stages);
         out.complex = build_cells(building);
         for (const StageTime& t : out.complex.timings) out.stages.push_back(t);
+        break;
+      }
+      case FileFormat::FloorplanVectors: {
+        FloorplanVectorOptions o;
+        if (import.scale > 0) o.metres_per_pixel = import.scale;
+        o.storey_height = import.storey_height;
+        decompose(read_floorplan_vectors(spec.file, o), "read annotations");
+        break;
+      }
+      case FileFormat::Dxf: {
+        const DxfPlan d = read_dxf_plan(spec.file, {import.layers, import.unit, import.storey_height});
+        for (const std::string& line : d.summary) std::cerr << spec.file << ": " << line << "\n";
+        decompose(d.plan, "read drawing");
         break;
       }
       case FileFormat::Crow:

@@ -4,7 +4,8 @@
 // (.cells: loaded), or a plan from elsewhere (docs/PLAN_FORMAT.md, "Plans from
 // elsewhere"): a Doom map FILE.wad:MAP01, a Sweet Home 3D home (.sh3d, Home.xml), an IFC
 // building (.ifc), a mesh as a whole scene (.off .obj .ply .stl, and every format Assimp
-// reads: .gltf .glb .dae .fbx .3ds ...) or a Crow object (.crow). None means the bundled
+// reads: .gltf .glb .dae .fbx .3ds ...), a Crow object (.crow), a DXF drawing (.dxf) or
+// floor-plan annotations (.txt, Raster-to-Vector's format). None means the bundled
 // default plan, plans/jones-house.toml.
 #pragma once
 
@@ -23,6 +24,16 @@ struct LoadedPlan {
   FileFormat format = FileFormat::Toml;  ///< what the file was read as (by content, else extension)
   std::vector<StageTime> stages;   ///< what this run spent, per stage
   double seconds() const;          ///< total of stages
+};
+
+/// How a plan from elsewhere is to be understood (--scale, --layers, --unit,
+/// --storey-height) and whether to save what was understood (--save-plan).
+struct ImportOptions {
+  double scale = 0;           ///< [m per pixel] floor-plan annotations; 0: the reader's default
+  std::string layers;         ///< DXF: "walls=A,B;doors=C;windows=D"
+  std::string unit;           ///< DXF: overrides $INSUNITS ("m", "cm", "mm", "in", "ft")
+  double storey_height = 2.7; ///< [m] of the one storey of a 2D drawing
+  std::string save_plan;      ///< write the Plan read to this TOML file ("" none)
 };
 
 /// PLAN taken apart: the file, the map inside it (a WAD's), and its format (by content
@@ -44,8 +55,8 @@ void set_mesh_axes(const MeshAxes& axes);
 
 /// Loads PLAN ("" = the default plan) and prints its warnings to stderr. Throws
 /// PlanError for plan mistakes and std::runtime_error naming the file for anything else,
-/// among them a file of a format Avenues cannot read yet ("FILE is an IFC model, which
-/// Avenues cannot read yet").
-LoadedPlan load_plan_source(const std::string& plan);
+/// among them a file of a format Avenues cannot read ("FILE is a PNG image, which
+/// Avenues cannot read").
+LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import = {});
 
 }  // namespace avenues::app

@@ -591,6 +591,8 @@ TEST_F(Cli, PathFollowsRecordedKeyframes) {
 namespace {
 const std::string kSource = AVENUES_SOURCE_DIR;
 const std::string kSeedWad = kSource + "/tests/fuzz/corpus/wad/two-sectors.wad";
+
+
 }  // namespace
 
 TEST_F(Cli, ADoomMapNamedInsideItsWadIsAPlanForEveryCommand) {
@@ -676,3 +678,37 @@ TEST_F(Cli, IfcModelIsABuildingAndBadUpOrUnitIsRefused) {
   EXPECT_EQ(run("cells " + quote(model) + " --up w").status, 2);
   EXPECT_EQ(run("cells " + quote(model) + " --unit furlong").status, 2);
 }
+
+// --- 2D plans from elsewhere (issue 19): what was understood, refusals, --save-plan.
+
+TEST_F(Cli, DxfPlanSaysWhatItUnderstoodAndSavesItAsToml) {
+  const std::string dxf = std::string(AVENUES_OUTSIDE_DIR) + "/dxf/anandkothartrdl-plan.dxf";
+  const Outcome r = run("cells " + quote(dxf) + " --save-plan house.toml");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("Ext Walls', 'Walls'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(" doors, "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("is in no wall gap: not placed"), std::string::npos) << r.err;
+  const Outcome back = run("cells house.toml");
+  EXPECT_EQ(back.status, 0) << back.err;
+}
+
+TEST_F(Cli, DxfWithoutAWallLayerIsRefusedListingItsLayers) {
+  const std::string dxf = std::string(AVENUES_OUTSIDE_DIR) + "/dxf/evil-spirit-house.dxf";
+  const Outcome r = run("cells " + quote(dxf) + " --save-plan never.toml");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("'s001-#def-active-grp'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--layers"), std::string::npos) << r.err;
+  EXPECT_EQ(files().count("never.toml"), 0u);
+  const Outcome named = run("cells " + quote(dxf) + " --layers 'walls=nosuch'");
+  EXPECT_EQ(named.status, 2);
+  EXPECT_NE(named.err.find("no layer 'nosuch'"), std::string::npos) << named.err;
+}
+
+TEST_F(Cli, FloorPlanAnnotationsOpenWithTheirScale) {
+  const std::string txt = std::string(AVENUES_OUTSIDE_DIR) + "/floorplans/00_e9_f85ba733b3769c159604debc08c6_0001.txt";
+  const Outcome r = run("cells " + quote(txt) + " --scale 0.05");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("rooms"), std::string::npos);
+  EXPECT_EQ(run("cells " + quote(txt) + " --scale -1").status, 2);
+}
+

@@ -89,6 +89,7 @@ const char* format_name(FileFormat f) {
     case FileFormat::Model: return "a 3D model";
     case FileFormat::Ifc: return "an IFC model";
     case FileFormat::Dxf: return "a DXF drawing";
+    case FileFormat::FloorplanVectors: return "floor-plan annotations";
     case FileFormat::Png: return "a PNG image";
     case FileFormat::Jpeg: return "a JPEG image";
     case FileFormat::Pdf: return "a PDF document";

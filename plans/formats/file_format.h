@@ -29,7 +29,8 @@ enum class FileFormat : uint8_t {
   Crow,       ///< Crow 1981's object tables (.crow)
   Model,      ///< a 3D model another reader takes by its extension (Assimp: glTF, COLLADA, FBX, 3DS, ...)
   Ifc,        ///< an IFC model (read through Assimp, plans/formats/ifc_building.h)
-  Dxf,        ///< a DXF drawing
+  Dxf,        ///< a DXF drawing (plans/formats/dxf_plan.h)
+  FloorplanVectors,  ///< floor-plan annotations, Raster-to-Vector's "x1 y1 x2 y2 category" (told by content)
   Png,        ///< formats Avenues does not read
   Jpeg,
   Pdf,

@@ -1,0 +1,782 @@
+// Avenues — DXF floor plans (see dxf_plan.h).
+#include "plans/formats/dxf_plan.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+#include <dxflib/dl_creationadapter.h>
+#include <dxflib/dl_dxf.h>
+
+#include "core/angles.h"
+#include "core/number_format.h"
+#include "plans/formats/wall_arrangement.h"
+
+namespace avenues {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+/// A circular arc: centre, its two ends (counter-clockwise from p0 to p1), its sweep.
+struct ArcPiece {
+  Vec2 c, p0, p1;
+  double r = 0, sweep_deg = 0;
+  std::string layer;
+};
+struct SegPiece {
+  Vec2 a, b;
+  std::string layer;
+};
+struct TextPiece {
+  Vec2 p;
+  std::string text, layer;
+};
+struct HatchPiece {
+  std::vector<std::vector<Vec2>> rings;
+  std::string layer;
+};
+struct InsertPiece {
+  std::string block, layer;
+  Vec2 at, scale{1, 1};
+  double angle_deg = 0;
+  int cols = 1, rows = 1;
+  double col_sp = 0, row_sp = 0;
+};
+/// Entities of model space or of one block, in drawing units.
+struct Group {
+  Vec2 base;
+  std::vector<SegPiece> segs;
+  std::vector<ArcPiece> arcs;
+  std::vector<TextPiece> texts;
+  std::vector<HatchPiece> hatches;
+  std::vector<InsertPiece> inserts;
+  std::vector<std::pair<std::vector<Vec2>, std::string>> closed;  ///< closed polylines (room outlines)
+  std::vector<std::pair<std::vector<Vec2>, std::string>> curves;  ///< splines as points (swings drawn as splines)
+};
+
+/// Points along an arc from angle a0 to a1 (radians, counter-clockwise), ends exact.
+std::vector<Vec2> arc_points(Vec2 c, double r, double a0, double a1) {
+  while (a1 <= a0) a1 += 2 * kPi;
+  const int n = std::clamp(int(std::ceil((a1 - a0) / (kPi / 16))), 2, 64);
+  std::vector<Vec2> out;
+  for (int i = 0; i <= n; ++i) {
+    const double a = a0 + (a1 - a0) * i / n;
+    out.push_back({c.x + r * std::cos(a), c.y + r * std::sin(a)});
+  }
+  return out;
+}
+
+std::string lower(std::string s) {
+  for (char& ch : s) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  return s;
+}
+
+/// MTEXT's formatting codes out: \P paragraph, {\fArial;...}, \A1; etc.
+std::string plain_text(const std::string& t) {
+  std::string out;
+  for (size_t i = 0; i < t.size(); ++i) {
+    const char ch = t[i];
+    if (ch == '{' || ch == '}') continue;
+    if (ch == '\\' && i + 1 < t.size()) {
+      const char code = t[i + 1];
+      if (code == 'P' || code == 'X' || code == '~') { out += ' '; ++i; continue; }
+      if (code == '\\' || code == '{' || code == '}') { out += code; ++i; continue; }
+      if (std::strchr("fFHhWwQqTtAaCcpS", code)) {  // codes with an argument up to ';'
+        const size_t semi = t.find(';', i);
+        if (semi == std::string::npos) break;
+        i = semi;
+        continue;
+      }
+      ++i;  // \L \l \O \o \K \k: underline etc.
+      continue;
+    }
+    out += ch;
+  }
+  // %%c %%d %%p: diameter, degree, plus-minus; drop them.
+  for (size_t k; (k = out.find("%%")) != std::string::npos;) out.erase(k, 3);
+  const size_t b = out.find_first_not_of(" \t"), e = out.find_last_not_of(" \t");
+  return b == std::string::npos ? "" : out.substr(b, e - b + 1);
+}
+
+/// De Boor evaluation of a non-rational B-spline at `samples` points.
+std::vector<Vec2> spline_points(int degree, const std::vector<double>& knots, const std::vector<Vec2>& ctrl) {
+  const int n = int(ctrl.size());
+  if (degree < 1 || n <= degree || int(knots.size()) != n + degree + 1) return ctrl;
+  const double t0 = knots[size_t(degree)], t1 = knots[size_t(n)];
+  if (!(t1 > t0)) return ctrl;
+  const int samples = std::clamp(n * 8, 8, 400);
+  std::vector<Vec2> out;
+  for (int s = 0; s <= samples; ++s) {
+    const double t = s == samples ? t1 : t0 + (t1 - t0) * s / samples;
+    int k = degree;
+    while (k < n - 1 && knots[size_t(k + 1)] <= t) ++k;
+    std::vector<Vec2> d(ctrl.begin() + (k - degree), ctrl.begin() + k + 1);
+    for (int r = 1; r <= degree; ++r)
+      for (int j = degree; j >= r; --j) {
+        const int i = k - degree + j;
+        const double den = knots[size_t(i + degree - r + 1)] - knots[size_t(i)];
+        const double a = den > 0 ? (t - knots[size_t(i)]) / den : 0;
+        d[size_t(j)] = (1 - a) * d[size_t(j - 1)] + a * d[size_t(j)];
+      }
+    out.push_back(d[size_t(degree)]);
+  }
+  return out;
+}
+
+/// dxflib's callbacks, collecting model space and blocks into Groups.
+class Collector : public DL_CreationAdapter {
+ public:
+  Group model;
+  std::map<std::string, Group> blocks;
+  int insunits = 0;
+  std::map<std::string, int> layer_entities;
+  std::vector<std::string> skipped;
+
+  void setVariableInt(const std::string& key, int value, int) override {
+    if (key == "$INSUNITS") insunits = value;
+  }
+  void addLayer(const DL_LayerData& d) override { layer_entities.emplace(d.name, 0); }
+  void addBlock(const DL_BlockData& d) override {
+    flush();
+    cur_ = &blocks[d.name];
+    cur_->base = {d.bpx, d.bpy};
+  }
+  void endBlock() override { flush(), cur_ = &model; }
+  void endSequence() override { flush(); }
+  void endSection() override { flush(); }
+
+  void addLine(const DL_LineData& d) override { flush(), seg({d.x1, d.y1}, {d.x2, d.y2}); }
+  void addArc(const DL_ArcData& d) override {
+    flush();
+    arc({d.cx, d.cy}, d.radius, rad_from_deg(d.angle1), rad_from_deg(d.angle2));
+  }
+  void addCircle(const DL_CircleData& d) override {
+    flush();
+    const std::vector<Vec2> pts = arc_points({d.cx, d.cy}, d.radius, 0, 2 * kPi);
+    for (size_t i = 0; i + 1 < pts.size(); ++i) seg(pts[i], pts[i + 1]);
+  }
+  void addEllipse(const DL_EllipseData& d) override {
+    flush();
+    const Vec2 c{d.cx, d.cy}, m{d.mx, d.my}, n{-d.my * d.ratio, d.mx * d.ratio};
+    double a1 = d.angle2;
+    while (a1 <= d.angle1) a1 += 2 * kPi;
+    const int steps = std::clamp(int((a1 - d.angle1) / (kPi / 16)) + 1, 2, 64);
+    Vec2 prev = c + std::cos(d.angle1) * m + std::sin(d.angle1) * n;
+    for (int i = 1; i <= steps; ++i) {
+      const double t = d.angle1 + (a1 - d.angle1) * i / steps;
+      const Vec2 p = c + std::cos(t) * m + std::sin(t) * n;
+      seg(prev, p);
+      prev = p;
+    }
+  }
+  void addPolyline(const DL_PolylineData& d) override {
+    flush();
+    in_poly_ = (d.flags & (16 | 64)) == 0;  // not a polygon or polyface mesh
+    if (!in_poly_) skipped.push_back("a 3D mesh POLYLINE on layer '" + layer() + "'");
+    poly_closed_ = (d.flags & 1) != 0;
+    poly_.clear();
+  }
+  void addVertex(const DL_VertexData& d) override {
+    if (in_poly_) poly_.push_back({{d.x, d.y}, d.bulge});
+  }
+  void addSpline(const DL_SplineData& d) override {
+    flush();
+    in_spline_ = true;
+    spline_degree_ = int(d.degree);
+    ctrl_.clear(), knots_.clear(), fit_.clear();
+  }
+  void addControlPoint(const DL_ControlPointData& d) override { ctrl_.push_back({d.x, d.y}); }
+  void addKnot(const DL_KnotData& d) override { knots_.push_back(d.k); }
+  void addFitPoint(const DL_FitPointData& d) override { fit_.push_back({d.x, d.y}); }
+  void addInsert(const DL_InsertData& d) override {
+    flush();
+    cur_->inserts.push_back({d.name, layer(), {d.ipx, d.ipy}, {d.sx, d.sy}, d.angle, std::max(d.cols, 1),
+                             std::max(d.rows, 1), d.colSp, d.rowSp});
+    count();
+  }
+  void addText(const DL_TextData& d) override {
+    flush();
+    // Justified text is placed by its alignment point.
+    const bool aligned = d.hJustification != 0 || d.vJustification != 0;
+    cur_->texts.push_back({aligned ? Vec2{d.apx, d.apy} : Vec2{d.ipx, d.ipy}, plain_text(d.text), layer()});
+    count();
+  }
+  void addMText(const DL_MTextData& d) override {
+    flush();
+    cur_->texts.push_back({{d.ipx, d.ipy}, plain_text(mtext_ + d.text), layer()});
+    mtext_.clear();
+    count();
+  }
+  void addMTextChunk(const std::string& text) override { mtext_ += text; }
+  void addHatch(const DL_HatchData&) override {
+    flush();
+    cur_->hatches.push_back({{}, layer()});
+    count();
+  }
+  void addHatchLoop(const DL_HatchLoopData&) override {
+    if (!cur_->hatches.empty()) cur_->hatches.back().rings.emplace_back();
+  }
+  void addHatchEdge(const DL_HatchEdgeData& e) override {
+    if (cur_->hatches.empty() || cur_->hatches.back().rings.empty()) return;
+    std::vector<Vec2>& ring = cur_->hatches.back().rings.back();
+    if (e.type == 0) {
+      for (const std::vector<double>& v : e.vertices)
+        if (v.size() >= 2) ring.push_back({v[0], v[1]});
+    } else if (e.type == 1) {
+      if (ring.empty()) ring.push_back({e.x1, e.y1});
+      ring.push_back({e.x2, e.y2});
+    } else if (e.type == 2) {
+      double a0 = e.angle1, a1 = e.angle2;
+      if (!e.ccw) a0 = -e.angle2, a1 = -e.angle1;
+      std::vector<Vec2> pts = arc_points({e.cx, e.cy}, e.radius, a0, a1);
+      if (!e.ccw) {
+        for (Vec2& p : pts) p.y = 2 * e.cy - p.y;  // mirrored back: clockwise arcs
+      }
+      ring.insert(ring.end(), pts.begin(), pts.end());
+    }
+  }
+
+  /// Ends a polyline or spline under way.
+  void flush() {
+    if (in_poly_ && poly_.size() >= 2) {
+      const size_t n = poly_.size(), segs = poly_closed_ ? n : n - 1;
+      std::vector<Vec2> ring;
+      for (size_t i = 0; i < segs; ++i) {
+        const Vec2 a = poly_[i].first, b = poly_[(i + 1) % n].first;
+        const double bulge = poly_[i].second;
+        ring.push_back(a);
+        if (std::fabs(bulge) < 1e-9 || length(b - a) == 0) {
+          seg(a, b);
+          continue;
+        }
+        // A bulge is tan(θ/4) of the arc's angle θ, positive counter-clockwise.
+        const double theta = 4 * std::atan(bulge), chord = length(b - a);
+        const double r = chord / (2 * std::sin(std::fabs(theta) / 2));
+        const Vec2 m = 0.5 * (a + b), u = (1 / chord) * (b - a), left{-u.y, u.x};
+        const double h = r * std::cos(theta / 2);  // centre to chord, signed with the bulge
+        const Vec2 c = m + (bulge > 0 ? h : -h) * left;
+        const double aa = std::atan2(a.y - c.y, a.x - c.x), ab = std::atan2(b.y - c.y, b.x - c.x);
+        if (bulge > 0) arc(c, r, aa, ab);
+        else arc(c, r, ab, aa);
+      }
+      if (poly_closed_ && n >= 3) cur_->closed.push_back({ring, layer()});
+      count();
+    }
+    if (in_spline_) {
+      const std::vector<Vec2> pts =
+          !ctrl_.empty() ? spline_points(spline_degree_, knots_, ctrl_) : fit_;
+      for (size_t i = 0; i + 1 < pts.size(); ++i) seg(pts[i], pts[i + 1]);
+      if (pts.size() >= 2) cur_->curves.push_back({pts, layer()});
+      count();
+    }
+    in_poly_ = in_spline_ = false;
+    poly_.clear();
+  }
+
+ private:
+  std::string layer() { return getAttributes().getLayer(); }
+  void count() { ++layer_entities[layer()]; }
+  void seg(Vec2 a, Vec2 b) {
+    cur_->segs.push_back({a, b, layer()});
+    if (!in_poly_ && !in_spline_) count();
+  }
+  void arc(Vec2 c, double r, double a0, double a1) {
+    const std::vector<Vec2> pts = arc_points(c, r, a0, a1);
+    for (size_t i = 0; i + 1 < pts.size(); ++i) seg(pts[i], pts[i + 1]);
+    double sweep = a1 - a0;
+    while (sweep <= 0) sweep += 2 * kPi;
+    cur_->arcs.push_back({c, pts.front(), pts.back(), r, deg_from_rad(sweep), layer()});
+  }
+
+  Group* cur_ = &model;
+  bool in_poly_ = false, poly_closed_ = false, in_spline_ = false;
+  std::vector<std::pair<Vec2, double>> poly_;
+  int spline_degree_ = 3;
+  std::vector<Vec2> ctrl_, fit_;
+  std::vector<double> knots_;
+  std::string mtext_;
+};
+
+/// A 2D placement: p ↦ at + R(angle)·(scale ∘ (p − base)).
+struct Placement {
+  Vec2 at, scale{1, 1}, base;
+  double c = 1, s = 0;
+  Vec2 operator()(Vec2 p) const {
+    const Vec2 q{scale.x * (p.x - base.x), scale.y * (p.y - base.y)};
+    return {at.x + c * q.x - s * q.y, at.y + s * q.x + c * q.y};
+  }
+};
+
+/// Everything of model space with the blocks expanded, in drawing units. An entity
+/// inside a block takes the INSERT's layer when it is on layer 0; `door_block` marks
+/// what came from a block whose name says door.
+struct Flat {
+  std::vector<SegPiece> segs;
+  std::vector<std::pair<ArcPiece, bool>> arcs;  ///< arc, from a door block
+  std::vector<TextPiece> texts;
+  std::vector<HatchPiece> hatches;
+  std::vector<std::pair<std::vector<Vec2>, std::string>> closed;
+  /// Spline curves, a chain of pieces per door block placed (`chain` numbers it; -1 in model space).
+  struct Curve { std::vector<Vec2> pts; std::string layer; bool door_block; int chain; };
+  std::vector<Curve> curves;
+  int placements = 0;
+  std::vector<std::string> missing_blocks;
+};
+
+bool says_door(const std::string& name) {
+  const std::string n = lower(name);
+  return n.find("door") != std::string::npos || n.find("tür") != std::string::npos ||
+         n.find("tuer") != std::string::npos || n.find("tur") == 0;
+}
+
+void flatten(const Collector& col, const Group& g, const std::vector<Placement>& chain, const std::string& layer_0,
+             bool door_block, int depth, Flat& out, int chain_of_insert = -1) {
+  auto place = [&](Vec2 p) {
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it) p = (*it)(p);
+    return p;
+  };
+  auto lay = [&](const std::string& l) { return l == "0" && !layer_0.empty() ? layer_0 : l; };
+  bool mirrored = false;
+  for (const Placement& pl : chain) mirrored ^= (pl.scale.x * pl.scale.y < 0);
+  double scale = 1;
+  for (const Placement& pl : chain) scale *= std::fabs(pl.scale.x);
+  for (const SegPiece& s : g.segs) out.segs.push_back({place(s.a), place(s.b), lay(s.layer)});
+  for (const ArcPiece& a : g.arcs) {
+    ArcPiece b{place(a.c), place(a.p0), place(a.p1), a.r * scale, a.sweep_deg, lay(a.layer)};
+    if (mirrored) std::swap(b.p0, b.p1);
+    out.arcs.push_back({b, door_block});
+  }
+  for (const TextPiece& t : g.texts) out.texts.push_back({place(t.p), t.text, lay(t.layer)});
+  for (const HatchPiece& h : g.hatches) {
+    HatchPiece k{{}, lay(h.layer)};
+    for (const auto& r : h.rings) {
+      k.rings.emplace_back();
+      for (Vec2 p : r) k.rings.back().push_back(place(p));
+    }
+    out.hatches.push_back(k);
+  }
+  for (const auto& [ring, l] : g.closed) {
+    std::vector<Vec2> r;
+    for (Vec2 p : ring) r.push_back(place(p));
+    out.closed.push_back({r, lay(l)});
+  }
+  const int chain_no = chain_of_insert;
+  for (const auto& [pts, l] : g.curves) {
+    std::vector<Vec2> r;
+    for (Vec2 p : pts) r.push_back(place(p));
+    out.curves.push_back({r, lay(l), door_block, chain_no});
+  }
+  if (depth >= 8) return;
+  for (const InsertPiece& ins : g.inserts) {
+    auto it = col.blocks.find(ins.block);
+    if (it == col.blocks.end()) {
+      out.missing_blocks.push_back(ins.block);
+      continue;
+    }
+    const double a = rad_from_deg(ins.angle_deg);
+    const int copies = std::min(ins.cols * ins.rows, 1000);
+    for (int k = 0; k < copies; ++k) {
+      const double dx = (k % ins.cols) * ins.col_sp, dy = (k / ins.cols) * ins.row_sp;
+      Placement pl;
+      pl.at = ins.at + Vec2{std::cos(a) * dx - std::sin(a) * dy, std::sin(a) * dx + std::cos(a) * dy};
+      pl.scale = {ins.scale.x == 0 ? 1 : ins.scale.x, ins.scale.y == 0 ? 1 : ins.scale.y};
+      pl.base = it->second.base;
+      pl.c = std::cos(a), pl.s = std::sin(a);
+      std::vector<Placement> next = chain;
+      next.push_back(pl);
+      flatten(col, it->second, next, lay(ins.layer), door_block || says_door(ins.block), depth + 1, out,
+              out.placements++);
+    }
+  }
+}
+
+enum class Role { None, Walls, Doors, Windows };
+
+/// The usual names: AIA/ISO 13567 (A-WALL, A-DOOR, A-GLAZ), English and German words.
+Role role_by_name(const std::string& layer) {
+  const std::string n = lower(layer);
+  auto has = [&](const char* w) { return n.find(w) != std::string::npos; };
+  if (has("virtual") || has("furn") || has("dim") || has("text") || has("hatch-") || has("grid")) return Role::None;
+  if (has("glaz") || has("window") || has("fenster")) return Role::Windows;
+  if (has("door") || has("tür") || has("tuer") || has("türen")) return Role::Doors;
+  if (has("wall") || has("wand") || has("wände") || has("waende") || has("mauer") || has("structure") ||
+      has("partition") || has("a-wall") || has("tragwerk"))
+    return Role::Walls;
+  return Role::None;
+}
+
+/// Metres per drawing unit from $INSUNITS (0 when unitless or unknown).
+double metres_of_insunits(int u) {
+  switch (u) {
+    case 1: return 0.0254;
+    case 2: return 0.3048;
+    case 4: return 0.001;
+    case 5: return 0.01;
+    case 6: return 1;
+    case 14: return 0.1;
+    default: return 0;
+  }
+}
+
+}  // namespace
+
+bool looks_like_dxf(const std::string& head) {
+  std::istringstream in(head);
+  auto trim = [](std::string s) {
+    s.erase(0, s.find_first_not_of(" \t\r"));
+    s.erase(s.find_last_not_of(" \t\r") + 1);
+    return s;
+  };
+  for (std::string code, value; std::getline(in, code) && std::getline(in, value);) {
+    if (trim(code) == "999") continue;  // comments may come first
+    return trim(code) == "0" && trim(value) == "SECTION";
+  }
+  return false;
+}
+
+DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
+  const SourceLoc file{path, 0, 0, ""};
+  if (!(opt.storey_height > 0)) throw PlanError(file, "--storey-height must be positive");
+  {
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe) throw PlanError(file, "cannot open the file");
+    std::string head(1024, '\0');
+    head.resize(size_t(probe.read(head.data(), std::streamsize(head.size())).gcount()));
+    if (head.rfind("AutoCAD Binary DXF", 0) == 0) throw PlanError(file, "a binary DXF: save it as ASCII DXF");
+    if (!looks_like_dxf(head)) throw PlanError(file, "not a DXF drawing (it does not start with '0 SECTION')");
+  }
+  Collector col;
+  DL_Dxf dxf;
+  if (!dxf.in(path, &col)) throw PlanError(file, "dxflib cannot read the file");
+  col.flush();
+
+  DxfPlan out;
+  Plan& plan = out.plan;
+  plan.name = std::filesystem::path(path).stem().string();
+  plan.source = path;
+  plan.lenient = true;
+  plan.outside_solid = true;
+  plan.far_margin = 5;
+  for (const std::string& s : col.skipped) plan.warnings.push_back(s + ": skipped");
+
+  // Which layer is what: --layers first, then the usual names.
+  std::map<std::string, Role> given;
+  if (!opt.layers.empty()) {
+    std::istringstream spec(opt.layers);
+    for (std::string part; std::getline(spec, part, ';');) {
+      if (part.empty()) continue;
+      const size_t eq = part.find('=');
+      const std::string key = lower(part.substr(0, eq));
+      Role r = key == "walls" ? Role::Walls : key == "doors" ? Role::Doors : key == "windows" ? Role::Windows : Role::None;
+      if (eq == std::string::npos || r == Role::None)
+        throw PlanError({path, 0, 0, "--layers"}, "'" + part + "': expected walls=NAME,..., doors=... or windows=...");
+      std::istringstream names(part.substr(eq + 1));
+      for (std::string nm; std::getline(names, nm, ',');)
+        if (!nm.empty()) given[lower(nm)] = r;
+    }
+  }
+  Flat flat;
+  flatten(col, col.model, {}, "", false, 0, flat);
+  std::set<std::string> layers;
+  for (const auto& [l, n] : col.layer_entities) layers.insert(l);
+  for (const SegPiece& s : flat.segs) layers.insert(s.layer);
+  std::map<std::string, Role> role;
+  for (const std::string& l : layers) {
+    auto it = given.find(lower(l));
+    role[l] = it != given.end() ? it->second : (given.empty() ? role_by_name(l) : Role::None);
+  }
+  // With --layers, a role it does not name still goes by the usual names.
+  if (!given.empty()) {
+    std::set<Role> named;
+    for (const auto& [l, r] : given) named.insert(r);
+    for (const std::string& l : layers)
+      if (role[l] == Role::None && !given.count(lower(l)) && !named.count(role_by_name(l))) role[l] = role_by_name(l);
+  }
+  std::vector<std::string> taken[4];
+  for (const auto& [l, r] : role)
+    if (r != Role::None) taken[int(r)].push_back(l);
+  for (const auto& [nm, r] : given)
+    if (std::none_of(layers.begin(), layers.end(), [&](const std::string& l) { return lower(l) == nm; }))
+      throw PlanError({path, 0, 0, "--layers"}, "the drawing has no layer '" + nm + "'");
+
+  std::set<std::string> wall_layers_used;
+  for (const SegPiece& s : flat.segs)
+    if (role[s.layer] == Role::Walls) wall_layers_used.insert(s.layer);
+  if (wall_layers_used.empty()) {
+    std::string list;
+    for (const std::string& l : layers) {
+      auto it = col.layer_entities.find(l);
+      list += "\n  '" + l + "'";
+      if (it != col.layer_entities.end() && it->second > 0) list += " (" + std::to_string(it->second) + " entities)";
+    }
+    throw PlanError(file, "no layer holds walls by its name (A-WALL, Walls, Wand, ... Existing Structure, "
+                          "partitions): its layers are" + list +
+                          "\nname the wall layers with --layers 'walls=NAME,NAME;doors=NAME;windows=NAME'");
+  }
+
+  // Units.
+  double unit = 0;
+  std::string unit_said;
+  if (!opt.unit.empty()) {
+    const std::string u = lower(opt.unit);
+    unit = u == "m" ? 1 : u == "cm" ? 0.01 : u == "mm" ? 0.001 : u == "in" ? 0.0254 : u == "ft" ? 0.3048 : 0;
+    if (unit == 0) throw PlanError({path, 0, 0, "--unit"}, "unknown unit '" + opt.unit + "' (use m, cm, mm, in or ft)");
+    unit_said = opt.unit + " (--unit)";
+  } else if ((unit = metres_of_insunits(col.insunits)) > 0) {
+    unit_said = format_number(unit) + " m per unit ($INSUNITS " + std::to_string(col.insunits) + ")";
+  } else {
+    double lo_x = 1e300, hi_x = -1e300, lo_y = 1e300, hi_y = -1e300;
+    for (const SegPiece& s : flat.segs)
+      if (role[s.layer] == Role::Walls)
+        for (Vec2 p : {s.a, s.b}) lo_x = std::min(lo_x, p.x), hi_x = std::max(hi_x, p.x), lo_y = std::min(lo_y, p.y), hi_y = std::max(hi_y, p.y);
+    const double across = std::max(hi_x - lo_x, hi_y - lo_y);
+    unit = across > 1000 ? 0.001 : 1;
+    unit_said = std::string(unit == 1 ? "m" : "mm") + ", guessed from the walls' extent of " + format_number(across) +
+                " units (no $INSUNITS; say --unit)";
+    plan.warnings.push_back("the drawing states no unit: taken as " + unit_said);
+  }
+  auto m = [&](Vec2 p) { return unit * p; };
+
+  WallArrangementInput arr_in;
+  std::vector<SegPiece> walls;
+  for (const SegPiece& s : flat.segs)
+    if (role[s.layer] == Role::Walls) walls.push_back({m(s.a), m(s.b), s.layer});
+  // Snap to 0.1 mm and reach 1 mm past each end, so that lines drawn to meet do meet.
+  auto snap = [](Vec2 p) { return Vec2{std::round(p.x * 1e4) / 1e4, std::round(p.y * 1e4) / 1e4}; };
+  for (const SegPiece& s : walls) {
+    const double len = length(s.b - s.a);
+    if (len < 1e-4) continue;
+    const Vec2 u = (0.001 / len) * (s.b - s.a);
+    arr_in.segments.push_back({snap(s.a - u), snap(s.b + u), -1});
+  }
+  for (const HatchPiece& h : flat.hatches)
+    if (role[h.layer] == Role::Walls) {
+      std::vector<std::vector<Vec2>> rings;
+      for (const auto& r : h.rings)
+        if (r.size() >= 3) {
+          rings.emplace_back();
+          for (Vec2 p : r) rings.back().push_back(m(p));
+        }
+      if (!rings.empty()) arr_in.hatches.push_back(rings);
+    }
+
+  auto near_walls = [&](Vec2 p) {
+    double best = 1e300;
+    for (const SegPiece& s : walls) best = std::min(best, distance_to_segment(p, s.a, s.b));
+    return best;
+  };
+  // Door swings close their gaps: hinge to the end of the arc nearer the walls.
+  struct Gap { Vec2 a, b; bool door; Vec2 where; };
+  std::vector<Gap> gaps;
+  int swings = 0;
+  for (const auto& [a0, in_door_block] : flat.arcs) {
+    if (role[a0.layer] != Role::Doors && !in_door_block) continue;
+    const double r = a0.r * unit;
+    if (r < 0.4 || r > 1.6 || a0.sweep_deg < 60 || a0.sweep_deg > 120) continue;
+    ++swings;
+    const Vec2 c = m(a0.c), e0 = m(a0.p0), e1 = m(a0.p1);
+    const Vec2 e = near_walls(e0) <= near_walls(e1) ? e0 : e1;
+    bool twice = false;
+    for (const Gap& g : gaps)
+      twice = twice || (length(g.a - c) < 0.02 && length(g.b - e) < 0.02);
+    if (twice) continue;
+    if (near_walls(c) > 0.15 || near_walls(e) > 0.15) {
+      plan.warnings.push_back("the door swing at (" + format_number("%.2f", c.x) + ", " + format_number("%.2f", c.y) +
+                              ") m, layer '" + a0.layer + "', is in no wall gap: not placed");
+      continue;
+    }
+    gaps.push_back({c, e, true, c});
+  }
+  // Swings drawn as splines (one or several pieces end to end): a quarter circle from P
+  // to Q has its hinge C where CP ⟂ CQ and |CP| = |CQ|, on the side the curve bulges from.
+  {
+    std::vector<const Flat::Curve*> door_curves;
+    for (const Flat::Curve& cv : flat.curves)
+      if (role[cv.layer] == Role::Doors || cv.door_block) door_curves.push_back(&cv);
+    std::vector<bool> used(door_curves.size(), false);
+    for (size_t i = 0; i < door_curves.size(); ++i) {
+      if (used[i]) continue;
+      used[i] = true;
+      std::vector<Vec2> pts = door_curves[i]->pts;
+      for (bool grew = true; grew;) {
+        grew = false;
+        for (size_t j = 0; j < door_curves.size(); ++j) {
+          if (used[j] || door_curves[j]->chain != door_curves[i]->chain) continue;
+          const std::vector<Vec2>& q = door_curves[j]->pts;
+          const double tol = 0.002 / unit;
+          if (length(q.front() - pts.back()) < tol) pts.insert(pts.end(), q.begin() + 1, q.end());
+          else if (length(q.back() - pts.back()) < tol) pts.insert(pts.end(), q.rbegin() + 1, q.rend());
+          else if (length(q.back() - pts.front()) < tol) pts.insert(pts.begin(), q.begin(), q.end() - 1);
+          else if (length(q.front() - pts.front()) < tol) pts.insert(pts.begin(), q.rbegin(), q.rend() - 1);
+          else continue;
+          used[j] = grew = true;
+        }
+      }
+      const Vec2 p = m(pts.front()), q = m(pts.back()), mid = m(pts[pts.size() / 2]);
+      const double chord = length(q - p), r = chord / std::sqrt(2.0);
+      if (r < 0.4 || r > 1.6) continue;
+      const Vec2 half = 0.5 * (p + q), n = 0.5 * Vec2{-(q.y - p.y), q.x - p.x};  // half the chord, across it
+      for (const Vec2 c : {half + n, half - n}) {
+        if (std::fabs(length(mid - c) - r) > 0.08 * r) continue;
+        ++swings;
+        const Vec2 e = near_walls(p) <= near_walls(q) ? p : q;
+        if (near_walls(c) > 0.15 || near_walls(e) > 0.15) {
+          plan.warnings.push_back("the door swing at (" + format_number("%.2f", c.x) + ", " + format_number("%.2f", c.y) +
+                                  ") m, layer '" + door_curves[i]->layer + "', is in no wall gap: not placed");
+          break;
+        }
+        gaps.push_back({c, e, true, c});
+        break;
+      }
+    }
+  }
+  // Windows: clusters of window-layer lines, each closed by its longest line.
+  std::vector<SegPiece> win;
+  for (const SegPiece& s : flat.segs)
+    if (role[s.layer] == Role::Windows) win.push_back({m(s.a), m(s.b), s.layer});
+  std::vector<int> parent(win.size());
+  for (size_t i = 0; i < win.size(); ++i) parent[i] = int(i);
+  std::function<int(int)> root = [&](int i) { return parent[size_t(i)] == i ? i : parent[size_t(i)] = root(parent[size_t(i)]); };
+  for (size_t i = 0; i < win.size(); ++i)
+    for (size_t j = i + 1; j < win.size(); ++j) {
+      const double d = std::min({distance_to_segment(win[i].a, win[j].a, win[j].b), distance_to_segment(win[i].b, win[j].a, win[j].b),
+                                 distance_to_segment(win[j].a, win[i].a, win[i].b), distance_to_segment(win[j].b, win[i].a, win[i].b)});
+      if (d < 0.02) parent[size_t(root(int(i)))] = root(int(j));
+    }
+  std::map<int, int> longest;
+  for (size_t i = 0; i < win.size(); ++i) {
+    const int r = root(int(i));
+    auto it = longest.find(r);
+    if (it == longest.end() || length(win[i].b - win[i].a) > length(win[size_t(it->second)].b - win[size_t(it->second)].a))
+      longest[r] = int(i);
+  }
+  for (const auto& [r, i] : longest) {
+    const SegPiece& s = win[size_t(i)];
+    if (length(s.b - s.a) < 0.3) continue;
+    gaps.push_back({s.a, s.b, false, 0.5 * (s.a + s.b)});
+  }
+  for (size_t g = 0; g < gaps.size(); ++g) {
+    const Vec2 d = gaps[g].b - gaps[g].a;
+    const double len = length(d);
+    if (len < 1e-3) continue;
+    const Vec2 u = (0.03 / len) * d;  // into the jambs
+    arr_in.segments.push_back({snap(gaps[g].a - u), snap(gaps[g].b + u), int(g)});
+  }
+
+  // Room names: texts, and closed polylines on "Room - NAME" layers.
+  std::vector<std::string> probe_name;
+  for (const TextPiece& t : flat.texts)
+    if (!t.text.empty() && role[t.layer] == Role::None) {
+      arr_in.probes.push_back(m(t.p));
+      probe_name.push_back(t.text);
+    }
+  for (const auto& [ring, l] : flat.closed) {
+    const std::string n = lower(l);
+    if (n.rfind("room - ", 0) != 0 && n.rfind("room-", 0) != 0 && n.rfind("raum - ", 0) != 0) continue;
+    std::vector<Vec2> r;
+    for (Vec2 p : ring) r.push_back(m(p));
+    arr_in.probes.push_back(centroid(r));
+    probe_name.push_back(l.substr(l.find_first_of("-") + 1 + (l[l.find_first_of("-") + 1] == ' ')));
+  }
+
+  const WallArrangement arr = arrange_walls(arr_in);
+  if (arr.spaces.empty())
+    throw PlanError(file, "the lines on the wall layers " + [&] {
+      std::string l;
+      for (const std::string& x : taken[int(Role::Walls)]) l += (l.empty() ? "'" : ", '") + x + "'";
+      return l;
+    }() + " enclose no space (" + std::to_string(arr.faces) + " closed faces, all narrow enough to be walls): "
+          "every room must be closed by wall lines, door swings or window lines; name other wall layers with "
+          "--layers 'walls=NAME,NAME;doors=NAME;windows=NAME'");
+
+  Storey storey;
+  storey.name = "ground";
+  storey.height = opt.storey_height;
+  storey.where = file;
+  plan.storeys.push_back(storey);
+  std::vector<std::vector<std::string>> names(arr.spaces.size());
+  for (size_t p = 0; p < arr.probe_space.size(); ++p) {
+    const int sp = arr.probe_space[p];
+    if (sp >= 0) {
+      if (std::find(names[size_t(sp)].begin(), names[size_t(sp)].end(), probe_name[p]) == names[size_t(sp)].end())
+        names[size_t(sp)].push_back(probe_name[p]);
+    }
+  }
+  std::map<std::string, int> used;
+  int named_rooms = 0;
+  for (size_t i = 0; i < arr.spaces.size(); ++i) {
+    Room r;
+    for (size_t k = 0; k < names[i].size() && k < 3; ++k) r.name += (k ? " / " : "") + names[i][k];
+    if (r.name.empty()) r.name = "space " + std::to_string(i + 1);
+    else ++named_rooms;
+    if (int n = ++used[r.name]; n > 1) r.name += " (" + std::to_string(n) + ")";
+    r.label = arr.spaces[i].inside;
+    r.where = {path, 0, 0, "room '" + r.name + "'"};
+    plan.rooms.push_back(r);
+  }
+  std::vector<int> placed(gaps.size(), 0);
+  int doors = 0, windows = 0;
+  for (const Sheet& s : arr.sheets) {
+    Wall w;
+    w.name = "wall " + std::to_string(plan.walls.size() + 1);
+    w.thickness = 0;
+    w.centre = {s.a, s.b};
+    w.from_arc = {false};
+    w.where = {path, 0, 0, "wall '" + w.name + "'"};
+    if (s.closes >= 0) {
+      const Gap& g = gaps[size_t(s.closes)];
+      Opening o;
+      o.kind = g.door ? OpeningKind::Door : OpeningKind::Window;
+      o.name = (g.door ? "door " : "window ") + std::to_string(s.closes + 1);
+      o.at = 0;
+      o.width = length(s.b - s.a);
+      o.sill = g.door ? 0 : std::min(0.9, opt.storey_height / 3);
+      o.head = std::min(2.1, opt.storey_height);
+      o.where = {path, 0, 0, o.name};
+      if (o.width > 0.01) {
+        if (!placed[size_t(s.closes)]) (g.door ? doors : windows) += 1;
+        placed[size_t(s.closes)] = 1;
+        w.openings.push_back(o);
+      }
+    }
+    plan.walls.push_back(w);
+  }
+  for (size_t g = 0; g < gaps.size(); ++g)
+    if (!placed[g])
+      plan.warnings.push_back(std::string(gaps[g].door ? "the door" : "the window") + " at (" +
+                              format_number("%.2f", gaps[g].where.x) + ", " + format_number("%.2f", gaps[g].where.y) +
+                              ") m joins no two spaces (in no wall gap, or the gap is not closed): not placed");
+  int outside_texts = 0;
+  for (int sp : arr.probe_space) outside_texts += sp == -2;
+  if (outside_texts > 0)
+    plan.warnings.push_back(std::to_string(outside_texts) +
+                            " texts lie outside every closed room (the walls around them may not close)");
+  for (const std::string& b : flat.missing_blocks) plan.warnings.push_back("INSERT of an undefined block '" + b + "'");
+
+  auto joined = [](const std::vector<std::string>& v) {
+    std::string s;
+    for (const std::string& x : v) s += (s.empty() ? "'" : ", '") + x + "'";
+    return s.empty() ? std::string("none") : s;
+  };
+  out.summary.push_back("walls from layers " + joined(taken[int(Role::Walls)]));
+  out.summary.push_back("doors from layers " + joined(taken[int(Role::Doors)]) + " and door blocks: " +
+                        std::to_string(swings) + " swings");
+  out.summary.push_back("windows from layers " + joined(taken[int(Role::Windows)]));
+  out.summary.push_back("unit " + unit_said);
+  out.summary.push_back(std::to_string(arr.faces) + " faces in the walls' arrangement, " + std::to_string(arr.wall_faces) +
+                        " of them wall (" + std::to_string(arr.hatched_faces) + " by hatching)");
+  out.summary.push_back(std::to_string(plan.walls.size()) + " walls, " + std::to_string(doors) + " doors, " +
+                        std::to_string(windows) + " windows, " + std::to_string(plan.rooms.size()) + " rooms (" +
+                        std::to_string(named_rooms) + " named from text)");
+  return out;
+}
+
+}  // namespace avenues

@@ -1,0 +1,62 @@
+// Avenues — a 2D DXF floor plan as a Plan, read with dxflib.
+//
+// What is read (dxflib's DL_CreationAdapter callbacks): LINE, LWPOLYLINE and old-style
+// POLYLINE/VERTEX (bulges become arcs), ARC, CIRCLE, ELLIPSE, SPLINE (evaluated from its
+// control points and knots, de Boor; rational weights are ignored, so a NURBS circle is
+// drawn as its non-rational B-spline), INSERT of BLOCKs (nested, arrays, scale, rotation;
+// entities on layer 0 take the INSERT's layer), TEXT and MTEXT (formatting codes
+// stripped), HATCH boundaries (lines, arcs, polylines; elliptic and spline edges are
+// skipped, as dxflib passes them without their shape), and $INSUNITS. dxflib does not
+// read DIMENSION geometry, 3D solids or proxy objects; none of them is a wall.
+//
+// What is understood:
+//  * layers: walls (A-WALL, ISO 13567 / AIA names, "Walls", "Existing Structure",
+//    partitions, Wand/Wände/Mauer), doors (A-DOOR, Doors, Tür/Tuer), windows (A-GLAZ,
+//    Windows, Fenster, Glazing), by the words in their names; `layers` overrides;
+//  * walls: the exact arrangement of every wall-layer curve (plans/formats/wall_arrangement.h);
+//    its narrow or hatched faces are wall, the rest are spaces; every edge between a space
+//    and anything else becomes a wall of no thickness (Jones's sheet), so that any wall
+//    shape the drawing has is kept; the plan's outside is solid (Plan::outside_solid);
+//  * doors: each swing (an arc of 60–120° and 0.4–1.6 m radius, drawn on a door layer or
+//    inside a door block) closes its gap with a line from its hinge to the end of the
+//    arc nearer the walls; where that line separates two spaces it is a door opening;
+//  * windows: each cluster of window-layer lines closes its gap with its longest line;
+//    where that separates two spaces it is a window (sill 0.9 m, head 2.1 m);
+//  * rooms: each space is a room, named by the TEXT/MTEXT inside it (or by a layer
+//    "Room - NAME" polyline around it), else "space N";
+//  * units from $INSUNITS, `unit` overriding; a drawing without units is taken as
+//    millimetres when it is over 1000 units across, else metres, with a warning.
+// A drawing with no wall layer, or whose wall lines close no room, is a PlanError listing
+// its layers and how to name them. Known limits: a swing whose hinge or closed end is over
+// 0.15 m from every wall line is not placed (a warning), as in ground-floor-lhs.dxf, whose
+// door blocks stand in gaps of partitions that the arrangement does not close; arcs are
+// arranged as their straight pieces (16 per half turn), not as exact circular arcs.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "plans/plan.h"
+
+namespace avenues {
+
+struct DxfPlanOptions {
+  std::string layers;          ///< "walls=A,B;doors=C;windows=D" (names case-insensitive)
+  std::string unit;            ///< "m", "cm", "mm", "in", "ft", or "" ($INSUNITS)
+  double storey_height = 2.7;  ///< [m] > 0
+};
+
+struct DxfPlan {
+  Plan plan;
+  /// What was understood, a line each: the layers taken for walls, doors and windows,
+  /// the unit, and the counts of walls, doors, windows and rooms.
+  std::vector<std::string> summary;
+};
+
+/// True when the text starts like an ASCII DXF file (group code 0, SECTION).
+bool looks_like_dxf(const std::string& head);
+
+/// Reads a DXF drawing as a one-storey plan. Throws PlanError naming the file.
+DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& options = {});
+
+}  // namespace avenues

@@ -1,0 +1,56 @@
+// Avenues — the arrangement of a drawing's wall curves, and which of its faces are walls.
+//
+// The one CGAL boundary of plans/formats: arrange_walls() builds the exact planar
+// arrangement (CGAL Arrangement_2, Epeck) of the wall lines of a 2D drawing together with
+// the lines that close its door and window gaps, tells each bounded face a wall face
+// (hatched, or narrow: twice its area over its perimeter, the width of a strip, at most
+// `max_wall_width`, as between two near-parallel wall lines) or a space, and returns
+// the edges that separate a space from anything else as plain segments ("sheets", walls
+// of no thickness), with the closing line they lie on, and each space with a point
+// inside it. Plain structs in, plain structs out.
+#pragma once
+
+#include <vector>
+
+#include "core/geometry.h"
+
+namespace avenues {
+
+/// A straight piece of the drawing [m]. `closes` >= 0: the line closing door or window
+/// gap number `closes` (the caller's numbering); -1: a wall line.
+struct ArrangedSegment {
+  Vec2 a, b;
+  int closes = -1;
+};
+
+struct WallArrangementInput {
+  std::vector<ArrangedSegment> segments;
+  /// Hatches of the wall layers, each a set of rings (even-odd: a point is inside the
+  /// hatch when it is inside an odd number of its rings).
+  std::vector<std::vector<std::vector<Vec2>>> hatches;
+  std::vector<Vec2> probes;      ///< points to locate (room names' texts)
+  double max_wall_width = 0.45;  ///< [m] a narrower face is a wall
+};
+
+struct Sheet {
+  Vec2 a, b;         ///< [m]
+  int closes = -1;   ///< the gap it closes between two spaces, or -1 (a wall's face)
+};
+
+struct Space {
+  Vec2 inside;       ///< [m] a point strictly inside the face
+  double area = 0;   ///< [m²]
+};
+
+struct WallArrangement {
+  std::vector<Sheet> sheets;
+  std::vector<Space> spaces;       ///< the bounded faces that are not walls
+  std::vector<int> probe_space;    ///< per probe: index into spaces, -1 in a wall face or on a line, -2 outside
+  int faces = 0, wall_faces = 0;   ///< bounded faces, and of them walls
+  int hatched_faces = 0;
+};
+
+/// Builds the arrangement and classifies it (see above).
+WallArrangement arrange_walls(const WallArrangementInput& input);
+
+}  // namespace avenues
