@@ -212,8 +212,14 @@ class Reader {
       if (n < 0 || size_t(n) > (b_.size() - pos_) / 2) fail(at, "a proxy class with " + std::to_string(n) + " interfaces");
       c.proxy = true;
       c.flags = SC_SERIALIZABLE;
-      for (int32_t i = 0; i < n; ++i) c.name += (i ? "," : "") + utf(u16());
-      c.name = "Proxy(" + c.name + ")";
+      std::string interfaces;
+      for (int32_t i = 0; i < n; ++i) {
+        if (i) interfaces += ',';
+        interfaces += utf(u16());
+      }
+      c.name = "Proxy(";
+      c.name += interfaces;
+      c.name += ')';
       annotation(depth, nullptr);
       c.super = class_desc(depth);
       s_.classes[size_t(index)] = std::move(c);
