@@ -295,7 +295,7 @@ class Reader {
       case TC_STRING:
       case TC_LONGSTRING: {
         const uint64_t n = tc == TC_STRING ? u16() : u64();
-        if (n > b_.size() - pos_) fail(at, "a string of " + std::to_string(n) + " bytes, longer than the stream");
+        if (n > b_.size() - pos_) fail(at, "the stream ends within a string of " + std::to_string(n) + " bytes");
         Object o;
         o.kind = Object::Kind::String;
         o.offset = at;

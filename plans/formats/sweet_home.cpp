@@ -269,6 +269,7 @@ struct PieceIn {
     Vec3 at;
     std::array<double, 3> colour{1, 1, 1};
   };
+  MaterialId material = -1;  ///< its color, where it has one
   bool light = false;
   double power = 0.5;     ///< a light's power, [0, 1]
   std::vector<Source> sources;
@@ -349,10 +350,27 @@ class HomeReader {
   void read_camera(const HomeElement& home);
 
   std::shared_ptr<const Mesh> model_of(const PieceIn& p);
+  /// The plan's material of a Sweet Home colour attribute (one per colour); -1 when the
+  /// text is empty or not a colour.
+  MaterialId material_of(const std::string& hex) {
+    const std::optional<std::array<double, 3>> c = colour_of(hex);
+    if (!c) return -1;
+    const std::string rgb = hex.substr(hex.size() - 6);
+    auto [it, fresh] = materials_.try_emplace(rgb, MaterialId(plan_.materials.size()));
+    if (fresh) {
+      Material m;
+      m.name = "#" + rgb;
+      m.colour = *c;
+      m.where = SourceLoc{file_, 0, 0, ""};
+      plan_.materials.push_back(m);
+    }
+    return it->second;
+  }
 
   std::string path_, file_;
   const HomeTree& tree_;
   ModelSource models_;
+  std::map<std::string, MaterialId> materials_;  ///< by colour "RRGGBB"
   std::map<std::string, std::shared_ptr<const Mesh>> models_read_;  ///< by model name, as read (nullptr: none)
   int models_missing_ = 0;       ///< pieces left boxes because their model is not at hand
   Plan plan_;
@@ -539,6 +557,9 @@ void HomeReader::read_walls(const HomeElement& home) {
     }
     d.at_start = n.text("wallAtStart");
     d.at_end = n.text("wallAtEnd");
+    // One material a wall: its left side's colour, else its right side's.
+    d.wall.material = material_of(n.text("leftSideColor"));
+    if (d.wall.material < 0) d.wall.material = material_of(n.text("rightSideColor"));
     drafts_.push_back(std::move(d));
   }
 }
@@ -758,6 +779,7 @@ void HomeReader::collect_pieces(const HomeElement& home) {
     const std::string mirrored = n.text("modelMirrored");  // a boolean as pugixml reads one
     p.mirrored = !mirrored.empty() && std::strchr("1tTyY", mirrored[0]) != nullptr;
     p.model = n.text("model");
+    p.material = material_of(n.text("color"));
     if (const std::string r = n.text("modelRotation"); !r.empty()) {
       std::istringstream in(r);
       std::array<double, 9> m{};
@@ -1099,6 +1121,8 @@ void HomeReader::read_rooms(const HomeElement& home) {
     r.room.name = r.named ? name : "room " + std::to_string(count);
     r.room.where = loc(n, element);
     r.room.storey = storey_of(n, element);
+    r.room.floor = material_of(n.text("floorColor"));
+    r.room.ceiling = material_of(n.text("ceilingColor"));
     bool ok = true;
     for (const HomeElement* pt : tree_.children(n, "point")) {
       if (!pt->attribute("x") || !pt->attribute("y")) {
@@ -1336,6 +1360,7 @@ void HomeReader::add_furniture() {
     o.box = {p.width, p.depth, p.height};
     o.where = p.where;
     o.model = model_of(p);
+    o.material = p.material;
     plan_.objects.push_back(o);
     if (p.cut_out.empty() || p.width <= 0 || p.depth <= 0) continue;
     // A staircase cuts the floors of the storeys it climbs into.
