@@ -221,7 +221,7 @@ TEST(SweetHomeSerialized, CasaUpstairsViewHasNoCrack) {
   const Location at = c.locate(cam.eye);
   ASSERT_EQ(at.what, Location::What::Cell);
   int from_behind = 0;
-  for (int j = 1; j < cam.height; j += 3)  // every third pixel each way, the two of the issue among them
+  for (int j = 1; j < cam.height; j += 3)  // every third pixel each way, (60, 112) of the issue among them
     for (int i = 0; i < cam.width; i += 3) {
       const Vec3 dir = cam.ray_through_raster({i + 0.5, j + 0.5});
       double best = HUGE_VAL, facing = 0;
