@@ -420,23 +420,5 @@ TEST(SweetHomeHostile, AModelIsToldByItsContentWhateverItsEntryIsCalled) {
   EXPECT_TRUE(warned);
 }
 
-TEST(SweetHomeLights, LightPiecesBecomeThePlansPointLights) {
-  const fs::path studio = fs::path(AVENUES_SH3D_EXAMPLES) / "Studio.xml";
-  if (!fs::exists(studio)) GTEST_SKIP() << "the Sweet Home 3D example homes are not in " << AVENUES_SH3D_EXAMPLES;
-  const Plan p = read_sweet_home(studio.string());
-  ASSERT_EQ(p.lights.size(), 7u);
-  // <light name='Wall uplight' x='61.383377' y='249.75' elevation='165.0' width='24.0'
-  // depth='12.0' height='26.0' power='0.5'><lightSource x='0.5' y='0.6666667' z='0.7307692'
-  // color='00998764'/>: (½ − y)·depth = −2 cm towards its front (screen +y, plan −y).
-  const Light& l = p.lights.front();
-  EXPECT_EQ(l.name, "Wall uplight");
-  EXPECT_EQ(l.kind, LightKind::Point);
-  EXPECT_NEAR(l.position.x, 0.61383377, 1e-4);  // plan points are kept to 0.1 mm
-  EXPECT_NEAR(l.position.y, -2.4975 + 0.02, 1e-4);
-  EXPECT_NEAR(l.position.z, 1.65 + 0.7307692 * 0.26, 1e-6);
-  EXPECT_DOUBLE_EQ(l.intensity, 0.5);
-  EXPECT_NEAR(l.colour[0], std::pow((0x99 / 255.0 + 0.055) / 1.055, 2.4), 1e-9);
-}
-
 }  // namespace
 }  // namespace avenues

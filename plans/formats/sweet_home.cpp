@@ -263,16 +263,7 @@ struct PieceIn {
   bool mirrored = false;
   std::string model;      ///< its model: an entry of the .sh3d archive, or a catalogue path
   std::array<double, 9> model_rotation{1, 0, 0, 0, 1, 0, 0, 0, 1};  ///< row-major, applied to the model first
-  /// A light's sources: (x, y, z) in the piece's box as shares of its width, depth and
-  /// height (x from its left, y from its back, z from its base), and a colour (linear).
-  struct Source {
-    Vec3 at;
-    std::array<double, 3> colour{1, 1, 1};
-  };
   MaterialId material = -1;  ///< its color, where it has one
-  bool light = false;
-  double power = 0.5;     ///< a light's power, [0, 1]
-  std::vector<Source> sources;
 };
 
 /// A door or window on its way into the wall it sits in.
@@ -787,23 +778,6 @@ void HomeReader::collect_pieces(const HomeElement& home) {
       for (double& v : m) ok = ok && (in >> v) && std::isfinite(v);
       if (ok && (in >> std::ws).eof()) p.model_rotation = m;
       else warn(n, element, "modelRotation is not nine numbers: the model is used unrotated");
-    }
-    if (kind == "light") {
-      p.light = true;
-      const double power = number(n, "power", element).value_or(0.5);
-      p.power = std::isfinite(power) ? std::clamp(power, 0.0, 1.0) : 0.5;
-      for (const HomeElement* ls : tree_.children(n, "lightSource")) {
-        const auto sx = number(*ls, "x", element), sy = number(*ls, "y", element), sz = number(*ls, "z", element);
-        if (!sx || !sy || !sz || !std::isfinite(*sx) || !std::isfinite(*sy) || !std::isfinite(*sz)) {
-          warn(*ls, element, "a light source without a finite x, y and z: dropped");
-          continue;
-        }
-        PieceIn::Source src;
-        src.at = {*sx, *sy, *sz};
-        if (const std::optional<std::array<double, 3>> c = colour_of(ls->text("color"))) src.colour = *c;
-        p.sources.push_back(src);
-      }
-      if (p.sources.empty()) p.sources.push_back({{0.5, 0.5, 0.5}, {1, 1, 1}});  // Sweet Home's default: the middle
     }
     pieces_.push_back(std::move(p));
   }
@@ -1330,27 +1304,6 @@ std::shared_ptr<const Mesh> HomeReader::model_of(const PieceIn& p) {
 
 void HomeReader::add_furniture() {
   for (const PieceIn& p : pieces_) {
-    if (p.light && p.power > 0) {
-      // Each source where Sweet Home's 3D view puts it (HomePieceOfFurniture3D:
-      // (x − ½)·width across, (½ − y)·depth towards the front, z·height up, turned with
-      // the piece), each as bright as the piece's power.
-      for (size_t k = 0; k < p.sources.size(); ++k) {
-        const PieceIn::Source& src = p.sources[k];
-        const double across = (src.at.x - 0.5) * p.width;
-        const double front = (0.5 - src.at.y) * p.depth;  // along the piece's screen +y
-        const Vec2 ax{std::cos(p.angle), std::sin(p.angle)};  // width axis, in plan
-        const Vec2 ay{ax.y, -ax.x};                           // depth axis (screen +y), in plan
-        const Vec2 at = p.centre + across * ax + front * ay;
-        Light l;
-        l.name = p.name + (p.sources.size() > 1 ? " " + std::to_string(k + 1) : "");
-        l.kind = LightKind::Point;
-        l.position = {at.x, at.y, plan_.storeys[size_t(p.storey)].elevation + p.elevation + src.at.z * p.height};
-        l.intensity = p.power;
-        l.colour = src.colour;
-        l.where = p.where;
-        plan_.lights.push_back(std::move(l));
-      }
-    }
     if (p.door_or_window) continue;
     Object o;
     o.name = p.name;
