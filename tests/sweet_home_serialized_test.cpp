@@ -141,6 +141,10 @@ TEST(SweetHomeSerialized, BothEntriesOfCasaGiveTheSamePlan) {
     EXPECT_NEAR(b.height, a.height, 1e-6);
     ASSERT_EQ(b.centre.size(), a.centre.size());
     for (size_t k = 0; k < a.centre.size(); ++k) expect_near(b.centre[k], a.centre[k], "centre point");
+    ASSERT_EQ(b.material >= 0, a.material >= 0);
+    if (a.material >= 0) {
+      EXPECT_EQ(s.materials[size_t(b.material)].colour, x.materials[size_t(a.material)].colour);
+    }
     ASSERT_EQ(b.openings.size(), a.openings.size());
     for (size_t k = 0; k < a.openings.size(); ++k) {
       EXPECT_EQ(b.openings[k].name, a.openings[k].name);
@@ -418,6 +422,37 @@ TEST(SweetHomeHostile, AModelIsToldByItsContentWhateverItsEntryIsCalled) {
   bool warned = false;
   for (const std::string& w : p.warnings) warned |= contains(w, "model 9 is not an OBJ file");
   EXPECT_TRUE(warned);
+}
+
+TEST(SweetHomeColours, WallRoomAndPieceColoursBecomeMaterialsInLinearLight) {
+  ScratchDir dir;
+  const std::string xml =
+      "<home>\n"
+      "  <wall id='s' wallAtStart='w' wallAtEnd='e' xStart='0' yStart='400' xEnd='600' yEnd='400' thickness='20' leftSideColor='FF3366CC'/>\n"
+      "  <wall id='e' wallAtStart='s' wallAtEnd='n' xStart='600' yStart='400' xEnd='600' yEnd='0' thickness='20' leftSideColor='FF3366CC'/>\n"
+      "  <wall id='n' wallAtStart='e' wallAtEnd='w' xStart='600' yStart='0' xEnd='0' yEnd='0' thickness='20' leftSideColor='FF3366CC'/>\n"
+      "  <wall id='w' wallAtStart='n' wallAtEnd='s' xStart='0' yStart='0' xEnd='0' yEnd='400' thickness='20' leftSideColor='FF3366CC'/>\n"
+      "  <room name='Hall' floorColor='FF808080' ceilingColor='FFFFFFFF'><point x='10' y='10'/><point x='590' y='10'/>"
+      "<point x='590' y='390'/><point x='10' y='390'/></room>\n"
+      "  <pieceOfFurniture name='Chair' x='100' y='100' width='40' depth='40' height='90' color='FF000000'/>\n"
+      "</home>\n";
+  const Plan p = read_sweet_home(dir.write("colours.xml", xml));
+  auto linear = [](int v) { const double e = v / 255.0; return e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4); };
+  ASSERT_EQ(p.walls.size(), 1u);
+  ASSERT_GE(p.walls[0].material, 0);
+  const Material& wall = p.materials[size_t(p.walls[0].material)];
+  EXPECT_NEAR(wall.colour[0], linear(0x33), 1e-12);
+  EXPECT_NEAR(wall.colour[1], linear(0x66), 1e-12);
+  EXPECT_NEAR(wall.colour[2], linear(0xCC), 1e-12);
+  ASSERT_EQ(p.rooms.size(), 1u);
+  ASSERT_GE(p.rooms[0].floor, 0);
+  ASSERT_GE(p.rooms[0].ceiling, 0);
+  EXPECT_NEAR(p.materials[size_t(p.rooms[0].floor)].colour[1], linear(0x80), 1e-12);
+  EXPECT_NEAR(p.materials[size_t(p.rooms[0].ceiling)].colour[2], 1.0, 1e-12);
+  ASSERT_EQ(p.objects.size(), 1u);
+  ASSERT_GE(p.objects[0].material, 0);
+  EXPECT_EQ(p.materials[size_t(p.objects[0].material)].colour[0], 0.0);
+  EXPECT_EQ(p.materials.size(), 4u) << "one material a colour";
 }
 
 }  // namespace
