@@ -17,7 +17,11 @@
 //                      beside a bare Home.xml at the path it names) fitted to the
 //                      piece as Sweet Home fits it, else a box of its size with a
 //                      warning; a staircase's cut-out into holes in the floors it climbs through,
-//   <observerCamera>   into the plan's viewpoint.
+//   <observerCamera>   into the plan's viewpoint;
+//   colour attributes  into materials (linear light): a wall's leftSideColor (else its
+//                      rightSideColor), a room's floorColor and ceilingColor, a piece's
+//                      color. Textures, modelMaterials, MTL colours and lights are not
+//                      imported yet.
 // Sweet Home lengths are centimetres with y pointing down the screen; a point (x, y)
 // becomes (x/100, −y/100) m, which keeps counter-clockwise polygons counter-clockwise
 // and turns Sweet Home's clockwise angles into Avenues' anticlockwise ones.
