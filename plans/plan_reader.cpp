@@ -35,6 +35,7 @@
 #include <unordered_set>
 
 #include "plans/plan.h"
+#include "core/srgb.h"
 #include "core/number_format.h"
 
 #include "plans/arc.h"
@@ -117,7 +118,7 @@ bool parse_hex_colour(std::string_view s, std::array<double, 3>& out) {
       v = v * 16 + d;
     }
     const double e = v / 255.0;
-    out[c] = e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4);
+    out[c] = linear_from_srgb(e);
   }
   return true;
 }

@@ -1,9 +1,11 @@
 // Avenues — reading a Sweet Home 3D home into a Plan (see sweet_home.h).
 //
 // The reader works in the order the elements depend on each other:
-//   1. the bytes: a zip (libzip, from memory) whose "Home.xml" entry is read, or bare XML;
-//   2. pugixml parses the XML; every element keeps its byte offset, which becomes a line
-//      and column for messages ("Home.xml:120:3 (wall 'wall7')");
+//   1. the bytes: a zip (libzip, from memory, every entry capped) whose "Home.xml" entry
+//      is read, else its serialized "Home" (sweet_home_serialized.cpp), or bare XML;
+//   2. pugixml parses the XML into the home tree (home_tree.h) that the serialized Home
+//      also becomes; every element keeps its line and column ("Home.xml:120:3 (wall
+//      'wall7')"), or the byte its Java object starts at ("Home (wall 'wall7' at byte 912)");
 //   3. levels → storeys; walls → drafts (centre lines in metres, rounded to 0.1 mm to
 //      undo Sweet Home's float noise; arcs tessellated); drafts joined end to end
 //      (wallAtStart / wallAtEnd naming each other, same thickness and height) → one
@@ -18,12 +20,14 @@
 //   6. rooms, furniture (each piece's OBJ model, read once with OpenMesh and fitted to the
 //      piece; a box of its size where the model is not at hand), staircase cut-outs
 //      (floor openings), the observer camera.
-// Mistakes the file cannot be read past (no Home.xml, XML syntax, a wall without its
-// coordinates, a number that is not a number, a level that does not exist) are
-// PlanErrors; odd but readable data (NaN, zero-length walls, a window in no wall) is
-// repaired or dropped with a line in Plan::warnings.
+// Mistakes the file cannot be read past (no home entry, XML syntax, a malformed Java
+// stream, a number that is not a number, a level that does not exist) are PlanErrors;
+// odd but readable data (NaN, zero-length walls, a window in no wall, a wall or piece
+// without its coordinates or size) is repaired or dropped with a line in Plan::warnings.
 #include "plans/formats/sweet_home.h"
+#include "plans/formats/home_tree.h"
 #include "core/number_format.h"
+#include "core/srgb.h"
 
 #include "plans/arc.h"
 #include "plans/mesh.h"
@@ -63,6 +67,7 @@ constexpr double kDoorSill = 0.05;      ///< [m] a door or window reaching this 
 constexpr double kParallelSin = 0.26;   ///< sin 15°: how far a piece may turn from its wall
 constexpr double kMinOpening = 0.01;    ///< [m] narrower or lower openings (and lower walls) are dropped
 constexpr double kDefaultSlab = 0.12;   ///< [m] Sweet Home's default floor thickness
+constexpr size_t kMaxEntryBytes = size_t(512) << 20;  ///< a zip entry inflating past this is refused
 
 double polyline_length(const std::vector<Vec2>& c) {
   double l = 0;
@@ -78,6 +83,17 @@ bool inside_polygon(const std::vector<Vec2>& poly, Vec2 p) {
     if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x)) in = !in;
   }
   return in;
+}
+
+/// A Sweet Home colour ("FF8080C0": ARGB in hex, as HomeXMLExporter writes it; alpha
+/// ignored) as linear RGB; nullopt when it is not one.
+std::optional<std::array<double, 3>> colour_of(const std::string& hex) {
+  if (hex.size() != 8 && hex.size() != 6) return std::nullopt;
+  uint32_t v = 0;
+  const auto [end, ec] = std::from_chars(hex.data(), hex.data() + hex.size(), v, 16);
+  if (ec != std::errc() || end != hex.data() + hex.size()) return std::nullopt;
+  return std::array<double, 3>{linear_from_srgb(((v >> 16) & 0xFF) / 255.0), linear_from_srgb(((v >> 8) & 0xFF) / 255.0),
+                               linear_from_srgb((v & 0xFF) / 255.0)};
 }
 
 // --- the bytes -------------------------------------------------------------------------
@@ -122,7 +138,8 @@ class ZipArchive {
       zip_source_free(src);
       const std::string why = zip_error_strerror(&err);
       zip_error_fini(&err);
-      throw PlanError(at, "not a Sweet Home 3D .sh3d file: not a zip archive (" + why + ")");
+      // It starts like a zip (read_sweet_home checked): a damaged one, most often cut short.
+      throw PlanError(at, "the archive is damaged (truncated, or its central directory is missing): " + why);
     }
     zip_error_fini(&err);
     archive_.reset(za);
@@ -137,6 +154,8 @@ class ZipArchive {
     if (!f) throw PlanError(at, "cannot open " + name + " in the archive: " + std::string(zip_strerror(archive_.get())));
     std::string out;
     std::vector<char> buf(1 << 16);
+    // A zip entry may claim anything in its header, and a small archive may inflate to
+    // gigabytes: what is read is counted, and an entry past the limit is refused.
     for (;;) {
       const zip_int64_t n = zip_fread(f, buf.data(), buf.size());
       if (n < 0) {
@@ -145,6 +164,11 @@ class ZipArchive {
         throw PlanError(at, "cannot read " + name + " in the archive: " + why);
       }
       if (n == 0) break;
+      if (out.size() + size_t(n) > kMaxEntryBytes) {
+        zip_fclose(f);
+        throw PlanError(at, "entry '" + name + "' of the archive inflates to more than " +
+                                std::to_string(kMaxEntryBytes >> 20) + " MiB: refused (no Sweet Home entry is that large)");
+      }
       out.append(buf.data(), size_t(n));
     }
     zip_fclose(f);
@@ -158,19 +182,6 @@ class ZipArchive {
   std::string path_;
   std::unique_ptr<zip_t, Discard> archive_;
 };
-
-/// The "Home.xml" entry of a .sh3d archive.
-std::string home_xml_of_zip(const std::string& path, const ZipArchive& zip) {
-  const SourceLoc at{path, 0, 0, ""};
-  std::optional<std::string> xml = zip.entry("Home.xml");
-  if (!xml) {
-    if (zip.has("Home"))
-      throw PlanError(at, "the archive holds no Home.xml entry, only a serialized Java 'Home' entry, which Avenues "
-                          "does not read (save the home again with Sweet Home 3D 5.3 or later, which writes Home.xml)");
-    throw PlanError(at, "the archive holds no Home.xml entry: not a Sweet Home 3D home");
-  }
-  return std::move(*xml);
-}
 
 /// Where a piece's model is found: an entry of the .sh3d archive, or beside a bare Home.xml
 /// (the model's path under the XML's folder, or its file name in a "models" folder there,
@@ -227,7 +238,7 @@ struct LevelIn {
   std::string id, name;
   double elevation = 0, floor = 0, height = 0;
   int index = 0;  ///< elevationIndex: order among levels of one elevation
-  pugi::xml_node node;
+  const HomeElement* node = nullptr;
 };
 
 /// A wall on its way into the plan: one <wall> or several joined end to end.
@@ -252,6 +263,7 @@ struct PieceIn {
   bool mirrored = false;
   std::string model;      ///< its model: an entry of the .sh3d archive, or a catalogue path
   std::array<double, 9> model_rotation{1, 0, 0, 0, 1, 0, 0, 0, 1};  ///< row-major, applied to the model first
+  MaterialId material = -1;  ///< its color, where it has one
 };
 
 /// A door or window on its way into the wall it sits in.
@@ -262,30 +274,30 @@ struct Hole {
 
 class HomeReader {
  public:
-  HomeReader(std::string path, std::string file, const std::string& text, ModelSource models)
-      : path_(std::move(path)), file_(std::move(file)), lines_(text), models_(std::move(models)) {}
+  HomeReader(std::string path, const HomeTree& tree, ModelSource models)
+      : path_(std::move(path)), file_(tree.file), tree_(tree), models_(std::move(models)) {}
 
-  Plan read(pugi::xml_node home);
+  Plan read();
 
  private:
   // --- locations, errors, numbers -----------------------------------------------------
-  SourceLoc loc(pugi::xml_node n, const std::string& element) const {
-    // pugixml's offset of an element is that of its name; point at its '<'.
-    auto [line, col] = lines_.at(n.offset_debug() - (n.type() == pugi::node_element ? 1 : 0));
-    return SourceLoc{file_, line, col, element};
+  /// Home.xml: its line and column; the serialized Home: the byte its object starts at.
+  SourceLoc loc(const HomeElement& n, const std::string& element) const {
+    if (tree_.serialized) return SourceLoc{file_, 0, 0, element + " at byte " + std::to_string(n.offset)};
+    return SourceLoc{file_, n.line, n.column, element};
   }
-  [[noreturn]] void fail(pugi::xml_node n, const std::string& element, const std::string& what) const {
+  [[noreturn]] void fail(const HomeElement& n, const std::string& element, const std::string& what) const {
     throw PlanError(loc(n, element), what);
   }
-  void warn(pugi::xml_node n, const std::string& element, const std::string& what) {
+  void warn(const HomeElement& n, const std::string& element, const std::string& what) {
     plan_.warnings.push_back(loc(n, element).str() + ": " + what);
   }
   /// An attribute as a number; nullopt when absent. Not a number at all: PlanError.
   /// NaN and infinities are numbers (Java writes them so); callers decide.
-  std::optional<double> number(pugi::xml_node n, const char* attr, const std::string& element) const {
-    const pugi::xml_attribute a = n.attribute(attr);
+  std::optional<double> number(const HomeElement& n, const char* attr, const std::string& element) const {
+    const std::string* a = n.attribute(attr);
     if (!a) return std::nullopt;
-    std::string_view s = a.value();
+    std::string_view s = *a;
     while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
     while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
     if (!s.empty() && s.front() == '+') s.remove_prefix(1);
@@ -293,21 +305,21 @@ class HomeReader {
     const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
     if (s.empty() || ec != std::errc() || end != s.data() + s.size())
       fail(n, element, "attribute '" + std::string(attr) + "' of " + element + " is not a number: \"" +
-                           std::string(a.value()) + "\"");
+                           *a + "\"");
     return v;
   }
-  double need(pugi::xml_node n, const char* attr, const std::string& element) const {
+  double need(const HomeElement& n, const char* attr, const std::string& element) const {
     auto v = number(n, attr, element);
     if (!v) fail(n, element, element + " has no '" + std::string(attr) + "' attribute");
     return *v;
   }
   static bool sane(double v) { return std::isfinite(v) && std::fabs(v) * kCm <= kAbsurd; }
   /// "wall 'wall3'" when it has an id (or name), "wall 3" otherwise.
-  static std::string element_name(pugi::xml_node n, const char* key, int count) {
-    const std::string id = n.attribute(key).as_string();
-    return id.empty() ? std::string(n.name()) + " " + std::to_string(count) : std::string(n.name()) + " '" + id + "'";
+  static std::string element_name(const HomeElement& n, const char* key, int count) {
+    const std::string id = n.text(key);
+    return id.empty() ? n.kind + " " + std::to_string(count) : n.kind + " '" + id + "'";
   }
-  StoreyId storey_of(pugi::xml_node n, const std::string& element, const char* inherited = "") const;
+  StoreyId storey_of(const HomeElement& n, const std::string& element, const char* inherited = "") const;
   /// Sweet Home (x, y) [cm] → plan [m], rounded to 0.1 mm: Sweet Home computes in floats,
   /// so a wall drawn along y = −5.5 may end at y = −5.4999795, and the hair between it and
   /// a wall on another storey along y = −5.5 would become a row of sliver cells.
@@ -316,23 +328,40 @@ class HomeReader {
   }
 
   // --- the steps --------------------------------------------------------------------------
-  void read_levels(pugi::xml_node home);
-  void read_walls(pugi::xml_node home);
+  void read_levels(const HomeElement& home);
+  void read_walls(const HomeElement& home);
   void join_walls();
   void stretch_free_ends();
-  void collect_pieces(pugi::xml_node parent, const std::string& level);
+  void collect_pieces(const HomeElement& home);
   void find_wall(const PieceIn& p);
   void cut_openings();
   void finish_walls();
-  void read_rooms(pugi::xml_node home);
+  void read_rooms(const HomeElement& home);
   void add_furniture();
-  void read_camera(pugi::xml_node home);
+  void read_camera(const HomeElement& home);
 
   std::shared_ptr<const Mesh> model_of(const PieceIn& p);
+  /// The plan's material of a Sweet Home colour attribute (one per colour); -1 when the
+  /// text is empty or not a colour.
+  MaterialId material_of(const std::string& hex) {
+    const std::optional<std::array<double, 3>> c = colour_of(hex);
+    if (!c) return -1;
+    const std::string rgb = hex.substr(hex.size() - 6);
+    auto [it, fresh] = materials_.try_emplace(rgb, MaterialId(plan_.materials.size()));
+    if (fresh) {
+      Material m;
+      m.name = "#" + rgb;
+      m.colour = *c;
+      m.where = SourceLoc{file_, 0, 0, ""};
+      plan_.materials.push_back(m);
+    }
+    return it->second;
+  }
 
   std::string path_, file_;
-  LineIndex lines_;
+  const HomeTree& tree_;
   ModelSource models_;
+  std::map<std::string, MaterialId> materials_;  ///< by colour "RRGGBB"
   std::map<std::string, std::shared_ptr<const Mesh>> models_read_;  ///< by model name, as read (nullptr: none)
   int models_missing_ = 0;       ///< pieces left boxes because their model is not at hand
   Plan plan_;
@@ -344,12 +373,13 @@ class HomeReader {
   std::vector<PieceIn> pieces_;
   std::vector<std::vector<Hole>> holes_;  ///< per draft: the doors and windows found in it
   int piece_count_ = 0;
+  int walls_dropped_ = 0;      ///< walls read_walls() dropped, each with a warning
   int walls_cut_ = 0;          ///< walls taller than their storey
   int sloped_ = 0, steps_ = 0; ///< sloped walls, and the pieces they became
 };
 
-StoreyId HomeReader::storey_of(pugi::xml_node n, const std::string& element, const char* inherited) const {
-  std::string id = n.attribute("level").as_string();
+StoreyId HomeReader::storey_of(const HomeElement& n, const std::string& element, const char* inherited) const {
+  std::string id = n.text("level");
   if (id.empty()) id = inherited;
   if (id.empty()) return default_storey_;
   auto it = storey_of_level_.find(id);
@@ -360,21 +390,22 @@ StoreyId HomeReader::storey_of(pugi::xml_node n, const std::string& element, con
 
 // --- levels → storeys ---------------------------------------------------------------------
 
-void HomeReader::read_levels(pugi::xml_node home) {
+void HomeReader::read_levels(const HomeElement& home) {
   std::vector<LevelIn> levels;
   int count = 0;
-  for (pugi::xml_node n : home.children("level")) {
+  for (const HomeElement* np : tree_.children(home, "level")) {
+    const HomeElement& n = *np;
     const std::string element = element_name(n, "id", ++count);
     LevelIn l;
-    l.id = n.attribute("id").as_string();
-    l.name = n.attribute("name").as_string();
+    l.id = n.text("id");
+    l.name = n.text("name");
     if (l.name.empty()) l.name = l.id.empty() ? "level " + std::to_string(count) : l.id;
     l.elevation = need(n, "elevation", element);
     l.floor = need(n, "floorThickness", element);
     l.height = need(n, "height", element);
     const double index = number(n, "elevationIndex", element).value_or(0);
     l.index = std::isfinite(index) ? int(std::clamp(index, -1e6, 1e6)) : 0;
-    l.node = n;
+    l.node = &n;
     if (!sane(l.elevation) || !sane(l.floor) || !sane(l.height) || l.height <= 0 || l.floor < 0)
       fail(n, element, element + " has an elevation, floorThickness or height that makes no sense (" +
                            format_number(l.elevation) + ", " + format_number(l.floor) + ", " + format_number(l.height) + ")");
@@ -406,7 +437,7 @@ void HomeReader::read_levels(pugi::xml_node home) {
   for (size_t g = 0; g < groups.size(); ++g) {
     const auto& grp = groups[g];
     Storey s;
-    s.where = loc(grp.front()->node, "level '" + grp.front()->name + "'");
+    s.where = loc(*grp.front()->node, "level '" + grp.front()->name + "'");
     s.elevation = g == 0 ? grp.front()->elevation : plan_.storeys.back().elevation + plan_.storeys.back().height +
                                                         plan_.storeys.back().slab;
     s.height = 0;
@@ -447,16 +478,26 @@ void HomeReader::read_levels(pugi::xml_node home) {
 
 // --- walls ----------------------------------------------------------------------------------
 
-void HomeReader::read_walls(pugi::xml_node home) {
+void HomeReader::read_walls(const HomeElement& home) {
   int count = 0;
-  for (pugi::xml_node n : home.children("wall")) {
+  for (const HomeElement* np : tree_.children(home, "wall")) {
+    const HomeElement& n = *np;
     const std::string element = element_name(n, "id", ++count);
     Draft d;
-    const std::string id = n.attribute("id").as_string();
+    const std::string id = n.text("id");
     d.ids.push_back(id.empty() ? "wall " + std::to_string(count) : id);
     d.wall.name = d.ids.front();
     d.wall.where = loc(n, element);
     d.wall.storey = storey_of(n, element);
+    // Sweet Home cannot draw a wall without these: the wall is dropped, not the home.
+    const char* missing = nullptr;
+    for (const char* attr : {"xStart", "yStart", "xEnd", "yEnd", "thickness"})
+      if (!missing && !n.attribute(attr)) missing = attr;
+    if (missing) {
+      warn(n, element, element + " has no '" + missing + "' attribute: wall dropped");
+      ++walls_dropped_;
+      continue;
+    }
     const double xs = need(n, "xStart", element), ys = need(n, "yStart", element);
     const double xe = need(n, "xEnd", element), ye = need(n, "yEnd", element);
     const double th = need(n, "thickness", element);
@@ -465,15 +506,18 @@ void HomeReader::read_walls(pugi::xml_node home) {
     if (!sane(xs) || !sane(ys) || !sane(xe) || !sane(ye) || !sane(th) || (h && !sane(*h)) || (he && !sane(*he)) ||
         (arc && !std::isfinite(*arc))) {
       warn(n, element, "a coordinate, thickness, height or arcExtent is not a finite number: wall dropped");
+      ++walls_dropped_;
       continue;
     }
     if (th < 0) {
       warn(n, element, "negative thickness " + format_number(th) + " cm: wall dropped");
+      ++walls_dropped_;
       continue;
     }
     const Vec2 a = plan_point(xs, ys), b = plan_point(xe, ye);
     if (length(b - a) < 1e-6) {
       warn(n, element, "the wall has length 0: dropped");
+      ++walls_dropped_;
       continue;
     }
     d.wall.thickness = th * kCm;
@@ -482,6 +526,7 @@ void HomeReader::read_walls(pugi::xml_node home) {
     d.h1 = he ? *he * kCm : d.h0;
     if (d.h0 <= kMinOpening && d.h1 <= kMinOpening) {
       warn(n, element, "the wall has no height: dropped");
+      ++walls_dropped_;
       continue;
     }
     d.wall.centre.push_back(a);
@@ -501,8 +546,11 @@ void HomeReader::read_walls(pugi::xml_node home) {
       d.wall.centre.push_back(b);
       d.wall.from_arc.push_back(false);
     }
-    d.at_start = n.attribute("wallAtStart").as_string();
-    d.at_end = n.attribute("wallAtEnd").as_string();
+    d.at_start = n.text("wallAtStart");
+    d.at_end = n.text("wallAtEnd");
+    // One material a wall: its left side's colour, else its right side's.
+    d.wall.material = material_of(n.text("leftSideColor"));
+    if (d.wall.material < 0) d.wall.material = material_of(n.text("rightSideColor"));
     drafts_.push_back(std::move(d));
   }
 }
@@ -667,26 +715,47 @@ void HomeReader::stretch_free_ends() {
 
 // --- doors and windows --------------------------------------------------------------------
 
-void HomeReader::collect_pieces(pugi::xml_node parent, const std::string& level) {
-  for (pugi::xml_node n : parent.children()) {
-    const std::string_view kind = n.name();
+/// Every piece of the home, groups opened, in document order. Iterative: a home may nest
+/// groups thousands deep (each pending child is a stack entry, not a call).
+void HomeReader::collect_pieces(const HomeElement& home) {
+  struct Pending {
+    const HomeElement* n;
+    std::string level;  ///< inherited from the enclosing groups
+  };
+  std::vector<Pending> stack;
+  for (auto it = home.children.rbegin(); it != home.children.rend(); ++it) stack.push_back({&tree_.elements[*it], ""});
+  while (!stack.empty()) {
+    const Pending top = std::move(stack.back());
+    stack.pop_back();
+    const HomeElement& n = *top.n;
+    const std::string& level = top.level;
+    const std::string_view kind = n.kind;
     if (kind == "furnitureGroup") {
-      const std::string own = n.attribute("level").as_string();
-      collect_pieces(n, own.empty() ? level : own);
+      const std::string own = n.text("level");
+      for (auto it = n.children.rbegin(); it != n.children.rend(); ++it)
+        stack.push_back({&tree_.elements[*it], own.empty() ? level : own});
       continue;
     }
     if (kind != "pieceOfFurniture" && kind != "doorOrWindow" && kind != "light") continue;
     const std::string element = element_name(n, "name", ++piece_count_);
     PieceIn p;
-    p.name = n.attribute("name").as_string();
+    p.name = n.text("name");
     if (p.name.empty()) p.name = std::string(kind) + " " + std::to_string(piece_count_);
     p.where = loc(n, element);
     p.storey = storey_of(n, element, level.c_str());
+    // Sweet Home cannot place a piece without these: the piece is dropped, not the home.
+    const char* missing = nullptr;
+    for (const char* attr : {"x", "y", "width", "depth", "height"})
+      if (!missing && !n.attribute(attr)) missing = attr;
+    if (missing) {
+      warn(n, element, element + " has no '" + missing + "' attribute: " + std::string(kind) + " dropped");
+      continue;
+    }
     const double x = need(n, "x", element), y = need(n, "y", element);
     const double w = need(n, "width", element), dp = need(n, "depth", element), h = need(n, "height", element);
     const double angle = number(n, "angle", element).value_or(0);
     const double elev = number(n, "elevation", element).value_or(0);
-    if (std::string_view(n.attribute("visible").as_string()) == "false") continue;
+    if (n.text("visible") == "false") continue;
     if (!sane(x) || !sane(y) || !sane(w) || !sane(dp) || !sane(h) || !sane(elev) || !std::isfinite(angle) || w < 0 ||
         dp < 0 || h < 0) {
       warn(n, element, "a position, size or angle is not a finite, non-negative number: " + std::string(kind) +
@@ -697,10 +766,12 @@ void HomeReader::collect_pieces(pugi::xml_node parent, const std::string& level)
     p.angle = -angle;  // clockwise on screen → anticlockwise in plan
     p.width = w * kCm, p.depth = dp * kCm, p.height = h * kCm, p.elevation = elev * kCm;
     p.door_or_window = kind == "doorOrWindow";
-    p.cut_out = n.attribute("staircaseCutOutShape").as_string();
-    p.mirrored = n.attribute("modelMirrored").as_bool();
-    p.model = n.attribute("model").as_string();
-    if (const std::string r = n.attribute("modelRotation").as_string(); !r.empty()) {
+    p.cut_out = n.text("staircaseCutOutShape");
+    const std::string mirrored = n.text("modelMirrored");  // a boolean as pugixml reads one
+    p.mirrored = !mirrored.empty() && std::strchr("1tTyY", mirrored[0]) != nullptr;
+    p.model = n.text("model");
+    p.material = material_of(n.text("color"));
+    if (const std::string r = n.text("modelRotation"); !r.empty()) {
       std::istringstream in(r);
       std::array<double, 9> m{};
       bool ok = true;
@@ -1006,7 +1077,7 @@ Vec2 label_point(const std::vector<Vec2>& poly, const std::vector<const Wall*>& 
   return best;
 }
 
-void HomeReader::read_rooms(pugi::xml_node home) {
+void HomeReader::read_rooms(const HomeElement& home) {
   struct RoomIn {
     Room room;
     std::vector<Vec2> poly;
@@ -1014,25 +1085,33 @@ void HomeReader::read_rooms(pugi::xml_node home) {
   };
   std::vector<RoomIn> rooms;
   int count = 0;
-  for (pugi::xml_node n : home.children("room")) {
+  for (const HomeElement* np : tree_.children(home, "room")) {
+    const HomeElement& n = *np;
     ++count;
-    const std::string name = n.attribute("name").as_string();
+    const std::string name = n.text("name");
     const std::string element = name.empty() ? "room " + std::to_string(count) : "room '" + name + "'";
     RoomIn r;
     r.named = !name.empty();
     r.room.name = r.named ? name : "room " + std::to_string(count);
     r.room.where = loc(n, element);
     r.room.storey = storey_of(n, element);
+    r.room.floor = material_of(n.text("floorColor"));
+    r.room.ceiling = material_of(n.text("ceilingColor"));
     bool ok = true;
-    for (pugi::xml_node pt : n.children("point")) {
-      const double x = need(pt, "x", element), y = need(pt, "y", element);
+    for (const HomeElement* pt : tree_.children(n, "point")) {
+      if (!pt->attribute("x") || !pt->attribute("y")) {
+        ok = false;
+        break;
+      }
+      const double x = need(*pt, "x", element), y = need(*pt, "y", element);
       ok &= sane(x) && sane(y);
       const Vec2 p = plan_point(x, y);
       if (r.poly.empty() || length(p - r.poly.back()) > 1e-9) r.poly.push_back(p);
     }
     while (r.poly.size() > 1 && length(r.poly.front() - r.poly.back()) <= 1e-9) r.poly.pop_back();
     if (!ok || r.poly.size() < 3 || std::fabs(signed_area(r.poly)) < 1e-6) {
-      warn(n, element, ok ? "the room's polygon has no area: dropped" : "a point is not a finite number: room dropped");
+      warn(n, element, ok ? "the room's polygon has no area: dropped"
+                          : "a point has no x or y, or one that is not a finite number: room dropped");
       continue;
     }
     rooms.push_back(std::move(r));
@@ -1127,6 +1206,32 @@ std::vector<Vec2> cut_out_outline(const PieceIn& p) {
   return out;
 }
 
+/// Whether bytes are a Wavefront OBJ file: text whose first statements (up to 4 KB) are
+/// OBJ's (v, vt, vn, f, g, o, s, l, p, usemtl, mtllib, comments), with a vertex among them.
+bool looks_like_obj(const std::string& bytes) {
+  const std::string_view head = std::string_view(bytes).substr(0, 4096);
+  if (head.find('\0') != std::string_view::npos) return false;
+  bool vertex = false;
+  int statements = 0;
+  size_t i = 0;
+  while (i < head.size()) {
+    size_t end = head.find('\n', i);
+    const bool last = end == std::string_view::npos;
+    if (last) end = head.size();
+    std::string_view line = head.substr(i, end - i);
+    i = end + 1;
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.front()))) line.remove_prefix(1);
+    if (line.empty() || line.front() == '#') continue;
+    if (last && bytes.size() > head.size()) break;  // a line cut by the 4 KB window
+    const std::string_view word = line.substr(0, line.find_first_of(" \t\r"));
+    static constexpr std::string_view kWords[] = {"v", "vt", "vn", "vp", "f", "g", "o", "s", "l", "p", "usemtl", "mtllib"};
+    if (std::find(std::begin(kWords), std::end(kWords), word) == std::end(kWords)) return false;
+    vertex |= word == "v";
+    ++statements;
+  }
+  return vertex && statements > 0;
+}
+
 /// The piece's model fitted to it as Sweet Home fits it: turned by modelRotation, its
 /// bounds scaled to the piece's width (x), height (y, up) and depth (z, towards the front),
 /// mirrored if asked, in the piece's own axes (base centred on the origin, z up, the front
@@ -1139,6 +1244,8 @@ std::shared_ptr<const Mesh> HomeReader::model_of(const PieceIn& p) {
     std::string ext = std::filesystem::path(p.model).extension().string();
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     std::optional<std::string> bytes = models_ ? models_(p.model) : std::nullopt;
+    // Sweet Home tells a model by its content: an entry "28" may well be an OBJ file.
+    if (bytes && ext != ".obj" && looks_like_obj(*bytes)) ext = ".obj";
     if (!bytes) {
       plan_.warnings.push_back(p.where.str() + ": model " + p.model + " is not at hand: a box of the piece's size stands in");
     } else if (ext != ".obj") {
@@ -1206,6 +1313,7 @@ void HomeReader::add_furniture() {
     o.box = {p.width, p.depth, p.height};
     o.where = p.where;
     o.model = model_of(p);
+    o.material = p.material;
     plan_.objects.push_back(o);
     if (p.cut_out.empty() || p.width <= 0 || p.depth <= 0) continue;
     // A staircase cuts the floors of the storeys it climbs into.
@@ -1223,9 +1331,10 @@ void HomeReader::add_furniture() {
   }
 }
 
-void HomeReader::read_camera(pugi::xml_node home) {
-  for (pugi::xml_node n : home.children("observerCamera")) {
-    if (std::string_view(n.attribute("attribute").as_string()) != "observerCamera") continue;
+void HomeReader::read_camera(const HomeElement& home) {
+  for (const HomeElement* np : tree_.children(home, "observerCamera")) {
+    const HomeElement& n = *np;
+    if (std::string_view(n.text("attribute")) != "observerCamera") continue;
     const std::string element = "observerCamera";
     const double x = need(n, "x", element), y = need(n, "y", element), z = need(n, "z", element);
     const double yaw = need(n, "yaw", element), pitch = need(n, "pitch", element);
@@ -1248,10 +1357,11 @@ void HomeReader::read_camera(pugi::xml_node home) {
 
 // --- the whole home ---------------------------------------------------------------------------
 
-Plan HomeReader::read(pugi::xml_node home) {
+Plan HomeReader::read() {
+  const HomeElement& home = tree_.root();
   plan_.source = path_;
   plan_.lenient = true;
-  std::string name = home.attribute("name").as_string();
+  std::string name = home.text("name");
   plan_.name = std::filesystem::path(name.empty() ? path_ : name).stem().string();
   const double wh = number(home, "wallHeight", "home").value_or(250);
   if (sane(wh) && wh > 0) wall_height_ = wh * kCm;
@@ -1260,12 +1370,27 @@ Plan HomeReader::read(pugi::xml_node home) {
   read_walls(home);
   join_walls();
   stretch_free_ends();
-  collect_pieces(home, "");
+  collect_pieces(home);
   for (const PieceIn& p : pieces_)
     if (p.door_or_window) find_wall(p);
   cut_openings();
   finish_walls();
-  if (plan_.walls.empty()) throw PlanError(loc(home, "home"), "the home has no walls");
+  if (plan_.walls.empty()) {
+    // Say why: the reasons each wall was dropped (the first few, and how many more).
+    std::string why;
+    if (walls_dropped_ > 0) {
+      constexpr size_t kShown = 5;
+      size_t shown = 0;
+      for (const std::string& w : plan_.warnings)
+        if (w.find("(wall ") != std::string::npos && shown < kShown) why += "\n  " + w, ++shown;
+      if (size_t(walls_dropped_) > shown) why += "\n  ... and " + std::to_string(size_t(walls_dropped_) - shown) + " more";
+      why = ": all " + std::to_string(walls_dropped_) + " were dropped:" + why;
+    } else if (const size_t rooms = tree_.children(home, "room").size(); rooms > 0) {
+      // Sweet Home shows such a home as floors in the open; cells are the space walls enclose.
+      why = ", only " + std::to_string(rooms) + " room(s) drawn as floors: Avenues needs walls to find its spaces";
+    }
+    throw PlanError(loc(home, "home"), "the home has no walls" + why);
+  }
   read_rooms(home);
   add_furniture();
   read_camera(home);
@@ -1283,22 +1408,99 @@ Plan HomeReader::read(pugi::xml_node home) {
   return std::move(plan_);
 }
 
+
+/// Home.xml as a home tree: every element below <home>, its attributes as they are, its
+/// line and column. Iterative (a home may nest groups thousands deep).
+HomeTree home_tree_of_xml(const std::string& text, const std::string& file) {
+  pugi::xml_document doc;
+  const pugi::xml_parse_result parsed = doc.load_buffer(text.data(), text.size(), pugi::parse_default);
+  const LineIndex lines(text);
+  if (!parsed) {
+    auto [line, col] = lines.at(parsed.offset);
+    throw PlanError(SourceLoc{file, line, col, ""}, std::string("XML syntax error: ") + parsed.description());
+  }
+  const pugi::xml_node home = doc.child("home");
+  if (!home) {
+    const pugi::xml_node root = doc.document_element();
+    throw PlanError(SourceLoc{file, root ? lines.at(root.offset_debug()).first : 0, 0, ""},
+                    "not a Sweet Home 3D home: the root element is <" + std::string(root ? root.name() : "") +
+                        ">, not <home>");
+  }
+  HomeTree t;
+  t.file = file;
+  std::vector<std::pair<pugi::xml_node, size_t>> stack{{home, 0}};
+  while (!stack.empty()) {
+    const auto [n, parent] = stack.back();
+    stack.pop_back();
+    const size_t e = t.add(parent, n.name());
+    // pugixml's offset of an element is that of its name; point at its '<'.
+    std::tie(t.elements[e].line, t.elements[e].column) = lines.at(n.offset_debug() - 1);
+    for (const pugi::xml_attribute a : n.attributes()) t.elements[e].set(a.name(), a.value());
+    std::vector<pugi::xml_node> kids;
+    for (pugi::xml_node c = n.first_child(); c; c = c.next_sibling())
+      if (c.type() == pugi::node_element) kids.push_back(c);
+    for (auto it = kids.rbegin(); it != kids.rend(); ++it) stack.push_back({*it, e});
+  }
+  return t;
+}
+
+/// Sweet Home 3D refuses a home whose ContentDigests names entries the archive does not
+/// hold (DefaultHomeInputStream: DamagedHomeIOException); so does Avenues.
+void check_content_digests(const std::string& path, const ZipArchive& zip) {
+  const std::optional<std::string> digests = zip.entry("ContentDigests");
+  if (!digests) return;
+  std::istringstream in(*digests);
+  std::vector<std::string> missing;
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (!line.starts_with("Name: ")) continue;
+    const std::string name = line.substr(6);
+    if (!zip.has(name)) missing.push_back(name);
+  }
+  if (missing.empty()) return;
+  std::string list;
+  for (size_t i = 0; i < missing.size() && i < 5; ++i) list += (i ? ", " : "") + missing[i];
+  if (missing.size() > 5) list += " and " + std::to_string(missing.size() - 5) + " more";
+  throw PlanError(SourceLoc{path, 0, 0, ""}, "the home is damaged: its ContentDigests names " +
+                                                 std::to_string(missing.size()) +
+                                                 " entr(ies) the archive does not hold (" + list + ")");
+}
+
 }  // namespace
 
-Plan read_sweet_home(const std::string& path) {
+Plan read_sweet_home(const std::string& path, HomeEntry which) {
   const std::string bytes = read_bytes(path);
-  std::string text, file = path;
   std::unique_ptr<ZipArchive> zip;
   ModelSource models;
+  std::optional<HomeTree> tree;
   if (looks_like_zip(bytes) || has_sh3d_extension(path)) {
     if (!looks_like_zip(bytes))
       throw PlanError(SourceLoc{path, 0, 0, ""}, "not a Sweet Home 3D .sh3d file: not a zip archive");
     zip = std::make_unique<ZipArchive>(path, bytes);
-    text = home_xml_of_zip(path, *zip);
-    file = path + ":Home.xml";
-    models = [&zip](const std::string& model) { return zip->entry(model); };
+    const bool has_xml = zip->has("Home.xml"), has_home = zip->has("Home");
+    if (!has_xml && !has_home)
+      throw PlanError(SourceLoc{path, 0, 0, ""},
+                      "the archive holds neither a Home.xml nor a serialized Home entry: not a Sweet Home 3D home");
+    check_content_digests(path, *zip);
+    const bool xml = which == HomeEntry::Xml || (which == HomeEntry::Preferred && has_xml);
+    if (xml && !has_xml)
+      throw PlanError(SourceLoc{path, 0, 0, ""}, "the archive holds no Home.xml entry (only the serialized Home)");
+    if (!xml && !has_home)
+      throw PlanError(SourceLoc{path, 0, 0, ""}, "the archive holds no serialized Home entry (only Home.xml)");
+    if (xml) tree = home_tree_of_xml(*zip->entry("Home.xml"), path + ":Home.xml");
+    else tree = home_tree_of_serialized(*zip->entry("Home"), path + ":Home");
+    models = [&zip, path](const std::string& model) -> std::optional<std::string> {
+      // "1!/tree.obj": the entry "1" is itself a zip holding the model's files.
+      const size_t bang = model.find("!/");
+      if (bang == std::string::npos) return zip->entry(model);
+      const std::optional<std::string> outer = zip->entry(model.substr(0, bang));
+      if (!outer || !looks_like_zip(*outer)) return std::nullopt;
+      const ZipArchive inner(path + ":" + model.substr(0, bang), *outer);
+      return inner.entry(model.substr(bang + 2));
+    };
   } else {
-    text = bytes;
+    if (which == HomeEntry::Serialized)
+      throw PlanError(SourceLoc{path, 0, 0, ""}, "a bare Home.xml holds no serialized Home entry");
     const std::filesystem::path dir = std::filesystem::path(path).parent_path();
     models = [dir](const std::string& model) -> std::optional<std::string> {
       // Only below the home's folder: a home names no file elsewhere on the machine.
@@ -1316,22 +1518,9 @@ Plan read_sweet_home(const std::string& path) {
       }
       return std::nullopt;
     };
+    tree = home_tree_of_xml(bytes, path);
   }
-  pugi::xml_document doc;
-  const pugi::xml_parse_result parsed = doc.load_buffer(text.data(), text.size(), pugi::parse_default);
-  const LineIndex lines(text);
-  if (!parsed) {
-    auto [line, col] = lines.at(parsed.offset);
-    throw PlanError(SourceLoc{file, line, col, ""}, std::string("XML syntax error: ") + parsed.description());
-  }
-  const pugi::xml_node home = doc.child("home");
-  if (!home) {
-    const pugi::xml_node root = doc.document_element();
-    throw PlanError(SourceLoc{file, root ? lines.at(root.offset_debug()).first : 0, 0, ""},
-                    "not a Sweet Home 3D home: the root element is <" + std::string(root ? root.name() : "") +
-                        ">, not <home>");
-  }
-  return HomeReader(path, file, text, std::move(models)).read(home);
+  return HomeReader(path, *tree, std::move(models)).read();
 }
 
 }  // namespace avenues

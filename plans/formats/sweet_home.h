@@ -1,8 +1,11 @@
 // Avenues — a Sweet Home 3D home as a Plan.
 //
-// Sweet Home 3D (eTeks) saves a home as a .sh3d zip whose "Home.xml" entry describes it
-// (older versions wrote only a serialized Java "Home" entry, which is not read); the
-// examples Debian ships are bare Home.xml files. The importer turns
+// Sweet Home 3D (eTeks) saves a home as a .sh3d zip holding a serialized Java "Home"
+// entry (every version; the only one before 5.3) and, since 5.3, a "Home.xml" entry
+// describing the same home; the examples Debian ships are bare Home.xml files. Home.xml
+// is read where there is one, else the serialized Home (java_stream.h reads the Java
+// stream, sweet_home_serialized.cpp maps Sweet Home's classes); both fill one home tree
+// (home_tree.h) in Home.xml's vocabulary, which one builder turns into the plan:
 //   <level>            into storeys, stacked by elevation (levels at one elevation merged),
 //   <wall>             into walls: joined walls of one thickness and height become one
 //                      mitred centre line, arcs (arcExtent) are tessellated within
@@ -14,10 +17,20 @@
 //                      beside a bare Home.xml at the path it names) fitted to the
 //                      piece as Sweet Home fits it, else a box of its size with a
 //                      warning; a staircase's cut-out into holes in the floors it climbs through,
-//   <observerCamera>   into the plan's viewpoint.
+//   <observerCamera>   into the plan's viewpoint;
+//   colour attributes  into materials (linear light): a wall's leftSideColor (else its
+//                      rightSideColor), a room's floorColor and ceilingColor, a piece's
+//                      color. Textures, modelMaterials, MTL colours and lights are not
+//                      imported yet.
 // Sweet Home lengths are centimetres with y pointing down the screen; a point (x, y)
 // becomes (x/100, −y/100) m, which keeps counter-clockwise polygons counter-clockwise
 // and turns Sweet Home's clockwise angles into Avenues' anticlockwise ones.
+//
+// Lenient where Sweet Home is: a wall, room or piece missing what it cannot do without
+// is dropped with a warning naming it, not the whole home; a home whose walls are all
+// dropped says why for each (the first few). Refused as Sweet Home refuses them: a
+// damaged zip, a ContentDigests naming entries the archive lacks, an entry inflating past
+// 512 MiB. Nesting (furniture groups) is walked without recursion.
 //
 // The plan is lenient (Plan::lenient): homes drawn by hand have terraces open to the
 // outside, rooms labelled twice, room polygons that cross walls; build_cells() makes
@@ -30,9 +43,15 @@
 
 namespace avenues {
 
-/// Reads a Sweet Home 3D home: a .sh3d file (a zip holding Home.xml) or a bare Home.xml
-/// (the examples shipped in Debian's sweethome3d package are bare XML). Throws PlanError
-/// naming the file and element (with the XML line where known) for what cannot be read.
-Plan read_sweet_home(const std::string& path);
+/// Which entry of a .sh3d to read: Home.xml where there is one (else the serialized Home),
+/// or one of them alone (to compare the two).
+enum class HomeEntry { Preferred, Xml, Serialized };
+
+/// Reads a Sweet Home 3D home: a .sh3d file (a zip holding Home.xml, a serialized Java
+/// Home, or both) or a bare Home.xml (the examples shipped in Debian's sweethome3d package
+/// are bare XML), told apart by content. Throws PlanError naming the file and element
+/// (with the XML line, or the byte of the serialized object, where known) for what
+/// cannot be read.
+Plan read_sweet_home(const std::string& path, HomeEntry entry = HomeEntry::Preferred);
 
 }  // namespace avenues

@@ -1,0 +1,12 @@
+// Avenues — sRGB encoding (IEC 61966-2-1): 8-bit colours as files write them, to the
+// linear light Avenues computes in.
+#pragma once
+
+#include <cmath>
+
+namespace avenues {
+
+/// An sRGB-encoded component in [0, 1] as linear light in [0, 1].
+inline double linear_from_srgb(double e) { return e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4); }
+
+}  // namespace avenues
