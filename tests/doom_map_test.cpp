@@ -454,11 +454,9 @@ void every_map_decomposes(const std::string& wad) {
     const Location eye = c.locate(plan.view->eye);
     EXPECT_EQ(eye.what, Location::What::Cell) << eye.solid;
   }
-  // The aim is under a second per map in a release build; allow for a busy machine.
+  // Speed is a benchmark's matter (bench/doom_vs_zdbsp.sh, docs/PERFORMANCE.md), not a
+  // timed assertion that fails on a busy machine: the slowest map is only reported.
   std::printf("[ info ] %s: %zu maps, slowest %s %.2f s\n", wad.c_str(), maps.size(), slowest_map.c_str(), slowest);
-#ifdef NDEBUG
-  EXPECT_LT(slowest, 5.0) << slowest_map;
-#endif
 }
 
 }  // namespace
