@@ -378,8 +378,7 @@ TEST(BundledPlans, GeneratedOfficeScales) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_EQ(p.rooms.size(), 10000u + 50u + 1u);
   EXPECT_LT(p.walls.size(), 6000u);
-  // "Well under a second" in a release build; generous here for debug and sanitizer builds.
-  EXPECT_LT(seconds, 3.0);
+  // Its speed is the benchmarks' (bench/cells_bench.cpp), recorded here, not asserted.
   RecordProperty("parse_seconds", std::to_string(seconds));
 }
 
