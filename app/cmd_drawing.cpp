@@ -20,7 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
-#include "app/line_raster.h"
+#include "render/line_raster.h"
 #include "core/atomic_file.h"
 #include "render/architectural_drawing.h"
 #include "render/raster.h"

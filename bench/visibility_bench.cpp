@@ -23,8 +23,8 @@
 #include <random>
 
 #include "cells/build_cells.h"
-#include "cells/doom_map.h"
-#include "cells/sweet_home.h"
+#include "plans/formats/doom_map.h"
+#include "plans/formats/sweet_home.h"
 #include "plans/generate.h"
 #include "visibility/visible_set.h"
 

@@ -21,6 +21,7 @@
 #include "cells/mesh_scene.h"
 
 #include "cells/build_cells.h"
+#include "core/angles.h"
 #include "cells/soup_bsp.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
@@ -741,7 +742,7 @@ void frame_scene(CellComplex& out, const Box3& box, double m) {
   out.far_box.hi = box.hi + Vec3{m, m, m};
   const Vec3 middle = 0.5 * (box.lo + box.hi);
   const Vec3 eye{box.lo.x - m / 2, box.lo.y - m / 2, middle.z};
-  const double fov = 2 * std::atan(length(box.hi - box.lo) / 2 / length(middle - eye)) * 180 / 3.14159265358979323846;
+  const double fov = deg_from_rad(2 * std::atan(length(box.hi - box.lo) / 2 / length(middle - eye)));
   out.view = Viewpoint{eye, middle, std::clamp(fov, 40.0, 120.0)};
 }
 

@@ -303,7 +303,7 @@ void smooth_corner_normals(Mesh& m, double crease_deg) {
       auto& list = around[size_t(v)];
       if (std::find(list.begin(), list.end(), polygon(t)) == list.end()) list.push_back(polygon(t));
     }
-  const double cos_crease = std::cos(crease_deg * 3.14159265358979323846 / 180);
+  const double cos_crease = std::cos(rad_from_deg(crease_deg));
   m.corner_normals.assign(3 * m.triangles.size(), Vec3{0, 0, 1});
   for (size_t t = 0; t < m.triangles.size(); ++t) {
     const Vec3 own = unit[polygon(t)];

@@ -12,8 +12,8 @@
 #include <stdexcept>
 
 #include "cells/build_cells.h"
-#include "cells/doom_map.h"
-#include "cells/sweet_home.h"
+#include "plans/formats/doom_map.h"
+#include "plans/formats/sweet_home.h"
 #include "ray_oracle.h"
 #include "render/drawing.h"
 #include "render/halftone.h"
