@@ -246,6 +246,7 @@ TEST_F(WalkWindow, OverItsFrameBudgetTheWalkDropsDetailAndRestoresItWhenTheEyeSt
   const avenues::Image window = avenues::read_image(path("still.png").string());
   const avenues::Image picture = offline(plan("two-storey-house.toml"), still, "offline.png", "--samples 4");
   EXPECT_EQ(differing(window, picture), 0) << "the still window and `avenues view " << still["view_options"] << "` differ";
+}
 
 // An IFC building walked for real: from one of the duplex's named spaces through a door
 // (the model's IfcDoor, cut into its wall) into another.
