@@ -1059,20 +1059,6 @@ Mesh hard_soup(Vec3 at) {
   return m;
 }
 
-/// Free volume [m³] of a complex, each face's area taken about its first vertex.
-double free_volume_about(const CellComplex& c) {
-  double v = 0;
-  for (const Cell& cell : c.cells) {
-    const Vec3 r = cell.faces.front().poly.front();
-    for (const Face& f : cell.faces) {
-      Vec3 s{0, 0, 0};
-      for (size_t i = 1; i + 1 < f.poly.size(); ++i) s = s + cross(f.poly[i] - f.poly[0], f.poly[i + 1] - f.poly[0]);
-      v += length(s) / 2 * dot(f.plane.n, f.poly.front() - r) / 3;
-    }
-  }
-  return v;
-}
-
 }  // namespace
 
 // Stable: the soup decomposes into valid cells filling the far box, every triangle is
@@ -1087,7 +1073,7 @@ TEST(HardCases, ASoupOfCoincidentQuadsSliversAndTJunctionsNearAndFarFromTheOrigi
     ASSERT_EQ(cells_are_valid(c), "");
     const Box3& b = c.far_box;
     const double box = (b.hi.x - b.lo.x) * (b.hi.y - b.lo.y) * (b.hi.z - b.lo.z);
-    EXPECT_NEAR(free_volume_about(c), box, 1e-6 * box);
+    EXPECT_NEAR(avenues::testing::free_volume(c), box, 1e-6 * box);
     EXPECT_EQ(avenues::testing::triangles_missing_from_export(c, {m}), 0);
     avenues::testing::expect_soup_views_agree_with_rays(c, 10, 5400, 96, 64, 2);
   }

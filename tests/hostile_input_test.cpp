@@ -301,8 +301,9 @@ TEST(HostileFormats, FilesAreToldByTheirContent) {
         << c.name << ": detected as " << avenues::format_name(detect_format(c.name, c.head, c.head.size()));
 }
 
-// Item 12 through the executable: formats Avenues cannot read say so, exit 2; a plan or a
-// saved complex under another name is read by its content.
+// Item 12 through the executable: formats Avenues cannot read say so, exit 2 (and a DXF or
+// IFC file with nothing in it says what it lacks); a plan or a saved complex under another
+// name is read by its content.
 TEST_F(Hostile, PlansOfOtherFormatsSaySoAndMisnamedPlansAreRead) {
   write("plan.dxf", "  0\nSECTION\n  2\nENTITIES\n  0\nENDSEC\n  0\nEOF\n");
   write("model.ifc", "ISO-10303-21;\nHEADER;\nENDSEC;\nEND-ISO-10303-21;\n");
@@ -312,8 +313,9 @@ TEST_F(Hostile, PlansOfOtherFormatsSaySoAndMisnamedPlansAreRead) {
   const struct {
     const char* file;
     const char* says;
-  } cannot[] = {{"plan.dxf", "plan.dxf is a DXF drawing, which Avenues cannot read yet"},
-                {"model.ifc", "model.ifc is an IFC model, which Avenues cannot read yet"},
+  } cannot[] = {// DXF and IFC are read now: an empty drawing and an empty model are clear errors.
+                {"plan.dxf", "plan.dxf: no layer holds walls"},
+                {"model.ifc", "model.ifc: Assimp cannot read this IFC model"},
                 {"plan.png", "plan.png is a PNG image, which Avenues cannot read yet"},
                 {"really-a-png.toml", "really-a-png.toml is a PNG image"},
                 {"noise.bin", "noise.bin is not a plan Avenues can read"}};

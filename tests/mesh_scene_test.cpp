@@ -14,8 +14,11 @@
 #include "cells/mesh_scene.h"
 #include "ray_oracle.h"
 #include "visibility/visible_set.h"
+#include "tests/test_meshes.h"
 
 using namespace avenues;
+using avenues::testing::box_volume;
+using avenues::testing::free_volume;
 using avenues::testing::check_visible_set;
 using avenues::testing::OracleResult;
 
@@ -37,26 +40,6 @@ Mesh box_at(Vec3 size, Vec3 at) {
   for (Vec3& v : m.vertices) v = v + at;
   return m;
 }
-
-/// Volume [m³] of a convex cell from its faces (prism or not): a cone from one vertex to each face.
-double cell_volume(const Cell& cell) {
-  const Vec3 r = cell.faces.front().poly.front();
-  double v = 0;
-  for (const Face& f : cell.faces) {
-    Vec3 s{0, 0, 0};
-    for (size_t i = 0; i < f.poly.size(); ++i) s = s + cross(f.poly[i], f.poly[(i + 1) % f.poly.size()]);
-    v += length(s) / 2 * dot(f.plane.n, f.poly.front() - r) / 3;
-  }
-  return v;
-}
-
-double free_volume(const CellComplex& c) {
-  double v = 0;
-  for (const Cell& cell : c.cells) v += cell_volume(cell);
-  return v;
-}
-
-double box_volume(const Box3& b) { return (b.hi.x - b.lo.x) * (b.hi.y - b.lo.y) * (b.hi.z - b.lo.z); }
 
 /// A box as a general convex cell (Cell::prism == false), all its faces opaque.
 Cell box_cell(Vec3 lo, Vec3 hi) {

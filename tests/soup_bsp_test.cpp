@@ -11,32 +11,16 @@
 #include "cells/mesh_scene.h"
 #include "cells/soup_bsp.h"
 #include "soup_checks.h"
+#include "tests/test_meshes.h"
 
 using namespace avenues;
+using avenues::testing::box_volume;
+using avenues::testing::free_volume;
 using avenues::testing::expect_soup_views_agree_with_rays;
 using avenues::testing::outside_path;
 using avenues::testing::triangles_missing_from_export;
 
 namespace {
-
-double cell_volume(const Cell& cell) {
-  const Vec3 r = cell.faces.front().poly.front();
-  double v = 0;
-  for (const Face& f : cell.faces) {
-    Vec3 s{0, 0, 0};
-    for (size_t i = 0; i < f.poly.size(); ++i) s = s + cross(f.poly[i], f.poly[(i + 1) % f.poly.size()]);
-    v += length(s) / 2 * dot(f.plane.n, f.poly.front() - r) / 3;
-  }
-  return v;
-}
-
-double free_volume(const CellComplex& c) {
-  double v = 0;
-  for (const Cell& cell : c.cells) v += cell_volume(cell);
-  return v;
-}
-
-double box_volume(const Box3& b) { return (b.hi.x - b.lo.x) * (b.hi.y - b.lo.y) * (b.hi.z - b.lo.z); }
 
 Mesh cube(Vec3 at, double size) {
   Mesh m = box_mesh({size, size, size});

@@ -19,6 +19,7 @@
 #include "plans/formats/sweet_home.h"
 #include "ray_oracle.h"
 #include "visibility/visible_set.h"
+#include "tests/test_files.h"
 
 namespace avenues {
 namespace {
@@ -315,25 +316,9 @@ TEST(SweetHomeSerialized, TheExecutableRefusesDamagedHomesWithExitStatus2) {
 
 // --- hostile homes (issue 13) -----------------------------------------------------------
 
-class ScratchDir {
+class ScratchDir : public avenues::testing::TempDir {
  public:
-  ScratchDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("avenues-sh3ds-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::create_directories(dir_);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  std::string write(const std::string& name, const std::string& text) const {
-    const std::string path = (dir_ / name).string();
-    std::ofstream(path, std::ios::binary) << text;
-    return path;
-  }
-
- private:
-  fs::path dir_;
+  ScratchDir() : avenues::testing::TempDir("avenues-sh3ds") {}
 };
 
 const std::string kBox =

@@ -25,6 +25,7 @@
 
 #include "cells/build_cells.h"
 #include "plans/formats/sweet_home.h"
+#include "tests/test_files.h"
 #include "plans/mesh.h"
 #include "render/view_lines.h"
 #include "ray_oracle.h"
@@ -41,22 +42,9 @@ const char* const kHomes[] = {"1BedroomApartmentWithRoundWall", "2BedroomApartme
                               "3BedroomHouseWithMezzanine",     "4BedroomHouse",     "Studio"};
 
 /// A scratch directory per test, removed afterwards.
-class TempDir {
+class TempDir : public avenues::testing::TempDir {
  public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("avenues-sh3d-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::create_directories(dir_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  std::string write(const std::string& name, const std::string& text) const {
-    const std::string path = (dir_ / name).string();
-    std::ofstream(path, std::ios::binary) << text;
-    return path;
-  }
+  TempDir() : avenues::testing::TempDir("avenues-sh3d") {}
   /// A zip holding the given entries (name → bytes), written with libzip.
   std::string zip(const std::string& name, const std::map<std::string, std::string>& entries) const {
     const std::string path = (dir_ / name).string();
@@ -72,8 +60,6 @@ class TempDir {
     return path;
   }
 
- private:
-  fs::path dir_;
 };
 
 /// A Sweet Home camera from its XML element: walks along (−sin yaw, cos yaw) on the

@@ -5,6 +5,10 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <system_error>
+
+#include <gtest/gtest.h>
+#include <unistd.h>
 
 namespace avenues::testing {
 
@@ -22,5 +26,33 @@ inline std::string quote(const std::string& s) {
   for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return out + "'";
 }
+
+/// A folder of the running test's own under the system's temporary folder (named for the
+/// prefix, the process and the test), removed with everything in it when it goes.
+class TempDir {
+ public:
+  explicit TempDir(const std::string& prefix = "avenues-test") {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = std::filesystem::temp_directory_path() /
+           (prefix + "-" + std::to_string(::getpid()) + "-" + (info ? info->name() : "none"));
+    std::filesystem::create_directories(dir_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(dir_, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::filesystem::path& path() const { return dir_; }
+  /// Writes `text` to the file `name` in the folder; returns its path.
+  std::string write(const std::string& name, const std::string& text) const {
+    const std::string p = (dir_ / name).string();
+    std::ofstream(p, std::ios::binary) << text;
+    return p;
+  }
+
+ protected:
+  std::filesystem::path dir_;
+};
 
 }  // namespace avenues::testing

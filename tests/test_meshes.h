@@ -6,9 +6,33 @@
 #include <string>
 #include <vector>
 
+#include "cells/cell_complex.h"
 #include "plans/mesh.h"
 
 namespace avenues::testing {
+
+/// Volume [m³] of a convex cell from its faces alone (prism or not): a pyramid from one of
+/// its vertices to each face, each face's area a fan about its own first vertex (no large
+/// products cancelling far from the origin). Independent of the complex's own total_volume.
+inline double cell_volume(const Cell& cell) {
+  const Vec3 r = cell.faces.front().poly.front();
+  double v = 0;
+  for (const Face& f : cell.faces) {
+    Vec3 s{0, 0, 0};
+    for (size_t i = 1; i + 1 < f.poly.size(); ++i) s = s + cross(f.poly[i] - f.poly[0], f.poly[i + 1] - f.poly[0]);
+    v += length(s) / 2 * dot(f.plane.n, f.poly.front() - r) / 3;
+  }
+  return v;
+}
+
+/// The free volume [m³] of a complex: the sum of its cells' volumes.
+inline double free_volume(const CellComplex& c) {
+  double v = 0;
+  for (const Cell& cell : c.cells) v += cell_volume(cell);
+  return v;
+}
+
+inline double box_volume(const Box3& b) { return (b.hi.x - b.lo.x) * (b.hi.y - b.lo.y) * (b.hi.z - b.lo.z); }
 
 /// A mesh of these convex polygons (counter-clockwise seen from outside), made as the
 /// readers make one (mesh_of_polygons: T-junctions joined, fans, corner normals).
