@@ -16,7 +16,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <iterator>
 #include <sstream>
 #include <vector>
@@ -124,13 +123,22 @@ void check_ply(const std::string& path) {
   struct Element { std::string name; long long count = 0; int properties = 0; };
   std::vector<Element> elements;
   int lineno = 0;
+  bool ended = false;
   while (std::getline(in, line)) {
     ++lineno;
     if (!line.empty() && line.back() == '\r') line.pop_back();
+    // The header is text: a NUL or control byte in it is no PLY (OpenMesh's own check of
+    // the header reads past such a line).
+    for (char ch : line)
+      if (const auto c = static_cast<unsigned char>(ch); (c < 32 && c != '\t') || c > 126)
+        bad("line " + std::to_string(lineno) + ": a byte that is not text in the header");
     std::istringstream ls(line);
     std::string key;
     ls >> key;
-    if (key == "end_header") break;
+    if (key == "end_header") {
+      ended = true;
+      break;
+    }
     if (key == "format") {
       std::string f;
       ls >> f;
@@ -147,6 +155,9 @@ void check_ply(const std::string& path) {
     }
     if (lineno > 10000) bad("its header does not end (no end_header in 10000 lines)");
   }
+  if (!ended) bad("its header has no end_header line");
+  if (elements.empty() || elements.front().name != "vertex")
+    bad("its header does not declare its vertices first (element vertex N)");
   const std::streamoff data_start = in ? static_cast<std::streamoff>(in.tellg()) : 0;
   const auto body = static_cast<long double>(std::filesystem::file_size(path)) - static_cast<long double>(data_start);
   long double need = 0;
@@ -234,7 +245,7 @@ std::string check_off(const std::string& path) {
   auto at = [&]() { return "line " + std::to_string(lineno) + ": "; };
   if (!next_line()) return {};  // empty: OpenMesh refuses it
   // [ST][C][N][4][n]OFF [BINARY], the counts on this line or the next.
-  if (!std::regex_match(tok[0], std::regex("(ST)?C?N?4?n?OFF"))) bad("it does not start with an OFF header");
+  if (!is_off_keyword(tok[0])) bad("it does not start with an OFF header");
   const std::string header = tok[0];
   if (line.find("BINARY") != std::string::npos || tok[0].find("nOFF") != std::string::npos) return {};
   std::vector<std::string> counts(tok.begin() + 1, tok.end());
@@ -597,6 +608,21 @@ Mesh place(const Mesh& mesh, const Object& o, double floor_z) {
     n = l > 0 ? (1.0 / l) * r : n;
   }
   return m;
+}
+
+bool is_off_keyword(std::string_view w) {
+  // Written out rather than as a std::regex, whose matcher recurses once per character.
+  auto take = [&w](std::string_view prefix) {
+    if (w.substr(0, prefix.size()) != prefix) return false;
+    w.remove_prefix(prefix.size());
+    return true;
+  };
+  take("ST");
+  take("C");
+  take("N");
+  take("4");
+  take("n");
+  return w == "OFF";
 }
 
 }  // namespace avenues

@@ -9,6 +9,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/geometry.h"
@@ -49,6 +50,9 @@ Mesh mesh_of_polygons(std::string path, std::vector<Vec3> vertices, std::vector<
 /// the up axis and unit the file declares (`axes` where it declares none). Throws
 /// std::runtime_error naming the file for a missing, unreadable or empty mesh.
 Mesh load_mesh(const std::string& path, const MeshAxes& axes = {});
+
+/// True for an OFF file's first word, [ST][C][N][4][n]OFF ("OFF", "COFF", "STCNOFF", ...).
+bool is_off_keyword(std::string_view word);
 
 /// "x", "y", "z" as an up axis; std::nullopt for anything else.
 std::optional<char> up_axis_named(const std::string& name);

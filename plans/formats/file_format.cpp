@@ -1,11 +1,12 @@
 // Avenues — telling a file's format by its content (plans/formats/file_format.h).
 #include "plans/formats/file_format.h"
 
+#include "plans/mesh.h"
+
 #include <cctype>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <sstream>
 #include <string_view>
 #include <vector>
@@ -58,8 +59,13 @@ bool looks_like_obj(std::string_view head) {
   for (const std::string& l : lines_of(head, 64)) {
     if (l.empty() || l[0] == '#') continue;
     if (l.find('=') != std::string::npos) return false;
-    static const std::regex statement("(v|vt|vn|f|o|g|s|mtllib|usemtl)\\s.*");
-    return std::regex_match(l, statement);
+    // The first word, then white space (no std::regex: its matcher recurses per character).
+    const size_t end = l.find_first_of(" \t");
+    if (end == std::string::npos) return false;
+    const std::string_view word = std::string_view(l).substr(0, end);
+    for (const char* statement : {"v", "vt", "vn", "f", "o", "g", "s", "mtllib", "usemtl"})
+      if (word == statement) return true;
+    return false;
   }
   return false;
 }
@@ -138,9 +144,9 @@ FileFormat detect_format(const std::string& path, const std::string& head, uint6
   if (starts_with(h, "ply\n") || starts_with(h, "ply\r\n")) return FileFormat::Ply;
   if (looks_like_dxf(t)) return FileFormat::Dxf;
   {
-    static const std::regex off_header("(ST)?C?N?4?n?OFF(\\s.*)?");
     const std::vector<std::string> first = lines_of(t, 1);
-    if (!first.empty() && std::regex_match(first[0], off_header)) return FileFormat::Off;
+    if (!first.empty() && is_off_keyword(std::string_view(first[0]).substr(0, first[0].find_first_of(" \t"))))
+      return FileFormat::Off;
   }
   if (starts_with(t, "<?xml") || starts_with(t, "<home")) {
     if (t.find("<home") != std::string_view::npos) return FileFormat::SweetHome;
