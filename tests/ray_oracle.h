@@ -80,14 +80,9 @@ inline OracleResult check_visible_set(const CellComplex& c, const Camera& cam, c
     }
   const double px2 = (cam.width / (2 * cam.half_width())) * (cam.height / (2 * cam.half_height()));
   for (const Avenue& a : vs.avenues) {
-    double area = 0, cx = 0, cy = 0;
-    for (size_t m = 0; m < a.mask.size(); ++m) {
-      const Vec2 p = a.mask[m], q = a.mask[(m + 1) % a.mask.size()];
-      const double w = cross(p, q);
-      area += w / 2, cx += (p.x + q.x) * w / 6, cy += (p.y + q.y) * w / 6;
-    }
-    if (area * px2 <= 1 || a.depth == 0) continue;
-    const Vec3 dir = (cx / area) * cam.right + (cy / area) * cam.up + cam.forward;
+    if (signed_area(a.mask) * px2 <= 1 || a.depth == 0) continue;
+    const Vec2 mid = centroid(a.mask);  // core/geometry.h
+    const Vec3 dir = mid.x * cam.right + mid.y * cam.up + cam.forward;
     if (!(length_inside(c.cells[size_t(a.cell)], cam.eye, dir, 0, first_hit(c, cam.eye, dir)) > 0)) ++r.extra;
   }
   return r;
@@ -141,14 +136,9 @@ inline OracleResult check_parallel_visible_set(const CellComplex& c, const Camer
   const double px2 = (cam.width / (2 * cam.half_width())) * (cam.height / (2 * cam.half_height()));
   const double nf = dot(cut.n, cam.forward);
   for (const Avenue& a : vs.avenues) {
-    double area = 0, cx = 0, cy = 0;
-    for (size_t m = 0; m < a.mask.size(); ++m) {
-      const Vec2 p = a.mask[m], q = a.mask[(m + 1) % a.mask.size()];
-      const double w = cross(p, q);
-      area += w / 2, cx += (p.x + q.x) * w / 6, cy += (p.y + q.y) * w / 6;
-    }
-    if (area * px2 <= 1 || a.depth == 0) continue;
-    Vec3 o = cam.eye + (cx / area) * cam.right + (cy / area) * cam.up;
+    if (signed_area(a.mask) * px2 <= 1 || a.depth == 0) continue;
+    const Vec2 mid = centroid(a.mask);  // core/geometry.h
+    Vec3 o = cam.eye + mid.x * cam.right + mid.y * cam.up;
     o = o + (-cut.eval(o) / nf) * cam.forward;
     if (!(length_inside(c.cells[size_t(a.cell)], o, cam.forward, 0, first_hit(c, o, cam.forward)) > 0)) ++r.extra;
   }
