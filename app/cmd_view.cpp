@@ -71,7 +71,7 @@ ViewSetup set_up_view(const LoadedPlan& plan, const ViewOptions& opt) {
     throw std::runtime_error("--view-width needs --projection parallel");
   }
   v.viewpoint = vp;
-  Location loc = c.place_eye(v.camera.eye, v.camera.forward);
+  const Location loc = c.locate(v.camera.eye, v.camera.forward);
   if (loc.what == Location::What::OutsideBox)
     throw PlanError({plan.path, 0, 0, ""}, "the eye " + str(vp.eye) + " is outside the far box");
   if (loc.what == Location::What::Solid)

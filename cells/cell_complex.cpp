@@ -188,30 +188,25 @@ Location CellComplex::locate(Vec3 p, Vec3 facing, CellId hint) const {
   return loc;
 }
 
-Location CellComplex::place_eye(Vec3& eye, Vec3 facing, CellId hint) const {
-  const Location loc = locate(eye, facing, hint);
-  if (loc.what != Location::What::Cell) return loc;
-  const Cell& cell = cells[size_t(loc.cell)];
-  constexpr double kStep = 1e-6;  // [m]
-  if (cell.contains(eye, -kStep / 2)) return loc;
-  // A point inside the convex cell: the mean of its corners.
-  Vec3 inner{0, 0, 0};
-  size_t n = 0;
-  if (cell.prism) {
-    const Vec2 g = centroid(cell.footprint);
-    inner = {g.x, g.y, (cell.z0 + cell.z1) / 2};
-    n = 1;
-  } else {
-    for (const Face& f : cell.faces)
-      for (const Vec3& v : f.poly) inner = inner + v, ++n;
-    if (n > 0) inner = (1.0 / double(n)) * inner;
-  }
-  const Vec3 d = inner - eye;
-  const double l = length(d);
-  if (n == 0 || !(l > kStep)) return loc;
-  const Vec3 moved = eye + (kStep / l) * d;
-  if (cell.contains(moved)) eye = moved;
-  return loc;
+std::vector<CellId> CellComplex::cells_holding(Vec3 p, double tol) const {
+  std::vector<CellId> out;
+  if (!far_box.contains(p) || bands.empty() || bands[0].nx <= 0) return out;
+  const Band& g = bands[0];
+  // The grid squares the point's tol-box meets (a cell touching p may be listed only in
+  // the square beside p's own when p lies on a square's edge).
+  const int i0 = std::clamp(int((p.x - tol - g.x0) / g.cell_size), 0, g.nx - 1);
+  const int i1 = std::clamp(int((p.x + tol - g.x0) / g.cell_size), 0, g.nx - 1);
+  const int j0 = std::clamp(int((p.y - tol - g.y0) / g.cell_size), 0, g.ny - 1);
+  const int j1 = std::clamp(int((p.y + tol - g.y0) / g.cell_size), 0, g.ny - 1);
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) {
+      const size_t s = size_t(j) * size_t(g.nx) + size_t(i);
+      for (int32_t k = g.start[s]; k < g.start[s + 1]; ++k)
+        if (cells[size_t(g.items[size_t(k)])].contains(p, tol)) out.push_back(g.items[size_t(k)]);
+    }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
 }
 
 }  // namespace avenues

@@ -155,13 +155,13 @@ struct CellComplex {
   /// The same for an eye looking along `facing`: an eye on a face of two cells (a sheet
   /// wall of no thickness, a floor) is on the side it looks to, in the cell that holds both
   /// it and a point just ahead of it, as an eye in a doorway's plane is in the room it
-  /// looks into. (Looking along the face itself, either cell.)
+  /// looks into. (Looking along the face itself, either cell.) The search of what such an
+  /// eye sees starts in every cell that holds it (find_visible, visibility/visible_set.h).
   Location locate(Vec3 p, Vec3 facing, CellId hint = kNoCell) const;
-  /// An eye for a view along `facing`, located as above; an eye on its cell's boundary
-  /// (within half a micrometre: on a sheet wall, at a T-junction of sheets, in a doorway's
-  /// plane) is moved a micrometre into the cell, so that the faces it stands on are seen
-  /// from the cell's side, not edge-on from within them. Updates `eye`.
-  Location place_eye(Vec3& eye, Vec3 facing, CellId hint = kNoCell) const;
+  /// Every cell whose closure, grown by tol [m], holds p, ascending: one for a point
+  /// inside a cell, two or more for a point on a face two cells share (a sheet wall, a
+  /// doorway's plane), at a T-junction of sheets or on a common edge.
+  std::vector<CellId> cells_holding(Vec3 p, double tol) const;
 
   /// The room's largest cell of kind Room (by footprint area): where a person stands in
   /// it. kNoCell when the room has no such cell.

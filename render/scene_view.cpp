@@ -40,10 +40,14 @@ ScreenScene screen_scene_of_view(const CellComplex& complex, const std::vector<P
   std::map<CellId, std::vector<size_t>> objects_in;
   for (size_t i = 0; i < objects.size(); ++i)
     if (objects[i].cell != kNoCell) objects_in[objects[i].cell].push_back(i);
+  // An eye on its cell's boundary has several roots whose masks meet along lines: grow
+  // them as deeper masks are grown, so that no sample on a meeting line falls between.
+  size_t roots = 0;
+  for (const Avenue& a : visible.avenues) roots += a.parent < 0;
   for (size_t i = 0; i < visible.avenues.size(); ++i) {
     const Avenue& avenue = visible.avenues[i];
     if (avenue.mask.size() < 3) continue;
-    const int32_t clip = b.add_clip(avenue.mask, avenue.depth == 0 ? 0 : kMaskGrowth);
+    const int32_t clip = b.add_clip(avenue.mask, avenue.depth == 0 && roots == 1 ? 0 : kMaskGrowth);
     if (clip < 0) continue;
     const Cell& cell = complex.cells[size_t(avenue.cell)];
     ScreenSceneBuilder::Placement where{clip, int32_t(i), avenue.depth, PolygonRole::Face};

@@ -83,10 +83,38 @@ class Traversal {
     last_into_ = last_into.data();
   }
 
+  /// The search from the eye in cell `start`. An eye on the boundary of its cell (within
+  /// kOnBoundary: on a sheet wall, in a doorway's plane, at a T-junction of sheets, on an
+  /// edge several cells share) stands in every cell that holds it, and each ray leaves it
+  /// into the cell its direction points into: every such cell is a root, its mask the
+  /// window clipped to the directions that enter it (the cone of the cell's faces through
+  /// the eye, a half-plane each on the picture plane). The roots' masks tile the window, so
+  /// the picture is their views composed; `start` goes first. Where no root keeps a mask
+  /// (looking exactly along a face), `start` is searched through the whole window.
   void run(CellId start) {
     ClearMarks clear{*this};
-    Mask<T> m = window_;
-    visit(start, m, -1, -1, 0);
+    if (!on_boundary(start)) {
+      visit(start, window_, -1, -1, 0);
+      return;
+    }
+    std::vector<CellId> roots{start};
+    for (CellId id : c_.cells_holding(eye_d_, kOnBoundary))
+      if (id != start) roots.push_back(id);
+    bool any = false;
+    for (CellId id : roots) {
+      Mask<T> m = window_;
+      bool alive = true;
+      for (const Face& f : c_.cells[size_t(id)].faces) {
+        const double n = length(f.plane.n);
+        if (!(std::fabs(f.plane.eval(eye_d_)) <= kOnBoundary * n)) continue;
+        alive = m.clip(trace(in(-1.0 * f.plane.n), eye_));  // directions d with n·d <= 0: into the cell
+        if (!alive) break;
+      }
+      if (!alive || !(m.area2() > T(0))) continue;
+      visit(id, m, -1, -1, 0);
+      any = true;
+    }
+    if (!any) visit(start, window_, -1, -1, 0);
   }
 
   /// A parallel search from a cut plane (its normal not perpendicular to forward): every
@@ -146,6 +174,17 @@ class Traversal {
   };
 
   static Vec3T<T> in(Vec3 v) { return {T(v.x), T(v.y), T(v.z)}; }
+
+  /// [m] An eye this near a face's plane stands on it: far below any plan's detail, far
+  /// above the rounding of coordinates of a building's size.
+  static constexpr double kOnBoundary = 1e-9;
+
+  /// Whether the eye lies on a face of cell `id` (within kOnBoundary).
+  bool on_boundary(CellId id) const {
+    for (const Face& f : c_.cells[size_t(id)].faces)
+      if (std::fabs(f.plane.eval(eye_d_)) <= kOnBoundary * length(f.plane.n)) return true;
+    return false;
+  }
 
   /// Picture-plane half-plane of the world plane with normal n through point p, which
   /// contains the rays' source: perspective, the plane passes through the eye, and it keeps

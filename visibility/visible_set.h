@@ -29,7 +29,7 @@ struct Avenue {
 
 struct VisibleSet {
   CellId eye_cell = kNoCell;
-  std::vector<Avenue> avenues;  ///< depth-first order; avenues[0] is the eye's cell (parallel: one root per cut cell)
+  std::vector<Avenue> avenues;  ///< depth-first order; avenues[0] is the eye's cell; an eye on its cell's boundary: one root (parent -1) per cell holding it, each through the directions entering it (parallel: one root per cut cell)
   std::vector<CellId> cut_cells;  ///< parallel: the cells the cut plane crosses, ascending (the roots)
   std::vector<CellId> cells;    ///< distinct visible cells, ascending
   long portals_tested = 0;      ///< portals examined (facing test and clipping)
@@ -54,7 +54,9 @@ struct TraverseParams {
 };
 
 /// Jones's recursive search of the avenues of sight from `camera.eye`, which lies in
-/// cell `eye_cell` (closed). Exact convex masks; see mask.h for the representation.
+/// cell `eye_cell` (closed). Exact convex masks; see mask.h for the representation. An eye
+/// on the boundary of its cell (a sheet wall, a doorway's plane, a T-junction) is searched
+/// from every cell that holds it, each through the directions that enter it.
 VisibleSet find_visible(const CellComplex& complex, const Camera& camera, CellId eye_cell, const TraverseParams& params);
 VisibleSet find_visible(const CellComplex& complex, const Camera& camera, CellId eye_cell,
                         Kernel kernel = Kernel::Double);
