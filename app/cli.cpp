@@ -37,16 +37,21 @@ namespace avenues::app {
 namespace {
 /// The options that say how a plan from elsewhere is understood (docs/PLAN_FORMAT.md,
 /// "Plans from elsewhere"), on every subcommand that reads a PLAN.
-void add_import_options(CLI::App* app, ImportOptions& o, std::string& unit_seen) {
-  app->add_option("--scale", o.scale, "floor-plan annotations (.txt): metres per pixel (default 0.04)")
-      ->check(CLI::PositiveNumber)->type_name("M_PER_PIXEL");
+/// (`drawing`, whose --scale is the paper's, takes floor-plan annotations at their default scale.)
+void add_import_options(CLI::App* app, ImportOptions& o, bool with_scale = true) {
+  if (with_scale)
+    app->add_option("--scale", o.scale, "floor-plan annotations (.txt): metres per pixel (default 0.04)")
+        ->check(CLI::PositiveNumber)->type_name("M_PER_PIXEL");
   app->add_option("--layers", o.layers, "DXF: which layers hold what, overriding the usual names")
       ->type_name("walls=NAME,...;doors=...;windows=...");
   // One --unit for every file that does not say its unit: a DXF drawing (overriding its
   // $INSUNITS) and a mesh scene in a format without one (OBJ, PLY, STL, OFF).
   app->add_option("--unit", o.unit, "the file's length unit where it does not say: DXF (overrides $INSUNITS), OBJ, PLY, STL, OFF")
-      ->check(CLI::IsMember({"m", "cm", "mm", "in", "ft"}))
-      ->each([&unit_seen](const std::string& v) { unit_seen = v; });
+      ->check(CLI::IsMember({"m", "cm", "mm", "in", "ft"}));
+  // How a mesh scene in a format that declares no axes (OBJ, PLY, STL, OFF) becomes z-up
+  // metres; formats that declare theirs (glTF, COLLADA, FBX, 3DS, IFC) are read as they say.
+  app->add_option("--up", o.up, "mesh scenes: the file's up axis where its format has none (OBJ, PLY, STL, OFF)")
+      ->check(CLI::IsMember({"x", "y", "z"}));
   app->add_option("--storey-height", o.storey_height, "[m] 2D drawings: floor to ceiling")
       ->check(CLI::PositiveNumber)->capture_default_str();
   app->add_option("--save-plan", o.save_plan, "also write the plan as understood, in Avenues' TOML")
@@ -55,7 +60,6 @@ void add_import_options(CLI::App* app, ImportOptions& o, std::string& unit_seen)
 }  // namespace
 
 int run_cli(int argc, char** argv) {
-  std::string up_name, unit_name;  // mesh scenes' --up and the --unit of any subcommand
   use_throwing_gmp_allocator();  // GMP's exhaustion as std::bad_alloc, not abort()
   CLI::App app{
       "Avenues: an architectural walkthrough tool. It decomposes a building plan's free\n"
@@ -69,14 +73,14 @@ int run_cli(int argc, char** argv) {
 
   MainJobOptions main_opt;
   app.add_option("PLAN", main_opt.plan, "plan (.toml) or saved cells (.cells); default: the bundled plan");
-  add_import_options(&app, main_opt.import, unit_name);
+  add_import_options(&app, main_opt.import);
   app.add_option("--out-dir", main_opt.out_dir, "where the main job writes its files")
       ->capture_default_str()->check(file_name());
 
   CellsOptions cells_opt;
   CLI::App* cells = app.add_subcommand("cells", "decompose PLAN into cells and print a summary");
   cells->add_option("PLAN", cells_opt.plan, "plan (.toml) or saved cells (.cells)")->required();
-  add_import_options(cells, cells_opt.import, unit_name);
+  add_import_options(cells, cells_opt.import);
   cells->add_flag("--json", cells_opt.json, "print the summary as one JSON object");
   cells->add_option("--svg", cells_opt.svg, "also write the plan drawing (SVG) to FILE")->type_name("FILE")->check(file_name());
   cells->add_option("--save", cells_opt.save, "also save the complex to FILE.cells (loads fast)")
@@ -85,13 +89,13 @@ int run_cli(int argc, char** argv) {
   ExportOptions export_opt;
   CLI::App* exp = app.add_subcommand("export", "write the opaque surfaces as a Wavefront OBJ mesh");
   exp->add_option("PLAN", export_opt.plan, "plan (.toml) or saved cells (.cells)")->required();
-  add_import_options(exp, export_opt.import, unit_name);
+  add_import_options(exp, export_opt.import);
   exp->add_option("-o,--output", export_opt.output, "the OBJ file to write")->required()->type_name("FILE.obj")->check(file_name());
 
   ViewOptions view_opt;
   CLI::App* view = app.add_subcommand("view", "find what the eye sees from one viewpoint (Jones's avenues of sight)");
   view->add_option("PLAN", view_opt.plan, "plan (.toml) or saved cells (.cells); default: the bundled plan");
-  add_import_options(view, view_opt.import, unit_name);
+  add_import_options(view, view_opt.import);
   view->add_option("--eye", view_opt.eye, "eye position; default: the plan's viewpoint")->type_name("X,Y,Z");
   view->add_option("--look", view_opt.look, "centre of interest")->type_name("X,Y,Z");
   view->add_option("--yaw", view_opt.yaw, "heading in degrees anticlockwise from +x (instead of --look)")
@@ -132,7 +136,8 @@ int run_cli(int argc, char** argv) {
 
   DrawingOptions drawing_opt;
   CLI::App* drawing = app.add_subcommand("drawing", "an architect's drawing: plan, section, elevation or axonometric");
-  drawing->add_option("PLAN", drawing_opt.plan, "plan (.toml) or saved cells (.cells)")->required();
+  drawing->add_option("PLAN", drawing_opt.plan, "the plan, in any format the other subcommands read")->required();
+  add_import_options(drawing, drawing_opt.import, false);
   auto* kind_plan = drawing->add_option("--plan", drawing_opt.storey, "a plan of this storey (name or index), cut at --cut-height")
                         ->type_name("STOREY");
   auto* kind_section = drawing->add_option("--section", drawing_opt.section, "a vertical cut along the line, looking to its left")
@@ -161,7 +166,7 @@ int run_cli(int argc, char** argv) {
   PathOptions path_opt;
   CLI::App* path = app.add_subcommand("path", "write the frames of a walk through named rooms (a batch walkthrough)");
   path->add_option("PLAN", path_opt.plan, "plan (.toml) or saved cells (.cells); default: the bundled plan");
-  add_import_options(path, path_opt.import, unit_name);
+  add_import_options(path, path_opt.import);
   path->add_option("--through", path_opt.through, "rooms to walk through, in order")->type_name("ROOM,ROOM,...");
   path->add_option("--keys", path_opt.keys, "keyframes to follow: one 'EX EY EZ LX LY LZ' per line")->type_name("FILE")->check(file_name());
   path->add_option("-o,--output", path_opt.out_dir, "directory for the numbered frames")->capture_default_str()->check(file_name());
@@ -182,7 +187,7 @@ int run_cli(int argc, char** argv) {
   WalkOptions walk_opt;
   CLI::App* walk = app.add_subcommand("walk", "walk through PLAN in a window (H in the window lists the controls)");
   walk->add_option("PLAN", walk_opt.plan, "plan (.toml, .cells, FILE.wad:MAP01, ...); default: the bundled plan");
-  add_import_options(walk, walk_opt.import, unit_name);
+  add_import_options(walk, walk_opt.import);
   walk->add_option("--size", walk_opt.size, "the window's size in pixels")->type_name("WxH")->capture_default_str()->check(size_wxh());
   walk->add_option("--eye", walk_opt.eye, "where to start; default: the plan's viewpoint")->type_name("X,Y,Z");
   walk->add_option("--look", walk_opt.look, "what to look at first")->type_name("X,Y,Z");
@@ -251,13 +256,6 @@ int run_cli(int argc, char** argv) {
   office->add_option("--rooms", office_opt.rooms, "grid size, e.g. 10x10")->required()->type_name("ROWSxCOLS");
   office->add_option("-o,--output", office_opt.output, "the plan file to write")->required()->type_name("FILE.toml")->check(file_name());
 
-  // How a mesh scene in a format that declares no axes (OBJ, PLY, STL, OFF) becomes z-up
-  // metres; formats that declare theirs (glTF, COLLADA, FBX, 3DS, IFC) are read as they say.
-  for (CLI::App* c : {&app, cells, exp, view, path, walk}) {
-    c->add_option("--up", up_name, "mesh scenes: the file's up axis where its format has none (OBJ, PLY, STL, OFF)")
-        ->check(CLI::IsMember({"x", "y", "z"}));
-  }
-
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -266,7 +264,6 @@ int run_cli(int argc, char** argv) {
     return kBadInput;
   }
 
-  set_mesh_axes({up_axis_named(up_name), metres_per_unit_named(unit_name)});
   try {
     if (*cells) return run_cells(cells_opt);
     if (*exp) return run_export(export_opt);

@@ -138,7 +138,7 @@ int run_drawing(const DrawingOptions& opt) {
   if (!picture && !is_drawing_path(opt.output))
     throw std::runtime_error("cannot write '" + opt.output + "': unknown format '" + lower_extension(opt.output) +
                              "' (drawings: " + drawing_extensions() + "; pictures: " + raster_extensions() + ")");
-  LoadedPlan plan = load_plan_source(opt.plan);
+  LoadedPlan plan = load_plan_source(opt.plan, opt.import);
   const CellComplex& c = plan.complex;
   const ArchitecturalView s = set_up_drawing(c, opt);
   const VisibleSet vs = find_visible_from_cut(c, s.camera, s.cut, kernel);

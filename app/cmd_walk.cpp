@@ -41,6 +41,9 @@
 #include "render/line_raster.h"
 #include "app/script.h"
 #include "app/viewer.h"
+#include "app/walk_exports.h"
+#include "app/walk_state.h"
+#include "app/walk_stats.h"
 #include "core/atomic_file.h"
 #include "plans/formats/doom_map.h"
 #include "render/halftone.h"
@@ -58,8 +61,6 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-constexpr double kMinFov = 5, kMaxFov = 150;  // [deg]
-
 enum class StereoMode : uint8_t { Mono, SideBySide, Anaglyph };
 const char* to_string(StereoMode m) {
   return m == StereoMode::Mono ? "mono" : m == StereoMode::SideBySide ? "side-by-side" : "anaglyph";
@@ -67,71 +68,20 @@ const char* to_string(StereoMode m) {
 
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
-/// Resident memory of this process [kB] (Linux /proc/self/statm).
-long resident_kb() {
-  std::ifstream in("/proc/self/statm");
-  long pages = 0, resident = 0;
-  if (!(in >> pages >> resident)) return 0;
-  return resident * (sysconf(_SC_PAGESIZE) / 1024);
-}
-
-/// CPU time of this process, all threads, user and system [s].
-double cpu_seconds() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-
-struct Percentiles {
-  double median = 0, p95 = 0, p99 = 0, mean = 0, max = 0;
-};
-Percentiles percentiles(std::vector<double> v) {
-  Percentiles p;
-  if (v.empty()) return p;
-  std::sort(v.begin(), v.end());
-  auto at = [&](double q) { return v[std::min(v.size() - 1, size_t(std::ceil(q * double(v.size()))) - (q > 0 ? 1 : 0))]; };
-  p.median = at(0.5), p.p95 = at(0.95), p.p99 = at(0.99), p.max = v.back();
-  for (double x : v) p.mean += x / double(v.size());
-  return p;
-}
-nlohmann::json to_json(const Percentiles& p) {
-  return {{"median", p.median}, {"p95", p.p95}, {"p99", p.p99}, {"mean", p.mean}, {"max", p.max}};
-}
-
 std::string fixed(double v, int digits) {
   std::ostringstream o;
   o << std::fixed << std::setprecision(digits) << v;
   return o.str();
 }
 
-std::string exact(double v) {
-  std::ostringstream o;
-  o << std::setprecision(17) << v;
-  return o.str();
-}
-
-/// What a session measured, for --stats-json and `avenues bench walk`.
-struct WalkReport {
-  std::vector<double> frame_ms;   ///< period of each frame (start to next start)
-  std::vector<double> work_ms;    ///< time spent on each frame (poll to swap)
-  std::vector<double> render_ms;  ///< visibility, render and composition, for frames that rendered
-  std::vector<double> show_ms;    ///< upload, blit and overlays, every frame
-  std::vector<double> swap_ms;    ///< glfwSwapBuffers, every frame
-  long reduced_frames = 0;        ///< frames rendered below full detail to keep to the frame budget
-  long refined_frames = 0;        ///< frames rendered again at full detail once the eye stopped
-  long rss_kb_100 = 0, rss_kb_last = 0;
-  double cpu_s_10 = 0, cpu_s_last = 0;  ///< [s] CPU time of the process (all threads) after frame 10, and at the end
-  nlohmann::json last;            ///< the last pose and view
-  nlohmann::json shots = nlohmann::json::array();
-  nlohmann::json exports = nlohmann::json::array();
-};
-
-/// Everything one window session holds.
+/// One window session: the walking state (app/walk_state.h), the exports and keyframes
+/// (app/walk_exports.h) and the frame statistics (app/walk_stats.h) are parts of their own;
+/// the session holds the view on screen, its controls, budget and panels, and runs the loop.
 class Session {
  public:
   Session(const LoadedPlan& plan, const WalkOptions& opt, Viewer& viewer)
       : plan_(plan), c_(plan.complex), opt_(opt), viewer_(viewer), budget_(opt.frame_budget_ms, opt.samples),
-        walker_(c_, start_eye(plan, opt), walker_options(c_, start_eye(plan, opt), plan.format)) {
+        state_(plan, opt), exports_(plan, opt) {
     kernel_ = kernel_option(opt.kernel);
     halftone_.samples = samples_option(opt.samples);
     if (!parse_shading(opt.shading, halftone_.shading.model))
@@ -146,12 +96,6 @@ class Session {
     stereo_opt_ = {opt.interocular, opt.converge};
     if (!(opt.interocular > 0 && opt.converge > 0))
       throw std::runtime_error("--interocular and --converge must be positive lengths");
-    const ViewSetup v = set_up_view(plan, view_options());
-    const Vec3 f = v.camera.forward;
-    yaw_ = deg_from_rad(std::atan2(f.y, f.x));
-    pitch_ = deg_from_rad(std::asin(std::clamp(f.z, -1.0, 1.0)));
-    fov_ = v.viewpoint.fov_deg;
-    walker_.set_mode(opt.fly ? MoveMode::Fly : MoveMode::Walk);
     lines_ = opt.lines;
     progressive_ = opt.progressive;
     hud_on_ = opt.hud;
@@ -159,7 +103,6 @@ class Session {
     // Which effects the scene calls for, decided once (and its shadows cast once): deciding
     // means testing the furniture's triangles for crossings, far too dear for every frame.
     effects_ = prepare_effects(c_, objects_, halftone_, kernel_);
-    record_path_ = opt.record.empty() ? (fs::path(opt.out_dir) / (plan.stem + "-keys.txt")).string() : opt.record;
   }
 
   /// Runs until the window closes, the script quits or the frame limit is reached.
@@ -187,13 +130,13 @@ class Session {
       // The script's events for this frame.
       const ScriptPlayer::Requests asked = script.play(frame, controls_);
       for (const auto& [rw, rh] : asked.resizes) resize_window(rw, rh);
-      for (int k = 0; k < asked.poses; ++k) std::cout << "pose: " << pose_text() << "\n";
+      for (int k = 0; k < asked.poses; ++k) std::cout << "pose: " << state_.pose_text(frame_w_, frame_h_) << "\n";
       quit |= asked.quit;
       const std::vector<std::string>& shots = asked.screenshots;
       // A scripted pad stands in for a real one, as GLFW would report it.
       controls_.gamepad(script.pad().present && !in.gamepad.present ? script.pad() : in.gamepad);
       for (Action a : controls_.take_commands()) command(a, quit);
-      step(controls_.motion(dt), dt);
+      moving_ = state_.step(controls_.motion(dt), dt);
 
       int w = 0, h = 0;
       viewer_.framebuffer_size(w, h);
@@ -228,43 +171,18 @@ class Session {
       report.work_ms.push_back(work);
       if (rendered) budget_.measured(work, moving_);
       smoothed_work = smoothed_work == 0 ? work : 0.9 * smoothed_work + 0.1 * work;
-      if (frame == 99) report.rss_kb_100 = resident_kb();
-      if (frame == 9) report.cpu_s_10 = cpu_seconds();
+      report.sample_process(frame);
       if (!message_.empty() && Clock::now() > message_until_) message_.clear(), state_changed_ = true;
     }
     if (!opt_.screenshot.empty() && !final_shot && frame_w_ > 0) {  // the window was closed: draw the last frame again
       draw(false);
       screenshot(opt_.screenshot, report);
     }
-    report.rss_kb_last = resident_kb();
-    report.cpu_s_last = cpu_seconds();
+    report.finish();
     report.last = pose_json();
   }
 
  private:
-  static Vec3 start_eye(const LoadedPlan& plan, const WalkOptions& opt) {
-    ViewOptions v;
-    v.eye = opt.eye, v.look = opt.look, v.fov = opt.fov, v.size = opt.size, v.kernel = opt.kernel;
-    return set_up_view(plan, v).viewpoint.eye;
-  }
-  /// Walk mode keeps the eye at the height above its floor it starts at (a plan's view, a
-  /// Doom player's 41 units), when that is a person's; else at 1.6 m. A Doom map's player
-  /// steps up to 24 map units, its stairs' risers 8 to 24.
-  static WalkerOptions walker_options(const CellComplex& c, Vec3 eye, FileFormat format) {
-    WalkerOptions o;
-    if (format == FileFormat::DoomWad) o.step_height = 24 * kDoomUnit;
-    const double above = eye.z - Walker(c, eye, o).floor_below();
-    if (above >= 1.0 && above <= 2.2) o.eye_height = above;
-    if (!(o.eye_height > o.step_height + 0.1)) o.step_height = o.eye_height / 2;
-    return o;
-  }
-  ViewOptions view_options() const {
-    ViewOptions v;
-    v.plan = opt_.plan;
-    v.eye = opt_.eye, v.look = opt_.look, v.fov = opt_.fov, v.size = opt_.size, v.kernel = opt_.kernel;
-    return v;
-  }
-
   void draw(bool rendered) {
     std::vector<const OverlayPanel*> panels;
     // The help, while shown, stands in for the status line (it would cover it).
@@ -305,9 +223,7 @@ class Session {
         break;
       }
       case Action::SwitchesOff: controls_.switches_off(); break;
-      case Action::ToggleFly:
-        walker_.set_mode(walker_.mode() == MoveMode::Walk ? MoveMode::Fly : MoveMode::Walk);
-        break;
+      case Action::ToggleFly: state_.toggle_mode(); break;
       case Action::ToggleLines: lines_ = !lines_; break;
       case Action::CycleStereo:
         stereo_ = stereo_ == StereoMode::Mono ? StereoMode::SideBySide
@@ -317,7 +233,7 @@ class Session {
       case Action::ToggleHelp: help_on_ = !help_on_; break;
       case Action::ToggleHud: hud_on_ = !hud_on_; break;
       case Action::CaptureMouse: viewer_.capture_mouse(!viewer_.mouse_captured()); break;
-      case Action::LevelView: pitch_ = 0; break;
+      case Action::LevelView: state_.level(); break;
       case Action::ExportPicture: export_picture(); break;
       case Action::ExportDrawing: export_view(".svg", ""); break;
       case Action::ExportStereo: export_stereo(); break;
@@ -330,28 +246,6 @@ class Session {
     }
     force_render_ = true;
   }
-
-  /// Applies one frame's motion to the eye.
-  void step(const Motion& m, double dt) {
-    const Vec3 eye0 = walker_.eye();
-    const double yaw0 = yaw_, pitch0 = pitch_, fov0 = fov_;
-    yaw_ = std::remainder(yaw_ + m.turn, 360.0);
-    pitch_ = std::clamp(pitch_ + m.pitch, -89.0, 89.0);
-    if (m.zoom != 1) {
-      // The picture's scale is 1/tan(fov/2): zoom multiplies it.
-      const double scale = 1 / std::tan(rad_from_deg(fov_) / 2) * m.zoom;
-      fov_ = std::clamp(deg_from_rad(2 * std::atan(1 / scale)), kMinFov, kMaxFov);
-    }
-    const double y = rad_from_deg(yaw_), p = rad_from_deg(pitch_);
-    const Vec3 heading{std::cos(y), std::sin(y), 0}, right{std::sin(y), -std::cos(y), 0};
-    // Walking goes along the heading; flying goes where the eye looks.
-    const Vec3 ahead = walker_.mode() == MoveMode::Fly ? Vec3{std::cos(p) * std::cos(y), std::cos(p) * std::sin(y), std::sin(p)} : heading;
-    const Vec3 d = m.forward * ahead + m.strafe * right + Vec3{m.world_x, m.world_y, m.world_z + m.up};
-    walker_.move(d, dt);
-    moving_ = !(walker_.eye() == eye0) || yaw_ != yaw0 || pitch_ != pitch0 || fov_ != fov0;
-  }
-
-  Camera camera(int w, int h) const { return Camera::yaw_pitch(walker_.eye(), yaw_, pitch_, fov_, w, h); }
 
   /// The first k avenues of a visible set (depth-first order: every parent comes first).
   static VisibleSet prefix(const VisibleSet& vs, size_t k) {
@@ -392,11 +286,11 @@ class Session {
     shown_detail_ = detail;
     halftone_.samples = detail.samples;
     const int w = std::max(1, window_w / detail.scale), h = std::max(1, window_h / detail.scale);
-    const CellId cell = walker_.cell();
+    const CellId cell = state_.cell();
     StereoMode mode = stereo_;
     if (view_changed) {
       if (mode != StereoMode::Mono) {
-        const Camera centre = camera(mode == StereoMode::SideBySide ? std::max(1, w / 2) : w, h);
+        const Camera centre = state_.camera(mode == StereoMode::SideBySide ? std::max(1, w / 2) : w, h);
         rig_ = stereo_rig(c_, centre, stereo_opt_);
         if (rig_.problem != StereoRig::Problem::None) {
           if (stereo_problem_ != rig_.message()) say("stereo: " + rig_.message() + "; showing one eye");
@@ -408,7 +302,7 @@ class Session {
       }
       shown_mode_ = mode;
       if (mode == StereoMode::Mono) {
-        cam_ = camera(w, h);
+        cam_ = state_.camera(w, h);
         full_ = find_visible(c_, cam_, cell, kernel_);
       } else {
         cam_ = rig_.left;
@@ -430,18 +324,9 @@ class Session {
     return true;
   }
 
-  std::string place() const {
-    const Cell& cell = c_.cells[size_t(walker_.cell())];
-    std::string room = cell.room >= 0 ? "room '" + c_.rooms[size_t(cell.room)].name + "'" : std::string(to_string(cell.kind));
-    std::string storey = cell.storey >= 0 && size_t(cell.storey) < c_.storeys.size()
-                             ? "storey '" + c_.storeys[size_t(cell.storey)].name + "'"
-                             : std::string("no storey");
-    return room + ", " + storey;
-  }
-
   void refresh_panels(int w, int h, double work_ms, double render_ms) {
     std::vector<std::string> lines;
-    std::string l1 = plan_.stem + " | " + to_string(walker_.mode()) + " | " + (lines_ ? "hidden lines" : "half-tone") +
+    std::string l1 = plan_.stem + " | " + to_string(state_.mode()) + " | " + (lines_ ? "hidden lines" : "half-tone") +
                      " | " + to_string(shown_mode_);
     if (progressive_) l1 += " | progressive " + std::to_string(shown_) + "/" + std::to_string(full_.avenues.size());
     lines.push_back(l1 + "    H: help");
@@ -451,9 +336,10 @@ class Session {
     lines.push_back("frame " + fixed(work_ms, 1) + " ms, render " + fixed(render_ms, 1) + " ms | " +
                     std::to_string(full_.cells.size()) + " cells seen through " + std::to_string(full_.avenues.size()) +
                     " avenues");
-    const Vec3 e = walker_.eye();
-    lines.push_back(place() + " | eye (" + fixed(e.x, 2) + ", " + fixed(e.y, 2) + ", " + fixed(e.z, 2) + ") heading " +
-                    fixed(yaw_, 0) + " pitch " + fixed(pitch_, 0) + " fov " + fixed(fov_, 0));
+    const Vec3 e = state_.eye();
+    lines.push_back(state_.place() + " | eye (" + fixed(e.x, 2) + ", " + fixed(e.y, 2) + ", " + fixed(e.z, 2) +
+                    ") heading " + fixed(state_.yaw(), 0) + " pitch " + fixed(state_.pitch(), 0) + " fov " +
+                    fixed(state_.fov(), 0));
     const std::string sw = controls_.switches_on();
     if (!sw.empty()) lines.push_back("sense switches on: " + sw);
     if (!message_.empty()) lines.push_back(message_);
@@ -462,31 +348,17 @@ class Session {
     if (help_on_) set_centred_text_panel(help_panel_, help_lines(), w, h);
   }
 
+  /// The walking state's pose and the view on screen, as JSON.
   nlohmann::json pose_json() const {
-    const Vec3 e = walker_.eye();
-    const Cell& cell = c_.cells[size_t(walker_.cell())];
-    return {{"eye", {e.x, e.y, e.z}},
-            {"yaw", yaw_},
-            {"pitch", pitch_},
-            {"fov", fov_},
-            {"mode", to_string(walker_.mode())},
-            {"style", lines_ ? "lines" : "halftone"},
-            {"stereo", to_string(shown_mode_)},
-            {"cell", walker_.cell()},
-            {"room", cell.room >= 0 ? c_.rooms[size_t(cell.room)].name : std::string(to_string(cell.kind))},
-            {"storey", cell.storey >= 0 && size_t(cell.storey) < c_.storeys.size() ? c_.storeys[size_t(cell.storey)].name : ""},
-            {"visible_cells", full_.cells.size()},
-            {"avenues", full_.avenues.size()},
-            {"size", {frame_w_, frame_h_}},
-            {"detail", {{"samples", shown_detail_.samples}, {"scale", shown_detail_.scale}}},
-            {"status", status_}};
-  }
-
-  /// The pose as `avenues view` options that reproduce the view.
-  std::string pose_text() const {
-    const Vec3 e = walker_.eye();
-    return "--eye " + exact(e.x) + "," + exact(e.y) + "," + exact(e.z) + " --yaw " + exact(yaw_) + " --pitch " +
-           exact(pitch_) + " --fov " + exact(fov_) + " --size " + std::to_string(frame_w_) + "x" + std::to_string(frame_h_);
+    nlohmann::json j = state_.pose_json();
+    j["style"] = lines_ ? "lines" : "halftone";
+    j["stereo"] = to_string(shown_mode_);
+    j["visible_cells"] = full_.cells.size();
+    j["avenues"] = full_.avenues.size();
+    j["size"] = {frame_w_, frame_h_};
+    j["detail"] = {{"samples", shown_detail_.samples}, {"scale", shown_detail_.scale}};
+    j["status"] = status_;
+    return j;
   }
 
   void screenshot(const std::string& path, WalkReport& report) {
@@ -494,102 +366,46 @@ class Session {
       write_image(viewer_.read_back(), path);
       nlohmann::json shot = pose_json();
       shot["file"] = path;
-      shot["view_options"] = pose_text();
+      shot["view_options"] = state_.pose_text(frame_w_, frame_h_);
       report.shots.push_back(shot);
-      std::cout << "screenshot " << path << ": " << pose_text() << "\n";
+      std::cout << "screenshot " << path << ": " << state_.pose_text(frame_w_, frame_h_) << "\n";
     } catch (const std::exception& e) {
       say(std::string("screenshot: ") + e.what());
     }
   }
 
-  /// OUT_DIR/<plan>-NNNN: the first number from the last one on that none of BASE<suffix> uses.
-  std::string next_export(const std::vector<std::string>& suffixes) {
-    std::error_code ec;
-    fs::create_directories(opt_.out_dir, ec);
-    if (ec) throw std::runtime_error("cannot create the output directory " + opt_.out_dir + ": " + ec.message());
-    for (;; ++export_number_) {
-      std::ostringstream stem;
-      stem << plan_.stem << "-" << std::setw(4) << std::setfill('0') << export_number_;
-      const std::string base = (fs::path(opt_.out_dir) / stem.str()).string();
-      bool free = true;
-      for (const std::string& s : suffixes) free &= !fs::exists(base + s);
-      if (free) {
-        ++export_number_;
-        return base;
-      }
-    }
-  }
-
   ViewSetup view_setup() const {
     ViewSetup v;
-    v.camera = camera(frame_w_, frame_h_);
-    v.viewpoint.eye = walker_.eye();
-    v.viewpoint.look = walker_.eye() + v.camera.forward;
-    v.viewpoint.fov_deg = fov_;
+    v.camera = state_.camera(frame_w_, frame_h_);
+    v.viewpoint.eye = state_.eye();
+    v.viewpoint.look = state_.eye() + v.camera.forward;
+    v.viewpoint.fov_deg = state_.fov();
     v.kernel = kernel_;
-    v.eye_cell = walker_.cell();
+    v.eye_cell = state_.cell();
     return v;
   }
 
+  /// Runs one export (app/walk_exports.h) and shows what it said, or why it failed.
+  template <class F>
+  void export_by(const char* what, F&& f) {
+    try {
+      say(f());
+    } catch (const std::exception& e) {
+      say(std::string(what) + ": " + e.what());
+    }
+  }
   void export_picture() {
-    try {
-      const std::string path = next_export({".png"}) + ".png";
-      write_image(frame_, path);
-      say("wrote " + path + " (the picture as shown)");
-    } catch (const std::exception& e) {
-      say(std::string("export: ") + e.what());
-    }
+    export_by("export", [&] { return exports_.picture(frame_); });
   }
-
-  /// Writes the view through `avenues view -o`'s own code, to BASE<ext>.
   void export_view(const std::string& ext, const std::string& stereo) {
-    try {
-      const std::string tag = stereo.empty() ? "" : "-stereo";
-      const std::string path = next_export({tag + ext, tag + "-left" + ext, tag + "-right" + ext}) + tag + ext;
-      const ViewSetup v = view_setup();
-      ViewOptions o;
-      o.output = path;
-      o.stereo = stereo;
-      o.samples = opt_.samples;
-      o.shading = opt_.shading;
-      o.interocular = opt_.interocular;
-      o.converge = opt_.converge;
-      nlohmann::json stats;
-      write_view_output(plan_, v, find_visible(c_, v.camera, v.eye_cell, kernel_), o, stats);
-      say("wrote " + (stereo == "pair" ? stereo_pair_names(path) : path));
-    } catch (const std::exception& e) {
-      say(std::string("export: ") + e.what());
-    }
+    export_by("export", [&] { return exports_.view(view_setup(), ext, stereo); });
   }
-
-  static std::string stereo_pair_names(const std::string& path) {
-    const fs::path p(path);
-    const std::string base = (p.parent_path() / p.stem()).string(), ext = p.extension().string();
-    return base + "-left" + ext + " and " + base + "-right" + ext;
-  }
-
   void export_stereo() {
     export_view(".png", "parallel");
     export_view(".svg", "pair");
   }
-
   void record_keyframe() {
-    try {
-      const fs::path p(record_path_);
-      if (p.has_parent_path()) fs::create_directories(p.parent_path());
-      const bool fresh = !fs::exists(p);
-      std::ofstream out(record_path_, std::ios::app);
-      if (fresh) out << "# avenues walk keyframes (" << plan_.stem << "): eye X Y Z, then the point looked at X Y Z\n";
-      const Vec3 e = walker_.eye(), l = e + camera(16, 9).forward;
-      out << exact(e.x) << " " << exact(e.y) << " " << exact(e.z) << " " << exact(l.x) << " " << exact(l.y) << " "
-          << exact(l.z) << "\n";
-      if (!out) throw std::runtime_error("cannot write " + record_path_);
-      ++keyframes_;
-      say("keyframe " + std::to_string(keyframes_) + " appended to " + record_path_ + " (avenues path --keys " +
-          record_path_ + ")");
-    } catch (const std::exception& e) {
-      say(std::string("keyframe: ") + e.what());
-    }
+    export_by("keyframe", [&] { return exports_.keyframe(state_.eye(), state_.eye() + state_.camera(16, 9).forward); });
   }
 
   const LoadedPlan& plan_;
@@ -599,7 +415,8 @@ class Session {
   FrameBudget budget_;
   Detail shown_detail_;   ///< what the frame on screen was rendered at
   bool refining_ = false; ///< this frame renders the still view again at full detail
-  Walker walker_;
+  WalkState state_;
+  WalkExports exports_;
   Controls controls_;
   Kernel kernel_ = Kernel::Double;
   HalftoneOptions halftone_;
@@ -607,7 +424,6 @@ class Session {
   StereoOptions stereo_opt_;
   std::vector<PlacedObject> objects_;
   std::optional<LineScene> scene_;
-  double yaw_ = 0, pitch_ = 0, fov_ = 60;  ///< [deg]
   bool lines_ = false, progressive_ = false, hud_on_ = true, help_on_ = false;
   StereoMode stereo_ = StereoMode::Mono, shown_mode_ = StereoMode::Mono;
   // The view on screen.
@@ -623,28 +439,7 @@ class Session {
   std::vector<std::string> status_;  ///< the status line's text, as last set
   std::string message_;
   Clock::time_point message_until_;
-  std::string record_path_;
-  int keyframes_ = 0, export_number_ = 1;
 };
-
-void write_stats(const std::string& path, const LoadedPlan& plan, const WalkReport& r) {
-  nlohmann::json j;
-  j["plan"] = plan.path;
-  j["frames"] = r.work_ms.size();
-  j["frame_ms"] = to_json(percentiles(r.frame_ms));
-  j["work_ms"] = to_json(percentiles(r.work_ms));
-  j["render_ms"] = to_json(percentiles(r.render_ms));
-  j["rendered_frames"] = r.render_ms.size();
-  j["reduced_frames"] = r.reduced_frames;
-  j["refined_frames"] = r.refined_frames;
-  j["show_ms"] = to_json(percentiles(r.show_ms));
-  j["swap_ms"] = to_json(percentiles(r.swap_ms));
-  j["rss_kb"] = {{"frame_100", r.rss_kb_100}, {"last", r.rss_kb_last}};
-  if (r.work_ms.size() > 10) j["cpu_ms_per_frame"] = 1000 * (r.cpu_s_last - r.cpu_s_10) / double(r.work_ms.size() - 10);
-  j["last"] = r.last;
-  j["screenshots"] = r.shots;
-  write_file_atomically(path, j.dump(2) + "\n");
-}
 
 bool run_session(const LoadedPlan& plan, const WalkOptions& opt, const std::vector<ScriptEvent>& events,
                  WalkReport& report, std::string& why) {
@@ -681,7 +476,7 @@ bool run_walkthrough(const LoadedPlan& plan, const WalkOptions& opt, int& status
   const std::vector<ScriptEvent> events = script_events(opt);
   WalkReport report;
   if (!run_session(plan, opt, events, report, why)) return false;
-  if (!opt.stats_json.empty()) write_stats(opt.stats_json, plan, report);
+  if (!opt.stats_json.empty()) write_stats(opt.stats_json, plan.path, report);
   status = 0;
   return true;
 }

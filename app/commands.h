@@ -75,6 +75,7 @@ struct ViewOptions {
 /// `avenues drawing PLAN (--plan STOREY | --section X1,Y1,X2,Y2 | --elevation DIR | --axonometric AZ,ALT) -o FILE`
 struct DrawingOptions {
   std::string plan, output, stats_json;
+  ImportOptions import;                ///< how a plan from elsewhere is understood
   std::string storey;                  ///< --plan: a storey's name or index
   std::string section;                 ///< "X1,Y1,X2,Y2"
   std::string elevation;               ///< north, south, east, west or degrees

@@ -35,8 +35,6 @@ namespace {
 
 constexpr const char* kDefaultPlan = "jones-house.toml";
 
-MeshAxes g_mesh_axes;  // the command line's --up, --unit (set_mesh_axes)
-
 using PlanReader = Plan (*)(const std::string& file);
 
 /// The readers of plans from elsewhere, by format: adding one is one line here (the
@@ -55,7 +53,7 @@ PlanReader plan_reader_for(FileFormat f) {
 
 }  // namespace
 
-void set_mesh_axes(const MeshAxes& axes) { g_mesh_axes = axes; }
+MeshAxes ImportOptions::mesh_axes() const { return {up_axis_named(up), metres_per_unit_named(unit)}; }
 
 double LoadedPlan::seconds() const {
   double s = 0;
@@ -153,7 +151,7 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
   };
   // A mesh as a whole scene: OpenMesh or Assimp by its format, turned to z-up metres.
   auto read_mesh = [&](const std::string& file) {
-    Mesh mesh = load_mesh(file, g_mesh_axes);  // names the file when unreadable
+    Mesh mesh = load_mesh(file, import.mesh_axes());  // names the file when unreadable
     out.stages.push_back({"read mesh", seconds_since(t0)});
     try {
       out.complex = build_mesh_scene({mesh});

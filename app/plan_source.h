@@ -26,14 +26,20 @@ struct LoadedPlan {
   double seconds() const;          ///< total of stages
 };
 
-/// How a plan from elsewhere is to be understood (--scale, --layers, --unit,
+/// How a plan from elsewhere is to be understood (--scale, --layers, --unit, --up,
 /// --storey-height) and whether to save what was understood (--save-plan).
 struct ImportOptions {
   double scale = 0;           ///< [m per pixel] floor-plan annotations; 0: the reader's default
   std::string layers;         ///< DXF: "walls=A,B;doors=C;windows=D"
-  std::string unit;           ///< DXF: overrides $INSUNITS ("m", "cm", "mm", "in", "ft")
+  /// The file's length unit where it does not say ("m", "cm", "mm", "in", "ft"; "" the
+  /// reader's default): a DXF drawing's (over its $INSUNITS), a mesh scene's in a format
+  /// without one (OBJ, PLY, STL, OFF).
+  std::string unit;
+  std::string up;             ///< mesh scenes in a format without one: the up axis, "x", "y" or "z" ("" z)
   double storey_height = 2.7; ///< [m] of the one storey of a 2D drawing
   std::string save_plan;      ///< write the Plan read to this TOML file ("" none)
+  /// `up` and `unit` as a mesh file's axes (unset where they are "").
+  MeshAxes mesh_axes() const;
 };
 
 /// PLAN taken apart: the file, the map inside it (a WAD's), and its format (by content
@@ -48,10 +54,6 @@ PlanSpec parse_plan_spec(const std::string& plan);
 /// The bundled default plan: AVENUES_SOURCE_DIR/plans/jones-house.toml, else
 /// <executable>/../share/avenues/plans/jones-house.toml. Throws if neither exists.
 std::string default_plan_path();
-
-/// The command line's --up and --unit: how a mesh scene whose format declares neither
-/// (OBJ, PLY, STL, OFF) becomes z-up metres. Set once, before loading.
-void set_mesh_axes(const MeshAxes& axes);
 
 /// Loads PLAN ("" = the default plan) and prints its warnings to stderr. Throws
 /// PlanError for plan mistakes and std::runtime_error naming the file for anything else,

@@ -2,7 +2,7 @@
 // cells/soup_bsp.h) against the former Nef path, in one run (Google Benchmark).
 //
 //   ./build/bench/avenues_bench --benchmark_filter='soup/'
-//   AVENUES_OUTSIDE=/path/to/shared/outside ./build/bench/avenues_bench --benchmark_filter='soup/'
+//   ./build/bench/avenues_bench --benchmark_filter='soup/'
 //
 // Targets (docs/PERFORMANCE.md): the Viking room (3,828 faces, not closed) in <= 5 s; on a
 // k x k grid of open boxes (k = 4..64, 10 k^2 triangles) the time per triangle growing no
@@ -22,12 +22,8 @@ using namespace avenues;
 
 namespace {
 
-std::string outside(const std::string& name) {
-  const char* env = std::getenv("AVENUES_OUTSIDE");
-  return ((env ? std::filesystem::path(env) : std::filesystem::path(AVENUES_SOURCE_DIR) / ".." / "shared" / "outside") /
-          name)
-      .string();
-}
+/// A file from outside (AVENUES_OUTSIDE_DIR, set by the build: ../shared/outside).
+std::string outside(const std::string& name) { return (std::filesystem::path(AVENUES_OUTSIDE_DIR) / name).string(); }
 
 /// k x k open boxes (a floor and four walls each, 1 m, open at the top) 2 m apart.
 Mesh open_boxes(int k) {

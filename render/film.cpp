@@ -1,13 +1,8 @@
 // Avenues — a film: pictures, in order, encoded as one video file (see film.h).
 #include "render/film.h"
 
-#include <cerrno>
-#include <cstring>
-#include <filesystem>
+#include <memory>
 #include <stdexcept>
-
-#include <stdlib.h>
-#include <unistd.h>
 
 extern "C" {
 #include <libavcodec/avcodec.h>
@@ -18,12 +13,13 @@ extern "C" {
 #include <libswscale/swscale.h>
 }
 
-namespace avenues {
+#include "core/atomic_file.h"
 
-namespace fs = std::filesystem;
+namespace avenues {
 
 struct Film::Impl {
   std::string path, temporary;  ///< the film, and where it is written until whole
+  std::unique_ptr<PendingTempFile> pending;  ///< the temporary file (removed unless committed, and on SIGINT/SIGTERM)
   std::string codec;
   int in_width = 0, in_height = 0, width = 0, height = 0;
   long frames = 0;
@@ -74,10 +70,7 @@ struct Film::Impl {
     }
   }
 
-  ~Impl() {
-    close();
-    if (!finished && !temporary.empty()) ::unlink(temporary.c_str());
-  }
+  ~Impl() { close(); }  // then `pending` removes the temporary file unless it was committed
 };
 
 Film::Film(const std::string& path, int width, int height, const FilmOptions& options) : impl_(new Impl) {
@@ -93,21 +86,15 @@ Film::Film(const std::string& path, int width, int height, const FilmOptions& op
   f.width = width & ~1;  // yuv420p: even sides
   f.height = height & ~1;
 
-  // The temporary file beside the film, named as write_file_atomically() names its own
-  // (".walk.mp4.tmp-XXXXXX"), so a walk's clean-up knows it for a leftover.
-  const fs::path target(path);
-  std::error_code ec;
-  if (fs::is_directory(target, ec)) f.fail("is a directory");
-  fs::path dir = target.parent_path();
-  if (dir.empty()) dir = ".";
-  std::string name = ".";
-  name += target.filename().string();
-  name += ".tmp-XXXXXX";
-  std::string tmpl = (dir / name).string();
-  const int fd = ::mkstemp(tmpl.data());
-  if (fd < 0) f.fail("cannot create a temporary file in " + dir.string() + ": " + std::strerror(errno));
-  ::close(fd);
-  f.temporary = tmpl;
+  // The temporary file beside the film, core/atomic_file's (".walk.mp4.tmp-XXXXXX"), so a
+  // walk's clean-up knows it for a leftover and a signal removes it; FFmpeg writes it by name.
+  try {
+    check_output_path(path);
+    f.pending = std::make_unique<PendingTempFile>(path);
+  } catch (const std::exception& e) {
+    f.fail(e.what());
+  }
+  f.temporary = f.pending->path();
 
   const AVCodec* codec = avcodec_find_encoder_by_name("libx264");
   if (!codec) codec = avcodec_find_encoder(AV_CODEC_ID_MPEG4);
@@ -191,7 +178,11 @@ void Film::finish() {
   if (rc < 0) f.fail("cannot finish the MP4", rc);
   rc = avio_closep(&f.format->pb);
   if (rc < 0) f.fail("cannot close " + f.temporary, rc);
-  if (::rename(f.temporary.c_str(), f.path.c_str()) != 0) f.fail(std::string("rename failed: ") + std::strerror(errno));
+  try {
+    f.pending->commit();
+  } catch (const std::exception& e) {
+    f.fail(e.what());
+  }
   f.finished = true;
   f.close();
 }

@@ -28,14 +28,7 @@ using namespace avenues;
 namespace {
 
 const fs::path kModels = "/usr/share/assimp/models";
-/// The outside files: ../shared/outside beside the project (CI), or $AVENUES_OUTSIDE (a
-/// worktree elsewhere).
-fs::path outside() {
-  const fs::path beside = fs::path(AVENUES_SOURCE_DIR) / ".." / "shared" / "outside";
-  const char* env = std::getenv("AVENUES_OUTSIDE");
-  return fs::exists(beside) || !env ? beside : fs::path(env);
-}
-const fs::path kIfc = outside() / "ifc";
+const fs::path kIfc = fs::path(AVENUES_OUTSIDE_DIR) / "ifc";
 
 Box3 bounds(const Mesh& m) {
   Box3 b;

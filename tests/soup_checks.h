@@ -14,18 +14,11 @@
 
 #include "cells/mesh_scene.h"
 #include "ray_oracle.h"
+#include "test_files.h"
 #include "visibility/visible_set.h"
 
 namespace avenues::testing {
 
-/// A file from outside (../shared/outside/ beside the project root; AVENUES_OUTSIDE names
-/// another folder, e.g. for a git worktree).
-inline std::string outside_path(const std::string& name) {
-  const char* env = std::getenv("AVENUES_OUTSIDE");
-  const std::filesystem::path dir = env ? std::filesystem::path(env)
-                                        : std::filesystem::path(AVENUES_SOURCE_DIR) / ".." / "shared" / "outside";
-  return (dir / name).string();
-}
 
 /// Input triangles (of some area) with no opaque piece of the complex covering their
 /// centroid, on their plane. Each triangle is looked up among the opaque pieces whose

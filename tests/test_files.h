@@ -12,6 +12,12 @@
 
 namespace avenues::testing {
 
+/// A file from outside (AVENUES_OUTSIDE_DIR, set by the build: ../shared/outside beside the
+/// project's root, README there), e.g. outside_path("ifc/duplex.ifc").
+inline std::string outside_path(const std::string& name) {
+  return (std::filesystem::path(AVENUES_OUTSIDE_DIR) / name).string();
+}
+
 /// A file's bytes ("" when it cannot be read).
 inline std::string slurp(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);

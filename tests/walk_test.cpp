@@ -251,10 +251,7 @@ TEST_F(WalkWindow, OverItsFrameBudgetTheWalkDropsDetailAndRestoresItWhenTheEyeSt
 // An IFC building walked for real: from one of the duplex's named spaces through a door
 // (the model's IfcDoor, cut into its wall) into another.
 TEST_F(WalkWindow, DuplexWalkGoesThroughADoorFromOneSpaceIntoAnother) {
-  const char* env = std::getenv("AVENUES_OUTSIDE");  // ../shared/outside beside the project, or here
-  std::string model = std::string(AVENUES_SOURCE_DIR) + "/../shared/outside/ifc/duplex.ifc";
-  if (!fs::exists(model) && env) model = std::string(env) + "/ifc/duplex.ifc";
-  if (!fs::exists(model)) GTEST_SKIP() << "no " << model;
+  const std::string model = avenues::testing::outside_path("ifc/duplex.ifc");
   NEED_DISPLAY();
   const avenues::Plan p = avenues::read_ifc_building(model);
   const avenues::CellComplex c = avenues::build_cells(p);
