@@ -9,17 +9,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/number_format.h"
+
 namespace avenues::app {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string exact(double v) {
-  std::ostringstream o;
-  o << std::setprecision(17) << v;
-  return o.str();
-}
 
 std::string stereo_pair_names(const std::string& path) {
   const fs::path p(path);
@@ -78,8 +74,8 @@ std::string WalkExports::keyframe(Vec3 e, Vec3 l) {
   const bool fresh = !fs::exists(p);
   std::ofstream out(record_path_, std::ios::app);
   if (fresh) out << "# avenues walk keyframes (" << plan_.stem << "): eye X Y Z, then the point looked at X Y Z\n";
-  out << exact(e.x) << " " << exact(e.y) << " " << exact(e.z) << " " << exact(l.x) << " " << exact(l.y) << " "
-      << exact(l.z) << "\n";
+  out << format_exact(e.x) << " " << format_exact(e.y) << " " << format_exact(e.z) << " " << format_exact(l.x) << " " << format_exact(l.y) << " "
+      << format_exact(l.z) << "\n";
   if (!out) throw std::runtime_error("cannot write " + record_path_);
   ++keyframes_;
   return "keyframe " + std::to_string(keyframes_) + " appended to " + record_path_ + " (avenues path --keys " +

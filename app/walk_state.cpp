@@ -3,10 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
-#include <sstream>
 
 #include "core/angles.h"
+#include "core/number_format.h"
 #include "plans/formats/doom_map.h"
 
 namespace avenues::app {
@@ -30,12 +29,6 @@ WalkerOptions walker_options(const CellComplex& c, Vec3 eye, FileFormat format) 
   if (above >= 1.0 && above <= 2.2) o.eye_height = above;
   if (!(o.eye_height > o.step_height + 0.1)) o.step_height = o.eye_height / 2;
   return o;
-}
-
-std::string exact(double v) {
-  std::ostringstream o;
-  o << std::setprecision(17) << v;
-  return o.str();
 }
 
 }  // namespace
@@ -85,8 +78,8 @@ std::string WalkState::place() const {
 
 std::string WalkState::pose_text(int w, int h) const {
   const Vec3 e = walker_.eye();
-  return "--eye " + exact(e.x) + "," + exact(e.y) + "," + exact(e.z) + " --yaw " + exact(yaw_) + " --pitch " +
-         exact(pitch_) + " --fov " + exact(fov_) + " --size " + std::to_string(w) + "x" + std::to_string(h);
+  return "--eye " + format_exact(e.x) + "," + format_exact(e.y) + "," + format_exact(e.z) + " --yaw " + format_exact(yaw_) + " --pitch " +
+         format_exact(pitch_) + " --fov " + format_exact(fov_) + " --size " + std::to_string(w) + "x" + std::to_string(h);
 }
 
 nlohmann::json WalkState::pose_json() const {

@@ -2,6 +2,7 @@
 #include "render/line_weight.h"
 
 #include <cmath>
+#include <vector>
 
 namespace avenues {
 
@@ -20,20 +21,38 @@ LineFaces line_faces(const CellComplex& c) {
   LineFaces out;
   std::vector<std::vector<Vec3>> dirs(c.lines.size());
   out.cell_start.reserve(c.cells.size() + 1);
+  // Per face of the cell, each opaque piece's box: a face of the outside cell (the ground
+  // around a building) holds thousands of pieces, and each probe is tested only against
+  // the pieces whose box holds it.
+  std::vector<std::vector<Box3>> boxes;
+  std::vector<Box3> face_boxes;  // and each face's, to skip the faces a line cannot lie on
   for (const Cell& cell : c.cells) {
     out.cell_start.push_back(int32_t(out.shows.size()));
+    if (cell.lines.empty()) continue;
+    boxes.resize(cell.faces.size());
+    face_boxes.assign(cell.faces.size(), Box3{});
+    for (size_t f = 0; f < cell.faces.size(); ++f) {
+      for (const Vec3& v : cell.faces[f].poly) face_boxes[f].add(v);
+      boxes[f].assign(cell.faces[f].opaque.size(), Box3{});
+      for (size_t k = 0; k < cell.faces[f].opaque.size(); ++k)
+        for (const Vec3& v : cell.faces[f].opaque[k].poly) boxes[f][k].add(v);
+    }
     for (const CellLine& cl : cell.lines) {
       const RealLine& l = c.lines[size_t(cl.line)];
       const Vec3 u = unit(l.b - l.a);
       const Vec3 m = l.a + (0.5 * (cl.t0 + cl.t1)) * (l.b - l.a);
       int faces = 0, opaque_sides = 0;
-      for (const Face& f : cell.faces) {
+      for (size_t fi = 0; fi < cell.faces.size(); ++fi) {
+        const Face& f = cell.faces[fi];
+        if (!face_boxes[fi].contains(m, kOnPlane)) continue;  // the line's middle lies in the face it lies on
         if (std::fabs(f.plane.eval(l.a)) > kOnPlane || std::fabs(f.plane.eval(l.b)) > kOnPlane) continue;
         ++faces;
         const Vec3 w = unit(cross(f.plane.n, u));  // in the face, perpendicular to the line
         for (Vec3 side : {w, -1.0 * w}) {
           bool opaque = false;
-          for (const OpaquePoly& op : f.opaque) opaque = opaque || in_convex_polygon(op.poly, f.plane.n, m + kProbe * side, kInPolygon);
+          const Vec3 probe = m + kProbe * side;
+          for (size_t k = 0; k < f.opaque.size() && !opaque; ++k)
+            opaque = boxes[fi][k].contains(probe, kOnPlane) && in_convex_polygon(f.opaque[k].poly, f.plane.n, probe, kInPolygon);
           if (!opaque) continue;
           ++opaque_sides;
           bool known = false;
