@@ -27,6 +27,7 @@
 #include "core/atomic_file.h"
 #include "core/subprocess.h"
 #include "plans/formats/file_format.h"
+#include "plans/formats/sweet_home.h"
 #include "tests/test_files.h"
 
 namespace fs = std::filesystem;
@@ -442,4 +443,21 @@ TEST_F(Hostile, AnArchiveEntryInflatingPastTheLimitIsRefused) {
   EXPECT_TRUE(has(r.output, "'Home.xml'")) << r.output;
   EXPECT_TRUE(has(r.output, "512 MiB")) << r.output;
   EXPECT_FALSE(fs::exists(path("bomb.svg")));
+}
+
+// Item 16, the reader's limit itself: an entry inflating past HomeLimits::max_entry_bytes
+// (the fuzz target's 1 MiB, and its seed of 2 KB inflating to 2 MiB) is refused naming the
+// entry and the limit.
+TEST(HostileArchive, TheEntryLimitIsTheReadersOwn) {
+  const std::string seed = kSource + "/tests/fuzz/corpus/home/inflates-past-the-limit.sh3d";
+  ASSERT_LT(fs::file_size(seed), uintmax_t(8192));
+  avenues::HomeLimits limits;
+  limits.max_entry_bytes = size_t(1) << 20;
+  try {
+    avenues::read_sweet_home(seed, avenues::HomeEntry::Preferred, limits);
+    ADD_FAILURE() << "an entry inflating to 2 MiB was read under a 1 MiB limit";
+  } catch (const avenues::PlanError& e) {
+    EXPECT_TRUE(has(e.what(), "inflates-past-the-limit.sh3d")) << e.what();
+    EXPECT_TRUE(has(e.what(), "entry 'Home.xml' of the archive inflates to more than 1 MiB")) << e.what();
+  }
 }

@@ -67,7 +67,6 @@ constexpr double kDoorSill = 0.05;      ///< [m] a door or window reaching this 
 constexpr double kParallelSin = 0.26;   ///< sin 15°: how far a piece may turn from its wall
 constexpr double kMinOpening = 0.01;    ///< [m] narrower or lower openings (and lower walls) are dropped
 constexpr double kDefaultSlab = 0.12;   ///< [m] Sweet Home's default floor thickness
-constexpr size_t kMaxEntryBytes = size_t(512) << 20;  ///< a zip entry inflating past this is refused
 
 double polyline_length(const std::vector<Vec2>& c) {
   double l = 0;
@@ -123,7 +122,8 @@ bool has_sh3d_extension(const std::string& path) {
 /// A .sh3d archive held in memory (libzip), for its Home.xml and the models beside it.
 class ZipArchive {
  public:
-  ZipArchive(const std::string& path, const std::string& bytes) : path_(path) {
+  ZipArchive(const std::string& path, const std::string& bytes, size_t max_entry_bytes)
+      : path_(path), max_entry_bytes_(max_entry_bytes) {
     const SourceLoc at{path, 0, 0, ""};
     zip_error_t err;
     zip_error_init(&err);
@@ -164,10 +164,10 @@ class ZipArchive {
         throw PlanError(at, "cannot read " + name + " in the archive: " + why);
       }
       if (n == 0) break;
-      if (out.size() + size_t(n) > kMaxEntryBytes) {
+      if (out.size() + size_t(n) > max_entry_bytes_) {
         zip_fclose(f);
-        throw PlanError(at, "entry '" + name + "' of the archive inflates to more than " +
-                                std::to_string(kMaxEntryBytes >> 20) + " MiB: refused (no Sweet Home entry is that large)");
+        throw PlanError(at, "entry '" + name + "' of the archive inflates to more than " + size_text(max_entry_bytes_) +
+                                ": refused (no Sweet Home entry is that large)");
       }
       out.append(buf.data(), size_t(n));
     }
@@ -179,7 +179,14 @@ class ZipArchive {
   struct Discard {
     void operator()(zip_t* z) const { zip_discard(z); }
   };
+  /// "512 MiB", "1 KiB", "100 bytes": a limit as a message says it.
+  static std::string size_text(size_t n) {
+    if (n >= (size_t(1) << 20) && n % (size_t(1) << 20) == 0) return std::to_string(n >> 20) + " MiB";
+    if (n >= 1024 && n % 1024 == 0) return std::to_string(n >> 10) + " KiB";
+    return std::to_string(n) + " bytes";
+  }
   std::string path_;
+  size_t max_entry_bytes_;
   std::unique_ptr<zip_t, Discard> archive_;
 };
 
@@ -1468,7 +1475,7 @@ void check_content_digests(const std::string& path, const ZipArchive& zip) {
 
 }  // namespace
 
-Plan read_sweet_home(const std::string& path, HomeEntry which) {
+Plan read_sweet_home(const std::string& path, HomeEntry which, const HomeLimits& limits) {
   const std::string bytes = read_bytes(path);
   std::unique_ptr<ZipArchive> zip;
   ModelSource models;
@@ -1476,7 +1483,7 @@ Plan read_sweet_home(const std::string& path, HomeEntry which) {
   if (looks_like_zip(bytes) || has_sh3d_extension(path)) {
     if (!looks_like_zip(bytes))
       throw PlanError(SourceLoc{path, 0, 0, ""}, "not a Sweet Home 3D .sh3d file: not a zip archive");
-    zip = std::make_unique<ZipArchive>(path, bytes);
+    zip = std::make_unique<ZipArchive>(path, bytes, limits.max_entry_bytes);
     const bool has_xml = zip->has("Home.xml"), has_home = zip->has("Home");
     if (!has_xml && !has_home)
       throw PlanError(SourceLoc{path, 0, 0, ""},
@@ -1489,13 +1496,13 @@ Plan read_sweet_home(const std::string& path, HomeEntry which) {
       throw PlanError(SourceLoc{path, 0, 0, ""}, "the archive holds no serialized Home entry (only Home.xml)");
     if (xml) tree = home_tree_of_xml(*zip->entry("Home.xml"), path + ":Home.xml");
     else tree = home_tree_of_serialized(*zip->entry("Home"), path + ":Home");
-    models = [&zip, path](const std::string& model) -> std::optional<std::string> {
+    models = [&zip, path, limits](const std::string& model) -> std::optional<std::string> {
       // "1!/tree.obj": the entry "1" is itself a zip holding the model's files.
       const size_t bang = model.find("!/");
       if (bang == std::string::npos) return zip->entry(model);
       const std::optional<std::string> outer = zip->entry(model.substr(0, bang));
       if (!outer || !looks_like_zip(*outer)) return std::nullopt;
-      const ZipArchive inner(path + ":" + model.substr(0, bang), *outer);
+      const ZipArchive inner(path + ":" + model.substr(0, bang), *outer, limits.max_entry_bytes);
       return inner.entry(model.substr(bang + 2));
     };
   } else {

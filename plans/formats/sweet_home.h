@@ -47,11 +47,19 @@ namespace avenues {
 /// or one of them alone (to compare the two).
 enum class HomeEntry { Preferred, Xml, Serialized };
 
+/// How much a .sh3d may make the reader hold: a zip entry may claim anything in its header,
+/// and a small archive may inflate to gigabytes.
+struct HomeLimits {
+  /// [bytes] an entry inflating past this is refused (PlanError naming it); no Sweet Home
+  /// entry comes near the default 512 MiB. (The fuzz target sets far less.)
+  size_t max_entry_bytes = size_t(512) << 20;
+};
+
 /// Reads a Sweet Home 3D home: a .sh3d file (a zip holding Home.xml, a serialized Java
 /// Home, or both) or a bare Home.xml (the examples shipped in Debian's sweethome3d package
 /// are bare XML), told apart by content. Throws PlanError naming the file and element
 /// (with the XML line, or the byte of the serialized object, where known) for what
 /// cannot be read.
-Plan read_sweet_home(const std::string& path, HomeEntry entry = HomeEntry::Preferred);
+Plan read_sweet_home(const std::string& path, HomeEntry entry = HomeEntry::Preferred, const HomeLimits& limits = {});
 
 }  // namespace avenues
