@@ -26,6 +26,7 @@
 #include "render/raster.h"
 #include "plans/formats/java_stream.h"
 #include "plans/formats/sweet_home.h"
+#include "plans/plan_writer.h"
 #include "ray_oracle.h"
 #include "visibility/visible_set.h"
 #include "tests/test_files.h"
@@ -639,7 +640,7 @@ TEST(SweetHomeColours, TexturesAreTheirImagesMeanAndEachWallSideItsOwn) {
   ASSERT_GE(n->material, 0);
   ASSERT_GE(n->right_material, 0);
   const Material& left = p.materials[size_t(n->material)];
-  EXPECT_EQ(left.name, "texture 'Purple'");
+  EXPECT_EQ(left.name, "texture 'Purple' (7)");
   EXPECT_NEAR(left.colour[0], 0.5, 1e-12);
   EXPECT_NEAR(left.colour[1], 0.0, 1e-12);
   EXPECT_NEAR(left.colour[2], 0.5, 1e-12);
@@ -655,6 +656,15 @@ TEST(SweetHomeColours, TexturesAreTheirImagesMeanAndEachWallSideItsOwn) {
   ASSERT_EQ(p.objects.size(), 1u);
   EXPECT_EQ(p.objects[0].material, -1);
   ASSERT_EQ(cells_are_valid(build_cells(p)), "");
+  // Written as Avenues' TOML (--save-plan) and read back, each side keeps its material.
+  const Plan back = parse_plan(plan_as_toml(p), "textures.toml");
+  const Wall* bn = nullptr;
+  for (const Wall& w : back.walls)
+    if (w.name == "n") bn = &w;
+  ASSERT_NE(bn, nullptr);
+  ASSERT_GE(bn->right_material, 0);
+  EXPECT_EQ(back.materials[size_t(bn->material)].colour, left.colour);
+  EXPECT_EQ(back.materials[size_t(bn->right_material)].colour, (std::array<double, 3>{0, 1, 0}));
 
   // The picture: wall n from inside the room is the purple texture, from outside green,
   // each under the light at the eye (the same factor in every channel).
@@ -689,7 +699,7 @@ TEST(SweetHomeColours, CasaStoneWallsTakeTheirJpegTexturesMeanColour) {
     const Plan p = read_sweet_home((kOutside / "casa-both-formats.sh3d").string(), which);
     int textured = 0;
     for (const Wall& w : p.walls)
-      if (w.material >= 0 && p.materials[size_t(w.material)].name == "texture 'Stone'") {
+      if (w.material >= 0 && p.materials[size_t(w.material)].name == "texture 'Stone' (33)") {
         ++textured;
         const std::array<double, 3> c = p.materials[size_t(w.material)].colour;
         if (!stone) stone = c;

@@ -400,7 +400,7 @@ class HomeReader {
     try {
       Material m;
       m.colour = mean_image_colour(*bytes, path_ + ":" + image);
-      m.name = "texture '" + name + "'";
+      m.name = "texture '" + name + "' (" + image + ")";  // two images may share a name
       m.where = loc(t, element);
       it->second = MaterialId(plan_.materials.size());
       plan_.materials.push_back(m);
