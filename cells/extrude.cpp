@@ -70,8 +70,26 @@ Outline2 footprint_of(const Triangulation& T, const std::vector<int32_t>& bounda
 
 Vec3 at(Vec2 p, double z) { return {p.x, p.y, z}; }
 
-MaterialId wall_material(const Plan& plan, int wall) {
-  return wall >= 0 ? plan.walls[size_t(wall)].material : -1;
+/// The material of the side of `wall` that a cell's side from a to b faces (the cell on
+/// its left, counter-clockwise): the wall's left side (Wall::material) when the cell lies
+/// left of the centre line's nearest segment, else its right side (Wall::right_material,
+/// where it has one). On a wall of no thickness the side runs along the centre line, and
+/// its direction says which side of the wall the cell is on.
+MaterialId wall_material(const Plan& plan, int wall, Vec2 a, Vec2 b) {
+  if (wall < 0) return -1;
+  const Wall& w = plan.walls[size_t(wall)];
+  if (w.right_material < 0 || w.centre.size() < 2) return w.material;
+  const Vec2 m = 0.5 * (a + b);
+  size_t best = 0;
+  double best_d = HUGE_VAL;
+  for (size_t k = 0; k + 1 < w.centre.size(); ++k) {
+    const double d = distance_to_segment(m, w.centre[k], w.centre[k + 1]);
+    if (d < best_d) best_d = d, best = k;
+  }
+  const Vec2 s = w.centre[best + 1] - w.centre[best];
+  double side = cross(s, m - w.centre[best]);
+  if (std::fabs(side) <= 1e-9 * length(s)) side = dot(s, b - a);
+  return side > 0 ? w.material : w.right_material;
 }
 
 }  // namespace
@@ -217,7 +235,9 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
     Cell& c = out.cells[size_t(ci)];
     const size_t nsides = c.footprint.size();
     std::vector<std::vector<Rect>> open(nsides);       // portal rects per side, in side coords
-    std::vector<MaterialId> side_material(nsides, -2); // -2: not yet known
+    // A side is one material: the one that bounds most of its length (an outside cell's
+    // side runs past the corners of the walls beside the one it faces).
+    std::vector<std::map<MaterialId, double>> side_materials(nsides);
     // Runs of equal (neighbour, lo, hi) along consecutive half-edges of one side.
     struct Run { CellId d; double lo, hi, s0, s1; int sheet_opening; int side; };
     std::vector<Run> active, next, done;
@@ -329,14 +349,15 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
       // Runs that did not continue end here.
       flush(active, side);
       active.swap(next);
-      if (side_material[size_t(side)] == -2) {
-        MaterialId mat = -2;
+      {
+        MaterialId mat = -2;  // -2: nothing opaque across this half-edge
+        const Vec2 ha = T.edge_from(h / 3, h % 3), hb = T.edge_to(h / 3, h % 3);
         if (u < 0) mat = plan.sky;
-        else if (sheet_wall >= 0) mat = wall_material(plan, sheet_wall);
-        else if (L.pieces[b].of[size_t(u)] < 0) mat = wall_material(plan, C.wall_of[b * size_t(n) + size_t(u)]);
+        else if (sheet_wall >= 0) mat = wall_material(plan, sheet_wall, ha, hb);
+        else if (L.pieces[b].of[size_t(u)] < 0) mat = wall_material(plan, C.wall_of[b * size_t(n) + size_t(u)], ha, hb);
         if (mat != -2) {
           if (mat < 0 && c.kind == CellKind::Room && c.room < int(plan.rooms.size())) mat = plan.rooms[size_t(c.room)].walls;
-          side_material[size_t(side)] = mat;
+          side_materials[size_t(side)][mat] += (zhi - zlo) * length(hb - ha);
         }
       }
     }
@@ -377,7 +398,10 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
           else rects.push_back({s0, s1, lo, hi});
         }
       }
-      MaterialId mat = side_material[k] == -2 ? -1 : side_material[k];
+      MaterialId mat = -1;
+      double most = 0;
+      for (const auto& [m, area] : side_materials[k])
+        if (area > most) most = area, mat = m;
       for (const Rect& r : rects) {
         Vec2 p0 = a + r.s0 * dir, p1 = a + r.s1 * dir;
         c.faces[k].opaque.push_back({{at(p0, r.lo), at(p0, r.hi), at(p1, r.hi), at(p1, r.lo)}, mat});
@@ -389,7 +413,7 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
   auto floor_material = [&](const Cell& c, double z) {
     if (c.kind == CellKind::Room && c.room < int(plan.rooms.size())) return plan.rooms[size_t(c.room)].floor;
     if (c.kind == CellKind::Outside || c.kind == CellKind::Sky) return std::fabs(z) < kZTol ? plan.ground : plan.roof;
-    return wall_material(plan, -1);
+    return MaterialId(-1);
   };
   auto ceiling_material = [&](const Cell& c) {
     if (c.kind == CellKind::Room && c.room < int(plan.rooms.size())) return plan.rooms[size_t(c.room)].ceiling;

@@ -84,7 +84,8 @@ struct Wall {
   std::vector<Vec2> centre;     ///< [m] straight centre line after tessellation, >= 2 points
   std::vector<bool> from_arc;   ///< per segment (centre.size()-1): tessellated from an arc
   std::vector<Opening> openings;
-  MaterialId material = -1;
+  MaterialId material = -1;        ///< both sides; the left side only when right_material is set
+  MaterialId right_material = -1;  ///< the right side, seen walking from centre.front() to back(); -1: `material`
   /// For a wall of no thickness: the rooms (indices into Plan::rooms) on its left and
   /// right, seen walking from centre.front() to centre.back(); -1 when not said. An
   /// imported map names its rooms this way (a Doom linedef's sides) instead of by label

@@ -562,7 +562,7 @@ void Reader::read_walls(const toml::table& root) {
 void Reader::read_wall(const toml::table& t, int index) {
   auto given = Element(*this, t, element_name("wall", {}, index)).name_key();
   Element e(*this, t, element_name("wall", given, index));
-  e.allow({"name", "storey", "thickness", "height", "material", "path", "opening"});
+  e.allow({"name", "storey", "thickness", "height", "material", "right_material", "path", "opening"});
   Wall w;
   w.name = given.value_or("wall " + std::to_string(index + 1));
   w.where = e.loc();
@@ -580,6 +580,7 @@ void Reader::read_wall(const toml::table& t, int index) {
     w.height = *h;
   }
   w.material = material(e, "material");
+  w.right_material = material(e, "right_material");
 
   // The centre line: points, and arcs {through = [x, y], to = [x, y]}.
   const toml::node& pn = e.need("path");

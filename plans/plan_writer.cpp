@@ -66,6 +66,7 @@ std::string plan_as_toml(const Plan& plan) {
     t.insert("thickness", w.thickness);
     if (w.height >= 0) t.insert("height", w.height);
     if (w.material >= 0) t.insert("material", material(w.material));
+    if (w.right_material >= 0) t.insert("right_material", material(w.right_material));
     toml::array path;
     for (Vec2 p : w.centre) path.push_back(point(p));
     t.insert("path", std::move(path));

@@ -26,6 +26,7 @@
 // without its coordinates or size) is repaired or dropped with a line in Plan::warnings.
 #include "plans/formats/sweet_home.h"
 #include "plans/formats/home_tree.h"
+#include "plans/formats/image_colour.h"
 #include "core/number_format.h"
 #include "core/srgb.h"
 
@@ -50,8 +51,10 @@
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string_view>
+#include <tuple>
 #include <unordered_map>
 
 namespace avenues {
@@ -65,6 +68,7 @@ constexpr double kStep = 0.05;          ///< [m] largest height step between pie
 constexpr double kMinStepPiece = 0.02;  ///< [m] shortest piece a sloped wall is cut into
 constexpr double kDoorSill = 0.05;      ///< [m] a door or window reaching this close to the floor is a door
 constexpr double kParallelSin = 0.26;   ///< sin 15°: how far a piece may turn from its wall
+constexpr double kTouch = 0.001;        ///< [m] a door or window entering a wall less than this only touches it
 constexpr double kMinOpening = 0.01;    ///< [m] narrower or lower openings (and lower walls) are dropped
 constexpr double kDefaultSlab = 0.12;   ///< [m] Sweet Home's default floor thickness
 
@@ -266,6 +270,7 @@ struct PieceIn {
   double angle = 0;       ///< [rad] anticlockwise in plan (Sweet Home's is clockwise on screen)
   double width = 0, depth = 0, height = 0, elevation = 0;  ///< [m], elevation above the level
   bool door_or_window = false;
+  bool cut_both_sides = false;  ///< wallCutOutOnBothSides: Sweet Home cuts its wall through, however deep it is
   std::string cut_out;    ///< a staircase's staircaseCutOutShape (SVG path in the unit square)
   bool mirrored = false;
   std::string model;      ///< its model: an entry of the .sh3d archive, or a catalogue path
@@ -343,7 +348,15 @@ class HomeReader {
   void find_wall(const PieceIn& p);
   void cut_openings();
   void finish_walls();
-  void read_rooms(const HomeElement& home);
+  /// A <room> in plan: the room as it will enter the plan (label not yet placed) and its polygon.
+  struct RoomIn {
+    Room room;
+    std::vector<Vec2> poly;  ///< [m] as drawn, repeated points dropped
+    bool named = false;
+  };
+  std::vector<RoomIn> collect_rooms(const HomeElement& home);
+  void open_room_edges(const std::vector<RoomIn>& rooms);
+  void read_rooms(std::vector<RoomIn> rooms);
   void add_furniture();
   void read_camera(const HomeElement& home);
 
@@ -365,10 +378,63 @@ class HomeReader {
     return it->second;
   }
 
+  /// A surface's material, as Sweet Home paints it: its texture (the <texture> child whose
+  /// attribute is `texture`) as its image's mean colour, else its colour attribute; -1 when
+  /// it has neither (or its texture cannot be read: then with a warning).
+  MaterialId surface_material(const HomeElement& n, const char* colour, const char* texture, const std::string& element) {
+    for (size_t c : n.children) {
+      const HomeElement& t = tree_.elements[c];
+      if (t.kind != "texture" || t.text("attribute") != texture) continue;
+      const MaterialId m = texture_material(t, element);
+      if (m >= 0) return m;
+      break;
+    }
+    return material_of(n.text(colour));
+  }
+  /// The plan's material of a texture's image, its mean colour in linear light (one per
+  /// image); -1, with a warning naming `element`, when the image is not at hand or unreadable.
+  MaterialId texture_material(const HomeElement& t, const std::string& element) {
+    const std::string image = t.text("image");
+    if (image.empty()) return -1;
+    auto [it, fresh] = textures_.try_emplace(image, -1);
+    if (!fresh) return it->second;
+    const std::optional<std::string> bytes = models_ ? models_(image) : std::nullopt;
+    const std::string name = t.text("name").empty() ? image : t.text("name");
+    if (!bytes) {
+      warn(t, element, "texture '" + name + "' (image " + image + ") is not at hand: its colour is used instead");
+      return -1;
+    }
+    try {
+      Material m;
+      m.colour = mean_image_colour(*bytes, path_ + ":" + image);
+      m.name = "texture '" + name + "' (" + image + ")";  // two images may share a name
+      m.where = loc(t, element);
+      it->second = MaterialId(plan_.materials.size());
+      plan_.materials.push_back(m);
+    } catch (const std::runtime_error& e) {
+      warn(t, element, std::string(e.what()) + ": the texture's colour is used instead");
+    }
+    return it->second;
+  }
+  /// Sweet Home's own colour of a surface that has none, for one side of a wall whose other
+  /// side has one (Avenues' default material).
+  MaterialId default_material() {
+    if (default_material_ < 0) {
+      Material m;
+      m.name = "default";
+      m.where = SourceLoc{file_, 0, 0, ""};
+      default_material_ = MaterialId(plan_.materials.size());
+      plan_.materials.push_back(m);
+    }
+    return default_material_;
+  }
+
   std::string path_, file_;
   const HomeTree& tree_;
   ModelSource models_;
   std::map<std::string, MaterialId> materials_;  ///< by colour "RRGGBB"
+  std::map<std::string, MaterialId> textures_;   ///< by image entry (-1: unreadable)
+  MaterialId default_material_ = -1;
   std::map<std::string, std::shared_ptr<const Mesh>> models_read_;  ///< by model name, as read (nullptr: none)
   int models_missing_ = 0;       ///< pieces left boxes because their model is not at hand
   Plan plan_;
@@ -555,9 +621,15 @@ void HomeReader::read_walls(const HomeElement& home) {
     }
     d.at_start = n.text("wallAtStart");
     d.at_end = n.text("wallAtEnd");
-    // One material a wall: its left side's colour, else its right side's.
-    d.wall.material = material_of(n.text("leftSideColor"));
-    if (d.wall.material < 0) d.wall.material = material_of(n.text("rightSideColor"));
+    // Each side its own material: its texture's mean colour, else its colour; a side with
+    // neither is Sweet Home's default (where the other side has one).
+    const MaterialId left = surface_material(n, "leftSideColor", "leftSideTexture", element);
+    const MaterialId right = surface_material(n, "rightSideColor", "rightSideTexture", element);
+    d.wall.material = left;
+    if (right != left) {
+      d.wall.material = left >= 0 ? left : default_material();
+      d.wall.right_material = right >= 0 ? right : default_material();
+    }
     drafts_.push_back(std::move(d));
   }
 }
@@ -585,6 +657,16 @@ void HomeReader::join_walls() {
     return a.wall.storey == b.wall.storey && !a.sloped() && !b.sloped() &&
            std::fabs(a.wall.thickness - b.wall.thickness) < 1e-6 && std::fabs(height_of(a) - height_of(b)) < 1e-6;
   };
+  // Joined walls keep their sides' materials: end to start they must agree side by side;
+  // end to end (or start to start) one is walked backwards, its left side then on the right.
+  auto sides = [](const Draft& d) {
+    return std::pair{d.wall.material, d.wall.right_material >= 0 ? d.wall.right_material : d.wall.material};
+  };
+  auto same_sides = [&](size_t i, int e, size_t j, int f) {
+    const auto [li, ri] = sides(drafts_[i]);
+    const auto [lj, rj] = sides(drafts_[j]);
+    return e != f ? li == lj && ri == rj : li == rj && ri == lj;
+  };
   struct Link { long other = -1; int end = 0; };
   std::vector<std::array<Link, 2>> link(n);
   for (size_t i = 0; i < n; ++i)
@@ -597,6 +679,7 @@ void HomeReader::join_walls() {
       for (int f = 0; f < 2; ++f) {
         const std::string& back = f == 0 ? drafts_[j].at_start : drafts_[j].at_end;
         if (back != drafts_[i].ids.front() || length(end_point(i, e) - end_point(j, f)) > kJoinGap) continue;
+        if (!same_sides(i, e, j, f)) continue;
         // Not when the second wall folds back over the first.
         if (dot(out_dir(i, e), out_dir(j, f)) > 0.985) continue;
         link[i][size_t(e)] = {long(j), f};
@@ -629,6 +712,7 @@ void HomeReader::join_walls() {
         d.wall.centre = c;
         d.wall.from_arc = fa;
         if (rev) std::swap(d.h0, d.h1), std::swap(d.at_start, d.at_end);
+        if (rev && d.wall.right_material >= 0) std::swap(d.wall.material, d.wall.right_material);
       } else {
         d.wall.centre.insert(d.wall.centre.end(), c.begin() + 1, c.end());
         d.wall.from_arc.insert(d.wall.from_arc.end(), fa.begin(), fa.end());
@@ -773,11 +857,15 @@ void HomeReader::collect_pieces(const HomeElement& home) {
     p.angle = -angle;  // clockwise on screen → anticlockwise in plan
     p.width = w * kCm, p.depth = dp * kCm, p.height = h * kCm, p.elevation = elev * kCm;
     p.door_or_window = kind == "doorOrWindow";
+    const std::string both = n.text("wallCutOutOnBothSides");
+    p.cut_both_sides = !both.empty() && std::strchr("1tTyY", both[0]) != nullptr;
     p.cut_out = n.text("staircaseCutOutShape");
     const std::string mirrored = n.text("modelMirrored");  // a boolean as pugixml reads one
     p.mirrored = !mirrored.empty() && std::strchr("1tTyY", mirrored[0]) != nullptr;
     p.model = n.text("model");
+    // A piece's colour is before its texture (HomePieceOfFurniture3D), a wall's or room's after.
     p.material = material_of(n.text("color"));
+    if (p.material < 0) p.material = surface_material(n, "color", "", element);  // a piece's <texture> has no attribute
     if (const std::string r = n.text("modelRotation"); !r.empty()) {
       std::istringstream in(r);
       std::array<double, 9> m{};
@@ -790,15 +878,20 @@ void HomeReader::collect_pieces(const HomeElement& home) {
   }
 }
 
-/// Finds the wall a door or window sits in: the wall of its storey whose centre line passes
-/// nearest its centre, running parallel to its width, within half the wall's thickness
-/// plus half the piece's depth. Its span along that centre line (the piece's width,
-/// clipped to the wall) is kept as two points, cut out by cut_openings() once every
-/// piece has found its wall.
+/// Finds the wall a door or window sits in, as Sweet Home 3D's Wall3D cuts it: the wall of
+/// its storey, running parallel to its width, whose volume its footprint enters (an area
+/// of their intersection, not a touch); of several, the one whose centre line passes
+/// nearest its centre. Avenues cuts holes through a wall only, so it takes a piece that
+/// crosses the wall's whole thickness, or one Sweet Home cuts through both sides anyway
+/// (wallCutOutOnBothSides). A piece reaching only partly in (a shutter on the façade,
+/// a frame laid on one face) makes a niche in Sweet Home: no opening, with a warning;
+/// taken as a hole, it would widen the window beside it. Its span along that centre line
+/// (the piece's width, clipped to the wall) is kept as two points, cut out by
+/// cut_openings() once every piece has found its wall.
 void HomeReader::find_wall(const PieceIn& p) {
   const Vec2 axis{std::cos(p.angle), std::sin(p.angle)};
-  long best_wall = -1;
-  double best_score = HUGE_VAL, best_s = 0;
+  long best_wall = -1, niche_wall = -1;
+  double best_score = HUGE_VAL, best_s = 0, niche_reach = 0;
   for (size_t i = 0; i < drafts_.size(); ++i) {
     const Wall& w = drafts_[i].wall;
     if (w.storey != p.storey) continue;
@@ -808,18 +901,34 @@ void HomeReader::find_wall(const PieceIn& p) {
       const double len = length(b - a);
       const Vec2 d = (1.0 / len) * (b - a);
       const double t = dot(p.centre - a, d);
-      const double off = std::fabs(cross(d, p.centre - a));
+      const double off = cross(d, p.centre - a);  // signed, across the wall
+      const double sin_turn = std::fabs(cross(d, axis));
+      // The footprint's half extent across the wall, and how far of the wall's thickness it covers.
+      const double half = p.depth / 2 * std::fabs(dot(d, axis)) + p.width / 2 * sin_turn;
+      const double t2 = w.thickness / 2;
+      const double reach = std::min(off + half, t2) - std::max(off - half, -t2);
+      const bool meets = w.thickness > 0 ? reach > kTouch : std::fabs(off) < half;
       const double beyond = std::max({0.0, -t, t - len});  // along the line, past the segment's ends
-      if (std::fabs(cross(d, axis)) <= kParallelSin && off <= w.thickness / 2 + p.depth / 2 + 0.01 &&
-          beyond <= p.width / 2) {
-        const double score = off + beyond;
-        if (score < best_score) best_score = score, best_wall = long(i), best_s = along + std::clamp(t, 0.0, len);
+      if (sin_turn <= kParallelSin && meets && beyond <= p.width / 2) {
+        if (p.cut_both_sides || reach >= w.thickness - kJoinGap) {
+          const double score = std::fabs(off) + beyond;
+          if (score < best_score) best_score = score, best_wall = long(i), best_s = along + std::clamp(t, 0.0, len);
+        } else if (reach > niche_reach) {
+          niche_reach = reach, niche_wall = long(i);
+        }
       }
       along += len;
     }
   }
+  if (best_wall < 0 && niche_wall >= 0) {
+    const Wall& w = drafts_[size_t(niche_wall)].wall;
+    plan_.warnings.push_back(p.where.str() + ": reaches only " + format_number("%.1f", niche_reach * 100) +
+                             " cm into wall '" + w.name + "' (" + format_number("%.1f", w.thickness * 100) +
+                             " cm thick), a niche in Sweet Home 3D, not a hole through: no opening cut");
+    return;
+  }
   if (best_wall < 0) {
-    plan_.warnings.push_back(p.where.str() + ": lies in no wall of its level (none parallel to it within its depth): "
+    plan_.warnings.push_back(p.where.str() + ": lies in no wall of its level (none parallel to it that it enters): "
                              "no opening cut");
     return;
   }
@@ -1084,12 +1193,7 @@ Vec2 label_point(const std::vector<Vec2>& poly, const std::vector<const Wall*>& 
   return best;
 }
 
-void HomeReader::read_rooms(const HomeElement& home) {
-  struct RoomIn {
-    Room room;
-    std::vector<Vec2> poly;
-    bool named;
-  };
+std::vector<HomeReader::RoomIn> HomeReader::collect_rooms(const HomeElement& home) {
   std::vector<RoomIn> rooms;
   int count = 0;
   for (const HomeElement* np : tree_.children(home, "room")) {
@@ -1102,8 +1206,8 @@ void HomeReader::read_rooms(const HomeElement& home) {
     r.room.name = r.named ? name : "room " + std::to_string(count);
     r.room.where = loc(n, element);
     r.room.storey = storey_of(n, element);
-    r.room.floor = material_of(n.text("floorColor"));
-    r.room.ceiling = material_of(n.text("ceilingColor"));
+    r.room.floor = surface_material(n, "floorColor", "floorTexture", element);
+    r.room.ceiling = surface_material(n, "ceilingColor", "ceilingTexture", element);
     bool ok = true;
     for (const HomeElement* pt : tree_.children(n, "point")) {
       if (!pt->attribute("x") || !pt->attribute("y")) {
@@ -1123,6 +1227,48 @@ void HomeReader::read_rooms(const HomeElement& home) {
     }
     rooms.push_back(std::move(r));
   }
+  return rooms;
+}
+
+// A home of rooms and no walls: Sweet Home 3D draws each room's floor and ceiling in the
+// open. Here each edge of a room is a wall of no thickness with one gap its whole length
+// and height: the room keeps its floor, ceiling and outline (the sheet's top and bottom
+// edges are real lines), and is open to the outside and to its neighbours all round. An
+// edge two rooms share is one wall; edges that overlap only in part are left to the exact
+// triangulation, which splits them where they meet.
+void HomeReader::open_room_edges(const std::vector<RoomIn>& rooms) {
+  std::set<std::tuple<StoreyId, double, double, double, double>> seen;
+  for (const RoomIn& r : rooms) {
+    const double height = plan_.storeys[size_t(r.room.storey)].height;
+    for (size_t i = 0; i < r.poly.size(); ++i) {
+      Vec2 a = r.poly[i], b = r.poly[(i + 1) % r.poly.size()];
+      if (std::tie(b.x, b.y) < std::tie(a.x, a.y)) std::swap(a, b);
+      const double len = length(b - a);
+      if (len < kMinOpening || !seen.insert({r.room.storey, a.x, a.y, b.x, b.y}).second) continue;
+      Wall w;
+      w.name = r.room.name + " edge " + std::to_string(i + 1);
+      w.storey = r.room.storey;
+      w.thickness = 0;
+      w.centre = {a, b};
+      w.from_arc = {false};
+      w.where = r.room.where;
+      Opening o;
+      o.name = w.name;
+      o.kind = OpeningKind::Gap;
+      o.at = 0;
+      o.width = len;
+      o.sill = 0;
+      o.head = height;
+      o.where = r.room.where;
+      w.openings.push_back(o);
+      plan_.walls.push_back(std::move(w));
+    }
+  }
+  plan_.warnings.push_back(file_ + ": the home has no walls: its " + std::to_string(rooms.size()) +
+                           " room(s) stand in the open, each edge a gap of no thickness");
+}
+
+void HomeReader::read_rooms(std::vector<RoomIn> rooms) {
   std::vector<std::vector<const Wall*>> walls_of(plan_.storeys.size());
   for (const Wall& w : plan_.walls) walls_of[size_t(w.storey)].push_back(&w);
   for (RoomIn& r : rooms) r.room.label = label_point(r.poly, walls_of[size_t(r.room.storey)]);
@@ -1382,6 +1528,8 @@ Plan HomeReader::read() {
     if (p.door_or_window) find_wall(p);
   cut_openings();
   finish_walls();
+  std::vector<RoomIn> rooms = collect_rooms(home);
+  if (plan_.walls.empty() && walls_dropped_ == 0 && !rooms.empty()) open_room_edges(rooms);
   if (plan_.walls.empty()) {
     // Say why: the reasons each wall was dropped (the first few, and how many more).
     std::string why;
@@ -1392,13 +1540,12 @@ Plan HomeReader::read() {
         if (w.find("(wall ") != std::string::npos && shown < kShown) why += "\n  " + w, ++shown;
       if (size_t(walls_dropped_) > shown) why += "\n  ... and " + std::to_string(size_t(walls_dropped_) - shown) + " more";
       why = ": all " + std::to_string(walls_dropped_) + " were dropped:" + why;
-    } else if (const size_t rooms = tree_.children(home, "room").size(); rooms > 0) {
-      // Sweet Home shows such a home as floors in the open; cells are the space walls enclose.
-      why = ", only " + std::to_string(rooms) + " room(s) drawn as floors: Avenues needs walls to find its spaces";
+    } else if (const size_t n = tree_.children(home, "room").size(); n > 0) {
+      why = ", and none of its " + std::to_string(n) + " room(s) has an outline with an area";
     }
     throw PlanError(loc(home, "home"), "the home has no walls" + why);
   }
-  read_rooms(home);
+  read_rooms(std::move(rooms));
   add_furniture();
   read_camera(home);
 

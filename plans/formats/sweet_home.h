@@ -11,17 +11,26 @@
 //                      mitred centre line, arcs (arcExtent) are tessellated within
 //                      Plan::arc_tolerance, sloped tops (heightAtEnd) are stepped into
 //                      pieces of constant height (cells are vertical prisms),
-//   <doorOrWindow>     into openings of the wall they sit in (also inside furniture groups),
-//   <room>             into rooms labelled at a point well inside their polygon,
+//   <doorOrWindow>     into openings of the wall they sit in (also inside furniture groups):
+//                      where they cross its whole thickness, or Sweet Home cuts both sides
+//                      (wallCutOutOnBothSides); a piece reaching only partly in (a shutter
+//                      on the façade) is a niche in Sweet Home, not a hole: none is cut,
+//   <room>             into rooms labelled at a point well inside their polygon; a home of
+//                      rooms and no walls (Sweet Home shows floors in the open) gets a wall
+//                      of no thickness along each room edge, open its whole length and
+//                      height, so every room is a cell joined to the open all round,
 //   <pieceOfFurniture> into objects: the piece's OBJ model (an entry of the .sh3d, or
 //                      beside a bare Home.xml at the path it names) fitted to the
 //                      piece as Sweet Home fits it, else a box of its size with a
 //                      warning; a staircase's cut-out into holes in the floors it climbs through,
 //   <observerCamera>   into the plan's viewpoint;
-//   colour attributes  into materials (linear light): a wall's leftSideColor (else its
-//                      rightSideColor), a room's floorColor and ceilingColor, a piece's
-//                      color. Textures, modelMaterials, MTL colours and lights are not
-//                      imported yet.
+//   colours, textures  into materials (linear light): each side of a wall its own
+//                      (left/rightSideTexture, else left/rightSideColor; walls whose
+//                      sides differ are not joined), a room's floor and ceiling (texture,
+//                      else colour), a piece's color (else its texture); a texture is its
+//                      image's mean colour (PNG or JPEG, image_colour.h). A piece's
+//                      modelMaterials, its model's own MTL colours and lights are not
+//                      imported yet (an object has one material).
 // Sweet Home lengths are centimetres with y pointing down the screen; a point (x, y)
 // becomes (x/100, −y/100) m, which keeps counter-clockwise polygons counter-clockwise
 // and turns Sweet Home's clockwise angles into Avenues' anticlockwise ones.

@@ -114,6 +114,19 @@ class Mapper {
     if (!v || !v->is_object()) return;
     if (auto it = ids_.find(v->object); it != ids_.end()) t_.elements[e].set(attr, it->second);
   }
+  /// A HomeTexture field as Home.xml's <texture attribute="field" name image/> child (a
+  /// piece's own texture has no attribute there).
+  void texture(size_t e, const Object& o, std::string_view field, bool named = true) {
+    const Value* v = s_.field(o, field);
+    if (!v || !instance_of(*v, "HomeTexture")) return;
+    const Object& tex = *s_.object(*v);
+    const std::string image = content_entry(tex, "image");
+    if (image.empty()) return;
+    const size_t t = element(e, "texture", tex);
+    if (named) t_.elements[t].set("attribute", std::string(field));
+    text(t, "name", tex, "name");
+    t_.elements[t].set("image", image);
+  }
   size_t element(size_t parent, std::string kind, const Object& o) {
     const size_t e = t_.add(parent, std::move(kind));
     t_.elements[e].offset = o.offset;
@@ -140,6 +153,8 @@ class Mapper {
       number(e, f, o, f);
     colour(e, "leftSideColor", o, "leftSideColor");
     colour(e, "rightSideColor", o, "rightSideColor");
+    texture(e, o, "leftSideTexture");
+    texture(e, o, "rightSideTexture");
   }
 
   void room(size_t root, const Object& o) {
@@ -148,6 +163,8 @@ class Mapper {
     text(e, "name", o, "name");
     colour(e, "floorColor", o, "floorColor");
     colour(e, "ceilingColor", o, "ceilingColor");
+    texture(e, o, "floorTexture");
+    texture(e, o, "ceilingTexture");
     for (const Value& p : list(o, "points")) {
       const Object* xy = s_.object(p);
       if (!xy || xy->kind != Object::Kind::Array || xy->values.size() < 2) continue;
@@ -202,8 +219,10 @@ class Mapper {
       for (const char* f : {"x", "y", "elevation", "angle", "width", "depth", "height", "power"}) number(e, f, *o, f);
       flag(e, "visible", *o, "visible", false);
       flag(e, "modelMirrored", *o, "modelMirrored", true);
+      flag(e, "wallCutOutOnBothSides", *o, "wallCutOutOnBothSides", true);
       text(e, "staircaseCutOutShape", *o, "staircaseCutOutShape");
       colour(e, "color", *o, "color");
+      texture(e, *o, "texture", false);
       if (const std::string model = content_entry(*o, "model"); !model.empty()) t_.elements[e].set("model", model);
       const std::vector<Value> rows = list(*o, "modelRotation");
       std::string rotation;
