@@ -230,6 +230,31 @@ TEST(DxfPlan, PartitionsOnTheDoorLayerWithADoorBlock) {
   expect_walkable(r.plan, 2, 1);
 }
 
+TEST(DxfPlan, TheLeavesOfADoubleDoorMeetMidway) {
+  // A 1.6 m gap (y 0.8–2.4) in the partition, two swings of 0.8 m closing at (4.1, 1.6),
+  // far from any wall line: each closed end is at the other's.
+  TinyDxf d;
+  d.polyline("Walls", {{0, 0}, {8.4, 0}, {8.4, 3.4}, {0, 3.4}}, true);
+  d.polyline("Walls", {{0.2, 0.2}, {8.2, 0.2}, {8.2, 3.2}, {0.2, 3.2}}, true);
+  d.polyline("Walls", {{4.1, 0.2}, {4.1, 0.8}, {4.3, 0.8}, {4.3, 0.2}}, false);
+  d.polyline("Walls", {{4.1, 3.2}, {4.1, 2.4}, {4.3, 2.4}, {4.3, 3.2}}, false);
+  d.arc("Doors", {4.1, 0.8}, 0.8, 90, 180);
+  d.line("Doors", {4.1, 0.8}, {3.3, 0.8});
+  d.arc("Doors", {4.1, 2.4}, 0.8, 180, 270);
+  d.line("Doors", {4.1, 2.4}, {3.3, 2.4});
+  const DxfPlan r = read_dxf_plan(d.write("double-door.dxf"));
+  ASSERT_EQ(r.plan.rooms.size(), 2u);
+  EXPECT_NE(r.summary.back().find(", 2 doors,"), std::string::npos) << r.summary.back();
+  double open = 0;  // the door openings cover the whole gap, leaf by leaf
+  for (const Wall& w : r.plan.walls)
+    for (const Opening& o : w.openings) open += o.kind == OpeningKind::Door ? o.width : 0;
+  EXPECT_NEAR(open, 1.6, 0.01);
+  const CellComplex c = build_cells(r.plan);
+  EXPECT_EQ(cells_are_valid(c), "");
+  EXPECT_GE(avenues::testing::door_portals(c), 1);
+  EXPECT_GE(avenues::testing::check_views_from_rooms(r.plan, c), 8);
+}
+
 TEST(DxfPlan, AWindowInAnOuterWall) {
   // A gap in the south wall (x 1.5–2.7) with the window's glass lines across it: the
   // room is closed by the window, which opens onto the outside.

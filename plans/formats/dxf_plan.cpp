@@ -505,9 +505,11 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   std::vector<std::string> taken[4];
   for (const auto& [l, r] : role)
     if (r != Role::None) taken[int(r)].push_back(l);
-  for (const auto& [nm, r] : given)
+  for (const auto& named : given) {  // (clang before 16 cannot capture a structured binding)
+    const std::string& nm = named.first;
     if (std::none_of(layers.begin(), layers.end(), [&](const std::string& l) { return lower(l) == nm; }))
       throw PlanError({path, 0, 0, "--layers"}, "the drawing has no layer '" + nm + "'");
+  }
 
   std::set<std::string> wall_layers_used;
   for (const SegPiece& s : flat.segs)
@@ -649,23 +651,15 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   // Door swings close their gaps: hinge to the arc's closed end.
   const size_t window_gaps = gaps.size();
   int swings = 0;
+  struct Swing { Vec2 hinge, closed; std::string layer; };
+  std::vector<Swing> found;
   for (const auto& [a0, in_door_block] : flat.arcs) {
     if (role[a0.layer] != Role::Doors && !in_door_block) continue;
     const double r = a0.r * unit;
     if (r < 0.4 || r > 1.6 || a0.sweep_deg < 60 || a0.sweep_deg > 120) continue;
     ++swings;
     const Vec2 c = m(a0.c), e0 = m(a0.p0), e1 = m(a0.p1);
-    const Vec2 e = closed_end(c, e0, e1);
-    bool twice = false;
-    for (const Gap& g : gaps)
-      twice = twice || (length(g.a - c) < 0.02 && length(g.b - e) < 0.02);
-    if (twice) continue;
-    if (near_walls(c) > 0.15 || near_walls(e) > 0.15) {
-      plan.warnings.push_back("the door swing at (" + format_number("%.2f", c.x) + ", " + format_number("%.2f", c.y) +
-                              ") m, layer '" + a0.layer + "', is in no wall gap: not placed");
-      continue;
-    }
-    gaps.push_back({c, e, true, c});
+    found.push_back({c, closed_end(c, e0, e1), a0.layer});
   }
   // Swings drawn as splines (one or several pieces end to end): a quarter circle from P
   // to Q has its hinge C where CP ⟂ CQ and |CP| = |CQ|, on the side the curve bulges from.
@@ -699,16 +693,28 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
       for (const Vec2 c : {half + n, half - n}) {
         if (std::fabs(length(mid - c) - r) > 0.08 * r) continue;
         ++swings;
-        const Vec2 e = closed_end(c, p, q);
-        if (near_walls(c) > 0.15 || near_walls(e) > 0.15) {
-          plan.warnings.push_back("the door swing at (" + format_number("%.2f", c.x) + ", " + format_number("%.2f", c.y) +
-                                  ") m, layer '" + door_curves[i]->layer + "', is in no wall gap: not placed");
-          break;
-        }
-        gaps.push_back({c, e, true, c});
+        found.push_back({c, closed_end(c, p, q), door_curves[i]->layer});
         break;
       }
     }
+  }
+  // A swing is placed when its hinge is at a wall and its closed end at a wall too, or
+  // at the closed end of another swing (the two leaves of a double door meet midway).
+  for (size_t i = 0; i < found.size(); ++i) {
+    const Swing& sw = found[i];
+    bool twice = false, meets = false;
+    for (size_t g = window_gaps; g < gaps.size(); ++g)
+      twice = twice || (length(gaps[g].a - sw.hinge) < 0.02 && length(gaps[g].b - sw.closed) < 0.02);
+    for (size_t j = 0; j < found.size(); ++j)
+      meets = meets || (j != i && length(found[j].closed - sw.closed) < 0.05 && length(found[j].hinge - sw.hinge) > 0.3);
+    if (twice) continue;
+    if (near_walls(sw.hinge) > 0.15 || (near_walls(sw.closed) > 0.15 && !meets)) {
+      plan.warnings.push_back("the door swing at (" + format_number("%.2f", sw.hinge.x) + ", " +
+                              format_number("%.2f", sw.hinge.y) + ") m, layer '" + sw.layer +
+                              "', is in no wall gap: not placed");
+      continue;
+    }
+    gaps.push_back({sw.hinge, sw.closed, true, sw.hinge});
   }
   for (size_t g = window_gaps; g < gaps.size(); ++g) {
     const Vec2 d = gaps[g].b - gaps[g].a;

@@ -23,7 +23,8 @@
 //    shape the drawing has is kept; the plan's outside is solid (Plan::outside_solid);
 //  * doors: each swing (an arc of 60–120° and 0.4–1.6 m radius, drawn on a door layer or
 //    inside a door block) closes its gap with a line from its hinge to the arc's closed
-//    end (the end its leaf is not drawn to; else the end nearer the walls); the pieces
+//    end (the end its leaf is not drawn to; else the end nearer the walls), which must
+//    be at a wall line or at another swing's closed end (a double door); the pieces
 //    of that line between two spaces, or between a space and a wall face or the outside
 //    when 0.25 m or wider (a door out of the building), are its door opening;
 //  * windows: each cluster of window-layer lines closes its gap with its longest line,
