@@ -341,6 +341,43 @@ TEST(DxfPlan, SimpleAndTwoRoomsOpenWithTheirDoor) {
   }
 }
 
+TEST(DxfPlan, FuzzFindingsAreReadOrRefusedNamingTheFile) {
+  // tests/fuzz/regressions/dxf: inputs the DXF fuzz target once broke the reader with
+  // (coordinates near 1e50 overflowed the wall-line-end grid's cell count).
+  const fs::path dir = fs::path(AVENUES_SOURCE_DIR) / "tests" / "fuzz" / "regressions" / "dxf";
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    SCOPED_TRACE(e.path().string());
+    ++n;
+    try {
+      read_dxf_plan(e.path().string());
+    } catch (const PlanError& err) {
+      EXPECT_NE(std::string(err.what()).find(e.path().string()), std::string::npos) << err.what();
+    }
+  }
+  EXPECT_GE(n, 1);
+}
+
+TEST(DxfPlan, OldStylePolylinesOpenOnceTheirLayerIsNamed) {
+  // evil-spirit-house.dxf: 8 POLYLINE/VERTEX/SEQEND outlines on a layer named for nothing.
+  // Refused by default, listing the layer with its entities; named, its rooms open (the
+  // vertices are entities of their own, which dxflib ends with a section end each).
+  const std::string file = (kSamples / "evil-spirit-house.dxf").string();
+  try {
+    read_dxf_plan(file);
+    FAIL() << "opened";
+  } catch (const PlanError& e) {
+    EXPECT_NE(std::string(e.what()).find("'s001-#def-active-grp' (8 entities)"), std::string::npos) << e.what();
+  }
+  DxfPlanOptions o;
+  o.layers = "walls=s001-#def-active-grp";
+  const DxfPlan r = read_dxf_plan(file, o);
+  EXPECT_GE(r.plan.rooms.size(), 2u);
+  const CellComplex c = build_cells(r.plan);
+  EXPECT_EQ(cells_are_valid(c), "");
+  EXPECT_GT(avenues::testing::check_views_from_rooms(r.plan, c), 0);
+}
+
 TEST(DxfPlan, EachOutsideDrawingOpensOrIsRefusedClearly) {
   int opened = 0, refused = 0;
   for (const auto& e : fs::directory_iterator(kSamples)) {

@@ -152,8 +152,9 @@ class Collector : public DL_CreationAdapter {
     cur_->base = {d.bpx, d.bpy};
   }
   void endBlock() override { flush(), cur_ = &model; }
+  // No flush at endSection: dxflib calls it after every entity, and an old-style
+  // POLYLINE's vertices are entities of their own that follow it (up to its SEQEND).
   void endSequence() override { flush(); }
-  void endSection() override { flush(); }
 
   void addLine(const DL_LineData& d) override { flush(), seg({d.x1, d.y1}, {d.x2, d.y2}); }
   void addArc(const DL_ArcData& d) override {
@@ -181,6 +182,7 @@ class Collector : public DL_CreationAdapter {
   }
   void addPolyline(const DL_PolylineData& d) override {
     flush();
+    pending_layer_ = getAttributes().getLayer();
     in_poly_ = (d.flags & (16 | 64)) == 0;  // not a polygon or polyface mesh
     if (!in_poly_) skipped.push_back("a 3D mesh POLYLINE on layer '" + layer() + "'");
     poly_closed_ = (d.flags & 1) != 0;
@@ -191,6 +193,7 @@ class Collector : public DL_CreationAdapter {
   }
   void addSpline(const DL_SplineData& d) override {
     flush();
+    pending_layer_ = getAttributes().getLayer();
     in_spline_ = true;
     spline_degree_ = int(d.degree);
     ctrl_.clear(), knots_.clear(), fit_.clear();
@@ -284,7 +287,9 @@ class Collector : public DL_CreationAdapter {
   }
 
  private:
-  std::string layer() { return getAttributes().getLayer(); }
+  /// The layer of the entity being read: a polyline or spline under way keeps its own
+  /// (it is flushed when a later entity begins).
+  std::string layer() { return in_poly_ || in_spline_ ? pending_layer_ : getAttributes().getLayer(); }
   void count() { ++layer_entities[layer()]; }
   void seg(Vec2 a, Vec2 b, bool curved = false) {
     cur_->segs.push_back({a, b, layer(), curved});
@@ -305,6 +310,7 @@ class Collector : public DL_CreationAdapter {
   std::vector<Vec2> ctrl_, fit_;
   std::vector<double> knots_;
   std::string mtext_;
+  std::string pending_layer_;
 };
 
 /// A 2D placement: p ↦ at + R(angle)·(scale ∘ (p − base)).
