@@ -18,8 +18,13 @@ class SegmentGrid {
     for (size_t i = 0; i < lines.size(); ++i) {
       const auto [a, b] = lines[i];
       const Vec2 lo{std::min(a.x, b.x), std::min(a.y, b.y)}, hi{std::max(a.x, b.x), std::max(a.y, b.y)};
-      // A very long line is binned along its length only (cells it passes near).
+      // A very long line is binned along its length only (cells it passes near); one
+      // longer than kMaxSteps cells (or not finite: a broken drawing) is met by every query.
       const double len = length(b - a);
+      if (!(len / cell < kMaxSteps) || !(std::fabs(lo.x) < kFar && std::fabs(lo.y) < kFar && std::fabs(hi.x) < kFar && std::fabs(hi.y) < kFar)) {
+        everywhere_.push_back(i);
+        continue;
+      }
       const int steps = std::max(1, int(std::ceil(len / cell)));
       if ((hi.x - lo.x) * (hi.y - lo.y) > 16 * double(steps) * cell * cell) {
         for (int s = 0; s <= steps; ++s) {
@@ -37,6 +42,8 @@ class SegmentGrid {
   template <class F>
   void near(Vec2 p, double r, F f) {
     ++stamp_;
+    for (size_t i : everywhere_) f(i);
+    if (!(std::fabs(p.x) < kFar && std::fabs(p.y) < kFar)) return;
     for (int64_t x = ix(p.x - r); x <= ix(p.x + r); ++x)
       for (int64_t y = ix(p.y - r); y <= ix(p.y + r); ++y) {
         auto it = bins_.find(key(x, y));
@@ -50,6 +57,7 @@ class SegmentGrid {
   }
 
  private:
+  static constexpr double kMaxSteps = 1 << 12, kFar = 1e12;  ///< [cells] (1.8 km at 0.45 m), [m]
   int64_t ix(double v) const { return int64_t(std::floor(v / cell_)); }
   static uint64_t key(int64_t x, int64_t y) { return (uint64_t(x) << 32) ^ uint64_t(uint32_t(y)); }
   void add(uint64_t k, size_t i) {
@@ -59,6 +67,7 @@ class SegmentGrid {
   double cell_;
   std::unordered_map<uint64_t, std::vector<size_t>> bins_;
   std::vector<uint64_t> seen_;
+  std::vector<size_t> everywhere_;
   uint64_t stamp_ = 0;
 };
 
