@@ -121,7 +121,7 @@ int run_cells(const CellsOptions& opt) {
   // error, not after a summary that looked like success.
   std::ostream& note = opt.json ? std::cerr : std::cout;
   if (!opt.save.empty()) save_cells(plan.complex, opt.save);
-  if (!opt.svg.empty()) write_plan_svg(plan.complex, opt.svg);
+  if (!opt.svg.empty()) write_plan_svg(plan.complex, opt.svg, plan.drawing);
   if (opt.json) {
     std::cout << summary_json(plan).dump(2) << "\n";
   } else {

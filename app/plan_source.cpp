@@ -208,6 +208,7 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
       case FileFormat::Dxf: {
         const DxfPlan d = read_dxf_plan(spec.file, {import.layers, import.unit, import.storey_height});
         for (const std::string& line : d.summary) std::cerr << spec.file << ": " << line << "\n";
+        out.drawing = d.drawing;
         decompose(d.plan, "read drawing");
         break;
       }

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cells/cell_complex.h"
@@ -23,6 +24,7 @@ struct LoadedPlan {
   std::string stem;                ///< its name without directory and extension
   FileFormat format = FileFormat::Toml;  ///< what the file was read as (by content, else extension)
   std::vector<StageTime> stages;   ///< what this run spent, per stage
+  std::vector<std::pair<Vec2, Vec2>> drawing;  ///< [m] a 2D drawing's own lines (DXF), for the plan drawing
   double seconds() const;          ///< total of stages
 };
 

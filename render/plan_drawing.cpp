@@ -75,6 +75,7 @@ const char* kSolidFill = "#a9a9a9";
 const char* kCutStroke = "#1b1b1b";
 const char* kEdgeStroke = "#555555";
 const char* kOutline = "#9a9a9a";
+const char* kDrawingStroke = "#8fb8e0";  // the drawing's own lines, under the plan
 
 struct PortalStyle {
   const char* colour;
@@ -214,7 +215,7 @@ struct StoreyView {
 
 }  // namespace
 
-std::string plan_svg(const CellComplex& c) {
+std::string plan_svg(const CellComplex& c, const DrawingLines& underlay) {
   const size_t nstoreys = std::max<size_t>(c.storeys.size(), 1);
 
   // Which cells each storey's plan shows.
@@ -417,6 +418,19 @@ std::string plan_svg(const CellComplex& c) {
     }
     o += "</g>\n";
 
+    // The drawing's own lines, over the cells' fills and under what was understood; only
+    // those near the building (a drawing's title block or site plan lies far off).
+    if (!underlay.empty()) {
+      o += "<g class=\"drawing\" " + svg.stroke(kDrawingStroke, 0.13) + ">\n";
+      const double x0 = f.bx0, y0 = f.by0, x1 = f.bx0 + f.w, y1 = f.by0 + f.h;
+      for (const auto& [a, b] : underlay) {
+        if (std::max(a.x, b.x) < x0 || std::min(a.x, b.x) > x1 || std::max(a.y, b.y) < y0 || std::min(a.y, b.y) > y1)
+          continue;
+        svg.line(f, {a, b}, "");
+      }
+      o += "</g>\n";
+    }
+
     // Floor and ceiling openings (horizontal stairwell portals).
     o += "<g class=\"stairwells\">\n";
     for (const Portal& p : c.portals) {
@@ -558,8 +572,8 @@ std::string plan_svg(const CellComplex& c) {
   return std::move(svg.out);
 }
 
-void write_plan_svg(const CellComplex& complex, const std::string& path) {
-  write_file_atomically(path, plan_svg(complex));
+void write_plan_svg(const CellComplex& complex, const std::string& path, const DrawingLines& underlay) {
+  write_file_atomically(path, plan_svg(complex, underlay));
 }
 
 }  // namespace avenues

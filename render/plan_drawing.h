@@ -6,20 +6,28 @@
 // portals as dashed lines coloured by kind, floor openings hatched, room names at
 // their largest cell, cell ids small, a legend and a scale bar. y points up, as in
 // the plan; the viewBox is in metres and the page size in millimetres at a standard
-// scale (1:50, 1:100, ...).
+// scale (1:50, 1:100, ...). A plan read from a drawing can have the drawing's own lines
+// under it in light blue.
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "cells/cell_complex.h"
 
 namespace avenues {
 
+/// The lines of the drawing a plan was read from (a DXF's), [m] in the plan's axes: drawn
+/// in a light colour under what was understood of them, for checking the one against the
+/// other by eye. Empty for plans not read from a drawing.
+using DrawingLines = std::vector<std::pair<Vec2, Vec2>>;
+
 /// Writes the drawing to `path` (temporary file + rename: no partial file on failure).
 /// Throws std::runtime_error naming the file if it cannot be written.
-void write_plan_svg(const CellComplex& complex, const std::string& path);
+void write_plan_svg(const CellComplex& complex, const std::string& path, const DrawingLines& underlay = {});
 
 /// The same drawing as SVG text.
-std::string plan_svg(const CellComplex& complex);
+std::string plan_svg(const CellComplex& complex, const DrawingLines& underlay = {});
 
 }  // namespace avenues

@@ -693,6 +693,26 @@ TEST_F(Cli, DxfPlanSaysWhatItUnderstoodAndSavesItAsToml) {
   EXPECT_EQ(back.status, 0) << back.err;
 }
 
+TEST_F(Cli, DxfPlanDrawingShowsWhatWasUnderstoodOverTheDrawingsOwnLines) {
+  const std::string dxf = std::string(AVENUES_OUTSIDE_DIR) + "/dxf/two-rooms.dxf";
+  const Outcome r = run("cells " + quote(dxf) + " --svg plan.svg");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string svg = slurp(path("plan.svg"));
+  // The drawing's lines first, in light blue, then the walls cut, the door and the rooms.
+  const size_t drawing = svg.find("<g class=\"drawing\""), cut = svg.find("<g class=\"cut\"");
+  ASSERT_NE(drawing, std::string::npos);
+  ASSERT_NE(cut, std::string::npos);
+  EXPECT_LT(drawing, cut);
+  const std::string lines = svg.substr(drawing, svg.find("</g>", drawing) - drawing);
+  size_t n = 0;
+  for (size_t at = lines.find("<line"); at != std::string::npos; at = lines.find("<line", at + 1)) ++n;
+  EXPECT_GT(n, 500u);  // the furniture, the door block and the walls, as drawn
+  EXPECT_NE(svg.find("2 rooms"), std::string::npos);
+  // A plan not read from a drawing has no such layer.
+  ASSERT_EQ(run("cells " + quote(kPlan) + " --svg own.svg").status, 0);
+  EXPECT_EQ(slurp(path("own.svg")).find("class=\"drawing\""), std::string::npos);
+}
+
 TEST_F(Cli, DxfWithoutAWallLayerIsRefusedListingItsLayers) {
   const std::string dxf = std::string(AVENUES_OUTSIDE_DIR) + "/dxf/evil-spirit-house.dxf";
   const Outcome r = run("cells " + quote(dxf) + " --save-plan never.toml");

@@ -27,6 +27,7 @@
 #include <pugixml.hpp>
 
 #include "cells/build_cells.h"
+#include "plans/formats/dxf_plan.h"
 #include "plans/formats/ifc_building.h"
 #include "render/raster.h"
 #include "tests/test_files.h"
@@ -283,6 +284,44 @@ TEST_F(WalkWindow, DuplexWalkGoesThroughADoorFromOneSpaceIntoAnother) {
                               << " with free space on both sides";
   write("door.txt", "0 screenshot before.png\n0 down W\n90 up W\n91 screenshot after.png\n91 quit\n");
   const Outcome r = run("walk " + quote(model) + " --eye " + eye + " --look " + look +
+                        " --size 320x180 --no-hud --script door.txt --stats-json s.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json s = read_json("s.json");
+  ASSERT_EQ(s["screenshots"].size(), 2u);
+  EXPECT_EQ(s["screenshots"][0]["room"], from);
+  EXPECT_EQ(s["screenshots"][1]["room"], to) << "walked from '" << from << "' through the door";
+}
+
+// A DXF drawing walked for real: in the house plan, from one room through a door its
+// swing closed (a sheet of no thickness with the door cut in it) into the next.
+TEST_F(WalkWindow, DxfHousePlanWalkGoesThroughADoorFromOneRoomIntoAnother) {
+  const std::string drawing = std::string(AVENUES_SOURCE_DIR) + "/../shared/outside/dxf/anandkothartrdl-plan.dxf";
+  if (!fs::exists(drawing)) GTEST_SKIP() << "no " << drawing;
+  NEED_DISPLAY();
+  const avenues::DxfPlan d = avenues::read_dxf_plan(drawing);
+  const avenues::CellComplex c = avenues::build_cells(d.plan);
+  // The widest door with a different room 0.8 m either side of its middle.
+  std::string from, to, eye, look;
+  double widest = 0;
+  for (const avenues::Wall& w : d.plan.walls) {
+    const avenues::Vec2 a0 = w.centre[0], a1 = w.centre[1];
+    const avenues::Vec2 u = (1 / avenues::length(a1 - a0)) * (a1 - a0), n{-u.y, u.x};
+    for (const avenues::Opening& o : w.openings) {
+      if (o.kind != avenues::OpeningKind::Door || o.width < 0.6 || o.width <= widest) continue;
+      const avenues::Vec2 m = a0 + (o.at + o.width / 2) * u, a = m - 0.8 * n, b = m + 0.8 * n;
+      const avenues::Location la = c.locate({a.x, a.y, 1.6}), lb = c.locate({b.x, b.y, 1.6});
+      if (la.what != avenues::Location::What::Cell || lb.what != avenues::Location::What::Cell) continue;
+      const int ra = c.cells[size_t(la.cell)].room, rb = c.cells[size_t(lb.cell)].room;
+      if (ra < 0 || rb < 0 || ra == rb) continue;
+      widest = o.width;
+      from = c.rooms[size_t(ra)].name, to = c.rooms[size_t(rb)].name;
+      eye = std::to_string(a.x) + "," + std::to_string(a.y) + ",1.6";
+      look = std::to_string(b.x) + "," + std::to_string(b.y) + ",1.6";
+    }
+  }
+  ASSERT_FALSE(from.empty()) << "no door between two rooms in " << drawing;
+  write("door.txt", "0 screenshot before.png\n0 down W\n60 up W\n61 screenshot after.png\n61 quit\n");
+  const Outcome r = run("walk " + quote(drawing) + " --eye " + eye + " --look " + look +
                         " --size 320x180 --no-hud --script door.txt --stats-json s.json");
   ASSERT_EQ(r.status, 0) << r.err;
   const json s = read_json("s.json");

@@ -19,6 +19,7 @@
 #include "core/angles.h"
 #include "core/number_format.h"
 #include "plans/formats/wall_arrangement.h"
+#include "plans/formats/wall_line_ends.h"
 
 namespace avenues {
 namespace {
@@ -34,6 +35,7 @@ struct ArcPiece {
 struct SegPiece {
   Vec2 a, b;
   std::string layer;
+  bool curved = false;  ///< a piece of an arc, circle, ellipse or spline (a swing, never a door frame)
 };
 struct TextPiece {
   Vec2 p;
@@ -150,8 +152,9 @@ class Collector : public DL_CreationAdapter {
     cur_->base = {d.bpx, d.bpy};
   }
   void endBlock() override { flush(), cur_ = &model; }
+  // No flush at endSection: dxflib calls it after every entity, and an old-style
+  // POLYLINE's vertices are entities of their own that follow it (up to its SEQEND).
   void endSequence() override { flush(); }
-  void endSection() override { flush(); }
 
   void addLine(const DL_LineData& d) override { flush(), seg({d.x1, d.y1}, {d.x2, d.y2}); }
   void addArc(const DL_ArcData& d) override {
@@ -161,7 +164,7 @@ class Collector : public DL_CreationAdapter {
   void addCircle(const DL_CircleData& d) override {
     flush();
     const std::vector<Vec2> pts = arc_points({d.cx, d.cy}, d.radius, 0, 2 * kPi);
-    for (size_t i = 0; i + 1 < pts.size(); ++i) seg(pts[i], pts[i + 1]);
+    for (size_t i = 0; i + 1 < pts.size(); ++i) seg(pts[i], pts[i + 1], true);
   }
   void addEllipse(const DL_EllipseData& d) override {
     flush();
@@ -173,12 +176,13 @@ class Collector : public DL_CreationAdapter {
     for (int i = 1; i <= steps; ++i) {
       const double t = d.angle1 + (a1 - d.angle1) * i / steps;
       const Vec2 p = c + std::cos(t) * m + std::sin(t) * n;
-      seg(prev, p);
+      seg(prev, p, true);
       prev = p;
     }
   }
   void addPolyline(const DL_PolylineData& d) override {
     flush();
+    pending_layer_ = getAttributes().getLayer();
     in_poly_ = (d.flags & (16 | 64)) == 0;  // not a polygon or polyface mesh
     if (!in_poly_) skipped.push_back("a 3D mesh POLYLINE on layer '" + layer() + "'");
     poly_closed_ = (d.flags & 1) != 0;
@@ -189,6 +193,7 @@ class Collector : public DL_CreationAdapter {
   }
   void addSpline(const DL_SplineData& d) override {
     flush();
+    pending_layer_ = getAttributes().getLayer();
     in_spline_ = true;
     spline_degree_ = int(d.degree);
     ctrl_.clear(), knots_.clear(), fit_.clear();
@@ -273,7 +278,7 @@ class Collector : public DL_CreationAdapter {
     if (in_spline_) {
       const std::vector<Vec2> pts =
           !ctrl_.empty() ? spline_points(spline_degree_, knots_, ctrl_) : fit_;
-      for (size_t i = 0; i + 1 < pts.size(); ++i) seg(pts[i], pts[i + 1]);
+      for (size_t i = 0; i + 1 < pts.size(); ++i) seg(pts[i], pts[i + 1], true);
       if (pts.size() >= 2) cur_->curves.push_back({pts, layer()});
       count();
     }
@@ -282,15 +287,17 @@ class Collector : public DL_CreationAdapter {
   }
 
  private:
-  std::string layer() { return getAttributes().getLayer(); }
+  /// The layer of the entity being read: a polyline or spline under way keeps its own
+  /// (it is flushed when a later entity begins).
+  std::string layer() { return in_poly_ || in_spline_ ? pending_layer_ : getAttributes().getLayer(); }
   void count() { ++layer_entities[layer()]; }
-  void seg(Vec2 a, Vec2 b) {
-    cur_->segs.push_back({a, b, layer()});
+  void seg(Vec2 a, Vec2 b, bool curved = false) {
+    cur_->segs.push_back({a, b, layer(), curved});
     if (!in_poly_ && !in_spline_) count();
   }
   void arc(Vec2 c, double r, double a0, double a1) {
     const std::vector<Vec2> pts = arc_points(c, r, a0, a1);
-    for (size_t i = 0; i + 1 < pts.size(); ++i) seg(pts[i], pts[i + 1]);
+    for (size_t i = 0; i + 1 < pts.size(); ++i) seg(pts[i], pts[i + 1], true);
     double sweep = a1 - a0;
     while (sweep <= 0) sweep += 2 * kPi;
     cur_->arcs.push_back({c, pts.front(), pts.back(), r, deg_from_rad(sweep), layer()});
@@ -303,6 +310,7 @@ class Collector : public DL_CreationAdapter {
   std::vector<Vec2> ctrl_, fit_;
   std::vector<double> knots_;
   std::string mtext_;
+  std::string pending_layer_;
 };
 
 /// A 2D placement: p ↦ at + R(angle)·(scale ∘ (p − base)).
@@ -348,7 +356,7 @@ void flatten(const Collector& col, const Group& g, const std::vector<Placement>&
   for (const Placement& pl : chain) mirrored ^= (pl.scale.x * pl.scale.y < 0);
   double scale = 1;
   for (const Placement& pl : chain) scale *= std::fabs(pl.scale.x);
-  for (const SegPiece& s : g.segs) out.segs.push_back({place(s.a), place(s.b), lay(s.layer)});
+  for (const SegPiece& s : g.segs) out.segs.push_back({place(s.a), place(s.b), lay(s.layer), s.curved});
   for (const ArcPiece& a : g.arcs) {
     ArcPiece b{place(a.c), place(a.p0), place(a.p1), a.r * scale, a.sweep_deg, lay(a.layer)};
     if (mirrored) std::swap(b.p0, b.p1);
@@ -503,9 +511,11 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   std::vector<std::string> taken[4];
   for (const auto& [l, r] : role)
     if (r != Role::None) taken[int(r)].push_back(l);
-  for (const auto& [nm, r] : given)
+  for (const auto& named : given) {  // (clang before 16 cannot capture a structured binding)
+    const std::string& nm = named.first;
     if (std::none_of(layers.begin(), layers.end(), [&](const std::string& l) { return lower(l) == nm; }))
       throw PlanError({path, 0, 0, "--layers"}, "the drawing has no layer '" + nm + "'");
+  }
 
   std::set<std::string> wall_layers_used;
   for (const SegPiece& s : flat.segs)
@@ -544,18 +554,81 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     plan.warnings.push_back("the drawing states no unit: taken as " + unit_said);
   }
   auto m = [&](Vec2 p) { return unit * p; };
+  out.drawing.reserve(flat.segs.size());
+  for (const SegPiece& s : flat.segs) out.drawing.push_back({m(s.a), m(s.b)});
 
   WallArrangementInput arr_in;
-  std::vector<SegPiece> walls;
+  // Door and window gaps, windows first: each cluster of window-layer lines (glass,
+  // frames, mullions, sills touching one another) is one window.
+  struct Gap { Vec2 a, b; bool door; Vec2 where; };
+  std::vector<Gap> gaps;
+  std::vector<SegPiece> win;
   for (const SegPiece& s : flat.segs)
-    if (role[s.layer] == Role::Walls) walls.push_back({m(s.a), m(s.b), s.layer});
-  // Snap to 0.1 mm and reach 1 mm past each end, so that lines drawn to meet do meet.
+    if (role[s.layer] == Role::Windows) win.push_back({m(s.a), m(s.b), s.layer, s.curved});
+  std::vector<int> window_of(win.size(), -1);  // per window line: its gap, or -1 (too small to be a window)
+  {
+    std::vector<int> parent(win.size());
+    for (size_t i = 0; i < win.size(); ++i) parent[i] = int(i);
+    std::function<int(int)> root = [&](int i) { return parent[size_t(i)] == i ? i : parent[size_t(i)] = root(parent[size_t(i)]); };
+    for (size_t i = 0; i < win.size(); ++i)
+      for (size_t j = i + 1; j < win.size(); ++j) {
+        const double d = std::min({distance_to_segment(win[i].a, win[j].a, win[j].b), distance_to_segment(win[i].b, win[j].a, win[j].b),
+                                   distance_to_segment(win[j].a, win[i].a, win[i].b), distance_to_segment(win[j].b, win[i].a, win[i].b)});
+        if (d < 0.02) parent[size_t(root(int(i)))] = root(int(j));
+      }
+    std::map<int, int> longest;
+    for (size_t i = 0; i < win.size(); ++i) {
+      const int r = root(int(i));
+      auto it = longest.find(r);
+      if (it == longest.end() || length(win[i].b - win[i].a) > length(win[size_t(it->second)].b - win[size_t(it->second)].a))
+        longest[r] = int(i);
+    }
+    std::map<int, int> gap_of_root;
+    for (const auto& [r, i] : longest) {
+      const SegPiece& w = win[size_t(i)];
+      if (length(w.b - w.a) < 0.3) continue;
+      gap_of_root[r] = int(gaps.size());
+      gaps.push_back({w.a, w.b, false, 0.5 * (w.a + w.b)});
+    }
+    for (size_t i = 0; i < win.size(); ++i)
+      if (auto it = gap_of_root.find(root(int(i))); it != gap_of_root.end()) window_of[i] = it->second;
+  }
+
+  // Wall lines: everything on the wall layers, the straight lines of the door layers
+  // (door frames and jambs, the caps of the wall's ends in a door block, partitions drawn
+  // with their doors, as in ground-floor-lhs.dxf; a door's swing is never a wall), and
+  // the window lines, each carrying its window: the room closes at the window's lines,
+  // and its face there is the window.
+  struct WallLine { Vec2 a, b; int closes = -1; };
+  std::vector<WallLine> walls;
+  for (const SegPiece& s : flat.segs)
+    if (role[s.layer] == Role::Walls || (role[s.layer] == Role::Doors && !s.curved)) walls.push_back({m(s.a), m(s.b)});
+  for (size_t i = 0; i < win.size(); ++i) walls.push_back({win[i].a, win[i].b, window_of[i]});
+  // The gaps a drawing leaves at its wall lines' ends: partitions stopping short, walls'
+  // ends left open across their thickness.
+  WallLineEnds ends;
+  {
+    std::vector<std::pair<Vec2, Vec2>> lines;
+    for (const WallLine& s : walls) lines.push_back({s.a, s.b});
+    ends = close_wall_line_ends(lines);
+    for (const auto& [a, b] : ends.added) walls.push_back({a, b});
+  }
+  // Snap to 0.1 mm, and reach 1 mm past each end that no other line ends at, so that
+  // lines drawn to meet do meet. Ends drawn at one point stay there: carried on, two
+  // lines drawn end to end in one direction would lie side by side a rounding apart.
   auto snap = [](Vec2 p) { return Vec2{std::round(p.x * 1e4) / 1e4, std::round(p.y * 1e4) / 1e4}; };
-  for (const SegPiece& s : walls) {
-    const double len = length(s.b - s.a);
-    if (len < 1e-4) continue;
-    const Vec2 u = (0.001 / len) * (s.b - s.a);
-    arr_in.segments.push_back({snap(s.a - u), snap(s.b + u), -1});
+  {
+    std::map<std::pair<double, double>, int> ends_at;
+    for (const WallLine& s : walls)
+      if (length(s.b - s.a) >= 1e-4)
+        for (Vec2 p : {snap(s.a), snap(s.b)}) ++ends_at[{p.x, p.y}];
+    auto shared = [&](Vec2 p) { return ends_at[{p.x, p.y}] > 1; };
+    for (const WallLine& s : walls) {
+      const double len = length(s.b - s.a);
+      if (len < 1e-4) continue;
+      const Vec2 u = (0.001 / len) * (s.b - s.a), a = snap(s.a), b = snap(s.b);
+      arr_in.segments.push_back({shared(a) ? a : snap(s.a - u), shared(b) ? b : snap(s.b + u), s.closes});
+    }
   }
   for (const HatchPiece& h : flat.hatches)
     if (role[h.layer] == Role::Walls) {
@@ -570,30 +643,29 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
 
   auto near_walls = [&](Vec2 p) {
     double best = 1e300;
-    for (const SegPiece& s : walls) best = std::min(best, distance_to_segment(p, s.a, s.b));
+    for (const WallLine& s : walls) best = std::min(best, distance_to_segment(p, s.a, s.b));
     return best;
   };
-  // Door swings close their gaps: hinge to the end of the arc nearer the walls.
-  struct Gap { Vec2 a, b; bool door; Vec2 where; };
-  std::vector<Gap> gaps;
+  // Of a swing's two ends the closed one (where the leaf shuts) is the one the leaf is not
+  // drawn to: the leaf, a line or thin outline from the hinge, passes through the middle
+  // of hinge -> open end. When that does not tell, the end nearer the walls.
+  auto closed_end = [&](Vec2 c, Vec2 e0, Vec2 e1) {
+    const bool leaf0 = near_walls(0.5 * (c + e0)) < 0.03, leaf1 = near_walls(0.5 * (c + e1)) < 0.03;
+    if (leaf0 != leaf1) return leaf0 ? e1 : e0;
+    return near_walls(e0) <= near_walls(e1) ? e0 : e1;
+  };
+  // Door swings close their gaps: hinge to the arc's closed end.
+  const size_t window_gaps = gaps.size();
   int swings = 0;
+  struct Swing { Vec2 hinge, closed; std::string layer; };
+  std::vector<Swing> found;
   for (const auto& [a0, in_door_block] : flat.arcs) {
     if (role[a0.layer] != Role::Doors && !in_door_block) continue;
     const double r = a0.r * unit;
     if (r < 0.4 || r > 1.6 || a0.sweep_deg < 60 || a0.sweep_deg > 120) continue;
     ++swings;
     const Vec2 c = m(a0.c), e0 = m(a0.p0), e1 = m(a0.p1);
-    const Vec2 e = near_walls(e0) <= near_walls(e1) ? e0 : e1;
-    bool twice = false;
-    for (const Gap& g : gaps)
-      twice = twice || (length(g.a - c) < 0.02 && length(g.b - e) < 0.02);
-    if (twice) continue;
-    if (near_walls(c) > 0.15 || near_walls(e) > 0.15) {
-      plan.warnings.push_back("the door swing at (" + format_number("%.2f", c.x) + ", " + format_number("%.2f", c.y) +
-                              ") m, layer '" + a0.layer + "', is in no wall gap: not placed");
-      continue;
-    }
-    gaps.push_back({c, e, true, c});
+    found.push_back({c, closed_end(c, e0, e1), a0.layer});
   }
   // Swings drawn as splines (one or several pieces end to end): a quarter circle from P
   // to Q has its hinge C where CP ⟂ CQ and |CP| = |CQ|, on the side the curve bulges from.
@@ -627,43 +699,30 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
       for (const Vec2 c : {half + n, half - n}) {
         if (std::fabs(length(mid - c) - r) > 0.08 * r) continue;
         ++swings;
-        const Vec2 e = near_walls(p) <= near_walls(q) ? p : q;
-        if (near_walls(c) > 0.15 || near_walls(e) > 0.15) {
-          plan.warnings.push_back("the door swing at (" + format_number("%.2f", c.x) + ", " + format_number("%.2f", c.y) +
-                                  ") m, layer '" + door_curves[i]->layer + "', is in no wall gap: not placed");
-          break;
-        }
-        gaps.push_back({c, e, true, c});
+        found.push_back({c, closed_end(c, p, q), door_curves[i]->layer});
         break;
       }
     }
   }
-  // Windows: clusters of window-layer lines, each closed by its longest line.
-  std::vector<SegPiece> win;
-  for (const SegPiece& s : flat.segs)
-    if (role[s.layer] == Role::Windows) win.push_back({m(s.a), m(s.b), s.layer});
-  std::vector<int> parent(win.size());
-  for (size_t i = 0; i < win.size(); ++i) parent[i] = int(i);
-  std::function<int(int)> root = [&](int i) { return parent[size_t(i)] == i ? i : parent[size_t(i)] = root(parent[size_t(i)]); };
-  for (size_t i = 0; i < win.size(); ++i)
-    for (size_t j = i + 1; j < win.size(); ++j) {
-      const double d = std::min({distance_to_segment(win[i].a, win[j].a, win[j].b), distance_to_segment(win[i].b, win[j].a, win[j].b),
-                                 distance_to_segment(win[j].a, win[i].a, win[i].b), distance_to_segment(win[j].b, win[i].a, win[i].b)});
-      if (d < 0.02) parent[size_t(root(int(i)))] = root(int(j));
+  // A swing is placed when its hinge is at a wall and its closed end at a wall too, or
+  // at the closed end of another swing (the two leaves of a double door meet midway).
+  for (size_t i = 0; i < found.size(); ++i) {
+    const Swing& sw = found[i];
+    bool twice = false, meets = false;
+    for (size_t g = window_gaps; g < gaps.size(); ++g)
+      twice = twice || (length(gaps[g].a - sw.hinge) < 0.02 && length(gaps[g].b - sw.closed) < 0.02);
+    for (size_t j = 0; j < found.size(); ++j)
+      meets = meets || (j != i && length(found[j].closed - sw.closed) < 0.05 && length(found[j].hinge - sw.hinge) > 0.3);
+    if (twice) continue;
+    if (near_walls(sw.hinge) > 0.15 || (near_walls(sw.closed) > 0.15 && !meets)) {
+      plan.warnings.push_back("the door swing at (" + format_number("%.2f", sw.hinge.x) + ", " +
+                              format_number("%.2f", sw.hinge.y) + ") m, layer '" + sw.layer +
+                              "', is in no wall gap: not placed");
+      continue;
     }
-  std::map<int, int> longest;
-  for (size_t i = 0; i < win.size(); ++i) {
-    const int r = root(int(i));
-    auto it = longest.find(r);
-    if (it == longest.end() || length(win[i].b - win[i].a) > length(win[size_t(it->second)].b - win[size_t(it->second)].a))
-      longest[r] = int(i);
+    gaps.push_back({sw.hinge, sw.closed, true, sw.hinge});
   }
-  for (const auto& [r, i] : longest) {
-    const SegPiece& s = win[size_t(i)];
-    if (length(s.b - s.a) < 0.3) continue;
-    gaps.push_back({s.a, s.b, false, 0.5 * (s.a + s.b)});
-  }
-  for (size_t g = 0; g < gaps.size(); ++g) {
+  for (size_t g = window_gaps; g < gaps.size(); ++g) {
     const Vec2 d = gaps[g].b - gaps[g].a;
     const double len = length(d);
     if (len < 1e-3) continue;
@@ -731,7 +790,10 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     w.centre = {s.a, s.b};
     w.from_arc = {false};
     w.where = {path, 0, 0, "wall '" + w.name + "'"};
-    if (s.closes >= 0) {
+    // On a closing line: between two spaces any piece is the opening; onto a wall face
+    // or the outside (a door out of the building, a window in an outer wall) a piece wide
+    // enough to be one, not a sliver beside a door frame.
+    if (s.closes >= 0 && (s.between_spaces || length(s.b - s.a) >= 0.25)) {
       const Gap& g = gaps[size_t(s.closes)];
       Opening o;
       o.kind = g.door ? OpeningKind::Door : OpeningKind::Window;
@@ -771,6 +833,9 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
                         std::to_string(swings) + " swings");
   out.summary.push_back("windows from layers " + joined(taken[int(Role::Windows)]));
   out.summary.push_back("unit " + unit_said);
+  out.summary.push_back(std::to_string(ends.free_ends) + " wall line ends touching no line: " +
+                        std::to_string(ends.extended) + " carried on to the line they stop short of, " +
+                        std::to_string(ends.capped) + " pairs joined across a wall's end");
   out.summary.push_back(std::to_string(arr.faces) + " faces in the walls' arrangement, " + std::to_string(arr.wall_faces) +
                         " of them wall (" + std::to_string(arr.hatched_faces) + " by hatching)");
   out.summary.push_back(std::to_string(plan.walls.size()) + " walls, " + std::to_string(doors) + " doors, " +

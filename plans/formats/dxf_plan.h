@@ -13,27 +13,36 @@
 //  * layers: walls (A-WALL, ISO 13567 / AIA names, "Walls", "Existing Structure",
 //    partitions, Wand/Wände/Mauer), doors (A-DOOR, Doors, Tür/Tuer), windows (A-GLAZ,
 //    Windows, Fenster, Glazing), by the words in their names; `layers` overrides;
-//  * walls: the exact arrangement of every wall-layer curve (plans/formats/wall_arrangement.h);
+//  * walls: the exact arrangement (plans/formats/wall_arrangement.h) of every curve on the
+//    wall layers and of the straight lines on the door layers (frames, jambs, the caps of
+//    a wall's ends in a door block, partitions drawn with their doors; swings are never
+//    walls), with the gaps left at wall lines' ends closed (plans/formats/wall_line_ends.h:
+//    a line stopping short of another carried on to it, a wall's open end capped);
 //    its narrow or hatched faces are wall, the rest are spaces; every edge between a space
 //    and anything else becomes a wall of no thickness (Jones's sheet), so that any wall
 //    shape the drawing has is kept; the plan's outside is solid (Plan::outside_solid);
 //  * doors: each swing (an arc of 60–120° and 0.4–1.6 m radius, drawn on a door layer or
-//    inside a door block) closes its gap with a line from its hinge to the end of the
-//    arc nearer the walls; where that line separates two spaces it is a door opening;
-//  * windows: each cluster of window-layer lines closes its gap with its longest line;
-//    where that separates two spaces it is a window (sill 0.9 m, head 2.1 m);
+//    inside a door block) closes its gap with a line from its hinge to the arc's closed
+//    end (the end its leaf is not drawn to; else the end nearer the walls), which must
+//    be at a wall line or at another swing's closed end (a double door); the pieces
+//    of that line between two spaces, or between a space and a wall face or the outside
+//    when 0.25 m or wider (a door out of the building), are its door opening;
+//  * windows: each cluster of window-layer lines closes its gap with its longest line,
+//    the same way: a window (sill 0.9 m, head 2.1 m) between two rooms or in an outer
+//    wall, where it opens onto the solid outside (there is no view out);
 //  * rooms: each space is a room, named by the TEXT/MTEXT inside it (or by a layer
 //    "Room - NAME" polyline around it), else "space N";
 //  * units from $INSUNITS, `unit` overriding; a drawing without units is taken as
 //    millimetres when it is over 1000 units across, else metres, with a warning.
 // A drawing with no wall layer, or whose wall lines close no room, is a PlanError listing
 // its layers and how to name them. Known limits: a swing whose hinge or closed end is over
-// 0.15 m from every wall line is not placed (a warning), as in ground-floor-lhs.dxf, whose
-// door blocks stand in gaps of partitions that the arrangement does not close; arcs are
-// arranged as their straight pieces (16 per half turn), not as exact circular arcs.
+// 0.15 m from every wall line is not placed (a warning); arcs are arranged as their
+// straight pieces (16 per half turn), not as exact circular arcs; a sliding door (no
+// swing) leaves its gap open, so the rooms either side are one space.
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "plans/plan.h"
@@ -51,6 +60,9 @@ struct DxfPlan {
   /// What was understood, a line each: the layers taken for walls, doors and windows,
   /// the unit, and the counts of walls, doors, windows and rooms.
   std::vector<std::string> summary;
+  /// [m] every line of the drawing (blocks placed, curves as their straight pieces), in
+  /// the plan's axes: what the plan was understood from, to draw under it.
+  std::vector<std::pair<Vec2, Vec2>> drawing;
 };
 
 /// True when the text starts like an ASCII DXF file (group code 0, SECTION).

@@ -84,7 +84,7 @@ WallArrangement arrange_walls(const WallArrangementInput& in) {
       do {
         const Vec2 p = to_vec(e->source()->point()), q = to_vec(e->target()->point());
         a += cross(p, q) / 2;
-        per += length(q - p);
+        if (e->twin()->face() != e->face()) per += length(q - p);  // not a line standing free in the face
         if (outer && e->twin()->face() != e->face() && length(q - p) > 1e-7) es.push_back(e);
       } while (++e != c);
     };
@@ -125,7 +125,7 @@ WallArrangement arrange_walls(const WallArrangementInput& in) {
   std::vector<int> cls(faces.size(), -1);
   out.faces = int(faces.size());
   for (size_t i = 0; i < faces.size(); ++i) {
-    bool wall = !inside[i] || 2 * area[i] / perimeter[i] <= in.max_wall_width;
+    bool wall = !inside[i] || !(perimeter[i] > 0) || 2 * area[i] / perimeter[i] <= in.max_wall_width;
     bool hatched = false;
     if (inside[i])
       for (const auto& h : in.hatches) hatched = hatched || in_rings(*inside[i], h);
@@ -146,9 +146,8 @@ WallArrangement arrange_walls(const WallArrangementInput& in) {
   for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
     const int c1 = class_of(e->face()), c2 = class_of(e->twin()->face());
     if (c1 == c2 || (c1 < 0 && c2 < 0)) continue;
-    Sheet s{to_vec(e->source()->point()), to_vec(e->target()->point()), -1};
-    if (c1 >= 0 && c2 >= 0)  // between two spaces: a door or window if it lies on a closing line
-      for (int d : e->curve().data()) s.closes = std::max(s.closes, d);
+    Sheet s{to_vec(e->source()->point()), to_vec(e->target()->point()), -1, c1 >= 0 && c2 >= 0};
+    for (int d : e->curve().data()) s.closes = std::max(s.closes, d);  // on a door's or window's closing line
     out.sheets.push_back(s);
   }
 

@@ -7,7 +7,8 @@
 // `max_wall_width`, as between two near-parallel wall lines) or a space, and returns
 // the edges that separate a space from anything else as plain segments ("sheets", walls
 // of no thickness), with the closing line they lie on, and each space with a point
-// inside it. Plain structs in, plain structs out.
+// inside it. A face's width counts each edge bounding it once: lines standing free in a
+// room (a door leaf, an arrow) have the room on both sides and are not its boundary. Plain structs in, plain structs out.
 #pragma once
 
 #include <vector>
@@ -34,7 +35,8 @@ struct WallArrangementInput {
 
 struct Sheet {
   Vec2 a, b;         ///< [m]
-  int closes = -1;   ///< the gap it closes between two spaces, or -1 (a wall's face)
+  int closes = -1;   ///< the gap whose closing line it lies on, or -1 (a wall's face)
+  bool between_spaces = false;  ///< a space on both sides (else a space and a wall face or the outside)
 };
 
 struct Space {

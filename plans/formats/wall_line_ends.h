@@ -1,0 +1,39 @@
+// Avenues — closing the small gaps a drawing leaves at its wall lines' ends.
+//
+// Drawings are rarely closed exactly: a wall's two face lines stop at a door gap with no
+// line across the wall's end, a partition stops a few millimetres short of the wall it
+// meets, a corner is drawn with a gap. close_wall_line_ends() looks at every end of a
+// wall line that touches no other line (a free end, within `touch`) and adds the short
+// lines that close it, in two passes:
+//  1. an undershoot: the line carried on along its own direction meets another line
+//     within `reach` (a partition drawn short of a wall): a line from the end to there;
+//  2. a wall's end: the free ends left are joined in mutually nearest pairs at most
+//     `cap` apart (a wall's end across its thickness, a corner drawn apart).
+// Door gaps are wider than any wall, so they stay open for the doors to close.
+// Plain segments in, the added segments out; a uniform grid keeps it near linear.
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "core/geometry.h"
+
+namespace avenues {
+
+struct WallLineEndParams {
+  double touch = 0.0005; ///< [m] an end nearer than this to another line is not free (the arrangement
+                         ///< carries every line 1 mm on past its ends)
+  double reach = 0.05;   ///< [m] how far a free end is carried on along its line
+  double cap = 0.45;     ///< [m] the widest wall end joined across
+};
+
+struct WallLineEnds {
+  std::vector<std::pair<Vec2, Vec2>> added;  ///< [m] the lines that close the gaps
+  int free_ends = 0;                         ///< free ends found before closing
+  int extended = 0, capped = 0;              ///< lines added by pass 1 and by pass 2
+};
+
+WallLineEnds close_wall_line_ends(const std::vector<std::pair<Vec2, Vec2>>& lines,
+                                  const WallLineEndParams& params = {});
+
+}  // namespace avenues
