@@ -11,6 +11,7 @@
 #include <numbers>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "cells/build_cells.h"
@@ -517,4 +518,30 @@ TEST(IfcStep, NamesAndLongNamesAreReadFromTheRecords) {
   EXPECT_TRUE(ok);
   (void)decode_step_string("\\X2\\D800\\X0\\", ok);
   EXPECT_FALSE(ok) << "a lone surrogate";
+}
+
+TEST(Ifc, DanglingReferencesAndBrokenRecordsAreRefusedBeforeAssimpCrashesOnThem) {
+  // Assimp 5.2's STEP reader dereferences what it could not resolve (a fuzzer found both).
+  const std::string room = avenues::testing::slurp(l_walled_room());
+  const fs::path dir = fs::temp_directory_path() / ("avenues-ifc-step-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::vector<std::tuple<std::string, std::string, std::string>> cases = {
+      {"#36=IFCPOLYLINE((#30,", "#36=IFCPOLYLINE((#930,", "#930 refers to no record"},
+      {"#9=IFCDIRECTION(", "#9=IFCDIRE@TION(", "record #9 is not a STEP record"},
+      {"#10=IFCDIRECTION(", "#9=IFCDIRECTION(", "record #9 is defined twice"}};
+  for (const auto& [from, to, why] : cases) {
+    std::string text = room;
+    text.replace(text.find(from), from.size(), to);
+    const std::string path = (dir / "broken.ifc").string();
+    std::ofstream(path, std::ios::binary) << text;
+    try {
+      (void)read_ifc_building(path);
+      ADD_FAILURE() << "read: " << to;
+    } catch (const PlanError& e) {
+      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+      EXPECT_GT(e.where().line, 1) << e.what();
+    }
+  }
+  fs::remove_all(dir);
 }

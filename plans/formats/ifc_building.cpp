@@ -414,6 +414,11 @@ class Builder {
     in.seekg(0);
     in.read(text.data(), size);
     text.resize(size_t(in.gcount()));
+    // Assimp's STEP reader crashes on a dangling reference: refuse such a file first.
+    if (const std::optional<StepProblem> p = step_data_problem(text)) {
+      const int line = 1 + int(std::count(text.begin(), text.begin() + std::ptrdiff_t(p->offset), '\n'));
+      throw PlanError({path_, line, 0, ""}, "not a well-formed STEP file: " + p->what);
+    }
     names_ = ifc_root_names(text);
   }
 

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cstdint>
 #include <optional>
+#include <unordered_set>
 #include <vector>
 
 namespace avenues {
@@ -62,8 +63,13 @@ size_t skip_comment(std::string_view s, size_t i) {
   return end == std::string_view::npos ? s.size() : end + 2;
 }
 
+/// Past white space and comments.
 void skip_space(std::string_view s, size_t& i) {
-  while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
+  for (;;) {
+    while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
+    if (i + 1 < s.size() && s[i] == '/' && s[i + 1] == '*') i = skip_comment(s, i);
+    else return;
+  }
 }
 
 struct Record {
@@ -125,6 +131,13 @@ std::optional<std::string_view> string_body(std::string_view a) {
   return a.substr(b + 1, e - b - 2);
 }
 
+/// "#12", built in steps (GCC 12 warns falsely of an overlap in "#" + std::to_string(n)).
+std::string reference(unsigned long long id) {
+  std::string s(1, '#');
+  s += std::to_string(id);
+  return s;
+}
+
 }  // namespace
 
 std::string decode_step_string(std::string_view s, bool& ok) {
@@ -181,6 +194,80 @@ std::string decode_step_string(std::string_view s, bool& ok) {
     }
   }
   return out;
+}
+
+std::optional<StepProblem> step_data_problem(std::string_view text) {
+  std::unordered_set<unsigned long long> defined;
+  std::vector<std::pair<unsigned long long, size_t>> referenced;  // id, offset
+  auto number_at = [&](size_t& i) {
+    unsigned long long n = 0;
+    const size_t from = i;
+    while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])) && i - from < 18)
+      n = n * 10 + unsigned(text[i++] - '0');
+    return i > from ? std::optional<unsigned long long>(n) : std::nullopt;
+  };
+  bool in_data = false;
+  size_t start = 0;
+  for (size_t i = 0; i < text.size();) {
+    const char c = text[i];
+    if (c == '\'') {
+      i = skip_string(text, i);
+      continue;
+    }
+    if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
+      i = skip_comment(text, i);
+      continue;
+    }
+    if (c == '#' && in_data) {  // a reference (the record's own id is taken off below)
+      const size_t at = i++;
+      if (const auto n = number_at(i)) referenced.push_back({*n, at});
+      continue;
+    }
+    if (c != ';') {
+      ++i;
+      continue;
+    }
+    const size_t base = start;  // the record's offset in the text
+    const std::string_view piece = text.substr(start, i - start);
+    size_t k = 0;
+    skip_space(piece, k);
+    const size_t at = base + k;
+    start = ++i;
+    std::string_view word = piece.substr(k);
+    while (!word.empty() && std::isspace(static_cast<unsigned char>(word.back()))) word.remove_suffix(1);
+    if (!in_data) {
+      in_data = word == "DATA";
+      continue;
+    }
+    if (word == "ENDSEC") {
+      in_data = false;
+      continue;
+    }
+    // "#id = KEYWORD(...)" or a complex instance "#id = (...)".
+    size_t j = k;
+    if (j >= piece.size() || piece[j] != '#') return StepProblem{at, "not a STEP record (#id=ENTITY(...);)"};
+    size_t digits = base + j + 1;
+    const auto id = number_at(digits);
+    j = digits - base;
+    skip_space(piece, j);
+    if (!id || j >= piece.size() || piece[j] != '=') return StepProblem{at, "not a STEP record (#id=ENTITY(...);)"};
+    ++j;
+    skip_space(piece, j);
+    if (j < piece.size() && piece[j] != '(') {
+      const std::optional<Record> r = record_of(piece);
+      if (!r) return StepProblem{at, "record " + reference(*id) + " is not a STEP record (#id=ENTITY(...);)"};
+    }
+    if (!defined.insert(*id).second) return StepProblem{at, "record " + reference(*id) + " is defined twice"};
+    // Its own id was counted as a reference: drop it.
+    for (size_t r = referenced.size(); r-- > 0;)
+      if (referenced[r].second == at) {
+        referenced.erase(referenced.begin() + std::ptrdiff_t(r));
+        break;
+      }
+  }
+  for (const auto& [id, offset] : referenced)
+    if (!defined.count(id)) return StepProblem{offset, reference(id) + " refers to no record"};
+  return std::nullopt;
 }
 
 std::map<std::string, IfcRootNames> ifc_root_names(std::string_view text) {

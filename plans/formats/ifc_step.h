@@ -12,6 +12,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -27,6 +28,16 @@ struct IfcRootNames {
 
 /// GlobalId -> names of every IfcRoot entity in the STEP text that has a Name or a LongName.
 std::map<std::string, IfcRootNames> ifc_root_names(std::string_view step_text);
+
+/// What makes a STEP file's DATA section unsafe to hand to Assimp 5.2, whose STEP reader
+/// dereferences what it could not read (it crashes on a reference to a missing record):
+/// a record that is not "#id=KEYWORD(...)" (or a complex "#id=(...)"), an id defined
+/// twice, a reference "#n" to an id no record defines. `offset` is where in the text.
+struct StepProblem {
+  size_t offset = 0;
+  std::string what;
+};
+std::optional<StepProblem> step_data_problem(std::string_view step_text);
 
 /// A STEP string's body (between its quotes, quotes still doubled) decoded to UTF-8;
 /// `ok` is set false (and the result is not to be used) for a malformed escape.
