@@ -206,8 +206,8 @@ std::optional<StepProblem> step_data_problem(std::string_view text) {
       n = n * 10 + unsigned(text[i++] - '0');
     return i > from ? std::optional<unsigned long long>(n) : std::nullopt;
   };
-  bool in_data = false;
-  size_t start = 0;
+  bool in_data = false, saw_data = false;
+  size_t start = 0, record_refs = 0;  // record_refs: references before this record
   for (size_t i = 0; i < text.size();) {
     const char c = text[i];
     if (c == '\'') {
@@ -218,7 +218,7 @@ std::optional<StepProblem> step_data_problem(std::string_view text) {
       i = skip_comment(text, i);
       continue;
     }
-    if (c == '#' && in_data) {  // a reference (the record's own id is taken off below)
+    if (c == '#') {  // a reference (the record's own id is taken off below)
       const size_t at = i++;
       if (const auto n = number_at(i)) referenced.push_back({*n, at});
       continue;
@@ -235,17 +235,17 @@ std::optional<StepProblem> step_data_problem(std::string_view text) {
     start = ++i;
     std::string_view word = piece.substr(k);
     while (!word.empty() && std::isspace(static_cast<unsigned char>(word.back()))) word.remove_suffix(1);
-    if (!in_data) {
-      in_data = word == "DATA";
-      continue;
-    }
-    if (word == "ENDSEC") {
-      in_data = false;
+    // Every record that starts with '#' is an instance, wherever it stands (Assimp reads
+    // instances past a broken section line); the others are section and header lines.
+    if (word.empty() || word[0] != '#') {
+      referenced.resize(record_refs);
+      if (in_data && word != "ENDSEC") return StepProblem{at, "not a STEP record (#id=ENTITY(...);)"};
+      if (word == "DATA") in_data = saw_data = true;
+      if (word == "ENDSEC") in_data = false;
       continue;
     }
     // "#id = KEYWORD(...)" or a complex instance "#id = (...)".
     size_t j = k;
-    if (j >= piece.size() || piece[j] != '#') return StepProblem{at, "not a STEP record (#id=ENTITY(...);)"};
     size_t digits = base + j + 1;
     const auto id = number_at(digits);
     j = digits - base;
@@ -264,7 +264,9 @@ std::optional<StepProblem> step_data_problem(std::string_view text) {
         referenced.erase(referenced.begin() + std::ptrdiff_t(r));
         break;
       }
+    record_refs = referenced.size();
   }
+  if (!saw_data) return StepProblem{0, "it has no DATA section"};
   for (const auto& [id, offset] : referenced)
     if (!defined.count(id)) return StepProblem{offset, reference(id) + " refers to no record"};
   return std::nullopt;
