@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +14,8 @@
 #include <numbers>
 #include <optional>
 #include <stdexcept>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <tuple>
 
 #include "core/number_format.h"
@@ -28,7 +32,8 @@ constexpr double kDoorReach = 0.25;     ///< [m] a door's centre may lie this fa
 constexpr double kOnFloor = 0.1;        ///< [m] a wall whose foot is this near a storey's floor stands on it
 constexpr double kMinFill = 0.7;        ///< a wall's hull fills at least this share of its rectangle
 constexpr double kEyeHeight = 1.6;      ///< [m] above the floor
-constexpr size_t kWarningsListed = 40;  ///< dropped elements named one by one; the rest counted
+constexpr size_t kWarningsListed = 40;
+constexpr int kChildRead = 0, kChildFailed = 3;  ///< exit statuses of the reading child  ///< dropped elements named one by one; the rest counted
 
 enum class Role { None, Container, Storey, Space, Wall, Door, Window, Surface, Object, Skip };
 
@@ -361,6 +366,7 @@ class Builder {
 
   Plan build() {
     read_step_file();
+    read_in_child_first();
     ImportOptions options;
     options.ifc_spaces = true;
     ImportedScene scene;
@@ -420,6 +426,36 @@ class Builder {
       throw PlanError({path_, line, 0, ""}, "not a well-formed STEP file: " + p->what);
     }
     names_ = ifc_root_names(text);
+  }
+
+  /// Assimp 5.2's STEP reader crashes on some malformed files the STEP check lets through
+  /// (a record of an entity type it does not know, referenced where it expects a known
+  /// one). So the model is read once in a child process first: a child that dies is an
+  /// error naming the file, not the end of Avenues. A child that only failed (Assimp's own
+  /// error) leaves the reading below to say why. Costs one more import.
+  void read_in_child_first() const {
+    std::fflush(nullptr);
+    const pid_t pid = ::fork();
+    if (pid < 0) return;  // no process to spare: read in this one, as before
+    if (pid == 0) {
+      int code = kChildRead;
+      try {
+        ImportOptions options;
+        options.ifc_spaces = true;
+        (void)import_scene(path_, options);
+      } catch (...) {
+        code = kChildFailed;
+      }
+      ::_exit(code);
+    }
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0)
+      if (errno != EINTR) return;
+    if (WIFEXITED(status) && (WEXITSTATUS(status) == kChildRead || WEXITSTATUS(status) == kChildFailed)) return;
+    const std::string how = WIFSIGNALED(status) ? "signal " + std::to_string(WTERMSIG(status))
+                                                : "exit status " + std::to_string(WEXITSTATUS(status));
+    throw PlanError({path_, 0, 0, ""}, "Assimp cannot read this IFC model: its reader crashed (" + how +
+                                           ") on it, a malformed or unsupported file");
   }
 
   /// The element's Name as the file writes it (with its spaces), else as Assimp's node has it.
