@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cerrno>
+#include <csignal>
 #include <chrono>
 #include <cstdio>
 #include <cmath>
@@ -438,6 +439,9 @@ class Builder {
     const pid_t pid = ::fork();
     if (pid < 0) return;  // no process to spare: read in this one, as before
     if (pid == 0) {
+      // A crash ends the child by its signal, whatever handlers the parent set (a
+      // sanitizer's, a fuzzer's): the parent reports it.
+      for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) std::signal(sig, SIG_DFL);
       int code = kChildRead;
       try {
         ImportOptions options;
