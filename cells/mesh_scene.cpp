@@ -754,8 +754,14 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
   Box3 box = params.include;
   for (size_t i = 0; i < meshes.size(); ++i) {
     const Mesh& m = meshes[i];
-    for (const auto& t : m.triangles) {
-      soup.push_back({{m.vertices[size_t(t[0])], m.vertices[size_t(t[1])], m.vertices[size_t(t[2])]}, -1});
+    // The mesh's colours become the complex's materials, carried onto the faces they cover.
+    const MaterialId first = MaterialId(out.materials.size());
+    out.materials.insert(out.materials.end(), m.materials.begin(), m.materials.end());
+    for (size_t k = 0; k < m.triangles.size(); ++k) {
+      const auto& t = m.triangles[k];
+      const MaterialId own = k < m.material_of.size() ? m.material_of[k] : -1;
+      const MaterialId material = own >= 0 && size_t(own) < m.materials.size() ? first + own : -1;
+      soup.push_back({{m.vertices[size_t(t[0])], m.vertices[size_t(t[1])], m.vertices[size_t(t[2])]}, material});
       mesh_of.push_back(i);
       for (Vec3 p : soup.back().p) box.add(p);
     }

@@ -81,8 +81,10 @@ Outline make_outline(const Plan& plan) {
     lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
     hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
   };
-  for (const Wall& w : plan.walls)
+  for (const Wall& w : plan.walls) {
     for (Vec2 p : w.centre) grow(p);
+    for (Vec2 p : w.footprint) grow(p);
+  }
   const double m = plan.far_margin;
   double top = 0, bottom = 0;
   for (const Storey& s : plan.storeys) {
@@ -155,7 +157,7 @@ Outline make_outline(const Plan& plan) {
     };
     for (size_t i = 0; i + 1 < nseg; ++i) join(i, i + 1);
     if (closed && nseg > 2) join(nseg - 1, 0);
-    if (!closed && h > 0) {
+    if (!closed && h > 0 && w.footprint.empty()) {
       if (touches_other(c.front())) start[0] = square(0, c.front() - h * dir[0]);
       if (touches_other(c.back())) end[nseg - 1] = square(nseg - 1, c.back() + h * dir[nseg - 1]);
     }
@@ -186,7 +188,9 @@ Outline make_outline(const Plan& plan) {
       }
       if (s < len) strips.push_back({s, len, -1});
 
+      // A wall with a footprint of its own (one segment) stands on it instead of its quad.
       std::vector<Vec2> quad{start[i].right, end[i].right, end[i].left, start[i].left};
+      if (!w.footprint.empty() && nseg == 1) quad = w.footprint;
       for (const Strip& sp : strips) {
         Region r;
         r.storey = w.storey;

@@ -84,6 +84,19 @@ inline double signed_area(const std::vector<Vec2>& p) {
   return a / 2;
 }
 
+/// Whether p is a convex polygon, counter-clockwise, with an area: at least three points,
+/// no turn to the right (a straight one allowed), turning once around.
+inline bool is_convex_ccw(const std::vector<Vec2>& p) {
+  if (p.size() < 3 || !(signed_area(p) > 0)) return false;
+  double turned = 0;
+  for (size_t i = 0, n = p.size(); i < n; ++i) {
+    const Vec2 a = p[i], b = p[(i + 1) % n], c = p[(i + 2) % n];
+    if (cross(b - a, c - b) < 0) return false;
+    turned += std::atan2(cross(b - a, c - b), dot(b - a, c - b));
+  }
+  return turned < 2 * 3.14159265358979323846 + 1e-6;  // once around, not a star
+}
+
 /// Area centroid of a simple polygon (the vertex mean when it has no area).
 inline Vec2 centroid(const std::vector<Vec2>& p) {
   double a = 0, cx = 0, cy = 0;

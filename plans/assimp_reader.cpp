@@ -112,6 +112,7 @@ void collect(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent
       if (node.mMeshes[k] >= scene.mNumMeshes) continue;
       const aiMesh& mesh = *scene.mMeshes[node.mMeshes[k]];
       if (!n.coloured) n.colour = diffuse_of(scene, mesh.mMaterialIndex, n.coloured);
+      const int material = mesh.mMaterialIndex < scene.mNumMaterials ? int(mesh.mMaterialIndex) : -1;
       const int base = int(n.vertices.size());
       std::vector<bool> finite(mesh.mNumVertices);
       for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
@@ -130,6 +131,7 @@ void collect(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent
         }
         if (mirrored) n.triangles.push_back({base + int(a), base + int(c), base + int(b)});
         else n.triangles.push_back({base + int(a), base + int(b), base + int(c)});
+        n.triangle_material.push_back(material);
       }
     }
   }
@@ -173,6 +175,14 @@ ImportedScene import_scene(const std::string& path, const ImportOptions& options
   if (scene->mMetaData) scene->mMetaData->Get(AI_METADATA_SOURCE_FORMAT, format);
   out.format = format.C_Str();
 
+  for (unsigned m = 0; m < scene->mNumMaterials; ++m) {
+    ImportedMaterial im;
+    im.colour = diffuse_of(*scene, m, im.coloured);
+    aiString name;
+    if (scene->mMaterials[m] && scene->mMaterials[m]->Get(AI_MATKEY_NAME, name) == AI_SUCCESS) im.name = name.C_Str();
+    if (im.name.empty()) im.name = "material " + std::to_string(m + 1);
+    out.materials.push_back(std::move(im));
+  }
   OutputAxes axes = output_axes(*scene, out.format);
   const std::string named = out.format.empty() ? "the format" : out.format;
   if (options.axes.up) {
@@ -199,13 +209,33 @@ ImportedScene import_scene(const std::string& path, const ImportOptions& options
 Mesh mesh_of_scene(const ImportedScene& scene) {
   std::vector<Vec3> vertices;
   std::vector<std::vector<int>> polygons;
+  std::vector<int> polygon_material;  // per polygon: the scene's material, -1 none
+  bool coloured = false;
   for (const ImportedNode& n : scene.nodes) {
     const int base = int(vertices.size());
     vertices.insert(vertices.end(), n.vertices.begin(), n.vertices.end());
-    for (const auto& t : n.triangles) polygons.push_back({base + t[0], base + t[1], base + t[2]});
+    for (size_t t = 0; t < n.triangles.size(); ++t) {
+      polygons.push_back({base + n.triangles[t][0], base + n.triangles[t][1], base + n.triangles[t][2]});
+      const int m = t < n.triangle_material.size() ? n.triangle_material[t] : -1;
+      const bool known = m >= 0 && size_t(m) < scene.materials.size() && scene.materials[size_t(m)].coloured;
+      polygon_material.push_back(known ? m : -1);
+      coloured = coloured || known;
+    }
   }
   if (polygons.empty()) throw std::runtime_error("mesh " + scene.path + " has no faces (no triangles in any node)");
-  return mesh_of_polygons(scene.path, std::move(vertices), std::move(polygons));
+  Mesh mesh = mesh_of_polygons(scene.path, std::move(vertices), std::move(polygons));
+  if (coloured) {
+    for (const ImportedMaterial& im : scene.materials) {
+      Material m;
+      m.name = im.name;
+      m.colour = im.colour;
+      m.where = {scene.path, 0, 0, "material '" + im.name + "'"};
+      mesh.materials.push_back(std::move(m));
+    }
+    mesh.material_of.reserve(mesh.triangles.size());
+    for (int p : mesh.polygon_of) mesh.material_of.push_back(polygon_material[size_t(p)]);
+  }
+  return mesh;
 }
 
 Mesh load_assimp_mesh(const std::string& path, const MeshAxes& axes, std::vector<std::string>* warnings) {

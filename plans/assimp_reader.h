@@ -30,12 +30,21 @@ struct ImportedNode {
   std::vector<std::array<int, 3>> triangles;  ///< counter-clockwise seen from outside
   std::array<double, 3> colour{0.8, 0.8, 0.8};  ///< linear RGB [0,1]: its first mesh's diffuse colour
   bool coloured = false;                      ///< the file gave that colour
+  std::vector<int> triangle_material;         ///< per triangle: index into ImportedScene::materials, -1 none
+};
+
+/// One of the file's materials, as far as Avenues uses it.
+struct ImportedMaterial {
+  std::string name;
+  std::array<double, 3> colour{0.8, 0.8, 0.8};  ///< linear RGB [0,1]: its diffuse (glTF: base) colour
+  bool coloured = false;                        ///< the file gave that colour
 };
 
 struct ImportedScene {
   std::string path;
   std::string format;                 ///< Assimp's importer ("glTF2 Importer", "Collada Importer", ...)
   std::vector<ImportedNode> nodes;    ///< parents before their children; nodes[0] is the root
+  std::vector<ImportedMaterial> materials;  ///< Assimp's, in its order
   double import_seconds = 0;          ///< [s] Assimp's own ReadFile (with post-processing)
   std::vector<std::string> warnings;  ///< what was ignored (an option the file overrides, ...)
 };
@@ -52,8 +61,9 @@ bool assimp_reads_extension(const std::string& ext);
 /// Assimp cannot read it (an unknown IFC entity, a broken glTF buffer, an empty file).
 ImportedScene import_scene(const std::string& path, const ImportOptions& options = {});
 
-/// Every triangle of the scene as one Mesh (mesh_of_polygons). Throws std::runtime_error
-/// naming the file when it holds no triangles.
+/// Every triangle of the scene as one Mesh (mesh_of_polygons), each with its material's
+/// colour where the file gives one (Mesh::materials). Throws std::runtime_error naming
+/// the file when it holds no triangles.
 Mesh mesh_of_scene(const ImportedScene& scene);
 
 /// A file read with Assimp as one mesh (import_scene, then mesh_of_scene); warnings, such

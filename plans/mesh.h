@@ -27,6 +27,11 @@ struct Mesh {
   /// polygon at less than a crease angle (smooth_corner_normals): a box keeps flat faces,
   /// a torus cut into polygons is shaded as the smooth surface it stands for.
   std::vector<Vec3> corner_normals;
+  /// Per triangle: its material, an index into `materials` (-1: none); empty when the file
+  /// gives none. Formats read through Assimp give each of their materials' diffuse (glTF's
+  /// base) colour; a whole scene's cells carry them onto its faces.
+  std::vector<MaterialId> material_of;
+  std::vector<Material> materials;
   bool closed = false;                     ///< every edge shared by exactly two polygons
   int boundary_edges = 0;                  ///< edges with one polygon (0 when closed)
 };

@@ -91,6 +91,11 @@ struct Wall {
   /// imported map names its rooms this way (a Doom linedef's sides) instead of by label
   /// points: an enclosed space with no label takes the room its bounding walls vote for.
   int left_room = -1, right_room = -1;
+  /// When not empty: the wall's own footprint [m], a convex polygon, counter-clockwise,
+  /// standing instead of the quad of `centre` (then one segment) and `thickness`: a piece
+  /// of a curved or L-shaped wall of a BIM model. `centre` and `thickness` are then its
+  /// long axis and width; openings are measured along that axis and cut across it.
+  std::vector<Vec2> footprint;
   SourceLoc where;
 };
 

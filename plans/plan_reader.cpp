@@ -562,7 +562,7 @@ void Reader::read_walls(const toml::table& root) {
 void Reader::read_wall(const toml::table& t, int index) {
   auto given = Element(*this, t, element_name("wall", {}, index)).name_key();
   Element e(*this, t, element_name("wall", given, index));
-  e.allow({"name", "storey", "thickness", "height", "material", "right_material", "path", "opening"});
+  e.allow({"name", "storey", "thickness", "height", "material", "right_material", "path", "footprint", "opening"});
   Wall w;
   w.name = given.value_or("wall " + std::to_string(index + 1));
   w.where = e.loc();
@@ -651,6 +651,18 @@ void Reader::read_wall(const toml::table& t, int index) {
     e.fail_at(*path->get(seg_entry[s2]), "the centre line of " + e.name() + " crosses itself: path entries " +
                                              std::to_string(seg_entry[s1] + 1) + " and " +
                                              std::to_string(seg_entry[s2] + 1) + " meet" + near);
+  }
+
+  // A footprint of its own (a piece of a BIM model's curved or L-shaped wall): convex,
+  // counter-clockwise, around a straight axis.
+  if (t.contains("footprint")) {
+    const toml::node& fn = e.need("footprint");
+    auto* fp = fn.as_array();
+    if (!fp || fp->size() < 3) e.fail("footprint", "'footprint' must be an array of at least 3 points");
+    for (size_t i = 0; i < fp->size(); ++i)
+      w.footprint.push_back(e.point2_of(*fp->get(i), "point " + std::to_string(i + 1) + " of 'footprint'"));
+    if (w.centre.size() != 2) e.fail("footprint", "a wall with a 'footprint' has a 'path' of 2 points (its axis)");
+    if (!is_convex_ccw(w.footprint)) e.fail("footprint", "'footprint' must be a convex polygon, counter-clockwise");
   }
 
   plan_.walls.push_back(std::move(w));

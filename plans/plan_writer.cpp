@@ -70,6 +70,11 @@ std::string plan_as_toml(const Plan& plan) {
     toml::array path;
     for (Vec2 p : w.centre) path.push_back(point(p));
     t.insert("path", std::move(path));
+    if (!w.footprint.empty()) {
+      toml::array footprint;
+      for (Vec2 p : w.footprint) footprint.push_back(point(p));
+      t.insert("footprint", std::move(footprint));
+    }
     if (!w.openings.empty()) {
       toml::array os;
       for (const Opening& o : w.openings) {

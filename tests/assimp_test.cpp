@@ -11,13 +11,18 @@
 #include <numbers>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "cells/build_cells.h"
+#include "cells/mesh_scene.h"
 #include "plans/assimp_reader.h"
 #include "plans/formats/ifc_building.h"
+#include "plans/formats/ifc_step.h"
 #include "plans/mesh.h"
+#include "plans/plan_writer.h"
 #include "ray_oracle.h"
+#include "render/halftone.h"
 #include "tests/test_files.h"
 #include "visibility/camera.h"
 #include "visibility/visible_set.h"
@@ -113,6 +118,32 @@ std::string collada_floor(bool z_up) {
 )";
 }
 
+/// A red floor (4 m square at y = 0, glTF's Y up) and a blue wall standing at its far
+/// edge (z = -2, 2 m high), two primitives of one mesh with a material each.
+std::string gltf_red_floor_blue_wall() {
+  const std::vector<std::array<float, 3>> v{{-2, 0, 2}, {2, 0, 2},  {2, 0, -2}, {-2, 0, -2},
+                                            {-2, 0, -2}, {2, 0, -2}, {2, 2, -2}, {-2, 2, -2}};
+  const std::vector<int> tri{0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7};
+  std::string bin;
+  for (const auto& p : v) bin.append(reinterpret_cast<const char*>(p.data()), 12);
+  for (int i : tri) {
+    const uint16_t s = uint16_t(i);
+    bin.append(reinterpret_cast<const char*>(&s), 2);
+  }
+  return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1,"material":0},
+                         {"attributes":{"POSITION":0},"indices":2,"material":1}]}],
+"materials":[{"name":"red","pbrMetallicRoughness":{"baseColorFactor":[0.8,0.05,0.05,1]}},
+             {"name":"blue","pbrMetallicRoughness":{"baseColorFactor":[0.05,0.05,0.8,1]}}],
+"buffers":[{"byteLength":120,"uri":"data:application/octet-stream;base64,)" +
+         base64(bin) + R"("}],
+"bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":96},{"buffer":0,"byteOffset":96,"byteLength":12},
+               {"buffer":0,"byteOffset":108,"byteLength":12}],
+"accessors":[{"bufferView":0,"componentType":5126,"count":8,"type":"VEC3","min":[-2,0,-2],"max":[2,2,2]},
+{"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"},
+{"bufferView":2,"componentType":5123,"count":6,"type":"SCALAR"}]})";
+}
+
 class AssimpFiles : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -182,6 +213,31 @@ TEST_F(AssimpFiles, MaterialColourIsKeptOnTheNode) {
       found = true;
     }
   EXPECT_TRUE(found);
+}
+
+TEST_F(AssimpFiles, SceneKeepsItsMaterialColoursInTheCellsAndThePicture) {
+  const std::string path = write("room.gltf", gltf_red_floor_blue_wall());
+  const Mesh m = load_mesh(path);
+  ASSERT_EQ(m.material_of.size(), m.triangles.size());
+  const CellComplex c = read_mesh_scene(path);
+  // The eye 1 m above the floor's middle (Avenues: z up; the wall stands at y = 2).
+  const Vec3 eye{0, 0, 1};
+  const Location at = c.locate(eye);
+  ASSERT_EQ(at.what, Location::What::Cell);
+  auto centre_pixel = [&](Vec3 look) {
+    const Camera cam = Camera::look_at(eye, look, 30, 33, 33);
+    const VisibleSet vs = find_visible(c, cam, at.cell, Kernel::Double);
+    const Image img = render_view(c, cam, vs, HalftoneOptions{});
+    EXPECT_EQ(img.channels, 3);
+    const size_t k = (size_t(img.height / 2) * size_t(img.width) + size_t(img.width / 2)) * 3;
+    return std::array<int, 3>{img.data[k], img.data[k + 1], img.data[k + 2]};
+  };
+  const std::array<int, 3> floor = centre_pixel({0, 0.3, 0});  // down at the floor
+  EXPECT_GT(floor[0], 2 * floor[1]) << "the floor is red: " << floor[0] << "," << floor[1] << "," << floor[2];
+  EXPECT_GT(floor[0], 2 * floor[2]);
+  const std::array<int, 3> wall = centre_pixel({0, 2, 1});  // ahead at the wall
+  EXPECT_GT(wall[2], 2 * wall[0]) << "the wall is blue: " << wall[0] << "," << wall[1] << "," << wall[2];
+  EXPECT_GT(wall[2], 2 * wall[1]);
 }
 
 TEST(AssimpModels, TestModelsStandOnTheirFeet) {
@@ -255,9 +311,7 @@ TEST(Ifc, DuplexHasItsFourStoreysAndNamedSpacesAsRooms) {
     const Storey& below = m.plan.storeys[i - 1];
     EXPECT_NEAR(m.plan.storeys[i].elevation, below.elevation + below.height + below.slab, 1e-9);
   }
-  // Of its 57 IFC walls, the bulkheads above doors and the parapets (not standing on a
-  // storey's floor) are dropped with warnings; the rest stand, some on two storeys.
-  EXPECT_GE(m.plan.walls.size(), 40u);
+  EXPECT_GE(m.plan.walls.size(), 47u);
   int doors = 0, windows = 0;
   for (const Wall& w : m.plan.walls)
     for (const Opening& o : w.openings) (o.kind == OpeningKind::Door ? doors : windows) += 1;
@@ -275,7 +329,10 @@ TEST(Ifc, DuplexHasItsFourStoreysAndNamedSpacesAsRooms) {
     }
   }
   EXPECT_GE(named.size(), 18u) << "of its 21 spaces";
-  EXPECT_TRUE(named.count("A102")) << "its largest living space";
+  // Spaces are named by their LongName (A102 is the "Living Room", A101 the "Foyer").
+  EXPECT_TRUE(named.count("Living Room")) << "its largest living space";
+  EXPECT_TRUE(named.count("Foyer"));
+  EXPECT_FALSE(named.count("A102"));
   EXPECT_EQ(cells_are_valid(m.cells), "");
   ASSERT_TRUE(m.plan.view.has_value());
   const Location at = m.cells.locate(m.plan.view->eye);
@@ -334,6 +391,149 @@ TEST(Ifc, WhatCannotBeReadIsAPlanErrorNamingTheFile) {
       ADD_FAILURE() << "read";
     } catch (const PlanError& e) {
       EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    }
+  }
+  fs::remove_all(dir);
+}
+
+namespace {
+
+std::string l_walled_room() { return std::string(AVENUES_SOURCE_DIR) + "/tests/fuzz/corpus/ifc/l-walled-room.ifc"; }
+
+/// IFC element labels ("IfcWall 'x'") of the plan's walls and of its objects.
+std::set<std::string> labels_of_walls(const Plan& p) {
+  std::set<std::string> out;
+  for (const Wall& w : p.walls) out.insert(w.where.element);
+  return out;
+}
+
+bool is_wall_label(const std::string& s) {
+  return s.rfind("IfcWall", 0) == 0 || s.rfind("IfcCurtainWall", 0) == 0 || s.rfind("IfcColumn", 0) == 0;
+}
+
+}  // namespace
+
+TEST(Ifc, LShapedWallsStandAsConvexPiecesOfTheirSection) {
+  // Two L-shaped walls round a 4 m by 3 m room, a 1 m gap in the north side: each L is no
+  // rectangle (it fills 10 % of its own), so each stands on the convex pieces of its section.
+  const IfcModel& m = ifc_model(l_walled_room());
+  ASSERT_EQ(labels_of_walls(m.plan).size(), 2u);
+  double area = 0;
+  for (const Wall& w : m.plan.walls) {
+    ASSERT_FALSE(w.footprint.empty()) << w.name;
+    EXPECT_TRUE(is_convex_ccw(w.footprint)) << w.name;
+    area += signed_area(w.footprint);
+  }
+  // Exactly, but for Assimp's single-precision coordinates.
+  EXPECT_NEAR(area, (4.4 * 0.2 + 3.2 * 0.2) + (3.0 * 0.2 + 3.2 * 0.2), 1e-5) << "the pieces cover the Ls";
+  EXPECT_EQ(cells_are_valid(m.cells), "");
+  EXPECT_EQ(m.cells.locate({2.2, 1.7, 1.2}).what, Location::What::Cell) << "the room";
+  EXPECT_EQ(m.cells.locate({3.7, 3.3, 1.2}).what, Location::What::Cell) << "the gap in the north wall";
+  for (Vec3 in_wall : {Vec3{0.1, 1.7, 1.2}, Vec3{4.3, 1.7, 1.2}, Vec3{2.2, 0.1, 1.2}, Vec3{1.5, 3.3, 1.2}, Vec3{4.3, 3.3, 1.2}})
+    EXPECT_EQ(m.cells.locate(in_wall).what, Location::What::Solid) << in_wall.x << "," << in_wall.y;
+  // The space's LongName, and its floor in the slab's red.
+  ASSERT_EQ(m.plan.rooms.size(), 1u);
+  EXPECT_EQ(m.plan.rooms[0].name, "Living Room");
+  ASSERT_GE(m.plan.rooms[0].floor, 0);
+  const Material& floor = m.plan.materials[size_t(m.plan.rooms[0].floor)];
+  EXPECT_NEAR(floor.colour[0], 0.8, 1e-6);
+  EXPECT_NEAR(floor.colour[1], 0.2, 1e-6);
+  EXPECT_NEAR(floor.colour[2], 0.1, 1e-6);
+  // Names as the file writes them, spaces kept (Assimp's node says "Southandeast").
+  EXPECT_EQ(labels_of_walls(m.plan).count("IfcWall 'South and east'"), 1u);
+  // The footprints survive --save-plan: written as 'footprint', read back the same.
+  const Plan back = parse_plan(plan_as_toml(m.plan), "l-walled-room.toml");
+  ASSERT_EQ(back.walls.size(), m.plan.walls.size());
+  for (size_t i = 0; i < back.walls.size(); ++i) {
+    ASSERT_EQ(back.walls[i].footprint.size(), m.plan.walls[i].footprint.size());
+    for (size_t k = 0; k < back.walls[i].footprint.size(); ++k)
+      EXPECT_NEAR(length(back.walls[i].footprint[k] - m.plan.walls[i].footprint[k]), 0, 1e-9);
+  }
+  // A footprint that is not convex is refused, naming the wall.
+  std::string toml = plan_as_toml(m.plan);
+  const size_t at = toml.find("footprint = [");
+  ASSERT_NE(at, std::string::npos);
+  toml.insert(at + 13, "[ 2.0, 2.0 ], ");
+  EXPECT_THROW((void)parse_plan(toml, "bent.toml"), PlanError);
+}
+
+TEST(Ifc, EveryWallOfTheModelsStands) {
+  // The IFC wall, curtain wall and column elements each file holds (counted in the files):
+  // every one stands as plan walls (a parapet as a low wall) or, standing on no storey's
+  // floor (a bulkhead under a ceiling), as an opaque object.
+  const std::vector<std::pair<std::string, size_t>> models = {
+      {duplex(), 57}, {(kIfc / "Office_A_20110811.ifc").string(), 487}, {(kModels / "IFC/AC14-FZK-Haus.ifc").string(), 14}};
+  for (const auto& [path, walls] : models) {
+    if (!fs::exists(path)) continue;
+    SCOPED_TRACE(path);
+    const IfcModel& m = ifc_model(path);
+    std::set<std::string> standing = labels_of_walls(m.plan);
+    for (const Object& o : m.plan.objects)
+      if (is_wall_label(o.where.element)) standing.insert(o.where.element);
+    EXPECT_EQ(standing.size(), walls);
+  }
+  // The duplex's roof parapets (0.61 m) are low walls of the roof storey.
+  const IfcModel& d = ifc_model(duplex());
+  int low = 0;
+  for (const Wall& w : d.plan.walls) low += w.height > 0 && w.height < 1;
+  EXPECT_GE(low, 4);
+}
+
+TEST(Ifc, SlabsAndCoveringsAreFloorsCeilingsOrObjects) {
+  if (!fs::exists(duplex())) GTEST_SKIP() << "no " << duplex();
+  const IfcModel& m = ifc_model(duplex());
+  int floors = 0, ceilings = 0, slab_objects = 0;
+  for (const Room& r : m.plan.rooms) floors += r.floor >= 0, ceilings += r.ceiling >= 0;
+  for (const Object& o : m.plan.objects) slab_objects += o.where.element.rfind("IfcSlab", 0) == 0;
+  EXPECT_GE(floors, 18) << "of 21 spaces, each over a finish floor";
+  EXPECT_GE(ceilings, 15) << "under a gypsum board ceiling or the slab above";
+  EXPECT_GE(slab_objects, 1) << "the roof slab, no room's floor, is drawn as an object";
+}
+
+TEST(IfcStep, NamesAndLongNamesAreReadFromTheRecords) {
+  const std::string text =
+      "ISO-10303-21;\nDATA;\n/* a comment; with a semicolon */\n"
+      "#1= IFCSPACE('0BTBFw6f90Nfh9rP1dlXrr',#33,'A101','',$,#487,#513,'Foyer',.ELEMENT.,.INTERNAL.,$);\n"
+      "#2=IFCSPACE('1BTBFw6f90Nfh9rP1dlXrr',#33,'K1',$,$,#4,#5,'K\\X2\\00FC\\X0\\che; Bar''s',.ELEMENT.,$,$);\n"
+      "#3=IFCWALL('2BTBFw6f90Nfh9rP1dlXrr',#5,'Basic Wall:Interior - 92mm',$,$,#6,#7,$);\n"
+      "#4=IFCSPACE('3BTBFw6f90Nfh9rP1dlXrr',#33,'B1',$,$,#4,#5,$,.ELEMENT.,$,$);\n"
+      "#5=IFCSPACE('4BTBFw6f90Nfh9rP1dlXrr',#33,'B2',$,$,#4,#5,'bad \\X2\\00F\\X0\\',.ELEMENT.,$,$);\n"
+      "#6=IFCCARTESIANPOINT((0.,0.));\nENDSEC;\n";
+  const auto names = ifc_root_names(text);
+  EXPECT_EQ(names.at("0BTBFw6f90Nfh9rP1dlXrr").long_name, "Foyer");
+  EXPECT_EQ(names.at("0BTBFw6f90Nfh9rP1dlXrr").name, "A101");
+  EXPECT_EQ(names.at("1BTBFw6f90Nfh9rP1dlXrr").long_name, "K\xC3\xBC" "che; Bar's");
+  EXPECT_EQ(names.at("2BTBFw6f90Nfh9rP1dlXrr").name, "Basic Wall:Interior - 92mm");
+  EXPECT_EQ(names.at("3BTBFw6f90Nfh9rP1dlXrr").long_name, "");
+  EXPECT_EQ(names.at("4BTBFw6f90Nfh9rP1dlXrr").long_name, "") << "a malformed escape is no name";
+  bool ok = true;
+  EXPECT_EQ(decode_step_string("\\S\\D\\X\\E9\\\\", ok), "\xC3\x84\xC3\xA9\\");
+  EXPECT_TRUE(ok);
+  (void)decode_step_string("\\X2\\D800\\X0\\", ok);
+  EXPECT_FALSE(ok) << "a lone surrogate";
+}
+
+TEST(Ifc, DanglingReferencesAndBrokenRecordsAreRefusedBeforeAssimpCrashesOnThem) {
+  // Assimp 5.2's STEP reader dereferences what it could not resolve (a fuzzer found both).
+  const std::string room = avenues::testing::slurp(l_walled_room());
+  const fs::path dir = fs::temp_directory_path() / ("avenues-ifc-step-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::vector<std::tuple<std::string, std::string, std::string>> cases = {
+      {"#36=IFCPOLYLINE((#30,", "#36=IFCPOLYLINE((#930,", "#930 refers to no record"},
+      {"#9=IFCDIRECTION(", "#9=IFCDIRE@TION(", "record #9 is not a STEP record"},
+      {"#10=IFCDIRECTION(", "#9=IFCDIRECTION(", "record #9 is defined twice"}};
+  for (const auto& [from, to, why] : cases) {
+    std::string text = room;
+    text.replace(text.find(from), from.size(), to);
+    const std::string path = (dir / "broken.ifc").string();
+    std::ofstream(path, std::ios::binary) << text;
+    try {
+      (void)read_ifc_building(path);
+      ADD_FAILURE() << "read: " << to;
+    } catch (const PlanError& e) {
+      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+      EXPECT_GT(e.where().line, 1) << e.what();
     }
   }
   fs::remove_all(dir);

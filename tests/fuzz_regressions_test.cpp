@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "plans/formats/ifc_building.h"
 #include "plans/mesh.h"
 
 namespace fs = std::filesystem;
@@ -50,4 +51,16 @@ TEST(FuzzRegressions, WellFormedOffFilesStillRead) {
   EXPECT_EQ(m.vertices.size(), 4u);
   EXPECT_EQ(m.triangles.size(), 2u);
   fs::remove(p);
+}
+
+TEST(FuzzRegressions, IfcInputsAreReadOrRefusedNamingTheFile) {
+  const auto files = regressions("ifc");
+  ASSERT_GE(files.size(), 1u);
+  for (const fs::path& f : files) {
+    try {
+      (void)avenues::read_ifc_building(f.string());
+    } catch (const avenues::PlanError& e) {
+      EXPECT_NE(std::string(e.what()).find(f.string()), std::string::npos) << e.what();
+    }
+  }
 }

@@ -3,7 +3,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
+#include <csignal>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -12,9 +15,13 @@
 #include <numbers>
 #include <optional>
 #include <stdexcept>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <tuple>
 
 #include "core/number_format.h"
 #include "plans/assimp_reader.h"
+#include "plans/formats/ifc_step.h"
 #include "plans/mesh.h"
 
 namespace avenues {
@@ -23,11 +30,13 @@ namespace {
 constexpr double kMinWall = 0.05;       ///< [m] a footprint shorter than this is no wall
 constexpr double kMinOpening = 0.2;     ///< [m] narrower or lower than this is no opening
 constexpr double kDoorReach = 0.25;     ///< [m] a door's centre may lie this far outside its wall's faces
+constexpr double kOnFloor = 0.1;        ///< [m] a wall whose foot is this near a storey's floor stands on it
 constexpr double kMinFill = 0.7;        ///< a wall's hull fills at least this share of its rectangle
 constexpr double kEyeHeight = 1.6;      ///< [m] above the floor
-constexpr size_t kWarningsListed = 40;  ///< dropped elements named one by one; the rest counted
+constexpr size_t kWarningsListed = 40;
+constexpr int kChildRead = 0, kChildFailed = 3;  ///< exit statuses of the reading child  ///< dropped elements named one by one; the rest counted
 
-enum class Role { None, Container, Storey, Space, Wall, Door, Window, Object, Skip };
+enum class Role { None, Container, Storey, Space, Wall, Door, Window, Surface, Object, Skip };
 
 /// "IfcWallStandardCase" of "IfcWallStandardCase_Basic Wall:Interior_2O2Fr$t4X7Zf8NOew3FNld".
 std::string ifc_type(const std::string& node) {
@@ -53,9 +62,11 @@ Role role_of(const std::string& type) {
   if (type.rfind("IfcWall", 0) == 0 || type == "IfcCurtainWall" || type == "IfcColumn") return Role::Wall;
   if (type == "IfcDoor") return Role::Door;
   if (type == "IfcWindow") return Role::Window;
-  // The storeys' floors and ceilings stand for these; an opening element has no surface.
-  if (type == "IfcSlab" || type == "IfcCovering" || type == "IfcOpeningElement" || type == "IfcFooting" ||
-      type == "IfcAnnotation" || type == "IfcGrid")
+  // Floors and ceilings: the rooms' floor and ceiling materials where they lie at a storey's
+  // floor or ceiling, else objects (make_surfaces).
+  if (type == "IfcSlab" || type == "IfcCovering") return Role::Surface;
+  // An opening element has no surface; footings lie under the lowest floor.
+  if (type == "IfcOpeningElement" || type == "IfcFooting" || type == "IfcAnnotation" || type == "IfcGrid")
     return Role::Skip;
   return Role::Object;  // furniture, stairs, railings, roofs, beams, members, fittings, proxies
 }
@@ -70,6 +81,7 @@ struct Element {
   std::array<double, 3> colour{0.8, 0.8, 0.8};
   bool coloured = false;
   Box3 box;
+  bool as_object = false;  ///< a wall or surface drawn as an object (it stands on no floor, lies on none)
   std::string label() const { return type + " '" + (name.empty() ? guid : name) + "'"; }
 };
 
@@ -134,6 +146,12 @@ std::vector<Vec2> footprint_points(const Element& e) {
   return p;
 }
 
+/// Whether p lies in triangle abc (either orientation), its sides included.
+bool in_triangle(Vec2 p, Vec2 a, Vec2 b, Vec2 c) {
+  const double d1 = cross(b - a, p - a), d2 = cross(c - b, p - b), d3 = cross(a - c, p - c);
+  return (d1 >= 0 && d2 >= 0 && d3 >= 0) || (d1 <= 0 && d2 <= 0 && d3 <= 0);
+}
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v.empty() ? 0 : v[v.size() / 2];
@@ -172,6 +190,175 @@ double ray_to_rect(const Rect& r, Vec2 p, Vec2 d) {
   return t0;
 }
 
+/// The closed loops where the plane z = zc cuts a mesh whose triangles are counter-clockwise
+/// seen from outside: counter-clockwise around the solid (holes clockwise). Each cut edge's
+/// point is computed from its ends in one order, so that the two triangles sharing an edge
+/// give the very same point; pieces of a mesh that is not closed, which close no loop,
+/// are left out.
+std::vector<std::vector<Vec2>> section_at(const std::vector<Vec3>& v, const std::vector<std::array<int, 3>>& tris,
+                                          double zc) {
+  auto cut = [&](Vec3 a, Vec3 b) {
+    if (std::tie(b.x, b.y, b.z) < std::tie(a.x, a.y, a.z)) std::swap(a, b);
+    const double t = (zc - a.z) / (b.z - a.z);
+    return Vec2{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)};
+  };
+  using Key = std::pair<long long, long long>;
+  auto key = [](Vec2 p) { return Key{std::llround(p.x * 1e6), std::llround(p.y * 1e6)}; };  // micrometres
+  std::vector<std::pair<Vec2, Vec2>> segments;
+  for (const auto& t : tris) {
+    const Vec3 p[3] = {v[size_t(t[0])], v[size_t(t[1])], v[size_t(t[2])]};
+    std::vector<Vec2> hits;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 a = p[k], b = p[(k + 1) % 3];
+      if ((a.z >= zc) != (b.z >= zc)) hits.push_back(cut(a, b));
+    }
+    if (hits.size() != 2) continue;
+    const Vec3 n = cross(p[1] - p[0], p[2] - p[0]);
+    const Vec2 along{-n.y, n.x};  // the solid lies left of the section's direction
+    if (dot(hits[1] - hits[0], along) < 0) std::swap(hits[0], hits[1]);
+    if (key(hits[0]) != key(hits[1])) segments.push_back({hits[0], hits[1]});
+  }
+  std::multimap<Key, size_t> from;
+  for (size_t i = 0; i < segments.size(); ++i) from.emplace(key(segments[i].first), i);
+  std::vector<bool> used(segments.size(), false);
+  std::vector<std::vector<Vec2>> loops;
+  for (size_t s0 = 0; s0 < segments.size(); ++s0) {
+    if (used[s0]) continue;
+    std::vector<Vec2> loop;
+    std::vector<size_t> taken;
+    size_t s = s0;
+    bool closed = false;
+    while (taken.size() <= segments.size()) {
+      used[s] = true;
+      taken.push_back(s);
+      loop.push_back(segments[s].first);
+      const Key end = key(segments[s].second);
+      if (end == key(segments[s0].first)) {
+        closed = true;
+        break;
+      }
+      auto [b, e] = from.equal_range(end);
+      auto next = std::find_if(b, e, [&](const auto& kv) { return !used[kv.second]; });
+      if (next == e) break;
+      s = next->second;
+    }
+    if (closed && loop.size() >= 3) loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+/// The loop without its straight-through vertices and its edges shorter than `tol`.
+std::vector<Vec2> simplified(std::vector<Vec2> p, double tol) {
+  for (bool changed = true; changed && p.size() > 3;) {
+    changed = false;
+    for (size_t i = 0; i < p.size() && p.size() > 3; ++i) {
+      const Vec2 a = p[(i + p.size() - 1) % p.size()], b = p[i], c = p[(i + 1) % p.size()];
+      const double ac = length(c - a);
+      if (length(b - a) < tol || (ac > 0 && std::fabs(cross(c - a, b - a)) / ac < tol)) {
+        p.erase(p.begin() + std::ptrdiff_t(i));
+        changed = true;
+      }
+    }
+  }
+  return p;
+}
+
+/// A simple counter-clockwise polygon as convex pieces: ear clipping, then Hertel and
+/// Mehlhorn's merge of neighbouring pieces across every diagonal whose removal leaves
+/// a convex piece. Empty when no ear is found (a polygon that is not simple).
+std::vector<std::vector<Vec2>> convex_pieces(const std::vector<Vec2>& poly) {
+  std::vector<std::vector<int>> pieces;
+  std::vector<int> left(poly.size());
+  for (size_t i = 0; i < poly.size(); ++i) left[i] = int(i);
+  while (left.size() > 3) {
+    bool clipped = false;
+    for (size_t i = 0; i < left.size() && !clipped; ++i) {
+      const int a = left[(i + left.size() - 1) % left.size()], b = left[i], c = left[(i + 1) % left.size()];
+      const Vec2 pa = poly[size_t(a)], pb = poly[size_t(b)], pc = poly[size_t(c)];
+      if (cross(pb - pa, pc - pb) <= 0) continue;  // a reflex corner is no ear
+      bool empty = true;
+      for (int q : left)
+        if (q != a && q != b && q != c && in_triangle(poly[size_t(q)], pa, pb, pc)) empty = false;
+      if (!empty) continue;
+      pieces.push_back({a, b, c});
+      left.erase(left.begin() + std::ptrdiff_t(i));
+      clipped = true;
+    }
+    if (!clipped) return {};
+  }
+  pieces.push_back(left);
+  auto as_points = [&](const std::vector<int>& ids) {
+    std::vector<Vec2> out;
+    for (int id : ids) out.push_back(poly[size_t(id)]);
+    return out;
+  };
+  for (bool merged = true; merged;) {
+    merged = false;
+    for (size_t i = 0; i < pieces.size() && !merged; ++i)
+      for (size_t j = i + 1; j < pieces.size() && !merged; ++j) {
+        const std::vector<int>&P = pieces[i], &Q = pieces[j];
+        for (size_t k = 0; k < P.size() && !merged; ++k) {
+          const int a = P[k], b = P[(k + 1) % P.size()];
+          const auto m = std::find(Q.begin(), Q.end(), b);
+          if (m == Q.end() || Q[size_t(m - Q.begin() + 1) % Q.size()] != a) continue;
+          // P from b round to a, then Q after a up to before b.
+          std::vector<int> R;
+          for (size_t t = 1; t <= P.size(); ++t) R.push_back(P[(k + t) % P.size()]);
+          const size_t mq = size_t(m - Q.begin());
+          for (size_t t = 2; t < Q.size(); ++t) R.push_back(Q[(mq + t) % Q.size()]);
+          if (!is_convex_ccw(as_points(R))) continue;
+          pieces[i] = std::move(R);
+          pieces.erase(pieces.begin() + std::ptrdiff_t(j));
+          merged = true;
+        }
+      }
+  }
+  std::vector<std::vector<Vec2>> out;
+  for (const auto& ids : pieces) out.push_back(as_points(ids));
+  return out;
+}
+
+/// One straight piece a wall stands on: its rectangle, and its own footprint when that is
+/// not the rectangle.
+struct WallPiece {
+  Rect rect;
+  std::vector<Vec2> footprint;  ///< convex, counter-clockwise; empty: the rectangle
+};
+
+/// What a wall stands on. Its section is taken at five heights and the fullest kept (above
+/// the doors and windows, below a gable's slope): a section that fills its rectangle is a
+/// straight wall on that rectangle; any other (an L, a curve, a wall cut on the skew) is its
+/// section's convex pieces, each with its own footprint. A mesh whose section does not close
+/// keeps the rectangle when its points fill most of it; else there are no pieces.
+std::vector<WallPiece> wall_pieces(const Element& e, const Rect& rect) {
+  std::vector<std::vector<Vec2>> best;
+  double best_area = 0;
+  for (double f : {0.92, 0.75, 0.5, 0.25, 0.08}) {
+    std::vector<std::vector<Vec2>> loops = section_at(e.vertices, e.triangles, e.box.lo.z + f * (e.box.hi.z - e.box.lo.z));
+    double area = 0;
+    for (const auto& l : loops) area += std::max(0.0, signed_area(l));
+    if (area > best_area) best_area = area, best = std::move(loops);
+  }
+  const double rect_area = rect.length * rect.width;
+  if (best.empty() || best_area >= 0.95 * rect_area) {
+    if (best.empty() && rect.fill < kMinFill) return {};
+    return {WallPiece{rect, {}}};
+  }
+  std::vector<WallPiece> out;
+  for (const auto& loop : best) {
+    if (signed_area(loop) <= 0) continue;  // a hole in the section: left filled
+    const std::vector<Vec2> simple = simplified(loop, 1e-3);
+    const std::vector<std::vector<Vec2>> convex = convex_pieces(simple);
+    if (convex.empty()) return {};
+    for (const auto& c : convex) {
+      const std::optional<Rect> r = min_area_rect(c);
+      if (!r || r->length < 1e-3 || r->width < 1e-3) continue;
+      out.push_back({*r, c});
+    }
+  }
+  return out;
+}
+
 class Builder {
  public:
   explicit Builder(const std::string& path) : path_(path) {}
@@ -179,7 +366,8 @@ class Builder {
   double import_seconds = 0;  ///< [s] Assimp's ReadFile
 
   Plan build() {
-    check_step_file();
+    read_step_file();
+    read_in_child_first();
     ImportOptions options;
     options.ifc_spaces = true;
     ImportedScene scene;
@@ -197,6 +385,7 @@ class Builder {
     make_walls();
     make_openings();
     make_rooms();
+    make_surfaces();
     make_objects();
     make_view();
     if (plan_.walls.empty())
@@ -209,8 +398,9 @@ class Builder {
 
  private:
   /// A STEP physical file starts "ISO-10303-21;" and ends "END-ISO-10303-21;": a file cut
-  /// short is an error rather than a building with its last storeys missing.
-  void check_step_file() {
+  /// short is an error rather than a building with its last storeys missing. The spaces'
+  /// LongNames, which Assimp does not keep, are read from its text here.
+  void read_step_file() {
     std::ifstream in(path_, std::ios::binary);
     if (!in) throw PlanError({path_, 0, 0, ""}, "cannot open the file");
     std::string head(64, '\0');
@@ -227,6 +417,55 @@ class Builder {
     in.read(tail.data(), tail_size);
     if (tail.find("END-ISO-10303-21") == std::string::npos)
       throw PlanError({path_, 0, 0, ""}, "the file is cut short: it does not end with 'END-ISO-10303-21;'");
+    std::string text(size_t(size), '\0');
+    in.seekg(0);
+    in.read(text.data(), size);
+    text.resize(size_t(in.gcount()));
+    // Assimp's STEP reader crashes on a dangling reference: refuse such a file first.
+    if (const std::optional<StepProblem> p = step_data_problem(text)) {
+      const int line = 1 + int(std::count(text.begin(), text.begin() + std::ptrdiff_t(p->offset), '\n'));
+      throw PlanError({path_, line, 0, ""}, "not a well-formed STEP file: " + p->what);
+    }
+    names_ = ifc_root_names(text);
+  }
+
+  /// Assimp 5.2's STEP reader crashes on some malformed files the STEP check lets through
+  /// (a record of an entity type it does not know, referenced where it expects a known
+  /// one). So the model is read once in a child process first: a child that dies is an
+  /// error naming the file, not the end of Avenues. A child that only failed (Assimp's own
+  /// error) leaves the reading below to say why. Costs one more import.
+  void read_in_child_first() const {
+    std::fflush(nullptr);
+    const pid_t pid = ::fork();
+    if (pid < 0) return;  // no process to spare: read in this one, as before
+    if (pid == 0) {
+      // A crash ends the child by its signal, whatever handlers the parent set (a
+      // sanitizer's, a fuzzer's): the parent reports it.
+      for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) std::signal(sig, SIG_DFL);
+      int code = kChildRead;
+      try {
+        ImportOptions options;
+        options.ifc_spaces = true;
+        (void)import_scene(path_, options);
+      } catch (...) {
+        code = kChildFailed;
+      }
+      ::_exit(code);
+    }
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0)
+      if (errno != EINTR) return;
+    if (WIFEXITED(status) && (WEXITSTATUS(status) == kChildRead || WEXITSTATUS(status) == kChildFailed)) return;
+    const std::string how = WIFSIGNALED(status) ? "signal " + std::to_string(WTERMSIG(status))
+                                                : "exit status " + std::to_string(WEXITSTATUS(status));
+    throw PlanError({path_, 0, 0, ""}, "Assimp cannot read this IFC model: its reader crashed (" + how +
+                                           ") on it, a malformed or unsupported file");
+  }
+
+  /// The element's Name as the file writes it (with its spaces), else as Assimp's node has it.
+  std::string name_of(const std::string& node, const std::string& type) const {
+    const auto it = names_.find(ifc_guid(node));
+    return it != names_.end() && !it->second.name.empty() ? it->second.name : ifc_name(node, type);
   }
 
   void drop(const Element& e, const std::string& why) {
@@ -249,7 +488,7 @@ class Builder {
       const bool inside_part = parent_owner >= 0 && elements_[size_t(parent_owner)].role != Role::Space;
       if (role == Role::Storey) {
         storey_of[i] = int(storey_names_.size());
-        std::string name = ifc_name(n.name, type);
+        std::string name = name_of(n.name, type);
         storey_names_.push_back(name.empty() ? "storey " + std::to_string(storey_names_.size() + 1) : name);
       }
       if (inside_part || (role == Role::None && parent_owner >= 0)) {
@@ -257,7 +496,7 @@ class Builder {
       } else if (role != Role::None && role != Role::Container && role != Role::Storey) {
         owner[i] = int(elements_.size());
         Element e;
-        e.type = type, e.role = role, e.name = ifc_name(n.name, type), e.guid = ifc_guid(n.name);
+        e.type = type, e.role = role, e.name = name_of(n.name, type), e.guid = ifc_guid(n.name);
         e.storey = storey_of[i];
         elements_.push_back(std::move(e));
       }
@@ -363,10 +602,13 @@ class Builder {
   }
 
   /// Walls and columns: the rectangle around the footprint, on each storey whose band it
-  /// spans at least half of (or 1 m of).
+  /// spans at least half of (or 1 m of), and on the storey whose floor it stands on however
+  /// low it is (a parapet, a half wall). One that stands on no storey's floor (a bulkhead
+  /// hanging from a ceiling, a wall over a window band) is an object: drawn, opaque, not
+  /// cut out of the free space.
   void make_walls() {
     for (size_t i = 0; i < elements_.size(); ++i) {
-      const Element& e = elements_[i];
+      Element& e = elements_[i];
       if (e.role != Role::Wall) continue;
       if (e.triangles.empty()) {
         drop(e, "no geometry");
@@ -374,35 +616,45 @@ class Builder {
       }
       const std::optional<Rect> r = min_area_rect(convex_hull(footprint_points(e)));
       if (!r || r->length < kMinWall || r->width <= 1e-4) {
-        drop(e, "its footprint is not an area");
+        e.as_object = true;  // a flat or tiny piece: drawn, nothing to walk around
         continue;
       }
-      if (r->fill < kMinFill) {
-        drop(e, "its footprint is not a straight wall (it fills " + format_number("%.0f", 100 * r->fill) +
-                    "% of its rectangle)");
+      const std::vector<WallPiece> pieces = wall_pieces(e, *r);
+      if (pieces.empty()) {
+        plan_.warnings.push_back(e.label() + " drawn as an object: its footprint (" +
+                                 format_number("%.0f", 100 * r->fill) +
+                                 "% of its rectangle) is not a straight wall and its section does not close");
+        e.as_object = true;
         continue;
       }
-      const WallShape shape{i, *r, e.box.lo.z, e.box.hi.z};
       bool placed = false;
       for (size_t s = 0; s < plan_.storeys.size(); ++s) {
         const Storey& st = plan_.storeys[s];
-        const double lo = std::max(shape.z0, st.elevation), hi = std::min(shape.z1, st.elevation + st.height);
-        if (hi - lo < std::min(1.0, 0.5 * st.height)) continue;
-        Wall w;
-        w.name = e.name.empty() ? e.guid : e.name;
-        w.storey = StoreyId(s);
-        w.thickness = r->width;
-        const Vec2 half = (r->length / 2) * r->along;
-        w.centre = {r->centre - half, r->centre + half};
-        w.from_arc = {false};
-        w.height = shape.z1 >= st.elevation + st.height - 0.05 ? -1 : shape.z1 - st.elevation;
-        w.material = material_of(e);
-        w.where = {path_, 0, 0, e.label()};
-        wall_shape_.push_back(shape);
-        plan_.walls.push_back(std::move(w));
+        const double z0 = e.box.lo.z, z1 = e.box.hi.z;
+        const double lo = std::max(z0, st.elevation), hi = std::min(z1, st.elevation + st.height);
+        const bool spans = hi - lo >= std::min(1.0, 0.5 * st.height);
+        const bool stands = std::fabs(z0 - st.elevation) <= kOnFloor && hi - lo >= kMinWall;
+        if (!spans && !stands) continue;
+        for (size_t k = 0; k < pieces.size(); ++k) {
+          const WallPiece& piece = pieces[k];
+          Wall w;
+          w.name = e.name.empty() ? e.guid : e.name;
+          if (pieces.size() > 1) w.name += " (" + std::to_string(k + 1) + "/" + std::to_string(pieces.size()) + ")";
+          w.storey = StoreyId(s);
+          w.thickness = piece.rect.width;
+          const Vec2 half = (piece.rect.length / 2) * piece.rect.along;
+          w.centre = {piece.rect.centre - half, piece.rect.centre + half};
+          w.from_arc = {false};
+          w.footprint = piece.footprint;
+          w.height = z1 >= st.elevation + st.height - 0.05 ? -1 : z1 - st.elevation;
+          w.material = material_of(e);
+          w.where = {path_, 0, 0, e.label()};
+          wall_shape_.push_back({i, piece.rect, z0, z1});
+          plan_.walls.push_back(std::move(w));
+        }
         placed = true;
       }
-      if (!placed) drop(e, "it stands in no storey's height");
+      if (!placed) e.as_object = true;
     }
   }
 
@@ -515,7 +767,11 @@ class Builder {
         continue;
       }
       Room room;
-      room.name = e.name.empty() ? e.guid : e.name;
+      // Its LongName ("Foyer") where the model gives one, else its Name ("A101").
+      const auto named = names_.find(e.guid);
+      room.name = named != names_.end() && !named->second.long_name.empty() ? named->second.long_name
+                  : e.name.empty()                                          ? e.guid
+                                                                            : e.name;
       const int copies = seen[{s, room.name}]++;
       if (copies > 0) room.name += " (" + std::to_string(copies + 1) + ")";
       room.storey = s;
@@ -526,10 +782,54 @@ class Builder {
     }
   }
 
+  /// Slabs and coverings: each room's floor takes the colour of the highest surface facing
+  /// up under its label at its storey's floor (a finish floor over the structural slab),
+  /// its ceiling that of the lowest facing down over it at its ceiling (a suspended
+  /// ceiling under the slab above). A slab or covering that is no room's floor or ceiling
+  /// (a roof slab, a landing, a terrace outside the walls) is an object.
+  void make_surfaces() {
+    struct Best {
+      double z;
+      size_t element;
+    };
+    std::vector<std::optional<Best>> floor(plan_.rooms.size()), ceiling(plan_.rooms.size());
+    for (size_t i = 0; i < elements_.size(); ++i) {
+      const Element& e = elements_[i];
+      if (e.role != Role::Surface || e.triangles.empty()) continue;
+      for (const auto& t : e.triangles) {
+        const Vec3 p = e.vertices[size_t(t[0])], q = e.vertices[size_t(t[1])], r = e.vertices[size_t(t[2])];
+        const Vec3 n = cross(q - p, r - p);
+        const double a = length(n);
+        if (a < 1e-9 || std::fabs(n.z) < 0.9 * a) continue;  // not flat
+        const bool up = n.z > 0;
+        const double z = (p.z + q.z + r.z) / 3;
+        const Vec2 p2{p.x, p.y}, q2{q.x, q.y}, r2{r.x, r.y};
+        for (size_t k = 0; k < plan_.rooms.size(); ++k) {
+          const Room& room = plan_.rooms[k];
+          const Storey& st = plan_.storeys[size_t(room.storey)];
+          if (up ? std::fabs(z - st.elevation) > kOnFloor
+                 : z < st.elevation + 0.5 * st.height || z > st.elevation + st.height + st.slab + kOnFloor)
+            continue;
+          if (!in_triangle(*room.label, p2, q2, r2)) continue;
+          std::optional<Best>& best = up ? floor[k] : ceiling[k];
+          if (!best || (up ? z > best->z : z < best->z)) best = Best{z, i};
+        }
+      }
+    }
+    std::vector<bool> used(elements_.size(), false);
+    for (size_t k = 0; k < plan_.rooms.size(); ++k) {
+      if (floor[k]) plan_.rooms[k].floor = material_of(elements_[floor[k]->element]), used[floor[k]->element] = true;
+      if (ceiling[k])
+        plan_.rooms[k].ceiling = material_of(elements_[ceiling[k]->element]), used[ceiling[k]->element] = true;
+    }
+    for (size_t i = 0; i < elements_.size(); ++i)
+      if (elements_[i].role == Role::Surface && !used[i]) elements_[i].as_object = true;
+  }
+
   /// Everything else with a surface: an object with its own mesh, standing on its storey.
   void make_objects() {
     for (const Element& e : elements_) {
-      if (e.role != Role::Object || e.triangles.empty()) continue;
+      if ((e.role != Role::Object && !e.as_object) || e.triangles.empty()) continue;
       const int s = storey_at(e.box.lo.z + 0.01);
       const double floor = plan_.storeys[size_t(s)].elevation;
       std::vector<Vec3> v = e.vertices;
@@ -601,6 +901,7 @@ class Builder {
   std::vector<WallShape> wall_shape_;      ///< per Plan wall
   std::vector<double> room_area_;          ///< per Plan room [m²]
   std::vector<std::string> dropped_;
+  std::map<std::string, IfcRootNames> names_;  ///< GlobalId -> the file's own names (spaces kept)
   std::map<std::array<int, 3>, MaterialId> materials_;
 };
 

@@ -7,13 +7,16 @@
 // - each IfcBuildingStorey is a storey, its elevation the floor its spaces (else its
 //   walls) stand on, its height up to the next storey's floor less the slab between;
 // - walls, curtain walls and columns are walls: the centre line and thickness of the
-//   smallest rectangle around their footprint, on every storey their height spans;
+//   smallest rectangle around their footprint where their section fills it, else the
+//   convex pieces of their section (Wall::footprint), on every storey their height spans
+//   or whose floor they stand on; one that stands on no floor (a bulkhead) is an object;
 // - IfcDoor and IfcWindow are door and window openings in the wall they stand in, as wide
 //   as they reach along it, from their lowest to their highest point;
-// - IfcSpace is a room, named as the file names it, labelled at a point of its floor;
+// - IfcSpace is a room, named by its LongName (else its Name) as the STEP file writes it
+//   (plans/formats/ifc_step.h), labelled at a point of its floor;
 // - furniture, stairs, railings, roofs, members and fittings are objects (their meshes, in
-//   their IFC colours) drawn but not cut out of the free space; slabs and coverings are
-//   the storeys' floors and ceilings.
+//   their IFC colours) drawn but not cut out of the free space; slabs and coverings give
+//   the rooms over and under them their floor and ceiling colours, else are objects.
 // Elements whose geometry cannot be used are dropped with one warning each.
 #pragma once
 
@@ -29,8 +32,10 @@ namespace avenues {
 /// lenient Plan, its first view at eye height in the largest named space of the entrance
 /// storey (the storey with spaces whose floor is nearest the ground, z = 0), looking along
 /// its longest free direction. Throws PlanError naming the file for a file that is not a
-/// STEP file or is cut short, with Assimp's reason (naming the entity) for what it cannot
-/// read, and for a model with no walls or columns to walk between. When `stages` is given,
+/// STEP file, is cut short or has a broken record or dangling reference (naming the line),
+/// with Assimp's reason (naming the entity) for what it cannot read or that its reader
+/// crashed (it reads the model in a child process first), and for a model with no walls
+/// or columns to walk between. When `stages` is given,
 /// the time of Assimp's own import ("assimp import") and of the slicing after it ("IFC to
 /// plan") are appended to it.
 Plan read_ifc_building(const std::string& path, std::vector<StageTime>* stages = nullptr);
