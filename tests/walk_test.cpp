@@ -171,6 +171,21 @@ class WalkWindow : public ::testing::Test {
     return avenues::read_image(path(name).string());
   }
 
+  /// Walks PLAN forward for `frames` frames from `eye` looking at `look` (through a door):
+  /// the screenshot before is in room `from`, the one after in room `to`.
+  void walk_through_door(const std::string& plan_file, const std::string& eye, const std::string& look,
+                         const std::string& from, const std::string& to, int frames) {
+    const std::string f = std::to_string(frames), g = std::to_string(frames + 1);
+    write("door.txt", "0 screenshot before.png\n0 down W\n" + f + " up W\n" + g + " screenshot after.png\n" + g + " quit\n");
+    const Outcome r = run("walk " + quote(plan_file) + " --eye " + eye + " --look " + look +
+                          " --size 320x180 --no-hud --script door.txt --stats-json s.json");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const json s = read_json("s.json");
+    ASSERT_EQ(s["screenshots"].size(), 2u);
+    EXPECT_EQ(s["screenshots"][0]["room"], from);
+    EXPECT_EQ(s["screenshots"][1]["room"], to) << "walked from '" << from << "' through the door";
+  }
+
   fs::path dir_;
   std::unique_ptr<VirtualDisplay> x_;
 };
@@ -282,21 +297,13 @@ TEST_F(WalkWindow, DuplexWalkGoesThroughADoorFromOneSpaceIntoAnother) {
   }
   ASSERT_FALSE(from.empty()) << "no door between two named spaces: " << doors << " doors, " << located
                               << " with free space on both sides";
-  write("door.txt", "0 screenshot before.png\n0 down W\n90 up W\n91 screenshot after.png\n91 quit\n");
-  const Outcome r = run("walk " + quote(model) + " --eye " + eye + " --look " + look +
-                        " --size 320x180 --no-hud --script door.txt --stats-json s.json");
-  ASSERT_EQ(r.status, 0) << r.err;
-  const json s = read_json("s.json");
-  ASSERT_EQ(s["screenshots"].size(), 2u);
-  EXPECT_EQ(s["screenshots"][0]["room"], from);
-  EXPECT_EQ(s["screenshots"][1]["room"], to) << "walked from '" << from << "' through the door";
+  walk_through_door(model, eye, look, from, to, 90);
 }
 
 // A DXF drawing walked for real: in the house plan, from one room through a door its
 // swing closed (a sheet of no thickness with the door cut in it) into the next.
 TEST_F(WalkWindow, DxfHousePlanWalkGoesThroughADoorFromOneRoomIntoAnother) {
-  const std::string drawing = std::string(AVENUES_SOURCE_DIR) + "/../shared/outside/dxf/anandkothartrdl-plan.dxf";
-  if (!fs::exists(drawing)) GTEST_SKIP() << "no " << drawing;
+  const std::string drawing = avenues::testing::outside_path("dxf/anandkothartrdl-plan.dxf");
   NEED_DISPLAY();
   const avenues::DxfPlan d = avenues::read_dxf_plan(drawing);
   const avenues::CellComplex c = avenues::build_cells(d.plan);
@@ -320,14 +327,7 @@ TEST_F(WalkWindow, DxfHousePlanWalkGoesThroughADoorFromOneRoomIntoAnother) {
     }
   }
   ASSERT_FALSE(from.empty()) << "no door between two rooms in " << drawing;
-  write("door.txt", "0 screenshot before.png\n0 down W\n60 up W\n61 screenshot after.png\n61 quit\n");
-  const Outcome r = run("walk " + quote(drawing) + " --eye " + eye + " --look " + look +
-                        " --size 320x180 --no-hud --script door.txt --stats-json s.json");
-  ASSERT_EQ(r.status, 0) << r.err;
-  const json s = read_json("s.json");
-  ASSERT_EQ(s["screenshots"].size(), 2u);
-  EXPECT_EQ(s["screenshots"][0]["room"], from);
-  EXPECT_EQ(s["screenshots"][1]["room"], to) << "walked from '" << from << "' through the door";
+  walk_through_door(drawing, eye, look, from, to, 60);
 }
 
 TEST_F(WalkWindow, StereoSideBySideAndAnaglyphMatchTheOfflineStereoPictures) {
