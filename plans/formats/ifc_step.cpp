@@ -63,6 +63,14 @@ size_t skip_comment(std::string_view s, size_t i) {
   return end == std::string_view::npos ? s.size() : end + 2;
 }
 
+/// Past the string or comment that starts at s[i], if one does; else i. The record
+/// scanners below step over both as units: a ';' or '#' inside them is text.
+size_t skip_string_or_comment(std::string_view s, size_t i) {
+  if (s[i] == '\'') return skip_string(s, i);
+  if (s[i] == '/' && i + 1 < s.size() && s[i + 1] == '*') return skip_comment(s, i);
+  return i;
+}
+
 /// Past white space and comments.
 void skip_space(std::string_view s, size_t& i) {
   for (;;) {
@@ -209,15 +217,11 @@ std::optional<StepProblem> step_data_problem(std::string_view text) {
   bool in_data = false, saw_data = false;
   size_t start = 0, record_refs = 0;  // record_refs: references before this record
   for (size_t i = 0; i < text.size();) {
+    if (const size_t past = skip_string_or_comment(text, i); past != i) {
+      i = past;
+      continue;
+    }
     const char c = text[i];
-    if (c == '\'') {
-      i = skip_string(text, i);
-      continue;
-    }
-    if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
-      i = skip_comment(text, i);
-      continue;
-    }
     if (c == '#') {  // a reference (the record's own id is taken off below)
       const size_t at = i++;
       if (const auto n = number_at(i)) referenced.push_back({*n, at});
@@ -286,15 +290,11 @@ std::map<std::string, IfcRootNames> ifc_root_names(std::string_view text) {
   // Records end at a ';' outside strings and comments.
   size_t start = 0;
   for (size_t i = 0; i < text.size();) {
+    if (const size_t past = skip_string_or_comment(text, i); past != i) {
+      i = past;
+      continue;
+    }
     const char c = text[i];
-    if (c == '\'') {
-      i = skip_string(text, i);
-      continue;
-    }
-    if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
-      i = skip_comment(text, i);
-      continue;
-    }
     if (c != ';') {
       ++i;
       continue;
