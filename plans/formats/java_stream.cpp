@@ -142,6 +142,18 @@ class Reader {
     s_.objects.push_back(std::move(o));
     return uint32_t(s_.objects.size() - 1);
   }
+  /// A TC_CLASS or TC_ENUM object: its class descriptor (required, else `missing`), then a
+  /// handle of its own.
+  uint32_t described_object(Object::Kind kind, size_t at, int depth, const char* missing) {
+    Object o;
+    o.kind = kind;
+    o.offset = at;
+    o.cls = class_desc(depth);
+    if (o.cls < 0) fail(at, missing);
+    const uint32_t i = add_object(std::move(o));
+    new_handle(false, i);
+    return i;
+  }
   static Value ref(uint32_t i) {
     Value v;
     v.kind = Value::Kind::Object;
@@ -316,24 +328,10 @@ class Reader {
         pos_ += size_t(n);
         return ref(add_object(std::move(o)));
       }
-      case TC_CLASS: {
-        Object o;
-        o.kind = Object::Kind::Class;
-        o.offset = at;
-        o.cls = class_desc(depth);
-        if (o.cls < 0) fail(at, "a class object without a class descriptor");
-        const uint32_t i = add_object(std::move(o));
-        new_handle(false, i);
-        return ref(i);
-      }
+      case TC_CLASS:
+        return ref(described_object(Object::Kind::Class, at, depth, "a class object without a class descriptor"));
       case TC_ENUM: {
-        Object o;
-        o.kind = Object::Kind::Enum;
-        o.offset = at;
-        o.cls = class_desc(depth);
-        if (o.cls < 0) fail(at, "an enum constant without a class descriptor");
-        const uint32_t i = add_object(std::move(o));
-        new_handle(false, i);
+        const uint32_t i = described_object(Object::Kind::Enum, at, depth, "an enum constant without a class descriptor");
         std::string name = string_at(depth);
         s_.objects[i].text = std::move(name);
         return ref(i);

@@ -133,9 +133,15 @@ class Mapper {
     return e;
   }
 
-  void level(size_t root, const Object& o) {
-    const size_t e = element(root, "level", o);
+  /// An element with the id given to its object ("level0", "wall3": what others refer to it by).
+  size_t identified_element(size_t parent, std::string kind, const Object& o) {
+    const size_t e = element(parent, std::move(kind), o);
     t_.elements[e].set("id", ids_.at(uint32_t(&o - s_.objects.data())));
+    return e;
+  }
+
+  void level(size_t root, const Object& o) {
+    const size_t e = identified_element(root, "level", o);
     text(e, "name", o, "name");
     number(e, "elevation", o, "elevation");
     number(e, "floorThickness", o, "floorThickness");
@@ -144,8 +150,7 @@ class Mapper {
   }
 
   void wall(size_t root, const Object& o) {
-    const size_t e = element(root, "wall", o);
-    t_.elements[e].set("id", ids_.at(uint32_t(&o - s_.objects.data())));
+    const size_t e = identified_element(root, "wall", o);
     reference(e, "level", o, "level");
     reference(e, "wallAtStart", o, "wallAtStart");
     reference(e, "wallAtEnd", o, "wallAtEnd");
