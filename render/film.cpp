@@ -18,8 +18,8 @@ extern "C" {
 namespace avenues {
 
 struct Film::Impl {
-  std::string path, temporary;  ///< the film, and where it is written until whole
-  std::unique_ptr<PendingTempFile> pending;  ///< the temporary file (removed unless committed, and on SIGINT/SIGTERM)
+  std::string path;  ///< the film
+  std::unique_ptr<PendingTempFile> pending;  ///< where it is written until whole (removed unless committed, and on SIGINT/SIGTERM)
   std::string codec;
   int in_width = 0, in_height = 0, width = 0, height = 0;
   long frames = 0;
@@ -94,14 +94,14 @@ Film::Film(const std::string& path, int width, int height, const FilmOptions& op
   } catch (const std::exception& e) {
     f.fail(e.what());
   }
-  f.temporary = f.pending->path();
+  const std::string& temporary = f.pending->path();
 
   const AVCodec* codec = avcodec_find_encoder_by_name("libx264");
   if (!codec) codec = avcodec_find_encoder(AV_CODEC_ID_MPEG4);
   if (!codec) f.fail("the FFmpeg libraries have neither an H.264 nor an MPEG-4 encoder");
   f.codec = avcodec_get_name(codec->id);
 
-  int rc = avformat_alloc_output_context2(&f.format, nullptr, "mp4", f.temporary.c_str());
+  int rc = avformat_alloc_output_context2(&f.format, nullptr, "mp4", temporary.c_str());
   if (rc < 0 || !f.format) f.fail("no MP4 muxer", rc);
   f.stream = avformat_new_stream(f.format, nullptr);
   f.encoder = avcodec_alloc_context3(codec);
@@ -136,8 +136,8 @@ Film::Film(const std::string& path, int width, int height, const FilmOptions& op
   rc = av_frame_get_buffer(f.frame, 0);
   if (rc < 0) f.fail("out of memory for a frame", rc);
 
-  rc = avio_open(&f.format->pb, f.temporary.c_str(), AVIO_FLAG_WRITE);
-  if (rc < 0) f.fail("cannot open " + f.temporary, rc);
+  rc = avio_open(&f.format->pb, temporary.c_str(), AVIO_FLAG_WRITE);
+  if (rc < 0) f.fail("cannot open " + temporary, rc);
   rc = avformat_write_header(f.format, nullptr);
   if (rc < 0) f.fail("cannot write the MP4 header", rc);
 }
@@ -177,7 +177,7 @@ void Film::finish() {
   int rc = av_write_trailer(f.format);
   if (rc < 0) f.fail("cannot finish the MP4", rc);
   rc = avio_closep(&f.format->pb);
-  if (rc < 0) f.fail("cannot close " + f.temporary, rc);
+  if (rc < 0) f.fail("cannot close " + f.pending->path(), rc);
   try {
     f.pending->commit();
   } catch (const std::exception& e) {
