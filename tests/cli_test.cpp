@@ -1,12 +1,9 @@
 // Avenues — the `avenues` executable, run as a person would run it.
 //
-// Each test runs the real binary (AVENUES_BINARY) in a fresh temporary directory and
-// checks its exit status, what it prints and the files it writes (or must not write).
-#include <sys/wait.h>
-#include <unistd.h>
-
+// Each test runs the real binary (AVENUES_BINARY, by its argument vector) in a fresh
+// temporary directory (tests/avenues_run.h) with no display, and checks its exit status,
+// what it prints and the files it writes (or must not write).
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -21,67 +18,20 @@
 
 #include "cells/build_cells.h"
 #include "plans/plan.h"
+#include "tests/avenues_run.h"
 #include "tests/test_files.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-using avenues::testing::quote;
+using avenues::testing::Outcome;
 using avenues::testing::slurp;
 
 namespace {
 
-const std::string kBinary = AVENUES_BINARY;
 const std::string kPlan = std::string(AVENUES_SOURCE_DIR) + "/plans/jones-house.toml";
 
-struct Outcome {
-  int status = -1;
-  std::string out, err;
-};
-
-class Cli : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("avenues-cli-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
-
-  /// Runs `avenues ARGS` with the temporary directory as working directory.
-  Outcome run(const std::string& args) {
-    const fs::path out = dir_ / ".stdout", err = dir_ / ".stderr";
-    // No display: the main job must take its file-writing path whatever the caller's session has.
-    std::string cmd = "cd " + quote(dir_.string()) + " && env -u DISPLAY -u WAYLAND_DISPLAY " + quote(kBinary) + " " +
-                      args + " >" +
-                      quote(out.string()) + " 2>" + quote(err.string()) + " </dev/null";
-    int rc = std::system(cmd.c_str());
-    Outcome r;
-    r.status = (rc != -1 && WIFEXITED(rc)) ? WEXITSTATUS(rc) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    fs::remove(out);
-    fs::remove(err);
-    return r;
-  }
-
-  fs::path path(const std::string& name) const { return dir_ / name; }
-  void write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name, std::ios::binary) << text;
-  }
-  /// Files in the temporary directory (hidden temporaries included).
-  std::set<std::string> files() const {
-    std::set<std::string> out;
-    for (const auto& e : fs::directory_iterator(dir_)) out.insert(e.path().filename().string());
-    return out;
-  }
-
-  fs::path dir_;
-};
+class Cli : public avenues::testing::AvenuesRun {};
 
 json parse_json(const Outcome& r) {
   try {
@@ -102,30 +52,32 @@ const char* kBrokenToml =
 }  // namespace
 
 TEST_F(Cli, HelpWorksForEverySubcommand) {
-  for (const std::string args : {"--help", "cells --help", "export --help", "generate --help",
-                                 "generate office --help", "view --help"}) {
+  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+           {"--help"}, {"cells", "--help"}, {"export", "--help"}, {"generate", "--help"},
+           {"generate", "office", "--help"}, {"view", "--help"}}) {
     Outcome r = run(args);
-    EXPECT_EQ(r.status, 0) << args << "\n" << r.err;
-    EXPECT_NE(r.out.find("Usage"), std::string::npos) << args << "\n" << r.out;
+    EXPECT_EQ(r.status, 0) << ::testing::PrintToString(args) << "\n" << r.err;
+    EXPECT_NE(r.out.find("Usage"), std::string::npos) << ::testing::PrintToString(args) << "\n" << r.out;
   }
-  Outcome r = run("--help");
+  Outcome r = run({"--help"});
   for (const char* sub : {"cells", "export", "generate", "view"})
     EXPECT_NE(r.out.find(sub), std::string::npos) << "--help does not mention " << sub;
 }
 
 TEST_F(Cli, BadCommandLinesExitWithStatus2) {
-  const std::vector<std::string> bad = {"--no-such-option", "cells", "cells --json", "export " + quote(kPlan),
-                                       "generate", "generate office -o x.toml", "frobnicate extra words"};
-  for (const std::string& args : bad) {
+  const std::vector<std::vector<std::string>> bad = {
+      {"--no-such-option"}, {"cells"}, {"cells", "--json"}, {"export", kPlan}, {"generate"},
+      {"generate", "office", "-o", "x.toml"}, {"frobnicate", "extra", "words"}};
+  for (const std::vector<std::string>& args : bad) {
     Outcome r = run(args);
-    EXPECT_EQ(r.status, 2) << args << "\n" << r.out << r.err;
-    EXPECT_FALSE(r.err.empty()) << args;
+    EXPECT_EQ(r.status, 2) << ::testing::PrintToString(args) << "\n" << r.out << r.err;
+    EXPECT_FALSE(r.err.empty()) << ::testing::PrintToString(args);
   }
   EXPECT_FALSE(fs::exists(path("x.toml")));
 }
 
 TEST_F(Cli, CellsJsonHasTheCounts) {
-  Outcome r = run("cells " + quote(kPlan) + " --json");
+  Outcome r = run({"cells", kPlan, "--json"});
   ASSERT_EQ(r.status, 0) << r.err;
   json j = parse_json(r);
   for (const char* key : {"cells", "portals", "rooms", "storeys", "seconds", "stages", "cells_by_kind",
@@ -148,7 +100,7 @@ TEST_F(Cli, CellsJsonHasTheCounts) {
 }
 
 TEST_F(Cli, CellsTextSummary) {
-  Outcome r = run("cells " + quote(kPlan));
+  Outcome r = run({"cells", kPlan});
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* word : {"storeys", "rooms", "cells", "portals", "opaque", "lines", "per room", "total"})
     EXPECT_NE(r.out.find(word), std::string::npos) << "summary lacks '" << word << "':\n" << r.out;
@@ -156,16 +108,16 @@ TEST_F(Cli, CellsTextSummary) {
 
 TEST_F(Cli, MalformedPlanNamesFileAndLineAndWritesNothing) {
   write("bad.toml", kBrokenToml);
-  Outcome r = run("cells bad.toml --svg out.svg --save out.cells");
+  Outcome r = run({"cells", "bad.toml", "--svg", "out.svg", "--save", "out.cells"});
   EXPECT_EQ(r.status, 2) << r.out << r.err;
   EXPECT_EQ(r.err.rfind("avenues: ", 0), 0u) << r.err;
   EXPECT_NE(r.err.find("bad.toml:3"), std::string::npos) << "message should name file and line:\n" << r.err;
 
-  r = run("export bad.toml -o out.obj");
+  r = run({"export", "bad.toml", "-o", "out.obj"});
   EXPECT_EQ(r.status, 2) << r.out << r.err;
   EXPECT_NE(r.err.find("bad.toml:3"), std::string::npos) << r.err;
 
-  r = run("bad.toml");  // the main job
+  r = run({"bad.toml"});  // the main job
   EXPECT_EQ(r.status, 2) << r.out << r.err;
   EXPECT_NE(r.err.find("bad.toml:3"), std::string::npos) << r.err;
 
@@ -190,33 +142,33 @@ TEST_F(Cli, PlanMistakeFoundByTheDecomposerNamesTheElement) {
         "[[room]]\n"
         "name = \"hall\"\n"
         "at = [2, 2]\n");
-  Outcome r = run("cells leaky.toml --svg out.svg --save out.cells");
+  Outcome r = run({"cells", "leaky.toml", "--svg", "out.svg", "--save", "out.cells"});
   EXPECT_EQ(r.status, 2) << r.out << r.err;
   EXPECT_NE(r.err.find("leaky.toml:12"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("hall"), std::string::npos) << r.err;
-  r = run("export leaky.toml -o out.obj");
+  r = run({"export", "leaky.toml", "-o", "out.obj"});
   EXPECT_EQ(r.status, 2) << r.out << r.err;
   EXPECT_EQ(files(), std::set<std::string>{"leaky.toml"});
 }
 
 TEST_F(Cli, MissingPlanFileIsNamed) {
-  Outcome r = run("cells no-such-plan.toml");
+  Outcome r = run({"cells", "no-such-plan.toml"});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("no-such-plan.toml"), std::string::npos) << r.err;
 }
 
 TEST_F(Cli, OutputThatCannotBeWrittenIsAnError) {
-  Outcome r = run("export " + quote(kPlan) + " -o no-such-dir/out.obj");
+  Outcome r = run({"export", kPlan, "-o", "no-such-dir/out.obj"});
   EXPECT_EQ(r.status, 2) << r.out << r.err;
   EXPECT_NE(r.err.find("no-such-dir/out.obj"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(path("no-such-dir")));
 }
 
 TEST_F(Cli, GeneratedOfficeIsAcceptedByCells) {
-  Outcome r = run("generate office --rooms 3x4 -o office.toml");
+  Outcome r = run({"generate", "office", "--rooms", "3x4", "-o", "office.toml"});
   ASSERT_EQ(r.status, 0) << r.err;
   ASSERT_TRUE(fs::exists(path("office.toml")));
-  r = run("cells office.toml --json");
+  r = run({"cells", "office.toml", "--json"});
   ASSERT_EQ(r.status, 0) << r.err;
   json j = parse_json(r);
   EXPECT_GE(j.value("rooms", 0), 12);
@@ -225,7 +177,7 @@ TEST_F(Cli, GeneratedOfficeIsAcceptedByCells) {
 
 TEST_F(Cli, GenerateRejectsBadRooms) {
   for (const char* rooms : {"3by4", "x", "3x", "0x4", "3x4x5", "-3x4", "3x100000"}) {
-    Outcome r = run(std::string("generate office --rooms ") + quote(rooms) + " -o office.toml");
+    Outcome r = run({"generate", "office", "--rooms", rooms, "-o", "office.toml"});
     EXPECT_EQ(r.status, 2) << rooms << "\n" << r.out << r.err;
     EXPECT_NE(r.err.find("ROWSxCOLS"), std::string::npos) << rooms << ": " << r.err;
   }
@@ -233,9 +185,9 @@ TEST_F(Cli, GenerateRejectsBadRooms) {
 }
 
 TEST_F(Cli, ExportWritesOneGroupPerCellAndEveryOpaqueTriangle) {
-  Outcome r = run("cells " + quote(kPlan) + " --save house.cells");
+  Outcome r = run({"cells", kPlan, "--save", "house.cells"});
   ASSERT_EQ(r.status, 0) << r.err;
-  r = run("export " + quote(kPlan) + " -o house.obj");
+  r = run({"export", kPlan, "-o", "house.obj"});
   ASSERT_EQ(r.status, 0) << r.err;
   avenues::CellComplex c = avenues::load_cells(path("house.cells").string());
 
@@ -280,10 +232,10 @@ TEST_F(Cli, ExportWritesOneGroupPerCellAndEveryOpaqueTriangle) {
 }
 
 TEST_F(Cli, SavedCellsLoadWithEqualCounts) {
-  Outcome built = run("cells " + quote(kPlan) + " --save house.cells --json");
+  Outcome built = run({"cells", kPlan, "--save", "house.cells", "--json"});
   ASSERT_EQ(built.status, 0) << built.err;
   ASSERT_TRUE(fs::exists(path("house.cells")));
-  Outcome loaded = run("cells house.cells --json");
+  Outcome loaded = run({"cells", "house.cells", "--json"});
   ASSERT_EQ(loaded.status, 0) << loaded.err;
   json a = parse_json(built), b = parse_json(loaded);
   for (const char* key : {"cells", "portals", "rooms", "storeys", "opaque_faces", "lines", "cells_by_kind",
@@ -292,7 +244,7 @@ TEST_F(Cli, SavedCellsLoadWithEqualCounts) {
 }
 
 TEST_F(Cli, CorruptCellsFileIsAnError) {
-  ASSERT_EQ(run("cells " + quote(kPlan) + " --save house.cells").status, 0);
+  ASSERT_EQ(run({"cells", kPlan, "--save", "house.cells"}).status, 0);
   std::string bytes = slurp(path("house.cells"));
   write("short.cells", bytes.substr(0, bytes.size() / 2));
   write("junk.cells", "AVCELLS");
@@ -300,7 +252,7 @@ TEST_F(Cli, CorruptCellsFileIsAnError) {
   flipped[flipped.size() / 2] = static_cast<char>(flipped[flipped.size() / 2] ^ 0x5a);
   write("flipped.cells", flipped);
   for (const char* name : {"short.cells", "junk.cells", "flipped.cells"}) {
-    Outcome r = run(std::string("cells ") + name + " --json");
+    Outcome r = run({"cells", name, "--json"});
     EXPECT_EQ(r.status, 2) << name << "\n" << r.out << r.err;
     EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
     EXPECT_TRUE(r.out.empty()) << name << ": " << r.out;
@@ -308,7 +260,7 @@ TEST_F(Cli, CorruptCellsFileIsAnError) {
 }
 
 TEST_F(Cli, PlanDrawingIsWellFormedSvg) {
-  Outcome r = run("cells " + quote(kPlan) + " --svg plan.svg");
+  Outcome r = run({"cells", kPlan, "--svg", "plan.svg"});
   ASSERT_EQ(r.status, 0) << r.err;
   pugi::xml_document doc;
   pugi::xml_parse_result ok = doc.load_file(path("plan.svg").c_str());
@@ -336,7 +288,7 @@ TEST_F(Cli, PlanDrawingIsWellFormedSvg) {
 }
 
 TEST_F(Cli, MainJobWritesThePlanDrawing) {
-  Outcome r = run("");
+  Outcome r = run({});
   ASSERT_EQ(r.status, 0) << r.err;
   const fs::path svg = path("avenues-out/jones-house-plan.svg");
   EXPECT_TRUE(fs::exists(svg));
@@ -353,8 +305,8 @@ TEST_F(Cli, MainJobWritesThePlanDrawing) {
 // --- avenues view -------------------------------------------------------------------
 
 TEST_F(Cli, ViewWritesStatsWithTheSameIdsAsExportAndAnOverlay) {
-  Outcome r = run("view " + quote(kPlan) +
-                  " --eye 1.0,0.5,1.2 --look 6,3,1.2 --fov 100 --size 640x400 --stats-json s.json --overlay o.svg");
+  Outcome r = run({"view", kPlan, "--eye", "1.0,0.5,1.2", "--look", "6,3,1.2", "--fov", "100", "--size", "640x400",
+                   "--stats-json", "s.json", "--overlay", "o.svg"});
   ASSERT_EQ(r.status, 0) << r.err;
   json j = json::parse(slurp(path("s.json")));
   for (const char* key : {"visible_cells", "visible", "avenues", "portals_tested", "max_depth", "visibility_us", "eye",
@@ -366,7 +318,7 @@ TEST_F(Cli, ViewWritesStatsWithTheSameIdsAsExportAndAnOverlay) {
   // Jones's kitchen through the door and the hatch: more avenues than cells.
   EXPECT_GT(j["avenues"].get<int>(), j["visible_cells"].get<int>());
   // The ids are those of `avenues export`'s groups.
-  ASSERT_EQ(run("export " + quote(kPlan) + " -o b.obj").status, 0);
+  ASSERT_EQ(run({"export", kPlan, "-o", "b.obj"}).status, 0);
   const std::string obj = slurp(path("b.obj"));
   for (int id : j["visible"]) EXPECT_NE(obj.find("g cell" + std::to_string(id) + "\n"), std::string::npos) << id;
   pugi::xml_document doc;
@@ -375,7 +327,7 @@ TEST_F(Cli, ViewWritesStatsWithTheSameIdsAsExportAndAnOverlay) {
 }
 
 TEST_F(Cli, ViewWithoutAnEyeUsesThePlansViewpoint) {
-  Outcome r = run("view " + quote(kPlan) + " --stats-json s.json");
+  Outcome r = run({"view", kPlan, "--stats-json", "s.json"});
   ASSERT_EQ(r.status, 0) << r.err;
   json j = json::parse(slurp(path("s.json")));
   EXPECT_EQ(j["eye"], json({1.5, 3.0, 1.6}));  // the [view] of jones-house.toml
@@ -385,7 +337,7 @@ TEST_F(Cli, ViewWithoutAnEyeUsesThePlansViewpoint) {
 TEST_F(Cli, ViewKernelsAgreeOnTheDefaultView) {
   std::map<std::string, json> visible;
   for (const char* k : {"float", "double", "filtered", "exact"}) {
-    Outcome r = run("view " + quote(kPlan) + " --kernel " + k + " --stats-json " + k + ".json");
+    Outcome r = run({"view", kPlan, "--kernel", k, "--stats-json", std::string(k) + ".json"});
     ASSERT_EQ(r.status, 0) << k << r.err;
     visible[k] = json::parse(slurp(path(std::string(k) + ".json")))["visible"];
   }
@@ -397,28 +349,36 @@ TEST_F(Cli, ViewRefusesAnEyeInsideAWallAndWritesNothing) {
   write("thick.toml",
         "[[wall]]\nname = \"box\"\nthickness = 0.3\npath = [[0,0],[6,0],[6,4],[0,4],[0,0]]\n"
         "[[room]]\nname = \"only\"\nat = [3, 2]\n");
-  Outcome r = run("view thick.toml --eye 3,0.05,1.2 --look 3,2,1.2 --stats-json s.json --overlay o.svg");
+  Outcome r =
+      run({"view", "thick.toml", "--eye", "3,0.05,1.2", "--look", "3,2,1.2", "--stats-json", "s.json", "--overlay", "o.svg"});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("inside wall 'box'"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("thick.toml"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(path("s.json")));
   EXPECT_FALSE(fs::exists(path("o.svg")));
   // In the room it is fine.
-  EXPECT_EQ(run("view thick.toml --eye 3,2,1.2 --look 6,2,1.2 --stats-json s.json").status, 0);
+  EXPECT_EQ(run({"view", "thick.toml", "--eye", "3,2,1.2", "--look", "6,2,1.2", "--stats-json", "s.json"}).status, 0);
 }
 
 TEST_F(Cli, ViewRejectsBadOptions) {
-  for (const std::string args : {"--kernel quad", "--size 10by10", "--eye 1,2", "--fov 180", "--eye 1,2,3 --look 1,2,3"}) {
-    Outcome r = run("view " + quote(kPlan) + " " + args + " --stats-json s.json");
-    EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
-    EXPECT_FALSE(fs::exists(path("s.json"))) << args;
+  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+           {"--kernel", "quad"}, {"--size", "10by10"}, {"--eye", "1,2"}, {"--fov", "180"},
+           {"--eye", "1,2,3", "--look", "1,2,3"}}) {
+    std::vector<std::string> argv = {"view", kPlan};
+    argv.insert(argv.end(), args.begin(), args.end());
+    argv.insert(argv.end(), {"--stats-json", "s.json"});
+    Outcome r = run(argv);
+    EXPECT_EQ(r.status, 2) << ::testing::PrintToString(args) << "\n" << r.err;
+    EXPECT_FALSE(fs::exists(path("s.json"))) << ::testing::PrintToString(args);
   }
 }
 
 TEST_F(Cli, ViewExplainSaysWhichEffectsTheSceneCallsForAndWhy) {
   // A line per effect, on or off and why, for scenes with and without each effect.
-  auto effects = [&](const std::string& plan, const std::string& args) {
-    Outcome r = run("view " + quote(plan) + " --explain " + args);
+  auto effects = [&](const std::string& plan, const std::vector<std::string>& args) {
+    std::vector<std::string> argv = {"view", plan, "--explain"};
+    argv.insert(argv.end(), args.begin(), args.end());
+    Outcome r = run(argv);
     EXPECT_EQ(r.status, 0) << r.err;
     std::map<std::string, std::string> on;
     std::istringstream in(r.out);
@@ -430,7 +390,7 @@ TEST_F(Cli, ViewExplainSaysWhichEffectsTheSceneCallsForAndWhy) {
     return on;
   };
   // Jones's house: no objects, one coloured lamp away from the eye.
-  auto house = effects(kPlan, "");
+  auto house = effects(kPlan, {});
   EXPECT_EQ(house["depth"], "off");
   EXPECT_EQ(house["implicit lines"], "off");
   EXPECT_EQ(house["shadows"], "on");
@@ -439,15 +399,15 @@ TEST_F(Cli, ViewExplainSaysWhichEffectsTheSceneCallsForAndWhy) {
   EXPECT_EQ(house["coloured light"], "on");
   EXPECT_EQ(house.size(), 6u);
   // The same lit from the eye, smooth: no shadows, no colour; the distance law only while asked.
-  auto eye = effects(kPlan, "--lights eye --shading smooth");
+  auto eye = effects(kPlan, {"--lights", "eye", "--shading", "smooth"});
   EXPECT_EQ(eye["shadows"], "off");
   EXPECT_EQ(eye["coloured light"], "off");
   EXPECT_EQ(eye["smooth shading"], "on");
   EXPECT_EQ(eye["distance falloff"], "on");
-  EXPECT_EQ(effects(kPlan, "--lights eye --shading smooth --falloff 0")["distance falloff"], "off");
+  EXPECT_EQ(effects(kPlan, {"--lights", "eye", "--shading", "smooth", "--falloff", "0"})["distance falloff"], "off");
   // A table: depth in its cell, but nothing crosses.
   const std::string room = std::string(AVENUES_SOURCE_DIR) + "/plans/furnished-room.toml";
-  auto furnished = effects(room, "");
+  auto furnished = effects(room, {});
   EXPECT_EQ(furnished["depth"], "on");
   EXPECT_EQ(furnished["implicit lines"], "off");
   EXPECT_EQ(furnished["shadows"], "off");
@@ -460,24 +420,24 @@ TEST_F(Cli, ViewExplainSaysWhichEffectsTheSceneCallsForAndWhy) {
   plan.replace(at, std::string("mesh = \"meshes/table.off\"").size(), "mesh = \"" + table + "\"");
   write("crossing.toml", plan + "\n[[object]]\nname = \"second table\"\nmesh = \"" + table +
                              "\"\nposition = [2.9, 2.4, 0.02]\nrotation = 40\n");
-  auto crossing = effects(path("crossing.toml").string(), "");
+  auto crossing = effects(path("crossing.toml").string(), {});
   EXPECT_EQ(crossing["depth"], "on");
   EXPECT_EQ(crossing["implicit lines"], "on");
   write("torus.toml", plan + "\n[[object]]\nname = \"ring\"\nmesh = \"" + torus +
                           "\"\nposition = [1.2, 3.0, 0.5]\nscale = 0.3\n");
-  EXPECT_EQ(effects(path("torus.toml").string(), "--shading auto")["smooth shading"], "on");
-  EXPECT_EQ(effects(path("torus.toml").string(), "--shading flat")["smooth shading"], "off");
-  EXPECT_EQ(effects(room, "--shading auto")["smooth shading"], "off");
+  EXPECT_EQ(effects(path("torus.toml").string(), {"--shading", "auto"})["smooth shading"], "on");
+  EXPECT_EQ(effects(path("torus.toml").string(), {"--shading", "flat"})["smooth shading"], "off");
+  EXPECT_EQ(effects(room, {"--shading", "auto"})["smooth shading"], "off");
   // A drawing says whether the shadow outlines are drawn.
-  Outcome r = run("view " + quote(kPlan) + " --explain --shadow-lines -o d.svg");
+  Outcome r = run({"view", kPlan, "--explain", "--shadow-lines", "-o", "d.svg"});
   EXPECT_NE(r.out.find("shadow outlines: on"), std::string::npos) << r.out;
   EXPECT_NE(slurp(path("d.svg")).find("shadow"), std::string::npos);
-  EXPECT_EQ(run("view " + quote(kPlan) + " --lights sun").status, 2);
+  EXPECT_EQ(run({"view", kPlan, "--lights", "sun"}).status, 2);
 }
 
 TEST_F(Cli, ViewWritesTheDrawingInEveryFormatWithItsStats) {
   for (const char* name : {"v.svg", "v.pdf", "v.eps", "v.dxf", "v.hpgl"}) {
-    Outcome r = run("view " + quote(kPlan) + " -o " + name + " --stats-json s.json");
+    Outcome r = run({"view", kPlan, "-o", name, "--stats-json", "s.json"});
     ASSERT_EQ(r.status, 0) << name << r.err;
     EXPECT_GT(fs::file_size(path(name)), 100u) << name;
     json j = json::parse(slurp(path("s.json")));
@@ -487,29 +447,29 @@ TEST_F(Cli, ViewWritesTheDrawingInEveryFormatWithItsStats) {
       EXPECT_LE(j["penup_mm"]["after"].get<double>(), j["penup_mm"]["before"].get<double>());
     }
   }
-  Outcome bad = run("view " + quote(kPlan) + " -o v.xyz");
+  Outcome bad = run({"view", kPlan, "-o", "v.xyz"});
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.err.find(".svg"), std::string::npos) << bad.err;
   EXPECT_FALSE(fs::exists(path("v.xyz")));
 }
 
 TEST_F(Cli, ViewStereoAndWalkFrames) {
-  ASSERT_EQ(run("view " + quote(kPlan) + " -o s.svg --stereo cross --stats-json s.json").status, 0);
+  ASSERT_EQ(run({"view", kPlan, "-o", "s.svg", "--stereo", "cross", "--stats-json", "s.json"}).status, 0);
   EXPECT_TRUE(json::parse(slurp(path("s.json"))).contains("stereo"));
-  ASSERT_EQ(run("view " + quote(kPlan) + " -o p.dxf --stereo pair").status, 0);
+  ASSERT_EQ(run({"view", kPlan, "-o", "p.dxf", "--stereo", "pair"}).status, 0);
   EXPECT_TRUE(fs::exists(path("p-left.dxf")) && fs::exists(path("p-right.dxf")));
-  Outcome walk = run("view " + quote(kPlan) + " -o w.svg --frames 4 --to-eye 7,4.5,1.6 --to-look 8,5,1.5");
+  Outcome walk = run({"view", kPlan, "-o", "w.svg", "--frames", "4", "--to-eye", "7,4.5,1.6", "--to-look", "8,5,1.5"});
   ASSERT_EQ(walk.status, 0) << walk.err;
   for (int k = 1; k <= 4; ++k) EXPECT_TRUE(fs::exists(path("w-000" + std::to_string(k) + ".svg"))) << k;
   // A walk whose last eye is outside the far box writes nothing at all.
-  Outcome bad = run("view " + quote(kPlan) + " -o x.svg --frames 3 --to-eye 7,4.5,60 --to-look 8,5,1.5");
+  Outcome bad = run({"view", kPlan, "-o", "x.svg", "--frames", "3", "--to-eye", "7,4.5,60", "--to-look", "8,5,1.5"});
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.err.find("frame 3 of 3"), std::string::npos) << bad.err;
   EXPECT_FALSE(fs::exists(path("x-0001.svg")));
 }
 
 TEST_F(Cli, ViewWritesHalftonePicturesStereoAndThePapersTable) {
-  Outcome r = run("view " + quote(kPlan) + " -o h.png --size 320x180 --samples 4 --stats-json s.json");
+  Outcome r = run({"view", kPlan, "-o", "h.png", "--size", "320x180", "--samples", "4", "--stats-json", "s.json"});
   ASSERT_EQ(r.status, 0) << r.err;
   const std::string png = slurp(path("h.png"));
   ASSERT_GT(png.size(), 8u);
@@ -517,16 +477,19 @@ TEST_F(Cli, ViewWritesHalftonePicturesStereoAndThePapersTable) {
   json j = json::parse(slurp(path("s.json")));
   EXPECT_GT(j["spans"].get<double>(), 0);
   EXPECT_TRUE(j.contains("render_us"));
-  EXPECT_EQ(run("view " + quote(kPlan) + " -o g.pgm --size 160x90 --dither bayer").status, 0);
+  EXPECT_EQ(run({"view", kPlan, "-o", "g.pgm", "--size", "160x90", "--dither", "bayer"}).status, 0);
   EXPECT_EQ(slurp(path("g.pgm")).substr(0, 2), "P5");
-  EXPECT_EQ(run("view " + quote(kPlan) + " -o a.png --size 160x90 --stereo anaglyph").status, 0);
+  EXPECT_EQ(run({"view", kPlan, "-o", "a.png", "--size", "160x90", "--stereo", "anaglyph"}).status, 0);
   EXPECT_TRUE(fs::exists(path("a.png")));
-  for (const std::string bad : {"--samples 3", "--shading glossy", "--dither dots", "--stereo pair"}) {
-    Outcome b = run("view " + quote(kPlan) + " -o x.png --size 160x90 " + bad);
-    EXPECT_EQ(b.status, 2) << bad << "\n" << b.err;
-    EXPECT_FALSE(fs::exists(path("x.png"))) << bad;
+  for (const std::vector<std::string>& bad : std::vector<std::vector<std::string>>{
+           {"--samples", "3"}, {"--shading", "glossy"}, {"--dither", "dots"}, {"--stereo", "pair"}}) {
+    std::vector<std::string> argv = {"view", kPlan, "-o", "x.png", "--size", "160x90"};
+    argv.insert(argv.end(), bad.begin(), bad.end());
+    Outcome b = run(argv);
+    EXPECT_EQ(b.status, 2) << ::testing::PrintToString(bad) << "\n" << b.err;
+    EXPECT_FALSE(fs::exists(path("x.png"))) << ::testing::PrintToString(bad);
   }
-  Outcome papers = run("bench papers --repeats 1");
+  Outcome papers = run({"bench", "papers", "--repeats", "1"});
   ASSERT_EQ(papers.status, 0) << papers.err;
   for (const char* scene : {"cottage", "ripple-torus", "cubes", "wylie-cube", "crow-object"})
     EXPECT_NE(papers.out.find(scene), std::string::npos) << scene;
@@ -538,7 +501,7 @@ TEST_F(Cli, AMissingObjectMeshNamesThePlanLineAndWritesNothing) {
         "[[room]]\nname = \"room\"\nat = [2.5, 2]\n"
         "[[object]]\nname = \"table\"\nmesh = \"missing.off\"\nposition = [2, 2, 0]\n");
   for (const char* out : {"v.png", "v.svg"}) {
-    Outcome r = run(std::string("view furnished.toml --eye 1,1,1.6 --look 4,3,1.2 -o ") + out);
+    Outcome r = run({"view", "furnished.toml", "--eye", "1,1,1.6", "--look", "4,3,1.2", "-o", out});
     EXPECT_EQ(r.status, 2) << out;
     EXPECT_NE(r.err.find("furnished.toml:8"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("object 'table'"), std::string::npos) << r.err;
@@ -548,7 +511,7 @@ TEST_F(Cli, AMissingObjectMeshNamesThePlanLineAndWritesNothing) {
 }
 
 TEST_F(Cli, PathWalksThroughTheNamedRoomsAndWritesFrames) {
-  Outcome r = run("path " + quote(kPlan) + " --through L,K,D -o walk --size 160x90 --step 0.5");
+  Outcome r = run({"path", kPlan, "--through", "L,K,D", "-o", "walk", "--size", "160x90", "--step", "0.5"});
   ASSERT_EQ(r.status, 0) << r.err;
   std::vector<std::string> frames;
   for (const auto& e : fs::directory_iterator(path("walk")))
@@ -557,9 +520,9 @@ TEST_F(Cli, PathWalksThroughTheNamedRoomsAndWritesFrames) {
   ASSERT_GE(frames.size(), 10u);
   EXPECT_EQ(frames.front(), "frame-0001.png");
   EXPECT_EQ(slurp(path("walk") / frames.back()).substr(1, 3), "PNG");
-  EXPECT_EQ(run("path " + quote(kPlan) + " --through L,D --format svg -o drawn --size 160x90").status, 0);
+  EXPECT_EQ(run({"path", kPlan, "--through", "L,D", "--format", "svg", "-o", "drawn", "--size", "160x90"}).status, 0);
   EXPECT_TRUE(fs::exists(path("drawn/frame-0001.svg")));
-  Outcome bad = run("path " + quote(kPlan) + " --through L,Attic -o none");
+  Outcome bad = run({"path", kPlan, "--through", "L,Attic", "-o", "none"});
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.err.find("no room 'Attic'"), std::string::npos) << bad.err;
   EXPECT_NE(bad.err.find("'K'"), std::string::npos) << bad.err;
@@ -570,20 +533,21 @@ TEST_F(Cli, PathWalksThroughTheNamedRoomsAndWritesFrames) {
 
 TEST_F(Cli, PathFollowsRecordedKeyframes) {
   write("keys.txt", "# eye, then the point looked at\n1.5 3 1.6  5 3 1.4\n\n3.0 2 1.6  5 1.6 1.4\n4.5 1.6 1.6  8 1.5 1.4\n");
-  Outcome r = run("path " + quote(kPlan) + " --keys keys.txt -o keyed --format svg --size 160x90 --step 0.5");
+  Outcome r =
+      run({"path", kPlan, "--keys", "keys.txt", "-o", "keyed", "--format", "svg", "--size", "160x90", "--step", "0.5"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(fs::exists(path("keyed/frame-0001.svg")));
   write("bad.txt", "1.5 3 1.6  5 3 1.4\n1 2 3\n");
-  Outcome bad = run("path " + quote(kPlan) + " --keys bad.txt -o none");
+  Outcome bad = run({"path", kPlan, "--keys", "bad.txt", "-o", "none"});
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.err.find("bad.txt:2"), std::string::npos) << bad.err;
   EXPECT_FALSE(fs::exists(path("none")));
   write("wall.txt", "1.5 3 1.6  5 3 1.4\n1.5 3 60  5 3 1.4\n");
-  Outcome out = run("path " + quote(kPlan) + " --keys wall.txt -o none");
+  Outcome out = run({"path", kPlan, "--keys", "wall.txt", "-o", "none"});
   EXPECT_EQ(out.status, 2);
   EXPECT_NE(out.err.find("is inside the slab above storey"), std::string::npos) << out.err;  // it walks up through the ceiling
   EXPECT_FALSE(fs::exists(path("none")));
-  EXPECT_EQ(run("path " + quote(kPlan) + " -o none").status, 2);
+  EXPECT_EQ(run({"path", kPlan, "-o", "none"}).status, 2);
 }
 
 // --- plans from elsewhere: every PLAN argument takes them (app/plan_source.h) -------
@@ -596,23 +560,23 @@ const std::string kSeedWad = kSource + "/tests/fuzz/corpus/wad/two-sectors.wad";
 }  // namespace
 
 TEST_F(Cli, ADoomMapNamedInsideItsWadIsAPlanForEveryCommand) {
-  Outcome r = run("cells " + quote(kSeedWad + ":MAP01") + " --json");
+  Outcome r = run({"cells", kSeedWad + ":MAP01", "--json"});
   ASSERT_EQ(r.status, 0) << r.err;
   json j = parse_json(r);
   EXPECT_EQ(j["rooms"], 2);
   EXPECT_GE(j["cells"].get<int>(), 2);
   EXPECT_TRUE(j["warnings"].empty()) << j["warnings"].dump();
-  r = run("view " + quote(kSeedWad + ":MAP01") + " -o map.svg --size 320x200");
+  r = run({"view", kSeedWad + ":MAP01", "-o", "map.svg", "--size", "320x200"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(fs::exists(path("map.svg")));
   // With no map named, the first one, and the command says so.
-  r = run("cells " + quote(kSeedWad));
+  r = run({"cells", kSeedWad});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.err.find("reading MAP01, the first of its 1 maps"), std::string::npos) << r.err;
 }
 
 TEST_F(Cli, AMapTheWadDoesNotHoldIsAnErrorListingTheMapsItDoes) {
-  Outcome r = run("view " + quote(kSeedWad + ":MAP07") + " -o map.svg");
+  Outcome r = run({"view", kSeedWad + ":MAP07", "-o", "map.svg"});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("MAP07"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("MAP01"), std::string::npos) << r.err;
@@ -621,25 +585,26 @@ TEST_F(Cli, AMapTheWadDoesNotHoldIsAnErrorListingTheMapsItDoes) {
 
 TEST_F(Cli, ABrokenHomeIsAnErrorNamingItsLineAndWritesNothing) {
   write("home.xml", "<?xml version='1.0'?>\n<home wallHeight='250'>\n  <wall id='w0' xStart='0' yStart='0' xEnd='100'\n</home>\n");
-  Outcome r = run("view home.xml -o home.png");
+  Outcome r = run({"view", "home.xml", "-o", "home.png"});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("home.xml"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(path("home.png")));
   write("home.sh3d", "PK this is not a zip");
-  r = run("cells home.sh3d");
+  r = run({"cells", "home.sh3d"});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("home.sh3d"), std::string::npos) << r.err;
 }
 
 TEST_F(Cli, AMeshIsAWholeSceneAndACrowObjectToo) {
-  Outcome r = run("cells " + quote(kSource + "/plans/scenes/crow-table-1b.crow") + " --json");
+  Outcome r = run({"cells", kSource + "/plans/scenes/crow-table-1b.crow", "--json"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_GE(parse_json(r)["cells"].get<int>(), 2);
-  r = run("view " + quote(kSource + "/plans/scenes/wylie-cube.off") + " --eye 2.5,-2,1.5 --look 0,0,0 -o cube.svg");
+  r = run({"view", kSource + "/plans/scenes/wylie-cube.off", "--eye", "2.5,-2,1.5", "--look", "0,0,0", "-o",
+           "cube.svg"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(fs::exists(path("cube.svg")));
   write("broken.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n-1 1 1\n");
-  r = run("cells broken.off");
+  r = run({"cells", "broken.off"});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("broken.off"), std::string::npos) << r.err;
 }
@@ -657,7 +622,7 @@ TEST_F(Cli, AssimpsInvalidModelsAreClearErrorsNamingTheFile) {
   files.push_back(path("cut.glb").string());
   for (const std::string& f : files) {
     SCOPED_TRACE(f);
-    const Outcome r = run("cells " + quote(f));
+    const Outcome r = run({"cells", f});
     if (f.ends_with("malformed2.obj")) {
       EXPECT_EQ(r.status, 0) << r.err;
       continue;
@@ -671,31 +636,31 @@ TEST_F(Cli, AssimpsInvalidModelsAreClearErrorsNamingTheFile) {
 TEST_F(Cli, IfcModelIsABuildingAndBadUpOrUnitIsRefused) {
   const std::string model = "/usr/share/assimp/models/IFC/AC14-FZK-Haus.ifc";
   if (!fs::exists(model)) GTEST_SKIP() << "assimp-testmodels not installed (.ci/install-deps)";
-  const Outcome r = run("cells " + quote(model) + " --json");
+  const Outcome r = run({"cells", model, "--json"});
   ASSERT_EQ(r.status, 0) << r.err;
   const json j = parse_json(r);
   EXPECT_EQ(j["storeys"].get<int>(), 2);
   EXPECT_GE(j["named_rooms"].get<int>(), 5);
-  EXPECT_EQ(run("cells " + quote(model) + " --up w").status, 2);
-  EXPECT_EQ(run("cells " + quote(model) + " --unit furlong").status, 2);
+  EXPECT_EQ(run({"cells", model, "--up", "w"}).status, 2);
+  EXPECT_EQ(run({"cells", model, "--unit", "furlong"}).status, 2);
 }
 
 // --- 2D plans from elsewhere (issue 19): what was understood, refusals, --save-plan.
 
 TEST_F(Cli, DxfPlanSaysWhatItUnderstoodAndSavesItAsToml) {
   const std::string dxf = std::string(AVENUES_OUTSIDE_DIR) + "/dxf/anandkothartrdl-plan.dxf";
-  const Outcome r = run("cells " + quote(dxf) + " --save-plan house.toml");
+  const Outcome r = run({"cells", dxf, "--save-plan", "house.toml"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.err.find("Ext Walls', 'Walls'"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find(" doors, "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("is in no wall gap: not placed"), std::string::npos) << r.err;
-  const Outcome back = run("cells house.toml");
+  const Outcome back = run({"cells", "house.toml"});
   EXPECT_EQ(back.status, 0) << back.err;
 }
 
 TEST_F(Cli, DxfPlanDrawingShowsWhatWasUnderstoodOverTheDrawingsOwnLines) {
   const std::string dxf = std::string(AVENUES_OUTSIDE_DIR) + "/dxf/two-rooms.dxf";
-  const Outcome r = run("cells " + quote(dxf) + " --svg plan.svg");
+  const Outcome r = run({"cells", dxf, "--svg", "plan.svg"});
   ASSERT_EQ(r.status, 0) << r.err;
   const std::string svg = slurp(path("plan.svg"));
   // The drawing's lines first, in light blue, then the walls cut, the door and the rooms.
@@ -709,27 +674,27 @@ TEST_F(Cli, DxfPlanDrawingShowsWhatWasUnderstoodOverTheDrawingsOwnLines) {
   EXPECT_GT(n, 500u);  // the furniture, the door block and the walls, as drawn
   EXPECT_NE(svg.find("2 rooms"), std::string::npos);
   // A plan not read from a drawing has no such layer.
-  ASSERT_EQ(run("cells " + quote(kPlan) + " --svg own.svg").status, 0);
+  ASSERT_EQ(run({"cells", kPlan, "--svg", "own.svg"}).status, 0);
   EXPECT_EQ(slurp(path("own.svg")).find("class=\"drawing\""), std::string::npos);
 }
 
 TEST_F(Cli, DxfWithoutAWallLayerIsRefusedListingItsLayers) {
   const std::string dxf = std::string(AVENUES_OUTSIDE_DIR) + "/dxf/evil-spirit-house.dxf";
-  const Outcome r = run("cells " + quote(dxf) + " --save-plan never.toml");
+  const Outcome r = run({"cells", dxf, "--save-plan", "never.toml"});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("'s001-#def-active-grp'"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("--layers"), std::string::npos) << r.err;
   EXPECT_EQ(files().count("never.toml"), 0u);
-  const Outcome named = run("cells " + quote(dxf) + " --layers 'walls=nosuch'");
+  const Outcome named = run({"cells", dxf, "--layers", "walls=nosuch"});
   EXPECT_EQ(named.status, 2);
   EXPECT_NE(named.err.find("no layer 'nosuch'"), std::string::npos) << named.err;
 }
 
 TEST_F(Cli, FloorPlanAnnotationsOpenWithTheirScale) {
   const std::string txt = std::string(AVENUES_OUTSIDE_DIR) + "/floorplans/00_e9_f85ba733b3769c159604debc08c6_0001.txt";
-  const Outcome r = run("cells " + quote(txt) + " --scale 0.05");
+  const Outcome r = run({"cells", txt, "--scale", "0.05"});
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("rooms"), std::string::npos);
-  EXPECT_EQ(run("cells " + quote(txt) + " --scale -1").status, 2);
+  EXPECT_EQ(run({"cells", txt, "--scale", "-1"}).status, 2);
 }
 
