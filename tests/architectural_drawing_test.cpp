@@ -1,5 +1,6 @@
 // Tests of the architect's drawings (`avenues drawing`, render/architectural_drawing.h) and
-// of `view --projection parallel`, through the real executable (run by argv, no shell):
+// of `view --projection parallel`, through the real executable (run by argv, no shell:
+// tests/avenues_run.h):
 // every bundled plan in the four kinds and every format, each file read back by an
 // independent reader (SVG by pugixml, PDF by poppler's pdfinfo and pdftotext, DXF by
 // dxflib, HPGL by a parser, pictures by the raster reader); parallel rays cast through the
@@ -11,76 +12,31 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "app/plan_source.h"
 #include "render/plan_drawing.h"
 #include "render/raster.h"
+#include "tests/avenues_run.h"
 #include "tests/drawing_readers.h"
 #include "tests/ray_oracle.h"
 #include "tests/test_files.h"
 
-extern char** environ;
-
 namespace fs = std::filesystem;
 using namespace avenues;
+using avenues::testing::Outcome;
 using avenues::testing::slurp;
 
 namespace {
 
 const std::string kSource = AVENUES_SOURCE_DIR;
 
-struct Outcome {
-  int status = -1;
-  std::string out, err;
-};
-
-/// Runs argv[0] (found on PATH) with the arguments as given, stdout and stderr captured.
-Outcome run_argv(const std::vector<std::string>& argv, const fs::path& dir) {
-  const fs::path out = dir / ".stdout", err = dir / ".stderr";
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&fa, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  std::vector<char*> args;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  pid_t pid = 0;
-  Outcome r;
-  if (posix_spawnp(&pid, args[0], &fa, nullptr, args.data(), environ) == 0) {
-    int status = 0;
-    if (waitpid(pid, &status, 0) == pid && WIFEXITED(status)) r.status = WEXITSTATUS(status);
-  }
-  posix_spawn_file_actions_destroy(&fa);
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
-}
-
-class ArchitecturalDrawing : public ::testing::Test {
+class ArchitecturalDrawing : public avenues::testing::AvenuesRun {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("avenues-drawing-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
-  Outcome avenues(std::vector<std::string> args) {
-    args.insert(args.begin(), AVENUES_BINARY);
-    return run_argv(args, dir_);
-  }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
   nlohmann::json stats(const std::string& name) { return nlohmann::json::parse(slurp(path(name))); }
-  fs::path dir_;
+  void check_file(const std::string& file, bool cut, bool labels);
 };
 
 std::vector<std::string> bundled_plans() {
@@ -102,7 +58,7 @@ std::string section_across(const CellComplex& c) {
 }
 
 /// Checks one written file by its format's own reader; `cut` when the drawing has a cut layer.
-void check_file(const std::string& file, bool cut, bool labels, const fs::path& dir) {
+void ArchitecturalDrawing::check_file(const std::string& file, bool cut, bool labels) {
   const std::string ext = fs::path(file).extension().string();
   SCOPED_TRACE(file);
   ASSERT_TRUE(fs::exists(file));
@@ -116,11 +72,11 @@ void check_file(const std::string& file, bool cut, bool labels, const fs::path& 
       EXPECT_GT(doc.select_nodes("/svg/g[@id='annotation']/text").size(), 0u);
     }
   } else if (ext == ".pdf") {
-    const Outcome info = run_argv({"pdfinfo", file}, dir);
+    const Outcome info = run_argv({"pdfinfo", file});
     EXPECT_EQ(info.status, 0) << info.err;
     EXPECT_NE(info.out.find("Pages:           1"), std::string::npos) << info.out;
     if (labels) {
-      const Outcome text = run_argv({"pdftotext", file, "-"}, dir);
+      const Outcome text = run_argv({"pdftotext", file, "-"});
       EXPECT_EQ(text.status, 0) << text.err;
       EXPECT_NE(text.out.find("m\xc2\xb2"), std::string::npos) << text.out;  // an area
     }
@@ -161,7 +117,7 @@ TEST_F(ArchitecturalDrawing, EveryKindOfEveryBundledPlanInEveryFormatReadsBack) 
   for (const std::string& plan : bundled_plans()) {
     SCOPED_TRACE(plan);
     const std::string cells = path("plan.cells");
-    ASSERT_EQ(avenues({"cells", plan, "--save", cells}).status, 0);
+    ASSERT_EQ(run({"cells", plan, "--save", cells}).status, 0);
     const CellComplex c = app::load_plan_source(cells).complex;
     struct Kind {
       std::vector<std::string> args;
@@ -176,9 +132,9 @@ TEST_F(ArchitecturalDrawing, EveryKindOfEveryBundledPlanInEveryFormatReadsBack) 
         const std::string out = path(std::string("drawing") + ext);
         std::vector<std::string> args{"drawing", cells, "-o", out, "--scale", "1:100"};
         args.insert(args.end(), k.args.begin(), k.args.end());
-        const Outcome r = avenues(args);
+        const Outcome r = run(args);
         ASSERT_EQ(r.status, 0) << k.args[0] << " " << ext << ": " << r.err;
-        check_file(out, k.cut, k.labels, dir_);
+        check_file(out, k.cut, k.labels);
         fs::remove(out);
       }
   }
@@ -196,7 +152,7 @@ TEST_F(ArchitecturalDrawing, ParallelRaysThroughTheStatedFrameFindNoCellMissing)
     for (const char* kernel : {"double", "exact"}) {
       std::vector<std::string> args{"drawing", plan, "-o", path("d.svg"), "--stats-json", path("d.json"), "--kernel", kernel};
       args.insert(args.end(), kind.begin(), kind.end());
-      const Outcome r = avenues(args);
+      const Outcome r = run(args);
       ASSERT_EQ(r.status, 0) << r.err;
       const nlohmann::json j = stats("d.json");
       auto vec = [&](const char* k) { return Vec3{j["frame"][k][0], j["frame"][k][1], j["frame"][k][2]}; };
@@ -221,7 +177,7 @@ TEST_F(ArchitecturalDrawing, SectionOfJonesHouseThroughBothDoorsShowsTheCutSheet
   const CellComplex c = app::load_plan_source(plan).complex;
   for (const char* line : {"4,6,4,0", "5,6,5,0"}) {
     SCOPED_TRACE(line);
-    const Outcome r = avenues({"drawing", plan, "--section", line, "-o", path("s.svg"), "--stats-json", path("s.json")});
+    const Outcome r = run({"drawing", plan, "--section", line, "-o", path("s.svg"), "--stats-json", path("s.json")});
     ASSERT_EQ(r.status, 0) << r.err;
     const nlohmann::json j = stats("s.json");
     std::set<std::string> rooms;
@@ -314,7 +270,7 @@ TEST_F(ArchitecturalDrawing, PlanOfTheTwoStoreyHouseMatchesThePlanSvgWalls) {
     ASSERT_EQ(all.size() - kept.size(), 4u);
     const std::vector<Seg> theirs = normalised(kept);
     ASSERT_GT(theirs.size(), 4u);
-    const Outcome r = avenues({"drawing", plan, "--plan", std::to_string(s), "--cut-height", "1.2", "-o", path("p.svg")});
+    const Outcome r = run({"drawing", plan, "--plan", std::to_string(s), "--cut-height", "1.2", "-o", path("p.svg")});
     ASSERT_EQ(r.status, 0) << r.err;
     pugi::xml_document doc;
     ASSERT_TRUE(doc.load_file(path("p.svg").c_str()));
@@ -338,7 +294,7 @@ TEST_F(ArchitecturalDrawing, PlanOfTheTwoStoreyHouseMatchesThePlanSvgWalls) {
 // `view --projection parallel` is the same engine: the picture plane through the eye is its cut.
 TEST_F(ArchitecturalDrawing, ParallelViewFromTheEye) {
   const std::string plan = kSource + "/plans/jones-house.toml";
-  const Outcome r = avenues({"view", plan, "--projection", "parallel", "--view-width", "12", "--size", "600x300", "-o",
+  const Outcome r = run({"view", plan, "--projection", "parallel", "--view-width", "12", "--size", "600x300", "-o",
                          path("v.svg"), "--stats-json", path("v.json")});
   ASSERT_EQ(r.status, 0) << r.err;
   const nlohmann::json j = stats("v.json");
@@ -366,14 +322,14 @@ TEST_F(ArchitecturalDrawing, BadOptionsAreNamedAndWriteNothing) {
   for (const auto& [extra, named] : cases) {
     std::vector<std::string> args{"drawing", plan, "-o", path("x.svg")};
     args.insert(args.end(), extra.begin(), extra.end());
-    const Outcome r = avenues(args);
+    const Outcome r = run(args);
     EXPECT_EQ(r.status, 2) << named;
     EXPECT_NE(r.err.find(named), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(path("x.svg"))) << named;
   }
-  const Outcome v = avenues({"view", plan, "--projection", "parallel", "-o", path("x.svg")});
+  const Outcome v = run({"view", plan, "--projection", "parallel", "-o", path("x.svg")});
   EXPECT_EQ(v.status, 2);
   EXPECT_NE(v.err.find("--view-width"), std::string::npos) << v.err;
-  EXPECT_EQ(avenues({"drawing", plan, "--plan", "0", "-o", path("x.doc")}).status, 2);
+  EXPECT_EQ(run({"drawing", plan, "--plan", "0", "-o", path("x.doc")}).status, 2);
   EXPECT_FALSE(fs::exists(path("x.doc")));
 }

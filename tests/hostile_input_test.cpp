@@ -1,8 +1,9 @@
 // Avenues — hostile but realistic input (issue 13): no crash, no hang, no shell, no silent
 // wrong answer. Each test is one of the cases found, run through the real executable
-// (AVENUES_BINARY, by its argument vector: no shell sees the arguments) or, where the
-// command line cannot reach the case deterministically, through the library function that
-// handles it (a signal arriving while a temporary file exists, GMP running out of memory).
+// (AVENUES_BINARY, by its argument vector: no shell sees the arguments; tests/avenues_run.h)
+// or, where the command line cannot reach the case deterministically, through the library
+// function that handles it (a signal arriving while a temporary file exists, GMP running
+// out of memory).
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -13,9 +14,7 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <new>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -28,47 +27,19 @@
 #include "core/subprocess.h"
 #include "plans/formats/file_format.h"
 #include "plans/formats/sweet_home.h"
+#include "tests/avenues_run.h"
 #include "tests/test_files.h"
 
 namespace fs = std::filesystem;
+using avenues::testing::Outcome;
 using avenues::testing::slurp;
 
 namespace {
 
-const std::string kBinary = AVENUES_BINARY;
 const std::string kSource = AVENUES_SOURCE_DIR;
 const std::string kPlan = kSource + "/plans/jones-house.toml";
 
-class Hostile : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("avenues-hostile-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
-  /// `avenues ARGS...` in the temporary directory (or `cwd` below it): its exit status and
-  /// everything it printed.
-  avenues::ProgramResult run(std::vector<std::string> args, const fs::path& cwd = {}) {
-    args.insert(args.begin(), kBinary);
-    return avenues::run_program(args, (cwd.empty() ? dir_ : cwd).string());
-  }
-  fs::path path(const std::string& name) const { return dir_ / name; }
-  void write(const std::string& name, const std::string& bytes) {
-    fs::create_directories(path(name).parent_path());
-    std::ofstream(path(name), std::ios::binary) << bytes;
-  }
-  /// Every file below the temporary directory, hidden temporaries included.
-  std::set<std::string> files() const {
-    std::set<std::string> out;
-    for (const auto& e : fs::recursive_directory_iterator(dir_)) out.insert(fs::relative(e.path(), dir_).string());
-    return out;
-  }
-  fs::path dir_;
-};
+class Hostile : public avenues::testing::AvenuesRun {};
 
 bool has(const std::string& text, const std::string& what) { return text.find(what) != std::string::npos; }
 
@@ -89,7 +60,7 @@ double black_share(const std::string& pgm) {
 // as they are, and nothing runs them as commands.
 TEST_F(Hostile, ProgramsRunByArgvNeverThroughAShell) {
   const avenues::ProgramResult r =
-      avenues::run_program({"printf", "%s|", "it's", "x';touch PWNED;'", "$(touch PWNED2)"}, dir_.string());
+      avenues::run_program({"printf", "%s|", "it's", "x';touch PWNED;'", "$(touch PWNED2)"}, dir().string());
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_EQ(r.output, "it's|x';touch PWNED;'|$(touch PWNED2)|");
   EXPECT_FALSE(fs::exists(path("PWNED")));
@@ -107,24 +78,24 @@ TEST_F(Hostile, ProgramsRunByArgvNeverThroughAShell) {
 // stays what it was; a regular file is still replaced.
 TEST_F(Hostile, OutputsOnlyReplaceRegularFiles) {
   ASSERT_EQ(::mkfifo(path("fifo").c_str(), 0644), 0);
-  avenues::ProgramResult r = run({"cells", kPlan, "--svg", "fifo"});
-  EXPECT_EQ(r.status, 2) << r.output;
-  EXPECT_TRUE(has(r.output, "fifo") && has(r.output, "FIFO")) << r.output;
+  Outcome r = run({"cells", kPlan, "--svg", "fifo"});
+  EXPECT_EQ(r.status, 2) << r.output();
+  EXPECT_TRUE(has(r.output(), "fifo") && has(r.output(), "FIFO")) << r.output();
   EXPECT_TRUE(fs::is_fifo(path("fifo")));
   r = run({"view", kPlan, "--size", "32x18", "-o", "/dev/null"});
-  EXPECT_EQ(r.status, 2) << r.output;
-  EXPECT_TRUE(has(r.output, "/dev/null") && has(r.output, "character device")) << r.output;
+  EXPECT_EQ(r.status, 2) << r.output();
+  EXPECT_TRUE(has(r.output(), "/dev/null") && has(r.output(), "character device")) << r.output();
   EXPECT_TRUE(fs::is_character_file("/dev/null"));
   if (::mknod(path("null").c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0) {  // needs CAP_MKNOD
     r = run({"cells", kPlan, "--save", "null"});
-    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_EQ(r.status, 2) << r.output();
     EXPECT_TRUE(fs::is_character_file(path("null")));
   }
   EXPECT_THROW(avenues::check_output_path("/dev/null"), std::runtime_error);
   EXPECT_NO_THROW(avenues::check_output_path(path("nothing-there.svg").string()));
   write("old.svg", "old");
   r = run({"cells", kPlan, "--svg", "old.svg"});
-  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.status, 0) << r.output();
   EXPECT_TRUE(has(slurp(path("old.svg")), "<svg"));
   for (const std::string& f : files()) EXPECT_FALSE(has(f, ".tmp-")) << f;
 }
@@ -160,20 +131,21 @@ TEST(HostileMemory, GmpExhaustionThrowsBadAlloc) {
 // halving, since it differs between builds) and a few MiB more, far less than the
 // decomposition needs.
 TEST_F(Hostile, OutOfMemoryWhileDecomposingNamesThePlan) {
-  avenues::ProgramResult r = run({"generate", "office", "--rooms", "20x20", "-o", "office.toml"});
-  ASSERT_EQ(r.status, 0) << r.output;
+  Outcome r = run({"generate", "office", "--rooms", "20x20", "-o", "office.toml"});
+  ASSERT_EQ(r.status, 0) << r.output();
   // A fixed script: the limit [KiB], the binary and its arguments are its arguments.
   auto within = [&](long kib, std::vector<std::string> args) {
-    std::vector<std::string> argv = {"sh", "-c", "ulimit -v \"$1\" && shift && exec \"$0\" \"$@\"", kBinary,
+    const std::vector<std::string> command = avenues::testing::avenues_argv(args);
+    std::vector<std::string> argv = {"sh", "-c", "ulimit -v \"$1\" && shift && exec \"$0\" \"$@\"", command[0],
                                      std::to_string(kib)};
-    argv.insert(argv.end(), args.begin(), args.end());
-    return avenues::run_program(argv, dir_.string());
+    argv.insert(argv.end(), command.begin() + 1, command.end());
+    return run_argv(argv);
   };
   long lo = 1000, hi = 4'000'000;  // [KiB] too little to start; enough
   // Starting and reporting an error (which loads the unwinder) is what must fit.
   auto starts = [&](long kib) {
-    const avenues::ProgramResult q = within(kib, {"cells", "no-such-plan.toml"});
-    return q.status == 2 && has(q.output, "no-such-plan.toml: no such file");
+    const Outcome q = within(kib, {"cells", "no-such-plan.toml"});
+    return q.status == 2 && has(q.output(), "no-such-plan.toml: no such file");
   };
   ASSERT_TRUE(starts(hi));
   while (hi - lo > 500) {
@@ -181,8 +153,8 @@ TEST_F(Hostile, OutOfMemoryWhileDecomposingNamesThePlan) {
     (starts(mid) ? hi : lo) = mid;
   }
   r = within(hi + 4000, {"cells", "office.toml"});
-  EXPECT_EQ(r.status, 2) << "limit " << hi + 4000 << " KiB\n" << r.output;
-  EXPECT_TRUE(has(r.output, "out of memory while decomposing office.toml")) << r.output;
+  EXPECT_EQ(r.status, 2) << "limit " << hi + 4000 << " KiB\n" << r.output();
+  EXPECT_TRUE(has(r.output(), "out of memory while decomposing office.toml")) << r.output();
 }
 
 // Item 6: every numeric option is checked for finiteness and range where the command line
@@ -202,10 +174,10 @@ TEST_F(Hostile, NumericOptionsAreCheckedAndNamed) {
       {"bench", "walk", "--frames", "0"},     {"bench", "papers", "--repeats", "-2"},
   };
   for (const std::vector<std::string>& args : bad) {
-    const avenues::ProgramResult r = run(args);
+    const Outcome r = run(args);
     const std::string& option = args[args.size() - 2];
-    EXPECT_EQ(r.status, 2) << args[0] << " " << option << " " << args.back() << "\n" << r.output;
-    EXPECT_TRUE(has(r.output, option)) << option << " " << args.back() << ": the message names the option\n" << r.output;
+    EXPECT_EQ(r.status, 2) << args[0] << " " << option << " " << args.back() << "\n" << r.output();
+    EXPECT_TRUE(has(r.output(), option)) << option << " " << args.back() << ": the message names the option\n" << r.output();
   }
   EXPECT_TRUE(files().empty());
 }
@@ -215,9 +187,9 @@ TEST_F(Hostile, EmptyOutputNamesAreRefused) {
   for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
            {"view", kPlan, "-o", ""}, {"cells", kPlan, "--svg", ""}, {"cells", kPlan, "--save", ""},
            {"export", kPlan, "-o", ""}, {"view", kPlan, "--stats-json", ""}}) {
-    const avenues::ProgramResult r = run(args);
-    EXPECT_EQ(r.status, 2) << args[2] << "\n" << r.output;
-    EXPECT_TRUE(has(r.output, args[2])) << r.output;
+    const Outcome r = run(args);
+    EXPECT_EQ(r.status, 2) << args[2] << "\n" << r.output();
+    EXPECT_TRUE(has(r.output(), args[2])) << r.output();
   }
 }
 
@@ -226,18 +198,18 @@ TEST_F(Hostile, EmptyOutputNamesAreRefused) {
 TEST_F(Hostile, EyeOnASheetWallSeesTheRoomItLooksInto) {
   for (const std::vector<std::string>& pose :
        std::vector<std::vector<std::string>>{{"5,2.5,1.6", "9,2.5,1.6"}, {"5,2.5,1.6", "1,2.5,1.6"}}) {
-    const avenues::ProgramResult r =
+    const Outcome r =
         run({"view", kPlan, "--eye", pose[0], "--look", pose[1], "--size", "64x36", "-o", "a.pgm"});
-    ASSERT_EQ(r.status, 0) << r.output;
+    ASSERT_EQ(r.status, 0) << r.output();
     EXPECT_LT(black_share(slurp(path("a.pgm"))), 0.05) << pose[0] << " looking at " << pose[1];
   }
   // At the T-junction (5, 3) of two sheets the eye stands in both rooms beside the sheet it
   // looks along, and the picture is their two views composed (it was half black).
   for (const std::vector<std::string>& pose : std::vector<std::vector<std::string>>{
            {"5,3,1.6", "9,2.5,1.6"}, {"5,3,1.6", "9,3.5,1.6"}, {"5,3,1.6", "9,3,1.6"}}) {
-    const avenues::ProgramResult r =
+    const Outcome r =
         run({"view", kPlan, "--eye", pose[0], "--look", pose[1], "--size", "64x36", "-o", "a.pgm"});
-    ASSERT_EQ(r.status, 0) << r.output;
+    ASSERT_EQ(r.status, 0) << r.output();
     EXPECT_LT(black_share(slurp(path("a.pgm"))), 0.05) << pose[0] << " looking at " << pose[1];
   }
 }
@@ -321,16 +293,16 @@ TEST_F(Hostile, PlansOfOtherFormatsSaySoAndMisnamedPlansAreRead) {
                 {"really-a-png.toml", "really-a-png.toml is a PNG image"},
                 {"noise.bin", "noise.bin is not a plan Avenues can read"}};
   for (const auto& c : cannot) {
-    const avenues::ProgramResult r = run({"cells", c.file});
-    EXPECT_EQ(r.status, 2) << c.file << "\n" << r.output;
-    EXPECT_TRUE(has(r.output, c.says)) << r.output;
+    const Outcome r = run({"cells", c.file});
+    EXPECT_EQ(r.status, 2) << c.file << "\n" << r.output();
+    EXPECT_TRUE(has(r.output(), c.says)) << r.output();
   }
   fs::copy_file(kPlan, path("jones.plan"));
-  avenues::ProgramResult r = run({"cells", "jones.plan", "--save", "saved.bin"});
-  ASSERT_EQ(r.status, 0) << r.output;
+  Outcome r = run({"cells", "jones.plan", "--save", "saved.bin"});
+  ASSERT_EQ(r.status, 0) << r.output();
   r = run({"cells", "saved.bin", "--json"});
-  EXPECT_EQ(r.status, 0) << r.output;
-  EXPECT_TRUE(has(r.output, "\"cells\"")) << r.output;
+  EXPECT_EQ(r.status, 0) << r.output();
+  EXPECT_TRUE(has(r.output(), "\"cells\"")) << r.output();
 }
 
 // Items 13 and 14: a broken mesh names the file and what is wrong with it; OBJ and STL go by
@@ -370,10 +342,10 @@ TEST_F(Hostile, BrokenMeshesNameTheFileAndTheFault) {
       {"dir.off", {"dir.off", "directory"}},
   };
   for (const auto& c : cases) {
-    const avenues::ProgramResult r = run({"cells", c.file});
-    EXPECT_EQ(r.status, 2) << c.file << "\n" << r.output;
-    for (const char* s : c.says) EXPECT_TRUE(has(r.output, s)) << c.file << ": no '" << s << "' in\n" << r.output;
-    EXPECT_FALSE(has(r.output, "out of memory")) << r.output;
+    const Outcome r = run({"cells", c.file});
+    EXPECT_EQ(r.status, 2) << c.file << "\n" << r.output();
+    for (const char* s : c.says) EXPECT_TRUE(has(r.output(), s)) << c.file << ": no '" << s << "' in\n" << r.output();
+    EXPECT_FALSE(has(r.output(), "out of memory")) << r.output();
   }
 }
 
@@ -389,16 +361,16 @@ TEST_F(Hostile, MeshAndKeyPathsThatAreNotFiles) {
     const std::string line = "mesh = \"meshes/table.off\"";
     text.replace(text.find(line), line.size(), "mesh = \"" + mesh + "\"");
     write("room.toml", text);
-    const avenues::ProgramResult r = run({"view", "room.toml", "--size", "32x18", "-o", "a.png"});
-    EXPECT_EQ(r.status, 2) << mesh << "\n" << r.output;
-    EXPECT_TRUE(has(r.output, mesh)) << r.output;
-    EXPECT_TRUE(has(r.output, mesh == "meshes/dir.off" ? "directory" : "not a regular file")) << r.output;
+    const Outcome r = run({"view", "room.toml", "--size", "32x18", "-o", "a.png"});
+    EXPECT_EQ(r.status, 2) << mesh << "\n" << r.output();
+    EXPECT_TRUE(has(r.output(), mesh)) << r.output();
+    EXPECT_TRUE(has(r.output(), mesh == "meshes/dir.off" ? "directory" : "not a regular file")) << r.output();
     EXPECT_FALSE(fs::exists(path("a.png")));
   }
   fs::create_directories(path("keys"));
-  const avenues::ProgramResult r = run({"path", kPlan, "--keys", "keys", "-o", "frames"});
-  EXPECT_EQ(r.status, 2) << r.output;
-  EXPECT_TRUE(has(r.output, "keys: not a regular file")) << r.output;
+  const Outcome r = run({"path", kPlan, "--keys", "keys", "-o", "frames"});
+  EXPECT_EQ(r.status, 2) << r.output();
+  EXPECT_TRUE(has(r.output(), "keys: not a regular file")) << r.output();
 }
 
 // Item 17: a saved complex names its objects' meshes relative to itself, so it loads from
@@ -408,20 +380,22 @@ TEST_F(Hostile, SavedCellsFindTheirMeshesFromAnywhere) {
   fs::copy_file(kSource + "/plans/furnished-room.toml", path("house/room.toml"));
   fs::copy_file(kSource + "/plans/meshes/table.off", path("house/meshes/table.off"));
   fs::create_directories(path("out"));
-  avenues::ProgramResult r = run({"cells", "house/room.toml", "--save", "out/room.cells"});
-  ASSERT_EQ(r.status, 0) << r.output;
-  r = run({"view", "room.cells", "--size", "32x18", "-o", "a.png"}, path("out"));
-  EXPECT_EQ(r.status, 0) << r.output;
+  Outcome r = run({"cells", "house/room.toml", "--save", "out/room.cells"});
+  ASSERT_EQ(r.status, 0) << r.output();
+  avenues::testing::RunOptions in_out;
+  in_out.cwd = path("out");
+  r = run({"view", "room.cells", "--size", "32x18", "-o", "a.png"}, in_out);
+  EXPECT_EQ(r.status, 0) << r.output();
   EXPECT_TRUE(fs::exists(path("out/a.png")));
   // Saved beside where it runs, then marked version 3: the old meaning of the same path.
   r = run({"cells", "house/room.toml", "--save", "old.cells"});
-  ASSERT_EQ(r.status, 0) << r.output;
+  ASSERT_EQ(r.status, 0) << r.output();
   std::string bytes = slurp(path("old.cells"));
   ASSERT_GT(bytes.size(), 12u);
   bytes[8] = 3;
   write("old.cells", bytes);
   r = run({"view", "old.cells", "--size", "32x18", "-o", "b.png"});
-  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_EQ(r.status, 0) << r.output();
   EXPECT_TRUE(fs::exists(path("b.png")));
 }
 
@@ -437,11 +411,11 @@ TEST_F(Hostile, AnArchiveEntryInflatingPastTheLimitIsRefused) {
   ASSERT_EQ(zip_set_file_compression(za, zip_uint64_t(idx), ZIP_CM_DEFLATE, 1), 0);
   ASSERT_EQ(zip_close(za), 0);
   ASSERT_LT(fs::file_size(path("bomb.sh3d")), uintmax_t(4) << 20);
-  const avenues::ProgramResult r = run({"cells", "bomb.sh3d", "--svg", "bomb.svg"});
-  EXPECT_EQ(r.status, 2) << r.output;
-  EXPECT_TRUE(has(r.output, "bomb.sh3d")) << r.output;
-  EXPECT_TRUE(has(r.output, "'Home.xml'")) << r.output;
-  EXPECT_TRUE(has(r.output, "512 MiB")) << r.output;
+  const Outcome r = run({"cells", "bomb.sh3d", "--svg", "bomb.svg"});
+  EXPECT_EQ(r.status, 2) << r.output();
+  EXPECT_TRUE(has(r.output(), "bomb.sh3d")) << r.output();
+  EXPECT_TRUE(has(r.output(), "'Home.xml'")) << r.output();
+  EXPECT_TRUE(has(r.output(), "512 MiB")) << r.output();
   EXPECT_FALSE(fs::exists(path("bomb.svg")));
 }
 

@@ -1,12 +1,9 @@
 // Avenues — `avenues path`, run as a person (or a cluster job) would run it.
 //
-// The real executable, started by argv (posix_spawn: no shell sees the arguments), in a
-// fresh temporary directory; the film is read back with libavformat; the MPI walks run
+// The real executable, started by argv (tests/avenues_run.h: no shell sees the arguments),
+// in a fresh temporary directory; the film is read back with libavformat; the MPI walks run
 // under the real mpirun (Open MPI), on 2 and 3 ranks, and one rank is killed mid-walk.
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -26,22 +23,16 @@ extern "C" {
 #include <libavformat/avformat.h>
 }
 
+#include "tests/avenues_run.h"
 #include "tests/test_files.h"
 
-extern char** environ;
-
 namespace fs = std::filesystem;
+using avenues::testing::Outcome;
 using avenues::testing::slurp;
 
 namespace {
 
-const std::string kBinary = AVENUES_BINARY;
 const std::string kHouse = std::string(AVENUES_SOURCE_DIR) + "/plans/jones-house.toml";
-
-struct Outcome {
-  int status = -1;  ///< the exit status; 128 + N for a process killed by signal N
-  std::string out, err;
-};
 
 /// What libavformat finds in a film: its video stream's codec and size, and its frames.
 struct FilmInfo {
@@ -73,79 +64,34 @@ FilmInfo probe_film(const fs::path& path) {
   return info;
 }
 
-class Path : public ::testing::Test {
+class Path : public avenues::testing::AvenuesRun {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("avenues-path-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
-
-  /// Starts argv[0] (looked up on PATH) in the temporary directory, output to files.
-  pid_t start(const std::vector<std::string>& args, const std::string& tag) {
-    std::vector<char*> argv;
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t files;
-    posix_spawn_file_actions_init(&files);
-    posix_spawn_file_actions_addchdir_np(&files, dir_.c_str());
-    posix_spawn_file_actions_addopen(&files, 0, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&files, 1, (dir_ / (".out-" + tag)).c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&files, 2, (dir_ / (".err-" + tag)).c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    pid_t pid = -1;
-    const int rc = posix_spawnp(&pid, argv[0], &files, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&files);
-    EXPECT_EQ(rc, 0) << "cannot start " << args[0];
-    return rc == 0 ? pid : -1;
-  }
-  Outcome finish(pid_t pid, const std::string& tag) {
-    Outcome r;
-    int status = 0;
-    if (pid > 0 && ::waitpid(pid, &status, 0) == pid)
-      r.status = WIFEXITED(status) ? WEXITSTATUS(status) : WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
-    r.out = slurp(dir_ / (".out-" + tag));
-    r.err = slurp(dir_ / (".err-" + tag));
-    fs::remove(dir_ / (".out-" + tag));
-    fs::remove(dir_ / (".err-" + tag));
-    return r;
-  }
-  /// `avenues ARGS`, to the end.
-  Outcome avenues(std::vector<std::string> args) {
-    args.insert(args.begin(), kBinary);
-    return finish(start(args, "run"), "run");
-  }
 #ifdef AVENUES_MPIRUN
-  static std::vector<std::string> mpirun(int ranks, std::vector<std::string> args) {
-    std::vector<std::string> cmd = {AVENUES_MPIRUN, "--allow-run-as-root", "--oversubscribe", "-np",
-                                    std::to_string(ranks), kBinary};
-    cmd.insert(cmd.end(), args.begin(), args.end());
+  /// `mpirun -np RANKS avenues ARGS`.
+  static std::vector<std::string> mpirun(int ranks, const std::vector<std::string>& args) {
+    std::vector<std::string> cmd = {AVENUES_MPIRUN, "--allow-run-as-root", "--oversubscribe", "-np", std::to_string(ranks)};
+    const std::vector<std::string> command = avenues::testing::avenues_argv(args);
+    cmd.insert(cmd.end(), command.begin(), command.end());
     return cmd;
   }
-  Outcome avenues_mpi(int ranks, std::vector<std::string> args) { return finish(start(mpirun(ranks, args), "mpi"), "mpi"); }
+  Outcome run_mpi(int ranks, const std::vector<std::string>& args) { return run_argv(mpirun(ranks, args)); }
 #endif
 
   /// The frames in `sub` (frame-NNNN.EXT), by name, with their bytes.
   std::map<std::string, std::string> frames(const std::string& sub) const {
     std::map<std::string, std::string> out;
     static const std::regex frame(R"(frame-[0-9]+\.(png|svg))");
-    for (const auto& e : fs::directory_iterator(dir_ / sub))
+    for (const auto& e : fs::directory_iterator(path(sub)))
       if (std::regex_match(e.path().filename().string(), frame)) out[e.path().filename().string()] = slurp(e.path());
     return out;
   }
   /// Every name in `sub`, hidden ones included.
   std::vector<std::string> names(const std::string& sub) const {
     std::vector<std::string> out;
-    for (const auto& e : fs::directory_iterator(dir_ / sub)) out.push_back(e.path().filename().string());
+    for (const auto& e : fs::directory_iterator(path(sub))) out.push_back(e.path().filename().string());
     std::sort(out.begin(), out.end());
     return out;
   }
-  fs::path path(const std::string& name) const { return dir_ / name; }
-
-  fs::path dir_;
 };
 
 /// A short walk through Jones's house: its arguments before -o.
@@ -157,7 +103,7 @@ std::vector<std::string> walk_args(const std::string& out, const std::string& st
 }  // namespace
 
 TEST_F(Path, FilmHasEveryFrameAtAnEvenSize) {
-  Outcome r = avenues(walk_args("walk"));
+  Outcome r = run(walk_args("walk"));
   ASSERT_EQ(r.status, 0) << r.err;
   const size_t n = frames("walk").size();
   ASSERT_GE(n, 5u);
@@ -174,7 +120,7 @@ TEST_F(Path, FilmHasEveryFrameAtAnEvenSize) {
 // Issue 13, item 1: the film was made by a shell command with the output folder in quotes.
 TEST_F(Path, NoShellSeesTheOutputName) {
   for (const std::string out : {"inj';touch PWNED;'", "it's", "sp ace $(touch PWNED2)"}) {
-    Outcome r = avenues(walk_args(out, "1.0", "64x36"));
+    Outcome r = run(walk_args(out, "1.0", "64x36"));
     ASSERT_EQ(r.status, 0) << out << "\n" << r.err;
     const size_t n = frames(out).size();
     EXPECT_GE(n, 2u) << out;
@@ -193,7 +139,7 @@ TEST_F(Path, RefusesAStepThatIsNoLengthOrAWalkTooLong) {
       std::vector<std::string> args = {"path", kHouse, "--step", step, "-o", "none"};
       if (keys) args.insert(args.end(), {"--keys", "keys.txt"});
       else args.insert(args.end(), {"--through", "L,K"});
-      Outcome r = avenues(args);
+      Outcome r = run(args);
       EXPECT_EQ(r.status, 2) << step << (keys ? " --keys" : "");
       // What is no positive number the command line's check refuses; a positive step
       // under a millimetre, the walk's own.
@@ -204,28 +150,28 @@ TEST_F(Path, RefusesAStepThatIsNoLengthOrAWalkTooLong) {
     }
   }
   // A millimetre is a step, but that walk is longer than the limit asked for...
-  Outcome r = avenues({"path", kHouse, "--through", "L,K,D", "--step", "0.001", "--max-frames", "1000", "-o", "none"});
+  Outcome r = run({"path", kHouse, "--through", "L,K,D", "--step", "0.001", "--max-frames", "1000", "-o", "none"});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("more than --max-frames 1000"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(path("none")));
   // ... and so is a step of a metre through the keyframes above a limit of 2.
-  Outcome keyed = avenues({"path", kHouse, "--keys", "keys.txt", "--step", "0.1", "--max-frames", "2", "-o", "none"});
+  Outcome keyed = run({"path", kHouse, "--keys", "keys.txt", "--step", "0.1", "--max-frames", "2", "-o", "none"});
   EXPECT_EQ(keyed.status, 2);
   EXPECT_NE(keyed.err.find("would have 20 frames"), std::string::npos) << keyed.err;  // 1 + ceil(1.80 / 0.1)
-  EXPECT_EQ(avenues({"path", kHouse, "--keys", "keys.txt", "--max-frames", "1", "-o", "none"}).status, 2);
+  EXPECT_EQ(run({"path", kHouse, "--keys", "keys.txt", "--max-frames", "1", "-o", "none"}).status, 2);
   EXPECT_FALSE(fs::exists(path("none")));
 }
 
 // Issue 13, items 9 and 11: a second walk into the same folder left the first one's frames,
 // and its film had them all.
 TEST_F(Path, AWalkOwnsItsOutput) {
-  ASSERT_EQ(avenues(walk_args("walk", "0.25", "64x36")).status, 0);
+  ASSERT_EQ(run(walk_args("walk", "0.25", "64x36")).status, 0);
   const size_t first = frames("walk").size();
   // What a killed walk leaves (a frame being written) and what is not the walk's.
   std::ofstream(path("walk/.frame-0003.png.tmp-a1B2c3")) << "half a frame";
   std::ofstream(path("walk/notes.txt")) << "mine";
   fs::create_directories(path("walk/frame-sketches"));
-  Outcome r = avenues(walk_args("walk", "1.0", "64x36"));
+  Outcome r = run(walk_args("walk", "1.0", "64x36"));
   ASSERT_EQ(r.status, 0) << r.err;
   const size_t second = frames("walk").size();
   ASSERT_LT(second, first);
@@ -235,7 +181,7 @@ TEST_F(Path, AWalkOwnsItsOutput) {
   std::sort(expected.begin(), expected.end());
   EXPECT_EQ(names("walk"), expected);
   // Drawn frames replace the pictures, and there is no film of drawings.
-  ASSERT_EQ(avenues({"path", kHouse, "--through", "L,K", "--step", "1.0", "--format", "svg", "-o", "walk"}).status, 0);
+  ASSERT_EQ(run({"path", kHouse, "--through", "L,K", "--step", "1.0", "--format", "svg", "-o", "walk"}).status, 0);
   for (const std::string& name : names("walk")) EXPECT_EQ(name.find(".png"), std::string::npos) << name;
   EXPECT_FALSE(fs::exists(path("walk/walk.mp4")));
 }
@@ -244,21 +190,21 @@ TEST_F(Path, AWalkOwnsItsOutput) {
 // complete, and there is no film, not even its temporary file.
 TEST_F(Path, AFailedFrameLeavesCompleteFramesAndNoFilm) {
   fs::create_directories(path("walk/frame-0004.png"));
-  Outcome r = avenues(walk_args("walk", "0.3", "64x36"));
+  Outcome r = run(walk_args("walk", "0.3", "64x36"));
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("cannot write walk/frame-0004.png: is a directory"), std::string::npos) << r.err;
   EXPECT_EQ(names("walk"), (std::vector<std::string>{"frame-0001.png", "frame-0002.png", "frame-0003.png", "frame-0004.png"}));
 }
 
 TEST_F(Path, ResumeRendersOnlyTheMissingFrames) {
-  ASSERT_EQ(avenues(walk_args("walk", "0.5", "96x54")).status, 0);
+  ASSERT_EQ(run(walk_args("walk", "0.5", "96x54")).status, 0);
   const auto whole = frames("walk");
   ASSERT_GE(whole.size(), 5u);
   fs::remove(path("walk/frame-0002.png"));
   fs::remove(path("walk/frame-0005.png"));
   fs::remove(path("walk/walk.mp4"));
   const auto kept = fs::last_write_time(path("walk/frame-0001.png"));
-  Outcome r = avenues({"path", kHouse, "--through", "L,K", "--step", "0.5", "--size", "96x54", "-o", "walk", "--resume"});
+  Outcome r = run({"path", kHouse, "--through", "L,K", "--step", "0.5", "--size", "96x54", "-o", "walk", "--resume"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("resuming: " + std::to_string(whole.size() - 2) + " of " + std::to_string(whole.size())),
             std::string::npos)
@@ -269,7 +215,7 @@ TEST_F(Path, ResumeRendersOnlyTheMissingFrames) {
 }
 
 TEST_F(Path, StereoFramesAndOptionsAreChecked) {
-  Outcome r = avenues({"path", kHouse, "--through", "L,K", "--step", "1.0", "--size", "64x36", "--stereo", "parallel",
+  Outcome r = run({"path", kHouse, "--through", "L,K", "--step", "1.0", "--size", "64x36", "--stereo", "parallel",
                        "-o", "pair"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(probe_film(path("pair/walk.mp4")).width, 128);  // the two eyes side by side
@@ -278,7 +224,7 @@ TEST_F(Path, StereoFramesAndOptionsAreChecked) {
            {"--stereo", "cross", "--interocular", "nan"}}) {
     std::vector<std::string> args = {"path", kHouse, "--through", "L,K", "-o", "none"};
     args.insert(args.end(), bad.begin(), bad.end());
-    Outcome b = avenues(args);
+    Outcome b = run(args);
     EXPECT_EQ(b.status, 2) << bad[0];
     EXPECT_NE(b.err.find(bad[bad.size() - 2]), std::string::npos) << b.err;
     EXPECT_FALSE(fs::exists(path("none")));
@@ -296,12 +242,12 @@ TEST_F(Path, MpiWalksAreByteIdenticalToOneProcess) {
     a.insert(a.end(), extra.begin(), extra.end());
     return a;
   };
-  ASSERT_EQ(avenues(with({"-o", "one"})).status, 0);
+  ASSERT_EQ(run(with({"-o", "one"})).status, 0);
   const auto one = frames("one");
   ASSERT_GE(one.size(), 10u);
   for (int ranks : {2, 3}) {
     const std::string out = "ranks" + std::to_string(ranks);
-    Outcome r = avenues_mpi(ranks, with({"-o", out}));
+    Outcome r = run_mpi(ranks, with({"-o", out}));
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(frames(out), one) << ranks << " ranks";
     EXPECT_NE(r.out.find("on " + std::to_string(ranks) + " ranks"), std::string::npos) << r.out;
@@ -310,17 +256,17 @@ TEST_F(Path, MpiWalksAreByteIdenticalToOneProcess) {
     EXPECT_NE(r.err.find("] " + std::to_string(one.size()) + "/" + std::to_string(one.size())), std::string::npos) << r.err;
   }
   // Stereo frames (an anaglyph) and drawings.
-  ASSERT_EQ(avenues(with({"--stereo", "anaglyph", "-o", "s1"})).status, 0);
-  ASSERT_EQ(avenues_mpi(2, with({"--stereo", "anaglyph", "-o", "s2"})).status, 0);
+  ASSERT_EQ(run(with({"--stereo", "anaglyph", "-o", "s1"})).status, 0);
+  ASSERT_EQ(run_mpi(2, with({"--stereo", "anaglyph", "-o", "s2"})).status, 0);
   EXPECT_EQ(frames("s2"), frames("s1"));
-  ASSERT_EQ(avenues(with({"--format", "svg", "--stereo", "cross", "-o", "d1"})).status, 0);
-  ASSERT_EQ(avenues_mpi(3, with({"--format", "svg", "--stereo", "cross", "-o", "d3"})).status, 0);
+  ASSERT_EQ(run(with({"--format", "svg", "--stereo", "cross", "-o", "d1"})).status, 0);
+  ASSERT_EQ(run_mpi(3, with({"--format", "svg", "--stereo", "cross", "-o", "d3"})).status, 0);
   EXPECT_EQ(frames("d3"), frames("d1"));
   EXPECT_FALSE(frames("d1").empty());
 }
 
 TEST_F(Path, MpiBadInputIsReportedOnceByRankZero) {
-  Outcome r = avenues_mpi(2, {"path", kHouse, "--through", "L,Attic", "-o", "none"});
+  Outcome r = run_mpi(2, {"path", kHouse, "--through", "L,Attic", "-o", "none"});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("no room 'Attic'"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("no room 'Attic'"), r.err.rfind("no room 'Attic'")) << r.err;
@@ -331,9 +277,9 @@ TEST_F(Path, MpiBadInputIsReportedOnceByRankZero) {
 // the walk, named with its frame; --resume, the folder gone, finishes it.
 TEST_F(Path, MpiRankThatFailsStopsTheWalkAndResumeFinishesIt) {
   const std::vector<std::string> args = {"path", kHouse, "--through", "L,K", "--step", "0.3", "--size", "64x36", "-o", "walk"};
-  ASSERT_EQ(avenues({"path", kHouse, "--through", "L,K", "--step", "0.3", "--size", "64x36", "-o", "one"}).status, 0);
+  ASSERT_EQ(run({"path", kHouse, "--through", "L,K", "--step", "0.3", "--size", "64x36", "-o", "one"}).status, 0);
   fs::create_directories(path("walk/frame-0004.png"));
-  Outcome r = avenues_mpi(2, args);
+  Outcome r = run_mpi(2, args);
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_TRUE(std::regex_search(r.err, std::regex("avenues: rank [01] failed at frame 4 \\(of [0-9]+\\): cannot write")))
       << r.err;
@@ -342,7 +288,7 @@ TEST_F(Path, MpiRankThatFailsStopsTheWalkAndResumeFinishesIt) {
   fs::remove(path("walk/frame-0004.png"));
   std::vector<std::string> again = args;
   again.push_back("--resume");
-  Outcome resumed = avenues_mpi(2, again);
+  Outcome resumed = run_mpi(2, again);
   ASSERT_EQ(resumed.status, 0) << resumed.err;
   EXPECT_EQ(frames("walk"), frames("one"));
   EXPECT_EQ(probe_film(path("walk/walk.mp4")).frames, long(frames("one").size()));
@@ -371,8 +317,8 @@ pid_t rank_process(int rank, const std::string& marker) {
 TEST_F(Path, MpiRankKilledMidWalkAndResumeCompletesTheFilm) {
   const std::string out = "killed-" + std::to_string(::getpid());  // names this job's processes
   const std::vector<std::string> args = {"path", kHouse, "--through", "L,K,D", "--step", "0.05", "--size", "160x90", "-o", out};
-  const pid_t job = start(mpirun(2, args), "killed");
-  ASSERT_GT(job, 0);
+  avenues::testing::Child job = start_argv(mpirun(2, args));
+  ASSERT_GT(job.pid(), 0);
   // Wait for a few frames, then kill rank 1.
   pid_t victim = -1;
   for (int tries = 0; tries < 1200 && victim < 0; ++tries) {
@@ -381,7 +327,7 @@ TEST_F(Path, MpiRankKilledMidWalkAndResumeCompletesTheFilm) {
   }
   ASSERT_GT(victim, 0) << "rank 1 never showed up";
   ASSERT_EQ(::kill(victim, SIGKILL), 0);
-  Outcome r = finish(job, "killed");
+  Outcome r = finish(job);
   const size_t done = frames(out).size();
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.err.find("rank 1"), std::string::npos) << r.err;  // mpirun names the rank that died
@@ -391,7 +337,7 @@ TEST_F(Path, MpiRankKilledMidWalkAndResumeCompletesTheFilm) {
 
   std::vector<std::string> again = args;
   again.push_back("--resume");
-  Outcome resumed = avenues_mpi(2, again);
+  Outcome resumed = run_mpi(2, again);
   ASSERT_EQ(resumed.status, 0) << resumed.err;
   std::smatch m;
   ASSERT_TRUE(std::regex_search(resumed.out, m, std::regex("resuming: ([0-9]+) of ([0-9]+) frames"))) << resumed.out;
