@@ -1,10 +1,10 @@
 // Avenues — the walkthrough window (`avenues walk`), run for real under a virtual X server.
 //
 // Each test starts its own Xvfb (on a display number Xvfb picks itself, -displayfd), runs the
-// real `avenues` binary in it with a key-event script (or real X key events sent by xdotool),
-// and checks what the window showed — its screenshots, read back from the framebuffer by the
-// viewer — against the offline renders `avenues view` writes for the same eye. Without Xvfb
-// installed, the window tests skip with a message.
+// real `avenues` binary in it (by argv: tests/avenues_run.h) with a key-event script (or
+// real X key events sent by xdotool), and checks what the window showed — its screenshots,
+// read back from the framebuffer by the viewer — against the offline renders `avenues view`
+// writes for the same eye. Without Xvfb installed, the window tests skip with a message.
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
@@ -14,7 +14,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -30,21 +29,30 @@
 #include "plans/formats/dxf_plan.h"
 #include "plans/formats/ifc_building.h"
 #include "render/raster.h"
+#include "tests/avenues_run.h"
 #include "tests/test_files.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-using avenues::testing::quote;
+using avenues::testing::Child;
+using avenues::testing::Outcome;
 using avenues::testing::slurp;
 
 namespace {
 
-const std::string kBinary = AVENUES_BINARY;
 std::string plan(const std::string& name) { return std::string(AVENUES_SOURCE_DIR) + "/plans/" + name; }
 
 bool on_path(const std::string& program) {
-  return std::system(("command -v " + program + " >/dev/null 2>&1").c_str()) == 0;
+  return avenues::testing::run_argv({"sh", "-c", "command -v \"$0\"", program}).status == 0;
+}
+
+/// The words of `text` (split at white space): view options a screenshot states, for a command line.
+std::vector<std::string> split_words(const std::string& text) {
+  std::istringstream in(text);
+  std::vector<std::string> out;
+  for (std::string w; in >> w;) out.push_back(w);
+  return out;
 }
 
 /// An Xvfb of its own, 1280×720×24, stopped (and killed with the test process) at the end.
@@ -112,47 +120,19 @@ class VirtualDisplay {
   std::string display_, why_;
 };
 
-struct Outcome {
-  int status = -1;
-  std::string out, err;
-};
-
-class WalkWindow : public ::testing::Test {
+class WalkWindow : public avenues::testing::AvenuesRun {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("avenues-walk-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
+  WalkWindow() { run_options_.timeout_s = 120; }  // no walk hangs the suite
 
-  /// Starts the virtual display; false (the test skips) when Xvfb is missing.
+  /// Starts the virtual display, on which `avenues` then runs; false (the test skips) when
+  /// Xvfb is missing.
   bool start_display() {
     x_ = std::make_unique<VirtualDisplay>();
+    if (x_->ok()) run_options_.set_env = {"DISPLAY=" + x_->display()};
     return x_->ok();
   }
 
-  /// Runs `avenues ARGS` in the test's directory, on the virtual display if one was started.
-  Outcome run(const std::string& args, int timeout_s = 120) {
-    const fs::path out = dir_ / ".stdout", err = dir_ / ".stderr";
-    const std::string env = x_ && x_->ok() ? "DISPLAY=" + x_->display() + " " : "env -u DISPLAY -u WAYLAND_DISPLAY ";
-    const std::string cmd = "cd " + quote(dir_.string()) + " && " + env + "timeout " + std::to_string(timeout_s) + " " +
-                            quote(kBinary) + " " + args + " >" + quote(out.string()) + " 2>" + quote(err.string()) +
-                            " </dev/null";
-    const int rc = std::system(cmd.c_str());
-    Outcome r;
-    r.status = (rc != -1 && WIFEXITED(rc)) ? WEXITSTATUS(rc) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    return r;
-  }
-
-  fs::path path(const std::string& name) const { return dir_ / name; }
-  void write(const std::string& name, const std::string& text) { std::ofstream(dir_ / name) << text; }
-  json read_json(const std::string& name) const { return json::parse(slurp(dir_ / name)); }
+  json read_json(const std::string& name) const { return json::parse(slurp(path(name))); }
 
   /// Samples (of the RGB pictures) that differ by more than one level; -1 for different sizes.
   static long differing(const avenues::Image& a, const avenues::Image& b) {
@@ -163,10 +143,14 @@ class WalkWindow : public ::testing::Test {
     return n;
   }
 
-  /// `avenues view PLAN <the screenshot's pose> -o NAME.png [extra]`, read back.
+  /// `avenues view PLAN <the screenshot's pose> [extra] -o NAME.png`, read back.
   avenues::Image offline(const std::string& plan_file, const json& shot, const std::string& name,
-                         const std::string& extra = "") {
-    const Outcome r = run("view " + quote(plan_file) + " " + shot["view_options"].get<std::string>() + " " + extra + " -o " + name);
+                         const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> args = split_words(shot["view_options"].get<std::string>());
+    args.insert(args.begin(), {"view", plan_file});
+    args.insert(args.end(), extra.begin(), extra.end());
+    args.insert(args.end(), {"-o", name});
+    const Outcome r = run(args);
     EXPECT_EQ(r.status, 0) << r.err;
     return avenues::read_image(path(name).string());
   }
@@ -177,8 +161,8 @@ class WalkWindow : public ::testing::Test {
                          const std::string& from, const std::string& to, int frames) {
     const std::string f = std::to_string(frames), g = std::to_string(frames + 1);
     write("door.txt", "0 screenshot before.png\n0 down W\n" + f + " up W\n" + g + " screenshot after.png\n" + g + " quit\n");
-    const Outcome r = run("walk " + quote(plan_file) + " --eye " + eye + " --look " + look +
-                          " --size 320x180 --no-hud --script door.txt --stats-json s.json");
+    const Outcome r = run({"walk", plan_file, "--eye", eye, "--look", look, "--size", "320x180", "--no-hud", "--script",
+                           "door.txt", "--stats-json", "s.json"});
     ASSERT_EQ(r.status, 0) << r.err;
     const json s = read_json("s.json");
     ASSERT_EQ(s["screenshots"].size(), 2u);
@@ -186,7 +170,6 @@ class WalkWindow : public ::testing::Test {
     EXPECT_EQ(s["screenshots"][1]["room"], to) << "walked from '" << from << "' through the door";
   }
 
-  fs::path dir_;
   std::unique_ptr<VirtualDisplay> x_;
 };
 
@@ -206,14 +189,15 @@ TEST_F(WalkWindow, ScriptedWalkShowsTheOfflineRenderOfTheSameEye) {
         "0  down W\n40 up W\n41 down RIGHT\n60 up RIGHT\n61 look 30 12\n"
         "62 down LEFT_SHIFT\n62 down W\n75 up W\n75 up LEFT_SHIFT\n"
         "80 screenshot shot.png\n80 quit\n");
-  const Outcome r = run("walk " + quote(plan("jones-house.toml")) + " --size 640x360 --no-hud --script walk.txt --stats-json s.json");
+  const Outcome r = run({"walk", plan("jones-house.toml"), "--size", "640x360", "--no-hud", "--script", "walk.txt",
+                         "--stats-json", "s.json"});
   ASSERT_EQ(r.status, 0) << r.err;
   const json s = read_json("s.json");
   ASSERT_EQ(s["screenshots"].size(), 1u);
   const json shot = s["screenshots"][0];
   EXPECT_EQ(s["frames"], 81);
   // The eye moved away from where the walk starts (the plan's viewpoint).
-  const Outcome v = run("view " + quote(plan("jones-house.toml")) + " --stats-json start.json");
+  const Outcome v = run({"view", plan("jones-house.toml"), "--stats-json", "start.json"});
   ASSERT_EQ(v.status, 0) << v.err;
   const json start = read_json("start.json");
   const double dx = shot["eye"][0].get<double>() - start["eye"][0].get<double>();
@@ -234,8 +218,8 @@ TEST_F(WalkWindow, ScriptedWalkShowsTheOfflineRenderOfTheSameEye) {
 TEST_F(WalkWindow, OverItsFrameBudgetTheWalkDropsDetailAndRestoresItWhenTheEyeStops) {
   NEED_DISPLAY();
   write("budget.txt", "0 down W\n12 screenshot moving.png\n13 up W\n20 screenshot still.png\n20 quit\n");
-  const Outcome r = run("walk " + quote(plan("two-storey-house.toml")) +
-                        " --size 640x360 --no-hud --samples 4 --frame-budget 0.001 --script budget.txt --stats-json s.json");
+  const Outcome r = run({"walk", plan("two-storey-house.toml"), "--size", "640x360", "--no-hud", "--samples", "4",
+                         "--frame-budget", "0.001", "--script", "budget.txt", "--stats-json", "s.json"});
   ASSERT_EQ(r.status, 0) << r.err;
   const json s = read_json("s.json");
   ASSERT_EQ(s["screenshots"].size(), 2u);
@@ -260,7 +244,7 @@ TEST_F(WalkWindow, OverItsFrameBudgetTheWalkDropsDetailAndRestoresItWhenTheEyeSt
   EXPECT_EQ(still["detail"]["samples"], 4);
   EXPECT_EQ(still["detail"]["scale"], 1);
   const avenues::Image window = avenues::read_image(path("still.png").string());
-  const avenues::Image picture = offline(plan("two-storey-house.toml"), still, "offline.png", "--samples 4");
+  const avenues::Image picture = offline(plan("two-storey-house.toml"), still, "offline.png", {"--samples", "4"});
   EXPECT_EQ(differing(window, picture), 0) << "the still window and `avenues view " << still["view_options"] << "` differ";
 }
 
@@ -334,7 +318,8 @@ TEST_F(WalkWindow, StereoSideBySideAndAnaglyphMatchTheOfflineStereoPictures) {
   NEED_DISPLAY();
   write("stereo.txt",
         "0 down W\n20 up W\n21 tap B\n22 screenshot sbs.png\n23 tap B\n24 screenshot anaglyph.png\n25 quit\n");
-  const Outcome r = run("walk " + quote(plan("two-storey-house.toml")) + " --size 640x360 --no-hud --script stereo.txt --stats-json s.json");
+  const Outcome r = run({"walk", plan("two-storey-house.toml"), "--size", "640x360", "--no-hud", "--script",
+                         "stereo.txt", "--stats-json", "s.json"});
   ASSERT_EQ(r.status, 0) << r.err;
   const json s = read_json("s.json");
   ASSERT_EQ(s["screenshots"].size(), 2u);
@@ -344,17 +329,21 @@ TEST_F(WalkWindow, StereoSideBySideAndAnaglyphMatchTheOfflineStereoPictures) {
   // Side by side: each eye gets half the window.
   std::string half = sbs["view_options"].get<std::string>();
   half.replace(half.find("--size 640x360"), 14, "--size 320x360");
-  const Outcome v = run("view " + quote(plan("two-storey-house.toml")) + " " + half + " --stereo parallel -o sbs-offline.png");
+  std::vector<std::string> args = split_words(half);
+  args.insert(args.begin(), {"view", plan("two-storey-house.toml")});
+  args.insert(args.end(), {"--stereo", "parallel", "-o", "sbs-offline.png"});
+  const Outcome v = run(args);
   ASSERT_EQ(v.status, 0) << v.err;
   EXPECT_EQ(differing(avenues::read_image(path("sbs.png").string()), avenues::read_image(path("sbs-offline.png").string())), 0);
-  const avenues::Image a = offline(plan("two-storey-house.toml"), ana, "anaglyph-offline.png", "--stereo anaglyph");
+  const avenues::Image a = offline(plan("two-storey-house.toml"), ana, "anaglyph-offline.png", {"--stereo", "anaglyph"});
   EXPECT_EQ(differing(avenues::read_image(path("anaglyph.png").string()), a), 0);
 }
 
 TEST_F(WalkWindow, ResizedWindowRendersAtItsNewSize) {
   NEED_DISPLAY();
   write("resize.txt", "0 resize 500 300\n2 down LEFT\n12 up LEFT\n13 screenshot small.png\n13 quit\n");
-  const Outcome r = run("walk " + quote(plan("office-corridor.toml")) + " --size 640x360 --no-hud --script resize.txt --stats-json s.json");
+  const Outcome r = run({"walk", plan("office-corridor.toml"), "--size", "640x360", "--no-hud", "--script",
+                         "resize.txt", "--stats-json", "s.json"});
   ASSERT_EQ(r.status, 0) << r.err;
   const json shot = read_json("s.json")["screenshots"][0];
   const avenues::Image window = avenues::read_image(path("small.png").string());
@@ -366,8 +355,8 @@ TEST_F(WalkWindow, ResizedWindowRendersAtItsNewSize) {
 TEST_F(WalkWindow, ProgressiveDisplayBuildsTheViewCellByCell) {
   NEED_DISPLAY();
   write("progressive.txt", "0 screenshot first.png\n1 screenshot second.png\n200 screenshot done.png\n200 quit\n");
-  const Outcome r = run("walk " + quote(plan("jones-house.toml")) +
-                        " --size 480x270 --no-hud --progressive --script progressive.txt --stats-json s.json");
+  const Outcome r = run({"walk", plan("jones-house.toml"), "--size", "480x270", "--no-hud", "--progressive",
+                         "--script", "progressive.txt", "--stats-json", "s.json"});
   ASSERT_EQ(r.status, 0) << r.err;
   const json s = read_json("s.json");
   ASSERT_GE(s["last"]["avenues"].get<int>(), 3);
@@ -384,7 +373,8 @@ TEST_F(WalkWindow, ProgressiveDisplayBuildsTheViewCellByCell) {
 TEST_F(WalkWindow, HiddenLineModeShowsInkOnPaper) {
   NEED_DISPLAY();
   write("lines.txt", "0 tap L\n1 screenshot lines.png\n2 tap L\n3 screenshot halftone.png\n3 quit\n");
-  const Outcome r = run("walk " + quote(plan("jones-house.toml")) + " --size 640x360 --no-hud --script lines.txt --stats-json s.json");
+  const Outcome r = run({"walk", plan("jones-house.toml"), "--size", "640x360", "--no-hud", "--script", "lines.txt",
+                         "--stats-json", "s.json"});
   ASSERT_EQ(r.status, 0) << r.err;
   const avenues::Image lines = avenues::grey_of(avenues::read_image(path("lines.png").string()));
   long ink = 0, paper = 0;
@@ -402,7 +392,8 @@ TEST_F(WalkWindow, HiddenLineModeShowsInkOnPaper) {
 TEST_F(WalkWindow, StatusLineAndHelpDrawOverThePictureOnly) {
   NEED_DISPLAY();
   write("hud.txt", "0 screenshot hud.png\n1 tap H\n2 screenshot help.png\n2 quit\n");
-  const Outcome r = run("walk " + quote(plan("jones-house.toml")) + " --size 640x360 --script hud.txt --stats-json s.json");
+  const Outcome r = run({"walk", plan("jones-house.toml"), "--size", "640x360", "--script", "hud.txt", "--stats-json",
+                         "s.json"});
   ASSERT_EQ(r.status, 0) << r.err;
   const avenues::Image bare = offline(plan("jones-house.toml"), read_json("s.json")["screenshots"][0], "offline.png");
   const avenues::Image hud = avenues::read_image(path("hud.png").string());
@@ -431,8 +422,8 @@ TEST_F(WalkWindow, SenseSwitchesLatchAndMoveTheEyeUpTheStairwell) {
   NEED_DISPLAY();
   write("switches.txt",
         "0 tap 5\n240 tap 5\n241 tap 1\n301 tap 1\n302 tap 7\n362 tap 7\n363 pose\n363 quit\n");
-  const Outcome r = run("walk " + quote(plan("two-storey-house.toml")) +
-                        " --eye 0.9,2.2,1.6 --look 0.9,5,1.6 --fov 60 --size 320x180 --script switches.txt --stats-json s.json");
+  const Outcome r = run({"walk", plan("two-storey-house.toml"), "--eye", "0.9,2.2,1.6", "--look", "0.9,5,1.6", "--fov",
+                         "60", "--size", "320x180", "--script", "switches.txt", "--stats-json", "s.json"});
   ASSERT_EQ(r.status, 0) << r.err;
   const json last = read_json("s.json")["last"];
   EXPECT_EQ(last["room"], "landing");
@@ -455,8 +446,8 @@ TEST_F(WalkWindow, AGamepadsSticksWalkTurnAndItsButtonsCommand) {
         "92 pad A 1\n93 pad A 0\n"                    // A: fly mode
         "94 pad RIGHT_TRIGGER 1\n124 pad RIGHT_TRIGGER -1\n"  // climb for half a second
         "125 pose\n125 quit\n");
-  const Outcome r = run("walk " + quote(plan("jones-house.toml")) +
-                        " --eye 2,1.5,1.6 --look 2,5,1.6 --fov 60 --size 320x180 --script pad.txt --stats-json s.json");
+  const Outcome r = run({"walk", plan("jones-house.toml"), "--eye", "2,1.5,1.6", "--look", "2,5,1.6", "--fov", "60",
+                         "--size", "320x180", "--script", "pad.txt", "--stats-json", "s.json"});
   ASSERT_EQ(r.status, 0) << r.err;
   const json last = read_json("s.json")["last"];
   // Forward at the walking speed (1.4 m/s) for the 60 frames the stick was held.
@@ -468,7 +459,7 @@ TEST_F(WalkWindow, AGamepadsSticksWalkTurnAndItsButtonsCommand) {
   EXPECT_EQ(last["mode"], "fly");
   EXPECT_NEAR(last["eye"][2].get<double>(), 1.6 + 0.6, 1e-6);
   write("bad.txt", "0 pad LEFT_Z 1\n");
-  const Outcome named = run("walk " + quote(plan("jones-house.toml")) + " --script bad.txt");
+  const Outcome named = run({"walk", plan("jones-house.toml"), "--script", "bad.txt"});
   EXPECT_EQ(named.status, 2);
   EXPECT_NE(named.err.find("bad.txt:1"), std::string::npos) << named.err;
   EXPECT_NE(named.err.find("LEFT_Z"), std::string::npos) << named.err;
@@ -479,8 +470,8 @@ TEST_F(WalkWindow, ExportsAndKeyframesFromTheWindow) {
   write("export.txt",
         "5 screenshot shot.png\n5 tap F2\n6 tap F3\n7 tap F4\n8 tap K\n"
         "9 down W\n60 up W\n61 tap K\n62 down RIGHT\n80 up RIGHT\n81 tap K\n82 quit\n");
-  const Outcome r = run("walk " + quote(plan("jones-house.toml")) +
-                        " --size 480x270 --script export.txt --stats-json s.json --out-dir out --record keys.txt");
+  const Outcome r = run({"walk", plan("jones-house.toml"), "--size", "480x270", "--script", "export.txt",
+                         "--stats-json", "s.json", "--out-dir", "out", "--record", "keys.txt"});
   ASSERT_EQ(r.status, 0) << r.err;
   // F2: the picture as shown, without the status line: the offline render of that eye.
   ASSERT_TRUE(fs::exists(path("out/jones-house-0001.png"))) << r.out;
@@ -507,7 +498,8 @@ TEST_F(WalkWindow, ExportsAndKeyframesFromTheWindow) {
     ++frames;
   }
   EXPECT_EQ(frames, 3);
-  const Outcome p = run("path " + quote(plan("jones-house.toml")) + " --keys keys.txt -o frames --format svg --size 160x90 --step 0.5");
+  const Outcome p = run({"path", plan("jones-house.toml"), "--keys", "keys.txt", "-o", "frames", "--format", "svg",
+                         "--size", "160x90", "--step", "0.5"});
   ASSERT_EQ(p.status, 0) << p.err;
   EXPECT_TRUE(fs::exists(path("frames/frame-0001.svg")));
 }
@@ -518,7 +510,11 @@ TEST_F(WalkWindow, ExportsAndKeyframesFromTheWindow) {
 TEST_F(WalkWindow, ThousandFramesOfRandomInputWithoutACrashOrALeak) {
   NEED_DISPLAY();
   for (const char* name : {"jones-house.toml", "two-storey-house.toml"}) {
-    const Outcome r = run("walk " + quote(plan(name)) + " --size 640x360 --random-input 1971 --frames 1000 --stats-json s.json", 300);
+    avenues::testing::RunOptions longer = run_options_;
+    longer.timeout_s = 300;
+    const Outcome r = run({"walk", plan(name), "--size", "640x360", "--random-input", "1971", "--frames", "1000",
+                           "--stats-json", "s.json"},
+                          longer);
     ASSERT_EQ(r.status, 0) << name << ": " << r.err;
     const json s = read_json("s.json");
     EXPECT_EQ(s["frames"], 1000);
@@ -537,51 +533,47 @@ TEST_F(WalkWindow, ThousandFramesOfRandomInputWithoutACrashOrALeak) {
 TEST_F(WalkWindow, MainJobOpensTheWindowAndRealKeysWalk) {
   NEED_DISPLAY();
   if (!on_path("xdotool")) GTEST_SKIP() << "xdotool is not installed (apt-get install xdotool)";
-  const std::string env = "DISPLAY=" + x_->display() + " ";
-  // Starts `avenues ARGS` in the background; its pid is killed at the end whatever happens.
-  std::vector<pid_t> started;
-  struct Reaper {
-    std::vector<pid_t>& pids;
-    ~Reaper() {
-      for (pid_t p : pids) kill(p, SIGTERM);
-    }
-  } reaper{started};
-  auto start = [&](const std::string& args, const std::string& name) {
-    const std::string cmd = "cd " + quote(dir_.string()) + " && { " + env + "timeout 120 " + quote(kBinary) + " " + args +
-                            " >" + name + ".out 2>" + name + ".err </dev/null & echo $! >" + name + ".pid; }";
-    EXPECT_EQ(std::system(cmd.c_str()), 0);
-    const pid_t pid = std::stoi(slurp(path(name + ".pid")));
-    started.push_back(pid);
-    return pid;
+  // xdotool on the same display, each call stopped after 20 s.
+  avenues::testing::RunOptions briefly = run_options_;
+  briefly.timeout_s = 20;
+  auto xdotool = [&](std::vector<std::string> args) {
+    args.insert(args.begin(), "xdotool");
+    return run_argv(args, briefly).status;
   };
   // The window, once it is on the screen, gets the focus; then W is held and Escape pressed.
-  auto walk_and_quit = [&](pid_t pid, const std::string& more) {
-    const std::string xdo = env + "timeout 20 xdotool ";
+  auto walk_and_quit = [&](Child& child, const std::vector<std::string>& more) {
     bool focused = false;
-    for (int i = 0; i < 100 && !focused && kill(pid, 0) == 0; ++i) {
-      focused = std::system((xdo + "search --onlyvisible --name '^Avenues - jones-house$' windowfocus --sync "
-                                   ">/dev/null 2>&1").c_str()) == 0;
+    for (int i = 0; i < 100 && !focused && running(child); ++i) {
+      focused = xdotool({"search", "--onlyvisible", "--name", "^Avenues - jones-house$", "windowfocus", "--sync"}) == 0;
       if (!focused) std::this_thread::sleep_for(std::chrono::milliseconds(200));
     }
     EXPECT_TRUE(focused) << "no window appeared";
-    EXPECT_EQ(std::system((xdo + "keydown w sleep 0.6 keyup w sleep 0.3 " + more + " key Escape").c_str()), 0);
+    std::vector<std::string> keys = {"keydown", "w", "sleep", "0.6", "keyup", "w", "sleep", "0.3"};
+    keys.insert(keys.end(), more.begin(), more.end());
+    keys.insert(keys.end(), {"key", "Escape"});
+    EXPECT_EQ(xdotool(keys), 0);
     bool exited = false;
     for (int i = 0; i < 200 && !exited; ++i) {
-      exited = kill(pid, 0) != 0;
+      exited = !running(child);
       if (!exited) std::this_thread::sleep_for(std::chrono::milliseconds(100));
     }
     EXPECT_TRUE(exited) << "Escape did not close the window";
+    if (!exited) ::kill(child.pid(), SIGTERM);  // timeout(1) passes it on
+    return finish(child);
   };
-  walk_and_quit(start(quote(plan("jones-house.toml")) + " --out-dir out", "main"), "");
-  const std::string out = slurp(path("main.out"));
-  EXPECT_NE(out.find("opening the walkthrough window"), std::string::npos) << out << slurp(path("main.err"));
+  Child main_job = start({plan("jones-house.toml"), "--out-dir", "out"});
+  const Outcome main_outcome = walk_and_quit(main_job, {});
+  EXPECT_NE(main_outcome.out.find("opening the walkthrough window"), std::string::npos)
+      << main_outcome.out << main_outcome.err;
   EXPECT_FALSE(fs::exists(path("out/jones-house-plan.svg"))) << "the offline job ran as well";
   // The same with a walk that reports where it ended: real key events moved the eye, and a
   // drag with the left button held turned it (0.15 degrees a pixel, to the right).
-  walk_and_quit(start("walk " + quote(plan("jones-house.toml")) + " --stats-json s.json", "walk"),
-                "mousemove 600 300 sleep 0.2 mousedown 1 sleep 0.2 mousemove_relative 200 0 sleep 0.3 mouseup 1 sleep 0.2");
-  ASSERT_TRUE(fs::exists(path("s.json"))) << slurp(path("walk.err"));
-  const Outcome v = run("view " + quote(plan("jones-house.toml")) + " --stats-json start.json");
+  Child walk = start({"walk", plan("jones-house.toml"), "--stats-json", "s.json"});
+  const Outcome walked =
+      walk_and_quit(walk, {"mousemove", "600", "300", "sleep", "0.2", "mousedown", "1", "sleep", "0.2",
+                           "mousemove_relative", "200", "0", "sleep", "0.3", "mouseup", "1", "sleep", "0.2"});
+  ASSERT_TRUE(fs::exists(path("s.json"))) << walked.err;
+  const Outcome v = run({"view", plan("jones-house.toml"), "--stats-json", "start.json"});
   ASSERT_EQ(v.status, 0);
   const json s = read_json("s.json"), s0 = read_json("start.json");
   const double moved = std::hypot(s["last"]["eye"][0].get<double>() - s0["eye"][0].get<double>(),
@@ -594,20 +586,20 @@ TEST_F(WalkWindow, MainJobOpensTheWindowAndRealKeysWalk) {
 
 // Without a display the main job keeps to its offline work; a bad script names its line.
 TEST_F(WalkWindow, WithoutADisplayWalkSaysSoAndBadScriptsNameTheLine) {
-  Outcome r = run("walk " + quote(plan("jones-house.toml")) + " --frames 3");
+  Outcome r = run({"walk", plan("jones-house.toml"), "--frames", "3"});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("cannot open the walkthrough window: no display"), std::string::npos) << r.err;
   write("bad.txt", "0 down W\n\n5 press Q\n");
-  r = run("walk " + quote(plan("jones-house.toml")) + " --script bad.txt");
+  r = run({"walk", plan("jones-house.toml"), "--script", "bad.txt"});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("bad.txt:3"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("unknown event 'press'"), std::string::npos) << r.err;
   write("bad-key.txt", "7 down NOPE\n");
-  r = run("walk " + quote(plan("jones-house.toml")) + " --script bad-key.txt");
+  r = run({"walk", plan("jones-house.toml"), "--script", "bad-key.txt"});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("bad-key.txt:1"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("unknown key 'NOPE'"), std::string::npos) << r.err;
-  r = run(quote(plan("jones-house.toml")) + " --out-dir out");
+  r = run({plan("jones-house.toml"), "--out-dir", "out"});
   EXPECT_EQ(r.status, 0) << r.err;
   EXPECT_TRUE(fs::exists(path("out/jones-house-plan.svg")));
   EXPECT_EQ(r.out.find("opening the walkthrough window"), std::string::npos);
