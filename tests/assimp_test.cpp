@@ -23,6 +23,7 @@
 #include "plans/plan_writer.h"
 #include "ray_oracle.h"
 #include "render/halftone.h"
+#include "tests/avenues_run.h"
 #include "tests/test_files.h"
 #include "visibility/camera.h"
 #include "visibility/visible_set.h"
@@ -144,20 +145,7 @@ std::string gltf_red_floor_blue_wall() {
 {"bufferView":2,"componentType":5123,"count":6,"type":"SCALAR"}]})";
 }
 
-class AssimpFiles : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("avenues-assimp-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name, std::ios::binary) << text;
-    return (dir_ / name).string();
-  }
-  fs::path dir_;
-};
+class AssimpFiles : public avenues::testing::AvenuesRun {};
 
 void expect_floor_up(const Mesh& m, double side) {
   const Box3 b = bounds(m);

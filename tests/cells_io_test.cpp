@@ -1,6 +1,5 @@
 // Avenues — saving and loading the cell complex, exporting OBJ, drawing the plan:
 // in-process checks of cells/cells_io.cpp, cells/export_obj.cpp, render/plan_drawing.cpp.
-#include <unistd.h>
 
 #include <cstring>
 #include <filesystem>
@@ -15,6 +14,7 @@
 #include "plans/mesh.h"
 #include "plans/plan.h"
 #include "render/plan_drawing.h"
+#include "tests/avenues_run.h"
 #include "tests/test_files.h"
 
 namespace fs = std::filesystem;
@@ -145,7 +145,7 @@ void expect_same(const CellComplex& a, const CellComplex& b) {
   }
 }
 
-class CellsIo : public ::testing::Test {
+class CellsIo : public avenues::testing::AvenuesRun {
  protected:
   static void SetUpTestSuite() {
     complex_ = new CellComplex(build_cells(read_plan(kPlan)));
@@ -154,18 +154,9 @@ class CellsIo : public ::testing::Test {
     delete complex_;
     complex_ = nullptr;
   }
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("avenues-io-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
   /// load_cells must throw std::runtime_error naming the file.
   void expect_rejected(const std::string& bytes, const std::string& why) {
-    const fs::path p = dir_ / "bad.cells";
+    const fs::path p = dir() / "bad.cells";
     spit(p, bytes);
     try {
       (void)load_cells(p.string());
@@ -176,19 +167,18 @@ class CellsIo : public ::testing::Test {
   }
 
   static CellComplex* complex_;
-  fs::path dir_;
 };
 CellComplex* CellsIo::complex_ = nullptr;
 
 }  // namespace
 
 TEST_F(CellsIo, RoundTripKeepsEveryField) {
-  const fs::path p = dir_ / "house.cells";
+  const fs::path p = dir() / "house.cells";
   save_cells(*complex_, p.string());
   CellComplex loaded = load_cells(p.string());
   expect_same(*complex_, loaded);
   // Saving what was loaded gives the same bytes.
-  const fs::path q = dir_ / "again.cells";
+  const fs::path q = dir() / "again.cells";
   save_cells(loaded, q.string());
   EXPECT_EQ(slurp(p), slurp(q));
 }
@@ -212,7 +202,7 @@ TEST_F(CellsIo, BoxesModelsAndAmbientLightSurvive) {
   ambient.intensity = 0.2;
   plan.lights.push_back(ambient);
   const CellComplex c = build_cells(plan);
-  const fs::path p = dir_ / "furnished.cells";
+  const fs::path p = dir() / "furnished.cells";
   save_cells(c, p.string());
   const CellComplex loaded = load_cells(p.string());
   expect_same(c, loaded);
@@ -231,7 +221,7 @@ TEST_F(CellsIo, BoxesModelsAndAmbientLightSurvive) {
 }
 
 TEST_F(CellsIo, LoadedComplexLocatesLikeTheBuiltOne) {
-  const fs::path p = dir_ / "house.cells";
+  const fs::path p = dir() / "house.cells";
   save_cells(*complex_, p.string());
   CellComplex loaded = load_cells(p.string());
   for (size_t i = 0; i < complex_->cells.size(); i += 1 + complex_->cells.size() / 50) {
@@ -247,7 +237,7 @@ TEST_F(CellsIo, LoadedComplexLocatesLikeTheBuiltOne) {
 }
 
 TEST_F(CellsIo, TruncatedFilesAreRejected) {
-  const fs::path p = dir_ / "house.cells";
+  const fs::path p = dir() / "house.cells";
   save_cells(*complex_, p.string());
   const std::string bytes = slurp(p);
   ASSERT_GT(bytes.size(), 64u);
@@ -257,7 +247,7 @@ TEST_F(CellsIo, TruncatedFilesAreRejected) {
 }
 
 TEST_F(CellsIo, CorruptFilesAreRejected) {
-  const fs::path p = dir_ / "house.cells";
+  const fs::path p = dir() / "house.cells";
   save_cells(*complex_, p.string());
   const std::string bytes = slurp(p);
   for (size_t at = 0; at < bytes.size(); at += 1 + bytes.size() / 61) {
@@ -277,7 +267,7 @@ TEST_F(CellsIo, CorruptFilesAreRejected) {
 }
 
 TEST_F(CellsIo, MissingFileIsNamed) {
-  const std::string p = (dir_ / "none.cells").string();
+  const std::string p = (dir() / "none.cells").string();
   try {
     (void)load_cells(p);
     FAIL() << "loaded a missing file";
@@ -287,11 +277,11 @@ TEST_F(CellsIo, MissingFileIsNamed) {
 }
 
 TEST_F(CellsIo, FailedWritesLeaveNoFile) {
-  EXPECT_THROW(save_cells(*complex_, (dir_ / "missing" / "x.cells").string()), std::runtime_error);
-  EXPECT_THROW(export_obj(*complex_, (dir_ / "missing" / "x.obj").string()), std::runtime_error);
-  EXPECT_THROW(write_plan_svg(*complex_, (dir_ / "missing" / "x.svg").string()), std::runtime_error);
-  EXPECT_THROW(save_cells(*complex_, dir_.string()), std::runtime_error);  // a directory
-  EXPECT_TRUE(fs::is_empty(dir_));
+  EXPECT_THROW(save_cells(*complex_, (dir() / "missing" / "x.cells").string()), std::runtime_error);
+  EXPECT_THROW(export_obj(*complex_, (dir() / "missing" / "x.obj").string()), std::runtime_error);
+  EXPECT_THROW(write_plan_svg(*complex_, (dir() / "missing" / "x.svg").string()), std::runtime_error);
+  EXPECT_THROW(save_cells(*complex_, dir().string()), std::runtime_error);  // a directory
+  EXPECT_TRUE(fs::is_empty(dir()));
 }
 
 TEST_F(CellsIo, PlanDrawingShowsEveryStoreyAndRoom) {

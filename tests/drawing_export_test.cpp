@@ -16,12 +16,11 @@
 #include <set>
 #include <sstream>
 
-#include <unistd.h>
-
 #include "cells/build_cells.h"
 #include "render/drawing.h"
 #include "render/stereo_drawing.h"
 #include "render/view_lines.h"
+#include "tests/avenues_run.h"
 #include "tests/drawing_readers.h"
 #include "tests/test_files.h"
 #include "visibility/viewpoint.h"
@@ -37,25 +36,7 @@ using avenues::testing::Plot;
 
 namespace {
 
-/// A fresh directory per test, removed afterwards.
-class DrawingExport : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("avenues-drawing-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  std::set<std::string> files() const {
-    std::set<std::string> out;
-    for (const auto& e : fs::directory_iterator(dir_)) out.insert(e.path().filename().string());
-    return out;
-  }
-  fs::path dir_;
-};
+class DrawingExport : public avenues::testing::AvenuesRun {};
 
 /// The furnished room from its viewpoint: both layers, both weights.
 const Drawing& room_drawing() {
@@ -109,12 +90,9 @@ TEST_F(DrawingExport, SvgReadsBackWithAGroupPerLayerAndWidthsInMillimetres) {
 TEST_F(DrawingExport, PdfIsReadByPdfinfoAtThePageSize) {
   const Drawing& d = room_drawing();
   EXPECT_EQ(write_drawing(d, path("view.pdf")).lines, d.strokes.size());
-  FILE* p = ::popen(("pdfinfo '" + path("view.pdf") + "' 2>&1").c_str(), "r");
-  ASSERT_NE(p, nullptr);
-  std::string out;
-  char buf[256];
-  while (std::fgets(buf, sizeof buf, p)) out += buf;
-  EXPECT_EQ(::pclose(p), 0) << out;
+  const avenues::testing::Outcome info = run_argv({"pdfinfo", path("view.pdf")});
+  const std::string out = info.output();
+  EXPECT_EQ(info.status, 0) << out;
   int pages = 0;
   const size_t pages_at = out.find("Pages:");
   ASSERT_NE(pages_at, std::string::npos) << out;

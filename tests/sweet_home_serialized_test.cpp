@@ -1,10 +1,6 @@
 // Avenues — serialized Sweet Home homes (the Java `Home` entry) and the Java object stream
 // reader beneath them (plans/formats/java_stream.h); homes from outside that must open.
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 #include <zip.h>
 
 #include <algorithm>
@@ -29,6 +25,7 @@
 #include "plans/plan_writer.h"
 #include "ray_oracle.h"
 #include "visibility/visible_set.h"
+#include "tests/avenues_run.h"
 #include "tests/test_files.h"
 
 namespace avenues {
@@ -269,29 +266,11 @@ TEST(SweetHomeSerialized, CasaUpstairsViewHasNoCrack) {
   EXPECT_EQ(r.extra, 0);
 }
 
-/// Runs the real `avenues` with these arguments (no shell); its exit status and stderr.
+/// Runs the real `avenues` with these arguments (by argv, no shell: tests/avenues_run.h);
+/// its exit status and stderr.
 std::pair<int, std::string> run_avenues(const std::vector<std::string>& args) {
-  const std::string err_path = (fs::temp_directory_path() / ("avenues-sh3ds-err-" + std::to_string(::getpid()))).string();
-  std::vector<std::string> all{AVENUES_BINARY};
-  all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  if (rc != 0) return {-1, "cannot run " + all[0]};
-  int status = 0;
-  waitpid(pid, &status, 0);
-  std::ifstream in(err_path);
-  std::stringstream err;
-  err << in.rdbuf();
-  fs::remove(err_path);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, err.str()};
+  const avenues::testing::Outcome r = avenues::testing::run_argv(avenues::testing::avenues_argv(args));
+  return {r.status, r.err};
 }
 
 TEST(SweetHomeSerialized, DamagedHomesGiveClearErrors) {
