@@ -1,4 +1,4 @@
-// Avenues tests — reading the files a test made, and quoting paths for a shell.
+// Avenues tests — files from outside, reading the files a test made, and a folder of its own.
 #pragma once
 
 #include <filesystem>
@@ -24,13 +24,6 @@ inline std::string slurp(const std::filesystem::path& path) {
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
-}
-
-/// `s` in single quotes for sh, a quote inside it closed, escaped and reopened.
-inline std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
 }
 
 /// A folder of the running test's own under the system's temporary folder (named for the
