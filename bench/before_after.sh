@@ -27,7 +27,7 @@ filter=${FILTER:-'^build/(jones-house|furnished-room|two-storey-house|office-cor
 homes=/usr/local/share/avenues/sweethome3d-examples
 plans=${WALK_PLANS:-"$root/plans/jones-house.toml $root/plans/two-storey-house.toml $root/plans/office-corridor.toml $root/plans/furnished-room.toml $root/plans/curved-walls.toml"}
 for h in 4BedroomHouse 3BedroomHouseWithMezzanine; do
-  [[ -z ${WALK_PLANS:-} && -f $homes/$h.sh3d ]] && plans+=" $homes/$h.sh3d"
+  [[ -z ${WALK_PLANS:-} && -f $homes/$h.xml ]] && plans+=" $homes/$h.xml"
 done
 for b in "$before" "$after"; do
   [[ -x $b/app/avenues && -x $b/bench/avenues_bench ]] || { echo "$b: no app/avenues or bench/avenues_bench" >&2; exit 2; }
