@@ -273,8 +273,9 @@ class FrameWriter {
   Drawing draw(const WalkFrame& f) const {
     return draw_view(c_, scene_, f.camera, find_visible(c_, f.camera, f.cell, s_.kernel));
   }
-  void render(const WalkFrame& f, Image& out) const {
-    render_view(c_, objects_, *effects_, f.camera, find_visible(c_, f.camera, f.cell, s_.kernel), s_.halftone, out);
+  void render(const WalkFrame& f, Image& out) {
+    render_view(c_, objects_, *effects_, f.camera, find_visible(c_, f.camera, f.cell, s_.kernel), s_.halftone, out,
+                storage_);
   }
 
   const CellComplex& c_;
@@ -285,6 +286,7 @@ class FrameWriter {
   std::vector<PlacedObject> objects_;
   std::optional<SceneEffects> effects_;
   Image picture_, second_;
+  FrameStorage storage_;  ///< the half-tone's arrays, kept from frame to frame
 };
 
 /// Makes DIR this walk's: removes the frames, the film and the temporary files an earlier

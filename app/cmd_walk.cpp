@@ -15,7 +15,6 @@
 // From the window: F2 writes the picture as shown (PNG), F3 the hidden-line drawing (SVG),
 // F4 a stereo pair, through the same code as `avenues view -o`; K appends a keyframe that
 // `avenues path --keys` follows.
-#include <malloc.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -269,7 +268,7 @@ class Session {
     const VisibleSet part = partial ? prefix(vs, shown) : VisibleSet{};
     const VisibleSet& use = partial ? part : vs;
     if (lines_) raster_of_drawing(draw_view(c_, line_scene(), cam, use), out);
-    else render_view(c_, objects_, effects_, cam, use, halftone_, out);
+    else render_view(c_, objects_, effects_, cam, use, halftone_, out, storage_);
   }
 
   /// Renders the view when it changed (or its detail did); false when the last frame still stands.
@@ -435,6 +434,7 @@ class Session {
   VisibleSet full_, right_;
   size_t shown_ = 0;  ///< avenues drawn (progressive display)
   Image frame_, left_, right_img_;
+  FrameStorage storage_;  ///< the half-tone's arrays, kept from frame to frame
   OverlayPanel hud_panel_, help_panel_;
   std::vector<std::string> status_;  ///< the status line's text, as last set
   std::string message_;
@@ -447,11 +447,6 @@ bool run_session(const LoadedPlan& plan, const WalkOptions& opt, const std::vect
   size_option(opt.size, w, h);
   std::unique_ptr<Viewer> viewer = Viewer::open(w, h, "Avenues - " + plan.stem, opt.vsync, why);
   if (!viewer) return false;
-  // A frame's screen scene is built and freed every frame, its big arrays beyond glibc's
-  // mmap threshold: each frame would map them afresh and fault every page in. Kept in the
-  // heap instead, the same memory serves frame after frame.
-  mallopt(M_MMAP_THRESHOLD, 256 << 20);
-  mallopt(M_TRIM_THRESHOLD, 512 << 20);
   Session session(plan, opt, *viewer);
   session.run(events, report);
   return true;

@@ -78,11 +78,12 @@ void write_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet&
                                     parse_vec3(opt.to_look, "--to-look"), opt.frames, v.camera);
     RenderStats total;
     Image frame;
+    FrameStorage storage;  // the half-tone's arrays, kept from frame to frame
     const SceneEffects effects = prepare_effects(c, objects, o, v.kernel);  // once for every frame
     for (size_t k = 0; k < frames.size(); ++k) {
       VisibleSet fv = find_visible(c, frames[k].camera, frames[k].cell, v.kernel);
       RenderStats rs;
-      render_view(c, objects, effects, frames[k].camera, fv, o, frame, &rs);
+      render_view(c, objects, effects, frames[k].camera, fv, o, frame, storage, &rs);
       write_image(frame, frame_path(opt.output, int(k), int(frames.size())));
       total.add(rs);
     }

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Reading times of Sweet Home 3D homes (the "read home" stage of `avenues cells`: the zip,
+# Reading times of Sweet Home 3D homes (the "read plan" stage of `avenues cells`: the zip,
 # the entry, the home tree, the plan, the furniture's models), each home 9 times, median.
 # A home holding both entries is also read from copies holding one of them alone
 # (made with `zip -d` in a temporary folder), so serialized and XML stand side by side.
@@ -11,13 +11,13 @@ examples=${3:-/usr/local/share/avenues/sweethome3d-examples}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-median() {  # the median "read home" seconds of 9 runs of `avenues cells $1`
+median() {  # the median "read plan" seconds of 9 runs of `avenues cells $1`
   for i in 1 2 3 4 5 6 7 8 9; do
-    "$avenues" cells "$1" 2>/dev/null | sed -n 's/.*read home \([0-9.]*\),.*/\1/p'
+    "$avenues" cells "$1" 2>/dev/null | sed -n 's/.*read plan \([0-9.]*\),.*/\1/p'
   done | sort -n | sed -n 5p
 }
 
-printf '| home | entry read | read home (median of 9) |\n| --- | --- | ---: |\n'
+printf '| home | entry read | read plan (median of 9) |\n| --- | --- | ---: |\n'
 for f in "$outside"/*.sh3d; do
   name=$(basename "$f")
   case $name in damaged*) continue ;; esac

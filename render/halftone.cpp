@@ -65,21 +65,37 @@ struct PolygonLook {
 /// counters add up over the bands it painted).
 class BandPainter {
  public:
-  BandPainter(const ScreenScene& scene, const EdgeTable& table, const EdgeTable* pieces,
-              const std::vector<PolygonLook>& looks, const PolygonLook& background, int per_side, int channels,
-              Image& out, std::vector<int32_t>* items)
-      : scene_(scene), engine_(table, scene.implicit_lines), looks_(looks), background_(background), s_(per_side),
-        ch_(channels), out_(out), items_(items), encoder_(srgb_encoder()) {
+  /// A painter for no picture yet (reset() before painting).
+  BandPainter() = default;
+
+  /// Readies the painter for picture number `picture`, reusing the storage of the last one.
+  void reset(uint64_t picture, const ScreenScene& scene, const EdgeTable& table, const EdgeTable* pieces,
+             const std::vector<PolygonLook>& looks, const PolygonLook& background, int per_side, int channels,
+             Image& out, std::vector<int32_t>* items) {
+    picture_ = picture;
+    scene_ = &scene;
+    engine_.reset(table, scene.implicit_lines);
+    looks_ = &looks;
+    background_ = &background;
+    s_ = per_side;
+    ch_ = channels;
+    out_ = &out;
+    items_ = items;
     intensity_.resize(size_t(scene.raster.width) * (scene.light_terms.empty() ? 1 : 3));
-    if (per_side > 1) sum_.resize(size_t(out.width) * size_t(channels));
-    if (pieces) secondary_.emplace(*pieces);
+    sum_.resize(per_side > 1 ? size_t(out.width) * size_t(channels) : 0);
+    if (!pieces) secondary_.reset();
+    else if (secondary_) secondary_->reset(*pieces);
+    else secondary_.emplace(*pieces);
+    pixels_ = 0;
   }
+  /// The picture last readied for (reset), 0: none.
+  uint64_t picture() const { return picture_; }
 
   void paint(int y0, int y1) {
     engine_.start(y0 * s_);
     if (secondary_) secondary_->start(y0 * s_);
     for (int y = y0; y < y1; ++y) {
-      uint8_t* dst = out_.row(y);
+      uint8_t* dst = out_->row(y);
       if (s_ == 1) {
         engine_.scan(spans_);
         if (secondary_) secondary_->scan();
@@ -103,14 +119,14 @@ class BandPainter {
   long pixels() const { return pixels_; }
 
  private:
-  const PolygonLook& look_of(int32_t polygon) const { return polygon < 0 ? background_ : looks_[size_t(polygon)]; }
+  const PolygonLook& look_of(int32_t polygon) const { return polygon < 0 ? *background_ : (*looks_)[size_t(polygon)]; }
 
   /// Intensities of the span's samples into intensity_ (non-constant shades).
   const float* light(const Span& sp, int row) {
     const size_t p = size_t(sp.polygon);
-    const SurfaceShade& shade = scene_.shades[p];
-    if (shade.kind == SurfaceShade::Kind::Lit) return light_lit(sp, row, shade, looks_[p].light_channels);
-    shade_samples(shade, scene_.polygons[p].depth, scene_.raster, row, sp.x0, sp.x1, intensity_.data());
+    const SurfaceShade& shade = scene_->shades[p];
+    if (shade.kind == SurfaceShade::Kind::Lit) return light_lit(sp, row, shade, (*looks_)[p].light_channels);
+    shade_samples(shade, scene_->polygons[p].depth, scene_->raster, row, sp.x0, sp.x1, intensity_.data());
     return intensity_.data();
   }
 
@@ -119,7 +135,7 @@ class BandPainter {
   const float* light_lit(const Span& sp, int row, const SurfaceShade& shade, int channels) {
     const LightTerm* terms = mask_lights(sp, shade);
     const size_t p = size_t(sp.polygon);
-    lit_samples(shade.lit_ambient, terms, shade.terms, masks_.data(), scene_.polygons[p].depth, scene_.raster, row,
+    lit_samples(shade.lit_ambient, terms, shade.terms, masks_.data(), scene_->polygons[p].depth, scene_->raster, row,
                 sp.x0, sp.x1, channels, intensity_.data());
     return intensity_.data();
   }
@@ -128,7 +144,7 @@ class BandPainter {
   /// masks do not change within a run), each of one colour: f(from, to, linear colour).
   template <class F>
   void lit_runs(const Span& sp, const PolygonLook& look, F f) {
-    const SurfaceShade& shade = scene_.shades[size_t(sp.polygon)];
+    const SurfaceShade& shade = scene_->shades[size_t(sp.polygon)];
     const LightTerm* terms = mask_lights(sp, shade);
     const int n = sp.x1 - sp.x0;
     for (int i = 0; i < n;) {
@@ -154,7 +170,7 @@ class BandPainter {
   /// nullptr: all), from the secondary scan's spans of its pieces. Returns the terms.
   const LightTerm* mask_lights(const Span& sp, const SurfaceShade& shade) {
     const int n = sp.x1 - sp.x0;
-    const LightTerm* terms = scene_.light_terms.data() + shade.first_term;
+    const LightTerm* terms = scene_->light_terms.data() + shade.first_term;
     masks_.resize(size_t(shade.terms));
     mask_buffer_.resize(size_t(shade.terms) * size_t(n));
     for (int t = 0; t < shade.terms; ++t) {
@@ -237,19 +253,20 @@ class BandPainter {
 
   void keep_items(int row) {
     if (!items_) return;
-    int32_t* dst = items_->data() + size_t(row) * size_t(scene_.raster.width);
+    int32_t* dst = items_->data() + size_t(row) * size_t(scene_->raster.width);
     for (const Span& sp : spans_) std::fill(dst + sp.x0, dst + sp.x1, sp.polygon);
   }
 
-  const ScreenScene& scene_;
+  uint64_t picture_ = 0;
+  const ScreenScene* scene_ = nullptr;
   ScanlineEngine engine_;
   std::optional<SecondaryScan> secondary_;  ///< Bouknight's secondary scan, when the scene has pieces
-  const std::vector<PolygonLook>& looks_;
-  const PolygonLook& background_;
-  int s_, ch_;
-  Image& out_;
-  std::vector<int32_t>* items_;
-  const SrgbEncoder& encoder_;
+  const std::vector<PolygonLook>* looks_ = nullptr;
+  const PolygonLook* background_ = nullptr;
+  int s_ = 1, ch_ = 1;
+  Image* out_ = nullptr;
+  std::vector<int32_t>* items_ = nullptr;
+  const SrgbEncoder& encoder_ = srgb_encoder();
   std::vector<Span> spans_;
   std::vector<float> intensity_, sum_;
   std::vector<const uint8_t*> masks_;  ///< per light term of the span's shade: lit samples (nullptr: all)
@@ -353,8 +370,22 @@ void RenderStats::add(const RenderStats& o) {
   effects_us += o.effects_us;
 }
 
-void render_scene(const ScreenScene& scene, const HalftoneOptions& options, Image& out, RenderStats* stats,
-                  std::vector<int32_t>* item_buffer) {
+struct FrameStorage::Parts {
+  ScreenScene scene;
+  EdgeTable table, pieces;
+  std::vector<PolygonLook> looks;
+  tbb::enumerable_thread_specific<BandPainter> painters;
+  uint64_t pictures = 0;  ///< pictures scanned with these parts
+};
+
+FrameStorage::FrameStorage() : parts_(std::make_unique<Parts>()) {}
+FrameStorage::~FrameStorage() = default;
+
+namespace {
+
+/// The scan of a scene into `out` with `parts`' edge tables and painters, kept for the next.
+void scan_scene(const ScreenScene& scene, const HalftoneOptions& options, Image& out, RenderStats* stats,
+                std::vector<int32_t>* item_buffer, FrameStorage::Parts& parts) {
   const auto t0 = Clock::now();
   const int s = samples_per_side(options.samples);
   const RasterMap& raster = scene.raster;
@@ -363,7 +394,8 @@ void render_scene(const ScreenScene& scene, const HalftoneOptions& options, Imag
   if (item_buffer) item_buffer->assign(size_t(raster.width) * size_t(raster.height), -1);
 
   const SrgbEncoder& enc = srgb_encoder();
-  std::vector<PolygonLook> looks;
+  std::vector<PolygonLook>& looks = parts.looks;
+  looks.clear();
   looks.reserve(scene.shades.size());
   for (const SurfaceShade& shade : scene.shades) looks.push_back(look_of(shade, scene.light_terms, options.colour, enc));
   SurfaceShade background;
@@ -371,25 +403,33 @@ void render_scene(const ScreenScene& scene, const HalftoneOptions& options, Imag
   background.intensity = 1;
   const PolygonLook back = look_of(background, scene.light_terms, options.colour, enc);
 
-  const EdgeTable table(raster.width, raster.height, scene.polygons, scene.clips);
+  EdgeTable& table = parts.table;
+  table.build(raster.width, raster.height, scene.polygons, scene.clips);
   // Bouknight's secondary scan, only when some light is cut off somewhere.
-  std::optional<EdgeTable> pieces;
-  if (!scene.pieces.empty()) pieces.emplace(raster.width, raster.height, scene.pieces, std::vector<ClipRegion>{});
+  const EdgeTable* pieces = nullptr;
+  if (!scene.pieces.empty()) {
+    static const std::vector<ClipRegion> kNoClips;
+    parts.pieces.build(raster.width, raster.height, scene.pieces, kNoClips);
+    pieces = &parts.pieces;
+  }
   const int bands = (out.height + kBandRows - 1) / kBandRows;
-  tbb::enumerable_thread_specific<BandPainter> painters([&] {
-    return BandPainter(scene, table, pieces ? &*pieces : nullptr, looks, back, s, channels, out, item_buffer);
-  });
+  // Each thread's painter, readied once per picture: the first band it paints resets it.
+  const uint64_t picture = ++parts.pictures;
   tbb::task_arena& arena = arena_for(options.threads);
   arena.execute([&] {
     tbb::parallel_for(0, bands, [&](int band) {
-      painters.local().paint(band * kBandRows, std::min(out.height, (band + 1) * kBandRows));
+      BandPainter& painter = parts.painters.local();
+      if (painter.picture() != picture)
+        painter.reset(picture, scene, table, pieces, looks, back, s, channels, out, item_buffer);
+      painter.paint(band * kBandRows, std::min(out.height, (band + 1) * kBandRows));
     });
   });
 
   if (stats) {
     ScanCounters total;
     RenderStats r;
-    for (const BandPainter& p : painters) {  // sums and a maximum: the same in any order
+    for (const BandPainter& p : parts.painters) {  // sums and a maximum: the same in any order
+      if (p.picture() != picture) continue;  // a thread that painted no band of this picture
       total.add(p.counters());
       r.pixels += p.pixels();
     }
@@ -411,9 +451,17 @@ void render_scene(const ScreenScene& scene, const HalftoneOptions& options, Imag
   if (stats) stats->render_us = micros_since(t0);
 }
 
+}  // namespace
+
+void render_scene(const ScreenScene& scene, const HalftoneOptions& options, Image& out, RenderStats* stats,
+                  std::vector<int32_t>* item_buffer) {
+  FrameStorage storage;
+  scan_scene(scene, options, out, stats, item_buffer, storage.parts());
+}
+
 void render_view(const CellComplex& complex, const std::vector<PlacedObject>& objects, const SceneEffects& effects,
                  const Camera& camera, const VisibleSet& visible, const HalftoneOptions& options, Image& out,
-                 RenderStats* stats) {
+                 FrameStorage& storage, RenderStats* stats) {
   const auto t0 = Clock::now();
   const EffectPlan& plan = effects.plan;
   SceneOptions so = scene_options(options);
@@ -422,10 +470,18 @@ void render_view(const CellComplex& complex, const std::vector<PlacedObject>& ob
     so.lighting = &plan.lighting;
     so.shadows = &effects.shadows;
   }
-  ScreenScene scene = screen_scene_of_view(complex, objects, camera, visible, so);
-  scene.implicit_lines = plan.implicit_lines.on;
-  render_scene(scene, options, out, stats);
+  FrameStorage::Parts& parts = storage.parts();
+  screen_scene_of_view(complex, objects, camera, visible, so, parts.scene);
+  parts.scene.implicit_lines = plan.implicit_lines.on;
+  scan_scene(parts.scene, options, out, stats, nullptr, parts);
   if (stats) stats->render_us = micros_since(t0);
+}
+
+void render_view(const CellComplex& complex, const std::vector<PlacedObject>& objects, const SceneEffects& effects,
+                 const Camera& camera, const VisibleSet& visible, const HalftoneOptions& options, Image& out,
+                 RenderStats* stats) {
+  FrameStorage storage;
+  render_view(complex, objects, effects, camera, visible, options, out, storage, stats);
 }
 
 void render_view(const CellComplex& complex, const std::vector<PlacedObject>& objects, const Camera& camera,

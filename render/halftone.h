@@ -15,6 +15,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -84,6 +85,29 @@ struct SceneEffects;
 void render_view(const CellComplex& complex, const std::vector<PlacedObject>& objects, const SceneEffects& effects,
                  const Camera& camera, const VisibleSet& visible, const HalftoneOptions& options, Image& out,
                  RenderStats* stats = nullptr);
+
+/// What rendering a picture builds that the next picture can reuse: its screen scene, its
+/// edge tables and each thread's scan state. Their arrays run to megabytes (30,000
+/// furniture polygons in a big Sweet Home house), beyond the size glibc maps afresh for
+/// each allocation: a walkthrough keeps one storage and renders every frame into it, so a
+/// frame neither maps nor faults in the memory the frame before it had. One picture at a
+/// time.
+class FrameStorage {
+ public:
+  FrameStorage();
+  ~FrameStorage();
+  FrameStorage(const FrameStorage&) = delete;
+  FrameStorage& operator=(const FrameStorage&) = delete;
+  struct Parts;  ///< halftone.cpp
+  Parts& parts() { return *parts_; }
+
+ private:
+  std::unique_ptr<Parts> parts_;
+};
+/// The same, building the picture in `storage`, whose arrays the last picture left.
+void render_view(const CellComplex& complex, const std::vector<PlacedObject>& objects, const SceneEffects& effects,
+                 const Camera& camera, const VisibleSet& visible, const HalftoneOptions& options, Image& out,
+                 FrameStorage& storage, RenderStats* stats = nullptr);
 
 /// A stereo pair as one picture: each eye located and its avenues found (Jones's traversal
 /// in `kernel`), both views rendered, then composed as `composite` asks; a dither, if

@@ -45,8 +45,17 @@ void ScanCounters::add(const ScanCounters& o) {
 // --- the edge table ------------------------------------------------------------------
 
 EdgeTable::EdgeTable(int width, int height, const std::vector<ScreenPolygon>& polygons,
-                     const std::vector<ClipRegion>& clips)
-    : width_(width), height_(height), polygons_(&polygons), clip_count_(clips.size()) {
+                     const std::vector<ClipRegion>& clips) {
+  build(width, height, polygons, clips);
+}
+
+void EdgeTable::build(int width, int height, const std::vector<ScreenPolygon>& polygons,
+                      const std::vector<ClipRegion>& clips) {
+  width_ = width;
+  height_ = height;
+  polygons_ = &polygons;
+  clip_count_ = clips.size();
+  edges_.clear();
   constexpr int64_t kFar = int64_t(1) << 62;
   // A clip region is empty outside its rows and its box, so the polygons it cuts need no
   // edges there.
@@ -64,7 +73,7 @@ EdgeTable::EdgeTable(int width, int height, const std::vector<ScreenPolygon>& po
       boxes[k].x_hi = std::max(boxes[k].x_hi, v.x);
     }
   }
-  polygon_rows_.resize(polygons.size());
+  polygon_rows_.assign(polygons.size(), Rows{});
   for (size_t p = 0; p < polygons.size(); ++p) {
     const ScreenPolygon& poly = polygons[p];
     Box box{{0, height}, 0, int64_t(width) * kSubpixelOne};  // the window
@@ -80,7 +89,7 @@ EdgeTable::EdgeTable(int width, int height, const std::vector<ScreenPolygon>& po
     if (x_hi <= box.x_lo || x_lo >= box.x_hi) continue;  // wholly beside its region: never seen
     polygon_rows_[p] = add_outline(poly.outline, int32_t(p), false, box.rows, box.x_lo, box.x_hi);
   }
-  polygon_clip_.resize(polygons.size());
+  polygon_clip_.assign(polygons.size(), -1);
   for (size_t p = 0; p < polygons.size(); ++p) polygon_clip_[p] = polygons[p].clip;
   // Bouknight's Appendix 1: a card sort into one bin per row, then the bins in row order;
   // the same for the polygons (Wylie's y-entry table).
@@ -88,9 +97,9 @@ EdgeTable::EdgeTable(int width, int height, const std::vector<ScreenPolygon>& po
   for (const Edge& e : edges_) ++row_start_[size_t(e.first_row) + 1];
   for (int r = 0; r < height; ++r) row_start_[size_t(r) + 1] += row_start_[size_t(r)];
   std::vector<int32_t> fill(row_start_.begin(), row_start_.end() - 1);
-  std::vector<Edge> sorted(edges_.size());
-  for (const Edge& e : edges_) sorted[size_t(fill[size_t(e.first_row)]++)] = e;
-  edges_.swap(sorted);
+  unsorted_.swap(edges_);
+  edges_.resize(unsorted_.size());
+  for (const Edge& e : unsorted_) edges_[size_t(fill[size_t(e.first_row)]++)] = e;
   polygon_row_start_.assign(size_t(height) + 1, 0);
   for (const Rows& r : polygon_rows_)
     if (r.first < r.end) ++polygon_row_start_[size_t(r.first) + 1];
@@ -144,13 +153,28 @@ constexpr int32_t kNoSpan = INT32_MAX;  ///< span key of a polygon with nothing 
 constexpr int64_t kUnbounded = int64_t(1) << 62;
 }  // namespace
 
-ScanlineEngine::ScanlineEngine(const EdgeTable& table, bool implicit_lines)
-    : table_(table), polygons_(*table.polygons_), implicit_lines_(implicit_lines) {
-  polygon_extent_.resize(polygons_.size());
-  clip_extent_.resize(table.clip_count_);
-  span_left_.assign(polygons_.size(), kNoSpan);
-  span_right_.assign(polygons_.size(), kNoSpan);
-  inside_at_.assign(polygons_.size(), -1);
+ScanlineEngine::ScanlineEngine(const EdgeTable& table, bool implicit_lines) { reset(table, implicit_lines); }
+
+void ScanlineEngine::reset(const EdgeTable& table, bool implicit_lines) {
+  table_ = &table;
+  polygons_ = table.polygons_;
+  implicit_lines_ = implicit_lines;
+  const size_t n = polygons_->size();
+  polygon_extent_.assign(n, Extent{});
+  clip_extent_.assign(table.clip_count_, Extent{});
+  span_left_.assign(n, kNoSpan);
+  span_right_.assign(n, kNoSpan);
+  inside_at_.assign(n, -1);
+  row_ = 0;
+  active_.clear();
+  by_left_.clear();
+  by_right_.clear();
+  coverage_.clear();
+  inside_.clear();
+  objects_.clear();
+  out_ = nullptr;
+  row_centre_ = 0.5;
+  counters_ = {};
 }
 
 void ScanlineEngine::enter(const EdgeTable::Edge& e, int row) {
@@ -184,17 +208,17 @@ void ScanlineEngine::start(int row) {
   by_left_.clear();
   by_right_.clear();
   row_ = row;
-  if (row < 0 || row >= table_.height_) return;
+  if (row < 0 || row >= table_->height_) return;
   // Bouknight's bin of lines starting below the window, generalised to any first row:
   // every edge (and polygon) that began above this row and still crosses it, then this
   // row's bin.
-  const int32_t through = table_.row_start_[size_t(row) + 1];
+  const int32_t through = table_->row_start_[size_t(row) + 1];
   for (int32_t i = 0; i < through; ++i)
-    if (table_.edges_[size_t(i)].end_row > row) enter(table_.edges_[size_t(i)], row);
-  const int32_t polys = table_.polygon_row_start_[size_t(row) + 1];
+    if (table_->edges_[size_t(i)].end_row > row) enter(table_->edges_[size_t(i)], row);
+  const int32_t polys = table_->polygon_row_start_[size_t(row) + 1];
   for (int32_t i = 0; i < polys; ++i) {
-    const int32_t p = table_.polygon_order_[size_t(i)];
-    if (table_.polygon_rows_[size_t(p)].end > row) enter_polygon(p);
+    const int32_t p = table_->polygon_order_[size_t(i)];
+    if (table_->polygon_rows_[size_t(p)].end > row) enter_polygon(p);
   }
 }
 
@@ -241,14 +265,14 @@ void ScanlineEngine::extents_of_row() {
 void ScanlineEngine::spans_of_polygons(bool sort) {
   // Each polygon's span [L, R): right of its left edges, left of its right edges (no edge
   // on a side: unbounded there), cut by its clip region and the window.
-  const int64_t width = table_.width_;
+  const int64_t width = table_->width_;
   coverage_.clear();
   for (int32_t p : by_left_) {
     const Extent& x = polygon_extent_[size_t(p)];
     const bool mine = x.row == row_;
     int64_t l = mine && x.has_left ? x.left : -kUnbounded;
     int64_t r = mine && x.has_right ? x.right : kUnbounded;
-    const int32_t clip = table_.polygon_clip_[size_t(p)];
+    const int32_t clip = table_->polygon_clip_[size_t(p)];
     if (clip >= 0) {
       const Extent& c = clip_extent_[size_t(clip)];
       if (c.row == row_ && c.has_left && c.has_right) {
@@ -292,7 +316,7 @@ void ScanlineEngine::spans_of_polygons(bool sort) {
 void ScanlineEngine::walk() {
   // Left to right through the span ends: at equal x, polygons left before polygons entered.
   // Between two ends the set of polygons the ray is in is fixed: resolve it there.
-  const int32_t width = table_.width_;
+  const int32_t width = table_->width_;
   size_t enters = 0, leaves = 0;
   int32_t x = 0;
   while (x < width) {
@@ -339,16 +363,16 @@ void ScanlineEngine::next_row() {
   }
   active_.resize(kept);
   ++row_;
-  if (row_ <= table_.height_ && table_.polygons_ending_[size_t(row_)] > 0) {
-    auto ended = [&](int32_t p) { return table_.polygon_rows_[size_t(p)].end <= row_; };
+  if (row_ <= table_->height_ && table_->polygons_ending_[size_t(row_)] > 0) {
+    auto ended = [&](int32_t p) { return table_->polygon_rows_[size_t(p)].end <= row_; };
     by_left_.erase(std::remove_if(by_left_.begin(), by_left_.end(), ended), by_left_.end());
     by_right_.erase(std::remove_if(by_right_.begin(), by_right_.end(), ended), by_right_.end());
   }
-  if (row_ >= table_.height_) return;
-  for (int32_t i = table_.row_start_[size_t(row_)]; i < table_.row_start_[size_t(row_) + 1]; ++i)
-    enter(table_.edges_[size_t(i)], row_);
-  for (int32_t i = table_.polygon_row_start_[size_t(row_)]; i < table_.polygon_row_start_[size_t(row_) + 1]; ++i)
-    enter_polygon(table_.polygon_order_[size_t(i)]);
+  if (row_ >= table_->height_) return;
+  for (int32_t i = table_->row_start_[size_t(row_)]; i < table_->row_start_[size_t(row_) + 1]; ++i)
+    enter(table_->edges_[size_t(i)], row_);
+  for (int32_t i = table_->polygon_row_start_[size_t(row_)]; i < table_->polygon_row_start_[size_t(row_) + 1]; ++i)
+    enter_polygon(table_->polygon_order_[size_t(i)]);
 }
 
 void ScanlineEngine::emit(int32_t x0, int32_t x1, int32_t polygon) {
@@ -380,13 +404,13 @@ void ScanlineEngine::resolve(int32_t x0, int32_t x1) {
   int32_t deepest_face = -1;
   objects_.clear();
   for (int32_t p : inside_) {
-    if (polygons_[size_t(p)].role == PolygonRole::Object) objects_.push_back(p);
-    else if (deeper_face(polygons_, p, deepest_face)) deepest_face = p;
+    if ((*polygons_)[size_t(p)].role == PolygonRole::Object) objects_.push_back(p);
+    else if (deeper_face(*polygons_, p, deepest_face)) deepest_face = p;
   }
   if (objects_.empty()) return emit(x0, x1, deepest_face);
   // Objects by avenue, nearest avenue (fewest portals) first.
   std::sort(objects_.begin(), objects_.end(), [&](int32_t p, int32_t q) {
-    const ScreenPolygon &a = polygons_[size_t(p)], &b = polygons_[size_t(q)];
+    const ScreenPolygon &a = (*polygons_)[size_t(p)], &b = (*polygons_)[size_t(q)];
     if (a.rank != b.rank) return a.rank < b.rank;
     if (a.group != b.group) return a.group < b.group;
     return p < q;
@@ -397,22 +421,22 @@ void ScanlineEngine::resolve(int32_t x0, int32_t x1) {
 
 void ScanlineEngine::resolve_groups(int32_t x0, int32_t x1, size_t first, int32_t deepest_face, int level) {
   if (first == objects_.size()) return emit(x0, x1, deepest_face);
-  const int32_t group = polygons_[size_t(objects_[first])].group;
+  const int32_t group = (*polygons_)[size_t(objects_[first])].group;
   size_t last = first;
-  while (last < objects_.size() && polygons_[size_t(objects_[last])].group == group) ++last;
+  while (last < objects_.size() && (*polygons_)[size_t(objects_[last])].group == group) ++last;
   // The candidates: this avenue's objects and its face (the depth bound of its cell).
   std::vector<int32_t>& cands = candidates_[size_t(level)];
   cands.assign(objects_.begin() + std::ptrdiff_t(first), objects_.begin() + std::ptrdiff_t(last));
   int32_t face = -1;
   for (int32_t p : inside_) {
-    const ScreenPolygon& poly = polygons_[size_t(p)];
-    if (poly.role == PolygonRole::Face && poly.group == group && deeper_face(polygons_, p, face)) face = p;
+    const ScreenPolygon& poly = (*polygons_)[size_t(p)];
+    if (poly.role == PolygonRole::Face && poly.group == group && deeper_face(*polygons_, p, face)) face = p;
   }
   if (face >= 0) cands.push_back(face);
   // An object seen is final; where the cell's face is nearest, the ray leaves the cell and
   // the deeper avenues decide.
   auto take = [&](int32_t s0, int32_t s1, int32_t winner) {
-    if (polygons_[size_t(winner)].role == PolygonRole::Object) emit(s0, s1, winner);
+    if ((*polygons_)[size_t(winner)].role == PolygonRole::Object) emit(s0, s1, winner);
     else resolve_groups(s0, s1, last, deepest_face, level + 1);
   };
   if (cands.size() == 1) return take(x0, x1, cands[0]);
@@ -453,7 +477,7 @@ void ScanlineEngine::resolve_groups(int32_t x0, int32_t x1, size_t first, int32_
 double ScanlineEngine::nearer_by(int32_t p, int32_t q, int32_t x) const {
   // 1/Z(p) − 1/Z(q) at the centre of sample x, as one affine function of x evaluated the
   // same way every time: monotonic along the row, and exactly antisymmetric in (p, q).
-  const RasterPlane &a = polygons_[size_t(p)].depth, &b = polygons_[size_t(q)].depth;
+  const RasterPlane &a = (*polygons_)[size_t(p)].depth, &b = (*polygons_)[size_t(q)].depth;
   return (a.a - b.a) * (x + 0.5) + ((a.b - b.b) * row_centre_ + (a.c - b.c));
 }
 
@@ -471,7 +495,7 @@ int32_t ScanlineEngine::nearest(const std::vector<int32_t>& cands, int32_t x) {
 int32_t ScanlineEngine::first_nearer(int32_t q, int32_t cur, int32_t from, int32_t last) const {
   // Appendix 2: the planes meet where (A1 − A2)·x = (B2 − B1)·y + (C2 − C1); that is the
   // estimate, and the sign of nearer_by (monotonic) settles the sample exactly.
-  const RasterPlane &a = polygons_[size_t(q)].depth, &b = polygons_[size_t(cur)].depth;
+  const RasterPlane &a = (*polygons_)[size_t(q)].depth, &b = (*polygons_)[size_t(cur)].depth;
   const double slope = a.a - b.a;
   const double offset = (a.b - b.b) * row_centre_ + (a.c - b.c);
   int32_t p = from + 1;
@@ -486,9 +510,14 @@ int32_t ScanlineEngine::first_nearer(int32_t q, int32_t cur, int32_t from, int32
 
 // --- the secondary scan -------------------------------------------------------------
 
-SecondaryScan::SecondaryScan(const EdgeTable& pieces) : engine_(pieces) {
-  spans_.resize(size_t(pieces.polygons_->size()));
+SecondaryScan::SecondaryScan(const EdgeTable& pieces) { reset(pieces); }
+
+void SecondaryScan::reset(const EdgeTable& pieces) {
+  engine_.reset(pieces);
+  spans_.assign(pieces.polygons_->size(), Span{});
   row_of_.assign(spans_.size(), -1);
+  row_ = -1;
+  next_ = 0;
 }
 
 void SecondaryScan::start(int row) {

@@ -125,6 +125,10 @@ struct ScanCounters {
 class EdgeTable {
  public:
   EdgeTable(int width, int height, const std::vector<ScreenPolygon>& polygons, const std::vector<ClipRegion>& clips);
+  /// An empty table, for build().
+  EdgeTable() = default;
+  /// Makes this the table of another picture, reusing the storage of the last one.
+  void build(int width, int height, const std::vector<ScreenPolygon>& polygons, const std::vector<ClipRegion>& clips);
 
   long edge_count() const { return long(edges_.size()); }
 
@@ -149,10 +153,11 @@ class EdgeTable {
   Rows add_outline(const std::vector<FixedPoint>& outline, int32_t owner, bool clip, Rows within, int64_t x_lo,
                    int64_t x_hi);
 
-  int width_, height_;
-  const std::vector<ScreenPolygon>* polygons_;
+  int width_ = 0, height_ = 0;
+  const std::vector<ScreenPolygon>* polygons_ = nullptr;
   size_t clip_count_ = 0;
   std::vector<Edge> edges_;                 ///< sorted by first_row (bucket order)
+  std::vector<Edge> unsorted_;              ///< build(): the edges before the sort
   std::vector<int32_t> row_start_;          ///< height + 1 offsets into edges_: the bucket of each row
   std::vector<Rows> polygon_rows_;          ///< per polygon: the rows it spans (first >= end: none)
   std::vector<int32_t> polygon_clip_;       ///< per polygon: its clip region (-1: none), kept close at hand
@@ -168,6 +173,10 @@ class ScanlineEngine {
   /// nearest polygon at the left end of a run is the nearest all along it and the search for
   /// implicitly defined lines is skipped (one depth sort per run instead of two or more).
   explicit ScanlineEngine(const EdgeTable& table, bool implicit_lines = true);
+  /// An engine for no table yet, for reset().
+  ScanlineEngine() = default;
+  /// Makes this a fresh engine for `table`, reusing the storage of the last one.
+  void reset(const EdgeTable& table, bool implicit_lines = true);
 
   /// Places the scan at `row`: the edges already crossing it enter the active list.
   void start(int row);
@@ -211,8 +220,8 @@ class ScanlineEngine {
   double nearer_by(int32_t p, int32_t q, int32_t x) const;
   int32_t first_nearer(int32_t q, int32_t cur, int32_t from, int32_t last) const;
 
-  const EdgeTable& table_;
-  const std::vector<ScreenPolygon>& polygons_;
+  const EdgeTable* table_ = nullptr;
+  const std::vector<ScreenPolygon>* polygons_ = nullptr;
   int row_ = 0;
   std::vector<ActiveEdge> active_;                 ///< the active edge list
   std::vector<Extent> polygon_extent_, clip_extent_;
@@ -240,6 +249,8 @@ class ScanlineEngine {
 class SecondaryScan {
  public:
   explicit SecondaryScan(const EdgeTable& pieces);
+  /// Makes this a fresh scan of `pieces`, reusing the storage of the last one.
+  void reset(const EdgeTable& pieces);
   /// Places the scan at `row`, as ScanlineEngine::start.
   void start(int row);
   /// Finds each piece's samples on the current row, then moves down a row.

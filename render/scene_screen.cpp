@@ -35,15 +35,17 @@ void cut(const std::vector<P>& in, F f, std::vector<P>& out) {
 
 FixedPoint to_fixed(Vec2 r) { return {std::llround(r.x * kSubpixelOne), std::llround(r.y * kSubpixelOne)}; }
 
-/// Convex hull (Andrew's monotone chain), exact in integers; collinear points dropped.
-std::vector<FixedPoint> hull(std::vector<FixedPoint> pts) {
+/// Convex hull (Andrew's monotone chain), exact in integers; collinear points dropped. Into
+/// `h`'s storage; empty when fewer than three corners are left.
+std::vector<FixedPoint> hull(std::vector<FixedPoint> pts, std::vector<FixedPoint> h) {
   std::sort(pts.begin(), pts.end(), [](FixedPoint a, FixedPoint b) { return a.x != b.x ? a.x < b.x : a.y < b.y; });
   pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
-  if (pts.size() < 3) return {};
+  h.clear();
+  if (pts.size() < 3) return h;
   auto turn = [](FixedPoint o, FixedPoint a, FixedPoint b) {
     return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);  // |terms| < 2^58
   };
-  std::vector<FixedPoint> h(2 * pts.size());
+  h.resize(2 * pts.size());
   size_t k = 0;
   for (size_t i = 0; i < pts.size(); ++i) {
     while (k >= 2 && turn(h[k - 2], h[k - 1], pts[i]) <= 0) --k;
@@ -54,10 +56,42 @@ std::vector<FixedPoint> hull(std::vector<FixedPoint> pts) {
     h[k++] = pts[i];
   }
   h.resize(k - 1);
-  return h.size() >= 3 ? h : std::vector<FixedPoint>{};
+  if (h.size() < 3) h.clear();
+  return h;
 }
 
 }  // namespace
+
+void ScreenScene::clear() {
+  for (ScreenPolygon& p : polygons) keep_outline(std::move(p.outline));
+  for (ScreenPolygon& p : pieces) keep_outline(std::move(p.outline));
+  for (ClipRegion& c : clips) keep_outline(std::move(c.outline));
+  polygons.clear();
+  pieces.clear();
+  clips.clear();
+  shades.clear();
+  sources.clear();
+  light_terms.clear();
+  raster = {};
+  implicit_lines = true;
+}
+
+std::vector<FixedPoint> ScreenScene::take_outline() {
+  if (spare_outlines.empty()) return {};
+  std::vector<FixedPoint> out = std::move(spare_outlines.back());
+  spare_outlines.pop_back();
+  out.clear();
+  return out;
+}
+
+void ScreenScene::keep_outline(std::vector<FixedPoint>&& outline) {
+  if (outline.capacity() > 0) spare_outlines.push_back(std::move(outline));
+}
+
+void ScreenScene::drop_pieces_from(size_t first) {
+  for (size_t i = first; i < pieces.size(); ++i) keep_outline(std::move(pieces[i].outline));
+  pieces.resize(std::min(first, pieces.size()));
+}
 
 ScreenSceneBuilder::ScreenSceneBuilder(const Camera& camera, const SceneOptions& options, ScreenScene& out)
     : camera_(camera), options_(options), out_(out) {
@@ -77,8 +111,11 @@ int32_t ScreenSceneBuilder::add_clip(const std::vector<Vec2>& picture_polygon, d
     for (int64_t dx : {-g, g})
       for (int64_t dy : {-g, g}) pts.push_back({f.x + dx, f.y + dy});
   }
-  std::vector<FixedPoint> h = hull(std::move(pts));
-  if (h.empty()) return -1;
+  std::vector<FixedPoint> h = hull(std::move(pts), out_.take_outline());
+  if (h.empty()) {
+    out_.keep_outline(std::move(h));
+    return -1;
+  }
   out_.clips.push_back({std::move(h)});
   return int32_t(out_.clips.size() - 1);
 }
@@ -111,8 +148,12 @@ bool ScreenSceneBuilder::add(const std::vector<Vec3>& points, Vec3 n, double d, 
                              Placement where, const PolygonSource& source) {
   if (!(std::fabs(d) > 0)) return false;  // the plane passes through the eye: seen edge-on
   ScreenPolygon poly;
-  if (!project(points, poly)) return false;
-  if (!covers_a_sample_centre(poly.outline)) return false;  // it could colour no sample
+  poly.outline = out_.take_outline();
+  // Nothing of area on the raster, or it could colour no sample.
+  if (!project(points, poly) || !covers_a_sample_centre(poly.outline)) {
+    out_.keep_outline(std::move(poly.outline));
+    return false;
+  }
   // 1/Z on the raster: n·(d_xy·Z) + d = 0 with d_xy = (x, y, 1), x = x0 + step·u, y = y0 − step·v.
   const RasterMap& m = out_.raster;
   poly.depth = {-n.x * m.step / d, n.y * m.step / d, -(n.x * m.x0 + n.y * m.y0 + n.z) / d};
@@ -173,7 +214,9 @@ bool ScreenSceneBuilder::add_pieces(const SurfaceLight& s, LightTerm& term) {
     cam.clear();
     for (Vec3 p : world) cam.push_back(camera_.camera_from_world(p));
     ScreenPolygon piece;
+    piece.outline = out_.take_outline();
     if (project(cam, piece)) out_.pieces.push_back(std::move(piece));
+    else out_.keep_outline(std::move(piece.outline));
   };
   term.first_piece = int32_t(before);
   term.whole = s.whole;
@@ -206,7 +249,7 @@ bool ScreenSceneBuilder::add_lit(const std::vector<Vec3>& points, Vec3 n, double
                                  Placement where, const PolygonSource& source, size_t pieces_before) {
   if (add(points, n, d, shade, where, source)) return true;
   out_.light_terms.resize(size_t(shade.first_term));
-  out_.pieces.resize(pieces_before);
+  out_.drop_pieces_from(pieces_before);
   return false;
 }
 

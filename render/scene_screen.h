@@ -57,6 +57,19 @@ struct ScreenScene {
   /// Search for implicitly defined lines where objects' polygons change depth order (false:
   /// the scene has no interpenetrating polygons, effects.h; the scan is the same without).
   bool implicit_lines = true;
+  /// Outlines the last picture used, emptied, for the next one's polygons (clear()).
+  std::vector<std::vector<FixedPoint>> spare_outlines;
+
+  /// Empties the scene for the next picture, keeping every array's storage, the polygons'
+  /// outlines included (spare_outlines). A walkthrough builds each frame's scene into the
+  /// same one, so a frame neither maps nor faults in the memory the frame before it had.
+  void clear();
+  /// An empty outline: one clear() kept, when there is one.
+  std::vector<FixedPoint> take_outline();
+  /// Keeps an outline that was not used for the next polygon (take_outline).
+  void keep_outline(std::vector<FixedPoint>&& outline);
+  /// Drops the pieces from index `first` on, keeping their outlines.
+  void drop_pieces_from(size_t first);
 };
 
 struct SceneShadows;
@@ -142,7 +155,7 @@ class ScreenSceneBuilder {
       if (!term_of(light, camera_.camera_from_world(light.position), term)) continue;
       const size_t pieces = out_.pieces.size();
       if (!add_pieces(*s, term)) {
-        out_.pieces.resize(pieces);
+        out_.drop_pieces_from(pieces);
         continue;
       }
       out_.light_terms.push_back(term);
@@ -177,6 +190,9 @@ class ScreenSceneBuilder {
 /// the objects of its cell.
 ScreenScene screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedObject>& objects,
                                  const Camera& camera, const VisibleSet& visible, const SceneOptions& options);
+/// The same into `out`, cleared first (ScreenScene::clear), whose storage is reused.
+void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedObject>& objects, const Camera& camera,
+                          const VisibleSet& visible, const SceneOptions& options, ScreenScene& out);
 
 /// The polygons of meshes alone, seen by `camera`; paints[i] goes with meshes[i] (missing
 /// ones: the default material).

@@ -36,6 +36,13 @@ const Material& material_of(const CellComplex& c, MaterialId id) {
 ScreenScene screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedObject>& objects,
                                  const Camera& camera, const VisibleSet& visible, const SceneOptions& options) {
   ScreenScene out;
+  screen_scene_of_view(complex, objects, camera, visible, options, out);
+  return out;
+}
+
+void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedObject>& objects, const Camera& camera,
+                          const VisibleSet& visible, const SceneOptions& options, ScreenScene& out) {
+  out.clear();
   ScreenSceneBuilder b(camera, options, out);
   std::map<CellId, std::vector<size_t>> objects_in;
   for (size_t i = 0; i < objects.size(); ++i)
@@ -89,7 +96,6 @@ ScreenScene screen_scene_of_view(const CellComplex& complex, const std::vector<P
     }
     b.no_cull();
   }
-  return out;
 }
 
 }  // namespace avenues

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "cells/build_cells.h"
 #include "plans/plan.h"
@@ -15,6 +17,7 @@
 #include "render/view_lines.h"
 #include "test_plans.h"
 #include "visibility/light_reach.h"
+#include "visibility/viewpoint.h"
 
 using namespace avenues;
 using avenues::testing::room_named;
@@ -450,4 +453,52 @@ TEST(ShadowOutlines, TheBoxsShadowOutlineIsItsAnalyticOutline) {
   EXPECT_EQ(shadow_strokes(draw_view(c, prepare_line_scene(c), cam, vs, lo)), 0);
   lo.shadows = true;
   EXPECT_GT(shadow_strokes(draw_view(c, prepare_line_scene(c, lo), cam, vs, lo)), 2);
+}
+
+// A walkthrough renders every frame into one FrameStorage (halftone.h): whatever the frame
+// before it left there (more polygons, another size, lights' pieces or none), each frame is
+// the picture a fresh render makes, byte for byte, on one thread or two.
+TEST(FrameStorage, EachFrameIsThePictureAFreshRenderMakes) {
+  const CellComplex lit = build_cells(box_under_a_light());
+  const CellComplex furnished = build_cells(read_plan(std::string(AVENUES_SOURCE_DIR) + "/plans/furnished-room.toml"));
+  const Viewpoint vp = default_viewpoint(furnished);
+  struct Frame {
+    const CellComplex* complex;
+    Camera cam;
+  };
+  const std::vector<Frame> frames{
+      {&lit, Camera::look_at({5.6, 5.6, 2.7}, {3.0, 3.0, 0.0}, 70, 160, 120)},
+      {&furnished, Camera::look_at(vp.eye, vp.look, vp.fov_deg, 320, 180)},
+      {&lit, Camera::look_at({0.5, 5.5, 1.6}, {3.0, 3.0, 0.5}, 60, 200, 100)},
+      {&furnished, Camera::look_at(vp.eye, vp.look, vp.fov_deg, 96, 54)},
+      {&lit, Camera::look_at({5.6, 5.6, 2.7}, {3.0, 3.0, 0.0}, 70, 160, 120)},
+  };
+  for (int threads : {1, 2}) {
+    SCOPED_TRACE(threads);
+    HalftoneOptions o;
+    o.threads = threads;
+    o.samples = 4;
+    FrameStorage storage;
+    for (size_t k = 0; k < frames.size(); ++k) {
+      SCOPED_TRACE(k);
+      const CellComplex& c = *frames[k].complex;
+      const Camera& cam = frames[k].cam;
+      const std::vector<PlacedObject> objects = place_objects(c);
+      const SceneEffects effects = prepare_effects(c, objects, o);
+      const VisibleSet vs = find_visible(c, cam, c.locate(cam.eye).cell);
+      Image fresh, reused;
+      RenderStats fresh_stats, reused_stats;
+      render_view(c, objects, effects, cam, vs, o, fresh, &fresh_stats);
+      render_view(c, objects, effects, cam, vs, o, reused, storage, &reused_stats);
+      ASSERT_EQ(fresh.width, cam.width);
+      EXPECT_EQ(reused.width, fresh.width);
+      EXPECT_EQ(reused.height, fresh.height);
+      EXPECT_TRUE(reused.data == fresh.data);
+      EXPECT_EQ(reused_stats.polygons, fresh_stats.polygons);
+      EXPECT_EQ(reused_stats.spans, fresh_stats.spans);
+      EXPECT_EQ(reused_stats.pixels, fresh_stats.pixels);
+      EXPECT_EQ(reused_stats.light_pieces, fresh_stats.light_pieces);
+      EXPECT_GT(fresh_stats.polygons, 0);
+    }
+  }
 }
