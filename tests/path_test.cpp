@@ -316,17 +316,31 @@ pid_t rank_process(int rank, const std::string& marker) {
 // (That the frames of an MPI walk are those of one process is shown above.)
 TEST_F(Path, MpiRankKilledMidWalkAndResumeCompletesTheFilm) {
   const std::string out = "killed-" + std::to_string(::getpid());  // names this job's processes
-  const std::vector<std::string> args = {"path", kHouse, "--through", "L,K,D", "--step", "0.05", "--size", "160x90", "-o", out};
+  const std::vector<std::string> args = {"path",   kHouse,    "--through", "L,K,D", "--step", "0.05",
+                                         "--size", "160x90", "--samples", "4",     "-o",     out};
   avenues::testing::Child job = start_argv(mpirun(2, args));
   ASSERT_GT(job.pid(), 0);
-  // Wait for a few frames, then kill rank 1.
-  pid_t victim = -1;
-  for (int tries = 0; tries < 1200 && victim < 0; ++tries) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(25));
-    if (fs::exists(path(out)) && frames(out).size() >= 3) victim = rank_process(1, out);
+  // Both ranks found first; once a few frames are written, both are stopped at once, so the
+  // walk cannot end before rank 1 is killed however the machine's load delays this test.
+  pid_t ranks[2] = {-1, -1};
+  for (int tries = 0; tries < 1200 && (ranks[0] < 0 || ranks[1] < 0); ++tries) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    for (int k = 0; k < 2; ++k)
+      if (ranks[k] < 0) ranks[k] = rank_process(k, out);
   }
-  ASSERT_GT(victim, 0) << "rank 1 never showed up";
-  ASSERT_EQ(::kill(victim, SIGKILL), 0);
+  ASSERT_GT(ranks[0], 0) << "rank 0 never showed up";
+  ASSERT_GT(ranks[1], 0) << "rank 1 never showed up";
+  bool stopped = false;
+  for (int tries = 0; tries < 6000 && !stopped; ++tries) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    if (fs::exists(path(out)) && frames(out).size() >= 3) {
+      stopped = ::kill(ranks[0], SIGSTOP) == 0 && ::kill(ranks[1], SIGSTOP) == 0;
+      ASSERT_TRUE(stopped) << "the walk ended before its ranks could be stopped";
+    }
+  }
+  ASSERT_TRUE(stopped) << "no frames written";
+  ASSERT_EQ(::kill(ranks[1], SIGKILL), 0);
+  ASSERT_EQ(::kill(ranks[0], SIGCONT), 0);  // rank 0 reports the frames in progress as the job stops
   Outcome r = finish(job);
   const size_t done = frames(out).size();
   EXPECT_NE(r.status, 0);
