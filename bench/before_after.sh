@@ -23,7 +23,7 @@ before=${1:?usage: bench/before_after.sh BEFORE_BUILD AFTER_BUILD [ROUNDS] [WALK
 after=${2:?usage: bench/before_after.sh BEFORE_BUILD AFTER_BUILD [ROUNDS] [WALK_FRAMES]}
 rounds=${3:-3}
 frames=${4:-300}
-filter=${FILTER:-'^build/(jones-house|furnished-room|two-storey-house|office-corridor|curved-walls|office-10x10|office-30x30)$|^load/|^Visibility/(jones-house|two-storey-house|office-corridor|curved-walls)/double$|^Visibility/local_view|^halftone_frame|^frame_memset'}
+filter=${FILTER:-'^build/(jones-house|furnished-room|two-storey-house|office-corridor|curved-walls|office-10x10|office-30x30)$|^load/|^Visibility/[a-z-]+\.toml/(double|exact)$|^Visibility/local_view|^halftone_frame|memset'}
 homes=/usr/local/share/avenues/sweethome3d-examples
 plans=${WALK_PLANS:-"$root/plans/jones-house.toml $root/plans/two-storey-house.toml $root/plans/office-corridor.toml $root/plans/furnished-room.toml $root/plans/curved-walls.toml"}
 for h in 4BedroomHouse 3BedroomHouseWithMezzanine; do
