@@ -17,9 +17,10 @@
 //      across a real corner the opening is cut in parts, so that every opening lies on
 //      one straight segment as outline.cpp wants;
 //   5. sloped walls → pieces of constant height, never cut inside an opening;
-//   6. rooms, furniture (each piece's OBJ model, read once with OpenMesh and fitted to the
-//      piece; a box of its size where the model is not at hand), staircase cut-outs
-//      (floor openings), the observer camera.
+//   6. rooms, furniture (each piece's OBJ model, read once with OpenMesh, its materials
+//      coloured from its MTL libraries, fitted to the piece and recoloured by the piece's
+//      modelMaterials; a box of its size where the model is not at hand), staircase
+//      cut-outs (floor openings), the observer camera.
 // Mistakes the file cannot be read past (no home entry, XML syntax, a malformed Java
 // stream, a number that is not a number, a level that does not exist) are PlanErrors;
 // odd but readable data (NaN, zero-length walls, a window in no wall, a wall or piece
@@ -32,6 +33,7 @@
 
 #include "plans/arc.h"
 #include "plans/mesh.h"
+#include "plans/obj_materials.h"
 
 #include <pugixml.hpp>
 #include <zip.h>
@@ -261,6 +263,15 @@ struct Draft {
   bool sloped() const { return std::fabs(h1 - h0) > 1e-6; }
 };
 
+/// One of a piece's modelMaterials (<material name key color><texture/></material>, a
+/// HomeMaterial): what it puts in place of the model's material it names.
+struct ModelMaterialIn {
+  std::string names;  ///< the model's material it replaces: its key where it has one, else its name
+  std::optional<std::array<double, 3>> colour;  ///< linear RGB; nullopt: the model's own stays
+  std::string what;   ///< "#RRGGBB" or "texture <image>": how the mesh's path tells pieces so coloured apart
+  SourceLoc where;
+};
+
 /// A piece of furniture, door or window, in metres and plan axes.
 struct PieceIn {
   std::string name;
@@ -276,6 +287,7 @@ struct PieceIn {
   std::string model;      ///< its model: an entry of the .sh3d archive, or a catalogue path
   std::array<double, 9> model_rotation{1, 0, 0, 0, 1, 0, 0, 0, 1};  ///< row-major, applied to the model first
   MaterialId material = -1;  ///< its color, where it has one
+  std::vector<ModelMaterialIn> model_materials;  ///< in the order Sweet Home tries them (the first that names a material wins)
 };
 
 /// A door or window on its way into the wall it sits in.
@@ -361,6 +373,12 @@ class HomeReader {
   void read_camera(const HomeElement& home);
 
   std::shared_ptr<const Mesh> model_of(const PieceIn& p);
+  std::vector<ModelMaterialIn> model_materials_of(const HomeElement& n, const std::string& element);
+  void colour_model(Mesh& m, const std::string& obj, const PieceIn& p);
+  /// The mean colour of an image entry that a model's material or a piece's modelMaterials
+  /// name (one reading per image); nullopt, with a warning `who` begins, when unreadable.
+  std::optional<std::array<double, 3>> image_mean(const std::string& image, const std::string& bytes,
+                                                  const std::string& who);
   /// The plan's material of a Sweet Home colour attribute (one per colour); -1 when the
   /// text is empty or not a colour.
   MaterialId material_of(const std::string& hex) {
@@ -436,6 +454,8 @@ class HomeReader {
   std::map<std::string, MaterialId> textures_;   ///< by image entry (-1: unreadable)
   MaterialId default_material_ = -1;
   std::map<std::string, std::shared_ptr<const Mesh>> models_read_;  ///< by model name, as read (nullptr: none)
+  std::map<std::string, std::optional<std::array<double, 3>>> image_means_;  ///< by image entry (nullopt: unreadable)
+  std::set<std::string> undefined_materials_;  ///< names models use that no MTL library at hand defines
   int models_missing_ = 0;       ///< pieces left boxes because their model is not at hand
   Plan plan_;
   double wall_height_ = 2.5;   ///< [m] the home's default wall height
@@ -866,6 +886,8 @@ void HomeReader::collect_pieces(const HomeElement& home) {
     // A piece's colour is before its texture (HomePieceOfFurniture3D), a wall's or room's after.
     p.material = material_of(n.text("color"));
     if (p.material < 0) p.material = surface_material(n, "color", "", element);  // a piece's <texture> has no attribute
+    // Else its modelMaterials, each in place of the model's material it names.
+    if (p.material < 0) p.model_materials = model_materials_of(n, element);
     if (const std::string r = n.text("modelRotation"); !r.empty()) {
       std::istringstream in(r);
       std::array<double, 9> m{};
@@ -1385,6 +1407,118 @@ bool looks_like_obj(const std::string& bytes) {
   return vertex && statements > 0;
 }
 
+/// A piece's modelMaterials as HomePieceOfFurniture3D applies them: a material with an
+/// opaque colour (alpha not 0) paints the model's material it names in that colour; one
+/// with no colour but a texture, in its image's mean colour; any other (a transparent
+/// colour, neither) leaves the model's own material as it is.
+std::vector<ModelMaterialIn> HomeReader::model_materials_of(const HomeElement& n, const std::string& element) {
+  std::vector<ModelMaterialIn> out;
+  for (const HomeElement* mp : tree_.children(n, "material")) {
+    const HomeElement& m = *mp;
+    ModelMaterialIn in;
+    in.names = m.attribute("key") ? m.text("key") : m.text("name");
+    const std::string what = element + ", material '" + m.text("name") + "'";
+    in.where = loc(m, what);
+    if (const std::string* hex = m.attribute("color")) {
+      const std::optional<std::array<double, 3>> c = colour_of(*hex);
+      if (!c) {
+        warn(m, what, "color \"" + *hex + "\" is not a colour (AARRGGBB): the model's own material stays");
+      } else if (!(hex->size() == 8 && hex->compare(0, 2, "00") == 0)) {
+        in.colour = c;
+        in.what = "#" + hex->substr(hex->size() - 6);
+      }
+    } else {
+      for (const HomeElement* tp : tree_.children(m, "texture")) {
+        const std::string image = tp->text("image");
+        if (image.empty()) break;
+        const std::optional<std::string> bytes = models_ ? models_(image) : std::nullopt;
+        if (!bytes) {
+          warn(*tp, what, "texture image " + image + " is not at hand: the model's own material stays");
+        } else if ((in.colour = image_mean(image, *bytes, loc(*tp, what).str() + ": "))) {
+          in.what = "texture " + image;
+        }
+        break;
+      }
+    }
+    out.push_back(std::move(in));
+  }
+  return out;
+}
+
+std::optional<std::array<double, 3>> HomeReader::image_mean(const std::string& image, const std::string& bytes,
+                                                            const std::string& who) {
+  auto [it, fresh] = image_means_.try_emplace(image);
+  if (!fresh) return it->second;
+  try {
+    it->second = mean_image_colour(bytes, path_ + ":" + image);
+  } catch (const std::runtime_error& e) {
+    plan_.warnings.push_back(who + e.what() + ": the material keeps its colour without it");
+  }
+  return it->second;
+}
+
+/// A model's own materials coloured as its MTL libraries say (OBJLoader): a material's
+/// map_Kd image, where it can be read, as the image's mean colour (Sweet Home draws a
+/// textured shape in its texture's colours alone, ModelManager setting its diffuse colour
+/// white); else its Kd, an sRGB-encoded colour like a picked one (ModelManager.getMaterials
+/// makes Kd · 255 a colour), made linear. The libraries and images are found beside the
+/// model (its folder in the .sh3d, in a zipped model, or under a bare Home.xml's folder).
+/// A material no library at hand defines keeps Avenues' default colour.
+void HomeReader::colour_model(Mesh& m, const std::string& obj, const PieceIn& p) {
+  if (m.materials.empty()) return;
+  const std::string dir = p.model.substr(0, p.model.rfind('/') + 1);  // "" when the model has no folder
+  const std::string who = p.where.str() + ": model " + p.model + ": ";
+  struct Defined {
+    MtlMaterial material;
+    std::string library;  ///< the entry that defines it
+  };
+  std::map<std::string, Defined> defined;
+  for (const std::string& argument : obj_material_use(obj).libraries) {
+    const std::vector<std::string> files = mtllib_candidates(argument);
+    bool found = false;
+    for (size_t i = 0; i < files.size() && !(found && i + 1 == files.size() && files.size() > 1); ++i) {
+      const std::string entry = dir + files[i];
+      const std::optional<std::string> bytes = models_ ? models_(entry) : std::nullopt;
+      if (!bytes) continue;
+      found = true;
+      const MtlLibrary lib = read_mtl(*bytes);
+      for (const std::string& problem : lib.problems)
+        plan_.warnings.push_back(who + "material library " + entry + ": " + problem + ": left out");
+      for (const MtlMaterial& mat : lib.materials) defined.insert_or_assign(mat.name, Defined{mat, entry});
+    }
+    if (!found)
+      plan_.warnings.push_back(who + "its material library '" + argument +
+                               "' is not at hand: its materials keep Avenues' default colour");
+  }
+  for (Material& mat : m.materials) {
+    const auto it = defined.find(mat.name);
+    if (it == defined.end()) {
+      undefined_materials_.insert(mat.name);
+      continue;
+    }
+    const MtlMaterial& d = it->second.material;
+    std::optional<std::array<double, 3>> colour;
+    if (!d.diffuse_map.empty()) {
+      bool found = false;
+      for (const std::string& file : map_kd_candidates(d.diffuse_map)) {
+        const std::optional<std::string> bytes = models_ ? models_(dir + file) : std::nullopt;
+        if (!bytes) continue;
+        found = true;
+        colour = image_mean(dir + file, *bytes, who + "material '" + mat.name + "': ");
+        break;
+      }
+      if (!found)
+        plan_.warnings.push_back(who + "material '" + mat.name + "': its image " + d.diffuse_map +
+                                 " (map_Kd) is not at hand: its Kd colour is used instead");
+    }
+    if (!colour && d.diffuse)
+      colour = std::array<double, 3>{linear_from_srgb((*d.diffuse)[0]), linear_from_srgb((*d.diffuse)[1]),
+                                     linear_from_srgb((*d.diffuse)[2])};
+    if (colour) mat.colour = *colour;
+    mat.where = SourceLoc{path_ + ":" + it->second.library, d.line, 0, "material '" + mat.name + "'"};
+  }
+}
+
 /// The piece's model fitted to it as Sweet Home fits it: turned by modelRotation, its
 /// bounds scaled to the piece's width (x), height (y, up) and depth (z, towards the front),
 /// mirrored if asked, in the piece's own axes (base centred on the origin, z up, the front
@@ -1405,7 +1539,11 @@ std::shared_ptr<const Mesh> HomeReader::model_of(const PieceIn& p) {
       plan_.warnings.push_back(p.where.str() + ": model " + p.model + " is not an OBJ file (only those are read): a box stands in");
     } else {
       try {
-        it->second = std::make_shared<const Mesh>(read_mesh_bytes(*bytes, ext, path_ + ":" + p.model));
+        std::vector<std::string> warnings;
+        Mesh read = read_mesh_bytes(*bytes, ext, path_ + ":" + p.model, &warnings);
+        for (const std::string& w : warnings) plan_.warnings.push_back(p.where.str() + ": " + w);
+        colour_model(read, *bytes, p);
+        it->second = std::make_shared<const Mesh>(std::move(read));
       } catch (const std::runtime_error& e) {
         plan_.warnings.push_back(p.where.str() + ": " + e.what() + ": a box of the piece's size stands in");
       }
@@ -1432,8 +1570,21 @@ std::shared_ptr<const Mesh> HomeReader::model_of(const PieceIn& p) {
     return from_base ? (v - a) * k : (v - 0.5 * (a + b)) * k;
   };
   Mesh m = raw;
+  // The piece's modelMaterials, each in place of the model's material it names (the first
+  // that names it); the path, which tells meshes apart (mesh_key), says what they changed.
+  std::string coloured;
+  for (Material& mat : m.materials)
+    for (const ModelMaterialIn& in : p.model_materials) {
+      if (in.names != mat.name) continue;
+      if (in.colour) {
+        mat.colour = *in.colour;
+        mat.where = in.where;
+        coloured += (coloured.empty() ? ", materials " : ", ") + mat.name + " " + in.what;
+      }
+      break;
+    }
   m.path = path_ + ":" + p.model + " as " + format_number(p.width * 100) + " x " + format_number(p.depth * 100) + " x " + format_number(p.height * 100) +
-           " cm" + (p.mirrored ? ", mirrored" : "");
+           " cm" + (p.mirrored ? ", mirrored" : "") + coloured;
   for (size_t i = 0; i < turned.size(); ++i) {
     const Vec3 t = turned[i];
     const double x = fit(t.x, lo.x, hi.x, p.width, false) * (p.mirrored ? -1 : 1);
@@ -1552,6 +1703,18 @@ Plan HomeReader::read() {
   if (models_missing_ > 0)
     plan_.warnings.push_back(file_ + ": " + std::to_string(models_missing_) +
                              " piece(s) of furniture drawn as boxes of their size: their models are not at hand");
+  if (!undefined_materials_.empty()) {
+    // Sweet Home's OBJLoader knows Java 3D's default materials by name (Debian's catalogue
+    // models use them with no MTL file); Avenues does not.
+    std::string names;
+    size_t shown = 0;
+    for (const std::string& n : undefined_materials_)
+      if (shown++ < 5) names += (names.empty() ? "'" : ", '") + n + "'";
+    if (undefined_materials_.size() > shown) names += ", ...";
+    plan_.warnings.push_back(file_ + ": " + std::to_string(undefined_materials_.size()) +
+                             " material(s) that models use are defined in no MTL library at hand (" + names +
+                             "): they keep Avenues' default colour where no piece's modelMaterials colour them");
+  }
   if (walls_cut_ > 0)
     plan_.warnings.push_back(file_ + ": " + std::to_string(walls_cut_) +
                              " wall(s) taller than their storey cut to its ceiling");
