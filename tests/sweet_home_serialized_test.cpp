@@ -774,7 +774,8 @@ void expect_pixel_shows(const Image& pic, const std::array<double, 3>& colour, c
 // by part, as Sweet Home draws it: its OBJ's usemtl groups take their MTL's Kd, or their
 // map_Kd image's mean; a piece's modelMaterials replace the model's material they name
 // (by key where they have one, else by name), an opaque colour only (a transparent one, or
-// none, leaves the model's own); the piece's color paints it whole. What cannot be read
+// none, leaves the model's own); the piece's color paints it whole. A zipped model finds its
+// MTL and images inside its own zip. What cannot be read
 // (a library, an image) is a warning naming the piece, never the home lost.
 TEST(SweetHomeColours, FurnitureTakesItsModelsMaterialsAndThePiecesOverrides) {
   ScratchDir dir;
@@ -798,13 +799,19 @@ TEST(SweetHomeColours, FurnitureTakesItsModelsMaterialsAndThePiecesOverrides) {
       "    <material name='Front' color='FF4080C0'/>\n"
       "  </pieceOfFurniture>\n"
       "  <pieceOfFurniture name='Unlisted' model='2/cube.obj' x='450' y='350' width='50' depth='50' height='50'/>\n"
+      "  <pieceOfFurniture name='Zipped' model='3!/cube.obj' x='300' y='350' width='50' depth='50' height='50'/>\n"
       "</home>\n";
+  // A model of several files saved as a zip entry of its own: its MTL and image inside it.
+  const std::string png = avenues::testing::slurp(dir.path() / "tex.png");
+  const std::string zipped =
+      avenues::testing::slurp(write_sh3d(dir, "zipped.zip", {{"cube.obj", kCubeObj}, {"cube.mtl", kCubeMtl}, {"tex.png", png}}));
   const std::string path = write_sh3d(dir, "cubes.sh3d",
                                       {{"Home.xml", xml},
                                        {"1/cube.obj", kCubeObj},
                                        {"1/cube.mtl", kCubeMtl},
-                                       {"1/tex.png", avenues::testing::slurp(dir.path() / "tex.png")},
-                                       {"2/cube.obj", kCubeObj}});
+                                       {"1/tex.png", png},
+                                       {"2/cube.obj", kCubeObj},
+                                       {"3", zipped}});
   const Plan p = read_sweet_home(path);
   auto warned = [&](const std::string& what) {
     int n = 0;
@@ -817,7 +824,7 @@ TEST(SweetHomeColours, FurnitureTakesItsModelsMaterialsAndThePiecesOverrides) {
             1);
   EXPECT_EQ(warned("(pieceOfFurniture 'Unlisted'): model 2/cube.obj: its material library 'cube.mtl' is not at hand"), 1);
   EXPECT_EQ(warned("4 material(s) that models use are defined in no MTL library at hand ('Body', 'Front', 'Ghost', 'Top')"), 1);
-  ASSERT_EQ(p.objects.size(), 4u);
+  ASSERT_EQ(p.objects.size(), 5u);
 
   const CubeColours own = cube_colours_from_mtl();
   CubeColours overridden = own;
@@ -825,8 +832,9 @@ TEST(SweetHomeColours, FurnitureTakesItsModelsMaterialsAndThePiecesOverrides) {
   overridden.top = {0, 1, 0};
   const CellComplex c = build_cells(p);
   const std::vector<PlacedObject> placed = place_objects(c);
-  ASSERT_EQ(placed.size(), 4u);
+  ASSERT_EQ(placed.size(), 5u);
   expect_cube_painted(placed[0], own);
+  expect_cube_painted(placed[4], own);
   expect_cube_painted(placed[1], overridden);
   // The piece's colour paints it whole, whatever its materials say.
   ASSERT_EQ(placed[2].paint.materials.size(), 1u);
@@ -843,7 +851,7 @@ TEST(SweetHomeColours, FurnitureTakesItsModelsMaterialsAndThePiecesOverrides) {
   const std::string cells = (dir.path() / "cubes.cells").string();
   save_cells(c, cells);
   const std::vector<PlacedObject> reloaded = place_objects(load_cells(cells));
-  ASSERT_EQ(reloaded.size(), 4u);
+  ASSERT_EQ(reloaded.size(), 5u);
   expect_cube_painted(reloaded[1], overridden);
 
   // The picture shows them: each piece's front from the room, under the light at the eye.

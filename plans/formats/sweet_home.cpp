@@ -375,10 +375,17 @@ class HomeReader {
   std::shared_ptr<const Mesh> model_of(const PieceIn& p);
   std::vector<ModelMaterialIn> model_materials_of(const HomeElement& n, const std::string& element);
   void colour_model(Mesh& m, const std::string& obj, const PieceIn& p);
-  /// The mean colour of an image entry that a model's material or a piece's modelMaterials
-  /// name (one reading per image); nullopt, with a warning `who` begins, when unreadable.
-  std::optional<std::array<double, 3>> image_mean(const std::string& image, const std::string& bytes,
-                                                  const std::string& who);
+  /// An image entry that a model's material or a piece's modelMaterials name, read once.
+  struct ImageMean {
+    bool at_hand = false;
+    std::optional<std::array<double, 3>> colour;  ///< its mean colour; nullopt when not at hand or unreadable
+  };
+  /// The image's mean colour; an image at hand that cannot be read is a warning beginning
+  /// with `who` (the first time).
+  const ImageMean& image_mean(const std::string& image, const std::string& who);
+  /// An MTL library entry, read once; nullptr when it is not at hand. What it holds that
+  /// cannot be read is a warning beginning with `who` (the first time).
+  const MtlLibrary* mtl_library(const std::string& entry, const std::string& who);
   /// The plan's material of a Sweet Home colour attribute (one per colour); -1 when the
   /// text is empty or not a colour.
   MaterialId material_of(const std::string& hex) {
@@ -454,7 +461,8 @@ class HomeReader {
   std::map<std::string, MaterialId> textures_;   ///< by image entry (-1: unreadable)
   MaterialId default_material_ = -1;
   std::map<std::string, std::shared_ptr<const Mesh>> models_read_;  ///< by model name, as read (nullptr: none)
-  std::map<std::string, std::optional<std::array<double, 3>>> image_means_;  ///< by image entry (nullopt: unreadable)
+  std::map<std::string, ImageMean> image_means_;                 ///< by image entry
+  std::map<std::string, std::optional<MtlLibrary>> libraries_;  ///< by entry (nullopt: not at hand)
   std::set<std::string> undefined_materials_;  ///< names models use that no MTL library at hand defines
   int models_missing_ = 0;       ///< pieces left boxes because their model is not at hand
   Plan plan_;
@@ -1431,12 +1439,9 @@ std::vector<ModelMaterialIn> HomeReader::model_materials_of(const HomeElement& n
       for (const HomeElement* tp : tree_.children(m, "texture")) {
         const std::string image = tp->text("image");
         if (image.empty()) break;
-        const std::optional<std::string> bytes = models_ ? models_(image) : std::nullopt;
-        if (!bytes) {
-          warn(*tp, what, "texture image " + image + " is not at hand: the model's own material stays");
-        } else if ((in.colour = image_mean(image, *bytes, loc(*tp, what).str() + ": "))) {
-          in.what = "texture " + image;
-        }
+        const ImageMean& mean = image_mean(image, loc(*tp, what).str() + ": ");
+        if (!mean.at_hand) warn(*tp, what, "texture image " + image + " is not at hand: the model's own material stays");
+        if ((in.colour = mean.colour)) in.what = "texture " + image;
         break;
       }
     }
@@ -1445,16 +1450,31 @@ std::vector<ModelMaterialIn> HomeReader::model_materials_of(const HomeElement& n
   return out;
 }
 
-std::optional<std::array<double, 3>> HomeReader::image_mean(const std::string& image, const std::string& bytes,
-                                                            const std::string& who) {
+const HomeReader::ImageMean& HomeReader::image_mean(const std::string& image, const std::string& who) {
   auto [it, fresh] = image_means_.try_emplace(image);
   if (!fresh) return it->second;
+  const std::optional<std::string> bytes = models_ ? models_(image) : std::nullopt;
+  if (!bytes) return it->second;
+  it->second.at_hand = true;
   try {
-    it->second = mean_image_colour(bytes, path_ + ":" + image);
+    it->second.colour = mean_image_colour(*bytes, path_ + ":" + image);
   } catch (const std::runtime_error& e) {
     plan_.warnings.push_back(who + e.what() + ": the material keeps its colour without it");
   }
   return it->second;
+}
+
+const MtlLibrary* HomeReader::mtl_library(const std::string& entry, const std::string& who) {
+  auto [it, fresh] = libraries_.try_emplace(entry);
+  if (fresh) {
+    const std::optional<std::string> bytes = models_ ? models_(entry) : std::nullopt;
+    if (bytes) {
+      it->second = read_mtl(*bytes);
+      for (const std::string& problem : it->second->problems)
+        plan_.warnings.push_back(who + "material library " + entry + ": " + problem + ": left out");
+    }
+  }
+  return it->second ? &*it->second : nullptr;
 }
 
 /// A model's own materials coloured as its MTL libraries say (OBJLoader): a material's
@@ -1473,18 +1493,21 @@ void HomeReader::colour_model(Mesh& m, const std::string& obj, const PieceIn& p)
     std::string library;  ///< the entry that defines it
   };
   std::map<std::string, Defined> defined;
+  std::set<std::string> arguments_seen;  // a library named twice is read once
   for (const std::string& argument : obj_material_use(obj).libraries) {
+    if (!arguments_seen.insert(argument).second) continue;
+    // Each word a library; the whole argument (last, when there are several words) only
+    // when no word named one.
     const std::vector<std::string> files = mtllib_candidates(argument);
+    const size_t words = files.size() > 1 ? files.size() - 1 : files.size();
     bool found = false;
-    for (size_t i = 0; i < files.size() && !(found && i + 1 == files.size() && files.size() > 1); ++i) {
+    for (size_t i = 0; i < files.size(); ++i) {
+      if (i == words && found) break;
       const std::string entry = dir + files[i];
-      const std::optional<std::string> bytes = models_ ? models_(entry) : std::nullopt;
-      if (!bytes) continue;
+      const MtlLibrary* lib = mtl_library(entry, who);
+      if (!lib) continue;
       found = true;
-      const MtlLibrary lib = read_mtl(*bytes);
-      for (const std::string& problem : lib.problems)
-        plan_.warnings.push_back(who + "material library " + entry + ": " + problem + ": left out");
-      for (const MtlMaterial& mat : lib.materials) defined.insert_or_assign(mat.name, Defined{mat, entry});
+      for (const MtlMaterial& mat : lib->materials) defined.insert_or_assign(mat.name, Defined{mat, entry});
     }
     if (!found)
       plan_.warnings.push_back(who + "its material library '" + argument +
@@ -1501,10 +1524,10 @@ void HomeReader::colour_model(Mesh& m, const std::string& obj, const PieceIn& p)
     if (!d.diffuse_map.empty()) {
       bool found = false;
       for (const std::string& file : map_kd_candidates(d.diffuse_map)) {
-        const std::optional<std::string> bytes = models_ ? models_(dir + file) : std::nullopt;
-        if (!bytes) continue;
+        const ImageMean& mean = image_mean(dir + file, who + "material '" + mat.name + "': ");
+        if (!mean.at_hand) continue;
         found = true;
-        colour = image_mean(dir + file, *bytes, who + "material '" + mat.name + "': ");
+        colour = mean.colour;
         break;
       }
       if (!found)
@@ -1806,14 +1829,29 @@ Plan read_sweet_home(const std::string& path, HomeEntry which, const HomeLimits&
       throw PlanError(SourceLoc{path, 0, 0, ""}, "the archive holds no serialized Home entry (only Home.xml)");
     if (xml) tree = home_tree_of_xml(*zip->entry("Home.xml"), path + ":Home.xml");
     else tree = home_tree_of_serialized(*zip->entry("Home"), path + ":Home");
-    models = [&zip, path, limits](const std::string& model) -> std::optional<std::string> {
+    // A zipped model's files are asked for one after another (its OBJ, its MTL files, their
+    // images): the last zipped model's archive stays open.
+    struct Zipped {
+      std::optional<std::string> name;  ///< the outer entry it came from
+      std::string bytes;
+      std::unique_ptr<ZipArchive> zip;  ///< over `bytes`; null when that entry is no zip
+    };
+    auto zipped = std::make_shared<Zipped>();
+    models = [&zip, path, limits, zipped](const std::string& model) -> std::optional<std::string> {
       // "1!/tree.obj": the entry "1" is itself a zip holding the model's files.
       const size_t bang = model.find("!/");
       if (bang == std::string::npos) return zip->entry(model);
-      const std::optional<std::string> outer = zip->entry(model.substr(0, bang));
-      if (!outer || !looks_like_zip(*outer)) return std::nullopt;
-      const ZipArchive inner(path + ":" + model.substr(0, bang), *outer, limits.max_entry_bytes);
-      return inner.entry(model.substr(bang + 2));
+      const std::string outer_name = model.substr(0, bang);
+      if (zipped->name != outer_name) {
+        zipped->zip.reset();
+        zipped->name = outer_name;
+        std::optional<std::string> outer = zip->entry(outer_name);
+        zipped->bytes = outer ? std::move(*outer) : std::string();
+        if (looks_like_zip(zipped->bytes))
+          zipped->zip = std::make_unique<ZipArchive>(path + ":" + outer_name, zipped->bytes, limits.max_entry_bytes);
+      }
+      if (!zipped->zip) return std::nullopt;
+      return zipped->zip->entry(model.substr(bang + 2));
     };
   } else {
     if (which == HomeEntry::Serialized)
