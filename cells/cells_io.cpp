@@ -50,8 +50,10 @@ constexpr char kMagic[8] = {'A', 'V', 'C', 'E', 'L', 'L', 'S', '\0'};
 // 2: Cell::prism (mesh scenes' general convex cells), Face::portals_overlap;
 // 3: Object::box and Object::model (Sweet Home's furniture), Light::kind;
 // 4: Object::mesh relative to the folder of the .cells file (3: as the plan gave it, i.e.
-//    relative to the folder avenues ran in), so that a saved complex loads from anywhere.
-constexpr uint32_t kVersion = 4;
+//    relative to the folder avenues ran in), so that a saved complex loads from anywhere;
+// 5: an Object::model's own materials (Mesh::materials, Mesh::material_of: a Sweet Home
+//    model's MTL colours and modelMaterials), after its triangles.
+constexpr uint32_t kVersion = 5;
 constexpr uint32_t kOldestVersion = 3;
 
 /// An object's mesh file as a .cells file in `cells_dir` stores it: relative to that
@@ -194,6 +196,12 @@ void write_complex(Writer& w, const CellComplex& c, const std::filesystem::path&
       }
       w.u8(m.closed ? 1 : 0);
       w.i32(m.boundary_edges);
+      w.count(m.materials.size(), "model materials");
+      for (const Material& mm : m.materials) {
+        w.str(mm.name); w.f64(mm.reflectance); w.colour(mm.colour); w.loc(mm.where);
+      }
+      w.count(m.material_of.size(), "model triangle materials");
+      for (MaterialId k : m.material_of) w.i32(k);
     }
   }
   w.count(c.lights.size(), "lights");
@@ -446,6 +454,23 @@ void read_complex(Reader& r, CellComplex& c, uint32_t version, const std::filesy
       }
       m.closed = r.u8("model") != 0;
       m.boundary_edges = r.i32("model");
+      if (version >= 5) {
+        m.materials.resize(r.count(kMinMaterial, "model materials"));
+        for (Material& mm : m.materials) {
+          mm.name = r.str("model material");
+          mm.reflectance = r.finite("model material");
+          mm.colour = r.colour("model material");
+          mm.where = r.loc("model material");
+        }
+        m.material_of.resize(r.count(4, "model triangle materials"));
+        if (!m.material_of.empty() && m.material_of.size() != m.triangles.size())
+          r.fail("a model has materials for " + std::to_string(m.material_of.size()) + " triangles, not its " +
+                 std::to_string(m.triangles.size()));
+        for (MaterialId& k : m.material_of) {
+          k = r.i32("model triangle material");
+          if (k < -1 || k >= MaterialId(m.materials.size())) r.fail("a model's triangle names a material it does not have");
+        }
+      }
       smooth_corner_normals(m);
       o.model = std::make_shared<const Mesh>(std::move(m));
     }

@@ -1,6 +1,7 @@
 // Avenues — reading meshes with OpenMesh (see mesh.h).
 #include "plans/mesh.h"
 #include "plans/assimp_reader.h"
+#include "plans/obj_materials.h"
 #include "core/angles.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
@@ -415,7 +416,8 @@ Mesh load_mesh(const std::string& path, const MeshAxes& axes) {
   return m;
 }
 
-Mesh read_mesh_bytes(const std::string& bytes, const std::string& ext, const std::string& name) {
+Mesh read_mesh_bytes(const std::string& bytes, const std::string& ext, const std::string& name,
+                     std::vector<std::string>* warnings) {
   if (ext != ".obj") throw std::runtime_error("cannot read mesh " + name + ": only OBJ models are read from memory");
   for (char ch : bytes)
     if (ch == '\0') throw std::runtime_error("cannot read mesh " + name + ": an OBJ file holds no NUL bytes");
@@ -425,7 +427,10 @@ Mesh read_mesh_bytes(const std::string& bytes, const std::string& ext, const std
   const QuietOpenMesh quiet;
   std::istringstream in(bytes);
   if (!OpenMesh::IO::read_mesh(pm, in, ext, opt)) throw std::runtime_error("cannot read mesh " + name + ": not an OBJ mesh");
-  return mesh_of_openmesh(pm, name);
+  Mesh m = mesh_of_openmesh(pm, name);
+  const std::string why = name_obj_materials(m, obj_material_use(bytes), pm.n_faces());
+  if (!why.empty() && warnings) warnings->push_back("mesh " + name + ": " + why);
+  return m;
 }
 
 namespace {

@@ -1,6 +1,7 @@
 // Avenues — a plan's objects placed in their cells (see scene_objects.h).
 #include "render/scene_objects.h"
 
+#include <algorithm>
 #include <map>
 
 namespace avenues {
@@ -13,6 +14,26 @@ const Material& MeshPaint::of_polygon(int polygon) const {
     if (m >= 0 && size_t(m) < materials.size()) return materials[size_t(m)];
   }
   return materials[0];
+}
+
+MeshPaint paint_of_mesh(const Mesh& mesh) {
+  MeshPaint paint;
+  if (mesh.material_of.empty() || mesh.materials.empty()) return paint;
+  paint.materials = mesh.materials;
+  // A polygon of no material of the mesh's own takes the default one, put last.
+  const int none = int(paint.materials.size());
+  int polygons = 0;
+  for (int polygon : mesh.polygon_of) polygons = std::max(polygons, polygon + 1);
+  paint.polygon_material.assign(size_t(polygons), none);
+  bool uncoloured = false;
+  for (size_t t = 0; t < mesh.triangles.size() && t < mesh.polygon_of.size(); ++t) {
+    const MaterialId m = t < mesh.material_of.size() ? mesh.material_of[t] : -1;
+    const bool own = m >= 0 && size_t(m) < mesh.materials.size();
+    paint.polygon_material[size_t(mesh.polygon_of[t])] = own ? m : none;
+    uncoloured |= !own;
+  }
+  if (uncoloured) paint.materials.emplace_back();
+  return paint;
 }
 
 std::vector<PlacedObject> place_objects(const CellComplex& complex) {
@@ -37,6 +58,7 @@ std::vector<PlacedObject> place_objects(const CellComplex& complex) {
     if (at.what == Location::What::Cell) p.cell = hint = at.cell;
     if (o.material >= 0 && size_t(o.material) < complex.materials.size())
       p.paint.materials.push_back(complex.materials[size_t(o.material)]);
+    else p.paint = paint_of_mesh(p.mesh);
     out.push_back(std::move(p));
   }
   return out;

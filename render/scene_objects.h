@@ -18,6 +18,11 @@ struct MeshPaint {
   const Material& of_polygon(int polygon) const;
 };
 
+/// A mesh's own materials as its paint, polygon by polygon (Mesh::material_of through
+/// Mesh::polygon_of; a polygon of none takes the default material); an empty paint (the
+/// default material) when the mesh has no materials of its own.
+MeshPaint paint_of_mesh(const Mesh& mesh);
+
 /// A plan object loaded, placed, and assigned to the cell holding its centroid.
 struct PlacedObject {
   std::string name;
@@ -28,7 +33,8 @@ struct PlacedObject {
 };
 
 /// Loads every object of the complex (plans/mesh.h, each file read once), places it on
-/// its storey, and finds the cell holding the centroid of its vertices. Throws
+/// its storey, and finds the cell holding the centroid of its vertices. Its paint is its
+/// own material (Object::material) where it has one, else its mesh's (paint_of_mesh). Throws
 /// std::runtime_error naming the mesh file when one cannot be read.
 std::vector<PlacedObject> place_objects(const CellComplex& complex);
 

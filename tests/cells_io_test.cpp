@@ -28,6 +28,24 @@ const std::string kPlan = std::string(AVENUES_SOURCE_DIR) + "/plans/jones-house.
 
 void spit(const fs::path& p, const std::string& bytes) { std::ofstream(p, std::ios::binary) << bytes; }
 
+/// A stool's box with two materials of its own: its top (the polygon facing up) "seat", the
+/// rest "legs".
+Mesh stool_mesh() {
+  Mesh m = box_mesh({0.3, 0.3, 0.45});
+  m.materials.resize(2);
+  m.materials[0].name = "legs";
+  m.materials[0].colour = {0.2, 0.1, 0.05};
+  m.materials[0].where = SourceLoc{"stool.mtl", 2, 0, "material 'legs'"};
+  m.materials[1].name = "seat";
+  m.materials[1].colour = {0.6, 0.05, 0.05};
+  m.materials[1].where = SourceLoc{"stool.mtl", 5, 0, "material 'seat'"};
+  for (const auto& t : m.triangles) {
+    const Vec3 a = m.vertices[size_t(t[0])], b = m.vertices[size_t(t[1])], c = m.vertices[size_t(t[2])];
+    m.material_of.push_back(cross(b - a, c - a).z > 0 ? 1 : 0);
+  }
+  return m;
+}
+
 bool same(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 bool same(Vec2 a, Vec2 b) { return same(a.x, b.x) && same(a.y, b.y); }
 bool same(Vec3 a, Vec3 b) { return same(a.x, b.x) && same(a.y, b.y) && same(a.z, b.z); }
@@ -194,7 +212,7 @@ TEST_F(CellsIo, BoxesModelsAndAmbientLightSurvive) {
   Object modelled = boxed;
   modelled.name = "stool";
   modelled.position = {2.5, 3, 0};
-  modelled.model = std::make_shared<const Mesh>(box_mesh({0.3, 0.3, 0.45}));
+  modelled.model = std::make_shared<const Mesh>(stool_mesh());
   plan.objects = {boxed, modelled};
   Light ambient;
   ambient.name = "sky light";
@@ -216,8 +234,63 @@ TEST_F(CellsIo, BoxesModelsAndAmbientLightSurvive) {
   EXPECT_EQ(m.polygon_of, modelled.model->polygon_of);
   EXPECT_EQ(m.corner_normals.size(), 3 * m.triangles.size());
   EXPECT_TRUE(m.closed);
+  // Its own materials (a Sweet Home model's MTL colours), triangle by triangle.
+  ASSERT_EQ(m.materials.size(), 2u);
+  for (size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(m.materials[k].name, modelled.model->materials[k].name);
+    EXPECT_EQ(m.materials[k].colour, modelled.model->materials[k].colour);
+    EXPECT_TRUE(same(m.materials[k].where, modelled.model->materials[k].where));
+  }
+  EXPECT_EQ(m.material_of, modelled.model->material_of);
   EXPECT_EQ(mesh_key(loaded.objects[1]), mesh_key(modelled));
   EXPECT_EQ(loaded.lights.back().kind, LightKind::Ambient);
+}
+
+// A file of version 4 (before models kept their materials) still loads: its models have
+// none. Made from a version-5 file by taking out the model's two empty material counts and
+// writing the header again (payload size, FNV-1a checksum, version).
+TEST_F(CellsIo, VersionFourFilesWithModelsStillLoad) {
+  Plan plan = read_plan(kPlan);
+  Object modelled;
+  modelled.name = "stool";
+  modelled.box = {0.3, 0.3, 0.45};
+  modelled.position = {2.5, 3, 0};
+  Mesh box = box_mesh(modelled.box);
+  box.path = "the stool's model";
+  modelled.model = std::make_shared<const Mesh>(box);
+  plan.objects = {modelled};
+  const CellComplex c = build_cells(plan);
+  const fs::path p = dir_ / "v5.cells";
+  save_cells(c, p.string());
+  std::string bytes = slurp(p);
+  // The model: its path, vertices (24 bytes each), triangles (16 each), closed, boundary edges.
+  const size_t path_at = bytes.find(box.path);
+  ASSERT_NE(path_at, std::string::npos);
+  const size_t counts_at = path_at + box.path.size() + 4 + 24 * box.vertices.size() + 4 + 16 * box.triangles.size() + 1 + 4;
+  ASSERT_EQ(bytes.substr(counts_at, 8), std::string(8, '\0'));
+  bytes.erase(counts_at, 8);
+  auto put_u32 = [&](size_t at, uint32_t v) { for (int k = 0; k < 4; ++k) bytes[at + size_t(k)] = char(v >> (8 * k)); };
+  auto put_u64 = [&](size_t at, uint64_t v) { for (int k = 0; k < 8; ++k) bytes[at + size_t(k)] = char(v >> (8 * k)); };
+  const std::string payload = bytes.substr(32);
+  uint64_t h = 0xcbf29ce484222325ull;
+  size_t i = 0;
+  for (; i + 8 <= payload.size(); i += 8) {
+    uint64_t word = 0;
+    for (int k = 0; k < 8; ++k) word |= uint64_t(static_cast<unsigned char>(payload[i + size_t(k)])) << (8 * k);
+    h = (h ^ word) * 0x100000001b3ull;
+  }
+  for (; i < payload.size(); ++i) h = (h ^ static_cast<unsigned char>(payload[i])) * 0x100000001b3ull;
+  put_u32(8, 4);
+  put_u64(16, payload.size());
+  put_u64(24, h);
+  const fs::path old = dir_ / "v4.cells";
+  spit(old, bytes);
+  const CellComplex loaded = load_cells(old.string());
+  ASSERT_EQ(loaded.objects.size(), 1u);
+  ASSERT_TRUE(loaded.objects[0].model);
+  EXPECT_EQ(loaded.objects[0].model->triangles, box.triangles);
+  EXPECT_TRUE(loaded.objects[0].model->materials.empty());
+  EXPECT_TRUE(loaded.objects[0].model->material_of.empty());
 }
 
 TEST_F(CellsIo, LoadedComplexLocatesLikeTheBuiltOne) {

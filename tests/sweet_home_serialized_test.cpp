@@ -17,6 +17,7 @@
 #include <jpeglib.h>  // after <cstdio>: it needs FILE and size_t
 
 #include "cells/build_cells.h"
+#include "render/scene_objects.h"
 #include "core/number_format.h"
 #include "core/srgb.h"
 #include "render/raster.h"
@@ -688,6 +689,206 @@ TEST(SweetHomeColours, CasaStoneWallsTakeTheirJpegTexturesMeanColour) {
       }
     EXPECT_GE(textured, 1) << (which == HomeEntry::Xml ? "Home.xml" : "Home");
   }
+}
+
+// --- furniture in its model's colours ----------------------------------------------------
+
+/// A unit cube in Sweet Home's model axes (y up, +z the front), four materials: "Body" on
+/// the back and the two sides, "Front", "Top", "Ghost" underneath; its MTL in cube.mtl.
+const std::string kCubeObj =
+    "mtllib cube.mtl\n"
+    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+    "usemtl Body\nf 1 4 3 2\nf 1 5 8 4\nf 2 3 7 6\n"
+    "usemtl Front\nf 5 6 7 8\n"
+    "usemtl Top\nf 4 8 7 3\n"
+    "usemtl Ghost\nf 1 2 6 5\n";
+const std::string kCubeMtl =
+    "newmtl Body\nKd 0.5 0.5 0.5\n"
+    "newmtl Front\nKa 0.2 0.2 0.2\nKd 0.8 0.4 0.2\n"
+    "newmtl Top\nKd 0 0 0\nmap_Kd tex.png\n"
+    "newmtl Ghost\nKd 0.2 0.6 0.4\nmap_Kd -s 2 2 1 missing.png\n";
+
+/// The cube's materials in linear light, by the plan direction its face looks: MTL Kd made
+/// linear (Kd is sRGB-encoded, as Sweet Home reads it), the PNG's mean (half red, half blue).
+struct CubeColours {
+  std::array<double, 3> body, front, top, ghost;
+};
+CubeColours cube_colours_from_mtl() {
+  auto kd = [](double r, double g, double b) {
+    return std::array<double, 3>{linear_from_srgb(r), linear_from_srgb(g), linear_from_srgb(b)};
+  };
+  return {kd(0.5, 0.5, 0.5), kd(0.8, 0.4, 0.2), {0.5, 0.0, 0.5}, kd(0.2, 0.6, 0.4)};
+}
+
+/// The colour each polygon of a placed cube is painted, by the way its face looks in plan
+/// (Sweet Home's front, +z, is the plan's −y; its up, +y, the plan's +z).
+void expect_cube_painted(const PlacedObject& o, const CubeColours& want) {
+  ASSERT_EQ(o.mesh.triangles.size(), 12u);
+  for (size_t t = 0; t < o.mesh.triangles.size(); ++t) {
+    const auto& tr = o.mesh.triangles[t];
+    const Vec3 a = o.mesh.vertices[size_t(tr[0])], b = o.mesh.vertices[size_t(tr[1])], c = o.mesh.vertices[size_t(tr[2])];
+    const Vec3 n = cross(b - a, c - a);
+    const std::array<double, 3>& expected = n.y < -1e-9 ? want.front : n.z > 1e-9 ? want.top : n.z < -1e-9 ? want.ghost : want.body;
+    const std::array<double, 3> got = o.paint.of_polygon(o.mesh.polygon_of[t]).colour;
+    for (size_t k = 0; k < 3; ++k) EXPECT_NEAR(got[k], expected[k], 1e-15) << o.name << ", triangle " << t << ", channel " << k;
+  }
+}
+
+/// The linear colour of the picture's middle pixel over the colour it shows, channel by
+/// channel: one factor (the light on it) when it shows that colour.
+void expect_pixel_shows(const Image& pic, const std::array<double, 3>& colour, const std::string& what) {
+  ASSERT_EQ(pic.channels, 3);
+  const uint8_t* px = pic.row(size_t(pic.height / 2)) + size_t(pic.width / 2) * 3;
+  double light = 0;
+  for (size_t k = 0; k < 3; ++k)
+    if (colour[k] > 0) light = std::max(light, linear8(px[k]) / colour[k]);
+  ASSERT_GT(light, 0.05) << what << " is lit";
+  for (size_t k = 0; k < 3; ++k) {
+    const double step = linear8(std::min(255, px[k] + 1)) - linear8(std::max(0, px[k] - 1));  // 8-bit rounding
+    EXPECT_NEAR(linear8(px[k]), colour[k] * light, step) << what << ", channel " << k << ": " << int(px[k]);
+  }
+}
+
+// A piece whose author coloured only parts of it is drawn in its model's own colours, part
+// by part, as Sweet Home draws it: its OBJ's usemtl groups take their MTL's Kd, or their
+// map_Kd image's mean; a piece's modelMaterials replace the model's material they name
+// (by key where they have one, else by name), an opaque colour only (a transparent one, or
+// none, leaves the model's own); the piece's color paints it whole. A zipped model finds its
+// MTL and images inside its own zip. What cannot be read
+// (a library, an image) is a warning naming the piece, never the home lost.
+TEST(SweetHomeColours, FurnitureTakesItsModelsMaterialsAndThePiecesOverrides) {
+  ScratchDir dir;
+  Image tex;
+  tex.resize(2, 1, 3);
+  tex.data = {255, 0, 0, 0, 0, 255};
+  write_image(tex, dir.write("tex.png", ""));
+  const std::string xml =
+      "<home>\n" + kBox +
+      "  <room name='Hall'><point x='10' y='10'/><point x='590' y='10'/><point x='590' y='390'/><point x='10' y='390'/></room>\n"
+      "  <pieceOfFurniture name='Own' model='1/cube.obj' x='150' y='200' width='100' depth='100' height='100'/>\n"
+      "  <pieceOfFurniture name='Override' model='1/cube.obj' x='400' y='200' width='100' depth='100' height='100'>\n"
+      "    <material name='Front' color='FF4080C0'/>\n"
+      "    <material name='Body' key='Other' color='FFFF00FF'/>\n"
+      "    <material name='Body' color='00123456'/>\n"
+      "    <material name='Anything' key='Top' color='FF00FF00'/>\n"
+      "    <material name='Top' color='FFFF0000'/>\n"
+      "    <material name='Ghost'/>\n"
+      "  </pieceOfFurniture>\n"
+      "  <pieceOfFurniture name='Whole' model='1/cube.obj' x='150' y='350' width='50' depth='50' height='50' color='FF0000FF'>\n"
+      "    <material name='Front' color='FF4080C0'/>\n"
+      "  </pieceOfFurniture>\n"
+      "  <pieceOfFurniture name='Unlisted' model='2/cube.obj' x='450' y='350' width='50' depth='50' height='50'/>\n"
+      "  <pieceOfFurniture name='Zipped' model='3!/cube.obj' x='300' y='350' width='50' depth='50' height='50'/>\n"
+      "</home>\n";
+  // A model of several files saved as a zip entry of its own: its MTL and image inside it.
+  const std::string png = avenues::testing::slurp(dir.path() / "tex.png");
+  const std::string zipped =
+      avenues::testing::slurp(write_sh3d(dir, "zipped.zip", {{"cube.obj", kCubeObj}, {"cube.mtl", kCubeMtl}, {"tex.png", png}}));
+  const std::string path = write_sh3d(dir, "cubes.sh3d",
+                                      {{"Home.xml", xml},
+                                       {"1/cube.obj", kCubeObj},
+                                       {"1/cube.mtl", kCubeMtl},
+                                       {"1/tex.png", png},
+                                       {"2/cube.obj", kCubeObj},
+                                       {"3", zipped}});
+  const Plan p = read_sweet_home(path);
+  auto warned = [&](const std::string& what) {
+    int n = 0;
+    for (const std::string& w : p.warnings) n += contains(w, what);
+    return n;
+  };
+  // The model is read once: its missing image is said once, by the first piece that uses it.
+  EXPECT_EQ(warned("(pieceOfFurniture 'Own'): model 1/cube.obj: material 'Ghost': its image -s 2 2 1 missing.png "
+                   "(map_Kd) is not at hand: its Kd colour is used instead"),
+            1);
+  EXPECT_EQ(warned("(pieceOfFurniture 'Unlisted'): model 2/cube.obj: its material library 'cube.mtl' is not at hand"), 1);
+  EXPECT_EQ(warned("4 material(s) that models use are defined in no MTL library at hand ('Body', 'Front', 'Ghost', 'Top')"), 1);
+  ASSERT_EQ(p.objects.size(), 5u);
+
+  const CubeColours own = cube_colours_from_mtl();
+  CubeColours overridden = own;
+  overridden.front = {linear8(0x40), linear8(0x80), linear8(0xC0)};
+  overridden.top = {0, 1, 0};
+  const CellComplex c = build_cells(p);
+  const std::vector<PlacedObject> placed = place_objects(c);
+  ASSERT_EQ(placed.size(), 5u);
+  expect_cube_painted(placed[0], own);
+  expect_cube_painted(placed[4], own);
+  expect_cube_painted(placed[1], overridden);
+  // The piece's colour paints it whole, whatever its materials say.
+  ASSERT_EQ(placed[2].paint.materials.size(), 1u);
+  EXPECT_EQ(placed[2].paint.materials[0].colour, (std::array<double, 3>{0, 0, 1}));
+  // A model whose library is not at hand keeps its materials' names, in the default colour.
+  const std::array<double, 3> grey = Material().colour;
+  expect_cube_painted(placed[3], {grey, grey, grey, grey});
+  // The two pieces of one model and size but other materials are told apart.
+  EXPECT_NE(mesh_key(p.objects[0]), mesh_key(p.objects[1]));
+  EXPECT_NE(p.objects[1].model->path.find(", materials Front #4080C0, Top #00FF00"), std::string::npos)
+      << p.objects[1].model->path;
+
+  // Saved as cells and loaded, the pieces keep their materials.
+  const std::string cells = (dir.path() / "cubes.cells").string();
+  save_cells(c, cells);
+  const std::vector<PlacedObject> reloaded = place_objects(load_cells(cells));
+  ASSERT_EQ(reloaded.size(), 5u);
+  expect_cube_painted(reloaded[1], overridden);
+
+  // The picture shows them: each piece's front from the room, under the light at the eye.
+  struct Look {
+    double x;
+    std::array<double, 3> colour;
+    const char* what;
+  };
+  for (const Look& look : {Look{1.5, own.front, "Own's front (MTL Kd)"}, Look{4, overridden.front, "Override's front"}}) {
+    const std::string out = (dir.path() / "piece.ppm").string();
+    const std::string x = format_number(look.x);
+    const auto [status, err] = run_avenues({"view", path, "--eye", x + ",-3.6,0.5", "--look", x + ",-2,0.5", "--fov", "20",
+                                            "--size", "32x18", "--lights", "eye", "-o", out});
+    ASSERT_EQ(status, 0) << err;
+    expect_pixel_shows(read_image(out), look.colour, look.what);
+  }
+}
+
+// Casa's pieces read from Home.xml and from the serialized Home are coloured alike, their
+// modelMaterials (HomeMaterial objects in the serialized entry) included: its open-stringer
+// staircase has a Tread of D3D3D3 and a Baluster and Handrail of transparent colour
+// (their MTL's own stay).
+TEST(SweetHomeColours, CasaPiecesHaveTheSameMaterialsFromBothEntries) {
+  SKIP_WITHOUT_OUTSIDE();
+  const Plan xml = read_sweet_home((kOutside / "casa-both-formats.sh3d").string(), HomeEntry::Xml);
+  const Plan home = read_sweet_home((kOutside / "casa-both-formats.sh3d").string(), HomeEntry::Serialized);
+  ASSERT_EQ(xml.objects.size(), home.objects.size());
+  int coloured = 0;
+  for (size_t i = 0; i < xml.objects.size(); ++i) {
+    const Object& a = xml.objects[i];
+    const Object& b = home.objects[i];
+    SCOPED_TRACE(a.name);
+    EXPECT_EQ(a.name, b.name);
+    ASSERT_EQ(bool(a.model), bool(b.model));
+    if (!a.model) continue;
+    ASSERT_EQ(a.model->materials.size(), b.model->materials.size());
+    EXPECT_EQ(a.model->material_of, b.model->material_of);
+    bool any = false;
+    for (size_t m = 0; m < a.model->materials.size(); ++m) {
+      EXPECT_EQ(a.model->materials[m].name, b.model->materials[m].name);
+      EXPECT_EQ(a.model->materials[m].colour, b.model->materials[m].colour) << a.model->materials[m].name;
+      any |= a.model->materials[m].colour != Material().colour;
+    }
+    coloured += any;
+    if (a.name != "Staircase with open stringer") continue;
+    for (const Material& m : a.model->materials) {
+      if (m.name == "Tread") {
+        EXPECT_EQ(m.colour, (std::array<double, 3>{linear8(0xD3), linear8(0xD3), linear8(0xD3)}));
+      } else if (m.name == "Baluster") {
+        const double kd = linear_from_srgb(0.68);
+        EXPECT_EQ(m.colour, (std::array<double, 3>{kd, kd, kd}));
+      } else if (m.name == "Handrail") {
+        EXPECT_NE(m.colour, Material().colour) << "its texture.png's mean";
+      }
+    }
+  }
+  EXPECT_EQ(coloured, int(xml.objects.size())) << "every piece of Casa has a model with an MTL";
+  for (const std::string& w : xml.warnings) EXPECT_FALSE(contains(w, "material")) << w;
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <unistd.h>
 #include <zip.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -27,6 +28,7 @@
 #include "plans/formats/sweet_home.h"
 #include "tests/test_files.h"
 #include "plans/mesh.h"
+#include "render/scene_objects.h"
 #include "render/view_lines.h"
 #include "ray_oracle.h"
 #include "visibility/visible_set.h"
@@ -607,6 +609,93 @@ TEST(SweetHome, TheExampleHomesFurnitureHasItsModels) {
     EXPECT_EQ(with_model, p.objects.size());
     for (const std::string& w : p.warnings) EXPECT_FALSE(contains(w, "not at hand")) << w;
   }
+}
+
+// Debian's example homes colour many pieces part by part (25 to 108 <material> elements
+// each, named after the Java 3D materials their catalogue models use): every piece that has
+// a colour of its own, a modelMaterials colour (opaque) for a material its model's OBJ
+// uses, or a model whose MTL gives one of its materials a Kd, is no longer Avenues' default
+// grey, and no other is. The oracle reads the XML, the OBJ's usemtl and mtllib lines and
+// the MTL's newmtl and Kd lines itself.
+TEST(SweetHome, TheExampleHomesPiecesTakeTheirModelMaterialsColours) {
+  if (!fs::exists(kExamples / "com/eteks/sweethome3d/io/resources/armchair.obj"))
+    GTEST_SKIP() << "the catalogue's models are not in " << kExamples << " (run .ci/install-deps as root)";
+  int before_total = 0, after_total = 0;
+  for (const char* home : kHomes) {
+    SCOPED_TRACE(home);
+    const fs::path file = kExamples / (std::string(home) + ".xml");
+    pugi::xml_document doc;
+    ASSERT_TRUE(doc.load_file(file.c_str()));
+    const std::string text = avenues::testing::slurp(file);
+    std::vector<int> line_starts{0};
+    for (size_t i = 0; i < text.size(); ++i)
+      if (text[i] == '\n') line_starts.push_back(int(i) + 1);
+    auto line_of = [&](const pugi::xml_node& n) {
+      const int at = int(n.offset_debug()) - 1;  // pugixml points at the name, after '<'
+      return int(std::upper_bound(line_starts.begin(), line_starts.end(), at) - line_starts.begin());
+    };
+    // A model's material names (its usemtl lines), and those of them that the MTL libraries
+    // beside it (its mtllib lines) give a Kd.
+    struct ModelNames {
+      std::set<std::string> used, coloured;
+    };
+    std::map<std::string, ModelNames> models;
+    auto lines_of = [](const fs::path& f, const std::string& key, auto&& take) {
+      std::ifstream in(f);
+      for (std::string l; std::getline(in, l);) {
+        if (!l.empty() && l.back() == '\r') l.pop_back();
+        if (l.rfind(key, 0) == 0) take(l.substr(key.size()));
+      }
+    };
+    auto names_of = [&](const std::string& model) -> const ModelNames& {
+      auto [it, fresh] = models.try_emplace(model);
+      if (fresh) {
+        const fs::path obj = kExamples / model;
+        lines_of(obj, "usemtl ", [&](const std::string& n) { it->second.used.insert(n); });
+        lines_of(obj, "mtllib ", [&](const std::string& lib) {
+          std::string current;
+          std::ifstream in(obj.parent_path() / lib);
+          for (std::string l; std::getline(in, l);) {
+            if (l.rfind("newmtl ", 0) == 0) current = l.substr(7);
+            if (l.rfind("Kd ", 0) == 0 && it->second.used.count(current)) it->second.coloured.insert(current);
+          }
+        });
+      }
+      return it->second;
+    };
+    std::map<int, bool> expected;  // by the piece's line: coloured
+    int own = 0;
+    for (const pugi::xpath_node& xn : doc.select_nodes("//pieceOfFurniture | //light")) {
+      const pugi::xml_node n = xn.node();
+      if (std::string(n.attribute("visible").value()) == "false") continue;
+      bool coloured = !std::string(n.attribute("color").value()).empty();
+      own += coloured;
+      const ModelNames& names_used = names_of(n.attribute("model").value());
+      coloured |= !names_used.coloured.empty();
+      for (const pugi::xml_node m : n.children("material")) {
+        const std::string colour = m.attribute("color").value();
+        const std::string names = m.attribute("key") ? m.attribute("key").value() : m.attribute("name").value();
+        coloured |= colour.size() == 8 && colour.compare(0, 2, "00") != 0 && names_used.used.count(names) > 0;
+      }
+      expected[line_of(n)] = coloured;
+    }
+    const Plan p = read_sweet_home(file.string());
+    const std::vector<PlacedObject> placed = place_objects(build_cells(p));
+    ASSERT_EQ(placed.size(), p.objects.size());
+    int after = 0;
+    for (size_t i = 0; i < placed.size(); ++i) {
+      bool coloured = false;
+      for (const Material& m : placed[i].paint.materials) coloured |= m.colour != Material().colour;
+      ASSERT_TRUE(expected.count(p.objects[i].where.line)) << p.objects[i].where.str();
+      EXPECT_EQ(coloured, expected[p.objects[i].where.line]) << p.objects[i].where.str();
+      after += coloured;
+    }
+    EXPECT_GT(after, own) << "pieces coloured by their modelMaterials as well as by their own colour";
+    before_total += own;
+    after_total += after;
+  }
+  std::printf("example homes: %d pieces in colours of their own (their color), %d with their modelMaterials\n",
+              before_total, after_total);
 }
 
 TEST(SweetHome, OddDataIsDroppedWithAWarning) {

@@ -17,9 +17,10 @@
 //      across a real corner the opening is cut in parts, so that every opening lies on
 //      one straight segment as outline.cpp wants;
 //   5. sloped walls → pieces of constant height, never cut inside an opening;
-//   6. rooms, furniture (each piece's OBJ model, read once with OpenMesh and fitted to the
-//      piece; a box of its size where the model is not at hand), staircase cut-outs
-//      (floor openings), the observer camera.
+//   6. rooms, furniture (each piece's OBJ model, read once with OpenMesh, its materials
+//      coloured from its MTL libraries, fitted to the piece and recoloured by the piece's
+//      modelMaterials; a box of its size where the model is not at hand), staircase
+//      cut-outs (floor openings), the observer camera.
 // Mistakes the file cannot be read past (no home entry, XML syntax, a malformed Java
 // stream, a number that is not a number, a level that does not exist) are PlanErrors;
 // odd but readable data (NaN, zero-length walls, a window in no wall, a wall or piece
@@ -32,6 +33,7 @@
 
 #include "plans/arc.h"
 #include "plans/mesh.h"
+#include "plans/obj_materials.h"
 
 #include <pugixml.hpp>
 #include <zip.h>
@@ -261,6 +263,15 @@ struct Draft {
   bool sloped() const { return std::fabs(h1 - h0) > 1e-6; }
 };
 
+/// One of a piece's modelMaterials (<material name key color><texture/></material>, a
+/// HomeMaterial): what it puts in place of the model's material it names.
+struct ModelMaterialIn {
+  std::string names;  ///< the model's material it replaces: its key where it has one, else its name
+  std::optional<std::array<double, 3>> colour;  ///< linear RGB; nullopt: the model's own stays
+  std::string what;   ///< "#RRGGBB" or "texture <image>": how the mesh's path tells pieces so coloured apart
+  SourceLoc where;
+};
+
 /// A piece of furniture, door or window, in metres and plan axes.
 struct PieceIn {
   std::string name;
@@ -276,6 +287,7 @@ struct PieceIn {
   std::string model;      ///< its model: an entry of the .sh3d archive, or a catalogue path
   std::array<double, 9> model_rotation{1, 0, 0, 0, 1, 0, 0, 0, 1};  ///< row-major, applied to the model first
   MaterialId material = -1;  ///< its color, where it has one
+  std::vector<ModelMaterialIn> model_materials;  ///< in the order Sweet Home tries them (the first that names a material wins)
 };
 
 /// A door or window on its way into the wall it sits in.
@@ -361,6 +373,19 @@ class HomeReader {
   void read_camera(const HomeElement& home);
 
   std::shared_ptr<const Mesh> model_of(const PieceIn& p);
+  std::vector<ModelMaterialIn> model_materials_of(const HomeElement& n, const std::string& element);
+  void colour_model(Mesh& m, const std::string& obj, const PieceIn& p);
+  /// An image entry that a model's material or a piece's modelMaterials name, read once.
+  struct ImageMean {
+    bool at_hand = false;
+    std::optional<std::array<double, 3>> colour;  ///< its mean colour; nullopt when not at hand or unreadable
+  };
+  /// The image's mean colour; an image at hand that cannot be read is a warning beginning
+  /// with `who` (the first time).
+  const ImageMean& image_mean(const std::string& image, const std::string& who);
+  /// An MTL library entry, read once; nullptr when it is not at hand. What it holds that
+  /// cannot be read is a warning beginning with `who` (the first time).
+  const MtlLibrary* mtl_library(const std::string& entry, const std::string& who);
   /// The plan's material of a Sweet Home colour attribute (one per colour); -1 when the
   /// text is empty or not a colour.
   MaterialId material_of(const std::string& hex) {
@@ -436,6 +461,9 @@ class HomeReader {
   std::map<std::string, MaterialId> textures_;   ///< by image entry (-1: unreadable)
   MaterialId default_material_ = -1;
   std::map<std::string, std::shared_ptr<const Mesh>> models_read_;  ///< by model name, as read (nullptr: none)
+  std::map<std::string, ImageMean> image_means_;                 ///< by image entry
+  std::map<std::string, std::optional<MtlLibrary>> libraries_;  ///< by entry (nullopt: not at hand)
+  std::set<std::string> undefined_materials_;  ///< names models use that no MTL library at hand defines
   int models_missing_ = 0;       ///< pieces left boxes because their model is not at hand
   Plan plan_;
   double wall_height_ = 2.5;   ///< [m] the home's default wall height
@@ -866,6 +894,8 @@ void HomeReader::collect_pieces(const HomeElement& home) {
     // A piece's colour is before its texture (HomePieceOfFurniture3D), a wall's or room's after.
     p.material = material_of(n.text("color"));
     if (p.material < 0) p.material = surface_material(n, "color", "", element);  // a piece's <texture> has no attribute
+    // Else its modelMaterials, each in place of the model's material it names.
+    if (p.material < 0) p.model_materials = model_materials_of(n, element);
     if (const std::string r = n.text("modelRotation"); !r.empty()) {
       std::istringstream in(r);
       std::array<double, 9> m{};
@@ -1385,6 +1415,133 @@ bool looks_like_obj(const std::string& bytes) {
   return vertex && statements > 0;
 }
 
+/// A piece's modelMaterials as HomePieceOfFurniture3D applies them: a material with an
+/// opaque colour (alpha not 0) paints the model's material it names in that colour; one
+/// with no colour but a texture, in its image's mean colour; any other (a transparent
+/// colour, neither) leaves the model's own material as it is.
+std::vector<ModelMaterialIn> HomeReader::model_materials_of(const HomeElement& n, const std::string& element) {
+  std::vector<ModelMaterialIn> out;
+  for (const HomeElement* mp : tree_.children(n, "material")) {
+    const HomeElement& m = *mp;
+    ModelMaterialIn in;
+    in.names = m.attribute("key") ? m.text("key") : m.text("name");
+    const std::string what = element + ", material '" + m.text("name") + "'";
+    in.where = loc(m, what);
+    if (const std::string* hex = m.attribute("color")) {
+      const std::optional<std::array<double, 3>> c = colour_of(*hex);
+      if (!c) {
+        warn(m, what, "color \"" + *hex + "\" is not a colour (AARRGGBB): the model's own material stays");
+      } else if (!(hex->size() == 8 && hex->compare(0, 2, "00") == 0)) {
+        in.colour = c;
+        in.what = "#" + hex->substr(hex->size() - 6);
+      }
+    } else {
+      for (const HomeElement* tp : tree_.children(m, "texture")) {
+        const std::string image = tp->text("image");
+        if (image.empty()) break;
+        const ImageMean& mean = image_mean(image, loc(*tp, what).str() + ": ");
+        if (!mean.at_hand) warn(*tp, what, "texture image " + image + " is not at hand: the model's own material stays");
+        if ((in.colour = mean.colour)) in.what = "texture " + image;
+        break;
+      }
+    }
+    out.push_back(std::move(in));
+  }
+  return out;
+}
+
+const HomeReader::ImageMean& HomeReader::image_mean(const std::string& image, const std::string& who) {
+  auto [it, fresh] = image_means_.try_emplace(image);
+  if (!fresh) return it->second;
+  const std::optional<std::string> bytes = models_ ? models_(image) : std::nullopt;
+  if (!bytes) return it->second;
+  it->second.at_hand = true;
+  try {
+    it->second.colour = mean_image_colour(*bytes, path_ + ":" + image);
+  } catch (const std::runtime_error& e) {
+    plan_.warnings.push_back(who + e.what() + ": the material keeps its colour without it");
+  }
+  return it->second;
+}
+
+const MtlLibrary* HomeReader::mtl_library(const std::string& entry, const std::string& who) {
+  auto [it, fresh] = libraries_.try_emplace(entry);
+  if (fresh) {
+    const std::optional<std::string> bytes = models_ ? models_(entry) : std::nullopt;
+    if (bytes) {
+      it->second = read_mtl(*bytes);
+      for (const std::string& problem : it->second->problems)
+        plan_.warnings.push_back(who + "material library " + entry + ": " + problem + ": left out");
+    }
+  }
+  return it->second ? &*it->second : nullptr;
+}
+
+/// A model's own materials coloured as its MTL libraries say (OBJLoader): a material's
+/// map_Kd image, where it can be read, as the image's mean colour (Sweet Home draws a
+/// textured shape in its texture's colours alone, ModelManager setting its diffuse colour
+/// white); else its Kd, an sRGB-encoded colour like a picked one (ModelManager.getMaterials
+/// makes Kd · 255 a colour), made linear. The libraries and images are found beside the
+/// model (its folder in the .sh3d, in a zipped model, or under a bare Home.xml's folder).
+/// A material no library at hand defines keeps Avenues' default colour.
+void HomeReader::colour_model(Mesh& m, const std::string& obj, const PieceIn& p) {
+  if (m.materials.empty()) return;
+  const std::string dir = p.model.substr(0, p.model.rfind('/') + 1);  // "" when the model has no folder
+  const std::string who = p.where.str() + ": model " + p.model + ": ";
+  struct Defined {
+    MtlMaterial material;
+    std::string library;  ///< the entry that defines it
+  };
+  std::map<std::string, Defined> defined;
+  std::set<std::string> arguments_seen;  // a library named twice is read once
+  for (const std::string& argument : obj_material_use(obj).libraries) {
+    if (!arguments_seen.insert(argument).second) continue;
+    // Each word a library; the whole argument (last, when there are several words) only
+    // when no word named one.
+    const std::vector<std::string> files = mtllib_candidates(argument);
+    const size_t words = files.size() > 1 ? files.size() - 1 : files.size();
+    bool found = false;
+    for (size_t i = 0; i < files.size(); ++i) {
+      if (i == words && found) break;
+      const std::string entry = dir + files[i];
+      const MtlLibrary* lib = mtl_library(entry, who);
+      if (!lib) continue;
+      found = true;
+      for (const MtlMaterial& mat : lib->materials) defined.insert_or_assign(mat.name, Defined{mat, entry});
+    }
+    if (!found)
+      plan_.warnings.push_back(who + "its material library '" + argument +
+                               "' is not at hand: its materials keep Avenues' default colour");
+  }
+  for (Material& mat : m.materials) {
+    const auto it = defined.find(mat.name);
+    if (it == defined.end()) {
+      undefined_materials_.insert(mat.name);
+      continue;
+    }
+    const MtlMaterial& d = it->second.material;
+    std::optional<std::array<double, 3>> colour;
+    if (!d.diffuse_map.empty()) {
+      bool found = false;
+      for (const std::string& file : map_kd_candidates(d.diffuse_map)) {
+        const ImageMean& mean = image_mean(dir + file, who + "material '" + mat.name + "': ");
+        if (!mean.at_hand) continue;
+        found = true;
+        colour = mean.colour;
+        break;
+      }
+      if (!found)
+        plan_.warnings.push_back(who + "material '" + mat.name + "': its image " + d.diffuse_map +
+                                 " (map_Kd) is not at hand: its Kd colour is used instead");
+    }
+    if (!colour && d.diffuse)
+      colour = std::array<double, 3>{linear_from_srgb((*d.diffuse)[0]), linear_from_srgb((*d.diffuse)[1]),
+                                     linear_from_srgb((*d.diffuse)[2])};
+    if (colour) mat.colour = *colour;
+    mat.where = SourceLoc{path_ + ":" + it->second.library, d.line, 0, "material '" + mat.name + "'"};
+  }
+}
+
 /// The piece's model fitted to it as Sweet Home fits it: turned by modelRotation, its
 /// bounds scaled to the piece's width (x), height (y, up) and depth (z, towards the front),
 /// mirrored if asked, in the piece's own axes (base centred on the origin, z up, the front
@@ -1405,7 +1562,11 @@ std::shared_ptr<const Mesh> HomeReader::model_of(const PieceIn& p) {
       plan_.warnings.push_back(p.where.str() + ": model " + p.model + " is not an OBJ file (only those are read): a box stands in");
     } else {
       try {
-        it->second = std::make_shared<const Mesh>(read_mesh_bytes(*bytes, ext, path_ + ":" + p.model));
+        std::vector<std::string> warnings;
+        Mesh read = read_mesh_bytes(*bytes, ext, path_ + ":" + p.model, &warnings);
+        for (const std::string& w : warnings) plan_.warnings.push_back(p.where.str() + ": " + w);
+        colour_model(read, *bytes, p);
+        it->second = std::make_shared<const Mesh>(std::move(read));
       } catch (const std::runtime_error& e) {
         plan_.warnings.push_back(p.where.str() + ": " + e.what() + ": a box of the piece's size stands in");
       }
@@ -1432,8 +1593,21 @@ std::shared_ptr<const Mesh> HomeReader::model_of(const PieceIn& p) {
     return from_base ? (v - a) * k : (v - 0.5 * (a + b)) * k;
   };
   Mesh m = raw;
+  // The piece's modelMaterials, each in place of the model's material it names (the first
+  // that names it); the path, which tells meshes apart (mesh_key), says what they changed.
+  std::string coloured;
+  for (Material& mat : m.materials)
+    for (const ModelMaterialIn& in : p.model_materials) {
+      if (in.names != mat.name) continue;
+      if (in.colour) {
+        mat.colour = *in.colour;
+        mat.where = in.where;
+        coloured += (coloured.empty() ? ", materials " : ", ") + mat.name + " " + in.what;
+      }
+      break;
+    }
   m.path = path_ + ":" + p.model + " as " + format_number(p.width * 100) + " x " + format_number(p.depth * 100) + " x " + format_number(p.height * 100) +
-           " cm" + (p.mirrored ? ", mirrored" : "");
+           " cm" + (p.mirrored ? ", mirrored" : "") + coloured;
   for (size_t i = 0; i < turned.size(); ++i) {
     const Vec3 t = turned[i];
     const double x = fit(t.x, lo.x, hi.x, p.width, false) * (p.mirrored ? -1 : 1);
@@ -1552,6 +1726,18 @@ Plan HomeReader::read() {
   if (models_missing_ > 0)
     plan_.warnings.push_back(file_ + ": " + std::to_string(models_missing_) +
                              " piece(s) of furniture drawn as boxes of their size: their models are not at hand");
+  if (!undefined_materials_.empty()) {
+    // Sweet Home's OBJLoader knows Java 3D's default materials by name (Debian's catalogue
+    // models use them with no MTL file); Avenues does not.
+    std::string names;
+    size_t shown = 0;
+    for (const std::string& n : undefined_materials_)
+      if (shown++ < 5) names += (names.empty() ? "'" : ", '") + n + "'";
+    if (undefined_materials_.size() > shown) names += ", ...";
+    plan_.warnings.push_back(file_ + ": " + std::to_string(undefined_materials_.size()) +
+                             " material(s) that models use are defined in no MTL library at hand (" + names +
+                             "): they keep Avenues' default colour where no piece's modelMaterials colour them");
+  }
   if (walls_cut_ > 0)
     plan_.warnings.push_back(file_ + ": " + std::to_string(walls_cut_) +
                              " wall(s) taller than their storey cut to its ceiling");
@@ -1643,14 +1829,29 @@ Plan read_sweet_home(const std::string& path, HomeEntry which, const HomeLimits&
       throw PlanError(SourceLoc{path, 0, 0, ""}, "the archive holds no serialized Home entry (only Home.xml)");
     if (xml) tree = home_tree_of_xml(*zip->entry("Home.xml"), path + ":Home.xml");
     else tree = home_tree_of_serialized(*zip->entry("Home"), path + ":Home");
-    models = [&zip, path, limits](const std::string& model) -> std::optional<std::string> {
+    // A zipped model's files are asked for one after another (its OBJ, its MTL files, their
+    // images): the last zipped model's archive stays open.
+    struct Zipped {
+      std::optional<std::string> name;  ///< the outer entry it came from
+      std::string bytes;
+      std::unique_ptr<ZipArchive> zip;  ///< over `bytes`; null when that entry is no zip
+    };
+    auto zipped = std::make_shared<Zipped>();
+    models = [&zip, path, limits, zipped](const std::string& model) -> std::optional<std::string> {
       // "1!/tree.obj": the entry "1" is itself a zip holding the model's files.
       const size_t bang = model.find("!/");
       if (bang == std::string::npos) return zip->entry(model);
-      const std::optional<std::string> outer = zip->entry(model.substr(0, bang));
-      if (!outer || !looks_like_zip(*outer)) return std::nullopt;
-      const ZipArchive inner(path + ":" + model.substr(0, bang), *outer, limits.max_entry_bytes);
-      return inner.entry(model.substr(bang + 2));
+      const std::string outer_name = model.substr(0, bang);
+      if (zipped->name != outer_name) {
+        zipped->zip.reset();
+        zipped->name = outer_name;
+        std::optional<std::string> outer = zip->entry(outer_name);
+        zipped->bytes = outer ? std::move(*outer) : std::string();
+        if (looks_like_zip(zipped->bytes))
+          zipped->zip = std::make_unique<ZipArchive>(path + ":" + outer_name, zipped->bytes, limits.max_entry_bytes);
+      }
+      if (!zipped->zip) return std::nullopt;
+      return zipped->zip->entry(model.substr(bang + 2));
     };
   } else {
     if (which == HomeEntry::Serialized)

@@ -27,10 +27,15 @@
 //   colours, textures  into materials (linear light): each side of a wall its own
 //                      (left/rightSideTexture, else left/rightSideColor; walls whose
 //                      sides differ are not joined), a room's floor and ceiling (texture,
-//                      else colour), a piece's color (else its texture); a texture is its
-//                      image's mean colour (PNG or JPEG, image_colour.h). A piece's
-//                      modelMaterials, its model's own MTL colours and lights are not
-//                      imported yet (an object has one material).
+//                      else colour), a piece's color (else its texture) for the whole
+//                      piece; else, material by material of its model, the piece's
+//                      modelMaterials (<material name key color> / HomeMaterial, matched by
+//                      key, else name; an opaque colour or a texture, else the model's own
+//                      stays), else the model's own: its OBJ's usemtl groups coloured by
+//                      its MTL libraries (beside the model) as map_Kd's image mean, else
+//                      Kd (sRGB-encoded, made linear); a name no library defines (Java 3D's
+//                      default materials) keeps the default grey. A texture is its image's
+//                      mean colour (PNG or JPEG, image_colour.h). Lights are not imported yet.
 // Sweet Home lengths are centimetres with y pointing down the screen; a point (x, y)
 // becomes (x/100, −y/100) m, which keeps counter-clockwise polygons counter-clockwise
 // and turns Sweet Home's clockwise angles into Avenues' anticlockwise ones.

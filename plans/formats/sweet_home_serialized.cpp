@@ -228,6 +228,15 @@ class Mapper {
       text(e, "staircaseCutOutShape", *o, "staircaseCutOutShape");
       colour(e, "color", *o, "color");
       texture(e, *o, "texture", false);
+      // modelMaterials, a HomeMaterial[]: <material name key color> children, a texture inside.
+      for (const Value& mv : list(*o, "modelMaterials"))
+        if (const Object* mat = instance_of(mv, "HomeMaterial")) {
+          const size_t me = element(e, "material", *mat);
+          text(me, "name", *mat, "name");
+          text(me, "key", *mat, "key");
+          colour(me, "color", *mat, "color");
+          texture(me, *mat, "texture", false);
+        }
       if (const std::string model = content_entry(*o, "model"); !model.empty()) t_.elements[e].set("model", model);
       const std::vector<Value> rows = list(*o, "modelRotation");
       std::string rotation;

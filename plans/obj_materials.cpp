@@ -1,0 +1,195 @@
+// Avenues — a Wavefront OBJ model's own materials (see obj_materials.h).
+#include "plans/obj_materials.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <map>
+
+namespace avenues {
+namespace {
+
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+
+std::string_view trimmed(std::string_view s) {
+  while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
+  while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
+  return s;
+}
+
+/// The statements of an OBJ or MTL text, one per line, comments ('#' on) cut off: each
+/// line's keyword and the rest of it, trimmed; calls f(line number, keyword, rest).
+template <class F>
+void for_each_statement(std::string_view text, F&& f) {
+  int lineno = 0;
+  size_t at = 0;
+  while (at < text.size()) {
+    size_t end = text.find('\n', at);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(at, end - at);
+    at = end + 1;
+    ++lineno;
+    if (const size_t hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+    line = trimmed(line);
+    if (line.empty()) continue;
+    size_t word = 0;
+    while (word < line.size() && !is_space(line[word])) ++word;
+    f(lineno, line.substr(0, word), trimmed(line.substr(word)));
+  }
+}
+
+/// The words of s, split at blanks.
+std::vector<std::string_view> words_of(std::string_view s) {
+  std::vector<std::string_view> out;
+  size_t i = 0;
+  while (i < s.size()) {
+    while (i < s.size() && is_space(s[i])) ++i;
+    const size_t start = i;
+    while (i < s.size() && !is_space(s[i])) ++i;
+    if (i > start) out.push_back(s.substr(start, i - start));
+  }
+  return out;
+}
+
+}  // namespace
+
+ObjMaterialUse obj_material_use(std::string_view obj) {
+  ObjMaterialUse use;
+  std::string current(kObjDefaultMaterial);
+  long long vertices = 0;
+  std::vector<long long> corners;
+  for_each_statement(obj, [&](int, std::string_view key, std::string_view rest) {
+    if (key == "v") {
+      ++vertices;
+    } else if (key == "usemtl") {
+      // Sweet Home takes the rest of the line, spaces and all, as the name.
+      if (!rest.empty()) {
+        current = std::string(rest);
+        use.uses_materials = true;
+      }
+    } else if (key == "mtllib") {
+      if (!rest.empty()) use.libraries.emplace_back(rest);
+    } else if (key == "f") {
+      // OpenMesh keeps a face of three corners or more, no vertex named twice; corners
+      // counted back (negative) are taken from the vertices so far, as check_obj does.
+      corners.clear();
+      bool readable = true;
+      for (std::string_view w : words_of(rest)) {
+        const std::string_view index = w.substr(0, w.find('/'));
+        long long v = 0;
+        const auto [end, ec] = std::from_chars(index.data(), index.data() + index.size(), v);
+        if (ec != std::errc() || end != index.data() + index.size() || v == 0) {
+          readable = false;
+          break;
+        }
+        corners.push_back(v < 0 ? vertices + v + 1 : v);
+      }
+      std::sort(corners.begin(), corners.end());
+      if (readable && corners.size() >= 3 && std::adjacent_find(corners.begin(), corners.end()) == corners.end())
+        use.face_material.push_back(current);
+    }
+  });
+  return use;
+}
+
+std::string name_obj_materials(Mesh& m, const ObjMaterialUse& use, size_t faces_read) {
+  if (!use.uses_materials) return "";
+  std::map<std::string, MaterialId> index;
+  std::vector<MaterialId> of_face;
+  of_face.reserve(use.face_material.size());
+  std::vector<size_t> faces_of;
+  m.materials.clear();
+  for (const std::string& name : use.face_material) {
+    auto [it, fresh] = index.try_emplace(name, MaterialId(m.materials.size()));
+    if (fresh) {
+      Material mat;
+      mat.name = name;
+      mat.where = SourceLoc{m.path, 0, 0, "material '" + name + "'"};
+      m.materials.push_back(std::move(mat));
+      faces_of.push_back(0);
+    }
+    of_face.push_back(it->second);
+    ++faces_of[size_t(it->second)];
+  }
+  if (m.materials.empty()) return "";
+  std::string why;
+  if (faces_read != of_face.size()) {
+    // A face OpenMesh refused shifts every name after it: one material for the whole mesh,
+    // the one most faces use.
+    const size_t most = size_t(std::max_element(faces_of.begin(), faces_of.end()) - faces_of.begin());
+    if (m.materials.size() > 1)
+      why = "OpenMesh kept " + std::to_string(faces_read) + " of its faces where its text has " +
+            std::to_string(of_face.size()) + ": its " + std::to_string(m.materials.size()) +
+            " materials cannot be told apart, the whole model is material '" + m.materials[most].name + "'";
+    Material only = m.materials[most];
+    m.materials = {std::move(only)};
+    m.material_of.assign(m.triangles.size(), 0);
+    return why;
+  }
+  m.material_of.resize(m.triangles.size());
+  for (size_t t = 0; t < m.triangles.size(); ++t) {
+    const int polygon = t < m.polygon_of.size() ? m.polygon_of[t] : int(t);
+    m.material_of[t] = polygon >= 0 && size_t(polygon) < of_face.size() ? of_face[size_t(polygon)] : -1;
+  }
+  return why;
+}
+
+const MtlMaterial* MtlLibrary::find(std::string_view name) const {
+  for (auto it = materials.rbegin(); it != materials.rend(); ++it)
+    if (it->name == name) return &*it;
+  return nullptr;
+}
+
+MtlLibrary read_mtl(std::string_view text) {
+  MtlLibrary lib;
+  size_t current = 0;  // 1 + the index of the material being defined; 0 before any newmtl
+  for_each_statement(text, [&](int lineno, std::string_view key, std::string_view rest) {
+    auto problem = [&](const std::string& what) {
+      lib.problems.push_back("line " + std::to_string(lineno) + ": " + what);
+    };
+    if (key == "newmtl") {
+      if (rest.empty()) return problem("newmtl names no material");
+      lib.materials.push_back({std::string(rest), std::nullopt, "", lineno});
+      current = lib.materials.size();
+    } else if (key == "Kd") {
+      if (!current) return problem("Kd before any newmtl");
+      MtlMaterial& mat = lib.materials[current - 1];
+      const std::vector<std::string_view> w = words_of(rest);
+      std::array<double, 3> kd{};
+      bool ok = w.size() == 1 || w.size() == 3;
+      for (size_t k = 0; ok && k < w.size(); ++k) {
+        const auto [end, ec] = std::from_chars(w[k].data(), w[k].data() + w[k].size(), kd[k]);
+        ok = ec == std::errc() && end == w[k].data() + w[k].size() && std::isfinite(kd[k]);
+      }
+      if (!ok) return problem("Kd of material '" + mat.name + "' is not one or three numbers: \"" +
+                              std::string(rest) + "\"");
+      if (w.size() == 1) kd[1] = kd[2] = kd[0];  // one number: a grey (the MTL specification's r, with g = b = r)
+      for (double& c : kd) c = std::clamp(c, 0.0, 1.0);
+      mat.diffuse = kd;
+    } else if (key == "map_Kd") {
+      if (!current) return problem("map_Kd before any newmtl");
+      MtlMaterial& mat = lib.materials[current - 1];
+      if (rest.empty()) return problem("map_Kd of material '" + mat.name + "' names no image");
+      mat.diffuse_map = std::string(rest);
+    }
+  });
+  return lib;
+}
+
+std::vector<std::string> mtllib_candidates(const std::string& argument) {
+  std::vector<std::string> out;
+  for (std::string_view w : words_of(argument)) out.emplace_back(w);
+  if (out.size() > 1) out.push_back(std::string(trimmed(argument)));
+  return out;
+}
+
+std::vector<std::string> map_kd_candidates(const std::string& argument) {
+  const std::vector<std::string_view> w = words_of(argument);
+  std::vector<std::string> out;
+  if (w.empty()) return out;
+  out.emplace_back(w.back());
+  if (w.size() > 1) out.push_back(std::string(trimmed(argument)));
+  return out;
+}
+
+}  // namespace avenues
