@@ -96,16 +96,21 @@ def walk(side):
 b, a = bench("before"), bench("after")
 b.update(walk("before"))
 a.update(walk("after"))
-print(f"\n{'benchmark':58} {'before':>12} {'after':>12} {'after/before':>13}")
-ratios = []
+# Apart: every round of one build slower than every round of the other (the rounds' ranges
+# do not overlap), the least a difference must be to stand out of the machine's noise.
+print(f"\n{'benchmark':58} {'before':>12} {'after':>12} {'after/before':>13}  apart")
+ratios, apart = [], 0
 for name in list(b) + [n for n in a if n not in b]:
     if name not in b or name not in a:
         print(f"{name:58} {'(only ' + ('before' if name in b else 'after') + ')':>12}")
         continue
     mb, ma = statistics.median(b[name]), statistics.median(a[name])
     ratios.append(ma / mb)
+    sep = "slower" if min(a[name]) > max(b[name]) else "faster" if max(a[name]) < min(b[name]) else ""
+    apart += sep != ""
     unit = lambda us: f"{us / 1e3:.3f} ms" if us >= 1e3 else f"{us:.2f} us"
-    print(f"{name:58} {unit(mb):>12} {unit(ma):>12} {ma / mb:>12.2f}x")
+    print(f"{name:58} {unit(mb):>12} {unit(ma):>12} {ma / mb:>12.2f}x  {sep}")
 print(f"\nmedian ratio over {len(ratios)} benchmarks: {statistics.median(ratios):.2f}x "
-      f"(range {min(ratios):.2f}x to {max(ratios):.2f}x); medians of {rounds} rounds each")
+      f"(range {min(ratios):.2f}x to {max(ratios):.2f}x); medians of {rounds} rounds each; "
+      f"{apart} apart (every round of one build beyond every round of the other)")
 EOF
