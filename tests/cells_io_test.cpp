@@ -260,7 +260,7 @@ TEST_F(CellsIo, VersionFourFilesWithModelsStillLoad) {
   modelled.model = std::make_shared<const Mesh>(box);
   plan.objects = {modelled};
   const CellComplex c = build_cells(plan);
-  const fs::path p = dir_ / "v5.cells";
+  const fs::path p = path("v5.cells");
   save_cells(c, p.string());
   std::string bytes = slurp(p);
   // The model: its path, vertices (24 bytes each), triangles (16 each), closed, boundary edges.
@@ -283,7 +283,7 @@ TEST_F(CellsIo, VersionFourFilesWithModelsStillLoad) {
   put_u32(8, 4);
   put_u64(16, payload.size());
   put_u64(24, h);
-  const fs::path old = dir_ / "v4.cells";
+  const fs::path old = path("v4.cells");
   spit(old, bytes);
   const CellComplex loaded = load_cells(old.string());
   ASSERT_EQ(loaded.objects.size(), 1u);
