@@ -7,7 +7,7 @@
 #   - avenues_bench (Google Benchmark) with FILTER: decomposition of the bundled plans and
 #     the 10 x 10 and 30 x 30 offices, loading the 100 x 100 office's complex, traversal per
 #     view, the 1920 x 1080 half-tone frames;
-#   - `avenues bench walk` under Xvfb at 1280 x 720 with no frame budget: the bundled plans
+#   - `avenues bench walk` in one Xvfb server at 1280 x 720 with no frame budget: the bundled plans
 #     and, when installed (.ci/install-deps), two furnished Sweet Home 3D houses.
 # Then, per benchmark, the median over the rounds of each build and their ratio after/before.
 #
@@ -33,7 +33,15 @@ for b in "$before" "$after"; do
   [[ -x $b/app/avenues && -x $b/bench/avenues_bench ]] || { echo "$b: no app/avenues or bench/avenues_bench" >&2; exit 2; }
 done
 work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+# One X server for every walk of the run (an xvfb-run per walk can lose the race for a
+# display number to the last one's server, still shutting down).
+display=150
+while [[ -e /tmp/.X$display-lock || -e /tmp/.X11-unix/X$display ]]; do display=$((display + 1)); done
+Xvfb ":$display" -screen 0 1280x720x24 -nolisten tcp >/dev/null 2>&1 &
+xvfb=$!
+trap 'kill "$xvfb" 2>/dev/null; rm -rf "$work"' EXIT
+for _ in $(seq 100); do [[ -e /tmp/.X11-unix/X$display ]] && break; sleep 0.1; done
+[[ -e /tmp/.X11-unix/X$display ]] || { echo "Xvfb :$display did not start" >&2; exit 1; }
 echo "before: $before  after: $after  rounds: $rounds  walk frames: $frames"
 echo "avenues_bench --benchmark_filter='$filter'"
 echo "walk: avenues bench walk --frames $frames --size 1280x720 $plans"
@@ -45,15 +53,9 @@ run_one() {  # run_one SIDE BUILD ROUND
     { cat "$work/err.txt" >&2; exit 1; }
   # The frame budget came later: where the build has it, it is turned off (as before it).
   "$build/app/avenues" bench walk --help 2>/dev/null | grep -q -- --frame-budget && budget=(--frame-budget 0)
-  # xvfb-run -a can lose the race for a display number to another Xvfb starting: try again.
-  local try
-  for try in 1 2 3; do
-    # shellcheck disable=SC2086  # the plans are words
-    xvfb-run -a -s '-screen 0 1280x720x24' "$build/app/avenues" bench walk --frames "$frames" --size 1280x720 \
-      "${budget[@]}" $plans >"$work/$side-$round.walk" 2>"$work/err.txt" && break
-    grep -q "open display" "$work/err.txt" && ((try < 3)) || { cat "$work/err.txt" >&2; exit 1; }
-    sleep 2
-  done
+  # shellcheck disable=SC2086  # the plans are words
+  DISPLAY=:$display "$build/app/avenues" bench walk --frames "$frames" --size 1280x720 "${budget[@]}" $plans \
+    >"$work/$side-$round.walk" 2>"$work/err.txt" || { cat "$work/err.txt" >&2; exit 1; }
   echo "round $round: $side done"
 }
 
