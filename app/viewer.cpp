@@ -4,8 +4,10 @@
 #include <GLFW/glfw3.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <thread>
 
 namespace avenues::app {
 
@@ -60,7 +62,14 @@ std::unique_ptr<Viewer> Viewer::open(int width, int height, const std::string& t
     return nullptr;
   }
   glfwSetErrorCallback(on_error);
-  if (!glfwInit()) {
+  // An X server whose last client has just left (the window of the plan walked before, in
+  // `avenues bench walk A B`) resets, and refuses connections meanwhile: try for a second.
+  bool started = glfwInit();
+  for (int tries = 0; !started && tries < 20; ++tries) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    started = glfwInit();
+  }
+  if (!started) {
     why = "cannot start GLFW: " + glfw_error();
     return nullptr;
   }

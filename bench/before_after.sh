@@ -33,11 +33,11 @@ for b in "$before" "$after"; do
   [[ -x $b/app/avenues && -x $b/bench/avenues_bench ]] || { echo "$b: no app/avenues or bench/avenues_bench" >&2; exit 2; }
 done
 work=$(mktemp -d)
-# One X server for every walk of the run (an xvfb-run per walk can lose the race for a
-# display number to the last one's server, still shutting down).
+# One X server for every walk of the run, which does not reset when its last client leaves
+# (each plan's window is one; a resetting server refuses the next for a moment).
 display=150
 while [[ -e /tmp/.X$display-lock || -e /tmp/.X11-unix/X$display ]]; do display=$((display + 1)); done
-Xvfb ":$display" -screen 0 1280x720x24 -nolisten tcp >/dev/null 2>&1 &
+Xvfb ":$display" -screen 0 1280x720x24 -nolisten tcp -noreset >/dev/null 2>&1 &
 xvfb=$!
 trap 'kill "$xvfb" 2>/dev/null; rm -rf "$work"' EXIT
 for _ in $(seq 100); do [[ -e /tmp/.X11-unix/X$display ]] && break; sleep 0.1; done
