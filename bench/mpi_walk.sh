@@ -14,7 +14,7 @@
 # Usage: bench/mpi_walk.sh [BUILD_DIR] [REPEATS]
 #   BUILD_DIR  holding app/avenues (default: build beside this script's repository)
 #   REPEATS    runs of each kind (default 3)
-# Environment: MPIRUN (default mpirun; --allow-run-as-root and --oversubscribe are added,
+# Environment: STEP (metres between frames, default 0.5: 12 frames; 0.1: 58), MPIRUN (default mpirun; --allow-run-as-root and --oversubscribe are added,
 # and --bind-to none for the walk: the one process it is compared with is not bound either).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -25,7 +25,7 @@ mpirun=${MPIRUN:-mpirun}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 house=$root/plans/two-storey-house.toml
-walk=(path "$house" --through "hall,living room" --step 0.5 --size 1920x1080 --samples 16)
+walk=(path "$house" --through "hall,living room" --step "${STEP:-0.5}" --size 1920x1080 --samples 16)
 
 seconds() {  # seconds COMMAND...: runs it quietly, prints its wall-clock seconds
   local t0 t1
