@@ -129,6 +129,11 @@ class Writer {
   void ids(const std::vector<int32_t>& v) { count(v.size(), "indices"); for (int32_t i : v) i32(i); }
 };
 
+/// A material: the complex's, or a model's (read_material).
+void write_material(Writer& w, const Material& m) {
+  w.str(m.name); w.f64(m.reflectance); w.colour(m.colour); w.loc(m.where);
+}
+
 void write_complex(Writer& w, const CellComplex& c, const std::filesystem::path& cells_dir) {
   w.str(c.plan_name);
 
@@ -137,9 +142,7 @@ void write_complex(Writer& w, const CellComplex& c, const std::filesystem::path&
     w.str(s.name); w.f64(s.elevation); w.f64(s.height); w.f64(s.slab); w.loc(s.where);
   }
   w.count(c.materials.size(), "materials");
-  for (const Material& m : c.materials) {
-    w.str(m.name); w.f64(m.reflectance); w.colour(m.colour); w.loc(m.where);
-  }
+  for (const Material& m : c.materials) write_material(w, m);
   w.count(c.rooms.size(), "rooms");
   for (const RoomInfo& r : c.rooms) {
     w.str(r.name); w.i32(r.storey); w.u8(r.named ? 1 : 0); w.f64(r.area);
@@ -197,9 +200,7 @@ void write_complex(Writer& w, const CellComplex& c, const std::filesystem::path&
       w.u8(m.closed ? 1 : 0);
       w.i32(m.boundary_edges);
       w.count(m.materials.size(), "model materials");
-      for (const Material& mm : m.materials) {
-        w.str(mm.name); w.f64(mm.reflectance); w.colour(mm.colour); w.loc(mm.where);
-      }
+      for (const Material& mm : m.materials) write_material(w, mm);
       w.count(m.material_of.size(), "model triangle materials");
       for (MaterialId k : m.material_of) w.i32(k);
     }
@@ -354,6 +355,16 @@ constexpr size_t kMinLight = 4 + 24 + 8 + 24 + kMinLoc + 1;
 constexpr size_t kMinTiming = 4 + 8;
 constexpr size_t kMinSolid = 4 + 16 + 4;
 
+/// A material as write_complex writes one (the complex's, or a model's); `what` names it in errors.
+Material read_material(Reader& r, const char* what) {
+  Material m;
+  m.name = r.str(what);
+  m.reflectance = r.finite(what);
+  m.colour = r.colour(what);
+  m.where = r.loc(what);
+  return m;
+}
+
 void read_complex(Reader& r, CellComplex& c, uint32_t version, const std::filesystem::path& cells_dir) {
   c.plan_name = r.str("plan name");
 
@@ -366,12 +377,7 @@ void read_complex(Reader& r, CellComplex& c, uint32_t version, const std::filesy
     s.where = r.loc("storey");
   }
   c.materials.resize(r.count(kMinMaterial, "materials"));
-  for (Material& m : c.materials) {
-    m.name = r.str("material");
-    m.reflectance = r.finite("material");
-    m.colour = r.colour("material");
-    m.where = r.loc("material");
-  }
+  for (Material& m : c.materials) m = read_material(r, "material");
   c.rooms.resize(r.count(kMinRoom, "rooms"));
   for (RoomInfo& room : c.rooms) {
     room.name = r.str("room");
@@ -456,12 +462,7 @@ void read_complex(Reader& r, CellComplex& c, uint32_t version, const std::filesy
       m.boundary_edges = r.i32("model");
       if (version >= 5) {
         m.materials.resize(r.count(kMinMaterial, "model materials"));
-        for (Material& mm : m.materials) {
-          mm.name = r.str("model material");
-          mm.reflectance = r.finite("model material");
-          mm.colour = r.colour("model material");
-          mm.where = r.loc("model material");
-        }
+        for (Material& mm : m.materials) mm = read_material(r, "model material");
         m.material_of.resize(r.count(4, "model triangle materials"));
         if (!m.material_of.empty() && m.material_of.size() != m.triangles.size())
           r.fail("a model has materials for " + std::to_string(m.material_of.size()) + " triangles, not its " +

@@ -357,6 +357,15 @@ TEST(SweetHomeSerialized, TheExecutableRefusesDamagedHomesWithExitStatus2) {
 class ScratchDir : public avenues::testing::TempDir {
  public:
   ScratchDir() : avenues::testing::TempDir("avenues-sh3ds") {}
+  /// A 2 x 1 PNG, its left pixel red and its right blue (mean (0.5, 0, 0.5) in linear light).
+  std::string red_blue_png(const std::string& name) {
+    Image png;
+    png.resize(2, 1, 3);
+    png.data = {255, 0, 0, 0, 0, 255};
+    const std::string path = write(name, "");
+    write_image(png, path);
+    return path;
+  }
 };
 
 const std::string kBox =
@@ -592,10 +601,7 @@ double linear8(int v) { return linear_from_srgb(v / 255.0); }
 // the right, and the picture shows each from its own side.
 TEST(SweetHomeColours, TexturesAreTheirImagesMeanAndEachWallSideItsOwn) {
   ScratchDir dir;
-  Image png;
-  png.resize(2, 1, 3);
-  png.data = {255, 0, 0, 0, 0, 255};
-  write_image(png, dir.write("t.png", ""));
+  dir.red_blue_png("t.png");
   const unsigned char ochre[3] = {200, 120, 40};
   const std::string xml =
       "<home>\n"
@@ -758,10 +764,7 @@ void expect_pixel_shows(const Image& pic, const std::array<double, 3>& colour, c
 // (a library, an image) is a warning naming the piece, never the home lost.
 TEST(SweetHomeColours, FurnitureTakesItsModelsMaterialsAndThePiecesOverrides) {
   ScratchDir dir;
-  Image tex;
-  tex.resize(2, 1, 3);
-  tex.data = {255, 0, 0, 0, 0, 255};
-  write_image(tex, dir.write("tex.png", ""));
+  dir.red_blue_png("tex.png");
   const std::string xml =
       "<home>\n" + kBox +
       "  <room name='Hall'><point x='10' y='10'/><point x='590' y='10'/><point x='590' y='390'/><point x='10' y='390'/></room>\n"
