@@ -168,7 +168,7 @@ class Session {
       report.swap_ms.push_back(ms_since(s0));
       const double work = ms_since(polled);
       report.work_ms.push_back(work);
-      if (rendered) budget_.measured(work, moving_);
+      if (rendered) budget_.measured(work, moving_, frame_.width, frame_.height);
       smoothed_work = smoothed_work == 0 ? work : 0.9 * smoothed_work + 0.1 * work;
       report.sample_process(frame);
       if (!message_.empty() && Clock::now() > message_until_) message_.clear(), state_changed_ = true;

@@ -58,6 +58,16 @@ class FrameBudget {
       fast_frames_ = 0;
     }
   }
+  /// The same for a frame whose picture is w × h pixels. The first frame at a size is not
+  /// counted: it pays once for what the frames after it at that size reuse (the texture
+  /// made for it; on the first frame of all, the GL pipeline's start, 60 ms under llvmpipe
+  /// where later frames take 5), so it says nothing of what the view costs.
+  void measured(double work_ms, bool moving, int w, int h) {
+    const bool first_at_size = w != picture_w_ || h != picture_h_;
+    picture_w_ = w, picture_h_ = h;
+    if (first_at_size) last_ms_ = work_ms;
+    else measured(work_ms, moving);
+  }
   /// [ms] the last frame measured.
   double last_ms() const { return last_ms_; }
 
@@ -70,6 +80,7 @@ class FrameBudget {
   size_t level_ = 0;            ///< into ladder_: the detail while moving
   int fast_frames_ = 0;
   double last_ms_ = 0;
+  int picture_w_ = 0, picture_h_ = 0;  ///< the last frame's picture (measured with a size)
 };
 
 }  // namespace avenues::app

@@ -43,3 +43,19 @@ TEST(FrameBudget, NoBudgetMeansFullDetailAlways) {
   b.measured(100, true);
   EXPECT_EQ(b.next(true), (Detail{4, 1}));
 }
+
+// The first frame at a picture size (the window's first, or the first after a resize or a
+// step of resolution) pays once for the texture made for it, and the first of all for the
+// GL pipeline's start: it does not count against the budget. The next one does.
+TEST(FrameBudget, TheFirstFrameAtASizeIsNotCounted) {
+  FrameBudget b(16.7, 1);
+  b.measured(62, true, 1280, 720);
+  EXPECT_EQ(b.next(true), (Detail{1, 1})) << "the window's first frame";
+  EXPECT_EQ(b.last_ms(), 62);
+  b.measured(20, true, 1280, 720);
+  EXPECT_EQ(b.next(true), (Detail{1, 2})) << "the second frame over budget drops a step";
+  b.measured(40, true, 640, 360);
+  EXPECT_EQ(b.next(true), (Detail{1, 2})) << "the first frame at half resolution";
+  b.measured(40, true, 640, 360);
+  EXPECT_EQ(b.next(true), (Detail{1, 4}));
+}
