@@ -13,6 +13,7 @@
 #include "core/geometry.h"
 #include "core/number_format.h"
 #include "core/stage_timer.h"
+#include "tests/test_files.h"
 
 namespace avenues {
 namespace {
@@ -72,9 +73,8 @@ TEST(Geometry, CutPolygonAndItsArea) {
 
 TEST(AtomicFile, WritesWholeOrLeavesTheTargetAlone) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "avenues-core-test";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const avenues::testing::TempDir scratch("avenues-core");  // the test's own, named for it
+  const fs::path& dir = scratch.path();
   const std::string target = (dir / "out.txt").string();
   write_file_atomically(target, "first");
   write_file_atomically(target, "second");
@@ -87,7 +87,6 @@ TEST(AtomicFile, WritesWholeOrLeavesTheTargetAlone) {
   size_t files = 0;
   for (const auto& e : fs::directory_iterator(dir)) files += e.is_regular_file();
   EXPECT_EQ(files, 1u);  // no temporary left behind
-  fs::remove_all(dir);
 }
 
 TEST(Check, AFailedCheckNamesWhatAndWhere) {

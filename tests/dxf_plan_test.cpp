@@ -31,6 +31,14 @@ const fs::path kSamples = fs::path(AVENUES_OUTSIDE_DIR) / "dxf";
 class TinyDxf {
  public:
   explicit TinyDxf(int insunits = 6) : insunits_(insunits) {}
+  /// The drawings it wrote go with it, and their folder once it is empty.
+  ~TinyDxf() {
+    std::error_code ec;
+    for (const fs::path& p : written_) fs::remove(p, ec);
+    if (!written_.empty()) fs::remove(written_.front().parent_path(), ec);  // only when empty
+  }
+  TinyDxf(const TinyDxf&) = delete;
+  TinyDxf& operator=(const TinyDxf&) = delete;
   void line(const std::string& layer, Vec2 a, Vec2 b) {
     body_.push_back([=](DL_Dxf& dxf, DL_WriterA& dw) {
       dxf.writeLine(dw, DL_LineData(a.x, a.y, 0, b.x, b.y, 0), attr(layer));
@@ -87,6 +95,7 @@ class TinyDxf {
     const fs::path dir = fs::temp_directory_path() / ("avenues-dxf-" + std::to_string(::getpid()));
     fs::create_directories(dir);
     const std::string path = (dir / name).string();
+    written_.push_back(path);
     DL_Dxf dxf;
     DL_WriterA* dw = dxf.out(path.c_str(), DL_Codes::AC1015);
     EXPECT_NE(dw, nullptr);
@@ -108,6 +117,7 @@ class TinyDxf {
 
  private:
   static DL_Attributes attr(const std::string& layer) { return DL_Attributes(layer, 256, -1, "BYLAYER", 1.0); }
+  mutable std::vector<fs::path> written_;  ///< by write(), removed with the drawing
   int insunits_;
   std::vector<std::function<void(DL_Dxf&, DL_WriterA&)>> blocks_, body_;
 };

@@ -11,6 +11,7 @@
 
 #include "plans/formats/ifc_building.h"
 #include "plans/mesh.h"
+#include "tests/test_files.h"
 
 namespace fs = std::filesystem;
 
@@ -40,7 +41,8 @@ TEST(FuzzRegressions, MeshesThatRanOpenMeshOutOfMemoryAreRefusedNamingTheFile) {
 TEST(FuzzRegressions, WellFormedOffFilesStillRead) {
   // The checks in front of OpenMesh must not refuse what every OFF writer writes:
   // comments, blank lines, colours after a face.
-  const fs::path p = fs::temp_directory_path() / "avenues-fuzz-regression-ok.off";
+  const avenues::testing::TempDir scratch("avenues-fuzz-regression");  // the test's own, named for it
+  const fs::path p = scratch.path() / "ok.off";
   {
     std::FILE* f = std::fopen(p.c_str(), "w");
     ASSERT_NE(f, nullptr);
@@ -50,7 +52,6 @@ TEST(FuzzRegressions, WellFormedOffFilesStillRead) {
   const avenues::Mesh m = avenues::load_mesh(p.string());
   EXPECT_EQ(m.vertices.size(), 4u);
   EXPECT_EQ(m.triangles.size(), 2u);
-  fs::remove(p);
 }
 
 TEST(FuzzRegressions, IfcInputsAreReadOrRefusedNamingTheFile) {
