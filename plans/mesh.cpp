@@ -417,7 +417,7 @@ Mesh load_mesh(const std::string& path, const MeshAxes& axes) {
 }
 
 Mesh read_mesh_bytes(const std::string& bytes, const std::string& ext, const std::string& name,
-                     std::vector<std::string>* warnings) {
+                     std::vector<std::string>* warnings, std::vector<std::string>* material_libraries) {
   if (ext != ".obj") throw std::runtime_error("cannot read mesh " + name + ": only OBJ models are read from memory");
   for (char ch : bytes)
     if (ch == '\0') throw std::runtime_error("cannot read mesh " + name + ": an OBJ file holds no NUL bytes");
@@ -428,8 +428,10 @@ Mesh read_mesh_bytes(const std::string& bytes, const std::string& ext, const std
   std::istringstream in(bytes);
   if (!OpenMesh::IO::read_mesh(pm, in, ext, opt)) throw std::runtime_error("cannot read mesh " + name + ": not an OBJ mesh");
   Mesh m = mesh_of_openmesh(pm, name);
-  const std::string why = name_obj_materials(m, obj_material_use(bytes), pm.n_faces());
+  ObjMaterialUse use = obj_material_use(bytes);
+  const std::string why = name_obj_materials(m, use, pm.n_faces());
   if (!why.empty() && warnings) warnings->push_back("mesh " + name + ": " + why);
+  if (material_libraries) *material_libraries = std::move(use.libraries);
   return m;
 }
 

@@ -72,9 +72,12 @@ void orient_z_up(Mesh& m, char up, double metres_per_unit);
 /// `name` what messages call it. Throws std::runtime_error naming it when it cannot be read.
 /// An OBJ's `usemtl` groups become its materials, by name, in Material's default colour (the
 /// MTL files it names are not at hand from memory: the caller colours them by name, see
-/// plans/obj_materials.h); when they cannot be put on its faces, a line in `warnings`.
+/// plans/obj_materials.h); when they cannot be put on its faces, a line in `warnings`. The
+/// OBJ's `mtllib` arguments, in order, go to `material_libraries` when given (read in the
+/// same pass as its `usemtl` groups).
 Mesh read_mesh_bytes(const std::string& bytes, const std::string& ext, const std::string& name,
-                     std::vector<std::string>* warnings = nullptr);
+                     std::vector<std::string>* warnings = nullptr,
+                     std::vector<std::string>* material_libraries = nullptr);
 
 /// A box `size` large (x by y, z high), its base centred on the origin: furniture known
 /// only by its dimensions. Its path is mesh_key_of_box(size).

@@ -374,7 +374,7 @@ class HomeReader {
 
   std::shared_ptr<const Mesh> model_of(const PieceIn& p);
   std::vector<ModelMaterialIn> model_materials_of(const HomeElement& n, const std::string& element);
-  void colour_model(Mesh& m, const std::string& obj, const PieceIn& p);
+  void colour_model(Mesh& m, const std::vector<std::string>& libraries, const PieceIn& p);
   /// An image entry that a model's material or a piece's modelMaterials name, read once.
   struct ImageMean {
     bool at_hand = false;
@@ -1483,8 +1483,9 @@ const MtlLibrary* HomeReader::mtl_library(const std::string& entry, const std::s
 /// white); else its Kd, an sRGB-encoded colour like a picked one (ModelManager.getMaterials
 /// makes Kd · 255 a colour), made linear. The libraries and images are found beside the
 /// model (its folder in the .sh3d, in a zipped model, or under a bare Home.xml's folder).
-/// A material no library at hand defines keeps Avenues' default colour.
-void HomeReader::colour_model(Mesh& m, const std::string& obj, const PieceIn& p) {
+/// A material no library at hand defines keeps Avenues' default colour. `libraries`: the
+/// OBJ's mtllib arguments, as read_mesh_bytes found them.
+void HomeReader::colour_model(Mesh& m, const std::vector<std::string>& libraries, const PieceIn& p) {
   if (m.materials.empty()) return;
   const std::string dir = p.model.substr(0, p.model.rfind('/') + 1);  // "" when the model has no folder
   const std::string who = p.where.str() + ": model " + p.model + ": ";
@@ -1494,7 +1495,7 @@ void HomeReader::colour_model(Mesh& m, const std::string& obj, const PieceIn& p)
   };
   std::map<std::string, Defined> defined;
   std::set<std::string> arguments_seen;  // a library named twice is read once
-  for (const std::string& argument : obj_material_use(obj).libraries) {
+  for (const std::string& argument : libraries) {
     if (!arguments_seen.insert(argument).second) continue;
     // Each word a library; the whole argument (last, when there are several words) only
     // when no word named one.
@@ -1562,10 +1563,10 @@ std::shared_ptr<const Mesh> HomeReader::model_of(const PieceIn& p) {
       plan_.warnings.push_back(p.where.str() + ": model " + p.model + " is not an OBJ file (only those are read): a box stands in");
     } else {
       try {
-        std::vector<std::string> warnings;
-        Mesh read = read_mesh_bytes(*bytes, ext, path_ + ":" + p.model, &warnings);
+        std::vector<std::string> warnings, libraries;
+        Mesh read = read_mesh_bytes(*bytes, ext, path_ + ":" + p.model, &warnings, &libraries);
         for (const std::string& w : warnings) plan_.warnings.push_back(p.where.str() + ": " + w);
-        colour_model(read, *bytes, p);
+        colour_model(read, libraries, p);
         it->second = std::make_shared<const Mesh>(std::move(read));
       } catch (const std::runtime_error& e) {
         plan_.warnings.push_back(p.where.str() + ": " + e.what() + ": a box of the piece's size stands in");
