@@ -118,6 +118,8 @@ int run_cli(int argc, char** argv) {
   view->add_option("--dither", view_opt.dither, "half-tone: none, bayer or fs (1-bit for print)")->capture_default_str();
   view->add_option("--lights", view_opt.lights, "plan (its point lights, casting shadows) or eye (the light at the eye)")
       ->capture_default_str();
+  view->add_option("--object-shadows", view_opt.object_shadows, "objects' shadows from the plan's point lights: auto (when object triangles x lights <= 20000), on or off")
+      ->capture_default_str();
   view->add_option("--falloff", view_opt.falloff, "[m] smooth shading: things farther than this are dimmed; 0: off")
       ->capture_default_str()->check(number_in(0, 1e6));
   view->add_flag("--shadow-lines", view_opt.shadow_lines, "drawings: outline the shadows of the plan's point lights");
@@ -177,6 +179,8 @@ int run_cli(int argc, char** argv) {
   path->add_option("--kernel", path_opt.kernel, "arithmetic of the traversal")->capture_default_str()->check(kernel_name());
   path->add_option("--samples", path_opt.samples, "half-tone: samples per pixel, 1, 4 or 16")->capture_default_str()->check(samples_count());
   path->add_option("--shading", path_opt.shading, "half-tone: flat, smooth or auto")->capture_default_str();
+  path->add_option("--object-shadows", path_opt.object_shadows, "objects' shadows from the plan's point lights: auto (when object triangles x lights <= 20000), on or off")
+      ->capture_default_str();
   path->add_option("--stereo", path_opt.stereo, "stereo frames: anaglyph, parallel or cross (drawings: parallel or cross)");
   path->add_option("--interocular", path_opt.interocular, "[m] distance between the eyes")->capture_default_str()->check(number_in(0, 10));
   path->add_option("--converge", path_opt.converge, "[m] distance at which the two views coincide")->capture_default_str()->check(positive_number());
@@ -216,6 +220,8 @@ int run_cli(int argc, char** argv) {
       ->type_name("FILE")->check(file_name());
   walk->add_option("--samples", walk_opt.samples, "half-tone: samples per pixel, 1, 4 or 16")->capture_default_str()->check(samples_count());
   walk->add_option("--shading", walk_opt.shading, "half-tone: flat or smooth")->capture_default_str();
+  walk->add_option("--object-shadows", walk_opt.object_shadows, "objects' shadows from the plan's point lights: auto (when object triangles x lights <= 20000), on or off")
+      ->capture_default_str();
   walk->add_option("--kernel", walk_opt.kernel, "arithmetic of the traversal")->capture_default_str()->check(kernel_name());
   walk->add_option("--interocular", walk_opt.interocular, "[m] distance between the eyes")->capture_default_str()->check(number_in(0, 10));
   walk->add_option("--frame-budget", walk_opt.frame_budget_ms,

@@ -65,6 +65,7 @@ struct ViewOptions {
   std::string shading = "flat";        ///< half-tone: flat or smooth
   std::string dither = "none";         ///< half-tone: none, bayer or fs
   std::string lights = "plan";         ///< plan (its point lights, with shadows) or eye (the light at the eye only)
+  std::string object_shadows = "auto"; ///< objects' shadows from the plan's lights: auto, on or off
   double falloff = 5;                  ///< [m] smooth shading: the distance law from here; <= 0: off
   bool shadow_lines = false;           ///< drawings: outline the shadows of the plan's point lights
   bool explain = false;                ///< list which effects the view calls for, and why
@@ -100,6 +101,7 @@ struct PathOptions {
   std::string kernel = "double";
   int samples = 4;                ///< half-tone: samples per pixel, 1, 4 or 16
   std::string shading = "flat";   ///< half-tone: flat, smooth or auto
+  std::string object_shadows = "auto";  ///< objects' shadows from the plan's lights: auto, on or off
   std::string stereo;             ///< "": mono; pictures: anaglyph, parallel, cross; drawings: parallel, cross
   double interocular = 0.065;     ///< [m]
   double converge = 2.0;          ///< [m]
@@ -138,6 +140,7 @@ struct WalkOptions {
   std::string record;                  ///< keyframe file for K; default OUT_DIR/<plan>-keys.txt
   int samples = 1;                     ///< half-tone: 1, 4 or 16
   std::string shading = "flat";
+  std::string object_shadows = "auto"; ///< objects' shadows from the plan's lights: auto, on or off
   std::string kernel = "double";
   double interocular = 0.065;          ///< [m]
   double converge = 2.0;               ///< [m]

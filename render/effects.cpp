@@ -129,6 +129,28 @@ EffectPlan plan_effects(const CellComplex& complex, const std::vector<PlacedObje
     p.shadows.why = plural(long(point_names.size()), "point light", "point lights") + " away from the eye (" +
                     names(point_names) + ")";
   }
+  // Objects' shadows: Bouknight's shadow polygons, one cut per occluding triangle and surface.
+  long triangles = 0;
+  for (const PlacedObject& o : objects)
+    if (o.cell != kNoCell) triangles += long(o.mesh.triangles.size());
+  const long work = triangles * long(point_names.size());
+  const std::string count = plural(triangles, "object triangle", "object triangles") + " under " +
+                            plural(long(point_names.size()), "point light", "point lights");
+  if (!p.shadows.on) {
+    p.object_shadows = {false, "no shadows"};
+  } else if (triangles == 0) {
+    p.object_shadows = {false, "no object stands in any cell"};
+  } else if (options.object_shadows == ObjectShadows::Off) {
+    p.object_shadows = {false, "asked off (" + count + ")"};
+  } else if (options.object_shadows == ObjectShadows::On) {
+    p.object_shadows = {true, "asked (" + count + ")"};
+  } else if (work <= kAutoObjectShadows) {
+    p.object_shadows = {true, count + ", at most " + std::to_string(kAutoObjectShadows) + " triangle-lights"};
+  } else {
+    p.object_shadows = {false, count + ": " + std::to_string(work) + " triangle-lights, over the " +
+                                   std::to_string(kAutoObjectShadows) + " that auto casts (seconds of cutting); "
+                                   "--object-shadows on casts them"};
+  }
 
   // Distance falloff: Wylie's law, with smooth shading and a distance to start from.
   if (!p.smooth.on) {
@@ -166,7 +188,7 @@ EffectPlan plan_effects(const CellComplex& complex, const std::vector<PlacedObje
 std::string explain_effects(const EffectPlan& plan) {
   const std::pair<const char*, const Effect*> rows[] = {
       {"depth", &plan.depth},          {"implicit lines", &plan.implicit_lines},
-      {"shadows", &plan.shadows},      {"smooth shading", &plan.smooth},
+      {"shadows", &plan.shadows},      {"object shadows", &plan.object_shadows}, {"smooth shading", &plan.smooth},
       {"distance falloff", &plan.falloff}, {"coloured light", &plan.coloured}};
   std::string out;
   for (const auto& [name, effect] : rows)
@@ -180,7 +202,7 @@ SceneEffects prepare_effects(const CellComplex& complex, const std::vector<Place
   SceneEffects e;
   e.plan = plan_effects(complex, objects, options);
   if (e.plan.shadows.on) {
-    e.shadows = cast_shadows(complex, objects, e.plan.lighting, kernel);
+    e.shadows = cast_shadows(complex, objects, e.plan.lighting, kernel, e.plan.object_shadows.on);
     std::string reach;
     for (size_t k = 0; k < e.shadows.lights.size(); ++k) {
       const PointLight& light = e.plan.lighting.points[k];
@@ -188,7 +210,7 @@ SceneEffects prepare_effects(const CellComplex& complex, const std::vector<Place
       reach += (k == 0 ? ": '" : "; '") + light.name + "' ";
       reach += light.cell == kNoCell ? std::string("stands in no cell and lights nothing")
                                      : "reaches " + plural(long(ls.reach.cells.size()), "cell", "cells") +
-                                           ", objects cast " + plural(ls.shadow_polygons, "shadow polygon", "shadow polygons");
+                                           (e.plan.object_shadows.on ? ", objects cast " + plural(ls.shadow_polygons, "shadow polygon", "shadow polygons") : "");
     }
     e.plan.shadows.why += reach;
   }

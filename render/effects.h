@@ -43,6 +43,7 @@ struct EffectPlan {
   Effect depth;           ///< depth resolution among objects and their cell's faces
   Effect implicit_lines;  ///< Bouknight's implicitly defined lines where polygons interpenetrate
   Effect shadows;         ///< point lights away from the eye: what they reach, shadow polygons, secondary scan
+  Effect object_shadows;  ///< with shadows: objects' shadow polygons (Bouknight), beside the walls' (through portals)
   Effect smooth;          ///< smooth shading (Wylie): per sample on planes, Gouraud on curved meshes
   Effect falloff;         ///< Wylie's distance law
   Effect coloured;        ///< light per colour channel
@@ -57,7 +58,7 @@ EffectPlan plan_effects(const CellComplex& complex, const std::vector<PlacedObje
                         const HalftoneOptions& options);
 
 /// One line per effect, "name: on — why" / "name: off — why", in a fixed order: depth,
-/// implicit lines, shadows, smooth shading, distance falloff, coloured light.
+/// implicit lines, shadows, object shadows, smooth shading, distance falloff, coloured light.
 std::string explain_effects(const EffectPlan& plan);
 
 /// A scene's effects decided and prepared, shared by every view of it (stereo eyes,

@@ -41,6 +41,7 @@ struct HalftoneOptions {
   bool cull_back_faces = true;  ///< drop polygons of closed meshes facing away from the eye
   std::array<double, 3> background{0, 0, 0};  ///< linear RGB where nothing is seen (Bouknight's polygon 0)
   Lights lights = Lights::Plan;  ///< the plan's point lights (with shadows) when it has any, else the eye's; or the eye's only
+  ObjectShadows object_shadows = ObjectShadows::Auto;  ///< whether objects cast shadows from those lights
   /// Assemble only the stages the scene calls for (effects.h). False: the bare pipeline as
   /// it was before effects were planned — the light at the eye, implicit lines searched
   /// wherever objects meet — for comparison.

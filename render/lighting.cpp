@@ -9,6 +9,19 @@ namespace avenues {
 
 const char* to_string(Lights l) { return l == Lights::Plan ? "plan" : "eye"; }
 
+const char* to_string(ObjectShadows s) {
+  return s == ObjectShadows::On ? "on" : s == ObjectShadows::Off ? "off" : "auto";
+}
+
+bool parse_object_shadows(const std::string& text, ObjectShadows& out) {
+  for (ObjectShadows s : {ObjectShadows::Auto, ObjectShadows::On, ObjectShadows::Off})
+    if (text == to_string(s)) {
+      out = s;
+      return true;
+    }
+  return false;
+}
+
 namespace {
 
 float luminance_of(const std::array<float, 3>& c) { return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]; }

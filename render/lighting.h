@@ -40,6 +40,19 @@ enum class Lights : uint8_t {
   Plan,  ///< the plan's point lights when it has any (with shadows), else the light at the eye
   Eye,   ///< the light at the eye only, whatever the plan says (Wylie, Bouknight)
 };
+
+/// Whether objects cast shadows from the plan's point lights (walls always do: light
+/// passes only through openings). Bouknight's shadow polygons cost a cut per occluding
+/// triangle and surface, which a furnished home with a dozen lamps makes seconds of work.
+enum class ObjectShadows : uint8_t {
+  Auto,  ///< when the object triangles times the point lights are at most kAutoObjectShadows
+  On,    ///< always
+  Off,   ///< never
+};
+/// Object triangles × point lights up to which Auto casts the objects' shadows.
+inline constexpr long kAutoObjectShadows = 20000;
+const char* to_string(ObjectShadows s);
+bool parse_object_shadows(const std::string& text, ObjectShadows& out);
 const char* to_string(Lights l);
 
 /// A point light of the plan, placed.

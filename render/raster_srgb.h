@@ -1,4 +1,5 @@
-// Avenues — linear light to sRGB and back (IEC 61966-2-1).
+// Avenues — linear light to 8-bit sRGB and back by table (IEC 61966-2-1; the transfer
+// functions are in core/srgb.h).
 //
 // Shading and filtering happen in linear light (Material::colour is linear RGB); a
 // sample is encoded to 8-bit sRGB once, at the very end, through a table. The table has
@@ -11,16 +12,9 @@
 #include <cmath>
 #include <cstdint>
 
-namespace avenues {
+#include "core/srgb.h"
 
-/// The sRGB transfer function: linear [0, 1] → encoded [0, 1].
-inline double srgb_from_linear(double v) {
-  return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
-}
-/// Its inverse: encoded [0, 1] → linear [0, 1].
-inline double linear_from_srgb(double e) {
-  return e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4);
-}
+namespace avenues {
 
 /// 8-bit sRGB code → linear value, by table.
 class SrgbDecoder {

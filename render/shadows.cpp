@@ -5,12 +5,17 @@
 #include <chrono>
 #include <cmath>
 
+#include <tbb/parallel_for.h>
+
 namespace avenues {
 
 namespace {
 
 /// Relative size below which a piece is a sliver of rounding, not a region.
 constexpr double kSliver = 1e-9;
+/// Twice an occluder's area, relative to its longest edge squared, below which it is a
+/// segment (the sine of its widest angle, about).
+constexpr double kFlat = 1e-9;
 
 struct Sphere {
   Vec3 c;
@@ -46,10 +51,73 @@ Vec3 newell(const std::vector<Vec3>& p) {
   return n;
 }
 
+/// The shadow volume of a convex occluder lit from a point: the region beyond the
+/// occluder's plane (away from the light) and inside the planes through the light and each
+/// of its edges, each plane as a function ≥ 0 inside. Built once per occluder and light, so
+/// that each receiver costs a few dot products when it lies outside (the usual case), and
+/// the cut itself only when it may not.
+class ShadowVolume {
+ public:
+  ShadowVolume(const std::vector<Vec3>& occluder, Vec3 light) : light_(light) {
+    if (occluder.size() < 3) return;
+    Vec3 n = newell(occluder);
+    // An occluder of no area (its corners in a line, as models have them) hides nothing;
+    // its side planes would all be one plane, and the "volume" half of space.
+    double longest = 0;
+    for (size_t i = 0; i < occluder.size(); ++i)
+      longest = std::max(longest, length(occluder[(i + 1) % occluder.size()] - occluder[i]));
+    if (!(length(n) > kFlat * longest * longest)) return;
+    const double h = dot(n, light - occluder[0]);
+    if (h == 0) return;  // the light in the occluder's plane: it casts nothing
+    if (h < 0) n = -1.0 * n;
+    base_ = occluder[0];
+    back_ = n;
+    Vec3 c{0, 0, 0};
+    for (Vec3 v : occluder) c = c + (1.0 / double(occluder.size())) * v;
+    for (size_t i = 0; i < occluder.size(); ++i) {
+      Vec3 m = cross(occluder[i] - light, occluder[(i + 1) % occluder.size()] - light);
+      if (dot(m, c - light) < 0) m = -1.0 * m;
+      sides_.push_back(m);
+    }
+    casts_ = true;
+  }
+
+  /// True when the polygon lies wholly outside one of the volume's planes, so that the
+  /// cut would leave nothing: no shadow on it.
+  bool misses(const std::vector<Vec3>& poly) const {
+    if (!casts_) return true;
+    auto outside = [&](auto f) {
+      for (Vec3 x : poly)
+        if (f(x) >= 0) return false;
+      return true;
+    };
+    if (outside([&](Vec3 x) { return -dot(back_, x - base_); })) return true;
+    for (const Vec3& m : sides_)
+      if (outside([&](Vec3 x) { return dot(m, x - light_); })) return true;
+    return false;
+  }
+
+  /// The convex part of `surface` inside the volume; empty if none of some area.
+  std::vector<Vec3> cut(const std::vector<Vec3>& surface) const {
+    if (!casts_ || surface.size() < 3) return {};
+    std::vector<Vec3> out = cut_polygon(surface, [&](Vec3 x) { return -dot(back_, x - base_); });
+    for (size_t i = 0; i < sides_.size() && out.size() >= 3; ++i)
+      out = cut_polygon(out, [&](Vec3 x) { return dot(sides_[i], x - light_); });
+    if (out.size() < 3 || !(polygon_area(out) > kSliver * polygon_area(surface))) return {};
+    return out;
+  }
+
+ private:
+  Vec3 light_, base_, back_;
+  std::vector<Vec3> sides_;
+  bool casts_ = false;
+};
+
 /// One triangle of an object that faces the light.
 struct Occluder {
   int object = -1, polygon = -1;
   std::vector<Vec3> tri;
+  ShadowVolume volume;
 };
 
 /// A surface: the convex parts of one face or one object polygon.
@@ -74,17 +142,31 @@ class LightCaster {
     }
     // Occluders: the triangles facing the light of every object in a cell it reaches.
     occluders_by_object_.assign(objects_.size(), {});
+    runs_by_object_.assign(objects_.size(), {});
     spheres_.assign(objects_.size(), {});
     for (size_t o = 0; o < objects_.size(); ++o) {
       const PlacedObject& obj = objects_[o];
       if (obj.cell == kNoCell || !out_.reach.reaches(obj.cell) || obj.mesh.vertices.empty()) continue;
+      // The fitting a light hangs in (its bounds hold the light: a lamp's shade around its
+      // bulb) casts no shadow from it; taken as opaque, it would put the whole room in
+      // its shadow.
+      if (obj.bounds.contains(light_)) continue;
       spheres_[o] = sphere_of(obj.mesh.vertices);
       for (size_t t = 0; t < obj.mesh.triangles.size(); ++t) {
-        Occluder q{int(o), obj.mesh.polygon_of[t], triangle(obj.mesh, t)};
-        const double h = dot(newell(q.tri), light_ - q.tri[0]);
+        std::vector<Vec3> tri = triangle(obj.mesh, t);
+        const double h = dot(newell(tri), light_ - tri[0]);
         if (obj.mesh.closed ? !(h > 0) : h == 0) continue;  // seen from behind, or edge-on
-        occluders_by_object_[o].push_back(std::move(q));
+        ShadowVolume volume(tri, light_);
+        occluders_by_object_[o].push_back(Occluder{int(o), obj.mesh.polygon_of[t], std::move(tri), std::move(volume)});
         ++out_.occluders;
+      }
+      // Runs of consecutive occluders (neighbours in the mesh, mostly) under one sphere, so
+      // that a receiver far from most of an object's triangles skips them by the run.
+      const std::vector<Occluder>& occ = occluders_by_object_[o];
+      for (size_t first = 0; first < occ.size(); first += kRun) {
+        std::vector<Vec3> pts;
+        for (size_t k = first; k < std::min(occ.size(), first + kRun); ++k) pts.insert(pts.end(), occ[k].tri.begin(), occ[k].tri.end());
+        runs_by_object_[o].push_back(sphere_of(pts));
       }
     }
   }
@@ -113,11 +195,18 @@ class LightCaster {
     const Sphere rec = sphere_of(all);
     for (size_t o = 0; o < occluders_by_object_.size(); ++o) {
       if (occluders_by_object_[o].empty() || !may_shade(light_, spheres_[o], rec)) continue;
-      for (const Occluder& q : occluders_by_object_[o]) {
+      const std::vector<Occluder>& occ = occluders_by_object_[o];
+      for (size_t k = 0; k < occ.size(); ++k) {
+        if (k % kRun == 0 && !may_shade(light_, runs_by_object_[o][k / kRun], rec)) {
+          k += kRun - 1;
+          continue;
+        }
+        const Occluder& q = occ[k];
         if (q.object == s.object && q.polygon == s.polygon) continue;
         for (const auto& part : s.parts) {
           ++out_.pairs_tested;
-          std::vector<Vec3> sh = shadow_on(part, q.tri, light_);
+          if (q.volume.misses(part)) continue;
+          std::vector<Vec3> sh = q.volume.cut(part);
           if (sh.empty()) continue;
           out.shadow.push_back(std::move(sh));
           ++out_.shadow_polygons;
@@ -148,30 +237,16 @@ class LightCaster {
   double scale_;
   std::vector<std::vector<std::vector<Vec3>>> cones_;  ///< per cell: per path, its cone's planes
   std::vector<uint8_t> all_directions_;                ///< per cell: lit from every direction
+  static constexpr size_t kRun = 16;  ///< occluders per run
   std::vector<std::vector<Occluder>> occluders_by_object_;
+  std::vector<std::vector<Sphere>> runs_by_object_;  ///< per object: the sphere of each run of kRun occluders
   std::vector<Sphere> spheres_;
 };
 
 }  // namespace
 
 std::vector<Vec3> shadow_on(const std::vector<Vec3>& surface, const std::vector<Vec3>& occluder, Vec3 light) {
-  if (surface.size() < 3 || occluder.size() < 3) return {};
-  Vec3 n = newell(occluder);
-  const double h = dot(n, light - occluder[0]);
-  if (h == 0) return {};  // the light in the occluder's plane: it casts nothing
-  if (h < 0) n = -1.0 * n;
-  // Beyond the occluder's plane, away from the light.
-  std::vector<Vec3> out = cut_polygon(surface, [&](Vec3 x) { return -dot(n, x - occluder[0]); });
-  Vec3 c{0, 0, 0};
-  for (Vec3 v : occluder) c = c + (1.0 / double(occluder.size())) * v;
-  // Inside the planes through the light and each edge.
-  for (size_t i = 0; i < occluder.size() && out.size() >= 3; ++i) {
-    Vec3 m = cross(occluder[i] - light, occluder[(i + 1) % occluder.size()] - light);
-    if (dot(m, c - light) < 0) m = -1.0 * m;
-    out = cut_polygon(out, [&](Vec3 x) { return dot(m, x - light); });
-  }
-  if (out.size() < 3 || !(polygon_area(out) > kSliver * polygon_area(surface))) return {};
-  return out;
+  return ShadowVolume(occluder, light).cut(surface);
 }
 
 const SurfaceLight* SceneShadows::on_face(size_t light, CellId cell, int face) const {
@@ -188,8 +263,11 @@ const SurfaceLight* SceneShadows::on_object(size_t light, int object, int polygo
   return s < 0 ? nullptr : &lights[light].surfaces[size_t(s)];
 }
 
+/// What casts shadows when objects do not.
+const std::vector<PlacedObject> kNoObjects;
+
 SceneShadows cast_shadows(const CellComplex& complex, const std::vector<PlacedObject>& objects,
-                          const Lighting& lighting, Kernel kernel) {
+                          const Lighting& lighting, Kernel kernel, bool object_shadows) {
   const auto t0 = std::chrono::steady_clock::now();
   SceneShadows out;
   int32_t faces = 0, polygons = 0;
@@ -205,13 +283,16 @@ SceneShadows cast_shadows(const CellComplex& complex, const std::vector<PlacedOb
   }
   out.polygon_base.push_back(polygons);
   if (lighting.at_eye) return out;
-  for (const PointLight& light : lighting.points) {
-    LightShadows& ls = out.lights.emplace_back();
+  // Each light on its own: lights are independent, so they are cast side by side.
+  out.lights.resize(lighting.points.size());
+  auto cast = [&](size_t index) {
+    const PointLight& light = lighting.points[index];
+    LightShadows& ls = out.lights[index];
     ls.face_surface.assign(size_t(faces), -1);
     ls.polygon_surface.assign(size_t(polygons), -1);
-    if (light.cell == kNoCell) continue;
+    if (light.cell == kNoCell) return;
     ls.reach = find_lit(complex, light.position, light.cell, kernel);
-    LightCaster caster(complex, objects, light.position, ls);
+    LightCaster caster(complex, object_shadows ? objects : kNoObjects, light.position, ls);
     caster.prepare();
     const double tol = 1e-9 * (1 + length(light.position));
     Surface s;
@@ -256,7 +337,9 @@ SceneShadows cast_shadows(const CellComplex& complex, const std::vector<PlacedOb
       }
       s.object = s.polygon = -1;
     }
-  }
+  };
+  if (lighting.points.size() > 1) tbb::parallel_for(size_t(0), lighting.points.size(), cast);
+  else if (!lighting.points.empty()) cast(0);
   out.micros = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }

@@ -16,7 +16,8 @@
 //     beyond it within the planes through the light and its edges, and its shadow polygon on
 //     a surface is the surface cut to that volume (exact, convex, in the surface's plane).
 //     A ray from the light to a point of a cell passes only through cells on its chain, so
-//     only objects in cells the light reaches can shade anything.
+//     only objects in cells the light reaches can shade anything. An object whose bounds
+//     hold the light (the lamp it hangs in) casts no shadow from it.
 // A point of a surface is lit when it lies in the surface's lit region (all of it when
 // `whole`) and in none of its shadow polygons; the scanline tests both per sample in a
 // secondary scan (scanline.h, SecondaryScan).
@@ -70,8 +71,10 @@ struct SceneShadows {
 
 /// Traverses the cells from every point light of `lighting` (find_lit, in `kernel`) and casts
 /// the shadows of `objects` (place_objects(complex)). Empty when the lighting is at the eye.
+/// With `object_shadows` false, objects are lit (through portals, as walls are) but cast no
+/// shadows.
 SceneShadows cast_shadows(const CellComplex& complex, const std::vector<PlacedObject>& objects,
-                          const Lighting& lighting, Kernel kernel = Kernel::Double);
+                          const Lighting& lighting, Kernel kernel = Kernel::Double, bool object_shadows = true);
 
 /// The convex region of `surface` (a convex polygon) in the shadow volume of the convex
 /// polygon `occluder` lit from `light`: beyond the occluder's plane and inside the planes

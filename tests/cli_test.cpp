@@ -394,10 +394,11 @@ TEST_F(Cli, ViewExplainSaysWhichEffectsTheSceneCallsForAndWhy) {
   EXPECT_EQ(house["depth"], "off");
   EXPECT_EQ(house["implicit lines"], "off");
   EXPECT_EQ(house["shadows"], "on");
+  EXPECT_EQ(house["object shadows"], "off");
   EXPECT_EQ(house["smooth shading"], "off");
   EXPECT_EQ(house["distance falloff"], "off");
   EXPECT_EQ(house["coloured light"], "on");
-  EXPECT_EQ(house.size(), 6u);
+  EXPECT_EQ(house.size(), 7u);
   // The same lit from the eye, smooth: no shadows, no colour; the distance law only while asked.
   auto eye = effects(kPlan, {"--lights", "eye", "--shading", "smooth"});
   EXPECT_EQ(eye["shadows"], "off");

@@ -82,10 +82,11 @@ TEST(Effects, ABareRoomCallsForNothing) {
             "depth: off \u2014 no object stands in any cell, and the faces of a convex cell never hide each other");
   EXPECT_EQ(line(e, "implicit lines"), "implicit lines: off \u2014 no objects: the faces of convex cells never cross");
   EXPECT_EQ(line(e, "shadows"), "shadows: off \u2014 the plan has no light away from the eye");
+  EXPECT_EQ(line(e, "object shadows"), "object shadows: off \u2014 no shadows");
   EXPECT_EQ(line(e, "smooth shading"), "smooth shading: off \u2014 flat shading asked (Bouknight)");
   EXPECT_EQ(line(e, "distance falloff"), "distance falloff: off \u2014 flat shading has no distance law");
   EXPECT_EQ(line(e, "coloured light"), "coloured light: off \u2014 the light at the eye is white");
-  EXPECT_EQ(std::count(e.begin(), e.end(), '\n'), 6);
+  EXPECT_EQ(std::count(e.begin(), e.end(), '\n'), 7);
 }
 
 TEST(Effects, DepthOnlyWhereObjectsStandAndImplicitLinesOnlyWhereTheyCross) {
@@ -109,6 +110,39 @@ TEST(Effects, ShadowsOnlyForLightsAwayFromTheEye) {
   e = explain(room_with({}, {lamp()}), eye);
   EXPECT_EQ(line(e, "shadows"),
             "shadows: off \u2014 lit from the eye only, as asked (the plan's 1 point light is not used)");
+}
+
+TEST(Effects, ObjectsCastShadowsWhereTheirCostIsSmallOrWhenAsked) {
+  // One crate (12 triangles) under one lamp: auto casts its shadow.
+  const Plan one = room_with({box("crate", {3, 3, 0})}, {lamp()});
+  std::string e = explain(one);
+  EXPECT_EQ(line(e, "object shadows"),
+            "object shadows: on \u2014 12 object triangles under 1 point light, at most 20000 triangle-lights")
+      << e;
+  HalftoneOptions off;
+  off.object_shadows = ObjectShadows::Off;
+  e = explain(one, off);
+  EXPECT_EQ(line(e, "object shadows"), "object shadows: off \u2014 asked off (12 object triangles under 1 point light)");
+  EXPECT_EQ(line(e, "shadows").find("objects cast"), std::string::npos) << e;
+  HalftoneOptions on;
+  on.object_shadows = ObjectShadows::On;
+  EXPECT_EQ(line(explain(one, on), "object shadows"),
+            "object shadows: on \u2014 asked (12 object triangles under 1 point light)");
+  // A furnished home's worth: 1,700 small crates under a lamp are over what auto casts.
+  std::vector<Object> crates;
+  for (int i = 0; i < 1700; ++i)
+    crates.push_back(box("crate " + std::to_string(i), {0.4 + 0.13 * (i % 40), 0.4 + 0.12 * (i / 40), 0}, {0.1, 0.1, 0.1}));
+  const CellComplex c = build_cells(room_with(crates, {lamp()}));
+  const SceneEffects fx = prepare_effects(c, place_objects(c), HalftoneOptions{});
+  EXPECT_FALSE(fx.plan.object_shadows.on);
+  EXPECT_EQ(fx.plan.object_shadows.why,
+            "20400 object triangles under 1 point light: 20400 triangle-lights, over the 20000 that auto casts "
+            "(seconds of cutting); --object-shadows on casts them");
+  ASSERT_EQ(fx.shadows.lights.size(), 1u);
+  EXPECT_EQ(fx.shadows.lights[0].occluders, 0);
+  EXPECT_EQ(fx.shadows.lights[0].shadow_polygons, 0);
+  // The room and the crates are still lit by the lamp: the walls' shadows do not need the objects'.
+  EXPECT_GT(fx.shadows.lights[0].surfaces.size(), 1700u);
 }
 
 TEST(Effects, SmoothShadingOnlyForCurvedMeshesUnlessForced) {

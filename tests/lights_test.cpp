@@ -408,6 +408,24 @@ TEST(Shadows, AShadowPolygonIsTheSurfaceCutToTheShadowVolume) {
   EXPECT_TRUE(shadow_on(floor, square, {0, 0, 1}).empty()) << "the light in the occluder's plane";
 }
 
+TEST(Shadows, AnOccluderOfNoAreaCastsNoShadow) {
+  // Models hold triangles whose corners lie in a line (Sweet Home's Studio has hundreds).
+  // Their three side planes are one plane, so a shadow volume built from them was half of
+  // space: the whole floor on one side of the line fell in shadow.
+  const std::vector<Vec3> floor{{-5, -5, 0}, {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}};
+  const std::vector<Vec3> line{{-0.5, 0, 1}, {0, 0, 1}, {0.5, 0, 1}};
+  const std::vector<Vec3> nearly{{-0.5, 0, 1}, {0, 1e-13, 1}, {0.5, 0, 1}};
+  for (Vec3 light : {Vec3{0.3, 0.2, 2}, Vec3{-1, 3, 1.5}, Vec3{2, -2, 4}}) {
+    EXPECT_TRUE(shadow_on(floor, line, light).empty()) << light.x << " " << light.y << " " << light.z;
+    EXPECT_TRUE(shadow_on(floor, nearly, light).empty()) << light.x << " " << light.y << " " << light.z;
+  }
+  // A thin triangle that has an area still casts its thin shadow.
+  const std::vector<Vec3> thin{{-0.5, 0, 1}, {0, 1e-3, 1}, {0.5, 0, 1}};
+  const std::vector<Vec3> sh = shadow_on(floor, thin, {0, 0, 2});
+  ASSERT_GE(sh.size(), 3u);
+  EXPECT_NEAR(polygon_area(sh), 4 * 0.5e-3, 1e-9);
+}
+
 // --- shadow outlines in drawings -----------------------------------------------------------
 
 TEST(ShadowOutlines, TheBoxsShadowOutlineIsItsAnalyticOutline) {

@@ -493,6 +493,85 @@ TEST(SweetHome, FurnitureBecomesBoxesTurnedTheWayTheyStand) {
   EXPECT_TRUE(back_door);
 }
 
+// Light pieces become the plan's point lights where Sweet Home's 3D view puts them: each
+// source at fractions (x, y, z) of the piece's box, (x − ½)·width across and (½ − y)·depth
+// along it before its angle (clockwise on the y-down screen) turns it, z·height above its
+// floor; the source's colour's hue, and 2 × power × its brightest channel as intensity.
+TEST(SweetHomeLights, LightPiecesBecomePointLightsWhereSweetHomePutsThem) {
+  TempDir dir;
+  const Plan p = read_sweet_home(dir.write("Home.xml", small_home(R"(
+  <light name='Pendant' x='200' y='200' elevation='200' width='40' depth='40' height='50' power='0.5'>
+    <lightSource x='0.5' y='0.5' z='0.5' color='00FFFFFF'/>
+  </light>
+  <light name='Spot' x='100' y='100' elevation='100' angle='1.5707964' width='20' depth='10' height='10' power='0.25'>
+    <lightSource x='0' y='0' z='1' color='00808080'/>
+    <lightSource x='1' y='1' z='0' color='FFFF0000'/>
+  </light>
+  <light name='Pendant' x='300' y='300' elevation='200' width='40' depth='40' height='50'>
+    <lightSource x='0.5' y='0.5' z='0.5' color='00FFFFFF'/>
+  </light>
+  <light name='Off' x='300' y='100' width='10' depth='10' height='10' power='0'>
+    <lightSource x='0.5' y='0.5' z='0.5' color='00FFFFFF'/>
+  </light>
+  <light name='Broken' x='300' y='150' width='10' depth='10' height='10'>
+    <lightSource x='NaN' y='0.5' z='0.5' color='00FFFFFF'/>
+    <lightSource x='0.5' y='0.5' z='0.5' color='not a colour'/>
+  </light>
+)")));
+  std::map<std::string, const Light*> by_name;
+  for (const Light& l : p.lights) by_name[l.name] = &l;
+  ASSERT_EQ(p.lights.size(), 5u) << "Pendant, two Spot sources, the second Pendant, Broken's second source";
+  auto expect_at = [](const Light* l, Vec3 at, double intensity, std::array<double, 3> colour) {
+    ASSERT_NE(l, nullptr);
+    SCOPED_TRACE(l->name);
+    EXPECT_EQ(l->kind, LightKind::Point);
+    EXPECT_NEAR(l->position.x, at.x, 1e-6);
+    EXPECT_NEAR(l->position.y, at.y, 1e-6);
+    EXPECT_NEAR(l->position.z, at.z, 1e-6);
+    EXPECT_NEAR(l->intensity, intensity, 1e-9);
+    for (size_t k = 0; k < 3; ++k) EXPECT_NEAR(l->colour[k], colour[k], 1e-9);
+  };
+  // (200, 200) cm on screen is (2, −2) m in plan; the source halfway up the 50 cm piece.
+  expect_at(by_name["Pendant"], {2.0, -2.0, 2.25}, 1.0, {1, 1, 1});
+  // Turned a quarter clockwise: the first source's (−10, +5) cm becomes (−5, −10) on screen.
+  expect_at(by_name["Spot, source 1"], {0.95, -0.90, 1.1}, 2 * 0.25 * (128 / 255.0), {1, 1, 1});
+  expect_at(by_name["Spot, source 2"], {1.05, -1.10, 1.0}, 0.5, {1, 0, 0});
+  expect_at(by_name["Pendant (2)"], {3.0, -3.0, 2.25}, 1.0, {1, 1, 1});
+  expect_at(by_name["Broken"], {3.0, -1.5, 0.05}, 1.0, {1, 1, 1});
+  EXPECT_EQ(by_name.count("Off"), 0u) << "power 0: off";
+  int dropped = 0, white = 0;
+  for (const std::string& w : p.warnings) {
+    dropped += contains(w, "light 'Broken', light source 1") && contains(w, "light source dropped");
+    white += contains(w, "light source 2") && contains(w, "is not a colour: white used");
+  }
+  EXPECT_EQ(dropped, 1);
+  EXPECT_EQ(white, 1);
+  // The lamps stay pieces of furniture too.
+  EXPECT_EQ(p.objects.size(), 5u);
+}
+
+// Debian's example homes: every light piece is lit, each source in free space.
+TEST(SweetHomeLights, TheExampleHomesLightsStandInTheirRooms) {
+  for (const char* name : kHomes) {
+    SCOPED_TRACE(name);
+    const fs::path file = kExamples / (std::string(name) + ".xml");
+    pugi::xml_document doc;
+    ASSERT_TRUE(doc.load_file(file.c_str()));
+    size_t sources = 0;
+    for (pugi::xpath_node n : doc.select_nodes("//light"))
+      if (n.node().attribute("power").as_double(0.5) > 0)
+        sources += size_t(std::distance(n.node().children("lightSource").begin(), n.node().children("lightSource").end()));
+    const Plan p = read_sweet_home(file.string());
+    EXPECT_EQ(p.lights.size(), sources);
+    EXPECT_GT(sources, 0u);
+    const CellComplex c = build_cells(p);
+    for (const Light& l : c.lights) {
+      const Location at = c.locate(l.position);
+      EXPECT_EQ(at.what, Location::What::Cell) << l.name << " at " << l.position.x << ", " << l.position.y << ", " << l.position.z;
+    }
+  }
+}
+
 /// An L-shaped block as an OBJ file, in Sweet Home's model axes (y up, z towards the
 /// front), 2 × 1 × 3 units and off the origin: 8 + 4 vertices, every face a quad.
 std::string l_block_obj() {

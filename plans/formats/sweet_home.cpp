@@ -288,6 +288,17 @@ struct PieceIn {
   std::array<double, 9> model_rotation{1, 0, 0, 0, 1, 0, 0, 0, 1};  ///< row-major, applied to the model first
   MaterialId material = -1;  ///< its color, where it has one
   std::vector<ModelMaterialIn> model_materials;  ///< in the order Sweet Home tries them (the first that names a material wins)
+  /// A light's sources (HomeLight's LightSource: x, y, z in fractions of the piece's width,
+  /// depth and height; colour as written) and its power, 0 (off) to 1.
+  struct LightSourceIn {
+    double x = 0.5, y = 0.5, z = 0.5;
+    std::string colour;
+    SourceLoc where;
+  };
+  std::vector<LightSourceIn> light_sources;
+  double power = 0.5;
+  Vec2 screen_centre;     ///< [cm] (x, y) as Sweet Home has them, where its light sources are placed from
+  double screen_angle = 0;  ///< [rad] clockwise on screen, as written
 };
 
 /// A door or window on its way into the wall it sits in.
@@ -370,10 +381,12 @@ class HomeReader {
   void open_room_edges(const std::vector<RoomIn>& rooms);
   void read_rooms(std::vector<RoomIn> rooms);
   void add_furniture();
+  void add_lights();
   void read_camera(const HomeElement& home);
 
   std::shared_ptr<const Mesh> model_of(const PieceIn& p);
   std::vector<ModelMaterialIn> model_materials_of(const HomeElement& n, const std::string& element);
+  void read_light_sources(const HomeElement& n, const std::string& element, PieceIn& p);
   void colour_model(Mesh& m, const std::vector<std::string>& libraries, const PieceIn& p);
   /// An image entry that a model's material or a piece's modelMaterials name, read once.
   struct ImageMean {
@@ -904,7 +917,38 @@ void HomeReader::collect_pieces(const HomeElement& home) {
       if (ok && (in >> std::ws).eof()) p.model_rotation = m;
       else warn(n, element, "modelRotation is not nine numbers: the model is used unrotated");
     }
+    if (kind == "light") read_light_sources(n, element, p);
     pieces_.push_back(std::move(p));
+  }
+}
+
+/// A light piece's power and sources. A source Sweet Home could not place (a coordinate
+/// that is not a number) is dropped with a warning naming it; the piece stays.
+void HomeReader::read_light_sources(const HomeElement& n, const std::string& element, PieceIn& p) {
+  p.screen_centre = {need(n, "x", element), need(n, "y", element)};
+  p.screen_angle = number(n, "angle", element).value_or(0);
+  if (const std::optional<double> power = number(n, "power", element)) {
+    if (std::isfinite(*power)) p.power = std::clamp(*power, 0.0, 1.0);
+    else warn(n, element, "power is not a number: 0.5 (Sweet Home's default) used");
+  }
+  int k = 0;
+  for (const HomeElement* s : tree_.children(n, "lightSource")) {
+    const std::string who = element + ", light source " + std::to_string(++k);
+    PieceIn::LightSourceIn src;
+    src.where = loc(*s, who);
+    bool ok = true;
+    for (auto [attr, v] : {std::pair{"x", &src.x}, std::pair{"y", &src.y}, std::pair{"z", &src.z}}) {
+      const std::optional<double> f = number(*s, attr, who);
+      if (!f) continue;  // Sweet Home's LightSource has no default, but a missing one is the centre here
+      if (!std::isfinite(*f) || std::fabs(*f) > 1e3) ok = false;
+      else *v = *f;
+    }
+    if (!ok) {
+      warn(*s, who, "a coordinate is not a finite number: light source dropped");
+      continue;
+    }
+    src.colour = s->text("color");
+    p.light_sources.push_back(std::move(src));
   }
 }
 
@@ -1630,6 +1674,58 @@ std::shared_ptr<const Mesh> HomeReader::model_of(const PieceIn& p) {
   return std::make_shared<const Mesh>(std::move(m));
 }
 
+/// Each light piece's sources as the plan's point lights, where Sweet Home's 3D view puts
+/// them (HomeComponent3D): a source at fractions (x, y, z) of the piece's box lies
+/// (x − ½)·width across and (½ − y)·depth along the piece before its angle turns it, and
+/// z·height above its floor. A light of power 0 is off and lights nothing. Sweet Home gives
+/// a Java 3D point light the source's colour times the power; Avenues keeps the colour's hue
+/// (its brightest channel at 1) and makes its strength the intensity: 2 × power × that
+/// channel, so that a white source at the default power of 0.5 is Avenues' full light.
+void HomeReader::add_lights() {
+  std::set<std::string> names;
+  for (const Light& l : plan_.lights) names.insert(l.name);
+  for (const PieceIn& p : pieces_) {
+    if (p.light_sources.empty() || !(p.power > 0)) continue;
+    const double c = std::cos(p.screen_angle), s = std::sin(p.screen_angle);
+    const double w = p.width / kCm, d = p.depth / kCm;  // [cm], as the fractions are taken
+    const double floor = plan_.storeys[size_t(p.storey)].elevation + p.elevation;
+    for (size_t k = 0; k < p.light_sources.size(); ++k) {
+      const PieceIn::LightSourceIn& src = p.light_sources[k];
+      Light l;
+      l.kind = LightKind::Point;
+      l.where = src.where;
+      std::string name = p.name + (p.light_sources.size() > 1 ? ", source " + std::to_string(k + 1) : "");
+      for (int n = 2; !names.insert(name).second; ++n)
+        name = p.name + (p.light_sources.size() > 1 ? ", source " + std::to_string(k + 1) : "") + " (" +
+               std::to_string(n) + ")";
+      l.name = name;
+      const double xl = -w / 2 + src.x * w, yl = d / 2 - src.y * d;
+      const Vec2 at = plan_point(p.screen_centre.x + xl * c - yl * s, p.screen_centre.y + xl * s + yl * c);
+      l.position = {at.x, at.y, floor + src.z * p.height};
+      // Sweet Home's colour (ARGB, alpha unused) in linear light: its hue, and its strength.
+      std::array<double, 3> rgb{1, 1, 1};
+      double strength = 1;
+      if (!src.colour.empty()) {
+        if (const std::optional<std::array<double, 3>> lin = colour_of(src.colour)) {
+          const double top = std::max({(*lin)[0], (*lin)[1], (*lin)[2]});
+          if (top > 0) {
+            rgb = {(*lin)[0] / top, (*lin)[1] / top, (*lin)[2] / top};
+            strength = srgb_from_linear(top);
+          } else {
+            strength = 0;
+          }
+        } else {
+          plan_.warnings.push_back(src.where.str() + ": colour \"" + src.colour + "\" is not a colour: white used");
+        }
+      }
+      l.colour = rgb;
+      l.intensity = 2 * p.power * strength;
+      if (!(l.intensity > 0)) continue;  // a black source lights nothing
+      plan_.lights.push_back(std::move(l));
+    }
+  }
+}
+
 void HomeReader::add_furniture() {
   for (const PieceIn& p : pieces_) {
     if (p.door_or_window) continue;
@@ -1722,6 +1818,7 @@ Plan HomeReader::read() {
   }
   read_rooms(std::move(rooms));
   add_furniture();
+  add_lights();
   read_camera(home);
 
   if (models_missing_ > 0)
