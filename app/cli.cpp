@@ -179,6 +179,7 @@ int run_cli(int argc, char** argv) {
   path->add_option("--kernel", path_opt.kernel, "arithmetic of the traversal")->capture_default_str()->check(kernel_name());
   path->add_option("--samples", path_opt.samples, "half-tone: samples per pixel, 1, 4 or 16")->capture_default_str()->check(samples_count());
   path->add_option("--shading", path_opt.shading, "half-tone: flat, smooth or auto")->capture_default_str();
+  path->add_option("--lights", path_opt.lights, "plan (its point lights, casting shadows) or eye (the light at the eye; faster in a home full of lamps)")->capture_default_str();
   path->add_option("--object-shadows", path_opt.object_shadows, "objects' shadows from the plan's point lights: auto (when object triangles x lights <= 20000), on or off")
       ->capture_default_str();
   path->add_option("--stereo", path_opt.stereo, "stereo frames: anaglyph, parallel or cross (drawings: parallel or cross)");
@@ -220,6 +221,7 @@ int run_cli(int argc, char** argv) {
       ->type_name("FILE")->check(file_name());
   walk->add_option("--samples", walk_opt.samples, "half-tone: samples per pixel, 1, 4 or 16")->capture_default_str()->check(samples_count());
   walk->add_option("--shading", walk_opt.shading, "half-tone: flat or smooth")->capture_default_str();
+  walk->add_option("--lights", walk_opt.lights, "plan (its point lights, casting shadows) or eye (the light at the eye; faster in a home full of lamps)")->capture_default_str();
   walk->add_option("--object-shadows", walk_opt.object_shadows, "objects' shadows from the plan's point lights: auto (when object triangles x lights <= 20000), on or off")
       ->capture_default_str();
   walk->add_option("--kernel", walk_opt.kernel, "arithmetic of the traversal")->capture_default_str()->check(kernel_name());
@@ -252,6 +254,8 @@ int run_cli(int argc, char** argv) {
   bench_walk->add_option("--frames", bench_walk_frames, "frames per plan")->capture_default_str()->check(whole_at_least(1));
   bench_walk->add_option("--size", bench_walk_size, "the window's size")->type_name("WxH")->capture_default_str()->check(size_wxh());
   double bench_walk_budget = 1000.0 / 60;
+  std::string bench_walk_lights = "plan";
+  bench_walk->add_option("--lights", bench_walk_lights, "plan or eye, as for walk")->capture_default_str()->check(CLI::IsMember({"plan", "eye"}));
   bench_walk->add_option("--frame-budget", bench_walk_budget, "[ms] the walkthrough's frame budget; 0: none")
       ->capture_default_str()->check(number_in(0, 10000));
 
@@ -277,7 +281,8 @@ int run_cli(int argc, char** argv) {
     if (*drawing) return run_drawing(drawing_opt);
     if (*papers) return run_bench_papers(bench_threads, bench_repeats);
     if (*bench_accuracy) return run_bench_accuracy(accuracy);
-    if (*bench_walk) return run_bench_walk(bench_walk_plans, bench_walk_frames, bench_walk_size, bench_walk_budget);
+    if (*bench_walk)
+      return run_bench_walk(bench_walk_plans, bench_walk_frames, bench_walk_size, bench_walk_budget, bench_walk_lights);
     if (*walk) return run_walk(walk_opt);
     if (*path) return run_path(path_opt);
     if (*office) return run_generate_office(office_opt);

@@ -85,6 +85,8 @@ class Session {
     halftone_.samples = samples_option(opt.samples);
     if (!parse_shading(opt.shading, halftone_.shading.model))
       throw std::runtime_error("--shading wants flat or smooth, not '" + opt.shading + "'");
+    if (opt.lights == "eye") halftone_.lights = Lights::Eye;
+    else if (opt.lights != "plan") throw std::runtime_error("--lights wants plan or eye, not '" + opt.lights + "'");
     if (!parse_object_shadows(opt.object_shadows, halftone_.object_shadows))
       throw std::runtime_error("--object-shadows wants auto, on or off, not '" + opt.object_shadows + "'");
     if (opt.stereo == "mono") stereo_ = StereoMode::Mono;
@@ -488,7 +490,8 @@ int run_walk(const WalkOptions& opt) {
   return status;
 }
 
-int run_bench_walk(const std::vector<std::string>& plans, long frames, const std::string& size, double frame_budget_ms) {
+int run_bench_walk(const std::vector<std::string>& plans, long frames, const std::string& size, double frame_budget_ms,
+                   const std::string& lights) {
   if (frames < 20) throw std::runtime_error("--frames must be at least 20");
   std::vector<std::string> files = plans;
   if (files.empty())
@@ -497,7 +500,7 @@ int run_bench_walk(const std::vector<std::string>& plans, long frames, const std
   const char* display = std::getenv("DISPLAY");
   std::cout << "walkthrough window, " << size << " half-tone, flat shading, 1 sample, status line on, no vsync; "
             << frames << " frames per plan walking forward while turning 90 deg/s (the first 10 not counted); frame budget "
-            << (frame_budget_ms > 0 ? fixed(frame_budget_ms, 1) + " ms" : std::string("off")) << "; DISPLAY="
+            << (frame_budget_ms > 0 ? fixed(frame_budget_ms, 1) + " ms" : std::string("off")) << "; lights " << lights << "; DISPLAY="
             << (display ? display : "") << "\n"
             << "frame: period from one frame's start to the next (percentiles); render: visibility and half-tone;\n"
             << "show: texture upload, blit and status line; swap: glfwSwapBuffers (medians); CPU/frame: this\n"
@@ -518,6 +521,7 @@ int run_bench_walk(const std::vector<std::string>& plans, long frames, const std
     opt.frames = frames + 10;
     opt.vsync = false;
     opt.frame_budget_ms = frame_budget_ms;
+    opt.lights = lights;
     WalkReport report;
     std::string why;
     if (!run_session(plan, opt, events, report, why)) throw std::runtime_error("cannot open the walkthrough window: " + why);

@@ -101,6 +101,7 @@ struct PathOptions {
   std::string kernel = "double";
   int samples = 4;                ///< half-tone: samples per pixel, 1, 4 or 16
   std::string shading = "flat";   ///< half-tone: flat, smooth or auto
+  std::string lights = "plan";    ///< plan (its point lights, with shadows) or eye (the light at the eye only)
   std::string object_shadows = "auto";  ///< objects' shadows from the plan's lights: auto, on or off
   std::string stereo;             ///< "": mono; pictures: anaglyph, parallel, cross; drawings: parallel, cross
   double interocular = 0.065;     ///< [m]
@@ -140,6 +141,7 @@ struct WalkOptions {
   std::string record;                  ///< keyframe file for K; default OUT_DIR/<plan>-keys.txt
   int samples = 1;                     ///< half-tone: 1, 4 or 16
   std::string shading = "flat";
+  std::string lights = "plan";         ///< plan (its point lights, with shadows) or eye (the light at the eye only)
   std::string object_shadows = "auto"; ///< objects' shadows from the plan's lights: auto, on or off
   std::string kernel = "double";
   double interocular = 0.065;          ///< [m]
@@ -154,7 +156,8 @@ bool run_walkthrough(const LoadedPlan& plan, const WalkOptions& opt, int& status
 /// `avenues bench papers [--threads N] [--repeats N]`: the papers' scenes beside their figures.
 int run_bench_papers(int threads, int repeats);
 /// `avenues bench walk [PLAN...] [--frames N] [--size WxH]`: frame times of the walkthrough window.
-int run_bench_walk(const std::vector<std::string>& plans, long frames, const std::string& size, double frame_budget_ms);
+int run_bench_walk(const std::vector<std::string>& plans, long frames, const std::string& size, double frame_budget_ms,
+                   const std::string& lights = "plan");
 /// The camera and eye cell a view option set resolves to.
 struct ViewSetup {
   Viewpoint viewpoint;
