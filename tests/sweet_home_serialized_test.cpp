@@ -27,6 +27,7 @@
 #include "ray_oracle.h"
 #include "visibility/visible_set.h"
 #include "tests/avenues_run.h"
+#include "tests/picture_checks.h"
 #include "tests/test_files.h"
 
 namespace avenues {
@@ -593,7 +594,8 @@ std::string flat_jpeg(int w, int h, const unsigned char rgb[3]) {
   return bytes;
 }
 
-double linear8(int v) { return linear_from_srgb(v / 255.0); }
+using avenues::testing::linear8;
+using avenues::testing::expect_pixel_shows;
 
 // A texture is its image's mean colour in linear light: a PNG half red, half blue is
 // (0.5, 0, 0.5) however it is encoded; a JPEG of one colour is that colour (to the
@@ -737,21 +739,6 @@ void expect_cube_painted(const PlacedObject& o, const CubeColours& want) {
     const std::array<double, 3>& expected = n.y < -1e-9 ? want.front : n.z > 1e-9 ? want.top : n.z < -1e-9 ? want.ghost : want.body;
     const std::array<double, 3> got = o.paint.of_polygon(o.mesh.polygon_of[t]).colour;
     for (size_t k = 0; k < 3; ++k) EXPECT_NEAR(got[k], expected[k], 1e-15) << o.name << ", triangle " << t << ", channel " << k;
-  }
-}
-
-/// The linear colour of the picture's middle pixel over the colour it shows, channel by
-/// channel: one factor (the light on it) when it shows that colour.
-void expect_pixel_shows(const Image& pic, const std::array<double, 3>& colour, const std::string& what) {
-  ASSERT_EQ(pic.channels, 3);
-  const uint8_t* px = pic.row(size_t(pic.height / 2)) + size_t(pic.width / 2) * 3;
-  double light = 0;
-  for (size_t k = 0; k < 3; ++k)
-    if (colour[k] > 0) light = std::max(light, linear8(px[k]) / colour[k]);
-  ASSERT_GT(light, 0.05) << what << " is lit";
-  for (size_t k = 0; k < 3; ++k) {
-    const double step = linear8(std::min(255, px[k] + 1)) - linear8(std::max(0, px[k] - 1));  // 8-bit rounding
-    EXPECT_NEAR(linear8(px[k]), colour[k] * light, step) << what << ", channel " << k << ": " << int(px[k]);
   }
 }
 
