@@ -1089,9 +1089,10 @@ void HomeReader::cut_openings() {
         // grid) past the corner, end a hair beyond the next: with the sums rounded either
         // way, the opening then never lands on the segment before with width 1e-16, nor
         // leaves a solid strip of width 1e-16 before the next, whose clipped corners would
-        // be pockets of free space of no area.
+        // be pockets of free space of no area. The hair beyond is within the TOML reader's
+        // slack of 1e-9 m, so that the plan saved as TOML (--save-plan) reads back.
         part.at = k == 0 ? 0.0 : cum[k] + 1e-11;
-        part.width = cum[k + 1] - cum[k] + 1e-9;
+        part.width = cum[k + 1] + 5e-10 - part.at;
         if (part.width >= kMinOpening || v1 == v0 + 1) parts.push_back(part);
       }
       for (size_t k = 0; k < parts.size() && parts.size() > 1; ++k)
