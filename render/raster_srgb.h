@@ -11,16 +11,10 @@
 #include <cmath>
 #include <cstdint>
 
+#include "core/srgb.h"  // srgb_from_linear, linear_from_srgb
+
 namespace avenues {
 
-/// The sRGB transfer function: linear [0, 1] → encoded [0, 1].
-inline double srgb_from_linear(double v) {
-  return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
-}
-/// Its inverse: encoded [0, 1] → linear [0, 1].
-inline double linear_from_srgb(double e) {
-  return e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4);
-}
 
 /// 8-bit sRGB code → linear value, by table.
 class SrgbDecoder {
