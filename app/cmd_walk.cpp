@@ -102,7 +102,9 @@ class Session {
     lines_ = opt.lines;
     progressive_ = opt.progressive;
     hud_on_ = opt.hud;
-    objects_ = place_objects(c_);
+    std::vector<std::string> said;  // what reading the objects' meshes let pass
+    objects_ = place_objects(c_, &said);
+    print_warnings(plan.path, said);
     // Which effects the scene calls for, decided once (and its shadows cast once): deciding
     // means testing the furniture's triangles for crossings, far too dear for every frame.
     effects_ = prepare_effects(c_, objects_, halftone_, kernel_);

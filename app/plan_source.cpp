@@ -84,16 +84,14 @@ std::string lower(std::string s) {
   return s;
 }
 
-/// Prints what the importer and the decomposition repaired or dropped: the first few
-/// lines, then how many more (a real Doom map may have dozens).
+}  // namespace
+
 void print_warnings(const std::string& path, const std::vector<std::string>& warnings) {
   constexpr size_t kShown = 12;
   for (size_t i = 0; i < warnings.size() && i < kShown; ++i) std::cerr << path << ": warning: " << warnings[i] << "\n";
   if (warnings.size() > kShown)
     std::cerr << path << ": " << warnings.size() - kShown << " more warnings (avenues cells PLAN --json lists them all)\n";
 }
-
-}  // namespace
 
 PlanSpec parse_plan_spec(const std::string& plan) {
   PlanSpec spec;
@@ -151,13 +149,15 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
   };
   // A mesh as a whole scene: OpenMesh or Assimp by its format, turned to z-up metres.
   auto read_mesh = [&](const std::string& file) {
-    Mesh mesh = load_mesh(file, import.mesh_axes());  // names the file when unreadable
+    std::vector<std::string> said;  // its materials' missing files
+    Mesh mesh = load_mesh(file, import.mesh_axes(), &said);  // names the file when unreadable
     out.stages.push_back({"read mesh", seconds_since(t0)});
     try {
       out.complex = build_mesh_scene({mesh});
     } catch (const std::exception& e) {
       throw std::runtime_error(file + ": " + e.what());
     }
+    out.complex.warnings.insert(out.complex.warnings.begin(), said.begin(), said.end());
     out.complex.plan_name = out.stem;
     for (const StageTime& t : out.complex.timings) out.stages.push_back(t);
   };

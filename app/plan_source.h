@@ -63,4 +63,9 @@ std::string default_plan_path();
 /// Avenues cannot read").
 LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import = {});
 
+/// Prints what an importer, the decomposition or a mesh reader repaired, dropped or let
+/// pass, as "PATH: warning: ...": the first few lines, then how many more (a real Doom
+/// map may have dozens).
+void print_warnings(const std::string& path, const std::vector<std::string>& warnings);
+
 }  // namespace avenues::app

@@ -74,7 +74,9 @@ void write_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet&
                    nlohmann::json& stats) {
   const CellComplex& c = plan.complex;
   const HalftoneOptions o = halftone_options(opt);
-  const std::vector<PlacedObject> objects = place_objects(c);
+  std::vector<std::string> said;  // what reading the objects' meshes let pass
+  const std::vector<PlacedObject> objects = place_objects(c, &said);
+  print_warnings(plan.path, said);
   if (opt.frames > 0) {
     const auto frames = walk_frames(c, v.viewpoint.eye, v.viewpoint.look, parse_vec3(opt.to_eye, "--to-eye"),
                                     parse_vec3(opt.to_look, "--to-look"), opt.frames, v.camera);

@@ -8,8 +8,8 @@ namespace avenues {
 
 /// An sRGB-encoded component in [0, 1] as linear light in [0, 1].
 inline double linear_from_srgb(double e) { return e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4); }
-
-/// Its inverse, the sRGB transfer function: linear [0, 1] → encoded [0, 1].
+/// Its inverse, the sRGB transfer function: linear light in [0, 1] as an encoded component
+/// in [0, 1] (what a picture's 8-bit code, or an MTL Kd as Avenues reads it, holds).
 inline double srgb_from_linear(double v) { return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055; }
 
 }  // namespace avenues

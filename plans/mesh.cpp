@@ -380,7 +380,53 @@ void orient_z_up(Mesh& m, char up, double metres_per_unit) {
   for (Vec3& n : m.corner_normals) n = turn(n);
 }
 
-Mesh load_mesh(const std::string& path, const MeshAxes& axes) {
+namespace {
+
+/// The files an OBJ on disk names (its MTL libraries, their images): a regular file's
+/// bytes, std::nullopt for anything else (missing, a directory, a device, larger than a
+/// material file or image could sensibly be).
+std::optional<std::string> read_material_file(const std::string& path) {
+  constexpr std::uintmax_t kMaxBytes = std::uintmax_t(1) << 28;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec || size > kMaxBytes) return std::nullopt;
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) return std::nullopt;
+  return bytes;
+}
+
+/// An OBJ file read with its materials: usemtl groups (read_mesh_bytes) coloured by the MTL
+/// libraries beside it (colour_obj_materials); what is missing is one warning each.
+Mesh load_obj(const std::string& path, std::vector<std::string>* warnings) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::vector<std::string> said, libraries;
+  Mesh m = read_mesh_bytes(bytes, ".obj", path, &said, &libraries);
+  if (!m.materials.empty()) {
+    MaterialFiles files(read_material_file);
+    const std::string who = "mesh " + path + ": ";
+    const ObjColouring c = colour_obj_materials(m, libraries, path, files, who, said);
+    if (libraries.empty()) {
+      said.push_back(who + "its faces use materials but it names no MTL library (mtllib): they keep Avenues' default colour");
+    } else if (c.libraries_missing == 0 && !c.undefined.empty()) {
+      std::string names;
+      size_t shown = 0;
+      for (const std::string& n : c.undefined)
+        if (shown++ < 5) names += (names.empty() ? "'" : ", '") + n + "'";
+      if (c.undefined.size() > shown) names += ", ...";
+      said.push_back(who + std::to_string(c.undefined.size()) + " material(s) its faces use are defined in no MTL library (" +
+                     names + "): they keep Avenues' default colour");
+    }
+  }
+  if (warnings) warnings->insert(warnings->end(), said.begin(), said.end());
+  return m;
+}
+
+}  // namespace
+
+Mesh load_mesh(const std::string& path, const MeshAxes& axes, std::vector<std::string>* warnings) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::file_status st = fs::status(path, ec);
@@ -393,14 +439,16 @@ Mesh load_mesh(const std::string& path, const MeshAxes& axes) {
   if (ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl") {
     if (!assimp_reads_extension(ext))
       throw std::runtime_error("cannot read mesh " + path + ": '" + ext + "' is not a mesh format Avenues reads");
-    return load_assimp_mesh(path, axes);
+    return load_assimp_mesh(path, axes, warnings);
   }
   if (ext == ".ply") check_ply(path);
   if (ext == ".stl") check_stl(path);
-  if (ext == ".obj") {
-    std::ifstream in(path, std::ios::binary);
-    check_obj(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()), path);
-  }
+  const auto oriented = [&axes](Mesh m) {
+    if (axes.up.value_or('z') != 'z' || axes.metres_per_unit.value_or(1) != 1)
+      orient_z_up(m, axes.up.value_or('z'), axes.metres_per_unit.value_or(1));
+    return m;
+  };
+  if (ext == ".obj") return oriented(load_obj(path, warnings));
   const std::string off_text = ext == ".off" ? check_off(path) : std::string();
   PolyMesh pm;
   OpenMesh::IO::Options opt;
@@ -410,10 +458,7 @@ Mesh load_mesh(const std::string& path, const MeshAxes& axes) {
                                      : OpenMesh::IO::read_mesh(pm, off_stream, ".off", opt);
   if (!read)
     throw std::runtime_error("cannot read mesh " + path + ": not a mesh OpenMesh can read (OBJ, OFF, PLY, STL)");
-  Mesh m = mesh_of_openmesh(pm, path);
-  if (axes.up.value_or('z') != 'z' || axes.metres_per_unit.value_or(1) != 1)
-    orient_z_up(m, axes.up.value_or('z'), axes.metres_per_unit.value_or(1));
-  return m;
+  return oriented(mesh_of_openmesh(pm, path));
 }
 
 Mesh read_mesh_bytes(const std::string& bytes, const std::string& ext, const std::string& name,
@@ -589,7 +634,7 @@ std::string mesh_key(const Object& object) {
   return key;
 }
 
-Mesh load_object_mesh(const Object& object) {
+Mesh load_object_mesh(const Object& object, std::vector<std::string>* warnings) {
   if (object.model) return *object.model;
   if (object.mesh.empty()) {
     if (!(object.box.x > 0 && object.box.y > 0 && object.box.z > 0))
@@ -597,7 +642,11 @@ Mesh load_object_mesh(const Object& object) {
     return box_mesh(object.box);
   }
   try {
-    return load_mesh(object.mesh, object.axes);
+    std::vector<std::string> said;
+    Mesh m = load_mesh(object.mesh, object.axes, &said);
+    if (warnings)
+      for (const std::string& w : said) warnings->push_back((object.where.str().empty() ? "" : object.where.str() + ": ") + w);
+    return m;
   } catch (const std::runtime_error& e) {
     const std::string where = object.where.str();
     if (where.empty()) throw;

@@ -54,7 +54,14 @@ Mesh mesh_of_polygons(std::string path, std::vector<Vec3> vertices, std::vector<
 /// format Assimp reads (glTF 2, COLLADA, FBX, 3DS, ...) through plans/assimp_reader.h, in
 /// the up axis and unit the file declares (`axes` where it declares none). Throws
 /// std::runtime_error naming the file for a missing, unreadable or empty mesh.
-Mesh load_mesh(const std::string& path, const MeshAxes& axes = {});
+///
+/// An OBJ's `usemtl` groups become its materials (Mesh::materials), coloured by the MTL
+/// libraries its `mtllib` lines name, found beside it, and their `map_Kd` images, beside
+/// them (plans/obj_materials.h: an image's mean colour, else Kd, sRGB-encoded); Assimp's
+/// formats bring their own. What is missing or cannot be read (a library, an image, a
+/// material no library defines) leaves the default colour, with a line in `warnings` when
+/// given, naming the file.
+Mesh load_mesh(const std::string& path, const MeshAxes& axes = {}, std::vector<std::string>* warnings = nullptr);
 
 /// True for an OFF file's first word, [ST][C][N][4][n]OFF ("OFF", "COFF", "STCNOFF", ...).
 bool is_off_keyword(std::string_view word);
@@ -89,8 +96,9 @@ std::string mesh_key(const Object& object);
 
 /// The mesh of a plan's object (its model, Object::model; a box when it names no file,
 /// Object::box); a failure names the object's place in the plan too
-/// ("house.toml:62:1 (object 'table'): cannot read mesh ...").
-Mesh load_object_mesh(const Object& object);
+/// ("house.toml:62:1 (object 'table'): cannot read mesh ..."); so does each line it adds to
+/// `warnings` (load_mesh's).
+Mesh load_object_mesh(const Object& object, std::vector<std::string>* warnings = nullptr);
 
 /// The mesh placed as `object` says: scaled, rotated about x, then y, then z (degrees),
 /// then moved to object.position + (0, 0, floor_z).

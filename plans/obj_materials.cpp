@@ -5,6 +5,10 @@
 #include <charconv>
 #include <cmath>
 #include <map>
+#include <stdexcept>
+
+#include "core/srgb.h"
+#include "plans/image_colour.h"
 
 namespace avenues {
 namespace {
@@ -189,6 +193,105 @@ std::vector<std::string> map_kd_candidates(const std::string& argument) {
   if (w.empty()) return out;
   out.emplace_back(w.back());
   if (w.size() > 1) out.push_back(std::string(trimmed(argument)));
+  return out;
+}
+
+std::string path_beside(const std::string& file, const std::string& name) {
+  if (!name.empty() && name.front() == '/') return name;
+  const size_t slash = file.rfind('/');
+  return (slash == std::string::npos ? std::string() : file.substr(0, slash + 1)) + name;
+}
+
+const MaterialFiles::Image& MaterialFiles::image(const std::string& path, bool* first) {
+  auto [it, fresh] = images_.try_emplace(path);
+  if (first) *first = fresh;
+  if (!fresh) return it->second;
+  const std::optional<std::string> bytes = read_ ? read_(path) : std::nullopt;
+  if (!bytes) return it->second;
+  it->second.at_hand = true;
+  try {
+    it->second.colour = mean_image_colour(*bytes, name(path));
+  } catch (const std::runtime_error& e) {
+    it->second.problem = e.what();
+  }
+  return it->second;
+}
+
+const MtlLibrary* MaterialFiles::library(const std::string& path, bool* first) {
+  auto [it, fresh] = libraries_.try_emplace(path);
+  if (first) *first = fresh;
+  if (fresh)
+    if (const std::optional<std::string> bytes = read_ ? read_(path) : std::nullopt) it->second = read_mtl(*bytes);
+  return it->second ? &*it->second : nullptr;
+}
+
+ObjColouring colour_obj_materials(Mesh& m, const std::vector<std::string>& libraries, const std::string& obj,
+                                  MaterialFiles& files, const std::string& who, std::vector<std::string>& warnings) {
+  ObjColouring out;
+  if (m.materials.empty()) return out;
+  struct Defined {
+    MtlMaterial material;
+    std::string library;  ///< the path of the library that defines it
+  };
+  std::map<std::string, Defined> defined;
+  std::set<std::string> arguments_seen;  // a library named twice is read once
+  for (const std::string& argument : libraries) {
+    if (!arguments_seen.insert(argument).second) continue;
+    // Each word a library; the whole argument (last, when there are several words) only
+    // when no word named one.
+    const std::vector<std::string> names = mtllib_candidates(argument);
+    const size_t words = names.size() > 1 ? names.size() - 1 : names.size();
+    bool found = false;
+    for (size_t i = 0; i < names.size(); ++i) {
+      if (i == words && found) break;
+      const std::string path = path_beside(obj, names[i]);
+      bool first = false;
+      const MtlLibrary* lib = files.library(path, &first);
+      if (!lib) continue;
+      found = true;
+      if (first)
+        for (const std::string& problem : lib->problems)
+          warnings.push_back(who + "material library " + files.name(path) + ": " + problem + ": left out");
+      for (const MtlMaterial& mat : lib->materials) defined.insert_or_assign(mat.name, Defined{mat, path});
+    }
+    if (!found) {
+      ++out.libraries_missing;
+      warnings.push_back(who + "its material library '" + argument + "' is not at hand (" +
+                         files.name(path_beside(obj, names.empty() ? argument : names.front())) +
+                         "): its materials keep Avenues' default colour");
+    }
+  }
+  for (Material& mat : m.materials) {
+    const auto it = defined.find(mat.name);
+    if (it == defined.end()) {
+      out.undefined.insert(mat.name);
+      continue;
+    }
+    const MtlMaterial& d = it->second.material;
+    std::optional<std::array<double, 3>> colour;
+    if (!d.diffuse_map.empty()) {
+      bool found = false;
+      for (const std::string& file : map_kd_candidates(d.diffuse_map)) {
+        bool first = false;
+        const MaterialFiles::Image& image = files.image(path_beside(it->second.library, file), &first);
+        if (!image.at_hand) continue;
+        found = true;
+        colour = image.colour;
+        if (first && !image.problem.empty())
+          warnings.push_back(who + "material '" + mat.name + "': " + image.problem +
+                             ": the material keeps its colour without it");
+        break;
+      }
+      if (!found)
+        warnings.push_back(who + "material '" + mat.name + "': its image " + d.diffuse_map +
+                           " (map_Kd) is not at hand: its Kd colour is used instead");
+    }
+    if (!colour && d.diffuse)
+      colour = std::array<double, 3>{linear_from_srgb((*d.diffuse)[0]), linear_from_srgb((*d.diffuse)[1]),
+                                     linear_from_srgb((*d.diffuse)[2])};
+    if (colour) mat.colour = *colour;
+    mat.where = SourceLoc{files.name(it->second.library), d.line, 0, "material '" + mat.name + "'"};
+  }
   return out;
 }
 

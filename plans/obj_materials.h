@@ -11,13 +11,19 @@
 //
 // MTL (Wavefront's Material Template Library, as Sweet Home reads it): `newmtl name`
 // starts a material (a name may hold spaces), `Kd r g b` is its diffuse colour, `map_Kd
-// [options] file` its diffuse image; other statements are skipped. Kd is kept as written:
-// Sweet Home turns it into a colour as it does a colour the user picks (Kd · 255), so it
-// is in the same (sRGB) encoding, not linear light; the caller decodes it.
+// [options] file` its diffuse image; other statements are skipped. Kd is kept as written
+// by read_mtl. The format does not say how Kd is encoded, and writers differ (Blender
+// writes its linear base colour); Avenues takes it as Sweet Home 3D does, which turns it
+// into a colour as it does a colour the user picks (Kd · 255): sRGB-encoded, made linear
+// by colour_obj_materials. One rule for every OBJ, so a model is one colour whether it
+// comes inside a home, as a plan's object or as a whole scene.
 #pragma once
 
 #include <array>
+#include <functional>
+#include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -78,5 +84,58 @@ std::vector<std::string> mtllib_candidates(const std::string& argument);
 /// The image a map_Kd's arguments may name, in the order Sweet Home tries them: the last
 /// word (options come before it), then (several words) the whole argument.
 std::vector<std::string> map_kd_candidates(const std::string& argument);
+
+/// The path of `name` (a file an OBJ or MTL file names) beside `file`: in its folder (the
+/// text up to its last '/'); `name` itself when it is absolute (begins with '/').
+std::string path_beside(const std::string& file, const std::string& name);
+
+/// The files materials take their colours from, each read once however many models or
+/// surfaces name it: MTL libraries and images (their mean colour, plans/image_colour.h).
+/// `read` gives a file's bytes by its path (an entry of a Sweet Home archive, a file on
+/// disk), std::nullopt when it is not at hand; messages name a file as `prefix` + path.
+class MaterialFiles {
+ public:
+  using Reader = std::function<std::optional<std::string>(const std::string& path)>;
+  explicit MaterialFiles(Reader read, std::string prefix = "") : read_(std::move(read)), prefix_(std::move(prefix)) {}
+
+  /// An image's mean colour, or why there is none.
+  struct Image {
+    bool at_hand = false;                          ///< `read` found it
+    std::optional<std::array<double, 3>> colour;   ///< linear RGB; nullopt when not at hand or unreadable
+    std::string problem;                           ///< why an image at hand has no colour (names the file)
+  };
+  /// The image at `path`, decoded the first time it is asked for (`*first` set true then).
+  const Image& image(const std::string& path, bool* first = nullptr);
+  /// The MTL library at `path`, read the first time (`*first` set true then); nullptr when
+  /// it is not at hand.
+  const MtlLibrary* library(const std::string& path, bool* first = nullptr);
+  /// How messages name the file at `path`.
+  std::string name(const std::string& path) const { return prefix_ + path; }
+
+ private:
+  Reader read_;
+  std::string prefix_;
+  std::map<std::string, Image> images_;
+  std::map<std::string, std::optional<MtlLibrary>> libraries_;  ///< nullopt: not at hand
+};
+
+/// What colour_obj_materials could not find.
+struct ObjColouring {
+  int libraries_missing = 0;        ///< mtllib arguments naming no library at hand
+  std::set<std::string> undefined;  ///< material names no library at hand defines
+};
+
+/// Colours a mesh's OBJ materials (name_obj_materials, by name) as their MTL libraries say,
+/// as Sweet Home's OBJLoader does: a material's map_Kd image, where it can be read, as the
+/// image's mean colour (Sweet Home draws a textured part in its texture's colours alone);
+/// else its Kd, sRGB-encoded (see above), made linear; a name no library defines keeps
+/// Material's default colour. `libraries`: the OBJ's mtllib arguments (read_mesh_bytes),
+/// each found beside `obj` (its path as `files` finds it; mtllib_candidates), each image
+/// beside the library that names it (map_Kd_candidates). Each material's `where` becomes
+/// its newmtl line. A library named but not at hand, an image not at hand (its Kd used
+/// instead), a library's unreadable statements and an unreadable image (the first time
+/// `files` reads them) are each one line in `warnings`, beginning with `who`.
+ObjColouring colour_obj_materials(Mesh& m, const std::vector<std::string>& libraries, const std::string& obj,
+                                  MaterialFiles& files, const std::string& who, std::vector<std::string>& warnings);
 
 }  // namespace avenues

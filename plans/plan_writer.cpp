@@ -1,11 +1,18 @@
 // Avenues — writing a Plan as TOML (see plan_writer.h), with toml++'s own formatter.
 #include "plans/plan_writer.h"
 
+#include <cctype>
+#include <filesystem>
+#include <map>
+#include <set>
 #include <sstream>
+#include <unistd.h>
 
 #include <toml++/toml.h>
 
 #include "core/atomic_file.h"
+#include "plans/mesh.h"
+#include "plans/obj_writer.h"
 
 namespace avenues {
 namespace {
@@ -16,7 +23,7 @@ toml::array rgb(const std::array<double, 3>& c) { return toml::array{c[0], c[1],
 
 }  // namespace
 
-std::string plan_as_toml(const Plan& plan) {
+std::string plan_as_toml(const Plan& plan, const std::vector<std::string>& model_files) {
   std::vector<std::string> left_out;
   toml::table root;
   root.insert("name", plan.name);
@@ -133,15 +140,29 @@ std::string plan_as_toml(const Plan& plan) {
 
   toml::array objects;
   int boxes = 0;
-  for (const Object& o : plan.objects) {
-    if (o.model || o.mesh.empty()) {
+  // Names are unique per storey in the format; two pieces of one name get a number.
+  std::vector<std::set<std::string>> names(plan.storeys.size());
+  for (size_t i = 0; i < plan.objects.size(); ++i) {
+    const Object& o = plan.objects[i];
+    const std::string* model_file = i < model_files.size() && !model_files[i].empty() ? &model_files[i] : nullptr;
+    if ((o.model || o.mesh.empty()) && !model_file) {
       ++boxes;
       continue;
     }
     toml::table t;
-    t.insert("name", o.name);
-    t.insert("mesh", o.mesh);
+    std::string name = o.name;
+    if (o.storey >= 0 && size_t(o.storey) < names.size())
+      for (int k = 2; !names[size_t(o.storey)].insert(name).second; ++k) name = o.name + " " + std::to_string(k);
+    t.insert("name", name);
+    t.insert("mesh", model_file ? *model_file : o.mesh);
     t.insert("storey", storey(o.storey));
+    // A file's axes; a model or box is written in z-up metres.
+    if (!model_file && o.axes.up) t.insert("up", std::string(1, *o.axes.up));
+    if (!model_file && o.axes.metres_per_unit) {
+      for (const char* unit : {"m", "cm", "mm", "in", "ft"})
+        if (metres_per_unit_named(unit) == o.axes.metres_per_unit) t.insert("unit", unit);
+      if (!t.contains("unit")) left_out.push_back("object '" + o.name + "''s unit " + std::to_string(*o.axes.metres_per_unit) + " m");
+    }
     t.insert("position", point(o.position));
     t.insert("rotation", point(o.rotation_deg));
     t.insert("scale", point(o.scale));
@@ -174,6 +195,96 @@ std::string plan_as_toml(const Plan& plan) {
   return out.str();
 }
 
-void write_plan(const Plan& plan, const std::string& path) { write_file_atomically(path, plan_as_toml(plan)); }
+namespace {
+
+/// A file name from an object's name: letters, digits, '-' and '_' kept (lower case), every
+/// other run of characters one '-', at most 48 of them; "object" when none is left.
+std::string file_stem_of(const std::string& name) {
+  std::string out;
+  for (char ch : name) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (std::isalnum(c) || c == '_' || c == '-') out += char(std::tolower(c));
+    else if (!out.empty() && out.back() != '-') out += '-';
+    if (out.size() >= 48) break;
+  }
+  while (!out.empty() && out.back() == '-') out.pop_back();
+  return out.empty() ? "object" : out;
+}
+
+}  // namespace
+
+void write_plan(const Plan& plan, const std::string& path) {
+  namespace fs = std::filesystem;
+  check_output_path(path);
+  // The objects that carry their own mesh (a model that came inside the file, or a box):
+  // each mesh once, as an OBJ and its MTL in FILE.models/ beside the plan, named from the
+  // first object that uses it.
+  const fs::path target(path);
+  const std::string folder = target.stem().string() + ".models";
+  std::vector<std::string> model_files(plan.objects.size());
+  std::vector<std::pair<std::string, std::string>> files;  // name in the folder, bytes
+  std::map<std::string, std::string> file_of_key;          // mesh_key -> its OBJ's name
+  std::set<std::string> stems;
+  for (size_t i = 0; i < plan.objects.size(); ++i) {
+    const Object& o = plan.objects[i];
+    if (!o.model && !o.mesh.empty()) continue;
+    if (!o.model && !(o.box.x > 0 && o.box.y > 0 && o.box.z > 0)) continue;  // nothing to draw
+    auto [it, fresh] = file_of_key.try_emplace(mesh_key(o));
+    if (fresh) {
+      std::string stem = file_stem_of(o.name);
+      for (int k = 2; !stems.insert(stem).second; ++k) stem = file_stem_of(o.name) + "-" + std::to_string(k);
+      const Mesh mesh = o.model ? *o.model : box_mesh(o.box);
+      it->second = stem + ".obj";
+      files.push_back({stem + ".obj", obj_of_mesh(mesh, stem + ".mtl")});
+      if (std::string mtl = mtl_of_mesh(mesh); !mtl.empty()) files.push_back({stem + ".mtl", std::move(mtl)});
+    }
+    model_files[i] = folder + "/" + it->second;
+  }
+  const std::string toml = plan_as_toml(plan, model_files);
+  if (files.empty()) {
+    write_file_atomically(path, toml);
+    return;
+  }
+  // All or nothing: the models are written into a temporary folder beside the plan, which
+  // takes the folder's name only once every file is in it, just before the plan itself is
+  // renamed into place; a failure on the way leaves what was there before.
+  const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  const std::string tag = std::to_string(::getpid());
+  const fs::path models = dir / folder, staged = dir / ("." + folder + ".tmp-" + tag),
+                 previous = dir / ("." + folder + ".old-" + tag);
+  std::error_code ec;
+  if (fs::exists(models, ec) && !fs::is_directory(models, ec))
+    throw std::runtime_error("cannot write " + models.string() + " (the plan's models): it exists and is not a folder");
+  fs::remove_all(staged, ec);
+  if (!fs::create_directory(staged, ec))
+    throw std::runtime_error("cannot write " + models.string() + " (the plan's models): " + ec.message());
+  bool moved_away = false;
+  try {
+    for (const auto& [name, bytes] : files) write_file_atomically((staged / name).string(), bytes);
+    PendingTempFile plan_file(path);
+    for (const char* p = toml.data(), *end = toml.data() + toml.size(); p < end;) {
+      const ssize_t n = ::write(plan_file.fd(), p, size_t(end - p));
+      if (n <= 0) throw std::runtime_error("cannot write " + path);
+      p += n;
+    }
+    if (fs::exists(models, ec)) {
+      fs::rename(models, previous);
+      moved_away = true;
+    }
+    fs::rename(staged, models);
+    try {
+      plan_file.commit();
+    } catch (...) {
+      fs::remove_all(models, ec);
+      throw;
+    }
+  } catch (const std::exception& e) {
+    fs::remove_all(staged, ec);
+    if (moved_away && !fs::exists(models, ec)) fs::rename(previous, models, ec);
+    const std::string what = e.what();
+    throw std::runtime_error(what.find(path) != std::string::npos ? what : "cannot write " + path + ": " + what);
+  }
+  if (moved_away) fs::remove_all(previous, ec);
+}
 
 }  // namespace avenues

@@ -12,7 +12,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "core/srgb.h"
+#include "core/srgb.h"  // srgb_from_linear, linear_from_srgb
 
 namespace avenues {
 

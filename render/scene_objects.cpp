@@ -36,13 +36,13 @@ MeshPaint paint_of_mesh(const Mesh& mesh) {
   return paint;
 }
 
-std::vector<PlacedObject> place_objects(const CellComplex& complex) {
+std::vector<PlacedObject> place_objects(const CellComplex& complex, std::vector<std::string>* warnings) {
   std::vector<PlacedObject> out;
   std::map<std::string, Mesh> loaded;
   CellId hint = kNoCell;
   for (const Object& o : complex.objects) {
     auto it = loaded.find(mesh_key(o));
-    if (it == loaded.end()) it = loaded.emplace(mesh_key(o), load_object_mesh(o)).first;
+    if (it == loaded.end()) it = loaded.emplace(mesh_key(o), load_object_mesh(o, warnings)).first;
     const double floor_z =
         o.storey >= 0 && size_t(o.storey) < complex.storeys.size() ? complex.storeys[size_t(o.storey)].elevation : 0;
     PlacedObject p;

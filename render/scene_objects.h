@@ -35,7 +35,9 @@ struct PlacedObject {
 /// Loads every object of the complex (plans/mesh.h, each file read once), places it on
 /// its storey, and finds the cell holding the centroid of its vertices. Its paint is its
 /// own material (Object::material) where it has one, else its mesh's (paint_of_mesh). Throws
-/// std::runtime_error naming the mesh file when one cannot be read.
-std::vector<PlacedObject> place_objects(const CellComplex& complex);
+/// std::runtime_error naming the mesh file when one cannot be read; what reading a mesh let
+/// pass (an OBJ's missing MTL library or image, load_object_mesh) goes to `warnings`
+/// when given, once per mesh file.
+std::vector<PlacedObject> place_objects(const CellComplex& complex, std::vector<std::string>* warnings = nullptr);
 
 }  // namespace avenues

@@ -1,11 +1,17 @@
 // Tests of an OBJ model's own materials (plans/obj_materials.h): usemtl groups put on the
-// faces OpenMesh kept, MTL libraries' Kd and map_Kd, and what cannot be read.
+// faces OpenMesh kept, MTL libraries' Kd and map_Kd, and what cannot be read; an OBJ read
+// from disk (plans/mesh.h, load_mesh) in its MTL's colours, as a whole scene and as a
+// plan's object, in the pictures.
 #include <gtest/gtest.h>
 
 #include <string>
 
+#include "core/srgb.h"
 #include "plans/mesh.h"
 #include "plans/obj_materials.h"
+#include "render/raster.h"
+#include "tests/avenues_run.h"
+#include "tests/picture_checks.h"
 
 namespace avenues {
 namespace {
@@ -87,6 +93,155 @@ TEST(ObjMaterials, MtlGivesEachMaterialItsKdAndMapKd) {
   EXPECT_EQ(map_kd_candidates("wood.png"), (std::vector<std::string>{"wood.png"}));
   EXPECT_EQ(mtllib_candidates("cube.mtl other lib.mtl"),
             (std::vector<std::string>{"cube.mtl", "other", "lib.mtl", "cube.mtl other lib.mtl"}));
+}
+
+// --- an OBJ read from disk, in its MTL's colours ---------------------------------------
+
+using avenues::testing::expect_pixel_shows;
+
+/// Kd as Avenues reads it (sRGB-encoded, obj_materials.h), in linear light.
+std::array<double, 3> kd(double r, double g, double b) {
+  return {linear_from_srgb(r), linear_from_srgb(g), linear_from_srgb(b)};
+}
+
+size_t count(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+/// A floor (z = 0, "Brick") and a wall ahead of it (y = 2, "Sea", facing −y), z-up metres.
+const std::string kRoomObj =
+    "mtllib room.mtl\n"
+    "v -3 -2 0\nv 3 -2 0\nv 3 3 0\nv -3 3 0\n"
+    "v -2 2 0\nv 2 2 0\nv 2 2 2.5\nv -2 2 2.5\n"
+    "usemtl Brick\nf 1 2 3 4\n"
+    "usemtl Sea\nf 5 6 7 8\n";
+
+/// A cube 1 m wide, its base centred on the origin, z up: its front (facing −y) "Paint",
+/// the rest "Label".
+const std::string kCrateObj =
+    "mtllib materials/crate.mtl\n"
+    "v -.5 -.5 0\nv .5 -.5 0\nv .5 .5 0\nv -.5 .5 0\nv -.5 -.5 1\nv .5 -.5 1\nv .5 .5 1\nv -.5 .5 1\n"
+    "usemtl Label\nf 1 4 3 2\nf 5 6 7 8\n"
+    "usemtl Paint\nf 1 2 6 5\n"
+    "usemtl Label\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+
+class ObjColours : public avenues::testing::AvenuesRun {
+ protected:
+  /// A 2 x 1 PNG, its left pixel red and its right blue: mean (0.5, 0, 0.5) in linear light.
+  void red_blue_png(const std::string& name) {
+    Image png;
+    png.resize(2, 1, 3);
+    png.data = {255, 0, 0, 0, 0, 255};
+    write(name, "");
+    write_image(png, path(name).string());
+  }
+  /// `avenues view FILE` from `eye` towards `look`, 20° wide, lit from the eye: the picture.
+  Image view(const std::string& file, const std::string& eye, const std::string& look, std::string* err = nullptr) {
+    const avenues::testing::Outcome r = run({"view", file, "--eye", eye, "--look", look, "--fov", "20", "--size",
+                                             "32x18", "--lights", "eye", "-o", path("view.ppm").string()});
+    EXPECT_EQ(r.status, 0) << r.err;
+    if (err) *err = r.err;
+    return read_image(path("view.ppm").string());
+  }
+};
+
+// An OBJ scene's usemtl groups take their MTL's Kd, in the cells' faces and the picture.
+TEST_F(ObjColours, ASceneFacesShowTheirMaterialsKd) {
+  const std::string obj = write("room.obj", kRoomObj);
+  write("room.mtl", "newmtl Brick\nKd 0.8 0.3 0.1\nnewmtl Sea\nKa 1 1 1\nKd 0.1 0.4 0.7\n");
+  std::vector<std::string> warnings;
+  const Mesh m = load_mesh(obj, {}, &warnings);
+  EXPECT_TRUE(warnings.empty()) << warnings.front();
+  ASSERT_EQ(m.materials.size(), 2u);
+  EXPECT_EQ(m.materials[0].colour, kd(0.8, 0.3, 0.1));
+  EXPECT_EQ(m.materials[1].where.str(), path("room.mtl").string() + ":3 (material 'Sea')");
+  std::string err;
+  expect_pixel_shows(view(obj, "0,0,1", "0,2,1", &err), kd(0.1, 0.4, 0.7), "the wall (Sea)");
+  EXPECT_EQ(err.find("warning"), std::string::npos) << err;
+  expect_pixel_shows(view(obj, "0,0,1", "0,0.3,0"), kd(0.8, 0.3, 0.1), "the floor (Brick)");
+}
+
+// A map_Kd image is its mean colour in linear light, found beside the MTL file that names
+// it (the MTL in a folder of its own here); an image that is missing leaves Kd, with one
+// warning naming it.
+TEST_F(ObjColours, MapKdIsTheImagesMeanFoundBesideItsLibrary) {
+  red_blue_png("materials/textures/label.png");
+  const std::string obj = write("crate.obj", kCrateObj);
+  write("materials/crate.mtl", "newmtl Label\nKd 1 1 1\nmap_Kd textures/label.png\nnewmtl Paint\nKd 0.9 0.6 0.2\n");
+  std::vector<std::string> warnings;
+  Mesh m = load_mesh(obj, {}, &warnings);
+  EXPECT_TRUE(warnings.empty()) << warnings.front();
+  ASSERT_EQ(m.materials.size(), 2u);
+  EXPECT_EQ(m.materials[0].name, "Label");
+  for (size_t k = 0; k < 3; ++k) EXPECT_NEAR(m.materials[0].colour[k], (std::array<double, 3>{0.5, 0, 0.5})[k], 1e-12);
+  EXPECT_EQ(m.materials[1].colour, kd(0.9, 0.6, 0.2));
+
+  write("materials/crate.mtl", "newmtl Label\nKd 0.2 0.2 0.2\nmap_Kd gone.png\nnewmtl Paint\nKd 0.9 0.6 0.2\n");
+  warnings.clear();
+  m = load_mesh(obj, {}, &warnings);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0], "mesh " + obj + ": material 'Label': its image gone.png (map_Kd) is not at hand: its Kd colour is used instead");
+  EXPECT_EQ(m.materials[0].colour, kd(0.2, 0.2, 0.2));
+}
+
+// An [[object]] OBJ in a TOML plan is drawn in its MTL's colours, face by face.
+TEST_F(ObjColours, APlansObjectShowsItsMaterials) {
+  red_blue_png("materials/textures/label.png");
+  write("crate.obj", kCrateObj);
+  write("materials/crate.mtl", "newmtl Label\nmap_Kd textures/label.png\nnewmtl Paint\nKd 0.9 0.6 0.2\n");
+  const std::string plan = write("room.toml",
+                                 "name = 'crate room'\nunits = 'm'\n"
+                                 "[[wall]]\nname = 'outside'\nthickness = 0.2\npath = [[0, 0], [5, 0], [5, 4], [0, 4], [0, 0]]\n"
+                                 "[[room]]\nname = 'room'\nat = [1, 1]\n"
+                                 "[[object]]\nname = 'crate'\nmesh = 'crate.obj'\nposition = [2.5, 2, 0]\n");
+  // Its front (y = 1.5), then its left side (x = 2), each from in front of it.
+  std::string err;
+  expect_pixel_shows(view(plan, "2.5,0.5,0.5", "2.5,2,0.5", &err), kd(0.9, 0.6, 0.2), "the crate's front (Paint)");
+  EXPECT_EQ(err.find("warning"), std::string::npos) << err;
+  expect_pixel_shows(view(plan, "0.8,2,0.5", "2.5,2,0.5"), {0.5, 0, 0.5}, "the crate's side (Label, the image's mean)");
+}
+
+// An MTL library that is missing: one warning naming it, and the default grey; the real
+// Cornell box names one it comes without.
+TEST_F(ObjColours, AMissingLibraryIsOneWarningAndTheDefaultColour) {
+  const std::string obj = write("room.obj", kRoomObj);
+  std::vector<std::string> warnings;
+  const Mesh m = load_mesh(obj, {}, &warnings);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0], "mesh " + obj + ": its material library 'room.mtl' is not at hand (" + path("room.mtl").string() +
+                             "): its materials keep Avenues' default colour");
+  ASSERT_EQ(m.materials.size(), 2u);
+  for (const Material& mat : m.materials) EXPECT_EQ(mat.colour, Material().colour) << mat.name;
+  std::string err;
+  const Image pic = view(obj, "0,0,1", "0,2,1", &err);
+  EXPECT_EQ(count(err, "is not at hand"), 1u) << err;
+  const std::array<double, 3> grey = Material().colour;
+  expect_pixel_shows(pic, grey, "the wall, in the default grey");
+
+  // As a plan's object: the warning names the object's place in the plan and the library.
+  write("crate.obj", kCrateObj);
+  const std::string plan = write("room.toml",
+                                 "name = 'crate room'\nunits = 'm'\n"
+                                 "[[wall]]\nname = 'outside'\nthickness = 0.2\npath = [[0, 0], [5, 0], [5, 4], [0, 4], [0, 0]]\n"
+                                 "[[room]]\nname = 'room'\nat = [1, 1]\n"
+                                 "[[object]]\nname = 'crate'\nmesh = 'crate.obj'\nposition = [2.5, 2, 0]\n");
+  view(plan, "2.5,0.5,0.5", "2.5,2,0.5", &err);
+  EXPECT_EQ(count(err, "is not at hand"), 1u) << err;
+  EXPECT_NE(err.find("(object 'crate'): mesh "), std::string::npos) << err;
+
+  const std::string cornell = avenues::testing::outside_path("meshes/CornellBox-Original.obj");
+  warnings.clear();
+  load_mesh(cornell, {}, &warnings);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("'CornellBox-Original.mtl' is not at hand"), std::string::npos) << warnings[0];
+  // The viking room's library is at hand, but its faces use a material it does not define.
+  warnings.clear();
+  load_mesh(avenues::testing::outside_path("meshes/viking-room/viking_room.obj"), {}, &warnings);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("1 material(s) its faces use are defined in no MTL library ('Texture1')"), std::string::npos)
+      << warnings[0];
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,7 @@
 #include "ray_oracle.h"
 #include "visibility/visible_set.h"
 #include "tests/avenues_run.h"
+#include "tests/picture_checks.h"
 #include "tests/test_files.h"
 
 namespace avenues {
@@ -593,7 +595,8 @@ std::string flat_jpeg(int w, int h, const unsigned char rgb[3]) {
   return bytes;
 }
 
-double linear8(int v) { return linear_from_srgb(v / 255.0); }
+using avenues::testing::linear8;
+using avenues::testing::expect_pixel_shows;
 
 // A texture is its image's mean colour in linear light: a PNG half red, half blue is
 // (0.5, 0, 0.5) however it is encoded; a JPEG of one colour is that colour (to the
@@ -740,21 +743,6 @@ void expect_cube_painted(const PlacedObject& o, const CubeColours& want) {
   }
 }
 
-/// The linear colour of the picture's middle pixel over the colour it shows, channel by
-/// channel: one factor (the light on it) when it shows that colour.
-void expect_pixel_shows(const Image& pic, const std::array<double, 3>& colour, const std::string& what) {
-  ASSERT_EQ(pic.channels, 3);
-  const uint8_t* px = pic.row(size_t(pic.height / 2)) + size_t(pic.width / 2) * 3;
-  double light = 0;
-  for (size_t k = 0; k < 3; ++k)
-    if (colour[k] > 0) light = std::max(light, linear8(px[k]) / colour[k]);
-  ASSERT_GT(light, 0.05) << what << " is lit";
-  for (size_t k = 0; k < 3; ++k) {
-    const double step = linear8(std::min(255, px[k] + 1)) - linear8(std::max(0, px[k] - 1));  // 8-bit rounding
-    EXPECT_NEAR(linear8(px[k]), colour[k] * light, step) << what << ", channel " << k << ": " << int(px[k]);
-  }
-}
-
 // A piece whose author coloured only parts of it is drawn in its model's own colours, part
 // by part, as Sweet Home draws it: its OBJ's usemtl groups take their MTL's Kd, or their
 // map_Kd image's mean; a piece's modelMaterials replace the model's material they name
@@ -850,6 +838,72 @@ TEST(SweetHomeColours, FurnitureTakesItsModelsMaterialsAndThePiecesOverrides) {
     ASSERT_EQ(status, 0) << err;
     expect_pixel_shows(read_image(out), look.colour, look.what);
   }
+}
+
+// --save-plan: furniture whose model came inside the home, and furniture that is a box,
+// is written as OBJ and MTL files beside the TOML, so that the plan reopens with the same
+// objects: as many, in the same places (bounds within 1e-6 m), in the same colours.
+TEST(SweetHomeColours, SavedAsTomlThePiecesModelsAreWrittenBesideIt) {
+  ScratchDir dir;
+  dir.red_blue_png("tex.png");
+  const std::string xml =
+      "<home>\n" + kBox +
+      "  <room name='Hall'><point x='10' y='10'/><point x='590' y='10'/><point x='590' y='390'/><point x='10' y='390'/></room>\n"
+      "  <pieceOfFurniture name='Cube' model='1/cube.obj' x='150' y='200' width='100' depth='100' height='100'/>\n"
+      "  <pieceOfFurniture name='Cube' model='1/cube.obj' x='150' y='320' width='60' depth='60' height='60' angle='0.5'/>\n"
+      "  <pieceOfFurniture name='Override' model='1/cube.obj' x='400' y='200' width='100' depth='80' height='120'>\n"
+      "    <material name='Front' color='FF4080C0'/>\n"
+      "  </pieceOfFurniture>\n"
+      "  <pieceOfFurniture name='Chest #1' x='450' y='330' width='40' depth='30' height='70' elevation='10'/>\n"
+      "</home>\n";
+  const std::string png = avenues::testing::slurp(dir.path() / "tex.png");
+  const std::string home = write_sh3d(dir, "cubes.sh3d",
+                                      {{"Home.xml", xml}, {"1/cube.obj", kCubeObj}, {"1/cube.mtl", kCubeMtl}, {"1/tex.png", png}});
+  const Plan p = read_sweet_home(home);
+  ASSERT_EQ(p.objects.size(), 4u);
+  const std::string saved = (dir.path() / "saved.toml").string();
+  write_plan(p, saved);
+  // One OBJ per mesh (the two cubes of other sizes are two meshes), named from the first
+  // piece that uses it, with its MTL when it has materials (the box has none); nothing left
+  // over beside them.
+  std::set<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir.path() / "saved.models")) names.insert(e.path().filename().string());
+  EXPECT_EQ(names, (std::set<std::string>{"chest-1.obj", "cube.obj", "cube.mtl", "cube-2.obj", "cube-2.mtl",
+                                          "override.obj", "override.mtl"}));
+  for (const auto& e : fs::directory_iterator(dir.path()))
+    EXPECT_NE(e.path().filename().string().front(), '.') << "a temporary left: " << e.path();
+
+  const Plan back = read_plan(saved);
+  ASSERT_EQ(back.objects.size(), p.objects.size());
+  const std::vector<PlacedObject> before = place_objects(build_cells(p));
+  std::vector<std::string> warnings;
+  const std::vector<PlacedObject> after = place_objects(build_cells(back), &warnings);
+  EXPECT_TRUE(warnings.empty()) << warnings.front();
+  ASSERT_EQ(after.size(), before.size());
+  for (size_t i = 0; i < before.size(); ++i) {
+    const PlacedObject &a = before[i], &b = after[i];
+    EXPECT_NEAR(length(b.bounds.lo - a.bounds.lo), 0, 1e-6) << a.name;
+    EXPECT_NEAR(length(b.bounds.hi - a.bounds.hi), 0, 1e-6) << a.name;
+    EXPECT_EQ(b.cell, a.cell) << a.name;
+    ASSERT_EQ(b.mesh.triangles.size(), a.mesh.triangles.size()) << a.name;
+    for (size_t t = 0; t < a.mesh.triangles.size(); ++t) {
+      const auto ca = a.paint.of_polygon(a.mesh.polygon_of[t]).colour, cb = b.paint.of_polygon(b.mesh.polygon_of[t]).colour;
+      for (size_t k = 0; k < 3; ++k) EXPECT_NEAR(cb[k], ca[k], 1e-12) << a.name << ", triangle " << t << ", channel " << k;
+    }
+  }
+  // The cube's own materials come back by name, the piece's override in the saved MTL.
+  expect_cube_painted(after[0], cube_colours_from_mtl());
+  EXPECT_EQ(back.objects[1].name, "Cube 2") << "names are unique in a plan";
+
+  // All or nothing: where the models' folder cannot be made, neither it nor the plan is written.
+  const std::string blocked = (dir.path() / "blocked.toml").string();
+  dir.write("blocked.models", "a file where the folder would be");
+  EXPECT_THROW(write_plan(p, blocked), std::runtime_error);
+  EXPECT_FALSE(fs::exists(blocked));
+  EXPECT_TRUE(fs::is_regular_file(dir.path() / "blocked.models"));
+  // Saved again over itself, the folder is replaced whole.
+  write_plan(p, saved);
+  EXPECT_EQ(read_plan(saved).objects.size(), p.objects.size());
 }
 
 // Casa's pieces read from Home.xml and from the serialized Home are coloured alike, their

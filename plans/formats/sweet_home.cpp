@@ -27,7 +27,6 @@
 // without its coordinates or size) is repaired or dropped with a line in Plan::warnings.
 #include "plans/formats/sweet_home.h"
 #include "plans/formats/home_tree.h"
-#include "plans/formats/image_colour.h"
 #include "core/number_format.h"
 #include "core/srgb.h"
 
@@ -310,7 +309,8 @@ struct Hole {
 class HomeReader {
  public:
   HomeReader(std::string path, const HomeTree& tree, ModelSource models)
-      : path_(std::move(path)), file_(tree.file), tree_(tree), models_(std::move(models)) {}
+      : path_(std::move(path)), file_(tree.file), tree_(tree), models_(std::move(models)),
+        files_(models_, path_ + ":") {}
 
   Plan read();
 
@@ -388,17 +388,6 @@ class HomeReader {
   std::vector<ModelMaterialIn> model_materials_of(const HomeElement& n, const std::string& element);
   void read_light_sources(const HomeElement& n, const std::string& element, PieceIn& p);
   void colour_model(Mesh& m, const std::vector<std::string>& libraries, const PieceIn& p);
-  /// An image entry that a model's material or a piece's modelMaterials name, read once.
-  struct ImageMean {
-    bool at_hand = false;
-    std::optional<std::array<double, 3>> colour;  ///< its mean colour; nullopt when not at hand or unreadable
-  };
-  /// The image's mean colour; an image at hand that cannot be read is a warning beginning
-  /// with `who` (the first time).
-  const ImageMean& image_mean(const std::string& image, const std::string& who);
-  /// An MTL library entry, read once; nullptr when it is not at hand. What it holds that
-  /// cannot be read is a warning beginning with `who` (the first time).
-  const MtlLibrary* mtl_library(const std::string& entry, const std::string& who);
   /// The plan's material of a Sweet Home colour attribute (one per colour); -1 when the
   /// text is empty or not a colour.
   MaterialId material_of(const std::string& hex) {
@@ -436,22 +425,22 @@ class HomeReader {
     if (image.empty()) return -1;
     auto [it, fresh] = textures_.try_emplace(image, -1);
     if (!fresh) return it->second;
-    const std::optional<std::string> bytes = models_ ? models_(image) : std::nullopt;
+    const MaterialFiles::Image& mean = files_.image(image);
     const std::string name = t.text("name").empty() ? image : t.text("name");
-    if (!bytes) {
+    if (!mean.at_hand) {
       warn(t, element, "texture '" + name + "' (image " + image + ") is not at hand: its colour is used instead");
       return -1;
     }
-    try {
-      Material m;
-      m.colour = mean_image_colour(*bytes, path_ + ":" + image);
-      m.name = "texture '" + name + "' (" + image + ")";  // two images may share a name
-      m.where = loc(t, element);
-      it->second = MaterialId(plan_.materials.size());
-      plan_.materials.push_back(m);
-    } catch (const std::runtime_error& e) {
-      warn(t, element, std::string(e.what()) + ": the texture's colour is used instead");
+    if (!mean.colour) {
+      warn(t, element, mean.problem + ": the texture's colour is used instead");
+      return -1;
     }
+    Material m;
+    m.colour = *mean.colour;
+    m.name = "texture '" + name + "' (" + image + ")";  // two images may share a name
+    m.where = loc(t, element);
+    it->second = MaterialId(plan_.materials.size());
+    plan_.materials.push_back(m);
     return it->second;
   }
   /// Sweet Home's own colour of a surface that has none, for one side of a wall whose other
@@ -474,8 +463,9 @@ class HomeReader {
   std::map<std::string, MaterialId> textures_;   ///< by image entry (-1: unreadable)
   MaterialId default_material_ = -1;
   std::map<std::string, std::shared_ptr<const Mesh>> models_read_;  ///< by model name, as read (nullptr: none)
-  std::map<std::string, ImageMean> image_means_;                 ///< by image entry
-  std::map<std::string, std::optional<MtlLibrary>> libraries_;  ///< by entry (nullopt: not at hand)
+  /// The MTL libraries and images that models' materials, pieces' modelMaterials and
+  /// surfaces' textures name, by entry: each read once.
+  MaterialFiles files_;
   std::set<std::string> undefined_materials_;  ///< names models use that no MTL library at hand defines
   int models_missing_ = 0;       ///< pieces left boxes because their model is not at hand
   Plan plan_;
@@ -1143,9 +1133,10 @@ void HomeReader::cut_openings() {
         // grid) past the corner, end a hair beyond the next: with the sums rounded either
         // way, the opening then never lands on the segment before with width 1e-16, nor
         // leaves a solid strip of width 1e-16 before the next, whose clipped corners would
-        // be pockets of free space of no area.
+        // be pockets of free space of no area. The hair beyond is within the TOML reader's
+        // slack of 1e-9 m, so that the plan saved as TOML (--save-plan) reads back.
         part.at = k == 0 ? 0.0 : cum[k] + 1e-11;
-        part.width = cum[k + 1] - cum[k] + 1e-9;
+        part.width = cum[k + 1] + 5e-10 - part.at;
         if (part.width >= kMinOpening || v1 == v0 + 1) parts.push_back(part);
       }
       for (size_t k = 0; k < parts.size() && parts.size() > 1; ++k)
@@ -1483,8 +1474,11 @@ std::vector<ModelMaterialIn> HomeReader::model_materials_of(const HomeElement& n
       for (const HomeElement* tp : tree_.children(m, "texture")) {
         const std::string image = tp->text("image");
         if (image.empty()) break;
-        const ImageMean& mean = image_mean(image, loc(*tp, what).str() + ": ");
+        bool first = false;
+        const MaterialFiles::Image& mean = files_.image(image, &first);
         if (!mean.at_hand) warn(*tp, what, "texture image " + image + " is not at hand: the model's own material stays");
+        if (first && !mean.problem.empty())
+          warn(*tp, what, mean.problem + ": the material keeps its colour without it");
         if ((in.colour = mean.colour)) in.what = "texture " + image;
         break;
       }
@@ -1494,97 +1488,16 @@ std::vector<ModelMaterialIn> HomeReader::model_materials_of(const HomeElement& n
   return out;
 }
 
-const HomeReader::ImageMean& HomeReader::image_mean(const std::string& image, const std::string& who) {
-  auto [it, fresh] = image_means_.try_emplace(image);
-  if (!fresh) return it->second;
-  const std::optional<std::string> bytes = models_ ? models_(image) : std::nullopt;
-  if (!bytes) return it->second;
-  it->second.at_hand = true;
-  try {
-    it->second.colour = mean_image_colour(*bytes, path_ + ":" + image);
-  } catch (const std::runtime_error& e) {
-    plan_.warnings.push_back(who + e.what() + ": the material keeps its colour without it");
-  }
-  return it->second;
-}
-
-const MtlLibrary* HomeReader::mtl_library(const std::string& entry, const std::string& who) {
-  auto [it, fresh] = libraries_.try_emplace(entry);
-  if (fresh) {
-    const std::optional<std::string> bytes = models_ ? models_(entry) : std::nullopt;
-    if (bytes) {
-      it->second = read_mtl(*bytes);
-      for (const std::string& problem : it->second->problems)
-        plan_.warnings.push_back(who + "material library " + entry + ": " + problem + ": left out");
-    }
-  }
-  return it->second ? &*it->second : nullptr;
-}
-
-/// A model's own materials coloured as its MTL libraries say (OBJLoader): a material's
-/// map_Kd image, where it can be read, as the image's mean colour (Sweet Home draws a
-/// textured shape in its texture's colours alone, ModelManager setting its diffuse colour
-/// white); else its Kd, an sRGB-encoded colour like a picked one (ModelManager.getMaterials
-/// makes Kd · 255 a colour), made linear. The libraries and images are found beside the
-/// model (its folder in the .sh3d, in a zipped model, or under a bare Home.xml's folder).
-/// A material no library at hand defines keeps Avenues' default colour. `libraries`: the
-/// OBJ's mtllib arguments, as read_mesh_bytes found them.
+/// A model's own materials coloured as its MTL libraries say (plans/obj_materials.h,
+/// colour_obj_materials: map_Kd's image mean, else Kd as sRGB), the libraries found beside
+/// the model (its folder in the .sh3d, in a zipped model, or under a bare Home.xml's
+/// folder), their images beside them. A material no library at hand defines keeps Avenues'
+/// default colour (one warning for the home lists them). `libraries`: the OBJ's mtllib
+/// arguments, as read_mesh_bytes found them.
 void HomeReader::colour_model(Mesh& m, const std::vector<std::string>& libraries, const PieceIn& p) {
-  if (m.materials.empty()) return;
-  const std::string dir = p.model.substr(0, p.model.rfind('/') + 1);  // "" when the model has no folder
-  const std::string who = p.where.str() + ": model " + p.model + ": ";
-  struct Defined {
-    MtlMaterial material;
-    std::string library;  ///< the entry that defines it
-  };
-  std::map<std::string, Defined> defined;
-  std::set<std::string> arguments_seen;  // a library named twice is read once
-  for (const std::string& argument : libraries) {
-    if (!arguments_seen.insert(argument).second) continue;
-    // Each word a library; the whole argument (last, when there are several words) only
-    // when no word named one.
-    const std::vector<std::string> files = mtllib_candidates(argument);
-    const size_t words = files.size() > 1 ? files.size() - 1 : files.size();
-    bool found = false;
-    for (size_t i = 0; i < files.size(); ++i) {
-      if (i == words && found) break;
-      const std::string entry = dir + files[i];
-      const MtlLibrary* lib = mtl_library(entry, who);
-      if (!lib) continue;
-      found = true;
-      for (const MtlMaterial& mat : lib->materials) defined.insert_or_assign(mat.name, Defined{mat, entry});
-    }
-    if (!found)
-      plan_.warnings.push_back(who + "its material library '" + argument +
-                               "' is not at hand: its materials keep Avenues' default colour");
-  }
-  for (Material& mat : m.materials) {
-    const auto it = defined.find(mat.name);
-    if (it == defined.end()) {
-      undefined_materials_.insert(mat.name);
-      continue;
-    }
-    const MtlMaterial& d = it->second.material;
-    std::optional<std::array<double, 3>> colour;
-    if (!d.diffuse_map.empty()) {
-      bool found = false;
-      for (const std::string& file : map_kd_candidates(d.diffuse_map)) {
-        const ImageMean& mean = image_mean(dir + file, who + "material '" + mat.name + "': ");
-        if (!mean.at_hand) continue;
-        found = true;
-        colour = mean.colour;
-        break;
-      }
-      if (!found)
-        plan_.warnings.push_back(who + "material '" + mat.name + "': its image " + d.diffuse_map +
-                                 " (map_Kd) is not at hand: its Kd colour is used instead");
-    }
-    if (!colour && d.diffuse)
-      colour = std::array<double, 3>{linear_from_srgb((*d.diffuse)[0]), linear_from_srgb((*d.diffuse)[1]),
-                                     linear_from_srgb((*d.diffuse)[2])};
-    if (colour) mat.colour = *colour;
-    mat.where = SourceLoc{path_ + ":" + it->second.library, d.line, 0, "material '" + mat.name + "'"};
-  }
+  const ObjColouring c =
+      colour_obj_materials(m, libraries, p.model, files_, p.where.str() + ": model " + p.model + ": ", plan_.warnings);
+  undefined_materials_.insert(c.undefined.begin(), c.undefined.end());
 }
 
 /// The piece's model fitted to it as Sweet Home fits it: turned by modelRotation, its

@@ -35,7 +35,7 @@
 //                      its MTL libraries (beside the model) as map_Kd's image mean, else
 //                      Kd (sRGB-encoded, made linear); a name no library defines (Java 3D's
 //                      default materials) keeps the default grey. A texture is its image's
-//                      mean colour (PNG or JPEG, image_colour.h). Lights are not imported yet.
+//                      mean colour (PNG or JPEG, plans/image_colour.h). Lights are not imported yet.
 // Sweet Home lengths are centimetres with y pointing down the screen; a point (x, y)
 // becomes (x/100, −y/100) m, which keeps counter-clockwise polygons counter-clockwise
 // and turns Sweet Home's clockwise angles into Avenues' anticlockwise ones.

@@ -1,4 +1,4 @@
-// Fuzz target: the mean colour of a texture image (plans/formats/image_colour.h), PNG by
+// Fuzz target: the mean colour of a texture image (plans/image_colour.h), PNG by
 // libpng and JPEG by libjpeg, from the bytes of a .sh3d entry. A refusal is a
 // std::runtime_error naming the image; anything else (a crash, a hang, an exit from
 // libjpeg's default error handler, memory out of proportion to the input) is a finding.
@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string_view>
 
-#include "plans/formats/image_colour.h"
+#include "plans/image_colour.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {

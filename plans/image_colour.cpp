@@ -1,5 +1,5 @@
 // Avenues — the mean colour of an image (see image_colour.h).
-#include "plans/formats/image_colour.h"
+#include "plans/image_colour.h"
 
 #include <jpeglib.h>
 #include <png.h>
