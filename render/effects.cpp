@@ -202,7 +202,7 @@ SceneEffects prepare_effects(const CellComplex& complex, const std::vector<Place
   SceneEffects e;
   e.plan = plan_effects(complex, objects, options);
   if (e.plan.shadows.on) {
-    e.shadows = cast_shadows(complex, objects, e.plan.lighting, kernel, e.plan.object_shadows.on);
+    e.shadows = cast_shadows(complex, objects, e.plan.lighting, kernel, e.plan.object_shadows.on, options.threads);
     std::string reach;
     for (size_t k = 0; k < e.shadows.lights.size(); ++k) {
       const PointLight& light = e.plan.lighting.points[k];

@@ -9,15 +9,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
-#include <map>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <stdexcept>
 
 #include "render/effects.h"
 #include "render/raster_srgb.h"
 #include "render/scanline.h"
+#include "render/thread_arena.h"
 
 namespace avenues {
 
@@ -273,17 +272,6 @@ class BandPainter {
   std::vector<uint8_t> mask_buffer_;
   long pixels_ = 0;
 };
-
-/// One arena per thread count, made once: creating an arena each frame costs more than
-/// scanning a band. Never destroyed (TBB may be gone by the time statics are).
-tbb::task_arena& arena_for(int threads) {
-  static std::mutex lock;
-  static auto* arenas = new std::map<int, std::unique_ptr<tbb::task_arena>>;
-  const std::lock_guard<std::mutex> hold(lock);
-  auto& a = (*arenas)[std::max(threads, 0)];
-  if (!a) a = std::make_unique<tbb::task_arena>(threads > 0 ? threads : int(tbb::task_arena::automatic));
-  return *a;
-}
 
 PolygonLook look_of(const SurfaceShade& shade, const std::vector<LightTerm>& terms, bool colour,
                     const SrgbEncoder& enc) {

@@ -7,6 +7,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include "render/thread_arena.h"
+
 namespace avenues {
 
 namespace {
@@ -267,7 +269,7 @@ const SurfaceLight* SceneShadows::on_object(size_t light, int object, int polygo
 const std::vector<PlacedObject> kNoObjects;
 
 SceneShadows cast_shadows(const CellComplex& complex, const std::vector<PlacedObject>& objects,
-                          const Lighting& lighting, Kernel kernel, bool object_shadows) {
+                          const Lighting& lighting, Kernel kernel, bool object_shadows, int threads) {
   const auto t0 = std::chrono::steady_clock::now();
   SceneShadows out;
   int32_t faces = 0, polygons = 0;
@@ -338,7 +340,8 @@ SceneShadows cast_shadows(const CellComplex& complex, const std::vector<PlacedOb
       s.object = s.polygon = -1;
     }
   };
-  if (lighting.points.size() > 1) tbb::parallel_for(size_t(0), lighting.points.size(), cast);
+  if (lighting.points.size() > 1)
+    arena_for(threads).execute([&] { tbb::parallel_for(size_t(0), lighting.points.size(), cast); });
   else if (!lighting.points.empty()) cast(0);
   out.micros = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
   return out;

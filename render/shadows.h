@@ -72,9 +72,10 @@ struct SceneShadows {
 /// Traverses the cells from every point light of `lighting` (find_lit, in `kernel`) and casts
 /// the shadows of `objects` (place_objects(complex)). Empty when the lighting is at the eye.
 /// With `object_shadows` false, objects are lit (through portals, as walls are) but cast no
-/// shadows.
+/// shadows. Lights are cast side by side on at most `threads` threads (0: as many as TBB offers).
 SceneShadows cast_shadows(const CellComplex& complex, const std::vector<PlacedObject>& objects,
-                          const Lighting& lighting, Kernel kernel = Kernel::Double, bool object_shadows = true);
+                          const Lighting& lighting, Kernel kernel = Kernel::Double, bool object_shadows = true,
+                          int threads = 0);
 
 /// The convex region of `surface` (a convex polygon) in the shadow volume of the convex
 /// polygon `occluder` lit from `light`: beyond the occluder's plane and inside the planes
