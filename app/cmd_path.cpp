@@ -121,10 +121,8 @@ PathSettings path_settings(const PathOptions& opt, const MpiWalk& mpi) {
   s.halftone.samples = samples_option(opt.samples);
   if (!parse_shading(opt.shading, s.halftone.shading.model))
     throw std::runtime_error("--shading wants flat, smooth or auto, not '" + opt.shading + "'");
-  if (opt.lights == "eye") s.halftone.lights = Lights::Eye;
-  else if (opt.lights != "plan") throw std::runtime_error("--lights wants plan or eye, not '" + opt.lights + "'");
-  if (!parse_object_shadows(opt.object_shadows, s.halftone.object_shadows))
-    throw std::runtime_error("--object-shadows wants auto, on or off, not '" + opt.object_shadows + "'");
+  s.halftone.lights = lights_option(opt.lights);
+  s.halftone.object_shadows = object_shadows_option(opt.object_shadows);
   if (opt.threads < 0) throw std::runtime_error("--threads wants a number of threads (0: as many as there are cores)");
   // A process's threads; in an MPI job each rank takes its share of its machine's cores.
   s.halftone.threads = opt.threads;

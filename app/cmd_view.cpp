@@ -108,8 +108,8 @@ nlohmann::json view_stats(const LoadedPlan& plan, const ViewSetup& v, const Visi
 }
 
 int run_view(const ViewOptions& opt) {
-  if (opt.lights != "plan" && opt.lights != "eye")
-    throw std::runtime_error("--lights wants plan or eye, not '" + opt.lights + "'");
+  lights_option(opt.lights);  // refused before the work
+  object_shadows_option(opt.object_shadows);
   if (!std::isfinite(opt.falloff)) throw std::runtime_error("--falloff wants a distance in metres");
   for (const std::string& f : {opt.output, opt.stats_json, opt.overlay})
     if (!f.empty()) check_output_path(f);  // a device or FIFO there: refused before the work

@@ -85,10 +85,8 @@ class Session {
     halftone_.samples = samples_option(opt.samples);
     if (!parse_shading(opt.shading, halftone_.shading.model))
       throw std::runtime_error("--shading wants flat or smooth, not '" + opt.shading + "'");
-    if (opt.lights == "eye") halftone_.lights = Lights::Eye;
-    else if (opt.lights != "plan") throw std::runtime_error("--lights wants plan or eye, not '" + opt.lights + "'");
-    if (!parse_object_shadows(opt.object_shadows, halftone_.object_shadows))
-      throw std::runtime_error("--object-shadows wants auto, on or off, not '" + opt.object_shadows + "'");
+    halftone_.lights = lights_option(opt.lights);
+    halftone_.object_shadows = object_shadows_option(opt.object_shadows);
     if (opt.stereo == "mono") stereo_ = StereoMode::Mono;
     else if (opt.stereo == "side-by-side" || opt.stereo == "parallel") stereo_ = StereoMode::SideBySide;
     else if (opt.stereo == "anaglyph") stereo_ = StereoMode::Anaglyph;

@@ -81,6 +81,19 @@ Kernel kernel_option(const std::string& s, const char* option) {
   return k;
 }
 
+Lights lights_option(const std::string& s, const char* option) {
+  Lights l = Lights::Plan;
+  if (!parse_lights(s, l)) throw std::runtime_error(std::string(option) + " wants plan or eye, not '" + s + "'");
+  return l;
+}
+
+ObjectShadows object_shadows_option(const std::string& s, const char* option) {
+  ObjectShadows o = ObjectShadows::Auto;
+  if (!parse_object_shadows(s, o))
+    throw std::runtime_error(std::string(option) + " wants auto, on or off, not '" + s + "'");
+  return o;
+}
+
 int samples_option(int samples, const char* option) {
   if (samples != 1 && samples != 4 && samples != 16)
     throw std::runtime_error(std::string(option) + " wants 1, 4 or 16, not " + std::to_string(samples));

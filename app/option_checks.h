@@ -10,6 +10,7 @@
 
 #include <string>
 
+#include "render/lighting.h"
 #include "visibility/visible_set.h"
 
 namespace CLI {
@@ -35,6 +36,10 @@ CLI::Validator size_wxh();
 
 /// --kernel: float, double, filtered or exact. Throws naming `option` otherwise.
 Kernel kernel_option(const std::string& s, const char* option = "--kernel");
+/// --lights: plan or eye. Throws naming `option` otherwise.
+Lights lights_option(const std::string& s, const char* option = "--lights");
+/// --object-shadows: auto, on or off. Throws naming `option` otherwise.
+ObjectShadows object_shadows_option(const std::string& s, const char* option = "--object-shadows");
 /// --samples: half-tone samples per pixel, 1, 4 or 16. Throws naming `option` otherwise.
 int samples_option(int samples, const char* option = "--samples");
 /// --size WxH in pixels, each 1..32768. Throws naming `option` otherwise.

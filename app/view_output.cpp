@@ -55,11 +55,8 @@ HalftoneOptions halftone_options(const ViewOptions& opt) {
     throw std::runtime_error("--shading wants flat, smooth or auto, not '" + opt.shading + "'");
   if (!parse_dither(opt.dither, o.dither))
     throw std::runtime_error("--dither wants none, bayer or fs, not '" + opt.dither + "'");
-  if (opt.lights == "plan") o.lights = Lights::Plan;
-  else if (opt.lights == "eye") o.lights = Lights::Eye;
-  else throw std::runtime_error("--lights wants plan or eye, not '" + opt.lights + "'");
-  if (!parse_object_shadows(opt.object_shadows, o.object_shadows))
-    throw std::runtime_error("--object-shadows wants auto, on or off, not '" + opt.object_shadows + "'");
+  o.lights = lights_option(opt.lights);
+  o.object_shadows = object_shadows_option(opt.object_shadows);
   if (!std::isfinite(opt.falloff)) throw std::runtime_error("--falloff wants a distance in metres");
   o.shading.falloff_start = opt.falloff;
   return o;

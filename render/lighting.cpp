@@ -13,6 +13,15 @@ const char* to_string(ObjectShadows s) {
   return s == ObjectShadows::On ? "on" : s == ObjectShadows::Off ? "off" : "auto";
 }
 
+bool parse_lights(const std::string& text, Lights& out) {
+  for (Lights l : {Lights::Plan, Lights::Eye})
+    if (text == to_string(l)) {
+      out = l;
+      return true;
+    }
+  return false;
+}
+
 bool parse_object_shadows(const std::string& text, ObjectShadows& out) {
   for (ObjectShadows s : {ObjectShadows::Auto, ObjectShadows::On, ObjectShadows::Off})
     if (text == to_string(s)) {

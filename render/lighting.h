@@ -54,6 +54,7 @@ inline constexpr long kAutoObjectShadows = 20000;
 const char* to_string(ObjectShadows s);
 bool parse_object_shadows(const std::string& text, ObjectShadows& out);
 const char* to_string(Lights l);
+bool parse_lights(const std::string& text, Lights& out);
 
 /// A point light of the plan, placed.
 struct PointLight {
