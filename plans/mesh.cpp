@@ -408,16 +408,12 @@ Mesh load_obj(const std::string& path, std::vector<std::string>* warnings) {
     MaterialFiles files(read_material_file);
     const std::string who = "mesh " + path + ": ";
     const ObjColouring c = colour_obj_materials(m, libraries, path, files, who, said);
-    if (libraries.empty()) {
-      said.push_back(who + "its faces use materials but it names no MTL library (mtllib): they keep Avenues' default colour");
-    } else if (c.libraries_missing == 0 && !c.undefined.empty()) {
-      std::string names;
-      size_t shown = 0;
-      for (const std::string& n : c.undefined)
-        if (shown++ < 5) names += (names.empty() ? "'" : ", '") + n + "'";
-      if (c.undefined.size() > shown) names += ", ...";
-      said.push_back(who + std::to_string(c.undefined.size()) + " material(s) its faces use are defined in no MTL library (" +
-                     names + "): they keep Avenues' default colour");
+    if (!c.undefined.empty() && (libraries.empty() || c.libraries_missing == 0)) {
+      // (A library not at hand has been said already, and may define them.)
+      said.push_back(who + std::to_string(c.undefined.size()) + " material(s) its faces use are defined in " +
+                     (libraries.empty() ? "no MTL library (it names none: mtllib)" : "no MTL library") +
+                     " nor among Java 3D's built-in materials (" + ObjColouring::listed(c.undefined) +
+                     "): they keep Avenues' default colour");
     }
   }
   if (warnings) warnings->insert(warnings->end(), said.begin(), said.end());

@@ -9,6 +9,7 @@
 
 #include "core/srgb.h"
 #include "plans/image_colour.h"
+#include "plans/java3d_materials.h"
 
 namespace avenues {
 namespace {
@@ -202,6 +203,19 @@ std::string path_beside(const std::string& file, const std::string& name) {
   return (slash == std::string::npos ? std::string() : file.substr(0, slash + 1)) + name;
 }
 
+std::vector<std::string> paths_beside(const std::string& file, const std::string& name) {
+  std::vector<std::string> out{path_beside(file, name)};
+  std::string slashed = name;
+  std::replace(slashed.begin(), slashed.end(), '\\', '/');
+  auto add = [&](const std::string& n) {
+    const std::string p = path_beside(file, n);
+    if (!n.empty() && std::find(out.begin(), out.end(), p) == out.end()) out.push_back(p);
+  };
+  add(slashed);
+  if (const size_t last = slashed.rfind('/'); last != std::string::npos) add(slashed.substr(last + 1));
+  return out;
+}
+
 const MaterialFiles::Image& MaterialFiles::image(const std::string& path, bool* first) {
   auto [it, fresh] = images_.try_emplace(path);
   if (first) *first = fresh;
@@ -225,6 +239,15 @@ const MtlLibrary* MaterialFiles::library(const std::string& path, bool* first) {
   return it->second ? &*it->second : nullptr;
 }
 
+std::string ObjColouring::listed(const std::set<std::string>& names) {
+  std::string out;
+  size_t shown = 0;
+  for (const std::string& n : names)
+    if (shown++ < 5) out += (out.empty() ? "'" : ", '") + n + "'";
+  if (names.size() > shown) out += ", ...";
+  return out;
+}
+
 ObjColouring colour_obj_materials(Mesh& m, const std::vector<std::string>& libraries, const std::string& obj,
                                   MaterialFiles& files, const std::string& who, std::vector<std::string>& warnings) {
   ObjColouring out;
@@ -244,9 +267,11 @@ ObjColouring colour_obj_materials(Mesh& m, const std::vector<std::string>& libra
     bool found = false;
     for (size_t i = 0; i < names.size(); ++i) {
       if (i == words && found) break;
-      const std::string path = path_beside(obj, names[i]);
+      std::string path;
       bool first = false;
-      const MtlLibrary* lib = files.library(path, &first);
+      const MtlLibrary* lib = nullptr;
+      for (const std::string& form : paths_beside(obj, names[i]))
+        if ((lib = files.library(path = form, &first))) break;
       if (!lib) continue;
       found = true;
       if (first)
@@ -264,7 +289,15 @@ ObjColouring colour_obj_materials(Mesh& m, const std::vector<std::string>& libra
   for (Material& mat : m.materials) {
     const auto it = defined.find(mat.name);
     if (it == defined.end()) {
-      out.undefined.insert(mat.name);
+      // No library at hand defines it: Java 3D's built-in table, as Sweet Home's OBJLoader
+      // starts from it (java3d_materials.h).
+      if (const std::optional<std::array<double, 3>> kd = java3d_material_colour(mat.name)) {
+        mat.colour = {linear_from_srgb((*kd)[0]), linear_from_srgb((*kd)[1]), linear_from_srgb((*kd)[2])};
+        mat.where = SourceLoc{"Java 3D's built-in materials", 0, 0, "material '" + mat.name + "'"};
+        ++out.builtin;
+      } else {
+        out.undefined.insert(mat.name);
+      }
       continue;
     }
     const MtlMaterial& d = it->second.material;
@@ -273,7 +306,10 @@ ObjColouring colour_obj_materials(Mesh& m, const std::vector<std::string>& libra
       bool found = false;
       for (const std::string& file : map_kd_candidates(d.diffuse_map)) {
         bool first = false;
-        const MaterialFiles::Image& image = files.image(path_beside(it->second.library, file), &first);
+        const MaterialFiles::Image* at = nullptr;
+        for (const std::string& form : paths_beside(it->second.library, file))
+          if ((at = &files.image(form, &first))->at_hand) break;
+        const MaterialFiles::Image& image = *at;
         if (!image.at_hand) continue;
         found = true;
         colour = image.colour;

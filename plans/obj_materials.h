@@ -88,6 +88,11 @@ std::vector<std::string> map_kd_candidates(const std::string& argument);
 /// The path of `name` (a file an OBJ or MTL file names) beside `file`: in its folder (the
 /// text up to its last '/'); `name` itself when it is absolute (begins with '/').
 std::string path_beside(const std::string& file, const std::string& name);
+/// The paths `name` may mean beside `file`, in order: path_beside as written; then, for a
+/// name written on Windows (`textures\wood.png`, `C:\models\chair.mtl`), with its
+/// backslashes read as slashes; then its last component alone (the file moved beside the
+/// model with it, as exporters' absolute paths usually are). Each once.
+std::vector<std::string> paths_beside(const std::string& file, const std::string& name);
 
 /// The files materials take their colours from, each read once however many models or
 /// surfaces name it: MTL libraries and images (their mean colour, plans/image_colour.h).
@@ -122,14 +127,18 @@ class MaterialFiles {
 /// What colour_obj_materials could not find.
 struct ObjColouring {
   int libraries_missing = 0;        ///< mtllib arguments naming no library at hand
-  std::set<std::string> undefined;  ///< material names no library at hand defines
+  std::set<std::string> undefined;  ///< material names neither a library at hand nor Java 3D defines
+  int builtin = 0;                  ///< materials coloured from Java 3D's built-in table
+  /// `names` as a message lists them: the first five quoted, then "..." if there are more.
+  static std::string listed(const std::set<std::string>& names);
 };
 
 /// Colours a mesh's OBJ materials (name_obj_materials, by name) as their MTL libraries say,
 /// as Sweet Home's OBJLoader does: a material's map_Kd image, where it can be read, as the
 /// image's mean colour (Sweet Home draws a textured part in its texture's colours alone);
-/// else its Kd, sRGB-encoded (see above), made linear; a name no library defines keeps
-/// Material's default colour. `libraries`: the OBJ's mtllib arguments (read_mesh_bytes),
+/// else its Kd, sRGB-encoded (see above), made linear; a name no library defines takes
+/// Java 3D's built-in material of that name (plans/java3d_materials.h) as Sweet Home does,
+/// and a name neither defines keeps Material's default colour. `libraries`: the OBJ's mtllib arguments (read_mesh_bytes),
 /// each found beside `obj` (its path as `files` finds it; mtllib_candidates), each image
 /// beside the library that names it (map_Kd_candidates). Each material's `where` becomes
 /// its newmtl line. A library named but not at hand, an image not at hand (its Kd used

@@ -186,6 +186,71 @@ TEST_F(ObjColours, MapKdIsTheImagesMeanFoundBesideItsLibrary) {
   EXPECT_EQ(m.materials[0].colour, kd(0.2, 0.2, 0.2));
 }
 
+// A material no library defines is Java 3D's built-in one of that name, as in Sweet Home
+// 3D's OBJ loader (many catalogue models name them with no MTL file); a library's own
+// definition of such a name wins; a name neither defines keeps the default grey, said once.
+TEST_F(ObjColours, JavaThreeDsBuiltInMaterialsColourWhatNoLibraryDefines) {
+  // Java 3D's DefaultMaterials: flblonde Kd 0.5714 0.3283 0.0443, archwhite 0.9959 (grey).
+  const std::string obj = write("crate.obj",
+                                "mtllib crate.mtl\n"
+                                "v -.5 -.5 0\nv .5 -.5 0\nv .5 .5 0\nv -.5 .5 0\nv -.5 -.5 1\nv .5 -.5 1\nv .5 .5 1\nv -.5 .5 1\n"
+                                "usemtl flblonde\nf 1 4 3 2\nf 5 6 7 8\n"
+                                "usemtl white\nf 1 2 6 5\n"
+                                "usemtl archwhite\nf 2 3 7 6\n"
+                                "usemtl no such paint\nf 3 4 8 7\nf 4 1 5 8\n");
+  write("crate.mtl", "newmtl white\nKd 0.1 0.2 0.3\n");
+  std::vector<std::string> warnings;
+  const Mesh m = load_mesh(obj, {}, &warnings);
+  ASSERT_EQ(m.materials.size(), 4u);
+  EXPECT_EQ(m.materials[0].name, "flblonde");
+  EXPECT_EQ(m.materials[0].colour, kd(0.5714, 0.3283, 0.0443));
+  EXPECT_EQ(m.materials[0].where.str(), "Java 3D's built-in materials (material 'flblonde')");
+  EXPECT_EQ(m.materials[1].colour, kd(0.1, 0.2, 0.3)) << "the library's 'white', not Java 3D's";
+  EXPECT_EQ(m.materials[2].colour, kd(0.9959, 0.9959, 0.9959));
+  EXPECT_EQ(m.materials[3].colour, Material().colour);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0], "mesh " + obj +
+                             ": 1 material(s) its faces use are defined in no MTL library nor among Java 3D's built-in "
+                             "materials ('no such paint'): they keep Avenues' default colour");
+  // With no library at all, the same colours, and the warning says it names none.
+  write("bare.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nusemtl flblonde\nf 1 2 3\n");
+  warnings.clear();
+  EXPECT_EQ(load_mesh(path("bare.obj").string(), {}, &warnings).materials.at(0).colour, kd(0.5714, 0.3283, 0.0443));
+  EXPECT_TRUE(warnings.empty()) << warnings.front();
+  write("bare.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nusemtl Oak\nf 1 2 3\n");
+  load_mesh(path("bare.obj").string(), {}, &warnings);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("defined in no MTL library (it names none: mtllib) nor among Java 3D's"), std::string::npos)
+      << warnings[0];
+  // In the picture: the crate's front (y = -0.5) is Java 3D's white overridden, its base
+  // flblonde; seen from in front, lit from the eye.
+  const std::string scene = write("room.toml",
+                                  "name = 'crate room'\nunits = 'm'\n"
+                                  "[[wall]]\nname = 'outside'\nthickness = 0.2\npath = [[0, 0], [5, 0], [5, 4], [0, 4], [0, 0]]\n"
+                                  "[[room]]\nname = 'room'\nat = [1, 1]\n"
+                                  "[[object]]\nname = 'crate'\nmesh = 'crate.obj'\nposition = [2.5, 2, 0]\n");
+  expect_pixel_shows(view(scene, "2.5,0.5,0.5", "2.5,2,0.5"), kd(0.1, 0.2, 0.3), "the crate's front (its library's white)");
+}
+
+// An OBJ written on Windows names its library and images with backslashes, an image often
+// by the absolute path it had there: read as slashes, else the file beside its library.
+TEST_F(ObjColours, WindowsPathsInMtllibAndMapKdAreFound) {
+  red_blue_png("materials/label.png");
+  std::string obj = kCrateObj;
+  obj.replace(obj.find("materials/crate.mtl"), 19, "materials\\crate.mtl");
+  write("crate.obj", obj);
+  write("materials/crate.mtl",
+        "newmtl Label\nKd 1 1 1\nmap_Kd C:\\Users\\me\\textures\\label.png\nnewmtl Paint\nKd 0.9 0.6 0.2\n");
+  std::vector<std::string> warnings;
+  const Mesh m = load_mesh(path("crate.obj").string(), {}, &warnings);
+  EXPECT_TRUE(warnings.empty()) << warnings.front();
+  ASSERT_EQ(m.materials.size(), 2u);
+  for (size_t k = 0; k < 3; ++k) EXPECT_NEAR(m.materials[0].colour[k], (std::array<double, 3>{0.5, 0, 0.5})[k], 1e-12);
+  EXPECT_EQ(m.materials[1].colour, kd(0.9, 0.6, 0.2));
+  EXPECT_EQ(paths_beside("a/b.obj", "x\\y.mtl"), (std::vector<std::string>{"a/x\\y.mtl", "a/x/y.mtl", "a/y.mtl"}));
+  EXPECT_EQ(paths_beside("b.obj", "y.mtl"), (std::vector<std::string>{"y.mtl"}));
+}
+
 // An [[object]] OBJ in a TOML plan is drawn in its MTL's colours, face by face.
 TEST_F(ObjColours, APlansObjectShowsItsMaterials) {
   red_blue_png("materials/textures/label.png");
@@ -240,7 +305,9 @@ TEST_F(ObjColours, AMissingLibraryIsOneWarningAndTheDefaultColour) {
   warnings.clear();
   load_mesh(avenues::testing::outside_path("meshes/viking-room/viking_room.obj"), {}, &warnings);
   ASSERT_EQ(warnings.size(), 1u);
-  EXPECT_NE(warnings[0].find("1 material(s) its faces use are defined in no MTL library ('Texture1')"), std::string::npos)
+  EXPECT_NE(warnings[0].find("1 material(s) its faces use are defined in no MTL library nor among Java 3D's "
+                             "built-in materials ('Texture1')"),
+            std::string::npos)
       << warnings[0];
 }
 

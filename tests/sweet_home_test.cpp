@@ -26,6 +26,7 @@
 
 #include "cells/build_cells.h"
 #include "plans/formats/sweet_home.h"
+#include "plans/java3d_materials.h"
 #include "tests/test_files.h"
 #include "plans/mesh.h"
 #include "render/scene_objects.h"
@@ -693,9 +694,10 @@ TEST(SweetHome, TheExampleHomesFurnitureHasItsModels) {
 // Debian's example homes colour many pieces part by part (25 to 108 <material> elements
 // each, named after the Java 3D materials their catalogue models use): every piece that has
 // a colour of its own, a modelMaterials colour (opaque) for a material its model's OBJ
-// uses, or a model whose MTL gives one of its materials a Kd, is no longer Avenues' default
-// grey, and no other is. The oracle reads the XML, the OBJ's usemtl and mtllib lines and
-// the MTL's newmtl and Kd lines itself.
+// uses, a model whose MTL gives one of its materials a Kd, or a model using a material no
+// MTL of its defines but Java 3D's built-in table does (as most catalogue models do, with
+// no MTL at all), is no longer Avenues' default grey, and no other is. The oracle reads the
+// XML, the OBJ's usemtl, f and mtllib lines and the MTL's newmtl and Kd lines itself.
 TEST(SweetHome, TheExampleHomesPiecesTakeTheirModelMaterialsColours) {
   if (!fs::exists(kExamples / "com/eteks/sweethome3d/io/resources/armchair.obj"))
     GTEST_SKIP() << "the catalogue's models are not in " << kExamples << " (run .ci/install-deps as root)";
@@ -731,14 +733,29 @@ TEST(SweetHome, TheExampleHomesPiecesTakeTheirModelMaterialsColours) {
       if (fresh) {
         const fs::path obj = kExamples / model;
         lines_of(obj, "usemtl ", [&](const std::string& n) { it->second.used.insert(n); });
+        // Faces before the first usemtl are "default" (one of Java 3D's names), in a file that
+        // uses materials at all.
+        bool named = false, face_before = false;
+        {
+          std::ifstream in(obj);
+          for (std::string l; std::getline(in, l);) {
+            named |= l.rfind("usemtl ", 0) == 0;
+            face_before |= !named && l.rfind("f ", 0) == 0;
+          }
+        }
+        if (named && face_before) it->second.used.insert("default");
+        std::set<std::string> defined;  // by an MTL library of the model
         lines_of(obj, "mtllib ", [&](const std::string& lib) {
           std::string current;
           std::ifstream in(obj.parent_path() / lib);
           for (std::string l; std::getline(in, l);) {
-            if (l.rfind("newmtl ", 0) == 0) current = l.substr(7);
+            if (!l.empty() && l.back() == '\r') l.pop_back();
+            if (l.rfind("newmtl ", 0) == 0) defined.insert(current = l.substr(7));
             if (l.rfind("Kd ", 0) == 0 && it->second.used.count(current)) it->second.coloured.insert(current);
           }
         });
+        for (const std::string& n : it->second.used)
+          if (!defined.count(n) && java3d_material_colour(n)) it->second.coloured.insert(n);
       }
       return it->second;
     };

@@ -33,9 +33,11 @@
 //                      key, else name; an opaque colour or a texture, else the model's own
 //                      stays), else the model's own: its OBJ's usemtl groups coloured by
 //                      its MTL libraries (beside the model) as map_Kd's image mean, else
-//                      Kd (sRGB-encoded, made linear); a name no library defines (Java 3D's
-//                      default materials) keeps the default grey. A texture is its image's
-//                      mean colour (PNG or JPEG, plans/image_colour.h). Lights are not imported yet.
+//                      Kd (sRGB-encoded, made linear); a name no library defines takes
+//                      Java 3D's built-in material of that name (plans/java3d_materials.h),
+//                      and one neither defines keeps the default grey. A texture is its
+//                      image's mean colour (PNG or JPEG, plans/image_colour.h). Light
+//                      pieces' sources become point lights (PLAN_FORMAT.md).
 // Sweet Home lengths are centimetres with y pointing down the screen; a point (x, y)
 // becomes (x/100, −y/100) m, which keeps counter-clockwise polygons counter-clockwise
 // and turns Sweet Home's clockwise angles into Avenues' anticlockwise ones.
