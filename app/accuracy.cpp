@@ -54,24 +54,6 @@ fs::path source_dir() {
   return fs::current_path();
 }
 
-/// The plan moved by `by` in plan: every coordinate the decomposition sees.
-Plan moved(Plan p, Vec2 by) {
-  for (Wall& w : p.walls)
-    for (Vec2& v : w.centre) v = v + by;
-  for (FloorOpening& f : p.floor_openings)
-    for (Vec2& v : f.outline) v = v + by;
-  for (Room& r : p.rooms)
-    if (r.label) r.label = *r.label + by;
-  for (Object& o : p.objects) o.position = o.position + Vec3{by.x, by.y, 0};
-  for (Light& l : p.lights) l.position = l.position + Vec3{by.x, by.y, 0};
-  if (p.view) {
-    p.view->eye = p.view->eye + Vec3{by.x, by.y, 0};
-    p.view->look = p.view->look + Vec3{by.x, by.y, 0};
-  }
-  p.name += " (far from the origin)";
-  return p;
-}
-
 struct Subject {
   std::string name;
   CellComplex complex;

@@ -93,6 +93,7 @@ double total_volume(const CellComplex& c) {
 }
 
 void CellComplex::index() {
+  index_surfaces();
   // One uniform grid in plan over the far box; each grid square lists the cells whose
   // footprint's bounding box overlaps it (all heights: a few storeys per square).
   bands.assign(1, Band{});

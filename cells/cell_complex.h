@@ -63,6 +63,20 @@ struct Portal {
 struct OpaquePoly {
   std::vector<Vec3> poly;  ///< convex, counter-clockwise seen from inside the cell
   MaterialId material = -1;
+  int32_t surface = -1;    ///< derived: its Surface in CellComplex::surfaces (index()); -1 before
+};
+
+/// The opaque pieces of the whole complex that lie in one plane, face one way and have one
+/// material: one surface of the building (a wall's face, a floor), however many cells cut
+/// it. Bouknight shaded each polygon of his scene flat, from its normal and the light's
+/// direction; a surface the decomposition cut into pieces is still one polygon to him, so
+/// the half-tone lights every piece of it from one point, its centroid, and it takes one
+/// flat shade with no false edges where cells meet (cells/surface.cpp).
+struct Surface {
+  Vec3 normal;              ///< unit, into free space (the first piece's)
+  Vec3 centroid;            ///< [m] area-weighted over all its pieces
+  double area = 0;          ///< [m²]
+  MaterialId material = -1;
 };
 
 /// One planar face of a cell's boundary: opaque except where portals open it.
@@ -167,8 +181,12 @@ struct CellComplex {
   /// it. kNoCell when the room has no such cell.
   CellId largest_cell_of(RoomId room) const;
 
-  /// Builds the spatial index used by locate(); done by build_cells and load_cells.
+  /// Builds the spatial index used by locate() and the surfaces (index_surfaces); done by
+  /// build_cells, the mesh scenes and load_cells.
   void index();
+  /// Groups every opaque piece into `surfaces` (OpaquePoly::surface): pieces of one
+  /// material whose planes agree within 1e-6 in direction and 10 µm in place.
+  void index_surfaces();
 
   // --- spatial index (derived; rebuilt by index()) ---
   struct Band {
@@ -186,6 +204,7 @@ struct CellComplex {
     std::string what;
   };
   std::vector<SolidBox> solids;
+  std::vector<Surface> surfaces;  ///< derived (index_surfaces)
 };
 
 /// Sum of cell volumes [m³].

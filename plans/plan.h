@@ -13,6 +13,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/geometry.h"
@@ -193,5 +194,17 @@ struct Plan {
 Plan read_plan(const std::string& path);
 /// Same, from text (for tests and fuzzing); `name` stands for the file in messages.
 Plan parse_plan(const std::string& text, const std::string& name);
+
+/// Finds a pair of segments of the polyline `pts` (closed: last point joins the first)
+/// that meet although they should not: non-neighbours that touch or cross, or
+/// neighbours that double back over each other. Returns the pair (i < j), or {-1,-1}.
+/// A wall's centre line must have none (the reader's rule, which importers that chain
+/// walls keep too).
+std::pair<int, int> find_self_crossing(const std::vector<Vec2>& pts, bool closed);
+
+/// The plan moved by `by` in plan (every coordinate the decomposition sees: walls, floor
+/// openings, room labels, objects, lights, the viewpoint), its name marked "(far from the
+/// origin)": the far copies of the accuracy study and the hard cases.
+Plan moved(Plan p, Vec2 by);
 
 }  // namespace avenues

@@ -254,14 +254,14 @@ bool ScreenSceneBuilder::add_lit(const std::vector<Vec3>& points, Vec3 n, double
 }
 
 bool ScreenSceneBuilder::add_face(const std::vector<Vec3>& polygon, const Plane& plane, const Material& material,
-                                  Placement where, const PolygonSource& source) {
+                                  Placement where, const PolygonSource& source, const Vec3* shade_at) {
   std::vector<Vec3> cam;
   Vec3 centroid{0, 0, 0};
   for (Vec3 p : polygon) {
     cam.push_back(camera_.camera_from_world(p));
     centroid = centroid + cam.back();
   }
-  centroid = (1.0 / double(cam.size())) * centroid;
+  centroid = shade_at ? camera_.camera_from_world(*shade_at) : (1.0 / double(cam.size())) * centroid;
   // The face's plane in camera space: n·P + (n·eye + d) = 0.
   const Vec3 n = camera_dir(plane.n);
   const double d = plane.eval(camera_.eye);

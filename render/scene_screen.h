@@ -100,9 +100,11 @@ class ScreenSceneBuilder {
   int32_t add_clip(const std::vector<Vec2>& picture_polygon, double grow);
   /// A planar convex polygon of a cell (world coordinates, on `plane`), lit as
   /// options.shading says (or by the plan's lights, options.lighting: `source` names the
-  /// face). False if nothing of it is left to draw.
+  /// face). A flat shade is the one at `shade_at` (world), the centroid of the surface the
+  /// polygon is a piece of (cells' Surface), so that every piece of one surface takes one
+  /// shade; nullptr: the polygon's own centroid. False if nothing of it is left to draw.
   bool add_face(const std::vector<Vec3>& polygon, const Plane& plane, const Material& material, Placement where,
-                const PolygonSource& source);
+                const PolygonSource& source, const Vec3* shade_at = nullptr);
   /// A mesh, input polygon by input polygon (its fan of triangles put back together). Flat:
   /// one intensity each. Smooth: a polygon whose corners' normals are its own is lit from
   /// its plane; a curved one by Gouraud over its triangles. Polygons of a closed mesh

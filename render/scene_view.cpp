@@ -10,7 +10,9 @@
 //     whole — a portal's hole is not cut out, since the deeper avenue seen through it
 //     covers it. Within the mask they never overlap (a convex cell), so they need no
 //     depth test. A face made of pieces of different materials is drawn piece by piece;
-//     a face with no opaque piece at all (wholly a portal) is not drawn;
+//     a face with no opaque piece at all (wholly a portal) is not drawn. A flat shade is
+//     taken at the centroid of the whole surface (cells' Surface), Bouknight's polygon,
+//     not of the piece a cell holds, so that no false edge shows where cells meet;
 //   - the objects of its cell, which resolve depth against that cell's faces and each
 //     other, inside the mask only.
 #include "render/scene_screen.h"
@@ -29,6 +31,13 @@ constexpr double kMaskGrowth = 1.0 / 64;
 const Material& material_of(const CellComplex& c, MaterialId id) {
   static const Material kDefault;
   return id >= 0 && size_t(id) < c.materials.size() ? c.materials[size_t(id)] : kDefault;
+}
+
+/// Where a piece is lit from when it is shaded flat: its surface's centroid (one shade for
+/// every piece of one plane and material), or its own when the complex has no surfaces.
+const Vec3* shade_point(const CellComplex& c, const OpaquePoly& piece) {
+  return piece.surface >= 0 && size_t(piece.surface) < c.surfaces.size() ? &c.surfaces[size_t(piece.surface)].centroid
+                                                                          : nullptr;
 }
 
 }  // namespace
@@ -69,10 +78,12 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
       bool one_material = true;
       for (const OpaquePoly& piece : face.opaque) one_material &= piece.material == face.opaque[0].material;
       if (one_material) {
-        b.add_face(face.poly, face.plane, material_of(complex, face.opaque[0].material), where, source);
+        b.add_face(face.poly, face.plane, material_of(complex, face.opaque[0].material), where, source,
+                   shade_point(complex, face.opaque[0]));
       } else {
         for (const OpaquePoly& piece : face.opaque)
-          b.add_face(piece.poly, face.plane, material_of(complex, piece.material), where, source);
+          b.add_face(piece.poly, face.plane, material_of(complex, piece.material), where, source,
+                     shade_point(complex, piece));
       }
     }
     auto in = objects_in.find(avenue.cell);

@@ -122,8 +122,8 @@ struct Occluder {
   ShadowVolume volume;
 };
 
-/// A surface: the convex parts of one face or one object polygon.
-struct Surface {
+/// A receiver of light: the convex parts of one face or one object polygon.
+struct Receiver {
   CellId cell = kNoCell;
   int object = -1, polygon = -1;  ///< an object's polygon: it does not shade itself
   std::vector<std::vector<Vec3>> parts;
@@ -174,7 +174,7 @@ class LightCaster {
   }
 
   /// What the light does to a surface; false: nothing (it does not reach it).
-  bool light(const Surface& s, SurfaceLight& out) {
+  bool light(const Receiver& s, SurfaceLight& out) {
     out = SurfaceLight{};
     const auto& cones = cones_[size_t(s.cell)];
     out.whole = all_directions_[size_t(s.cell)] != 0;
@@ -297,7 +297,7 @@ SceneShadows cast_shadows(const CellComplex& complex, const std::vector<PlacedOb
     LightCaster caster(complex, object_shadows ? objects : kNoObjects, light.position, ls);
     caster.prepare();
     const double tol = 1e-9 * (1 + length(light.position));
-    Surface s;
+    Receiver s;
     SurfaceLight lit;
     // The faces of every cell it reaches, lit from their inner side.
     for (CellId id : ls.reach.cells) {
