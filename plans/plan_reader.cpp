@@ -129,58 +129,6 @@ bool parse_hex_colour(std::string_view s, std::array<double, 3>& out) {
 // typed (or a few arc pieces), far from the degenerate cases that need exact maths,
 // and cells/ recomputes everything exactly anyway.
 
-/// Sign of the turn a→b→c: > 0 left (counter-clockwise), < 0 right, 0 collinear.
-double orient(Vec2 a, Vec2 b, Vec2 c) { return cross(b - a, c - a); }
-
-/// Is c, known collinear with a–b, within the segment's bounding box?
-bool within(Vec2 a, Vec2 b, Vec2 c) {
-  return std::min(a.x, b.x) <= c.x && c.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= c.y &&
-         c.y <= std::max(a.y, b.y);
-}
-
-/// Do closed segments p1–p2 and q1–q2 share any point (touching counts)?
-bool segments_meet(Vec2 p1, Vec2 p2, Vec2 q1, Vec2 q2) {
-  const double d1 = orient(q1, q2, p1), d2 = orient(q1, q2, p2);
-  const double d3 = orient(p1, p2, q1), d4 = orient(p1, p2, q2);
-  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0)))
-    return true;
-  return (d1 == 0 && within(q1, q2, p1)) || (d2 == 0 && within(q1, q2, p2)) ||
-         (d3 == 0 && within(p1, p2, q1)) || (d4 == 0 && within(p1, p2, q2));
-}
-
-/// Finds a pair of segments of the polyline `pts` (closed: last point joins the first)
-/// that meet although they should not: non-neighbours that touch or cross, or
-/// neighbours that double back over each other. Returns the pair (i < j), or {-1,-1}.
-/// A sweep over x keeps it near n log n for long tessellated walls.
-std::pair<int, int> find_self_crossing(const std::vector<Vec2>& pts, bool closed) {
-  const int n = static_cast<int>(pts.size()) - 1;  // segments i: pts[i] → pts[i+1]
-  auto neighbours = [&](int i, int j) {  // i < j
-    return j == i + 1 || (closed && i == 0 && j == n - 1);
-  };
-  // Neighbours share a vertex; they only "cross" if they fold back onto each other.
-  for (int i = 0; i < n; ++i) {
-    const int j = i + 1 < n ? i + 1 : (closed ? 0 : -1);
-    if (j < 0 || j == i) continue;
-    const Vec2 a = pts[i + 1] - pts[i], b = pts[j + 1] - pts[j];
-    if (std::fabs(cross(a, b)) <= 1e-12 * length(a) * length(b) && dot(a, b) < 0)
-      return {std::min(i, j), std::max(i, j)};
-  }
-  std::vector<int> order(n);
-  for (int i = 0; i < n; ++i) order[i] = i;
-  auto xlo = [&](int i) { return std::min(pts[i].x, pts[i + 1].x); };
-  auto xhi = [&](int i) { return std::max(pts[i].x, pts[i + 1].x); };
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return xlo(a) < xlo(b); });
-  for (int oi = 0; oi < n; ++oi) {
-    const int i = order[oi];
-    for (int oj = oi + 1; oj < n && xlo(order[oj]) <= xhi(i); ++oj) {
-      const int j = order[oj];
-      const int a = std::min(i, j), b = std::max(i, j);
-      if (neighbours(a, b)) continue;
-      if (segments_meet(pts[a], pts[a + 1], pts[b], pts[b + 1])) return {a, b};
-    }
-  }
-  return {-1, -1};
-}
 
 // ---------------------------------------------------------------------------------
 
@@ -446,7 +394,7 @@ void Reader::unique(std::unordered_set<std::string>& seen, const std::string& na
 
 void Reader::read_settings(const toml::table& root) {
   Element e(*this, root, "plan");
-  e.allow({"name", "units", "arc_tolerance", "far_margin", "ground", "sky", "roof", "view", "materials",
+  e.allow({"name", "units", "arc_tolerance", "far_margin", "lenient", "ground", "sky", "roof", "view", "materials",
            "storey", "wall", "floor_opening", "room", "object", "light"});
   if (auto u = e.string("units")) {
     auto it = std::find_if(std::begin(kUnits), std::end(kUnits), [&](const Unit& x) { return x.name == *u; });
@@ -462,6 +410,10 @@ void Reader::read_settings(const toml::table& root) {
   if (auto m = e.length("far_margin")) {
     if (*m <= 0) e.fail("far_margin", "'far_margin' must be > 0, not " + len(*m));
     plan_.far_margin = *m;
+  }
+  if (const toml::node* l = e.get("lenient")) {
+    if (!l->is_boolean()) e.fail("lenient", "'lenient' must be true or false, not " + std::string(type_name(*l)));
+    plan_.lenient = l->as_boolean()->get();
   }
 }
 
@@ -691,8 +643,9 @@ void Reader::read_openings(const Element& we, Wall& wall, const std::vector<Path
     if (kind == "door") o.kind = OpeningKind::Door, sill = 0, head = 2.1;
     else if (kind == "window") o.kind = OpeningKind::Window, sill = 0.9, head = 2.1;
     else if (kind == "hatch") o.kind = OpeningKind::Hatch, sill = 1.0, head = 1.5;
-    else e.fail("kind", "unknown opening kind '" + kind + "' (use door, window or hatch)" +
-                            did_you_mean(kind, std::initializer_list<std::string_view>{"door", "window", "hatch"}));
+    else if (kind == "gap") o.kind = OpeningKind::Gap, sill = 0, head = 2.1;
+    else e.fail("kind", "unknown opening kind '" + kind + "' (use door, window, hatch or gap)" +
+                            did_you_mean(kind, std::initializer_list<std::string_view>{"door", "window", "hatch", "gap"}));
 
     const double at = e.length_of(e.need("at"), "'at'");
     o.width = e.length_of(e.need("width"), "'width'");

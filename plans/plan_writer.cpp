@@ -84,13 +84,12 @@ std::string plan_as_toml(const Plan& plan, const std::vector<std::string>& model
     }
     if (!w.openings.empty()) {
       toml::array os;
+      std::set<std::string> opening_names;  // unique per wall in the format: two of one name get a number
       for (const Opening& o : w.openings) {
-        if (o.kind == OpeningKind::Gap) {
-          left_out.push_back("gap '" + o.name + "' of wall '" + w.name + "' (the format has doors, windows, hatches)");
-          continue;
-        }
+        std::string name = o.name;
+        for (int k = 2; !opening_names.insert(name).second; ++k) name = o.name + " " + std::to_string(k);
         toml::table ot;
-        ot.insert("name", o.name);
+        ot.insert("name", name);
         ot.insert("kind", to_string(o.kind));
         ot.insert("at", o.at);
         ot.insert("width", o.width);
@@ -183,7 +182,8 @@ std::string plan_as_toml(const Plan& plan, const std::vector<std::string>& model
     lights.push_back(std::move(t));
   }
   if (!lights.empty()) root.insert("light", std::move(lights));
-  if (plan.lenient) left_out.push_back("the importer's leniency (labels in walls are errors here)");
+  // The importer's leniency travels with the plan, so that it reads back as it was read.
+  if (plan.lenient) root.insert("lenient", true);
   if (plan.outside_solid) left_out.push_back("a solid outside");
 
   std::ostringstream out;

@@ -68,9 +68,26 @@ TEST(PlanWriter, ImportedAnnotationsRoundTrip) {
   for (const auto& e : fs::directory_iterator(dir)) {
     const Plan a = read_floorplan_vectors(e.path().string());
     const std::string text = plan_as_toml(a);
-    EXPECT_NE(text.find("# not expressible here, left out:"), std::string::npos);  // its fixtures, its leniency
+    EXPECT_NE(text.find("# not expressible here, left out:"), std::string::npos);  // its fixtures
     const Plan b = parse_plan(text, e.path().filename().string() + ".toml");
     expect_same_plan(a, b);
+    EXPECT_TRUE(b.lenient) << "the importer's leniency is kept (lenient = true)";
+  }
+}
+
+// `lenient` is a plan's own setting: true reads the plan as an imported one is read; it
+// must be a boolean.
+TEST(PlanWriter, LenientIsABooleanSettingOfThePlan) {
+  const std::string walls =
+      "[[wall]]\nname = 'box'\nthickness = 0.2\npath = [[0, 0], [4, 0], [4, 3], [0, 3], [0, 0]]\n";
+  EXPECT_FALSE(parse_plan(walls, "strict.toml").lenient);
+  EXPECT_TRUE(parse_plan("lenient = true\n" + walls, "lenient.toml").lenient);
+  try {
+    parse_plan("lenient = 'yes'\n" + walls, "bad.toml");
+    ADD_FAILURE() << "a string for lenient was taken";
+  } catch (const PlanError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.toml:1"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'lenient' must be true or false, not a string"), std::string::npos) << e.what();
   }
 }
 

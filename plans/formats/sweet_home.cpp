@@ -280,6 +280,9 @@ struct PieceIn {
   double angle = 0;       ///< [rad] anticlockwise in plan (Sweet Home's is clockwise on screen)
   double width = 0, depth = 0, height = 0, elevation = 0;  ///< [m], elevation above the level
   bool door_or_window = false;
+  /// A door or window that cuts no wall (it enters none, or only as a niche): Sweet Home
+  /// still shows its model where it stands, so it becomes a piece of furniture.
+  bool in_no_wall = false;
   bool cut_both_sides = false;  ///< wallCutOutOnBothSides: Sweet Home cuts its wall through, however deep it is
   std::string cut_out;    ///< a staircase's staircaseCutOutShape (SVG path in the unit square)
   bool mirrored = false;
@@ -368,7 +371,7 @@ class HomeReader {
   void join_walls();
   void stretch_free_ends();
   void collect_pieces(const HomeElement& home);
-  void find_wall(const PieceIn& p);
+  void find_wall(PieceIn& p);
   void cut_openings();
   void finish_walls();
   /// A <room> in plan: the room as it will enter the plan (label not yet placed) and its polygon.
@@ -466,7 +469,7 @@ class HomeReader {
   /// The MTL libraries and images that models' materials, pieces' modelMaterials and
   /// surfaces' textures name, by entry: each read once.
   MaterialFiles files_;
-  std::set<std::string> undefined_materials_;  ///< names models use that no MTL library at hand defines
+  std::set<std::string> undefined_materials_;  ///< names models use that neither an MTL library at hand nor Java 3D defines
   int models_missing_ = 0;       ///< pieces left boxes because their model is not at hand
   Plan plan_;
   double wall_height_ = 2.5;   ///< [m] the home's default wall height
@@ -745,7 +748,18 @@ void HomeReader::join_walls() {
         if (rev) std::swap(d.h0, d.h1), std::swap(d.at_start, d.at_end);
         if (rev && d.wall.right_material >= 0) std::swap(d.wall.material, d.wall.right_material);
       } else {
-        d.wall.centre.insert(d.wall.centre.end(), c.begin() + 1, c.end());
+        // Not a wall that would make the chain's centre line cross itself (Sweet Home lets
+        // joined walls overlap; a plan's wall may not): it starts a chain of its own.
+        std::vector<Vec2> joined = d.wall.centre;
+        joined.insert(joined.end(), c.begin() + 1, c.end());
+        std::vector<Vec2> probe = joined;  // a ring closing here is checked as one
+        const bool ring = probe.size() > 3 && length(probe.back() - probe.front()) <= kJoinGap;
+        if (ring) probe.back() = probe.front();
+        if (find_self_crossing(probe, ring).first >= 0) {
+          used[cur] = 0;
+          break;
+        }
+        d.wall.centre = std::move(joined);
         d.wall.from_arc.insert(d.wall.from_arc.end(), fa.begin(), fa.end());
         d.at_end = rev ? w.at_start : w.at_end;
       }
@@ -952,7 +966,7 @@ void HomeReader::read_light_sources(const HomeElement& n, const std::string& ele
 /// taken as a hole, it would widen the window beside it. Its span along that centre line
 /// (the piece's width, clipped to the wall) is kept as two points, cut out by
 /// cut_openings() once every piece has found its wall.
-void HomeReader::find_wall(const PieceIn& p) {
+void HomeReader::find_wall(PieceIn& p) {
   const Vec2 axis{std::cos(p.angle), std::sin(p.angle)};
   long best_wall = -1, niche_wall = -1;
   double best_score = HUGE_VAL, best_s = 0, niche_reach = 0;
@@ -988,12 +1002,15 @@ void HomeReader::find_wall(const PieceIn& p) {
     const Wall& w = drafts_[size_t(niche_wall)].wall;
     plan_.warnings.push_back(p.where.str() + ": reaches only " + format_number("%.1f", niche_reach * 100) +
                              " cm into wall '" + w.name + "' (" + format_number("%.1f", w.thickness * 100) +
-                             " cm thick), a niche in Sweet Home 3D, not a hole through: no opening cut");
+                             " cm thick), a niche in Sweet Home 3D, not a hole through: no opening cut, it stands "
+                             "as a piece of furniture");
+    p.in_no_wall = true;
     return;
   }
   if (best_wall < 0) {
     plan_.warnings.push_back(p.where.str() + ": lies in no wall of its level (none parallel to it that it enters): "
-                             "no opening cut");
+                             "no opening cut, it stands as a piece of furniture");
+    p.in_no_wall = true;
     return;
   }
   const Wall& w = drafts_[size_t(best_wall)].wall;
@@ -1491,8 +1508,9 @@ std::vector<ModelMaterialIn> HomeReader::model_materials_of(const HomeElement& n
 /// A model's own materials coloured as its MTL libraries say (plans/obj_materials.h,
 /// colour_obj_materials: map_Kd's image mean, else Kd as sRGB), the libraries found beside
 /// the model (its folder in the .sh3d, in a zipped model, or under a bare Home.xml's
-/// folder), their images beside them. A material no library at hand defines keeps Avenues'
-/// default colour (one warning for the home lists them). `libraries`: the OBJ's mtllib
+/// folder), their images beside them. A material no library at hand defines takes Java 3D's
+/// built-in material of its name, as Sweet Home's OBJLoader does; one neither defines keeps
+/// Avenues' default colour (one warning for the home lists them). `libraries`: the OBJ's mtllib
 /// arguments, as read_mesh_bytes found them.
 void HomeReader::colour_model(Mesh& m, const std::vector<std::string>& libraries, const PieceIn& p) {
   const ObjColouring c =
@@ -1641,7 +1659,7 @@ void HomeReader::add_lights() {
 
 void HomeReader::add_furniture() {
   for (const PieceIn& p : pieces_) {
-    if (p.door_or_window) continue;
+    if (p.door_or_window && !p.in_no_wall) continue;  // the opening it cuts stands for it
     Object o;
     o.name = p.name;
     o.storey = p.storey;
@@ -1708,7 +1726,7 @@ Plan HomeReader::read() {
   join_walls();
   stretch_free_ends();
   collect_pieces(home);
-  for (const PieceIn& p : pieces_)
+  for (PieceIn& p : pieces_)
     if (p.door_or_window) find_wall(p);
   cut_openings();
   finish_walls();
@@ -1738,15 +1756,10 @@ Plan HomeReader::read() {
     plan_.warnings.push_back(file_ + ": " + std::to_string(models_missing_) +
                              " piece(s) of furniture drawn as boxes of their size: their models are not at hand");
   if (!undefined_materials_.empty()) {
-    // Sweet Home's OBJLoader knows Java 3D's default materials by name (Debian's catalogue
-    // models use them with no MTL file); Avenues does not.
-    std::string names;
-    size_t shown = 0;
-    for (const std::string& n : undefined_materials_)
-      if (shown++ < 5) names += (names.empty() ? "'" : ", '") + n + "'";
-    if (undefined_materials_.size() > shown) names += ", ...";
+    // Neither an MTL library at hand nor Java 3D's built-in table defines them.
     plan_.warnings.push_back(file_ + ": " + std::to_string(undefined_materials_.size()) +
-                             " material(s) that models use are defined in no MTL library at hand (" + names +
+                             " material(s) that models use are defined in no MTL library at hand nor among "
+                             "Java 3D's built-in materials (" + ObjColouring::listed(undefined_materials_) +
                              "): they keep Avenues' default colour where no piece's modelMaterials colour them");
   }
   if (walls_cut_ > 0)
