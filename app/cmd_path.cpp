@@ -248,12 +248,14 @@ class FrameWriter {
     if (s.svg) {
       scene_ = prepare_line_scene(c);
     } else {
-      objects_ = place_objects(c);
+      objects_ = place_objects(c, &said_);
       effects_.emplace(prepare_effects(c, objects_, s.halftone, s.kernel));  // once for every frame
     }
   }
 
   std::string file(int64_t k) const { return frame_path(pattern_, int(k), int(walk_.frames.size())); }
+  /// What reading the objects' meshes let pass (a missing MTL, an unreadable model).
+  const std::vector<std::string>& warnings() const { return said_; }
 
   void write(int64_t k) {
     const size_t i = size_t(k);
@@ -286,6 +288,7 @@ class FrameWriter {
   std::string pattern_;
   LineScene scene_;
   std::vector<PlacedObject> objects_;
+  std::vector<std::string> said_;
   std::optional<SceneEffects> effects_;
   Image picture_, second_;
   FrameStorage storage_;  ///< the half-tone's arrays, kept from frame to frame
@@ -336,6 +339,7 @@ int run_path(const PathOptions& opt) {
       settings.emplace(path_settings(opt, mpi));
       walk = plan_walk(plan->complex, opt, *settings);
       writer.emplace(plan->complex, *settings, walk, pattern);
+      print_warnings(plan->path, writer->warnings());  // once, by rank 0
       std::error_code ec;
       fs::create_directories(dir, ec);
       if (ec) throw std::runtime_error("cannot create the output directory " + opt.out_dir + ": " + ec.message());

@@ -117,6 +117,24 @@ TEST_F(Path, FilmHasEveryFrameAtAnEvenSize) {
   for (const std::string& name : names("walk")) EXPECT_EQ(name.find(".tmp-"), std::string::npos) << name;
 }
 
+// What reading the objects' meshes let pass is said by a walk as by a view: once.
+TEST_F(Path, SaysWhatTheObjectsMeshesLetPass) {
+  write("crate.obj", "mtllib crate.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 0 1\nusemtl Paint\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n");
+  const std::string plan = write("room.toml",
+                                 "name = 'crate room'\nunits = 'm'\n"
+                                 "[[wall]]\nname = 'outside'\nthickness = 0.2\npath = [[0, 0], [5, 0], [5, 4], [0, 4], [0, 0]]\n"
+                                 "[[room]]\nname = 'room'\nat = [1, 1]\n"
+                                 "[[object]]\nname = 'crate'\nmesh = 'crate.obj'\nposition = [2.5, 2, 0]\n");
+  const Outcome r = run({"path", plan, "--keys", write("keys.txt", "1 1 1.5 4 3 1\n1.2 1.1 1.5 4 3 1\n"), "--size",
+                         "32x18", "-o", "walk"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  size_t said = 0;
+  for (size_t at = r.err.find("'crate.mtl' is not at hand"); at != std::string::npos;
+       at = r.err.find("'crate.mtl' is not at hand", at + 1))
+    ++said;
+  EXPECT_EQ(said, 1u) << r.err;
+}
+
 // Issue 13, item 1: the film was made by a shell command with the output folder in quotes.
 TEST_F(Path, NoShellSeesTheOutputName) {
   for (const std::string out : {"inj';touch PWNED;'", "it's", "sp ace $(touch PWNED2)"}) {
