@@ -7,12 +7,14 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <optional>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <jpeglib.h>  // after <cstdio>: it needs FILE and size_t
@@ -905,6 +907,127 @@ TEST(SweetHomeColours, SavedAsTomlThePiecesModelsAreWrittenBesideIt) {
   // Saved again over itself, the folder is replaced whole.
   write_plan(p, saved);
   EXPECT_EQ(read_plan(saved).objects.size(), p.objects.size());
+}
+
+/// A class as ObjectOutputStream describes it: its fields in stream order (type code,
+/// name, and for an object field its JVM type), and its superclass.
+struct JavaClass {
+  std::string name;
+  std::vector<std::tuple<char, std::string, std::string>> fields;
+  const JavaClass* super = nullptr;
+  int flags = 0x02;  // SC_SERIALIZABLE
+};
+
+/// Writes class descriptors and objects (never a back reference: every one is new).
+struct JavaWriter {
+  Bytes s;
+  void desc(const JavaClass& c) {
+    s.u8(0x72).utf(c.name).uid().u8(c.flags).u16(int(c.fields.size()));
+    for (const auto& [code, name, type] : c.fields) {
+      s.u8(code).utf(name);
+      if (code == 'L' || code == '[') s.u8(0x74).utf(type);
+    }
+    s.u8(0x78);  // end of the class's annotation
+    if (c.super) desc(*c.super);
+    else s.u8(0x70);
+  }
+  void f32(float v) {
+    uint32_t u;
+    std::memcpy(&u, &v, 4);
+    s.u32(u);
+  }
+  void string(const std::string& v) { s.u8(0x74).utf(v); }
+  /// An ArrayList of the objects `write_each` writes (`count` of them).
+  template <class F>
+  void list(int count, F write_each) {
+    s.u8(0x73).u8(0x72).utf("java.util.ArrayList").uid().u8(0x03).u16(1).u8('I').utf("size").u8(0x78).u8(0x70);
+    s.u32(uint32_t(count));
+    s.u8(0x77).u8(4).u32(uint32_t(count));
+    for (int k = 0; k < count; ++k) write_each(k);
+    s.u8(0x78);
+  }
+};
+
+// Lights from a serialized Home (homes saved before Sweet Home 3D 5.3): a HomeLight's power
+// and its LightSource[] give the same point lights as the same lights in Home.xml. No home
+// from outside has one, so the stream is written here as ObjectOutputStream writes it.
+TEST(SweetHomeSerialized, LightsAreTheSameFromEitherEntry) {
+  const std::string m = "com.eteks.sweethome3d.model.";
+  const JavaClass wall{m + "Wall",
+                       {{'F', "thickness", ""}, {'F', "xEnd", ""}, {'F', "xStart", ""}, {'F', "yEnd", ""}, {'F', "yStart", ""}}};
+  const JavaClass piece{m + "HomePieceOfFurniture",
+                        {{'F', "angle", ""}, {'F', "depth", ""}, {'F', "elevation", ""}, {'F', "height", ""},
+                         {'F', "width", ""}, {'F', "x", ""}, {'F', "y", ""}, {'L', "name", "Ljava/lang/String;"}}};
+  const JavaClass light{m + "HomeLight", {{'F', "power", ""}, {'[', "lightSources", "[L" + m + "LightSource;"}}, &piece};
+  const JavaClass source{m + "LightSource", {{'I', "color", ""}, {'F', "x", ""}, {'F', "y", ""}, {'F', "z", ""}}};
+  const JavaClass sources{"[L" + m + "LightSource;", {}};
+  const JavaClass home{m + "Home", {{'L', "furniture", "Ljava/util/List;"}, {'L', "walls", "Ljava/util/List;"}}};
+  struct Src { float x, y, z; uint32_t colour; };
+  struct Lamp { std::string name; float x, y, elevation, angle, width, depth, height, power; std::vector<Src> sources; };
+  const std::vector<Lamp> lamps = {
+      {"Pendant", 200, 200, 200, 0, 40, 40, 50, 0.5f, {{0.5f, 0.5f, 0.5f, 0x00FFFFFF}}},
+      {"Spot", 100, 100, 100, 1.5707964f, 20, 10, 10, 0.25f, {{0, 0, 1, 0x00808080}, {1, 1, 0, 0xFFFF0000}}},
+  };
+  JavaWriter w;
+  w.s.u8(0x73);
+  w.desc(home);
+  w.list(int(lamps.size()), [&](int k) {
+    const Lamp& l = lamps[size_t(k)];
+    w.s.u8(0x73);
+    w.desc(light);
+    for (float v : {l.angle, l.depth, l.elevation, l.height, l.width, l.x, l.y}) w.f32(v);  // HomePieceOfFurniture's
+    w.string(l.name);
+    w.f32(l.power);  // HomeLight's
+    w.s.u8(0x75);
+    w.desc(sources);
+    w.s.u32(uint32_t(l.sources.size()));
+    for (const Src& src : l.sources) {
+      w.s.u8(0x73);
+      w.desc(source);
+      w.s.u32(src.colour);
+      for (float v : {src.x, src.y, src.z}) w.f32(v);
+    }
+  });
+  w.list(1, [&](int) {
+    w.s.u8(0x73);
+    w.desc(wall);
+    for (float v : {10.0f, 500.0f, 0.0f, 0.0f, 0.0f}) w.f32(v);
+  });
+
+  std::string xml = "<home>\n  <wall id='w' xStart='0' yStart='0' xEnd='500' yEnd='0' thickness='10'/>\n";
+  char buf[512];
+  for (const Lamp& l : lamps) {
+    std::snprintf(buf, sizeof buf,
+                  "  <light name='%s' x='%g' y='%g' elevation='%g' angle='%.9g' width='%g' depth='%g' height='%g' "
+                  "power='%g'>\n",
+                  l.name.c_str(), l.x, l.y, l.elevation, l.angle, l.width, l.depth, l.height, l.power);
+    xml += buf;
+    for (const Src& src : l.sources) {
+      std::snprintf(buf, sizeof buf, "    <lightSource x='%g' y='%g' z='%g' color='%08X'/>\n", src.x, src.y, src.z,
+                    unsigned(src.colour));
+      xml += buf;
+    }
+    xml += "  </light>\n";
+  }
+  xml += "</home>\n";
+  ScratchDir dir;
+  const Plan from_home = read_sweet_home(write_sh3d(dir, "serialized.sh3d", {{"Home", w.s.b}}));
+  const Plan from_xml = read_sweet_home(write_sh3d(dir, "xml.sh3d", {{"Home.xml", xml}}));
+  ASSERT_EQ(from_xml.lights.size(), 3u) << "Pendant, and Spot's two sources";
+  ASSERT_EQ(from_home.lights.size(), from_xml.lights.size());
+  for (size_t i = 0; i < from_xml.lights.size(); ++i) {
+    const Light &a = from_home.lights[i], &b = from_xml.lights[i];
+    SCOPED_TRACE(b.name);
+    EXPECT_EQ(a.name, b.name);
+    EXPECT_NEAR(length(a.position - b.position), 0, 1e-6);
+    EXPECT_NEAR(a.intensity, b.intensity, 1e-9);
+    for (size_t k = 0; k < 3; ++k) EXPECT_NEAR(a.colour[k], b.colour[k], 1e-9);
+  }
+  // Where Sweet Home puts them (as SweetHomeLights.LightPiecesBecomePointLightsWhereSweetHomePutsThem):
+  // (200, 200) cm on screen is (2, −2) m in plan, the source halfway up the 50 cm piece.
+  EXPECT_NEAR(length(from_home.lights[0].position - Vec3{2.0, -2.0, 2.25}), 0, 1e-6);
+  EXPECT_NEAR(from_home.lights[0].intensity, 1.0, 1e-9);
+  EXPECT_EQ(from_home.objects.size(), 2u) << "the lamps stay pieces of furniture";
 }
 
 // --save-plan of a real home reads back as it was read: the importer's leniency travels
