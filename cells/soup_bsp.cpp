@@ -6,8 +6,11 @@
 // meeting point of the support and the planes of its two edges, so every vertex anywhere
 // in the tree is the meeting of three planes of the input (a triangle's support or edge
 // planes, or the far box's): coordinates never grow with the number of cuts, and every
-// side test is an exact predicate (CGAL's Epeck: interval filters, exact rationals when
-// they cannot decide, e.g. for the many vertices lying exactly on a plane).
+// side test is exact. A vertex is known to lie on the planes it was made from (and their
+// opposites, made once per plane) by identity; any other side test takes the interval
+// filter, and where that cannot decide (the many vertices lying exactly on a plane) the
+// sign of two determinants of the planes' integer coefficients (side_of_meeting), never
+// a rational point.
 //
 // The stages, timed into CellComplex::timings:
 //   decompose — a cell (the far box to start with) with its triangle fragments: while a
@@ -22,25 +25,29 @@
 #include "cells/soup_bsp.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/convex_hull_2.h>
 #include <CGAL/intersections.h>
 
 #include <boost/container/small_vector.hpp>
 
 #include <algorithm>
+#include <array>
 #include <climits>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <stdexcept>
+#include <unordered_map>
 
 namespace avenues {
 
 namespace {
 
 using K = CGAL::Exact_predicates_exact_constructions_kernel;
+using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
 using FT = K::FT;
 using P3 = K::Point_3;
-using P2 = K::Point_2;
 using Pl = K::Plane_3;
 using CGAL::ON_NEGATIVE_SIDE;
 using CGAL::ON_ORIENTED_BOUNDARY;
@@ -88,6 +95,106 @@ P3 meet(const Pl& a, const Pl& b, const Pl& c) {
 
 enum class Where { Neg, Pos, On, Both };
 
+/// The opposite of each plane, made once: so that a vertex made on h's opposite is known
+/// to lie on h by identity (split), as one made on h is. Each entry keeps its plane alive,
+/// so no other plane can take its address. One table per thread, emptied by
+/// decompose_soup when it ends.
+struct Opposites {
+  std::unordered_map<CGAL::Handle::Id_type, std::pair<Pl, Pl>> of;  ///< by a plane's representation: it and its opposite
+  const Pl& operator()(const Pl& h) {
+    auto it = of.find(h.id());
+    if (it == of.end()) {
+      Pl o = h.opposite();
+      it = of.emplace(h.id(), std::pair{h, o}).first;
+      of.emplace(o.id(), std::pair{o, h});
+    }
+    return it->second.second;
+  }
+};
+thread_local Opposites opposite_of;
+
+/// A plane's exact coefficients as integers (one power of two scales all four: every plane
+/// here comes from doubles, so their denominators are powers of two), made once per plane
+/// and kept with it (as Opposites keeps its planes). nullopt for a denominator that is not
+/// a power of two, which no plane here has: the caller then asks CGAL.
+struct IntegerPlanes {
+  using Coefficients = std::array<mpz_class, 4>;
+  std::unordered_map<CGAL::Handle::Id_type, std::pair<Pl, std::optional<Coefficients>>> of;
+  const std::optional<Coefficients>& operator()(const Pl& h) {
+    auto it = of.find(h.id());
+    if (it != of.end()) return it->second.second;
+    const auto& e = CGAL::exact(h);
+    const mpq_class q[4] = {e.a(), e.b(), e.c(), e.d()};
+    std::optional<Coefficients> out;
+    mp_bitcnt_t shift = 0;
+    bool dyadic = true;
+    for (const mpq_class& x : q) {
+      const mpz_class& den = x.get_den();
+      const mp_bitcnt_t low = mpz_scan1(den.get_mpz_t(), 0);
+      dyadic &= mpz_sizeinbase(den.get_mpz_t(), 2) == low + 1;  // a single bit set
+      shift = std::max(shift, low);
+    }
+    if (dyadic) {
+      out.emplace();
+      for (size_t k = 0; k < 4; ++k) {
+        const mp_bitcnt_t low = mpz_scan1(q[k].get_den().get_mpz_t(), 0);
+        mpz_mul_2exp((*out)[k].get_mpz_t(), q[k].get_num().get_mpz_t(), shift - low);
+      }
+    }
+    return of.emplace(h.id(), std::pair{h, std::move(out)}).first->second.second;
+  }
+};
+thread_local IntegerPlanes integer_plane;
+
+mpz_class det3(const mpz_class& a, const mpz_class& b, const mpz_class& c, const mpz_class& d, const mpz_class& e,
+               const mpz_class& f, const mpz_class& g, const mpz_class& h, const mpz_class& i) {
+  return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g);
+}
+
+/// The side of h on which the point where planes p, q, r meet lies, from the planes alone:
+/// with M the 4 × 4 matrix of p, q, r, h and N the 3 × 3 of p, q, r's normals, h at that
+/// point is det M / det N (Cramer: the cofactors of M's last row are orthogonal to p, q, r
+/// and end in det N). Integers throughout: no rational point is made. nullopt when the
+/// three do not meet in one point (det N = 0).
+std::optional<Side> side_of_meeting(const IntegerPlanes::Coefficients& p, const IntegerPlanes::Coefficients& q,
+                     const IntegerPlanes::Coefficients& r, const IntegerPlanes::Coefficients& h) {
+  // det M along its last row: Σ_j h_j (−1)^(3+j) minor_j (0-based j; row 3).
+  const IntegerPlanes::Coefficients* rows[3] = {&p, &q, &r};
+  auto minor = [&](int skip) {
+    int c[3], n = 0;
+    for (int j = 0; j < 4; ++j)
+      if (j != skip) c[n++] = j;
+    const auto& a = *rows[0];
+    const auto& b = *rows[1];
+    const auto& d = *rows[2];
+    return det3(a[size_t(c[0])], a[size_t(c[1])], a[size_t(c[2])], b[size_t(c[0])], b[size_t(c[1])], b[size_t(c[2])],
+                d[size_t(c[0])], d[size_t(c[1])], d[size_t(c[2])]);
+  };
+  const int n = sgn(minor(3));
+  if (n == 0) return std::nullopt;
+  const mpz_class m = -h[0] * minor(0) + h[1] * minor(1) - h[2] * minor(2) + h[3] * minor(3);
+  const int sign = sgn(m) * n;
+  return sign > 0 ? ON_POSITIVE_SIDE : sign < 0 ? ON_NEGATIVE_SIDE : ON_ORIENTED_BOUNDARY;
+}
+
+/// The side of h on which vertex i of p lies: its interval first; where that cannot tell
+/// (the vertex on h, or within rounding of it), exactly from the three planes it is the
+/// meeting of (p's support and its two edges').
+Side side_of_vertex(const Pl& h, const Poly& p, size_t i) {
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const CGAL::Uncertain<Side> u =
+        CGAL::Simple_cartesian<CGAL::Interval_nt<false>>().oriented_side_3_object()(CGAL::approx(h), CGAL::approx(p.v[i]));
+    if (CGAL::is_certain(u)) return CGAL::get_certain(u);
+  }
+  const size_t n = p.v.size();
+  const auto &a = integer_plane(p.support), &b = integer_plane(p.e[(i + n - 1) % n]), &c = integer_plane(p.e[i]),
+             &d = integer_plane(h);
+  if (a && b && c && d)
+    if (const std::optional<Side> side = side_of_meeting(*a, *b, *c, *d)) return *side;
+  return h.oriented_side(p.v[i]);
+}
+
 /// The part of p not on side `drop` of the plane the signs `s` were taken against; its new
 /// edge lies on `cut` (that plane oriented with the kept part on its negative side).
 void clip(const Poly& p, const Sides& s, const Pl& cut, Side drop, Poly& out) {
@@ -111,10 +218,16 @@ void clip(const Poly& p, const Sides& s, const Pl& cut, Side drop, Poly& out) {
 
 /// Where p lies against h; when it crosses, its parts on each side (either may be null).
 Where split(const Poly& p, const Pl& h, Poly* neg, Poly* pos) {
-  Sides s(p.v.size());
+  const size_t n = p.v.size();
+  const Pl& o = opposite_of(h);
+  auto same = [&](const Pl& e) { return CGAL::identical(h, e) || CGAL::identical(o, e); };
+  if (same(p.support)) return Where::On;
+  Sides s(n);
   bool any_neg = false, any_pos = false;
-  for (size_t i = 0; i < p.v.size(); ++i) {
-    s[i] = h.oriented_side(p.v[i]);
+  for (size_t i = 0; i < n; ++i) {
+    // A vertex lies on the planes it was made from (its edges' and the support), and on
+    // their opposites: known without asking, where asking would take the exact path.
+    s[i] = same(p.e[i]) || same(p.e[(i + n - 1) % n]) ? ON_ORIENTED_BOUNDARY : side_of_vertex(h, p, i);
     any_neg |= s[i] == ON_NEGATIVE_SIDE;
     any_pos |= s[i] == ON_POSITIVE_SIDE;
   }
@@ -122,7 +235,7 @@ Where split(const Poly& p, const Pl& h, Poly* neg, Poly* pos) {
   if (!any_pos) return Where::Neg;
   if (!any_neg) return Where::Pos;
   if (neg) clip(p, s, h, ON_POSITIVE_SIDE, *neg);
-  if (pos) clip(p, s, h.opposite(), ON_NEGATIVE_SIDE, *pos);
+  if (pos) clip(p, s, o, ON_NEGATIVE_SIDE, *pos);
   return Where::Both;
 }
 
@@ -330,7 +443,7 @@ struct Builder {
         }
       }
       neg.faces.push_back({cap, id, 1});
-      cap.support = h.opposite();
+      cap.support = opposite_of(h);
       pos.faces.push_back({std::move(cap), id, 0});
       for (Frag& f : t.frags) {
         Frag a{{}, f.tri, f.on}, b{{}, f.tri, f.on};
@@ -410,6 +523,9 @@ struct Contact {
 }  // namespace
 
 SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Box3& box, CellComplex& out) {
+  struct ForgetOpposites {
+    ~ForgetOpposites() { opposite_of.of.clear(), integer_plane.of.clear(); }
+  } forget;  // on every way out
   const double scale = std::max({1.0, std::fabs(box.lo.x), std::fabs(box.hi.x), std::fabs(box.lo.y), std::fabs(box.hi.y),
                                  std::fabs(box.lo.z), std::fabs(box.hi.z)});
   Builder b{box, {}, {}, {}, 1e-12 * scale, {}, {}};
@@ -541,20 +657,20 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
     Cell cell;
     cell.kind = CellKind::Outside;
     cell.prism = false;
-    std::vector<P2> xy;
+    // The outline seen from above is for drawings and indexing only: the hull of the
+    // rounded vertices, with exact predicates on those doubles (an exact hull of the exact
+    // points took a fifth of the Viking room's time in comparisons of constructed points).
+    std::vector<Epick::Point_2> xy;
     cell.z0 = HUGE_VAL, cell.z1 = -HUGE_VAL;
     for (const CellFace& f : leaf.faces)
       for (const P3& p : f.poly.v) {
-        xy.emplace_back(p.x(), p.y());
-        const double z = rounded(p).z;
-        cell.z0 = std::min(cell.z0, z), cell.z1 = std::max(cell.z1, z);
+        const Vec3 q = rounded(p);
+        xy.emplace_back(q.x, q.y);
+        cell.z0 = std::min(cell.z0, q.z), cell.z1 = std::max(cell.z1, q.z);
       }
-    std::vector<P2> hull;
+    std::vector<Epick::Point_2> hull;
     CGAL::convex_hull_2(xy.begin(), xy.end(), std::back_inserter(hull));
-    for (const P2& p : hull) {
-      const Vec3 q = rounded(P3(p.x(), p.y(), 0));
-      cell.footprint.push_back({q.x, q.y});
-    }
+    for (const Epick::Point_2& p : hull) cell.footprint.push_back({p.x(), p.y()});
     for (size_t k = 0; k < leaf.faces.size(); ++k) {
       const CellFace& cf = leaf.faces[k];
       const bool about_n = ccw_about_normal(cf.poly);
