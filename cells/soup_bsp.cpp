@@ -146,34 +146,47 @@ struct IntegerPlanes {
 };
 thread_local IntegerPlanes integer_plane;
 
-mpz_class det3(const mpz_class& a, const mpz_class& b, const mpz_class& c, const mpz_class& d, const mpz_class& e,
-               const mpz_class& f, const mpz_class& g, const mpz_class& h, const mpz_class& i) {
-  return a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g);
-}
-
 /// The side of h on which the point where planes p, q, r meet lies, from the planes alone:
 /// with M the 4 × 4 matrix of p, q, r, h and N the 3 × 3 of p, q, r's normals, h at that
 /// point is det M / det N (Cramer: the cofactors of M's last row are orthogonal to p, q, r
-/// and end in det N). Integers throughout: no rational point is made. nullopt when the
-/// three do not meet in one point (det N = 0).
+/// and end in det N). Integers throughout: no rational point is made. det M by Laplace's
+/// expansion in the 2 × 2 minors of rows p, q and of rows r, h; det N from the first ones.
+/// nullopt when the three do not meet in one point (det N = 0).
 std::optional<Side> side_of_meeting(const IntegerPlanes::Coefficients& p, const IntegerPlanes::Coefficients& q,
-                     const IntegerPlanes::Coefficients& r, const IntegerPlanes::Coefficients& h) {
-  // det M along its last row: Σ_j h_j (−1)^(3+j) minor_j (0-based j; row 3).
-  const IntegerPlanes::Coefficients* rows[3] = {&p, &q, &r};
-  auto minor = [&](int skip) {
-    int c[3], n = 0;
-    for (int j = 0; j < 4; ++j)
-      if (j != skip) c[n++] = j;
-    const auto& a = *rows[0];
-    const auto& b = *rows[1];
-    const auto& d = *rows[2];
-    return det3(a[size_t(c[0])], a[size_t(c[1])], a[size_t(c[2])], b[size_t(c[0])], b[size_t(c[1])], b[size_t(c[2])],
-                d[size_t(c[0])], d[size_t(c[1])], d[size_t(c[2])]);
-  };
-  const int n = sgn(minor(3));
-  if (n == 0) return std::nullopt;
-  const mpz_class m = -h[0] * minor(0) + h[1] * minor(1) - h[2] * minor(2) + h[3] * minor(3);
-  const int sign = sgn(m) * n;
+                                    const IntegerPlanes::Coefficients& r, const IntegerPlanes::Coefficients& h) {
+  // Column pairs (j, k), j < k, and their complements, in the order of the expansion.
+  static constexpr int kPairs[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  mpz_class top[6], bottom[6], t;
+  for (int m = 0; m < 6; ++m) {
+    const size_t j = size_t(kPairs[m][0]), k = size_t(kPairs[m][1]);
+    top[m] = p[j] * q[k];
+    t = p[k] * q[j];
+    top[m] -= t;
+    bottom[m] = r[j] * h[k];
+    t = r[k] * h[j];
+    bottom[m] -= t;
+  }
+  // det N = |p q r| over columns 0, 1, 2: r_2·top(0,1) − r_1·top(0,2) + r_0·top(1,2).
+  mpz_class n = r[2] * top[0];
+  t = r[1] * top[1];
+  n -= t;
+  t = r[0] * top[3];
+  n += t;
+  const int sn = sgn(n);
+  if (sn == 0) return std::nullopt;
+  // det M = Σ ± top(j,k) · bottom(complement): (01)(23) − (02)(13) + (03)(12) + (12)(03) − (13)(02) + (23)(01).
+  mpz_class m = top[0] * bottom[5];
+  t = top[1] * bottom[4];
+  m -= t;
+  t = top[2] * bottom[3];
+  m += t;
+  t = top[3] * bottom[2];
+  m += t;
+  t = top[4] * bottom[1];
+  m -= t;
+  t = top[5] * bottom[0];
+  m += t;
+  const int sign = sgn(m) * sn;
   return sign > 0 ? ON_POSITIVE_SIDE : sign < 0 ? ON_NEGATIVE_SIDE : ON_ORIENTED_BOUNDARY;
 }
 
