@@ -36,6 +36,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -691,7 +692,28 @@ void add_real_lines(CellComplex& c, const std::vector<RealLine>& lines) {
   const double tol = 1e-9 * scale;       // [m] a line on a face is on it within rounding
   const double min_len = 1e-6 * scale;   // [m] shorter stretches only touch the cell
   std::vector<Box3> bounds(c.cells.size());
-  for (size_t i = 0; i < c.cells.size(); ++i) bounds[i] = c.cells[i].bounds();
+  Box3 all;
+  for (size_t i = 0; i < c.cells.size(); ++i) {
+    bounds[i] = c.cells[i].bounds();
+    all.add(bounds[i].lo), all.add(bounds[i].hi);
+  }
+  // The cells a line may touch, from a grid in plan over the cells' bounds (each cell in
+  // every square its bounds, grown by tol, overlap): testing every line against every cell
+  // grew as lines × cells. Candidates are tested in ascending order, as before.
+  const double w = all.hi.x - all.lo.x + 2 * tol, h = all.hi.y - all.lo.y + 2 * tol;
+  const bool gridded = c.cells.size() > 64 && std::isfinite(w) && std::isfinite(h) && w > 0 && h > 0;
+  const double side = gridded ? std::max(std::sqrt(w * h / double(c.cells.size())), 1e-9 * scale) : 1;
+  const int nx = gridded ? std::clamp(int(w / side) + 1, 1, 1024) : 1, ny = gridded ? std::clamp(int(h / side) + 1, 1, 1024) : 1;
+  const double sx = w / nx, sy = h / ny, x0 = all.lo.x - tol, y0 = all.lo.y - tol;
+  auto ix = [&](double x) { return std::clamp(int((x - x0) / sx), 0, nx - 1); };
+  auto iy = [&](double y) { return std::clamp(int((y - y0) / sy), 0, ny - 1); };
+  std::vector<std::vector<uint32_t>> squares(size_t(nx) * size_t(ny));
+  for (size_t i = 0; i < c.cells.size(); ++i)
+    for (int j = iy(bounds[i].lo.y - tol); j <= iy(bounds[i].hi.y + tol); ++j)
+      for (int k = ix(bounds[i].lo.x - tol); k <= ix(bounds[i].hi.x + tol); ++k)
+        squares[size_t(j) * size_t(nx) + size_t(k)].push_back(uint32_t(i));
+  std::vector<size_t> seen_by(c.cells.size(), SIZE_MAX);  // the last line that took each cell as a candidate
+  std::vector<uint32_t> candidates;
   for (const RealLine& l : lines) {
     const LineId id = LineId(c.lines.size());
     c.lines.push_back(l);
@@ -699,7 +721,13 @@ void add_real_lines(CellComplex& c, const std::vector<RealLine>& lines) {
     lb.add(l.a), lb.add(l.b);
     const double len = length(l.b - l.a);
     if (!(len > min_len)) continue;
-    for (size_t i = 0; i < c.cells.size(); ++i) {
+    candidates.clear();
+    for (int j = iy(lb.lo.y - tol); j <= iy(lb.hi.y + tol); ++j)
+      for (int k = ix(lb.lo.x - tol); k <= ix(lb.hi.x + tol); ++k)
+        for (uint32_t i : squares[size_t(j) * size_t(nx) + size_t(k)])
+          if (seen_by[i] != size_t(id)) seen_by[i] = size_t(id), candidates.push_back(i);
+    std::sort(candidates.begin(), candidates.end());
+    for (const uint32_t i : candidates) {
       const Box3& b = bounds[i];
       if (lb.lo.x > b.hi.x + tol || lb.hi.x < b.lo.x - tol || lb.lo.y > b.hi.y + tol || lb.hi.y < b.lo.y - tol ||
           lb.lo.z > b.hi.z + tol || lb.hi.z < b.lo.z - tol)
