@@ -692,26 +692,13 @@ void add_real_lines(CellComplex& c, const std::vector<RealLine>& lines) {
   const double tol = 1e-9 * scale;       // [m] a line on a face is on it within rounding
   const double min_len = 1e-6 * scale;   // [m] shorter stretches only touch the cell
   std::vector<Box3> bounds(c.cells.size());
-  Box3 all;
-  for (size_t i = 0; i < c.cells.size(); ++i) {
-    bounds[i] = c.cells[i].bounds();
-    all.add(bounds[i].lo), all.add(bounds[i].hi);
-  }
-  // The cells a line may touch, from a grid in plan over the cells' bounds (each cell in
-  // every square its bounds, grown by tol, overlap): testing every line against every cell
-  // grew as lines × cells. Candidates are tested in ascending order, as before.
-  const double w = all.hi.x - all.lo.x + 2 * tol, h = all.hi.y - all.lo.y + 2 * tol;
-  const bool gridded = c.cells.size() > 64 && std::isfinite(w) && std::isfinite(h) && w > 0 && h > 0;
-  const double side = gridded ? std::max(std::sqrt(w * h / double(c.cells.size())), 1e-9 * scale) : 1;
-  const int nx = gridded ? std::clamp(int(w / side) + 1, 1, 1024) : 1, ny = gridded ? std::clamp(int(h / side) + 1, 1, 1024) : 1;
-  const double sx = w / nx, sy = h / ny, x0 = all.lo.x - tol, y0 = all.lo.y - tol;
-  auto ix = [&](double x) { return std::clamp(int((x - x0) / sx), 0, nx - 1); };
-  auto iy = [&](double y) { return std::clamp(int((y - y0) / sy), 0, ny - 1); };
-  std::vector<std::vector<uint32_t>> squares(size_t(nx) * size_t(ny));
-  for (size_t i = 0; i < c.cells.size(); ++i)
-    for (int j = iy(bounds[i].lo.y - tol); j <= iy(bounds[i].hi.y + tol); ++j)
-      for (int k = ix(bounds[i].lo.x - tol); k <= ix(bounds[i].hi.x + tol); ++k)
-        squares[size_t(j) * size_t(nx) + size_t(k)].push_back(uint32_t(i));
+  for (size_t i = 0; i < c.cells.size(); ++i) bounds[i] = c.cells[i].bounds();
+  // The cells a line may touch come from the complex's own grid in plan (CellComplex::
+  // index: each square lists the cells whose bounds overlap it), tested in ascending
+  // order; testing every line against every cell grew as lines × cells.
+  if (c.bands.empty()) c.index();
+  const CellComplex::Band* grid = c.bands[0].nx > 0 ? &c.bands[0] : nullptr;
+  auto square = [&](double v, double v0, int n) { return std::clamp(int((v - v0) / grid->cell_size), 0, n - 1); };
   std::vector<size_t> seen_by(c.cells.size(), SIZE_MAX);  // the last line that took each cell as a candidate
   std::vector<uint32_t> candidates;
   for (const RealLine& l : lines) {
@@ -722,11 +709,19 @@ void add_real_lines(CellComplex& c, const std::vector<RealLine>& lines) {
     const double len = length(l.b - l.a);
     if (!(len > min_len)) continue;
     candidates.clear();
-    for (int j = iy(lb.lo.y - tol); j <= iy(lb.hi.y + tol); ++j)
-      for (int k = ix(lb.lo.x - tol); k <= ix(lb.hi.x + tol); ++k)
-        for (uint32_t i : squares[size_t(j) * size_t(nx) + size_t(k)])
-          if (seen_by[i] != size_t(id)) seen_by[i] = size_t(id), candidates.push_back(i);
-    std::sort(candidates.begin(), candidates.end());
+    if (!grid) {
+      for (size_t i = 0; i < c.cells.size(); ++i) candidates.push_back(uint32_t(i));
+    } else {
+      for (int j = square(lb.lo.y - tol, grid->y0, grid->ny); j <= square(lb.hi.y + tol, grid->y0, grid->ny); ++j)
+        for (int k = square(lb.lo.x - tol, grid->x0, grid->nx); k <= square(lb.hi.x + tol, grid->x0, grid->nx); ++k) {
+          const size_t sq = size_t(j) * size_t(grid->nx) + size_t(k);
+          for (int32_t at = grid->start[sq]; at < grid->start[sq + 1]; ++at) {
+            const uint32_t i = uint32_t(grid->items[size_t(at)]);
+            if (seen_by[i] != size_t(id)) seen_by[i] = size_t(id), candidates.push_back(i);
+          }
+        }
+      std::sort(candidates.begin(), candidates.end());
+    }
     for (const uint32_t i : candidates) {
       const Box3& b = bounds[i];
       if (lb.lo.x > b.hi.x + tol || lb.hi.x < b.lo.x - tol || lb.lo.y > b.hi.y + tol || lb.hi.y < b.lo.y - tol ||
@@ -803,6 +798,7 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     out.warnings.push_back((meshes[mesh].path.empty() ? std::string("mesh") : meshes[mesh].path) + ": " +
                            std::to_string(count) + " triangles with no area (corners on a line): dropped");
   drop_slivers(out);
+  out.index();  // before the lines: add_real_lines takes its candidate cells from it
   {
     ScopedStageTimer t(out.timings, "lines");
     std::vector<RealLine> lines;
@@ -812,7 +808,6 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     }
     add_real_lines(out, lines);
   }
-  out.index();
   check_complex(out, "a mesh scene (soup BSP)");
   return out;
 }
@@ -875,6 +870,7 @@ CellComplex build_mesh_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     ScopedStageTimer t(out.timings, "cells");
     build_cells_of(free, out);
   }
+  out.index();  // before the lines: add_real_lines takes its candidate cells from it
   {
     ScopedStageTimer t(out.timings, "lines");
     std::vector<RealLine> lines;
@@ -888,7 +884,6 @@ CellComplex build_mesh_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     }
     add_real_lines(out, lines);
   }
-  out.index();
   check_complex(out, "a mesh scene");
   return out;
 }

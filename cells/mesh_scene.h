@@ -68,7 +68,8 @@ CellComplex read_mesh_scene(const std::string& path, const MeshSceneParams& para
 
 /// Adds `lines` to the complex and gives each cell a CellLine for every stretch of a line
 /// that lies in the cell (on its boundary, or through it, for lines with no surfaces).
-/// Stretches outside every cell (inside solids) belong to no cell.
+/// Stretches outside every cell (inside solids) belong to no cell. Candidate cells come
+/// from the complex's spatial index, built here (CellComplex::index) if it is not yet.
 void add_real_lines(CellComplex& complex, const std::vector<RealLine>& lines);
 
 /// Drops cells that rounding to double leaves without a shape (thinner than 1e-9 of the
