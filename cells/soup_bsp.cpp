@@ -95,56 +95,57 @@ P3 meet(const Pl& a, const Pl& b, const Pl& c) {
 
 enum class Where { Neg, Pos, On, Both };
 
-/// The opposite of each plane, made once: so that a vertex made on h's opposite is known
-/// to lie on h by identity (split), as one made on h is. Each entry keeps its plane alive,
-/// so no other plane can take its address. One table per thread, emptied by
+/// What is made of a plane once and kept with it, by its representation (each entry keeps
+/// its plane alive, so no other plane can take its address): its opposite, so that a
+/// vertex made on h's opposite is known to lie on h by identity (split), as one made on h
+/// is; and its exact coefficients as integers (every plane here comes from doubles, so one
+/// power of two clears all four denominators; nullopt for one that is not a power of two,
+/// which no plane here has: the caller then asks CGAL). One table per thread, emptied by
 /// decompose_soup when it ends.
-struct Opposites {
-  std::unordered_map<CGAL::Handle::Id_type, std::pair<Pl, Pl>> of;  ///< by a plane's representation: it and its opposite
-  const Pl& operator()(const Pl& h) {
-    auto it = of.find(h.id());
-    if (it == of.end()) {
-      Pl o = h.opposite();
-      it = of.emplace(h.id(), std::pair{h, o}).first;
-      of.emplace(o.id(), std::pair{o, h});
-    }
-    return it->second.second;
-  }
+using Coefficients = std::array<mpz_class, 4>;
+struct PlaneFacts {
+  Pl plane;
+  std::optional<Pl> opposite;
+  bool integers_made = false;
+  std::optional<Coefficients> integers;
 };
-thread_local Opposites opposite_of;
+thread_local std::unordered_map<CGAL::Handle::Id_type, PlaneFacts> plane_facts;
 
-/// A plane's exact coefficients as integers (one power of two scales all four: every plane
-/// here comes from doubles, so their denominators are powers of two), made once per plane
-/// and kept with it (as Opposites keeps its planes). nullopt for a denominator that is not
-/// a power of two, which no plane here has: the caller then asks CGAL.
-struct IntegerPlanes {
-  using Coefficients = std::array<mpz_class, 4>;
-  std::unordered_map<CGAL::Handle::Id_type, std::pair<Pl, std::optional<Coefficients>>> of;
-  const std::optional<Coefficients>& operator()(const Pl& h) {
-    auto it = of.find(h.id());
-    if (it != of.end()) return it->second.second;
-    const auto& e = CGAL::exact(h);
-    const mpq_class q[4] = {e.a(), e.b(), e.c(), e.d()};
-    std::optional<Coefficients> out;
-    mp_bitcnt_t shift = 0;
-    bool dyadic = true;
-    for (const mpq_class& x : q) {
-      const mpz_class& den = x.get_den();
-      const mp_bitcnt_t low = mpz_scan1(den.get_mpz_t(), 0);
-      dyadic &= mpz_sizeinbase(den.get_mpz_t(), 2) == low + 1;  // a single bit set
-      shift = std::max(shift, low);
-    }
-    if (dyadic) {
-      out.emplace();
-      for (size_t k = 0; k < 4; ++k) {
-        const mp_bitcnt_t low = mpz_scan1(q[k].get_den().get_mpz_t(), 0);
-        mpz_mul_2exp((*out)[k].get_mpz_t(), q[k].get_num().get_mpz_t(), shift - low);
-      }
-    }
-    return of.emplace(h.id(), std::pair{h, std::move(out)}).first->second.second;
+PlaneFacts& facts_of(const Pl& h) {
+  auto [it, fresh] = plane_facts.try_emplace(h.id());
+  if (fresh) it->second.plane = h;
+  return it->second;  // stays valid as the table grows (a node-based map)
+}
+
+const Pl& opposite_of(const Pl& h) {
+  PlaneFacts& f = facts_of(h);
+  if (!f.opposite) {
+    f.opposite = h.opposite();
+    facts_of(*f.opposite).opposite = h;
   }
-};
-thread_local IntegerPlanes integer_plane;
+  return *f.opposite;
+}
+
+const std::optional<Coefficients>& integer_plane(const Pl& h) {
+  PlaneFacts& f = facts_of(h);
+  if (f.integers_made) return f.integers;
+  f.integers_made = true;
+  const auto& e = CGAL::exact(h);
+  const mpq_class q[4] = {e.a(), e.b(), e.c(), e.d()};
+  mp_bitcnt_t shift = 0;
+  for (const mpq_class& x : q) {
+    const mpz_class& den = x.get_den();
+    const mp_bitcnt_t low = mpz_scan1(den.get_mpz_t(), 0);
+    if (mpz_sizeinbase(den.get_mpz_t(), 2) != low + 1) return f.integers;  // more than a single bit set
+    shift = std::max(shift, low);
+  }
+  f.integers.emplace();
+  for (size_t k = 0; k < 4; ++k) {
+    const mp_bitcnt_t low = mpz_scan1(q[k].get_den().get_mpz_t(), 0);
+    mpz_mul_2exp((*f.integers)[k].get_mpz_t(), q[k].get_num().get_mpz_t(), shift - low);
+  }
+  return f.integers;
+}
 
 /// The side of h on which the point where planes p, q, r meet lies, from the planes alone:
 /// with M the 4 × 4 matrix of p, q, r, h and N the 3 × 3 of p, q, r's normals, h at that
@@ -152,8 +153,8 @@ thread_local IntegerPlanes integer_plane;
 /// and end in det N). Integers throughout: no rational point is made. det M by Laplace's
 /// expansion in the 2 × 2 minors of rows p, q and of rows r, h; det N from the first ones.
 /// nullopt when the three do not meet in one point (det N = 0).
-std::optional<Side> side_of_meeting(const IntegerPlanes::Coefficients& p, const IntegerPlanes::Coefficients& q,
-                                    const IntegerPlanes::Coefficients& r, const IntegerPlanes::Coefficients& h) {
+std::optional<Side> side_of_meeting(const Coefficients& p, const Coefficients& q,
+                                    const Coefficients& r, const Coefficients& h) {
   // Column pairs (j, k), j < k, and their complements, in the order of the expansion.
   static constexpr int kPairs[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
   mpz_class top[6], bottom[6], t;
@@ -536,8 +537,8 @@ struct Contact {
 }  // namespace
 
 SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Box3& box, CellComplex& out) {
-  struct ForgetOpposites {
-    ~ForgetOpposites() { opposite_of.of.clear(), integer_plane.of.clear(); }
+  struct ForgetPlanes {
+    ~ForgetPlanes() { plane_facts.clear(); }
   } forget;  // on every way out
   const double scale = std::max({1.0, std::fabs(box.lo.x), std::fabs(box.hi.x), std::fabs(box.lo.y), std::fabs(box.hi.y),
                                  std::fabs(box.lo.z), std::fabs(box.hi.z)});
