@@ -326,12 +326,17 @@ double area_of(const std::vector<Vec3>& p) {
   return length(s) / 2;
 }
 
-/// Approximate bounds of a polygon (interval midpoints), for cheap rejection.
+/// Bounds of a polygon from its vertices' intervals, which hold the exact points: a cheap
+/// rejection that never rejects a true overlap. (An interval's middle is no bound: a vertex
+/// where nearly parallel planes meet can have an interval millimetres wide, and a fragment
+/// covering a piece was once culled by such middles on one side of a face and not on the
+/// other, so the face lost that part.)
 Box3 approx_bounds(const Poly& p) {
   Box3 b;
   for (const P3& q : p.v) {
     const auto& a = CGAL::approx(q);
-    b.add({CGAL::to_double(a.x()), CGAL::to_double(a.y()), CGAL::to_double(a.z())});
+    b.add({a.x().inf(), a.y().inf(), a.z().inf()});
+    b.add({a.x().sup(), a.y().sup(), a.z().sup()});
   }
   return b;
 }

@@ -27,6 +27,15 @@ std::vector<Vec2> clip(std::vector<Vec2> a, const std::vector<Vec2>& b) {
   return a;
 }
 
+/// How far the turn cross(b − a, d − b) at b may go the wrong way in a convex polygon
+/// whose vertices were each rounded by up to eps: moving the three vertices by eps moves
+/// the cross product by up to about 2·eps·(|b − a| + |d − b|), so a short edge's direction
+/// is known only to eps over its length, however long the edge beside it.
+template <class V>
+double turn_allowance(V a, V b, V d, double eps) {
+  return 2 * eps * (length(b - a) + length(d - b));
+}
+
 /// Every vertex of a cell's faces (prism or not).
 std::vector<Vec3> vertices_of(const Cell& cell) {
   std::vector<Vec3> v;
@@ -54,7 +63,7 @@ std::string polyhedron_problem(const Cell& cell, double eps) {
     for (size_t i = 0; i < m; ++i) {
       const Vec3 a = f.poly[i], b = f.poly[(i + 1) % m], d = f.poly[(i + 2) % m];
       if (std::fabs(f.plane.eval(a)) > eps) return (why << "face " << k << " is not planar", why.str());
-      if (dot(cross(b - a, d - b), f.plane.n) > eps * length(b - a))
+      if (dot(cross(b - a, d - b), f.plane.n) > turn_allowance(a, b, d, eps))
         return (why << "face " << k << " is not convex (or not counter-clockwise seen from inside)", why.str());
       s = s + cross(a - all.front(), b - all.front());  // about a vertex of the cell: no large products
     }
@@ -132,7 +141,7 @@ std::string cells_are_valid(const CellComplex& c) {
     if (signed_area(f) <= 0) return fail("cell ", i, " is not counter-clockwise");
     for (size_t k = 0; k < f.size(); ++k) {
       Vec2 a = f[k], b = f[(k + 1) % f.size()], d = f[(k + 2) % f.size()];
-      if (cross(b - a, d - b) < -eps * length(b - a)) return fail("cell ", i, " is not convex at vertex ", k + 1);
+      if (cross(b - a, d - b) < -turn_allowance(a, b, d, eps)) return fail("cell ", i, " is not convex at vertex ", k + 1);
     }
     if (!c.far_box.contains(cell.bounds().lo, eps) || !c.far_box.contains(cell.bounds().hi, eps))
       return fail("cell ", i, " leaves the far box");
@@ -167,7 +176,7 @@ std::string cells_are_valid(const CellComplex& c) {
     const size_t m = portal.poly.size();
     for (size_t k = 0; k < m; ++k) {
       Vec3 a = portal.poly[k], b = portal.poly[(k + 1) % m], d = portal.poly[(k + 2) % m];
-      if (dot(cross(b - a, d - b), portal.plane.n) < -eps * length(b - a))
+      if (dot(cross(b - a, d - b), portal.plane.n) < -turn_allowance(a, b, d, eps))
         return fail("portal ", p, " is not convex (or not oriented by its normal)");
     }
     for (int s = 0; s < 2; ++s) {
