@@ -2,6 +2,7 @@
 #include "plans/mesh.h"
 #include "plans/assimp_reader.h"
 #include "plans/obj_materials.h"
+#include "plans/polygon_triangulation.h"
 #include "core/angles.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
@@ -573,6 +574,16 @@ Mesh mesh_of_polygons(std::string path, std::vector<Vec3> vertices, std::vector<
     const std::vector<int>& p = polygons[pi];
     const size_t n = p.size();
     if (n < 3) continue;  // no triangle; its number stays its own (paint is by polygon number)
+    if (!polygon_is_convex(m.vertices, p)) {
+      const std::vector<std::array<int, 3>> cut = triangulate_polygon(m.vertices, p);
+      if (!cut.empty()) {
+        for (const auto& t : cut) {
+          m.triangles.push_back(t);
+          m.polygon_of.push_back(int(pi));
+        }
+        continue;
+      }
+    }
     size_t apex = 0;
     for (size_t i = 0; i < n; ++i)
       if (!inserted[pi][i] && !inserted[pi][(i + 1) % n] && !inserted[pi][(i + n - 1) % n]) {

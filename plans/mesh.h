@@ -41,11 +41,13 @@ struct Mesh {
 /// `crease_deg` of the corner's own polygon's, summed and made unit.
 void smooth_corner_normals(Mesh& m, double crease_deg = 45);
 
-/// A mesh of convex polygons (vertex indices, counter-clockwise seen from outside), as every
+/// A mesh of polygons (vertex indices, counter-clockwise seen from outside), as every
 /// reader makes it: a vertex lying on another polygon's edge (a T-junction) is put into that
 /// edge too, so that polygons meet vertex to vertex and their shared edges are one line on
-/// any raster; each polygon is cut into a fan of triangles (from a corner whose sides have
-/// no such vertex, where there is one); corner normals; closedness. Polygons of fewer than
+/// any raster; each convex polygon is cut into a fan of triangles (from a corner whose sides
+/// have no such vertex, where there is one), any other by a constrained triangulation in its
+/// plane (plans/polygon_triangulation.h: a notch stays open; crossings of its edges become
+/// vertices, appended); corner normals; closedness. Polygons of fewer than
 /// three vertices make no triangles (the others keep their numbers, Mesh::polygon_of).
 Mesh mesh_of_polygons(std::string path, std::vector<Vec3> vertices, std::vector<std::vector<int>> polygons);
 
