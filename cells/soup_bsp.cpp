@@ -59,10 +59,12 @@ constexpr int kInterior = INT_MIN;  ///< a fragment not (yet) on any cell bounda
 
 /// A convex polygon: edge i runs from v[i] to v[i+1] on plane e[i], the polygon on e[i]'s
 /// negative side. No three consecutive vertices are collinear.
+/// Stored inline up to eight corners (nearly every polygon here: a triangle cut a few
+/// times), so that cutting one allocates nothing.
 struct Poly {
   Pl support;
-  std::vector<P3> v;
-  std::vector<Pl> e;
+  boost::container::small_vector<P3, 8> v;
+  boost::container::small_vector<Pl, 8> e;
 };
 
 /// A piece of an input triangle in a cell.
@@ -82,6 +84,7 @@ struct CellFace {
 
 struct Node {
   Pl plane;
+  Pl opposite;  ///< plane.opposite(), the one of opposite_of (split's identity test)
   int child[2] = {-1, -1};  ///< negative side, positive side
   int leaf = -1;
 };
@@ -230,10 +233,10 @@ void clip(const Poly& p, const Sides& s, const Pl& cut, Side drop, Poly& out) {
   }
 }
 
-/// Where p lies against h; when it crosses, its parts on each side (either may be null).
-Where split(const Poly& p, const Pl& h, Poly* neg, Poly* pos) {
+/// Where p lies against h (whose opposite_of is o); when it crosses, its parts on each side
+/// (either may be null).
+Where split(const Poly& p, const Pl& h, const Pl& o, Poly* neg, Poly* pos) {
   const size_t n = p.v.size();
-  const Pl& o = opposite_of(h);
   auto same = [&](const Pl& e) { return CGAL::identical(h, e) || CGAL::identical(o, e); };
   if (same(p.support)) return Where::On;
   Sides s(n);
@@ -252,6 +255,8 @@ Where split(const Poly& p, const Pl& h, Poly* neg, Poly* pos) {
   if (pos) clip(p, s, o, ON_NEGATIVE_SIDE, *pos);
   return Where::Both;
 }
+
+Where split(const Poly& p, const Pl& h, Poly* neg, Poly* pos) { return split(p, h, opposite_of(h), neg, pos); }
 
 /// The axis along which h's normal is largest (h is never parallel to it).
 int dominant_axis(const Pl& h) {
@@ -440,7 +445,9 @@ struct Builder {
       }
       const int id = t.node;
       const Pl h = support_of[size_t(choose(t.frags, interior))];
+      const Pl o = opposite_of(h);
       nodes[size_t(id)].plane = h;
+      nodes[size_t(id)].opposite = o;
       ++stats.nodes;
       Task neg{int(nodes.size()), {}, {}, t.depth + 1}, pos{int(nodes.size()) + 1, {}, {}, t.depth + 1};
       nodes[size_t(id)].child[0] = neg.node, nodes[size_t(id)].child[1] = pos.node;
@@ -451,7 +458,7 @@ struct Builder {
       if (cap.v.size() < 3) throw std::logic_error("soup bsp: a splitting plane misses its cell");
       for (CellFace& f : t.faces) {
         CellFace a{{}, f.id, f.toward}, b{{}, f.id, f.toward};
-        switch (split(f.poly, h, &a.poly, &b.poly)) {
+        switch (split(f.poly, h, o, &a.poly, &b.poly)) {
           case Where::Neg: neg.faces.push_back(std::move(f)); break;
           case Where::Pos: pos.faces.push_back(std::move(f)); break;
           case Where::Both:
@@ -462,11 +469,11 @@ struct Builder {
         }
       }
       neg.faces.push_back({cap, id, 1});
-      cap.support = opposite_of(h);
+      cap.support = o;
       pos.faces.push_back({std::move(cap), id, 0});
       for (Frag& f : t.frags) {
         Frag a{{}, f.tri, f.on}, b{{}, f.tri, f.on};
-        switch (split(f.poly, h, &a.poly, &b.poly)) {
+        switch (split(f.poly, h, o, &a.poly, &b.poly)) {
           case Where::Neg: neg.frags.push_back(std::move(f)); break;
           case Where::Pos: pos.frags.push_back(std::move(f)); break;
           case Where::Both:
@@ -498,7 +505,7 @@ struct Builder {
         continue;
       }
       Poly a, b;
-      switch (split(p, nd.plane, &a, &b)) {
+      switch (split(p, nd.plane, nd.opposite, &a, &b)) {
         case Where::Neg: stack.emplace_back(nd.child[0], std::move(p)); break;
         case Where::Pos: stack.emplace_back(nd.child[1], std::move(p)); break;
         case Where::Both:
