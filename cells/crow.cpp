@@ -1,5 +1,6 @@
 // Avenues — reading Crow's tables 1a and 1b (see crow.h); the scene of one is crow_scene.cpp.
 #include "cells/crow.h"
+#include "plans/polygon_triangulation.h"
 
 #include <algorithm>
 #include <array>
@@ -149,45 +150,6 @@ void read_polygons(const std::vector<Line>& lines, const std::string& name, Crow
                         " polygons");
 }
 
-/// Ear clipping of a simple planar polygon (indices into v, counter-clockwise about n).
-std::vector<std::array<int, 3>> triangulate(const std::vector<Vec3>& v, const std::vector<int>& poly, Vec3 n) {
-  // Project along n's largest component, keeping counter-clockwise about n.
-  const int k = std::fabs(n.x) >= std::fabs(n.y) && std::fabs(n.x) >= std::fabs(n.z) ? 0 : std::fabs(n.y) >= std::fabs(n.z) ? 1 : 2;
-  const double sign = (k == 0 ? n.x : k == 1 ? n.y : n.z) >= 0 ? 1 : -1;
-  auto flat = [&](int i) {
-    const Vec3 p = v[size_t(i)];
-    const double c[3] = {p.x, p.y, p.z};
-    return Vec2{c[(k + 1) % 3], sign * c[(k + 2) % 3]};
-  };
-  std::vector<int> rest = poly;
-  std::vector<std::array<int, 3>> out;
-  while (rest.size() > 3) {
-    const size_t m = rest.size();
-    bool cut = false;
-    for (size_t i = 0; i < m && !cut; ++i) {
-      const int a = rest[(i + m - 1) % m], b = rest[i], c = rest[(i + 1) % m];
-      const Vec2 pa = flat(a), pb = flat(b), pc = flat(c);
-      if (cross(pb - pa, pc - pb) <= 0) continue;  // reflex or straight: not an ear
-      bool empty = true;
-      for (int q : rest) {
-        if (q == a || q == b || q == c) continue;
-        const Vec2 pq = flat(q);
-        if (cross(pb - pa, pq - pa) >= 0 && cross(pc - pb, pq - pb) >= 0 && cross(pa - pc, pq - pc) >= 0) empty = false;
-      }
-      if (!empty) continue;
-      out.push_back({a, b, c});
-      rest.erase(rest.begin() + long(i));
-      cut = true;
-    }
-    if (!cut) {  // not simple (or degenerate): a fan keeps every vertex
-      for (size_t i = 1; i + 1 < rest.size(); ++i) out.push_back({rest[0], rest[i], rest[i + 1]});
-      return out;
-    }
-  }
-  out.push_back({rest[0], rest[1], rest[2]});
-  return out;
-}
-
 }  // namespace
 
 CrowObject parse_crow(const std::string& text, const std::string& name) {
@@ -231,10 +193,10 @@ Mesh crow_mesh(const CrowObject& o) {
   for (size_t k = 0; k < o.polygons.size(); ++k) {
     // Crow lists polygons clockwise seen from outside; a Mesh wants counter-clockwise.
     std::vector<int> poly(o.polygons[k].rbegin(), o.polygons[k].rend());
-    Vec3 n{0, 0, 0};  // Newell's normal, area-weighted
-    for (size_t i = 0; i < poly.size(); ++i)
-      n = n + cross(m.vertices[size_t(poly[i])], m.vertices[size_t(poly[(i + 1) % poly.size()])]);
-    for (const auto& t : triangulate(m.vertices, poly, n)) {
+    std::vector<std::array<int, 3>> cut = triangulate_polygon(m.vertices, poly);
+    if (cut.empty())  // no area: a fan keeps every vertex (its triangles are dropped later, with a warning)
+      for (size_t i = 1; i + 1 < poly.size(); ++i) cut.push_back({poly[0], poly[i], poly[i + 1]});
+    for (const auto& t : cut) {
       m.triangles.push_back(t);
       m.polygon_of.push_back(int(k));
     }

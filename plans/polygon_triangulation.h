@@ -23,7 +23,8 @@ namespace avenues {
 bool polygon_is_convex(const std::vector<Vec3>& v, const std::vector<int>& p);
 
 /// The triangles covering polygon `p` (indices into `v`), counter-clockwise about its
-/// Newell normal, as indices into `v`; where two of its edges cross, the crossing becomes
+/// normal (Newell's, or for a bow tie whose lobes cancel in it, its largest lobe's), as
+/// indices into `v`; where two of its edges cross, the crossing becomes
 /// a vertex, appended to `v`. Empty when the polygon has no area.
 std::vector<std::array<int, 3>> triangulate_polygon(std::vector<Vec3>& v, const std::vector<int>& p);
 
