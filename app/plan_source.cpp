@@ -138,14 +138,17 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
   }
 
   auto t0 = std::chrono::steady_clock::now();
-  auto decompose = [&](const Plan& parsed, const char* stage) {
-    out.stages.push_back({stage, seconds_since(t0)});
+  auto build = [&](const Plan& parsed) {
     if (!import.save_plan.empty()) {
       write_plan(parsed, import.save_plan);
       std::cerr << spec.file << ": the plan as understood is in " << import.save_plan << "\n";
     }
     out.complex = build_cells(parsed);
     for (const StageTime& t : out.complex.timings) out.stages.push_back(t);
+  };
+  auto decompose = [&](const Plan& parsed, const char* stage) {
+    out.stages.push_back({stage, seconds_since(t0)});
+    build(parsed);
   };
   // A mesh as a whole scene: OpenMesh or Assimp by its format, turned to z-up metres.
   auto read_mesh = [&](const std::string& file) {
@@ -193,9 +196,7 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
       }
       case FileFormat::Model: read_mesh(spec.file); break;
       case FileFormat::Ifc: {
-        const Plan building = read_ifc_building(spec.file, &out.stages);
-        out.complex = build_cells(building);
-        for (const StageTime& t : out.complex.timings) out.stages.push_back(t);
+        build(read_ifc_building(spec.file, &out.stages));  // its reader times its own stages
         break;
       }
       case FileFormat::FloorplanVectors: {

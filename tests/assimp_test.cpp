@@ -27,6 +27,7 @@
 #include "tests/test_files.h"
 #include "visibility/camera.h"
 #include "visibility/visible_set.h"
+#include "visibility/walker.h"
 
 namespace fs = std::filesystem;
 using namespace avenues;
@@ -325,6 +326,45 @@ TEST(Ifc, DuplexHasItsFourStoreysAndNamedSpacesAsRooms) {
   ASSERT_TRUE(m.plan.view.has_value());
   const Location at = m.cells.locate(m.plan.view->eye);
   EXPECT_EQ(at.what, Location::What::Cell) << "the first view stands in free space";
+}
+
+// Stairs cut stairwells into the floors they climb to, so that a walker standing on one
+// climbs through: in every model, from the middle of each stair's opening at eye height on
+// the storey below, up to eye height on the storey above, and down again. Away from a stair
+// walking keeps to the floor.
+TEST(Ifc, StairsCutStairwellsThatAWalkerClimbs) {
+  const std::vector<std::pair<std::string, size_t>> models = {
+      {duplex(), 2}, {(kIfc / "Office_A_20110811.ifc").string(), 1}, {(kModels / "IFC/AC14-FZK-Haus.ifc").string(), 1}};
+  for (const auto& [path, stairs] : models) {
+    if (!fs::exists(path)) continue;
+    SCOPED_TRACE(path);
+    const IfcModel& m = ifc_model(path);
+    EXPECT_GE(m.plan.floor_openings.size(), stairs);
+    EXPECT_EQ(cells_are_valid(m.cells), "");
+    for (const FloorOpening& f : m.plan.floor_openings) {
+      SCOPED_TRACE(f.name);
+      EXPECT_NE(f.where.element.find("IfcStair"), std::string::npos) << f.where.element;
+      ASSERT_GE(f.storey, 1u);
+      const Storey &below = m.plan.storeys[f.storey - 1], &above = m.plan.storeys[f.storey];
+      Vec2 c{0, 0};
+      for (Vec2 p : f.outline) c = c + p;
+      c = (1.0 / double(f.outline.size())) * c;
+      Walker w(m.cells, {c.x, c.y, below.elevation + kEyeHeight});
+      ASSERT_TRUE(w.on_stair());
+      for (int i = 0; i < 400; ++i) w.move({0, 0, 0.05}, 1.0 / 60);
+      EXPECT_NEAR(w.eye().z, above.elevation + kEyeHeight, 1e-6);
+      for (int i = 0; i < 400; ++i) w.move({0, 0, -0.05}, 1.0 / 60);
+      EXPECT_NEAR(w.eye().z, below.elevation + kEyeHeight, 1e-6);
+    }
+  }
+  if (!fs::exists(duplex())) return;
+  // In the duplex's bathroom, with no stair: a climb is refused.
+  const IfcModel& m = ifc_model(duplex());
+  const double z = m.plan.storeys[1].elevation + kEyeHeight;  // Level 1
+  Walker w(m.cells, {5.3, -9.67, z});
+  EXPECT_FALSE(w.on_stair());
+  w.move({0, 0, 0.5}, 1.0 / 60);
+  EXPECT_NEAR(w.eye().z, z, 1e-9);
 }
 
 TEST(Ifc, ViewsOfEachModelAgreeWithRayCasting) {

@@ -436,6 +436,34 @@ TEST_F(WalkWindow, SenseSwitchesLatchAndMoveTheEyeUpTheStairwell) {
   EXPECT_NE(r.out.find("pose: --eye "), std::string::npos) << r.out;
 }
 
+// An IFC building walked as its users walk it (issue 17): in the duplex, from beside Bathroom 1
+// (Revit's spaces make it one room with the living floor) east through a door onto the
+// stair, up it to Level 2 (PgUp), along the hallway and west through a door into another
+// room, Bathroom 2. The walk speed is 1.4 m/s, the turn 90°/s, frames 1/60 s.
+TEST_F(WalkWindow, WalksTheDuplexThroughADoorUpItsStairAndThroughAnotherDoor) {
+  NEED_DISPLAY();
+  const std::string duplex = avenues::testing::outside_path("ifc/duplex.ifc");
+  if (!fs::exists(duplex)) GTEST_SKIP() << "no " << duplex;
+  write("duplex.txt",
+        "0 down W\n105 up W\n106 pose\n"              // east 2.45 m, through the door, onto the stair
+        "106 down PAGE_UP\n286 up PAGE_UP\n"           // up the stair to Level 2
+        "287 down LEFT\n347 up LEFT\n348 down W\n403 up W\n"   // north 1.28 m along the hallway
+        "404 down LEFT\n464 up LEFT\n465 down W\n565 up W\n"   // west 2.33 m, through the door
+        "566 quit\n");
+  const Outcome r = run({"walk", duplex, "--eye", "5.3,-9.67,1.62", "--look", "8,-9.67,1.62", "--size", "320x180",
+                         "--script", "duplex.txt", "--stats-json", "s.json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  // On the stair, still on Level 1: the door let the walk through.
+  EXPECT_NE(r.out.find("pose: --eye 7.75"), std::string::npos) << r.out;
+  const json last = read_json("s.json")["last"];
+  EXPECT_EQ(last["room"], "Bathroom 2");
+  EXPECT_EQ(last["storey"], "Level 2");
+  EXPECT_EQ(last["mode"], "walk");
+  EXPECT_NEAR(last["eye"][0].get<double>(), 7.75 - 1.4 * 100 / 60, 1e-6);
+  EXPECT_NEAR(last["eye"][1].get<double>(), -9.67 + 1.4 * 55 / 60, 1e-6);
+  EXPECT_NEAR(last["eye"][2].get<double>(), 3.12 + 1.6, 1e-3);
+}
+
 // The gamepad, through the same path as GLFW's gamepad state (a scripted pad stands in for a
 // real one): the left stick walks, the right stick turns, a button is a command.
 TEST_F(WalkWindow, AGamepadsSticksWalkTurnAndItsButtonsCommand) {

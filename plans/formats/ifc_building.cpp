@@ -384,6 +384,7 @@ class Builder {
     make_storeys();
     make_walls();
     make_openings();
+    make_stairwells();
     make_rooms();
     make_surfaces();
     make_objects();
@@ -726,6 +727,61 @@ class Builder {
       return;
     }
     wall.openings.push_back(std::move(o));
+  }
+
+  /// Stairs and ramps: each cuts a stairwell (a floor opening) into the floor of every
+  /// storey it climbs to, so that a walker standing on it climbs through; the stair itself
+  /// stays an object, drawn. A stair climbs to a storey when its highest tread (the highest
+  /// level holding at least kTread of upward faces: a handrail's top is narrower) lies at
+  /// most a riser below that storey's floor. The opening is the convex hull of the stair's
+  /// points up to that floor, seen from above.
+  void make_stairwells() {
+    constexpr double kTread = 0.15;   // [m²] of upward faces at one level: a tread, a landing
+    constexpr double kRiser = 0.3;    // [m] the last tread may lie this far below the floor it reaches
+    constexpr double kClimb = 1.0;    // [m] a stair climbs at least this (else it is a step)
+    for (const Element& e : elements_) {
+      const bool stair = e.type == "IfcStair" || e.type == "IfcStairFlight" || e.type == "IfcRamp" ||
+                         e.type == "IfcRampFlight";
+      if (!stair || e.triangles.empty()) continue;
+      std::map<long, double> up;  // level [cm] -> area of upward faces there [m²]
+      for (const auto& t : e.triangles) {
+        const Vec3 p = e.vertices[size_t(t[0])], q = e.vertices[size_t(t[1])], r = e.vertices[size_t(t[2])];
+        const Vec3 n = cross(q - p, r - p);
+        const double a = 0.5 * length(n);
+        if (a < 1e-9 || n.z < 0.98 * 2 * a) continue;
+        up[std::lround((p.z + q.z + r.z) / 3 * 100)] += a;
+      }
+      double tread = -HUGE_VAL;  // the highest level a person stands on
+      for (const auto& [level, area] : up)
+        if (area >= kTread) tread = std::max(tread, level / 100.0);
+      if (tread == -HUGE_VAL) tread = e.box.hi.z;  // no flat treads (a sloped flight): its top
+      const double base = e.box.lo.z;
+      bool climbs = false;
+      for (size_t s = 1; s < plan_.storeys.size(); ++s) {
+        const double floor = plan_.storeys[s].elevation;
+        if (!(floor >= base + kClimb && floor <= tread + kRiser)) continue;
+        std::vector<Vec2> pts;
+        for (Vec3 v : e.vertices)
+          if (v.z <= floor + 0.05) pts.push_back({v.x, v.y});
+        std::vector<Vec2> hull = convex_hull(std::move(pts));
+        if (hull.size() < 3 || !(std::fabs(signed_area(hull)) > 0.1)) continue;
+        if (signed_area(hull) < 0) std::reverse(hull.begin(), hull.end());
+        FloorOpening f;
+        f.name = e.name.empty() ? e.guid : e.name;
+        for (int k = 2; std::any_of(plan_.floor_openings.begin(), plan_.floor_openings.end(),
+                                    [&](const FloorOpening& g) { return g.storey == StoreyId(s) && g.name == f.name; });
+             ++k)
+          f.name = (e.name.empty() ? e.guid : e.name) + " (" + std::to_string(k) + ")";
+        f.storey = StoreyId(s);
+        f.outline = std::move(hull);
+        f.where = {path_, 0, 0, e.label()};
+        plan_.floor_openings.push_back(std::move(f));
+        climbs = true;
+      }
+      if (!climbs && tread - base >= kClimb)
+        plan_.warnings.push_back(e.label() + " climbs " + format_number(tread - base) +
+                                 " m but reaches no storey's floor: drawn, not climbable");
+    }
   }
 
   /// Spaces: rooms named as the file names them, labelled at the centre of the largest of
