@@ -158,8 +158,12 @@ int run_cli(int argc, char** argv) {
                       "storey's floor");
   drawing->add_option("--scale", drawing_opt.scale, "paper scale, 1:20 to 1:500")->capture_default_str();
   drawing->add_option("--kernel", drawing_opt.kernel, "arithmetic: float, double, filtered or exact")->capture_default_str();
+  drawing->add_option("--samples", drawing_opt.samples, "pictures: the half-tone's samples per pixel, 1, 4 or 16")
+      ->capture_default_str()
+      ->check(samples_count());
   drawing->add_option("-o,--output", drawing_opt.output,
-                      "by extension: .svg .pdf .eps .dxf .hpgl .plt (vector) or .png .pgm .ppm (picture)")
+                      "by extension: .svg .pdf .eps .dxf .hpgl .plt (vector) or .png .pgm .ppm .pbm (the half-tone "
+                      "with the drawing over it)")
       ->required()
       ->type_name("FILE");
   drawing->add_option("--stats-json", drawing_opt.stats_json, "write visible cells, timings and the picture's frame as JSON")

@@ -6,7 +6,8 @@
 //   --axonometric AZ,ALT     parallel from above; --cut-height removes what is above it
 //
 // Each is a parallel projection searched from a cut plane (render/architectural_drawing.h).
-// The page follows --scale: 4 raster pixels to a paper millimetre, the picture fitted to the
+// A picture (.png .pgm .ppm .pbm) is the scanline half-tone of the same view with the
+// drawing over it. The page follows --scale: 4 raster pixels to a paper millimetre, the picture fitted to the
 // building (plan, elevation, axonometric) or to the section line, 1 m of margin around.
 // --stats-json gives the visible cells, the cut cells, the timings and the picture's frame in
 // world coordinates on the plane the rays start from (the cut plane): origin (lower-left),
@@ -23,6 +24,7 @@
 #include "render/line_raster.h"
 #include "core/atomic_file.h"
 #include "render/architectural_drawing.h"
+#include "render/halftone.h"
 #include "render/raster.h"
 
 namespace avenues::app {
@@ -149,8 +151,15 @@ int run_drawing(const DrawingOptions& opt) {
   size_t lines = d.strokes.size();
   const double scale = parse_scale(opt.scale);
   if (picture) {
+    // The half-tone of the same parallel view (the scanline renderer, fed by the same
+    // avenues), white where nothing is seen, and the drawing over it: the cut's poché and
+    // outlines, the lines beyond, the room names.
+    HalftoneOptions ho;
+    ho.samples = opt.samples;
+    ho.background = {1, 1, 1};
+    const Image halftone = render_view(c, s.camera, vs, ho);
     Image img;
-    raster_of_drawing(d, img);
+    raster_of_drawing(d, halftone, img);
     write_image(img, opt.output);
   } else {
     PageOptions page;

@@ -118,9 +118,6 @@ int run_view(const ViewOptions& opt) {
   if (v.camera.is_parallel()) {
     if (!opt.overlay.empty() || !opt.stereo.empty() || opt.frames > 0)
       throw std::runtime_error("--overlay, --stereo and --frames need --projection perspective");
-    if (!opt.output.empty() && is_raster_path(opt.output))
-      throw std::runtime_error("cannot write '" + opt.output +
-                               "': a parallel view is drawn as lines (use avenues drawing for a picture)");
   }
   VisibleSet vs = find_visible(plan.complex, v.camera, v.eye_cell, v.kernel);
   nlohmann::json stats = view_stats(plan, v, vs);

@@ -84,6 +84,7 @@ struct DrawingOptions {
   std::optional<double> cut_height;    ///< [m] above the storey's floor (plan: default 1.2)
   std::string scale = "1:50";          ///< paper scale 1:20 ... 1:500
   std::string kernel = "double";
+  int samples = 4;                     ///< pictures: the half-tone's samples per pixel, 1, 4 or 16
 };
 int run_drawing(const DrawingOptions& opt);
 

@@ -3,18 +3,45 @@
 
 #include <cairo.h>
 
+#include <cstdint>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
 namespace avenues {
 
-void raster_of_drawing(const Drawing& drawing, Image& out) {
+namespace {
+
+void draw(const Drawing& drawing, const Image* under, Image& out) {
   const int w = drawing.width, h = drawing.height;
+  if (under && (under->width != w || under->height != h))
+    throw std::invalid_argument("raster_of_drawing: the picture under the drawing is " + std::to_string(under->width) +
+                                "x" + std::to_string(under->height) + ", the drawing " + std::to_string(w) + "x" +
+                                std::to_string(h));
   out.resize(w, h, 3);
   if (w <= 0 || h <= 0) return;
   cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h);
   cairo_t* cr = cairo_create(s);
-  cairo_set_source_rgb(cr, 1, 1, 1);
-  cairo_paint(cr);
+  if (under) {
+    // RGB24: native-endian 32-bit xRGB (see below); a grey picture's one sample is all three.
+    cairo_surface_flush(s);
+    unsigned char* data = cairo_image_surface_get_data(s);
+    const int stride = cairo_image_surface_get_stride(s);
+    const int c = under->channels;
+    for (int y = 0; y < h; ++y) {
+      uint32_t* dst = reinterpret_cast<uint32_t*>(data + size_t(y) * size_t(stride));
+      const uint8_t* src = under->data.data() + size_t(y) * size_t(w) * size_t(c);
+      for (int x = 0; x < w; ++x) {
+        const uint8_t* p = src + size_t(x) * size_t(c);
+        const uint32_t r = p[0], g = c == 3 ? p[1] : p[0], b = c == 3 ? p[2] : p[0];
+        dst[x] = (r << 16) | (g << 8) | b;
+      }
+    }
+    cairo_surface_mark_dirty(s);
+  } else {
+    cairo_set_source_rgb(cr, 1, 1, 1);
+    cairo_paint(cr);
+  }
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
   if (!drawing.fill.empty()) {  // an architect's cut: grey, even-odd, under the lines
     cairo_set_fill_rule(cr, CAIRO_FILL_RULE_EVEN_ODD);
@@ -68,5 +95,11 @@ void raster_of_drawing(const Drawing& drawing, Image& out) {
   }
   cairo_surface_destroy(s);
 }
+
+}  // namespace
+
+void raster_of_drawing(const Drawing& drawing, Image& out) { draw(drawing, nullptr, out); }
+
+void raster_of_drawing(const Drawing& drawing, const Image& under, Image& out) { draw(drawing, &under, out); }
 
 }  // namespace avenues

@@ -14,5 +14,9 @@ namespace avenues {
 /// The drawing as an RGB picture of drawing.width × drawing.height pixels, into `out`
 /// (its storage reused).
 void raster_of_drawing(const Drawing& drawing, Image& out);
+/// The same drawn over `under`, a picture of the drawing's size and view (an architect's
+/// drawing over its half-tone): the drawing's fills and lines on top of it, not on white.
+/// Throws std::invalid_argument when the sizes differ.
+void raster_of_drawing(const Drawing& drawing, const Image& under, Image& out);
 
 }  // namespace avenues

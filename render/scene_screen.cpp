@@ -98,6 +98,14 @@ ScreenSceneBuilder::ScreenSceneBuilder(const Camera& camera, const SceneOptions&
   if (options.per_side != 1 && options.per_side != 2 && options.per_side != 4)
     throw std::invalid_argument("samples per pixel side must be 1, 2 or 4");
   out_.raster = RasterMap::of(camera, options.per_side);
+  if (options.cut) {
+    // In camera space, oriented so that what lies beyond it (along forward) is kept.
+    const Plane& c = *options.cut;
+    const double sign = dot(c.n, camera.forward) >= 0 ? 1 : -1;
+    has_cut_ = true;
+    cut_n_ = sign * Vec3{dot(c.n, camera.right), dot(c.n, camera.up), dot(c.n, camera.forward)};
+    cut_d_ = sign * c.eval(camera.eye);
+  }
   guard_ = std::max(out_.raster.width, out_.raster.height);
   if (3 * guard_ >= double(kRasterLimit))
     throw std::invalid_argument("picture too large for the scanline engine's fixed point");
@@ -167,8 +175,19 @@ bool ScreenSceneBuilder::add(const std::vector<Vec3>& points, Vec3 n, double d, 
   return true;
 }
 
-bool ScreenSceneBuilder::project(const std::vector<Vec3>& points, ScreenPolygon& poly) {
-  // 2. Near plane, in 3D (only when some corner lies nearer than it).
+bool ScreenSceneBuilder::project(const std::vector<Vec3>& given, ScreenPolygon& poly) {
+  // 2. An architect's cut, then the near plane, in 3D (each only when some corner lies
+  // before it).
+  const std::vector<Vec3>* kept = &given;
+  if (has_cut_) {
+    auto beyond = [this](Vec3 p) { return dot(cut_n_, p) + cut_d_; };
+    if (!std::all_of(given.begin(), given.end(), [&](Vec3 p) { return beyond(p) >= 0; })) {
+      cut(given, beyond, plane_cut_);
+      if (plane_cut_.size() < 3) return false;
+      kept = &plane_cut_;
+    }
+  }
+  const std::vector<Vec3>& points = *kept;
   const double near = camera_.near;
   const bool all_beyond = std::all_of(points.begin(), points.end(), [near](Vec3 p) { return p.z >= near; });
   if (!all_beyond) cut(points, [near](Vec3 p) { return p.z - near; }, near_cut_);

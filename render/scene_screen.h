@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "cells/cell_complex.h"
@@ -83,6 +84,10 @@ struct SceneOptions {
   /// complex; both must be given, and outlive the builder. Null or at the eye: the light at the eye.
   const Lighting* lighting = nullptr;
   const SceneShadows* shadows = nullptr;
+  /// An architect's cut (world; a parallel view's, from its VisibleSet): only what lies on
+  /// the far side of the plane, seen along the camera's forward, is drawn; polygons are cut
+  /// there in 3D before the near plane.
+  std::optional<Plane> cut;
 };
 
 /// Adds polygons to a ScreenScene (steps 1–5 above).
@@ -184,7 +189,10 @@ class ScreenSceneBuilder {
   double guard_ = 0;  ///< [samples] the guard band's width around the window
   bool cull_ = false;
   Vec2 cull_lo_, cull_hi_;
-  std::vector<Vec3> near_cut_;
+  std::vector<Vec3> near_cut_, plane_cut_;
+  bool has_cut_ = false;
+  Vec3 cut_n_;          ///< options.cut in camera space, kept where dot(cut_n_, P) + cut_d_ >= 0
+  double cut_d_ = 0;
   std::vector<Vec2> raster_, guard_cut_;
 };
 

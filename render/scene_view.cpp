@@ -15,10 +15,17 @@
 //     not of the piece a cell holds, so that no false edge shows where cells meet;
 //   - the objects of its cell, which resolve depth against that cell's faces and each
 //     other, inside the mask only.
+// A parallel view (an architect's drawing, `view --projection parallel`) is drawn as the
+// perspective from far behind its picture plane (distant_eye), cut where its rays start
+// (VisibleSet::cut): the whole pipeline (lights, shadows, smooth shading, objects) is the
+// perspective one, and the error is bounded far below a sample (docs/ACCURACY.md).
 #include "render/scene_screen.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+
+#include "core/angles.h"
 
 namespace avenues {
 
@@ -40,6 +47,41 @@ const Vec3* shade_point(const CellComplex& c, const OpaquePoly& piece) {
                                                                           : nullptr;
 }
 
+/// How far the distant eye stands behind the picture plane, per sample of the picture
+/// across and metre of depth: a point z [m] beyond the picture plane is drawn D / (D + z) of
+/// its size, so a mask (exact on the picture plane) and what is drawn in it part by at most
+/// (half the samples across) · z / D = 1/512 of a sample at the far box's far side, well
+/// inside the 1/64 of a sample deeper masks are grown by.
+constexpr double kDistance = 256;
+
+/// A parallel camera as a perspective one from far behind its picture plane: the same
+/// window at the picture plane (a mask point m [m] is m / D there), and a near plane that
+/// cuts nothing of the far box (the view's own cut does the cutting).
+struct DistantEye {
+  Camera camera;
+  double scale = 1;  ///< parallel picture-plane coordinates [m] to the distant camera's
+};
+
+DistantEye distant_eye(const Camera& cam, const Box3& far_box, int per_side) {
+  double reach = 1;  // [m] how far the far box lies beyond (or before) the picture plane
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 p{k & 1 ? far_box.hi.x : far_box.lo.x, k & 2 ? far_box.hi.y : far_box.lo.y,
+                 k & 4 ? far_box.hi.z : far_box.lo.z};
+    reach = std::max(reach, std::fabs(dot(p - cam.eye, cam.forward)));
+  }
+  const double samples = double(std::max(cam.width, cam.height) * per_side);
+  const double distance = kDistance * samples * reach;
+  DistantEye d;
+  d.camera = cam;
+  d.camera.projection = Projection::Perspective;
+  d.camera.eye = cam.eye - distance * cam.forward;
+  d.camera.fov_deg = deg_from_rad(2 * std::atan(cam.half_width() / distance));
+  d.camera.shift_x = cam.shift_x / distance, d.camera.shift_y = cam.shift_y / distance;
+  d.camera.near = distance / 2;
+  d.scale = 1 / distance;
+  return d;
+}
+
 }  // namespace
 
 ScreenScene screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedObject>& objects,
@@ -49,10 +91,23 @@ ScreenScene screen_scene_of_view(const CellComplex& complex, const std::vector<P
   return out;
 }
 
-void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedObject>& objects, const Camera& camera,
-                          const VisibleSet& visible, const SceneOptions& options, ScreenScene& out) {
+void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedObject>& objects,
+                          const Camera& view_camera, const VisibleSet& visible, const SceneOptions& view_options,
+                          ScreenScene& out) {
   out.clear();
+  const bool parallel = view_camera.is_parallel();
+  const DistantEye distant = parallel ? distant_eye(view_camera, complex.far_box, view_options.per_side) : DistantEye{};
+  const Camera& camera = parallel ? distant.camera : view_camera;
+  SceneOptions options = view_options;
+  if (parallel && visible.cut) options.cut = visible.cut;
   ScreenSceneBuilder b(camera, options, out);
+  std::vector<Vec2> scaled;
+  auto mask_of = [&](const Avenue& a) -> const std::vector<Vec2>& {
+    if (!parallel) return a.mask;
+    scaled.clear();
+    for (Vec2 m : a.mask) scaled.push_back(distant.scale * m);
+    return scaled;
+  };
   std::map<CellId, std::vector<size_t>> objects_in;
   for (size_t i = 0; i < objects.size(); ++i)
     if (objects[i].cell != kNoCell) objects_in[objects[i].cell].push_back(i);
@@ -63,7 +118,8 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
   for (size_t i = 0; i < visible.avenues.size(); ++i) {
     const Avenue& avenue = visible.avenues[i];
     if (avenue.mask.size() < 3) continue;
-    const int32_t clip = b.add_clip(avenue.mask, avenue.depth == 0 && roots == 1 ? 0 : kMaskGrowth);
+    const std::vector<Vec2>& mask = mask_of(avenue);
+    const int32_t clip = b.add_clip(mask, avenue.depth == 0 && roots == 1 ? 0 : kMaskGrowth);
     if (clip < 0) continue;
     const Cell& cell = complex.cells[size_t(avenue.cell)];
     ScreenSceneBuilder::Placement where{clip, int32_t(i), avenue.depth, PolygonRole::Face};
@@ -94,7 +150,7 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
     // The mask's box on the picture plane, a little grown (two samples): what lies wholly
     // outside it cannot show through this avenue.
     Vec2 lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
-    for (Vec2 m : avenue.mask) {
+    for (Vec2 m : mask) {
       lo = {std::min(lo.x, m.x), std::min(lo.y, m.y)};
       hi = {std::max(hi.x, m.x), std::max(hi.y, m.y)};
     }

@@ -17,6 +17,8 @@
 #include <nlohmann/json.hpp>
 
 #include "app/plan_source.h"
+#include "render/architectural_drawing.h"
+#include "render/halftone.h"
 #include "render/plan_drawing.h"
 #include "render/raster.h"
 #include "tests/avenues_run.h"
@@ -304,6 +306,71 @@ TEST_F(ArchitecturalDrawing, ParallelViewFromTheEye) {
   pugi::xml_document doc;
   ASSERT_TRUE(doc.load_file(path("v.svg").c_str()));
   EXPECT_GT(doc.select_nodes("//line").size(), 10u);
+  // The same view as a picture: the half-tone (not lines on white).
+  const Outcome p = run({"view", plan, "--projection", "parallel", "--view-width", "12", "--size", "600x300", "-o",
+                         path("v.png")});
+  ASSERT_EQ(p.status, 0) << p.err;
+  const Image img = read_image(path("v.png").string());
+  ASSERT_EQ(img.width, 600);
+  long white = 0;
+  for (size_t i = 0; i + 2 < img.data.size(); i += 3) white += img.data[i] == 255 && img.data[i + 1] == 255 && img.data[i + 2] == 255;
+  EXPECT_LT(white, 600 * 300 / 10);
+}
+
+// A drawing's picture is the scanline half-tone of the same parallel view (a perspective from
+// far behind the picture plane, cut where the rays start): each sample shows the face that an
+// independent parallel ray from the cut plane meets first (ray_oracle.h, every opaque polygon,
+// no cells), and a sample shows nothing only where its ray starts inside a solid (the poché
+// goes there). Plan, section, elevation and a cut axonometric of two plans, every 3rd sample.
+TEST(ArchitecturalHalftone, EachSampleShowsTheFaceARayFromTheCutMeetsFirst) {
+  for (const char* name : {"two-storey-house", "jones-house"}) {
+    SCOPED_TRACE(name);
+    const CellComplex c = app::load_plan_source(kSource + "/plans/" + name + ".toml").complex;
+    const Box3 b = building_bounds(c);
+    const double z0 = c.storeys[0].elevation;
+    const std::vector<ArchitecturalView> views = {
+        plan_view(c, 0, 1.2, 40), section_view(c, {b.lo.x - 1, 2.2}, {b.hi.x + 1, 2.2}, 40),
+        elevation_view(c, 270, 40), axonometric_view(c, 30, 35, z0 + 1.2, 40)};
+    for (const ArchitecturalView& v : views) {
+      SCOPED_TRACE(v.kind);
+      const Camera& cam = v.camera;
+      const VisibleSet vs = find_visible_from_cut(c, cam, v.cut);
+      ASSERT_TRUE(vs.cut.has_value());
+      HalftoneOptions ho;
+      const ScreenScene scene = screen_scene_of_view(c, {}, cam, vs, scene_options(ho));
+      Image img;
+      std::vector<int32_t> item;
+      render_scene(scene, ho, img, nullptr, &item);
+      ASSERT_EQ(item.size(), size_t(cam.width) * size_t(cam.height));
+      const double along = dot(v.cut.n, cam.forward);
+      int tested = 0, faces = 0, solid = 0, wrong = 0;
+      for (int y = 1; y < cam.height; y += 3)
+        for (int x = 1; x < cam.width; x += 3) {
+          const Vec2 px{x + 0.5, y + 0.5};
+          Vec3 o = cam.ray_origin_at_raster(px);
+          o = o + (-v.cut.eval(o) / along) * cam.forward;  // where the ray starts: on the cut
+          const double t = avenues::testing::first_hit(c, o, cam.forward);
+          const int32_t shown = item[size_t(y) * size_t(cam.width) + size_t(x)];
+          ++tested;
+          if (shown < 0) {
+            ++solid;
+            wrong += c.locate(o).what == Location::What::Cell;  // free space there: a crack
+            continue;
+          }
+          const PolygonSource& src = scene.sources[size_t(shown)];
+          ASSERT_EQ(src.kind, PolygonSource::Kind::Face);
+          ++faces;
+          const Plane& plane = c.cells[size_t(src.cell)].faces[size_t(src.face)].plane;
+          wrong += !(std::isfinite(t) && std::fabs(plane.eval(o + t * cam.forward)) < 1e-6 * length(plane.n));
+        }
+      EXPECT_GT(faces, tested / 2);
+      if (v.kind == "plan" && std::string(name) == "two-storey-house") {
+        EXPECT_GT(solid, 0) << "its cut walls";  // (Jones's walls have no thickness)
+      }
+      // Samples whose centre lies on an edge between two faces may take either.
+      EXPECT_LE(wrong, tested / 500) << wrong << " of " << tested;
+    }
+  }
 }
 
 // Bad input: exit status 2, a message naming the option, and no file.

@@ -56,13 +56,15 @@ namespace {
 VisibleSet traverse(const CellComplex& complex, const Camera& camera, CellId eye_cell, const TraverseParams& params,
                     const Plane* cut) {
   const bool prune = params.prune_covered;
+  VisibleSet vs;
   switch (params.kernel) {
-    case Kernel::Float: return detail::traverse_with<float>(complex, camera, eye_cell, prune, cut);
-    case Kernel::Double: return detail::traverse_with<double>(complex, camera, eye_cell, prune, cut);
-    case Kernel::Filtered: return detail::traverse_filtered(complex, camera, eye_cell, prune, cut);
-    case Kernel::Exact: return detail::traverse_exact(complex, camera, eye_cell, prune, cut);
+    case Kernel::Float: vs = detail::traverse_with<float>(complex, camera, eye_cell, prune, cut); break;
+    case Kernel::Double: vs = detail::traverse_with<double>(complex, camera, eye_cell, prune, cut); break;
+    case Kernel::Filtered: vs = detail::traverse_filtered(complex, camera, eye_cell, prune, cut); break;
+    case Kernel::Exact: vs = detail::traverse_exact(complex, camera, eye_cell, prune, cut); break;
   }
-  return {};
+  if (camera.is_parallel()) vs.cut = cut ? *cut : Plane{camera.forward, -dot(camera.forward, camera.eye)};
+  return vs;
 }
 }  // namespace
 

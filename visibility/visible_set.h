@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <optional>
 #include <vector>
 
 #include "cells/cell_complex.h"
@@ -31,6 +32,7 @@ struct VisibleSet {
   CellId eye_cell = kNoCell;
   std::vector<Avenue> avenues;  ///< depth-first order; avenues[0] is the eye's cell; an eye on its cell's boundary: one root (parent -1) per cell holding it, each through the directions entering it (parallel: one root per cut cell)
   std::vector<CellId> cut_cells;  ///< parallel: the cells the cut plane crosses, ascending (the roots)
+  std::optional<Plane> cut;       ///< parallel: the plane the rays start on (the cut, or the picture plane)
   std::vector<CellId> cells;    ///< distinct visible cells, ascending
   long portals_tested = 0;      ///< portals examined (facing test and clipping)
   long avenues_pruned = 0;      ///< avenues not followed: mask inside one already found into the cell
