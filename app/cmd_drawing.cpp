@@ -26,6 +26,7 @@
 #include "render/architectural_drawing.h"
 #include "render/halftone.h"
 #include "render/raster.h"
+#include "render/thread_arena.h"
 
 namespace avenues::app {
 
@@ -140,6 +141,7 @@ int run_drawing(const DrawingOptions& opt) {
   if (!picture && !is_drawing_path(opt.output))
     throw std::runtime_error("cannot write '" + opt.output + "': unknown format '" + lower_extension(opt.output) +
                              "' (drawings: " + drawing_extensions() + "; pictures: " + raster_extensions() + ")");
+  if (picture) start_threads(0);  // the half-tone's threads start while the plan is read
   LoadedPlan plan = load_plan_source(opt.plan, opt.import);
   const CellComplex& c = plan.complex;
   const ArchitecturalView s = set_up_drawing(c, opt);

@@ -17,4 +17,6 @@ tbb::task_arena& arena_for(int threads) {
   return *a;
 }
 
+void start_threads(int threads) { arena_for(threads).enqueue([] {}); }
+
 }  // namespace avenues

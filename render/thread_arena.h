@@ -12,4 +12,10 @@ namespace avenues {
 /// (TBB may be gone by the time statics are).
 tbb::task_arena& arena_for(int threads);
 
+/// Starts the worker threads of arena_for(threads) now, in the background (an empty task
+/// enqueued: this returns at once). A one-shot picture (`avenues view`, `drawing`) calls it
+/// before reading its plan, so that the 2–4 ms TBB takes to start its threads pass while the
+/// plan is read and decomposed, not in the frame that needs them.
+void start_threads(int threads);
+
 }  // namespace avenues
