@@ -322,18 +322,25 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
             c.kind = CellKind::Doorway;
             c.open = open;
             c.portal = PortalKind::Gap;
+            // Where several walls' openings overlap (a door under a bulkhead's gap), the most
+            // particular kind names the doorway: a door, then a window, a hatch, a gap.
+            auto rank = [](OpeningKind k) {
+              return k == OpeningKind::Door ? 3 : k == OpeningKind::Window ? 2 : k == OpeningKind::Hatch ? 1 : 0;
+            };
+            int best = -1;
             for (int32_t r : keys) {
               const Region& reg = outline.regions[size_t(r)];
+              if (best < 0) c.wall = reg.wall;
+              if (reg.opening < 0) continue;
+              const OpeningKind k = plan.walls[size_t(reg.wall)].openings[size_t(reg.opening)].kind;
+              if (rank(k) <= best) continue;
+              best = rank(k);
               c.wall = reg.wall;
-              if (reg.opening >= 0) {
-                c.opening = opening_id(plan, reg.wall, reg.opening);
-                OpeningKind k = plan.walls[size_t(reg.wall)].openings[size_t(reg.opening)].kind;
-                c.portal = k == OpeningKind::Door     ? PortalKind::Door
-                           : k == OpeningKind::Window ? PortalKind::Window
-                           : k == OpeningKind::Hatch  ? PortalKind::Hatch
-                                                      : PortalKind::Gap;
-                break;
-              }
+              c.opening = opening_id(plan, reg.wall, reg.opening);
+              c.portal = k == OpeningKind::Door     ? PortalKind::Door
+                         : k == OpeningKind::Window ? PortalKind::Window
+                         : k == OpeningKind::Hatch  ? PortalKind::Hatch
+                                                    : PortalKind::Gap;
             }
             it = region_class.emplace(keys, add_class(c)).first;
           }

@@ -487,8 +487,9 @@ TEST(Ifc, LShapedWallsStandAsConvexPiecesOfTheirSection) {
 
 TEST(Ifc, EveryWallOfTheModelsStands) {
   // The IFC wall, curtain wall and column elements each file holds (counted in the files):
-  // every one stands as plan walls (a parapet as a low wall) or, standing on no storey's
-  // floor (a bulkhead under a ceiling), as an opaque object.
+  // every one stands as plan walls (a parapet as a low wall, a bulkhead under a ceiling as a
+  // wall with a gap beneath it) or, standing on no storey's floor nor in one storey's
+  // band, as an opaque object.
   const std::vector<std::pair<std::string, size_t>> models = {
       {duplex(), 57}, {(kIfc / "Office_A_20110811.ifc").string(), 487}, {(kModels / "IFC/AC14-FZK-Haus.ifc").string(), 14}};
   for (const auto& [path, walls] : models) {
@@ -505,6 +506,46 @@ TEST(Ifc, EveryWallOfTheModelsStands) {
   int low = 0;
   for (const Wall& w : d.plan.walls) low += w.height > 0 && w.height < 1;
   EXPECT_GE(low, 4);
+}
+
+// A wall standing on no floor (Office A's partitions hung 2.6 m up on Level 2) is a wall of
+// its storey with a gap beneath it along its whole length, up to its foot: cut out of the
+// free space, so a walker passes under it and an eye flying at its height is stopped.
+TEST(Ifc, BulkheadsAreWallsWithAGapBeneath) {
+  const std::string office = (kIfc / "Office_A_20110811.ifc").string();
+  if (!fs::exists(office)) GTEST_SKIP() << "no " << office;
+  const IfcModel& m = ifc_model(office);
+  int hung = 0, crossed = 0;
+  for (const Wall& w : m.plan.walls) {
+    if (w.openings.empty() || w.openings[0].name != "beneath " + w.name) continue;
+    SCOPED_TRACE(w.name);
+    ++hung;
+    const Opening& gap = w.openings[0];
+    EXPECT_EQ(gap.kind, OpeningKind::Gap);
+    EXPECT_EQ(gap.at, 0);
+    EXPECT_NEAR(gap.width, length(w.centre.back() - w.centre.front()), 1e-9);
+    EXPECT_GT(gap.head, 2.0);
+    // Across the wall's middle: under it on foot, and into it flying at its height.
+    const Storey& st = m.plan.storeys[size_t(w.storey)];
+    const Vec2 a = w.centre.front(), b = w.centre.back(), mid = 0.5 * (a + b);
+    const Vec2 across = (1.0 / length(b - a)) * Vec2{a.y - b.y, b.x - a.x};
+    const Vec2 from = mid + (w.thickness / 2 + 0.5) * across, to = mid - (w.thickness / 2 + 0.5) * across;
+    const double z = st.elevation + kEyeHeight;
+    if (m.cells.locate({from.x, from.y, z}).what != Location::What::Cell ||
+        m.cells.locate({to.x, to.y, z}).what != Location::What::Cell)
+      continue;  // something else stands beside this one's middle
+    const Location at = m.cells.locate({from.x, from.y, z});
+    const SegmentCast under = cast_segment(m.cells, at.cell, {from.x, from.y, z}, {to.x, to.y, z});
+    EXPECT_FALSE(under.blocked);
+    const double high = st.elevation + 0.5 * (gap.head + std::min(st.height, w.height < 0 ? st.height : w.height));
+    const Location up = m.cells.locate({from.x, from.y, high});
+    ASSERT_EQ(up.what, Location::What::Cell);
+    const SegmentCast into = cast_segment(m.cells, up.cell, {from.x, from.y, high}, {to.x, to.y, high});
+    EXPECT_TRUE(into.blocked);
+    ++crossed;
+  }
+  EXPECT_GE(hung, 3);
+  EXPECT_GE(crossed, 1);
 }
 
 TEST(Ifc, SlabsAndCoveringsAreFloorsCeilingsOrObjects) {

@@ -162,6 +162,7 @@ struct WallShape {
   size_t element;
   Rect rect;
   double z0, z1;
+  bool hung = false;  ///< stands on no floor: a bulkhead, a wall over a window band (a gap beneath it)
 };
 
 /// A wall's rectangle as a closed footprint, for point tests.
@@ -604,8 +605,11 @@ class Builder {
 
   /// Walls and columns: the rectangle around the footprint, on each storey whose band it
   /// spans at least half of (or 1 m of), and on the storey whose floor it stands on however
-  /// low it is (a parapet, a half wall). One that stands on no storey's floor (a bulkhead
-  /// hanging from a ceiling, a wall over a window band) is an object: drawn, opaque, not
+  /// low it is (a parapet, a half wall). One that stands on no storey's floor but lies in
+  /// one storey's band (a bulkhead hanging from a ceiling, a wall over a window band) is a
+  /// wall of that storey with a gap beneath it along its whole length, from the floor to
+  /// its foot: cut out of the free space, so that it hides what is behind it and a walker
+  /// passes under it only where a person could. Any other is an object: drawn, opaque, not
   /// cut out of the free space.
   void make_walls() {
     for (size_t i = 0; i < elements_.size(); ++i) {
@@ -655,8 +659,48 @@ class Builder {
         }
         placed = true;
       }
-      if (!placed) e.as_object = true;
+      if (!placed && !hung_wall(i, pieces)) e.as_object = true;
     }
+  }
+
+  /// A wall standing on no floor, as a wall of the storey whose band holds it with a gap
+  /// beneath it (make_walls); false when no storey's band holds it, or the gap or the wall
+  /// would be too low to be one.
+  bool hung_wall(size_t i, const std::vector<WallPiece>& pieces) {
+    const Element& e = elements_[i];
+    const double z0 = e.box.lo.z, z1 = e.box.hi.z;
+    const int s = storey_at(z0);
+    const Storey& st = plan_.storeys[size_t(s)];
+    const double ceiling = st.elevation + st.height;
+    const double foot = z0 - st.elevation;
+    if (foot < kMinOpening || z0 >= ceiling - kMinWall || z1 > ceiling + st.slab + kOnFloor) return false;
+    for (size_t k = 0; k < pieces.size(); ++k) {
+      const WallPiece& piece = pieces[k];
+      Wall w;
+      w.name = e.name.empty() ? e.guid : e.name;
+      if (pieces.size() > 1) w.name += " (" + std::to_string(k + 1) + "/" + std::to_string(pieces.size()) + ")";
+      w.storey = StoreyId(s);
+      w.thickness = piece.rect.width;
+      const Vec2 half = (piece.rect.length / 2) * piece.rect.along;
+      w.centre = {piece.rect.centre - half, piece.rect.centre + half};
+      w.from_arc = {false};
+      w.footprint = piece.footprint;
+      w.height = z1 >= ceiling - 0.05 ? -1 : z1 - st.elevation;
+      w.material = material_of(e);
+      w.where = {path_, 0, 0, e.label()};
+      Opening gap;
+      gap.name = "beneath " + w.name;
+      gap.kind = OpeningKind::Gap;
+      gap.at = 0;
+      gap.width = piece.rect.length;
+      gap.sill = 0;
+      gap.head = foot;
+      gap.where = w.where;
+      w.openings.push_back(std::move(gap));
+      wall_shape_.push_back({i, piece.rect, z0, z1, true});
+      plan_.walls.push_back(std::move(w));
+    }
+    return !pieces.empty();
   }
 
   /// Doors and windows: an opening in the wall of their storey nearest their centre, as
@@ -676,7 +720,7 @@ class Builder {
       double best_d = HUGE_VAL;
       for (size_t w = 0; w < plan_.walls.size(); ++w) {
         const Wall& wall = plan_.walls[w];
-        if (wall.storey != s) continue;
+        if (wall.storey != s || wall_shape_[w].hung) continue;  // a hung wall's gap is its own
         const double d = distance_to_segment(c, wall.centre[0], wall.centre[1]);
         if (d <= wall.thickness / 2 + kDoorReach && d < best_d) best = int(w), best_d = d;
       }
