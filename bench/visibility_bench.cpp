@@ -24,6 +24,7 @@
 
 #include "cells/build_cells.h"
 #include "plans/formats/doom_map.h"
+#include "plans/formats/ifc_building.h"
 #include "plans/formats/sweet_home.h"
 #include "plans/generate.h"
 #include "visibility/visible_set.h"
@@ -35,7 +36,7 @@ namespace {
 
 /// Complexes are built once per process and shared by the benchmarks.
 /// Keys: "office:N" (a generated N × N office), "sh3d:PATH" (a Sweet Home home),
-/// "wad:PATH:MAP" (a Doom map), else a bundled plan's file name.
+/// "wad:PATH:MAP" (a Doom map), "ifc:PATH" (an IFC building), else a bundled plan's file name.
 const CellComplex& complex_of(const std::string& key) {
   static std::map<std::string, std::unique_ptr<CellComplex>> cache;
   auto& slot = cache[key];
@@ -45,6 +46,8 @@ const CellComplex& complex_of(const std::string& key) {
       p = parse_plan(generate_office_toml(std::stoi(key.substr(7)), std::stoi(key.substr(7))), key);
     } else if (key.rfind("sh3d:", 0) == 0) {
       p = read_sweet_home(key.substr(5));
+    } else if (key.rfind("ifc:", 0) == 0) {
+      p = read_ifc_building(key.substr(4));
     } else if (key.rfind("wad:", 0) == 0) {
       const size_t colon = key.rfind(':');
       p = read_doom_map(key.substr(4, colon - 4), key.substr(colon + 1));
@@ -191,6 +194,10 @@ int register_all() {
       const std::string m(map);
       const std::string wad = "/usr/share/games/doom/" + m.substr(0, m.find(':'));
       if (fs::exists(wad)) plans.push_back({m, "wad:" + wad + m.substr(m.find(':'))});
+    }
+    for (const char* model : {"duplex", "Office_A_20110811"}) {
+      const fs::path ifc = fs::path(AVENUES_OUTSIDE_DIR) / "ifc" / (std::string(model) + ".ifc");
+      if (fs::exists(ifc)) plans.push_back({model, "ifc:" + ifc.string()});
     }
     for (const auto& [name, key] : plans)
       for (bool prune : {false, true})
