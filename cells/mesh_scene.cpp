@@ -40,6 +40,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <numbers>
 #include <numeric>
 #include <stdexcept>
 
@@ -769,6 +770,95 @@ void frame_scene(CellComplex& out, const Box3& box, double m) {
   out.view = Viewpoint{eye, middle, std::clamp(fov, 40.0, 120.0)};
 }
 
+/// Volume [m³] of a convex cell: tetrahedra from one of its corners to a fan of each face.
+double cell_volume(const Cell& cell) {
+  if (cell.faces.empty() || cell.faces[0].poly.empty()) return 0;
+  const Vec3 r = cell.faces[0].poly[0];
+  double v = 0;
+  for (const Face& f : cell.faces)
+    for (size_t k = 1; k + 1 < f.poly.size(); ++k)
+      v += std::fabs(dot(f.poly[0] - r, cross(f.poly[k] - r, f.poly[k + 1] - r))) / 6;
+  return v;
+}
+
+/// The generalized winding number of the triangles about p (Jacobson et al. 2013): the sum
+/// of their solid angles seen from p (Van Oosterom and Strackee's formula) over 4π. About 1
+/// inside a closed surface whose triangles turn counter-clockwise seen from outside (a
+/// solid), about −1 inside one turned the other way (a room modelled from inside), about 0
+/// outside both or inside one of each (a room within a building's shell).
+double winding_number(const std::vector<SoupTriangle>& soup, Vec3 p) {
+  double sum = 0;
+  for (const SoupTriangle& t : soup) {
+    const Vec3 a = t.p[0] - p, b = t.p[1] - p, c = t.p[2] - p;
+    const double la = length(a), lb = length(b), lc = length(c);
+    const double num = dot(a, cross(b, c));
+    const double den = la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb;
+    sum += 2 * std::atan2(num, den);
+  }
+  return sum / (4 * std::numbers::pi);
+}
+
+/// The first view inside the scene's largest enclosed free region, where it has one: free
+/// space that no portal joins to the far box's (the inside of a closed house, a room with
+/// its door shut), of at least a tenth of the scene's box, and not inside a closed solid
+/// (a winding number of the soup about it under ½: not the inside of a closed cushion,
+/// block or statue). The eye at the middle of the region's largest cell, looking level
+/// towards the farthest of the region's cells. Without such a region the view stays
+/// frame_scene's, outside looking at the scene.
+void view_inside_largest_region(CellComplex& out, const Box3& scene, const std::vector<SoupTriangle>& soup) {
+  const size_t n = out.cells.size();
+  std::vector<size_t> parent(n);
+  for (size_t i = 0; i < n; ++i) parent[i] = i;
+  auto find = [&](size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (const Portal& p : out.portals) parent[find(size_t(p.cell[0]))] = find(size_t(p.cell[1]));
+  const Box3& fb = out.far_box;
+  const Location corner = out.locate(fb.lo + 1e-3 * (fb.hi - fb.lo));
+  if (corner.what != Location::What::Cell) return;
+  const size_t outside = find(size_t(corner.cell));
+  std::vector<double> volume(n, 0), region(n, 0);
+  for (size_t i = 0; i < n; ++i) {
+    volume[i] = cell_volume(out.cells[i]);
+    region[find(i)] += volume[i];
+  }
+  auto middle = [&](size_t i) {
+    Vec3 s{0, 0, 0};
+    double k = 0;
+    for (const Face& f : out.cells[i].faces)
+      for (Vec3 p : f.poly) s = s + p, k += 1;
+    return (1.0 / k) * s;
+  };
+  std::vector<size_t> biggest(n, n);  // per region, its largest cell
+  for (size_t i = 0; i < n; ++i) {
+    size_t& b = biggest[find(i)];
+    if (b == n || volume[i] > volume[b]) b = i;
+  }
+  const Vec3 e = scene.hi - scene.lo;
+  std::vector<size_t> regions;
+  for (size_t i = 0; i < n; ++i)
+    if (find(i) == i && i != outside && region[i] >= 0.1 * e.x * e.y * e.z) regions.push_back(i);
+  std::sort(regions.begin(), regions.end(), [&](size_t a, size_t b) { return region[a] > region[b]; });
+  size_t best = n;
+  for (size_t r : regions)
+    if (winding_number(soup, middle(biggest[r])) < 0.5) {
+      best = r;
+      break;
+    }
+  if (best == n) return;
+  const Vec3 eye = middle(biggest[best]);
+  Vec3 look = eye + Vec3{1, 0, 0};
+  double far = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (find(i) != best) continue;
+    const Vec3 m = middle(i);
+    const double d = std::hypot(m.x - eye.x, m.y - eye.y);
+    if (d > far) far = d, look = {m.x, m.y, eye.z};
+  }
+  out.view = Viewpoint{eye, look, 70};
+}
+
 /// MeshSceneMethod::Bsp: the meshes' triangles as one soup (soup_bsp.h).
 CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshSceneParams& params) {
   CellComplex out;
@@ -799,6 +889,7 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
                            std::to_string(count) + " triangles with no area (corners on a line): dropped");
   drop_slivers(out);
   out.index();  // before the lines: add_real_lines takes its candidate cells from it
+  view_inside_largest_region(out, box, soup);
   {
     ScopedStageTimer t(out.timings, "lines");
     std::vector<RealLine> lines;

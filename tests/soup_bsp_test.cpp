@@ -46,6 +46,29 @@ TEST(SoupBsp, AClosedCubeIsTwoSidedAndItsInsideIsFreeSpace) {
   expect_soup_views_agree_with_rays(c, 12, 16, 96, 64, 1);
 }
 
+// The first view: inside the scene's largest enclosed free region, where it has one, else
+// outside looking at the scene. A closed cube turned inwards (a room modelled from inside)
+// is such a region; the same cube turned outwards is a solid block, and one missing a side
+// joins its inside to the outside: both are seen from outside.
+TEST(SoupBsp, TheFirstViewIsInsideAnEnclosedRoomAndOutsideASolid) {
+  Mesh room = cube({0, 0, 0}, 4);
+  for (auto& t : room.triangles) std::swap(t[1], t[2]);
+  const Box3 inside{{-2, -2, 0}, {2, 2, 4}};
+  const CellComplex r = build_mesh_scene({room});
+  ASSERT_TRUE(r.view.has_value());
+  EXPECT_TRUE(inside.contains(r.view->eye, -1e-9)) << r.view->eye.x << "," << r.view->eye.y << "," << r.view->eye.z;
+  EXPECT_NEAR(r.view->look.z, r.view->eye.z, 1e-12);
+  const CellComplex solid = build_mesh_scene({cube({0, 0, 0}, 4)});
+  ASSERT_TRUE(solid.view.has_value());
+  EXPECT_FALSE(inside.contains(solid.view->eye, 0));
+  Mesh open = room;
+  open.triangles.resize(10);
+  open.polygon_of.resize(10);
+  const CellComplex o = build_mesh_scene({open});
+  ASSERT_TRUE(o.view.has_value());
+  EXPECT_FALSE(inside.contains(o.view->eye, 0));
+}
+
 TEST(SoupBsp, AnOpenCubeLetsFreeSpaceFlowInWithNoRepair) {
   Mesh m = cube({0, 0, 0}, 1);
   m.path = "open-cube.obj";
