@@ -142,6 +142,42 @@ TEST_F(ArchitecturalDrawing, EveryKindOfEveryBundledPlanInEveryFormatReadsBack) 
   }
 }
 
+// The same for Debian's Sweet Home 3D homes (furnished, lit, several levels).
+TEST_F(ArchitecturalDrawing, EveryKindOfEverySweetHomeHomeInEveryFormatReadsBack) {
+  const fs::path homes = "/usr/local/share/avenues/sweethome3d-examples";
+  if (!fs::exists(homes)) GTEST_SKIP() << "no " << homes << " (.ci/install-deps installs sweethome3d)";
+  int tried = 0;
+  for (const auto& e : fs::directory_iterator(homes)) {
+    if (e.path().extension() != ".xml") continue;
+    SCOPED_TRACE(e.path().string());
+    ++tried;
+    const std::string cells = path("home.cells");
+    ASSERT_EQ(run({"cells", e.path().string(), "--save", cells}).status, 0);
+    const CellComplex c = app::load_plan_source(cells).complex;
+    // The plan of the entrance storey (the floor nearest the ground: a basement may show
+    // nothing beyond its cut), the axonometric cut 1.2 m above the lowest floor.
+    size_t entrance = 0;
+    for (size_t k = 0; k < c.storeys.size(); ++k)
+      if (std::fabs(c.storeys[k].elevation) < std::fabs(c.storeys[entrance].elevation)) entrance = k;
+    const std::vector<std::pair<std::vector<std::string>, bool>> kinds = {
+        {{"--plan", std::to_string(entrance)}, true},
+        {{"--section", section_across(c)}, true},
+        {{"--elevation", "south"}, false},
+        {{"--axonometric", "30,35", "--cut-height", "1.2"}, true}};
+    for (const auto& [args, cut] : kinds)
+      for (const char* ext : {".svg", ".pdf", ".eps", ".dxf", ".hpgl", ".png", ".pgm"}) {
+        const std::string out = path(std::string("drawing") + ext);
+        std::vector<std::string> argv{"drawing", cells, "-o", out, "--scale", "1:100"};
+        argv.insert(argv.end(), args.begin(), args.end());
+        const Outcome r = run(argv);
+        ASSERT_EQ(r.status, 0) << args[0] << " " << ext << ": " << r.err;
+        check_file(out, cut, args[0] == "--plan");
+        fs::remove(out);
+      }
+  }
+  EXPECT_EQ(tried, 9);
+}
+
 // An independent ray cast: parallel rays through the frame the stats state (its origin,
 // right, up and direction), against every opaque polygon, cross no cell missing from
 // `visible` — for a plan, a section and an axonometric with a cut, in two kernels.
