@@ -691,24 +691,30 @@ TEST_F(Cli, DxfWithoutAWallLayerIsRefusedListingItsLayers) {
   EXPECT_NE(named.err.find("no layer 'nosuch'"), std::string::npos) << named.err;
 }
 
-// An IFC model's plan as understood, stairwells and all, is saved as for any import, and
-// reads back as the same cells.
+// An IFC model's plan as understood, stairwells and bulkheads' gaps and all, is saved as for
+// any import, and reads back as the same cells.
 TEST_F(Cli, IfcModelSavesItsPlanAndItReadsBackTheSame) {
-  const std::string ifc = std::string(AVENUES_OUTSIDE_DIR) + "/ifc/duplex.ifc";
-  const Outcome r = run({"cells", ifc, "--save-plan", "duplex.toml"});
-  ASSERT_EQ(r.status, 0) << r.err;
-  const std::string toml = slurp(path("duplex.toml"));
-  EXPECT_NE(toml.find("[[floor_opening]]"), std::string::npos);
-  const Outcome back = run({"cells", "duplex.toml"});
-  ASSERT_EQ(back.status, 0) << back.err;
   auto line = [](const std::string& out, const std::string& head) {
     const size_t at = out.find("\n" + head);
     return at == std::string::npos ? std::string() : out.substr(at + 1, out.find('\n', at + 1) - at - 1);
   };
-  EXPECT_NE(line(r.out, "cells "), "");
-  EXPECT_EQ(line(back.out, "cells "), line(r.out, "cells "));
-  EXPECT_EQ(line(back.out, "portals "), line(r.out, "portals "));
-  EXPECT_NE(line(r.out, "cells ").find("stairwell"), std::string::npos) << r.out;
+  for (const char* model : {"duplex", "Office_A_20110811"}) {
+    SCOPED_TRACE(model);
+    const std::string ifc = std::string(AVENUES_OUTSIDE_DIR) + "/ifc/" + model + ".ifc";
+    const Outcome r = run({"cells", ifc, "--save-plan", "saved.toml"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string toml = slurp(path("saved.toml"));
+    EXPECT_NE(toml.find("[[floor_opening]]"), std::string::npos);
+    if (std::string(model) == "Office_A_20110811") {
+      EXPECT_NE(toml.find("name = 'beneath "), std::string::npos);
+    }
+    const Outcome back = run({"cells", "saved.toml"});
+    ASSERT_EQ(back.status, 0) << back.err;
+    EXPECT_NE(line(r.out, "cells "), "");
+    EXPECT_EQ(line(back.out, "cells "), line(r.out, "cells "));
+    EXPECT_EQ(line(back.out, "portals "), line(r.out, "portals "));
+    EXPECT_NE(line(r.out, "cells ").find("stairwell"), std::string::npos) << r.out;
+  }
 }
 
 TEST_F(Cli, FloorPlanAnnotationsOpenWithTheirScale) {
