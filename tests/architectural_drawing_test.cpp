@@ -420,6 +420,7 @@ TEST_F(ArchitecturalDrawing, BadOptionsAreNamedAndWriteNothing) {
       {{"--elevation", "up"}, "--elevation"},
       {{"--axonometric", "30,0"}, "--axonometric"},
       {{"--elevation", "north", "--cut-height", "1"}, "--cut-height"},
+      {{"--plan", "0", "--samples", "3"}, "--samples"},
       {{}, "--plan"},
   };
   for (const auto& [extra, named] : cases) {
