@@ -336,7 +336,7 @@ double area_of(const std::vector<Vec3>& p) {
 /// where nearly parallel planes meet can have an interval millimetres wide, and a fragment
 /// covering a piece was once culled by such middles on one side of a face and not on the
 /// other, so the face lost that part.)
-Box3 approx_bounds(const Poly& p) {
+Box3 interval_bounds(const Poly& p) {
   Box3 b;
   for (const P3& q : p.v) {
     const auto& a = CGAL::approx(q);
@@ -607,13 +607,13 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
       b.neighbours(b.nodes[size_t(face.id)].child[face.toward], face.poly, int(l), pieces);
       std::vector<std::pair<const Frag*, Box3>> cover;
       for (const Frag& f : leaf.frags)
-        if (f.on == face.id) cover.emplace_back(&f, approx_bounds(f.poly));
+        if (f.on == face.id) cover.emplace_back(&f, interval_bounds(f.poly));
       for (auto& [other, piece] : pieces) {
         Contact c;
         c.other = other;
         // Only the fragments meeting the piece's bounds can cover part of it (a big
         // face may hold thousands of fragments and face thousands of small leaves).
-        const Box3 pb = approx_bounds(piece);
+        const Box3 pb = interval_bounds(piece);
         std::vector<Poly> open{std::move(piece)};
         for (const auto& [f, fb] : cover) {
           if (!boxes_meet(fb, pb, b.tol)) continue;

@@ -292,7 +292,7 @@ ObjColouring colour_obj_materials(Mesh& m, const std::vector<std::string>& libra
       // No library at hand defines it: Java 3D's built-in table, as Sweet Home's OBJLoader
       // starts from it (java3d_materials.h).
       if (const std::optional<std::array<double, 3>> kd = java3d_material_colour(mat.name)) {
-        mat.colour = {linear_from_srgb((*kd)[0]), linear_from_srgb((*kd)[1]), linear_from_srgb((*kd)[2])};
+        mat.colour = linear_from_srgb(*kd);
         mat.where = SourceLoc{"Java 3D's built-in materials", 0, 0, "material '" + mat.name + "'"};
         ++out.builtin;
       } else {
@@ -322,9 +322,7 @@ ObjColouring colour_obj_materials(Mesh& m, const std::vector<std::string>& libra
         warnings.push_back(who + "material '" + mat.name + "': its image " + d.diffuse_map +
                            " (map_Kd) is not at hand: its Kd colour is used instead");
     }
-    if (!colour && d.diffuse)
-      colour = std::array<double, 3>{linear_from_srgb((*d.diffuse)[0]), linear_from_srgb((*d.diffuse)[1]),
-                                     linear_from_srgb((*d.diffuse)[2])};
+    if (!colour && d.diffuse) colour = linear_from_srgb(*d.diffuse);
     if (colour) mat.colour = *colour;
     mat.where = SourceLoc{files.name(it->second.library), d.line, 0, "material '" + mat.name + "'"};
   }
