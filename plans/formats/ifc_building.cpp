@@ -641,26 +641,33 @@ class Builder {
         const bool stands = std::fabs(z0 - st.elevation) <= kOnFloor && hi - lo >= kMinWall;
         if (!spans && !stands) continue;
         for (size_t k = 0; k < pieces.size(); ++k) {
-          const WallPiece& piece = pieces[k];
-          Wall w;
-          w.name = e.name.empty() ? e.guid : e.name;
-          if (pieces.size() > 1) w.name += " (" + std::to_string(k + 1) + "/" + std::to_string(pieces.size()) + ")";
-          w.storey = StoreyId(s);
-          w.thickness = piece.rect.width;
-          const Vec2 half = (piece.rect.length / 2) * piece.rect.along;
-          w.centre = {piece.rect.centre - half, piece.rect.centre + half};
-          w.from_arc = {false};
-          w.footprint = piece.footprint;
-          w.height = z1 >= st.elevation + st.height - 0.05 ? -1 : z1 - st.elevation;
-          w.material = material_of(e);
-          w.where = {path_, 0, 0, e.label()};
-          wall_shape_.push_back({i, piece.rect, z0, z1});
-          plan_.walls.push_back(std::move(w));
+          wall_shape_.push_back({i, pieces[k].rect, z0, z1});
+          plan_.walls.push_back(wall_of_piece(e, pieces, k, s));
         }
         placed = true;
       }
       if (!placed && !hung_wall(i, pieces)) e.as_object = true;
     }
+  }
+
+  /// Piece k of element e's footprint as a wall of storey s, up to the ceiling when the
+  /// element reaches it (within 5 cm), else to its top.
+  Wall wall_of_piece(const Element& e, const std::vector<WallPiece>& pieces, size_t k, size_t s) {
+    const WallPiece& piece = pieces[k];
+    const Storey& st = plan_.storeys[s];
+    Wall w;
+    w.name = e.name.empty() ? e.guid : e.name;
+    if (pieces.size() > 1) w.name += " (" + std::to_string(k + 1) + "/" + std::to_string(pieces.size()) + ")";
+    w.storey = StoreyId(s);
+    w.thickness = piece.rect.width;
+    const Vec2 half = (piece.rect.length / 2) * piece.rect.along;
+    w.centre = {piece.rect.centre - half, piece.rect.centre + half};
+    w.from_arc = {false};
+    w.footprint = piece.footprint;
+    w.height = e.box.hi.z >= st.elevation + st.height - 0.05 ? -1 : e.box.hi.z - st.elevation;
+    w.material = material_of(e);
+    w.where = {path_, 0, 0, e.label()};
+    return w;
   }
 
   /// A wall standing on no floor, as a wall of the storey whose band holds it with a gap
@@ -676,18 +683,7 @@ class Builder {
     if (foot < kMinOpening || z0 >= ceiling - kMinWall || z1 > ceiling + st.slab + kOnFloor) return false;
     for (size_t k = 0; k < pieces.size(); ++k) {
       const WallPiece& piece = pieces[k];
-      Wall w;
-      w.name = e.name.empty() ? e.guid : e.name;
-      if (pieces.size() > 1) w.name += " (" + std::to_string(k + 1) + "/" + std::to_string(pieces.size()) + ")";
-      w.storey = StoreyId(s);
-      w.thickness = piece.rect.width;
-      const Vec2 half = (piece.rect.length / 2) * piece.rect.along;
-      w.centre = {piece.rect.centre - half, piece.rect.centre + half};
-      w.from_arc = {false};
-      w.footprint = piece.footprint;
-      w.height = z1 >= ceiling - 0.05 ? -1 : z1 - st.elevation;
-      w.material = material_of(e);
-      w.where = {path_, 0, 0, e.label()};
+      Wall w = wall_of_piece(e, pieces, k, size_t(s));
       Opening gap;
       gap.name = "beneath " + w.name;
       gap.kind = OpeningKind::Gap;
