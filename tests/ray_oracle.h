@@ -2,6 +2,7 @@
 // polygon of a cell complex (no cells, no portals, no masks involved).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -23,9 +24,16 @@ inline double first_hit(const CellComplex& c, Vec3 o, Vec3 dir) {
       if (!(t > 0) || t >= best) continue;
       Vec3 p = o + t * dir;
       for (const OpaquePoly& op : f.opaque) {
-        // Inside the convex polygon (counter-clockwise about the inward normal -n).
+        // Inside the convex polygon (counter-clockwise about the inward normal -n), and
+        // within its bounds: the edge test alone holds a polygon of no area (a needle a few
+        // picometres long, a portal piece that rounded to nothing) to be the whole line
+        // through it.
         bool in = true;
         const size_t m = op.poly.size();
+        Box3 bounds;
+        for (const Vec3& q : op.poly) bounds.add(q);
+        const double tol = 1e-9 * std::max({1.0, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+        in = bounds.contains(p, tol);
         for (size_t k = 0; k < m && in; ++k) {
           Vec3 a = op.poly[k], b = op.poly[(k + 1) % m];
           in = dot(cross(b - a, p - a), f.plane.n) <= 1e-12;
