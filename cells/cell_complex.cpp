@@ -72,23 +72,24 @@ bool Cell::contains(Vec3 p, double tol) const {
   return in_convex(footprint, {p.x, p.y}, tol);
 }
 
+double Cell::volume() const {
+  if (prism) return signed_area(footprint) * (z1 - z0);
+  // A general convex polyhedron: pyramids from one of its vertices to every face.
+  const Vec3 r = faces.empty() || faces[0].poly.empty() ? Vec3{} : faces[0].poly[0];
+  double v = 0;
+  for (const Face& f : faces) {
+    if (f.poly.size() < 3) continue;
+    Vec3 n{0, 0, 0};
+    for (size_t i = 0; i < f.poly.size(); ++i) n = n + cross(f.poly[i], f.poly[(i + 1) % f.poly.size()]);
+    // poly is counter-clockwise from inside, so n points inwards: the height is r's side of the plane.
+    v += length(n) / 2 * std::fabs(dot(f.plane.n, f.poly[0] - r)) / 3;
+  }
+  return v;
+}
+
 double total_volume(const CellComplex& c) {
   double v = 0;
-  for (const Cell& cell : c.cells) {
-    if (cell.prism) {
-      v += signed_area(cell.footprint) * (cell.z1 - cell.z0);
-      continue;
-    }
-    // A general convex polyhedron: pyramids from one of its vertices to every face.
-    const Vec3 r = cell.faces.empty() || cell.faces[0].poly.empty() ? Vec3{} : cell.faces[0].poly[0];
-    for (const Face& f : cell.faces) {
-      if (f.poly.size() < 3) continue;
-      Vec3 n{0, 0, 0};
-      for (size_t i = 0; i < f.poly.size(); ++i) n = n + cross(f.poly[i], f.poly[(i + 1) % f.poly.size()]);
-      // poly is counter-clockwise from inside, so n points inwards: the height is r's side of the plane.
-      v += length(n) / 2 * std::fabs(dot(f.plane.n, f.poly[0] - r)) / 3;
-    }
-  }
+  for (const Cell& cell : c.cells) v += cell.volume();
   return v;
 }
 

@@ -127,6 +127,9 @@ struct Cell {
   bool prism = true;
 
   Box3 bounds() const;
+  /// [m³] its footprint's area times its height (a prism), else pyramids from one of its
+  /// vertices to every face.
+  double volume() const;
   /// Closed containment with tolerance tol [m] (positive grows the cell).
   bool contains(Vec3 p, double tol = 0) const;
 };

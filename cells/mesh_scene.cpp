@@ -770,17 +770,6 @@ void frame_scene(CellComplex& out, const Box3& box, double m) {
   out.view = Viewpoint{eye, middle, std::clamp(fov, 40.0, 120.0)};
 }
 
-/// Volume [m³] of a convex cell: tetrahedra from one of its corners to a fan of each face.
-double cell_volume(const Cell& cell) {
-  if (cell.faces.empty() || cell.faces[0].poly.empty()) return 0;
-  const Vec3 r = cell.faces[0].poly[0];
-  double v = 0;
-  for (const Face& f : cell.faces)
-    for (size_t k = 1; k + 1 < f.poly.size(); ++k)
-      v += std::fabs(dot(f.poly[0] - r, cross(f.poly[k] - r, f.poly[k + 1] - r))) / 6;
-  return v;
-}
-
 /// The generalized winding number of the triangles about p (Jacobson et al. 2013): the sum
 /// of their solid angles seen from p (Van Oosterom and Strackee's formula) over 4π. About 1
 /// inside a closed surface whose triangles turn counter-clockwise seen from outside (a
@@ -820,7 +809,7 @@ void view_inside_largest_region(CellComplex& out, const Box3& scene, const std::
   const size_t outside = find(size_t(corner.cell));
   std::vector<double> volume(n, 0), region(n, 0);
   for (size_t i = 0; i < n; ++i) {
-    volume[i] = cell_volume(out.cells[i]);
+    volume[i] = out.cells[i].volume();
     region[find(i)] += volume[i];
   }
   auto middle = [&](size_t i) {
