@@ -56,7 +56,7 @@ struct Projector {
   const Camera& cam;
   Plane beyond;  ///< parallel: eval >= 0 beyond the plane the rays start from
   Projector(const Camera& c, const std::optional<Plane>& cut) : cam(c) {
-    beyond = cut ? *cut : Plane{c.forward, -dot(c.forward, c.eye)};
+    beyond = cut ? *cut : c.picture_plane();
     if (dot(beyond.n, c.forward) < 0) beyond = {-1.0 * beyond.n, -beyond.d};
   }
   Vec3 picture(Vec3 world) const {

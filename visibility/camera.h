@@ -40,6 +40,9 @@ struct Camera {
   /// A parallel projection from `eye` towards `look`, view_width metres across.
   static Camera parallel(Vec3 eye, Vec3 look, double view_width, int width, int height);
   bool is_parallel() const { return projection == Projection::Parallel; }
+  /// The plane through the eye across the direction of view, facing along it: a parallel
+  /// projection's picture plane, where its rays start when no cut says otherwise.
+  Plane picture_plane() const { return {forward, -dot(forward, eye)}; }
   /// Eye looking at a centre of interest; +z is up (looking straight up or down keeps +y as "up").
   static Camera look_at(Vec3 eye, Vec3 look, double fov_deg, int width, int height);
   /// Eye with a heading (yaw, degrees anticlockwise from +x) and pitch (degrees up).

@@ -63,7 +63,7 @@ VisibleSet traverse(const CellComplex& complex, const Camera& camera, CellId eye
     case Kernel::Filtered: vs = detail::traverse_filtered(complex, camera, eye_cell, prune, cut); break;
     case Kernel::Exact: vs = detail::traverse_exact(complex, camera, eye_cell, prune, cut); break;
   }
-  if (camera.is_parallel()) vs.cut = cut ? *cut : Plane{camera.forward, -dot(camera.forward, camera.eye)};
+  if (camera.is_parallel()) vs.cut = cut ? *cut : camera.picture_plane();
   return vs;
 }
 }  // namespace

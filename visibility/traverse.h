@@ -472,7 +472,7 @@ VisibleSet traverse_with(const CellComplex& c, const Camera& cam, CellId eye_cel
   out.eye_cell = eye_cell;
   auto t0 = std::chrono::steady_clock::now();
   if (cam.is_parallel())
-    Traversal<T>(c, cam, prune_covered, out).run_cut(cut ? *cut : Plane{cam.forward, -dot(cam.forward, cam.eye)});
+    Traversal<T>(c, cam, prune_covered, out).run_cut(cut ? *cut : cam.picture_plane());
   else
     Traversal<T>(c, cam, prune_covered, out).run(eye_cell);
   out.micros = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
