@@ -114,7 +114,7 @@ int run_view(const ViewOptions& opt) {
   if (!std::isfinite(opt.falloff)) throw std::runtime_error("--falloff wants a distance in metres");
   for (const std::string& f : {opt.output, opt.stats_json, opt.overlay})
     if (!f.empty()) check_output_path(f);  // a device or FIFO there: refused before the work
-  if (!opt.output.empty()) start_threads(0);  // the picture's threads start while the plan is read
+  if (is_raster_path(opt.output)) start_threads(0);  // the picture's threads start while the plan is read
   LoadedPlan plan = load_plan_source(opt.plan, opt.import);
   ViewSetup v = set_up_view(plan, opt);
   if (v.camera.is_parallel()) {
