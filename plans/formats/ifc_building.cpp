@@ -803,9 +803,8 @@ class Builder {
         std::vector<Vec2> pts;
         for (Vec3 v : e.vertices)
           if (v.z <= floor + 0.05) pts.push_back({v.x, v.y});
-        std::vector<Vec2> hull = convex_hull(std::move(pts));
-        if (hull.size() < 3 || !(std::fabs(signed_area(hull)) > 0.1)) continue;
-        if (signed_area(hull) < 0) std::reverse(hull.begin(), hull.end());
+        std::vector<Vec2> hull = convex_hull(std::move(pts));  // counter-clockwise
+        if (hull.size() < 3 || !(signed_area(hull) > 0.1)) continue;
         FloorOpening f;
         f.name = e.name.empty() ? e.guid : e.name;
         for (int k = 2; std::any_of(plan_.floor_openings.begin(), plan_.floor_openings.end(),
