@@ -35,6 +35,10 @@ constexpr int kBadInput = 2;
 namespace avenues::app {
 
 namespace {
+constexpr const char* kSearchHelp =
+    "merged (avenues into a cell joined where their union is convex: the same view, fewer avenues) or jones "
+    "(Jones's tree, one avenue per chain of portals)";
+
 /// The options that say how a plan from elsewhere is understood (docs/PLAN_FORMAT.md,
 /// "Plans from elsewhere"), on every subcommand that reads a PLAN.
 /// (`drawing`, whose --scale is the paper's, takes floor-plan annotations at their default scale.)
@@ -105,6 +109,7 @@ int run_cli(int argc, char** argv) {
   view->add_option("--fov", view_opt.fov, "horizontal field of view in degrees, (0, 179]")->check(number_in(0, 179, true));
   view->add_option("--size", view_opt.size, "picture size in pixels")->type_name("WxH")->capture_default_str()->check(size_wxh());
   view->add_option("--kernel", view_opt.kernel, "arithmetic: float, double, filtered or exact")->capture_default_str()->check(kernel_name());
+  view->add_option("--search", view_opt.search, kSearchHelp)->capture_default_str()->check(search_name());
   view->add_option("--stats-json", view_opt.stats_json, "write the view's statistics as JSON")->type_name("FILE")->check(file_name());
   view->add_option("--overlay", view_opt.overlay, "draw masks, plan and avenue tree as SVG")->type_name("FILE.svg")->check(file_name());
   view->add_option("-o,--output", view_opt.output,
@@ -158,6 +163,7 @@ int run_cli(int argc, char** argv) {
                       "storey's floor");
   drawing->add_option("--scale", drawing_opt.scale, "paper scale, 1:20 to 1:500")->capture_default_str();
   drawing->add_option("--kernel", drawing_opt.kernel, "arithmetic: float, double, filtered or exact")->capture_default_str();
+  drawing->add_option("--search", drawing_opt.search, kSearchHelp)->capture_default_str()->check(search_name());
   drawing->add_option("--samples", drawing_opt.samples, "pictures: the half-tone's samples per pixel, 1, 4 or 16")
       ->capture_default_str()
       ->check(samples_count());
@@ -181,6 +187,7 @@ int run_cli(int argc, char** argv) {
   path->add_option("--size", path_opt.size, "frame size in pixels")->type_name("WxH")->capture_default_str()->check(size_wxh());
   path->add_option("--fov", path_opt.fov, "horizontal field of view in degrees")->capture_default_str()->check(number_in(0, 179, true));
   path->add_option("--kernel", path_opt.kernel, "arithmetic of the traversal")->capture_default_str()->check(kernel_name());
+  path->add_option("--search", path_opt.search, kSearchHelp)->capture_default_str()->check(search_name());
   path->add_option("--samples", path_opt.samples, "half-tone: samples per pixel, 1, 4 or 16")->capture_default_str()->check(samples_count());
   path->add_option("--shading", path_opt.shading, "half-tone: flat, smooth or auto")->capture_default_str();
   path->add_option("--lights", path_opt.lights, "plan (its point lights, casting shadows) or eye (the light at the eye; faster in a home full of lamps)")->capture_default_str();
@@ -229,6 +236,7 @@ int run_cli(int argc, char** argv) {
   walk->add_option("--object-shadows", walk_opt.object_shadows, "objects' shadows from the plan's point lights: auto (when object triangles x lights <= 20000), on or off")
       ->capture_default_str();
   walk->add_option("--kernel", walk_opt.kernel, "arithmetic of the traversal")->capture_default_str()->check(kernel_name());
+  walk->add_option("--search", walk_opt.search, kSearchHelp)->capture_default_str()->check(search_name());
   walk->add_option("--interocular", walk_opt.interocular, "[m] distance between the eyes")->capture_default_str()->check(number_in(0, 10));
   walk->add_option("--frame-budget", walk_opt.frame_budget_ms,
                    "[ms] while the eye moves, drop samples, then resolution, to keep frames under this; "

@@ -145,7 +145,7 @@ int run_drawing(const DrawingOptions& opt) {
   LoadedPlan plan = load_plan_source(opt.plan, opt.import);
   const CellComplex& c = plan.complex;
   const ArchitecturalView s = set_up_drawing(c, opt);
-  const VisibleSet vs = find_visible_from_cut(c, s.camera, s.cut, kernel);
+  const VisibleSet vs = find_visible_from_cut(c, s.camera, s.cut, search_option(opt.search, kernel));
   const auto t0 = std::chrono::steady_clock::now();
   const LineScene scene = prepare_line_scene(c);
   Drawing d = draw_architectural(c, scene, s.camera, s.cut, vs, s.options);

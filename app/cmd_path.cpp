@@ -104,6 +104,7 @@ struct PathSettings {
   bool svg = false;                ///< hidden-line drawings, else half-tone pictures
   int width = 0, height = 0;       ///< [px]
   Kernel kernel = Kernel::Double;
+  TraverseParams search;
   HalftoneOptions halftone;
   bool stereo = false;
   StereoComposite composite = StereoComposite::Anaglyph;  ///< pictures
@@ -118,6 +119,7 @@ PathSettings path_settings(const PathOptions& opt, const MpiWalk& mpi) {
   size_option(opt.size, s.width, s.height);
   if (!(opt.fov > 0 && opt.fov <= 179)) throw std::runtime_error("--fov must lie in (0, 179] degrees");
   s.kernel = kernel_option(opt.kernel);
+  s.search = search_option(opt.search, s.kernel);
   s.halftone.samples = samples_option(opt.samples);
   if (!parse_shading(opt.shading, s.halftone.shading.model))
     throw std::runtime_error("--shading wants flat, smooth or auto, not '" + opt.shading + "'");
@@ -275,10 +277,10 @@ class FrameWriter {
 
  private:
   Drawing draw(const WalkFrame& f) const {
-    return draw_view(c_, scene_, f.camera, find_visible(c_, f.camera, f.cell, s_.kernel));
+    return draw_view(c_, scene_, f.camera, find_visible(c_, f.camera, f.cell, s_.search));
   }
   void render(const WalkFrame& f, Image& out) {
-    render_view(c_, objects_, *effects_, f.camera, find_visible(c_, f.camera, f.cell, s_.kernel), s_.halftone, out,
+    render_view(c_, objects_, *effects_, f.camera, find_visible(c_, f.camera, f.cell, s_.search), s_.halftone, out,
                 storage_);
   }
 

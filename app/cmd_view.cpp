@@ -48,6 +48,7 @@ ViewSetup set_up_view(const LoadedPlan& plan, const ViewOptions& opt) {
   const CellComplex& c = plan.complex;
   ViewSetup v;
   v.kernel = kernel_option(opt.kernel);
+  v.search = search_option(opt.search, v.kernel);
   int w = 0, h = 0;
   size_option(opt.size, w, h);
   Viewpoint vp = default_viewpoint(c);
@@ -96,12 +97,14 @@ nlohmann::json view_stats(const LoadedPlan& plan, const ViewSetup& v, const Visi
   }
   j["size"] = {v.camera.width, v.camera.height};
   j["kernel"] = to_string(v.kernel);
+  j["search"] = v.search.merge_pieces ? "merged" : "jones";
   j["eye_cell"] = vs.eye_cell;
   const Cell& ec = c.cells[size_t(vs.eye_cell)];
   j["eye_room"] = ec.room >= 0 ? c.rooms[size_t(ec.room)].name : std::string(to_string(ec.kind));
   j["visible_cells"] = vs.cells.size();
   j["visible"] = vs.cells;
   j["avenues"] = vs.avenues.size();
+  if (v.search.merge_pieces) j["avenues_merged"] = vs.avenues_merged;
   j["portals_tested"] = vs.portals_tested;
   j["max_depth"] = vs.max_depth;
   j["visibility_us"] = vs.micros;
@@ -121,7 +124,7 @@ int run_view(const ViewOptions& opt) {
     if (!opt.overlay.empty() || !opt.stereo.empty() || opt.frames > 0)
       throw std::runtime_error("--overlay, --stereo and --frames need --projection perspective");
   }
-  VisibleSet vs = find_visible(plan.complex, v.camera, v.eye_cell, v.kernel);
+  VisibleSet vs = find_visible(plan.complex, v.camera, v.eye_cell, v.search);
   nlohmann::json stats = view_stats(plan, v, vs);
   if (!opt.overlay.empty()) write_overlay_svg(plan.complex, v.camera, vs, opt.overlay);
   if ((opt.frames > 0 || !opt.stereo.empty()) && opt.output.empty())
@@ -134,7 +137,7 @@ int run_view(const ViewOptions& opt) {
   std::cout << "eye in cell " << vs.eye_cell << " (" << stats["eye_room"].get<std::string>() << "): "
             << vs.cells.size() << " cells visible through " << vs.avenues.size() << " avenues, "
             << vs.portals_tested << " portals tested, depth " << vs.max_depth << ", " << vs.micros << " us ("
-            << to_string(v.kernel) << ")\n";
+            << to_string(v.kernel) << ", " << (v.search.merge_pieces ? "merged" : "jones") << ")\n";
   std::string picture = opt.output;
   if (opt.frames > 0) picture = stats["first_frame"].get<std::string>() + " and the next " + std::to_string(opt.frames - 1);
   if (opt.stereo == "pair") picture = "the pair " + opt.output + " (-left, -right)";

@@ -82,6 +82,7 @@ class Session {
       : plan_(plan), c_(plan.complex), opt_(opt), viewer_(viewer), budget_(opt.frame_budget_ms, opt.samples),
         state_(plan, opt), exports_(plan, opt) {
     kernel_ = kernel_option(opt.kernel);
+    search_ = search_option(opt.search, kernel_);
     halftone_.samples = samples_option(opt.samples);
     if (!parse_shading(opt.shading, halftone_.shading.model))
       throw std::runtime_error("--shading wants flat or smooth, not '" + opt.shading + "'");
@@ -306,11 +307,11 @@ class Session {
       shown_mode_ = mode;
       if (mode == StereoMode::Mono) {
         cam_ = state_.camera(w, h);
-        full_ = find_visible(c_, cam_, cell, kernel_);
+        full_ = find_visible(c_, cam_, cell, search_);
       } else {
         cam_ = rig_.left;
-        full_ = find_visible(c_, rig_.left, rig_.left_at.cell, kernel_);
-        right_ = find_visible(c_, rig_.right, rig_.right_at.cell, kernel_);
+        full_ = find_visible(c_, rig_.left, rig_.left_at.cell, search_);
+        right_ = find_visible(c_, rig_.right, rig_.right_at.cell, search_);
       }
       shown_ = progressive_ ? std::min<size_t>(size_t(opt_.progressive_rate), full_.avenues.size()) : full_.avenues.size();
     } else {
@@ -384,6 +385,7 @@ class Session {
     v.viewpoint.look = state_.eye() + v.camera.forward;
     v.viewpoint.fov_deg = state_.fov();
     v.kernel = kernel_;
+    v.search = search_;
     v.eye_cell = state_.cell();
     return v;
   }
@@ -422,6 +424,7 @@ class Session {
   WalkExports exports_;
   Controls controls_;
   Kernel kernel_ = Kernel::Double;
+  TraverseParams search_;
   HalftoneOptions halftone_;
   SceneEffects effects_;
   StereoOptions stereo_opt_;

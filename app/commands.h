@@ -55,6 +55,7 @@ struct ViewOptions {
   double fov = -1;                     ///< [deg]; <= 0: the viewpoint's
   std::string size = "1920x1080";
   std::string kernel = "double";
+  std::string search = "merged";       ///< merged or jones (TraverseParams::merge_pieces)
   std::string stats_json, overlay, output;
   std::string stereo;                  ///< "", parallel, cross or pair
   double interocular = 0.065;          ///< [m]
@@ -84,6 +85,7 @@ struct DrawingOptions {
   std::optional<double> cut_height;    ///< [m] above the storey's floor (plan: default 1.2)
   std::string scale = "1:50";          ///< paper scale 1:20 ... 1:500
   std::string kernel = "double";
+  std::string search = "merged";       ///< merged or jones (TraverseParams::merge_pieces)
   int samples = 4;                     ///< pictures: the half-tone's samples per pixel, 1, 4 or 16
 };
 int run_drawing(const DrawingOptions& opt);
@@ -100,6 +102,7 @@ struct PathOptions {
   std::string size = "640x360";
   double fov = 70;                ///< [deg]
   std::string kernel = "double";
+  std::string search = "merged";  ///< merged or jones (TraverseParams::merge_pieces)
   int samples = 4;                ///< half-tone: samples per pixel, 1, 4 or 16
   std::string shading = "flat";   ///< half-tone: flat, smooth or auto
   std::string lights = "plan";    ///< plan (its point lights, with shadows) or eye (the light at the eye only)
@@ -145,6 +148,7 @@ struct WalkOptions {
   std::string lights = "plan";         ///< plan (its point lights, with shadows) or eye (the light at the eye only)
   std::string object_shadows = "auto"; ///< objects' shadows from the plan's lights: auto, on or off
   std::string kernel = "double";
+  std::string search = "merged";       ///< merged or jones (TraverseParams::merge_pieces)
   double interocular = 0.065;          ///< [m]
   double converge = 2.0;               ///< [m]
   double frame_budget_ms = 1000.0 / 60;  ///< [ms] >= 0: while moving, less detail to keep frames under it (app/frame_budget.h); 0: never
@@ -164,6 +168,7 @@ struct ViewSetup {
   Viewpoint viewpoint;
   Camera camera;
   Kernel kernel = Kernel::Double;
+  TraverseParams search;  ///< the kernel and the kind of search (--search)
   CellId eye_cell = kNoCell;
 };
 /// Resolves options against the plan: default viewpoint, camera, and the eye's cell.

@@ -35,7 +35,7 @@ int run_offline(const LoadedPlan& plan, const MainJobOptions& opt, bool summary_
   ViewOptions view_opt;
   view_opt.size = "1280x720";
   ViewSetup view = set_up_view(plan, view_opt);
-  VisibleSet visible = find_visible(plan.complex, view.camera, view.eye_cell, view.kernel);
+  VisibleSet visible = find_visible(plan.complex, view.camera, view.eye_cell, view.search);
   const std::string overlay = (fs::path(opt.out_dir) / (plan.stem + "-avenues.svg")).string();
   write_overlay_svg(plan.complex, view.camera, visible, overlay);
   // What the eye sees, as a hidden-line drawing (Jones's perspective line drawing).

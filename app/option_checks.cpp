@@ -81,6 +81,14 @@ Kernel kernel_option(const std::string& s, const char* option) {
   return k;
 }
 
+TraverseParams search_option(const std::string& s, Kernel kernel, const char* option) {
+  TraverseParams p;
+  p.kernel = kernel;
+  if (s == "merged") p.merge_pieces = true;
+  else if (s != "jones") throw std::runtime_error(std::string(option) + " wants merged or jones, not '" + s + "'");
+  return p;
+}
+
 Lights lights_option(const std::string& s, const char* option) {
   Lights l = Lights::Plan;
   if (!parse_lights(s, l)) throw std::runtime_error(std::string(option) + " wants plan or eye, not '" + s + "'");
@@ -140,6 +148,10 @@ CLI::Validator from_check(Check check, const char* desc) {
 
 CLI::Validator kernel_name() {
   return from_check([](const std::string& s) { kernel_option(s); }, "float|double|filtered|exact");
+}
+
+CLI::Validator search_name() {
+  return from_check([](const std::string& s) { search_option(s, Kernel::Double); }, "merged|jones");
 }
 
 CLI::Validator samples_count() {

@@ -36,6 +36,10 @@ CLI::Validator size_wxh();
 
 /// --kernel: float, double, filtered or exact. Throws naming `option` otherwise.
 Kernel kernel_option(const std::string& s, const char* option = "--kernel");
+/// --search: merged (the avenues into a cell joined where their union is convex, the
+/// default) or jones (Jones's tree of avenues, one per chain of portals), in `kernel`.
+TraverseParams search_option(const std::string& s, Kernel kernel, const char* option = "--search");
+CLI::Validator search_name();
 /// --lights: plan or eye. Throws naming `option` otherwise.
 Lights lights_option(const std::string& s, const char* option = "--lights");
 /// --object-shadows: auto, on or off. Throws naming `option` otherwise.

@@ -82,7 +82,7 @@ void write_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet&
     FrameStorage storage;  // the half-tone's arrays, kept from frame to frame
     const SceneEffects effects = prepare_effects(c, objects, o, v.kernel);  // once for every frame
     for (size_t k = 0; k < frames.size(); ++k) {
-      VisibleSet fv = find_visible(c, frames[k].camera, frames[k].cell, v.kernel);
+      VisibleSet fv = find_visible(c, frames[k].camera, frames[k].cell, v.search);
       RenderStats rs;
       render_view(c, objects, effects, frames[k].camera, fv, o, frame, storage, &rs);
       write_image(frame, frame_path(opt.output, int(k), int(frames.size())));
@@ -150,7 +150,7 @@ void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const Visible
     double render_us = 0;
     for (size_t k = 0; k < frames.size(); ++k) {
       auto t0 = std::chrono::steady_clock::now();
-      VisibleSet fv = find_visible(c, frames[k].camera, frames[k].cell, v.kernel);
+      VisibleSet fv = find_visible(c, frames[k].camera, frames[k].cell, v.search);
       Drawing d = draw_view(c, scene, frames[k].camera, fv, line_options);
       render_us += micros_since(t0);
       lines += write_drawing(d, frame_path(path, int(k), int(frames.size()))).lines;
@@ -169,8 +169,8 @@ void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const Visible
     StereoRig rig = stereo_rig(c, v.camera, {opt.interocular, opt.converge});
     if (rig.problem != StereoRig::Problem::None) throw std::runtime_error(rig.message());
     auto t0 = std::chrono::steady_clock::now();
-    VisibleSet lv = find_visible(c, rig.left, rig.left_at.cell, v.kernel);
-    VisibleSet rv = find_visible(c, rig.right, rig.right_at.cell, v.kernel);
+    VisibleSet lv = find_visible(c, rig.left, rig.left_at.cell, v.search);
+    VisibleSet rv = find_visible(c, rig.right, rig.right_at.cell, v.search);
     Drawing left = draw_view(c, scene, rig.left, lv, line_options),
             right = draw_view(c, scene, rig.right, rv, line_options);
     const double render_us = micros_since(t0);

@@ -64,7 +64,7 @@ std::string WalkExports::view(const ViewSetup& v, const std::string& ext, const 
   o.interocular = opt_.interocular;
   o.converge = opt_.converge;
   nlohmann::json stats;
-  write_view_output(plan_, v, find_visible(plan_.complex, v.camera, v.eye_cell, v.kernel), o, stats);
+  write_view_output(plan_, v, find_visible(plan_.complex, v.camera, v.eye_cell, v.search), o, stats);
   return "wrote " + (stereo == "pair" ? stereo_pair_names(path) : path);
 }
 

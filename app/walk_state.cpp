@@ -15,7 +15,7 @@ namespace {
 ViewOptions view_options(const WalkOptions& opt) {
   ViewOptions v;
   v.plan = opt.plan;
-  v.eye = opt.eye, v.look = opt.look, v.fov = opt.fov, v.size = opt.size, v.kernel = opt.kernel;
+  v.eye = opt.eye, v.look = opt.look, v.fov = opt.fov, v.size = opt.size, v.kernel = opt.kernel, v.search = opt.search;
   return v;
 }
 

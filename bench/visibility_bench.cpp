@@ -13,6 +13,9 @@
 // (TraverseParams::prune_covered) and unpruned, side by side in one run:
 //
 //   ./build/bench/avenues_bench --benchmark_filter=VisibilityRandom
+//
+// and the merged search (TraverseParams::merge_pieces) beside them, with two mesh scenes
+// (the Viking room and the alpine cabin, whose outsides the soup BSP slices finely).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -23,6 +26,7 @@
 #include <random>
 
 #include "cells/build_cells.h"
+#include "cells/mesh_scene.h"
 #include "plans/formats/doom_map.h"
 #include "plans/formats/ifc_building.h"
 #include "plans/formats/sweet_home.h"
@@ -48,6 +52,9 @@ const CellComplex& complex_of(const std::string& key) {
       p = read_sweet_home(key.substr(5));
     } else if (key.rfind("ifc:", 0) == 0) {
       p = read_ifc_building(key.substr(4));
+    } else if (key.rfind("mesh:", 0) == 0) {
+      slot = std::make_unique<CellComplex>(read_mesh_scene(key.substr(5)));
+      return *slot;
     } else if (key.rfind("wad:", 0) == 0) {
       const size_t colon = key.rfind(':');
       p = read_doom_map(key.substr(4, colon - 4), key.substr(colon + 1));
@@ -150,19 +157,23 @@ double quantile(std::vector<double> v, double q) {
 }
 
 /// Every view once per iteration; the traversal's own time per view (VisibleSet::micros).
-void random_views(benchmark::State& state, const std::string& key, bool prune) {
+/// `search`: "unpruned" (Jones's tree), "pruned" (TraverseParams::prune_covered) or
+/// "merged" (TraverseParams::merge_pieces).
+void random_views(benchmark::State& state, const std::string& key, const std::string& search) {
   const CellComplex& c = complex_of(key);
   const auto vs = free_views(c, 200);
   TraverseParams params;
-  params.prune_covered = prune;
+  params.prune_covered = search == "pruned";
+  params.merge_pieces = search == "merged";
   std::vector<double> micros;
-  double avenues = 0, most = 0, cells = 0, pruned = 0;
+  double avenues = 0, most = 0, cells = 0, pruned = 0, merged = 0;
   for (auto _ : state) {
     for (const auto& [cam, cell] : vs) {
       VisibleSet v = find_visible(c, cam, cell, params);
       micros.push_back(v.micros);
       avenues += double(v.avenues.size());
       pruned += double(v.avenues_pruned);
+      merged += double(v.avenues_merged);
       most = std::max(most, double(v.avenues.size()));
       cells += double(v.cells.size());
       benchmark::DoNotOptimize(v);
@@ -174,6 +185,7 @@ void random_views(benchmark::State& state, const std::string& key, bool prune) {
   state.counters["avenues"] = avenues / views;
   state.counters["avenues_max"] = most;
   state.counters["pruned"] = pruned / views;
+  state.counters["merged"] = merged / views;
   state.counters["visible_cells"] = cells / views;
   state.counters["cells"] = double(c.cells.size());
   state.counters["views"] = double(vs.size());
@@ -199,10 +211,16 @@ int register_all() {
       const fs::path ifc = fs::path(AVENUES_OUTSIDE_DIR) / "ifc" / (std::string(model) + ".ifc");
       if (fs::exists(ifc)) plans.push_back({model, "ifc:" + ifc.string()});
     }
+    for (const char* mesh : {"meshes/viking-room/viking_room.obj", "meshes/alpine-cabin/house.obj"}) {
+      const fs::path file = fs::path(AVENUES_OUTSIDE_DIR) / mesh;
+      if (fs::exists(file)) plans.push_back({file.stem().string(), "mesh:" + file.string()});
+    }
     for (const auto& [name, key] : plans)
-      for (bool prune : {false, true})
-        benchmark::RegisterBenchmark(("VisibilityRandom/" + name + (prune ? "/pruned" : "/unpruned")).c_str(),
-                                     [key = key, prune](benchmark::State& s) { random_views(s, key, prune); })
+      for (const char* search : {"unpruned", "pruned", "merged"})
+        benchmark::RegisterBenchmark(("VisibilityRandom/" + name + "/" + search).c_str(),
+                                     [key = key, search = std::string(search)](benchmark::State& s) {
+                                       random_views(s, key, search);
+                                     })
             ->Unit(benchmark::kMillisecond)
             ->Iterations(3);
   }

@@ -89,10 +89,17 @@ inline void expect_soup_views_agree_with_rays(const CellComplex& c, int views, u
     const Camera cam = Camera::yaw_pitch(eye, y, p, f, width, height);
     SCOPED_TRACE("view " + std::to_string(v) + ": eye " + std::to_string(eye.x) + "," + std::to_string(eye.y) + "," +
                  std::to_string(eye.z) + " yaw " + std::to_string(y) + " pitch " + std::to_string(p));
-    const VisibleSet vs = find_visible(c, cam, loc.cell, Kernel::Double);
-    const OracleResult r = check_visible_set(c, cam, vs, step);
-    EXPECT_EQ(r.missing, 0);
-    EXPECT_EQ(r.extra, 0);
+    // Jones's search and the merged one (TraverseParams::merge_pieces), which the
+    // walkthrough uses: the soups' finely sliced outsides are what it is for.
+    for (bool merge : {false, true}) {
+      SCOPED_TRACE(merge ? "merged search" : "Jones's search");
+      TraverseParams params;
+      params.merge_pieces = merge;
+      const VisibleSet vs = find_visible(c, cam, loc.cell, params);
+      const OracleResult r = check_visible_set(c, cam, vs, step);
+      EXPECT_EQ(r.missing, 0);
+      EXPECT_EQ(r.extra, 0);
+    }
   }
 }
 

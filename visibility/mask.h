@@ -155,6 +155,52 @@ class Mask {
     return false;
   }
 
+  /// Becomes the union of this mask and `o` when that union is convex and the two meet
+  /// along a whole edge: one has a half-plane L and the other its opposite (the same line,
+  /// as when two avenues into one cell were parted by the edge between two portals). With
+  /// A' and B' the masks without L and without its opposite, A ∪ B = A' ∩ B' exactly when
+  /// A ⊂ B' and B ⊂ A' (and A' ∩ B' never holds more than A ∪ B): so the test is every
+  /// vertex of each inside the other's remaining half-planes, exact in exact number types;
+  /// floating point admits a vertex outside by its rounding bound, which can only lose a
+  /// sliver of that width, never add one. Returns false (and leaves the mask as it was)
+  /// when they do not merge.
+  bool absorb(const Mask& o) {
+    const size_t n = h_.size(), m = o.h_.size();
+    if (n < 3 || m < 3) return false;
+    for (size_t k = 0; k < n; ++k)
+      for (size_t j = 0; j < m; ++j) {
+        if (!opposite(h_[k], o.h_[j])) continue;
+        if (!vertices_inside(o, *this, k) || !vertices_inside(*this, o, j)) return false;
+        thread_local std::vector<HalfPlane<T>> u;
+        u.clear();
+        for (size_t i = 1; i < n; ++i) u.push_back(h_[(k + i) % n]);
+        const size_t first_of_o = u.size();
+        for (size_t i = 1; i < m; ++i) u.push_back(o.h_[(j + i) % m]);
+        // Where the cycles join, an edge of one may run straight on into an edge of the
+        // other (the outline crossing L without a turn): one line, kept once. Both pass
+        // through the end of the shared edge, so in floating point two lines within an
+        // angle of kCollinear are taken as one (a wedge of that angle is all it can change),
+        // rather than met at a point their rounding would put anywhere along them.
+        auto same_direction = [](const HalfPlane<T>& p, const HalfPlane<T>& q) {
+          const T cr = p.a * q.b - q.a * p.b;
+          const T dt = p.a * q.a + p.b * q.b;
+          if constexpr (std::is_floating_point_v<T>) {
+            const T bound = T(kCollinear) * std::sqrt((p.a * p.a + p.b * p.b) * (q.a * q.a + q.b * q.b));
+            return !(std::fabs(cr) > bound) && dt > T(0);
+          } else {
+            return cr == T(0) && dt > T(0);
+          }
+        };
+        if (same_direction(u.back(), u.front())) u.pop_back();
+        if (first_of_o < u.size() && same_direction(u[first_of_o - 1], u[first_of_o]))
+          u.erase(u.begin() + long(first_of_o));
+        if (u.size() < 3) return false;
+        h_.assign(u.begin(), u.end());
+        return true;
+      }
+    return false;
+  }
+
   /// Twice the signed area (positive for a proper counter-clockwise mask).
   T area2() const {
     T a(0);
@@ -168,8 +214,43 @@ class Mask {
   }
 
  private:
+  /// Whether p and q are one line with opposite insides: exactly in exact number types,
+  /// within rounding in floating point.
+  static bool opposite(const HalfPlane<T>& p, const HalfPlane<T>& q) {
+    if (!(p.a * q.a + p.b * q.b < T(0))) return false;
+    const T ab = p.a * q.b - q.a * p.b, ac = p.a * q.c - q.a * p.c, bc = p.b * q.c - q.b * p.c;
+    if constexpr (std::is_floating_point_v<T>) {
+      auto small = [](T d, T x, T y) { return !(std::fabs(d) > kSignBound * (std::fabs(x) + std::fabs(y))); };
+      return small(ab, p.a * q.b, q.a * p.b) && small(ac, p.a * q.c, q.a * p.c) && small(bc, p.b * q.c, q.b * p.c);
+    } else {
+      return ab == T(0) && ac == T(0) && bc == T(0);
+    }
+  }
+
+  /// Every vertex of `v` inside every half-plane of `of` but its half-plane `skip` (closed;
+  /// floating point admits the rounding bound).
+  static bool vertices_inside(const Mask& v, const Mask& of, size_t skip) {
+    for (size_t k = 0; k < v.h_.size(); ++k) {
+      const Point2T<T> p = v.vertex(k);
+      for (size_t i = 0; i < of.h_.size(); ++i) {
+        if (i == skip) continue;
+        const HalfPlane<T>& l = of.h_[i];
+        const T s = l.a * p.x + l.b * p.y + l.c;
+        if constexpr (std::is_floating_point_v<T>) {
+          const T bound = kSignBound * (std::fabs(l.a * p.x) + std::fabs(l.b * p.y) + std::fabs(l.c));
+          if (s < -bound) return false;
+        } else {
+          if (s < T(0)) return false;
+        }
+      }
+    }
+    return true;
+  }
+
   /// Relative error bound of a sign evaluation in floating point: vertices are two
   /// divisions of degree-2 terms, then one more degree-1 evaluation; 2^7 ulps covers it.
+  /// [rad] Floating point: lines meeting at a smaller angle are one line where masks merge.
+  static constexpr double kCollinear = std::is_same_v<T, float> ? 1e-4 : 1e-9;
   static constexpr double kSignBound = std::is_floating_point_v<T> ? 128 * double(std::numeric_limits<T>::epsilon()) : 0;
   std::vector<HalfPlane<T>> h_;
 };

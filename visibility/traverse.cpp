@@ -55,13 +55,13 @@ void VisibleSet::collect_cells() {
 namespace {
 VisibleSet traverse(const CellComplex& complex, const Camera& camera, CellId eye_cell, const TraverseParams& params,
                     const Plane* cut) {
-  const bool prune = params.prune_covered;
+  const bool prune = params.prune_covered, merge = params.merge_pieces;
   VisibleSet vs;
   switch (params.kernel) {
-    case Kernel::Float: vs = detail::traverse_with<float>(complex, camera, eye_cell, prune, cut); break;
-    case Kernel::Double: vs = detail::traverse_with<double>(complex, camera, eye_cell, prune, cut); break;
-    case Kernel::Filtered: vs = detail::traverse_filtered(complex, camera, eye_cell, prune, cut); break;
-    case Kernel::Exact: vs = detail::traverse_exact(complex, camera, eye_cell, prune, cut); break;
+    case Kernel::Float: vs = detail::traverse_with<float>(complex, camera, eye_cell, prune, cut, merge); break;
+    case Kernel::Double: vs = detail::traverse_with<double>(complex, camera, eye_cell, prune, cut, merge); break;
+    case Kernel::Filtered: vs = detail::traverse_filtered(complex, camera, eye_cell, prune, cut, merge); break;
+    case Kernel::Exact: vs = detail::traverse_exact(complex, camera, eye_cell, prune, cut, merge); break;
   }
   if (camera.is_parallel()) vs.cut = cut ? *cut : camera.picture_plane();
   return vs;
@@ -78,10 +78,15 @@ bool cut_plane_usable(const Camera& camera, const Plane& cut) {
 }
 
 VisibleSet find_visible_from_cut(const CellComplex& complex, const Camera& camera, const Plane& cut, Kernel kernel) {
-  if (!camera.is_parallel()) throw std::invalid_argument("find_visible_from_cut needs a parallel projection");
-  if (!cut_plane_usable(camera, cut)) throw std::invalid_argument("the cut plane is parallel to the direction of view");
   TraverseParams params;
   params.kernel = kernel;
+  return find_visible_from_cut(complex, camera, cut, params);
+}
+
+VisibleSet find_visible_from_cut(const CellComplex& complex, const Camera& camera, const Plane& cut,
+                                 const TraverseParams& params) {
+  if (!camera.is_parallel()) throw std::invalid_argument("find_visible_from_cut needs a parallel projection");
+  if (!cut_plane_usable(camera, cut)) throw std::invalid_argument("the cut plane is parallel to the direction of view");
   return traverse(complex, camera, kNoCell, params, &cut);
 }
 

@@ -59,8 +59,8 @@ T dotT(const Vec3T<T>& a, const Vec3T<T>& b) { return a.x * b.x + a.y * b.y + a.
 template <class T>
 class Traversal {
  public:
-  Traversal(const CellComplex& c, const Camera& cam, bool prune_covered, VisibleSet& out)
-      : c_(c), out_(out), prune_(prune_covered) {
+  Traversal(const CellComplex& c, const Camera& cam, bool prune_covered, VisibleSet& out, bool merge = false)
+      : c_(c), out_(out), prune_(prune_covered && !merge), merge_(merge) {
     eye_ = in(cam.eye);
     right_ = in(cam.right);
     up_ = in(cam.up);
@@ -94,7 +94,8 @@ class Traversal {
   void run(CellId start) {
     ClearMarks clear{*this};
     if (!on_boundary(start)) {
-      visit(start, window_, -1, -1, 0);
+      root(start, window_);
+      drain();
       return;
     }
     std::vector<CellId> roots{start};
@@ -111,10 +112,11 @@ class Traversal {
         if (!alive) break;
       }
       if (!alive || !(m.area2() > T(0))) continue;
-      visit(id, m, -1, -1, 0);
+      root(id, m);
       any = true;
     }
-    if (!any) visit(start, window_, -1, -1, 0);
+    if (!any) root(start, window_);
+    drain();
   }
 
   /// A parallel search from a cut plane (its normal not perpendicular to forward): every
@@ -155,8 +157,9 @@ class Traversal {
       }
       if (!alive || !(m.area2() > T(0))) continue;
       out_.cut_cells.push_back(id);
-      visit(id, m, -1, -1, 0);
+      root(id, m);
     }
+    drain();
   }
 
  private:
@@ -169,6 +172,11 @@ class Traversal {
       for (const Avenue& a : t.out_.avenues) {
         t.on_path_[size_t(a.cell)] = 0;
         t.last_into_[size_t(a.cell)] = -1;
+      }
+      for (CellId id : t.touched_) {
+        t.state_[size_t(id)] = kIdle;
+        t.pieces_[size_t(id)].clear();
+        t.waiters_[size_t(id)].clear();
       }
     }
   };
@@ -364,48 +372,203 @@ class Traversal {
   }
 
   void consider(CellId cell, const Mask<T>& mask, int self, PortalId via, int depth, PortalId pi) {
-    {
-      if (pi == via) return;
+    if (pi == via) return;
+    const CellId other = c_.portals[size_t(pi)].other(cell);
+    if (on_path_[size_t(other)]) return;
+    Mask<T> m = mask;
+    if (!through(cell, pi, m)) return;
+    if (prune_ && covered(other, m)) {
+      ++out_.avenues_pruned;
+      return;
+    }
+    visit(other, m, self, pi, depth + 1);
+  }
+
+  /// Narrows mask m (of an avenue in `cell`) to the rays that also pass portal pi, seen
+  /// from `cell`: false when none of area do (seen from behind, edge-on, or clipped away).
+  bool through(CellId cell, PortalId pi, Mask<T>& m) {
+    const Portal& p = c_.portals[size_t(pi)];
+    ++out_.portals_tested;
+    // Which side of the portal's plane is the eye on? Exactly, from input vertices.
+    const Vec3T<T> v0 = in(p.poly[0]), v1 = in(p.poly[1]), v2 = in(p.poly[2]);
+    const Vec3T<T> N = crossT(sub(v1, v0), sub(v2, v0));  // points into p.cell[1]
+    // Parallel: the eye is at infinity behind the picture, s = N·(−f).
+    const T s = parallel_ ? -dotT(N, forward_) : dotT(N, sub(eye_, v0));
+    const bool from_first = cell == p.cell[0];
+    if (s == T(0) && parallel_) return false;  // parallel rays never cross a portal seen edge-on
+    if (s == T(0)) {
+      // The eye stands in the portal's plane: through it, if it stands in the portal,
+      // lies the whole half-space on the far side; otherwise it is seen edge-on.
+      if (!eye_in_polygon(p, N)) return false;
+      const Vec3T<T> toward = from_first ? N : Vec3T<T>{-N.x, -N.y, -N.z};
+      if (!m.clip(trace(toward, eye_))) return false;
+    } else {
+      if ((s < T(0)) != from_first) return false;  // seen from behind
+      // Rays through the portal: inside every plane through the eye and an edge.
+      // With the eye behind N (s < 0) the edge normals (a-e)×(b-e) point inwards; for
+      // parallel rays their limit as the eye recedes along −f, f×(b−a).
+      const size_t n = p.poly.size();
+      for (size_t k = 0; k < n; ++k) {
+        const Vec3T<T> a = in(p.poly[k]), b = in(p.poly[(k + 1) % n]);
+        Vec3T<T> e = parallel_ ? crossT(forward_, sub(b, a)) : crossT(sub(a, eye_), sub(b, eye_));
+        if (s > T(0)) e = {-e.x, -e.y, -e.z};
+        if (!m.clip(trace(e, a))) return false;
+      }
+    }
+    return m.area2() > T(0);
+  }
+
+  // ---- The merged search (TraverseParams::merge_pieces) ----
+  //
+  // Two avenues into one cell see disjoint rays; where they were parted only by the edge
+  // between two portals (the artificial portals of a sliced outside, say) their masks meet
+  // along a whole edge, and if their union is convex it is one avenue: its rays pass the
+  // same portals beyond the cell. So the pieces that reach a cell wait until no cell that
+  // could still send one more is pending, are merged (Mask::absorb), and only then go on.
+  // The order is a heuristic (a cell waits on a pending neighbour in front of it; a cycle
+  // of waits is broken by taking the earliest pending cell); correctness does not depend
+  // on it: every piece is followed, merged or not, so the union of masks per cell — every
+  // ray's cell and what it meets — is the same as Jones's search finds.
+
+  struct Piece {
+    Mask<T> mask;
+    int parent = -1;
+    PortalId via = -1;
+    int depth = 0;
+    std::array<double, 4> box{};  ///< box_of the mask, grown
+  };
+  static constexpr uint8_t kIdle = 0, kPending = 1;
+
+  /// A root avenue: followed at once (Jones), or the first piece of its cell (merged).
+  void root(CellId cell, const Mask<T>& mask) {
+    if (!merge_) {
+      visit(cell, mask, -1, -1, 0);
+      return;
+    }
+    if (!merged_ready_) prepare_merged();
+    add_piece(cell, mask, -1, -1, 0);
+  }
+
+  void prepare_merged() {
+    thread_local std::vector<std::vector<Piece>> pieces;
+    thread_local std::vector<std::vector<CellId>> waiters;
+    thread_local std::vector<uint8_t> state;
+    if (pieces.size() < c_.cells.size()) pieces.resize(c_.cells.size());
+    if (waiters.size() < c_.cells.size()) waiters.resize(c_.cells.size());
+    if (state.size() < c_.cells.size()) state.assign(c_.cells.size(), kIdle);
+    pieces_ = pieces.data(), waiters_ = waiters.data(), state_ = state.data();
+    merged_ready_ = true;
+  }
+
+  void add_piece(CellId cell, const Mask<T>& mask, int parent, PortalId via, int depth) {
+    std::vector<Vec2> v;
+    for (const auto& q : mask.polygon()) v.push_back({to_double_of(q.x), to_double_of(q.y)});
+    pieces_[size_t(cell)].push_back({mask, parent, via, depth, box_of(v)});
+    if (state_[size_t(cell)] == kPending) return;
+    state_[size_t(cell)] = kPending;
+    touched_.push_back(cell);
+    queued_.push_back(cell);
+    ready_.push_back(cell);
+  }
+
+  /// A pending cell in front of `cell` (the eye on its side of a portal between them,
+  /// clearly), which may yet send it a piece; kNoCell when there is none.
+  CellId blocker(CellId cell) const {
+    for (PortalId pi : c_.cells[size_t(cell)].portals) {
       const Portal& p = c_.portals[size_t(pi)];
       const CellId other = p.other(cell);
-      if (on_path_[size_t(other)]) return;
-      ++out_.portals_tested;
-      // Which side of the portal's plane is the eye on? Exactly, from input vertices.
-      const Vec3T<T> v0 = in(p.poly[0]), v1 = in(p.poly[1]), v2 = in(p.poly[2]);
-      const Vec3T<T> N = crossT(sub(v1, v0), sub(v2, v0));  // points into p.cell[1]
-      // Parallel: the eye is at infinity behind the picture, s = N·(−f).
-      const T s = parallel_ ? -dotT(N, forward_) : dotT(N, sub(eye_, v0));
-      const bool from_first = cell == p.cell[0];
-      Mask<T> m = mask;
-      if (s == T(0) && parallel_) return;  // parallel rays never cross a portal seen edge-on
-      if (s == T(0)) {
-        // The eye stands in the portal's plane: through it, if it stands in the portal,
-        // lies the whole half-space on the far side; otherwise it is seen edge-on.
-        if (!eye_in_polygon(p, N)) return;
-        const Vec3T<T> toward = from_first ? N : Vec3T<T>{-N.x, -N.y, -N.z};
-        if (!m.clip(trace(toward, eye_))) return;
-      } else {
-        if ((s < T(0)) != from_first) return;  // seen from behind
-        // Rays through the portal: inside every plane through the eye and an edge.
-        // With the eye behind N (s < 0) the edge normals (a-e)×(b-e) point inwards; for
-        // parallel rays their limit as the eye recedes along −f, f×(b−a).
-        bool alive = true;
-        const size_t n = p.poly.size();
-        for (size_t k = 0; k < n && alive; ++k) {
-          const Vec3T<T> a = in(p.poly[k]), b = in(p.poly[(k + 1) % n]);
-          Vec3T<T> e = parallel_ ? crossT(forward_, sub(b, a)) : crossT(sub(a, eye_), sub(b, eye_));
-          if (s > T(0)) e = {-e.x, -e.y, -e.z};
-          alive = m.clip(trace(e, a));
-        }
-        if (!alive) return;
-      }
-      if (!(m.area2() > T(0))) return;
-      if (prune_ && covered(other, m)) {
-        ++out_.avenues_pruned;
-        return;
-      }
-      visit(other, m, self, pi, depth + 1);
+      if (other == cell || state_[size_t(other)] != kPending) continue;
+      const double e = p.plane.eval(eye_d_), tol = 1e-9 * (1 + length(eye_d_));
+      // p.plane's normal points into cell[1]: the eye is on other's side when it is on the
+      // side away from `cell`.
+      if (cell == p.cell[1] ? e < -tol : e > tol) return other;
     }
+    return kNoCell;
+  }
+
+  void drain() {
+    if (!merge_ || !merged_ready_) return;
+    size_t forced = 0;
+    for (;;) {
+      // First come, first served: a wave outwards from the eye, so that the other ways
+      // into a cell are found (and pending) before it goes on.
+      for (size_t next = 0; next < ready_.size();) {
+        const CellId d = ready_[next++];
+        if (next == ready_.size()) ready_.clear(), next = 0;
+        if (state_[size_t(d)] != kPending) continue;
+        const CellId b = blocker(d);
+        if (b != kNoCell) {
+          waiters_[size_t(b)].push_back(d);
+          continue;
+        }
+        expand(d);
+      }
+      while (forced < queued_.size() && state_[size_t(queued_[forced])] != kPending) ++forced;
+      if (forced == queued_.size()) break;
+      expand(queued_[forced]);
+    }
+  }
+
+  static bool boxes_touch(const std::array<double, 4>& a, const std::array<double, 4>& b) {
+    return !(a[2] < b[0] || b[2] < a[0] || a[3] < b[1] || b[3] < a[1]);
+  }
+
+  /// Whether `cell` lies on the avenue `a` extends (its first parents back to the eye).
+  bool on_chain(int a, CellId cell) const {
+    for (; a >= 0; a = out_.avenues[size_t(a)].parent)
+      if (out_.avenues[size_t(a)].cell == cell) return true;
+    return false;
+  }
+
+  void expand(CellId cell) {
+    state_[size_t(cell)] = kIdle;
+    std::vector<Piece> ps;
+    ps.swap(pieces_[size_t(cell)]);
+    for (size_t i = 0; i < ps.size(); ++i)
+      for (bool grown = true; grown;) {
+        grown = false;
+        for (size_t j = i + 1; j < ps.size(); ++j) {
+          if (!boxes_touch(ps[i].box, ps[j].box) || !ps[i].mask.absorb(ps[j].mask)) continue;
+          ps[i].depth = std::max(ps[i].depth, ps[j].depth);
+          ps[i].box = {std::min(ps[i].box[0], ps[j].box[0]), std::min(ps[i].box[1], ps[j].box[1]),
+                       std::max(ps[i].box[2], ps[j].box[2]), std::max(ps[i].box[3], ps[j].box[3])};
+          ++out_.avenues_merged;
+          ps[j] = std::move(ps.back());
+          ps.pop_back();
+          grown = true;
+          break;
+        }
+      }
+    const Cell& cl = c_.cells[size_t(cell)];
+    for (Piece& piece : ps) {
+      const int self = int(out_.avenues.size());
+      Avenue a;
+      a.cell = cell;
+      a.parent = piece.parent;
+      a.portal = piece.via;
+      a.depth = piece.depth;
+      for (const auto& v : piece.mask.polygon()) a.mask.push_back({to_double_of(v.x), to_double_of(v.y)});
+      const std::vector<Plane> cone = cone_planes(a.mask);
+      std::vector<Vec2> mask_here = a.mask;
+      out_.avenues.push_back(std::move(a));
+      for (size_t f = 0; f < cl.faces.size(); ++f) {
+        const auto& portals = cl.faces[f].portals;
+        size_t lo = 0, hi = portals.size();
+        if (cl.prism && f < cl.footprint.size() && portals.size() > kLinearScan) side_range(cl, f, mask_here, lo, hi);
+        for (size_t i = lo; i < hi; ++i) {
+          const PortalId pi = portals[i];
+          if (pi == piece.via || surely_outside(cone, pi)) continue;
+          const CellId other = c_.portals[size_t(pi)].other(cell);
+          Mask<T> m = piece.mask;
+          if (!through(cell, pi, m) || on_chain(self, other)) continue;
+          add_piece(other, m, self, pi, piece.depth + 1);
+        }
+      }
+    }
+    ps.clear();
+    if (pieces_[size_t(cell)].empty()) pieces_[size_t(cell)].swap(ps);  // keep the storage
+    for (CellId w : waiters_[size_t(cell)]) ready_.push_back(w);
+    waiters_[size_t(cell)].clear();
   }
 
   /// The box of a mask's vertices (in double: x0, y0, x1, y1), grown by far more than their rounding.
@@ -458,6 +621,12 @@ class Traversal {
   };
   std::vector<Reached> reached_;
   int32_t* last_into_ = nullptr;  ///< per cell: the last avenue into it (thread-local buffer)
+  bool merge_ = false;               ///< TraverseParams::merge_pieces
+  bool merged_ready_ = false;
+  std::vector<Piece>* pieces_ = nullptr;        ///< per cell: pieces waiting (thread-local buffer)
+  std::vector<CellId>* waiters_ = nullptr;      ///< per cell: cells waiting on it
+  uint8_t* state_ = nullptr;                    ///< per cell: kIdle or kPending
+  std::vector<CellId> touched_, queued_, ready_;
   Vec3 eye_d_;                 ///< the eye in double, for culling only
   Camera cam_;
   bool parallel_ = false;      ///< cam_.projection == Projection::Parallel
@@ -467,22 +636,22 @@ class Traversal {
 /// one from the picture plane through the eye.
 template <class T>
 VisibleSet traverse_with(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered,
-                         const Plane* cut = nullptr) {
+                         const Plane* cut = nullptr, bool merge = false) {
   VisibleSet out;
   out.eye_cell = eye_cell;
   auto t0 = std::chrono::steady_clock::now();
   if (cam.is_parallel())
-    Traversal<T>(c, cam, prune_covered, out).run_cut(cut ? *cut : cam.picture_plane());
+    Traversal<T>(c, cam, prune_covered, out, merge).run_cut(cut ? *cut : cam.picture_plane());
   else
-    Traversal<T>(c, cam, prune_covered, out).run(eye_cell);
+    Traversal<T>(c, cam, prune_covered, out, merge).run(eye_cell);
   out.micros = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
   out.collect_cells();
   return out;
 }
 
 VisibleSet traverse_exact(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered,
-                          const Plane* cut = nullptr);
+                          const Plane* cut = nullptr, bool merge = false);
 VisibleSet traverse_filtered(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered,
-                             const Plane* cut = nullptr);
+                             const Plane* cut = nullptr, bool merge = false);
 
 }  // namespace avenues::detail

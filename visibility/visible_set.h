@@ -36,6 +36,7 @@ struct VisibleSet {
   std::vector<CellId> cells;    ///< distinct visible cells, ascending
   long portals_tested = 0;      ///< portals examined (facing test and clipping)
   long avenues_pruned = 0;      ///< avenues not followed: mask inside one already found into the cell
+  long avenues_merged = 0;      ///< merged search: pieces joined into another piece of their cell
   int max_depth = 0;
   double micros = 0;            ///< [µs] time of the traversal
   /// The avenue's portals from the eye outwards.
@@ -53,6 +54,13 @@ struct TraverseParams {
   /// default: in a complex of cells that do not overlap, two avenues into one cell see
   /// disjoint rays, and on the benchmark's views it pruned nothing (traverse.h).
   bool prune_covered = false;
+  /// Join the avenues into one cell whose masks meet along a whole edge and whose union is
+  /// convex before going on through the cell's portals (traverse.h, "The merged search"),
+  /// so that the pieces an outside sliced by artificial portals parts a view into are
+  /// followed once, not once per chain of portals. Every cell and every ray's view stay as
+  /// Jones's search finds them; the avenues are fewer and form a graph (an avenue's
+  /// `parent` is the first of the avenues its pieces came through). Off: Jones's tree.
+  bool merge_pieces = false;
 };
 
 /// Jones's recursive search of the avenues of sight from `camera.eye`, which lies in
@@ -71,6 +79,8 @@ VisibleSet find_visible(const CellComplex& complex, const Camera& camera, CellId
 /// Throws std::invalid_argument when the camera is not parallel or !cut_plane_usable().
 VisibleSet find_visible_from_cut(const CellComplex& complex, const Camera& camera, const Plane& cut,
                                  Kernel kernel = Kernel::Double);
+VisibleSet find_visible_from_cut(const CellComplex& complex, const Camera& camera, const Plane& cut,
+                                 const TraverseParams& params);
 /// A cut plane a parallel search can start from: finite, and not parallel to the rays.
 bool cut_plane_usable(const Camera& camera, const Plane& cut);
 
