@@ -270,6 +270,8 @@ int run_cli(int argc, char** argv) {
   bench_walk->add_option("--lights", bench_walk_lights, "plan or eye, as for walk")->capture_default_str()->check(CLI::IsMember({"plan", "eye"}));
   bench_walk->add_option("--frame-budget", bench_walk_budget, "[ms] the walkthrough's frame budget; 0: none")
       ->capture_default_str()->check(number_in(0, 10000));
+  std::string bench_walk_search = "merged";
+  bench_walk->add_option("--search", bench_walk_search, "merged or jones, as for walk")->capture_default_str()->check(search_name());
 
   GenerateOfficeOptions office_opt;
   CLI::App* generate = app.add_subcommand("generate", "write a generated plan");
@@ -294,7 +296,8 @@ int run_cli(int argc, char** argv) {
     if (*papers) return run_bench_papers(bench_threads, bench_repeats);
     if (*bench_accuracy) return run_bench_accuracy(accuracy);
     if (*bench_walk)
-      return run_bench_walk(bench_walk_plans, bench_walk_frames, bench_walk_size, bench_walk_budget, bench_walk_lights);
+      return run_bench_walk(bench_walk_plans, bench_walk_frames, bench_walk_size, bench_walk_budget, bench_walk_lights,
+                            bench_walk_search);
     if (*walk) return run_walk(walk_opt);
     if (*path) return run_path(path_opt);
     if (*office) return run_generate_office(office_opt);

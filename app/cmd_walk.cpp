@@ -494,7 +494,7 @@ int run_walk(const WalkOptions& opt) {
 }
 
 int run_bench_walk(const std::vector<std::string>& plans, long frames, const std::string& size, double frame_budget_ms,
-                   const std::string& lights) {
+                   const std::string& lights, const std::string& search) {
   if (frames < 20) throw std::runtime_error("--frames must be at least 20");
   std::vector<std::string> files = plans;
   if (files.empty())
@@ -503,7 +503,8 @@ int run_bench_walk(const std::vector<std::string>& plans, long frames, const std
   const char* display = std::getenv("DISPLAY");
   std::cout << "walkthrough window, " << size << " half-tone, flat shading, 1 sample, status line on, no vsync; "
             << frames << " frames per plan walking forward while turning 90 deg/s (the first 10 not counted); frame budget "
-            << (frame_budget_ms > 0 ? fixed(frame_budget_ms, 1) + " ms" : std::string("off")) << "; lights " << lights << "; DISPLAY="
+            << (frame_budget_ms > 0 ? fixed(frame_budget_ms, 1) + " ms" : std::string("off")) << "; lights " << lights
+            << "; search " << search << "; DISPLAY="
             << (display ? display : "") << "\n"
             << "frame: period from one frame's start to the next (percentiles); render: visibility and half-tone;\n"
             << "show: texture upload, blit and status line; swap: glfwSwapBuffers (medians); CPU/frame: this\n"
@@ -525,6 +526,7 @@ int run_bench_walk(const std::vector<std::string>& plans, long frames, const std
     opt.vsync = false;
     opt.frame_budget_ms = frame_budget_ms;
     opt.lights = lights;
+    opt.search = search;
     WalkReport report;
     std::string why;
     if (!run_session(plan, opt, events, report, why)) throw std::runtime_error("cannot open the walkthrough window: " + why);

@@ -162,7 +162,7 @@ bool run_walkthrough(const LoadedPlan& plan, const WalkOptions& opt, int& status
 int run_bench_papers(int threads, int repeats);
 /// `avenues bench walk [PLAN...] [--frames N] [--size WxH]`: frame times of the walkthrough window.
 int run_bench_walk(const std::vector<std::string>& plans, long frames, const std::string& size, double frame_budget_ms,
-                   const std::string& lights = "plan");
+                   const std::string& lights = "plan", const std::string& search = "merged");
 /// The camera and eye cell a view option set resolves to.
 struct ViewSetup {
   Viewpoint viewpoint;
