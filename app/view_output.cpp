@@ -100,7 +100,7 @@ void write_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet&
     StereoRig rig = stereo_rig(c, v.camera, {opt.interocular, opt.converge});
     if (rig.problem != StereoRig::Problem::None) throw std::runtime_error(rig.message());
     RenderStats rs;
-    Image picture = render_stereo_view(c, objects, rig.left, rig.right, composite, o, &rs, v.kernel);
+    Image picture = render_stereo_view(c, objects, rig.left, rig.right, composite, o, &rs, v.search);
     write_image(picture, opt.output);
     add_render_stats(stats, rs);
     stats["stereo"] = {{"layout", opt.stereo}, {"interocular", opt.interocular}, {"converge", opt.converge},

@@ -498,7 +498,7 @@ Image render_view(const CellComplex& complex, const Camera& camera, const Visibl
 
 Image render_stereo_view(const CellComplex& complex, const std::vector<PlacedObject>& objects, const Camera& left,
                          const Camera& right, StereoComposite composite, const HalftoneOptions& options,
-                         RenderStats* stats, Kernel kernel) {
+                         RenderStats* stats, const TraverseParams& search) {
   if (composite == StereoComposite::Anaglyph && options.dither != Dither::None)
     throw std::invalid_argument("an anaglyph cannot be dithered: 1-bit grey cannot carry its colours");
   const auto t0 = Clock::now();
@@ -514,7 +514,7 @@ Image render_stereo_view(const CellComplex& complex, const std::vector<PlacedObj
     if (at.what != Location::What::Cell)
       throw std::runtime_error(std::string(k == 0 ? "the left" : "the right") + " eye is not in free space" +
                                (at.solid.empty() ? std::string() : " (inside " + at.solid + ")"));
-    const VisibleSet visible = find_visible(complex, *eyes[k], at.cell, kernel);
+    const VisibleSet visible = find_visible(complex, *eyes[k], at.cell, search);
     RenderStats one;
     if (effects) render_view(complex, objects, *effects, *eyes[k], visible, each, views[k], &one);
     else render_view(complex, objects, *eyes[k], visible, each, views[k], &one);

@@ -110,14 +110,14 @@ void render_view(const CellComplex& complex, const std::vector<PlacedObject>& ob
                  const Camera& camera, const VisibleSet& visible, const HalftoneOptions& options, Image& out,
                  FrameStorage& storage, RenderStats* stats = nullptr);
 
-/// A stereo pair as one picture: each eye located and its avenues found (Jones's traversal
-/// in `kernel`), both views rendered, then composed as `composite` asks; a dither, if
+/// A stereo pair as one picture: each eye located and its avenues found (the search and
+/// kernel `search` asks for), both views rendered, then composed as `composite` asks; a dither, if
 /// asked, is applied to the composed picture. Throws std::invalid_argument for a dithered
 /// anaglyph (1-bit grey cannot carry its colours) and std::runtime_error when an eye is
 /// not in a cell. Stats add up both views (render_us includes the two traversals).
 Image render_stereo_view(const CellComplex& complex, const std::vector<PlacedObject>& objects, const Camera& left,
                          const Camera& right, StereoComposite composite, const HalftoneOptions& options,
-                         RenderStats* stats = nullptr, Kernel kernel = Kernel::Double);
+                         RenderStats* stats = nullptr, const TraverseParams& search = {});
 
 /// Meshes alone (OBJ/OFF/PLY/STL through load_mesh), in the default material.
 Image render_meshes(const std::vector<Mesh>& meshes, const Camera& camera, const HalftoneOptions& options,
