@@ -367,10 +367,13 @@ TEST(ArchitecturalHalftone, EachSampleShowsTheFaceARayFromTheCutMeetsFirst) {
     const std::vector<ArchitecturalView> views = {
         plan_view(c, 0, 1.2, 40), section_view(c, {b.lo.x - 1, 2.2}, {b.hi.x + 1, 2.2}, 40),
         elevation_view(c, 270, 40), axonometric_view(c, 30, 35, z0 + 1.2, 40)};
-    for (const ArchitecturalView& v : views) {
-      SCOPED_TRACE(v.kind);
+    for (const ArchitecturalView& v : views)
+    for (bool merge : {false, true}) {  // Jones's search, and the merged one `avenues drawing` runs
+      SCOPED_TRACE(v.kind + (merge ? ", merged search" : ", Jones's search"));
       const Camera& cam = v.camera;
-      const VisibleSet vs = find_visible_from_cut(c, cam, v.cut);
+      TraverseParams params;
+      params.merge_pieces = merge;
+      const VisibleSet vs = find_visible_from_cut(c, cam, v.cut, params);
       ASSERT_TRUE(vs.cut.has_value());
       HalftoneOptions ho;
       const ScreenScene scene = screen_scene_of_view(c, {}, cam, vs, scene_options(ho));

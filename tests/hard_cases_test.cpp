@@ -954,23 +954,34 @@ TEST(HardCases, APolygonBetweenSampleCentresIsLeftOffTheRaster) {
 
 namespace {
 
-/// Every kernel's parallel search from `cut`, checked against parallel rays (one per pixel)
-/// from the cut; claimed kernels must pass. Returns the double kernel's visible set.
+/// Every kernel's parallel search from `cut`, Jones's and the merged one
+/// (TraverseParams::merge_pieces, what `avenues drawing` runs), checked against parallel
+/// rays (one per pixel) from the cut; claimed kernels must pass, and the merged search must
+/// see the cells Jones's does. Returns the double kernel's visible set (Jones's).
 VisibleSet all_kernels_from_cut(const CellComplex& c, const Camera& cam, const Plane& cut, std::set<Kernel> claimed) {
   VisibleSet out;
   for (Kernel k : {Kernel::Float, Kernel::Double, Kernel::Filtered, Kernel::Exact}) {
-    const VisibleSet vs = find_visible_from_cut(c, cam, cut, k);
-    const avenues::testing::OracleResult r = avenues::testing::check_parallel_visible_set(c, cam, cut, vs);
-    ::testing::Test::RecordProperty(std::string("kernel_") + to_string(k), r.ok() ? "pass" : "fail");
-    if (claimed.count(k)) {
-      EXPECT_EQ(r.missing, 0) << to_string(k);
-      EXPECT_EQ(r.extra, 0) << to_string(k);
-    } else if (!r.ok()) {
-      std::printf("[hard case] parallel: kernel %s fails (missing %d, extra %d) — not claimed\n", to_string(k), r.missing,
-                  r.extra);
+    std::vector<CellId> jones_cells;
+    for (bool merge : {false, true}) {
+      TraverseParams params;
+      params.kernel = k;
+      params.merge_pieces = merge;
+      const VisibleSet vs = find_visible_from_cut(c, cam, cut, params);
+      const avenues::testing::OracleResult r = avenues::testing::check_parallel_visible_set(c, cam, cut, vs);
+      const std::string what = std::string(to_string(k)) + (merge ? ", merged" : "");
+      if (!merge) ::testing::Test::RecordProperty(std::string("kernel_") + to_string(k), r.ok() ? "pass" : "fail");
+      if (claimed.count(k)) {
+        EXPECT_EQ(r.missing, 0) << what;
+        EXPECT_EQ(r.extra, 0) << what;
+      } else if (!r.ok()) {
+        std::printf("[hard case] parallel: kernel %s fails (missing %d, extra %d) — not claimed\n", what.c_str(),
+                    r.missing, r.extra);
+      }
+      EXPECT_GT(r.rays, 0);
+      if (merge) EXPECT_EQ(vs.cells, jones_cells) << what;
+      else jones_cells = vs.cells;
+      if (k == Kernel::Double && !merge) out = vs;
     }
-    EXPECT_GT(r.rays, 0);
-    if (k == Kernel::Double) out = vs;
   }
   return out;
 }
