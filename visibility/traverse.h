@@ -441,7 +441,7 @@ class Traversal {
     int parent = -1;
     PortalId via = -1;
     int depth = 0;
-    std::array<double, 4> box{};  ///< box_of the mask, grown
+    std::array<double, 4> box{};  ///< box_of the mask, grown (made when the cell has two or more pieces)
   };
   static constexpr uint8_t kIdle = 0, kPending = 1;
 
@@ -467,9 +467,7 @@ class Traversal {
   }
 
   void add_piece(CellId cell, const Mask<T>& mask, int parent, PortalId via, int depth) {
-    std::vector<Vec2> v;
-    for (const auto& q : mask.polygon()) v.push_back({to_double_of(q.x), to_double_of(q.y)});
-    pieces_[size_t(cell)].push_back({mask, parent, via, depth, box_of(v)});
+    pieces_[size_t(cell)].push_back({mask, parent, via, depth, {}});
     if (state_[size_t(cell)] == kPending) return;
     state_[size_t(cell)] = kPending;
     touched_.push_back(cell);
@@ -530,7 +528,14 @@ class Traversal {
     state_[size_t(cell)] = kIdle;
     std::vector<Piece> ps;
     ps.swap(pieces_[size_t(cell)]);
-    // Pairs until none merges (a union made late may merge with a piece passed earlier).
+    // Pairs until none merges (a union made late may merge with a piece passed earlier);
+    // their boxes first, made only where there is a pair to test.
+    if (ps.size() > 1)
+      for (Piece& p : ps) {
+        std::vector<Vec2> v;
+        for (const auto& q : p.mask.polygon()) v.push_back({to_double_of(q.x), to_double_of(q.y)});
+        p.box = box_of(v);
+      }
     for (bool any = ps.size() > 1; any;) {
       any = false;
       for (size_t i = 0; i < ps.size(); ++i)
