@@ -373,6 +373,22 @@ TEST_F(Cli, ViewRejectsBadOptions) {
   }
 }
 
+// --search: the merged search (the default) and Jones's tree see the same cells; the
+// statistics say which ran, and the merged one follows no more avenues.
+TEST_F(Cli, ViewSearchesMergedByDefaultAndJonesOnRequestSeeingTheSameCells) {
+  const std::string plan = std::string(AVENUES_SOURCE_DIR) + "/plans/curved-walls.toml";
+  ASSERT_EQ(run({"view", plan, "--stats-json", "merged.json"}).status, 0);
+  ASSERT_EQ(run({"view", plan, "--search", "jones", "--stats-json", "jones.json"}).status, 0);
+  const json m = json::parse(slurp(path("merged.json")));
+  const json j = json::parse(slurp(path("jones.json")));
+  EXPECT_EQ(m["search"], "merged");
+  EXPECT_EQ(j["search"], "jones");
+  EXPECT_EQ(m["visible"], j["visible"]);
+  EXPECT_LE(m["avenues"].get<int>(), j["avenues"].get<int>());
+  EXPECT_TRUE(m.contains("avenues_merged"));
+  EXPECT_FALSE(j.contains("avenues_merged"));
+}
+
 TEST_F(Cli, ViewExplainSaysWhichEffectsTheSceneCallsForAndWhy) {
   // A line per effect, on or off and why, for scenes with and without each effect.
   auto effects = [&](const std::string& plan, const std::vector<std::string>& args) {

@@ -172,6 +172,8 @@ TEST_F(Hostile, NumericOptionsAreCheckedAndNamed) {
       {"path", kPlan, "--fov", "0"},          {"path", kPlan, "--step", "nan"},
       {"path", kPlan, "--step", "-1"},        {"path", kPlan, "--kernel", "x"},
       {"bench", "walk", "--frames", "0"},     {"bench", "papers", "--repeats", "-2"},
+      {"view", kPlan, "--search", "fast"},    {"walk", kPlan, "--search", "tree"},
+      {"path", kPlan, "--search", "x"},       {"bench", "walk", "--search", "both"},
   };
   for (const std::vector<std::string>& args : bad) {
     const Outcome r = run(args);
