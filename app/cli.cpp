@@ -38,6 +38,9 @@ namespace {
 constexpr const char* kSearchHelp =
     "merged (avenues into a cell joined where their union is convex: the same view, fewer avenues) or jones "
     "(Jones's tree, one avenue per chain of portals)";
+constexpr const char* kDetailHelp =
+    "[samples] furniture far enough away is drawn in a coarser version that moves no point of its picture by more "
+    "than this; 0: always in full";
 
 /// The options that say how a plan from elsewhere is understood (docs/PLAN_FORMAT.md,
 /// "Plans from elsewhere"), on every subcommand that reads a PLAN.
@@ -188,6 +191,7 @@ int run_cli(int argc, char** argv) {
   path->add_option("--fov", path_opt.fov, "horizontal field of view in degrees")->capture_default_str()->check(number_in(0, 179, true));
   path->add_option("--kernel", path_opt.kernel, "arithmetic of the traversal")->capture_default_str()->check(kernel_name());
   path->add_option("--search", path_opt.search, kSearchHelp)->capture_default_str()->check(search_name());
+  path->add_option("--detail", path_opt.detail, kDetailHelp)->capture_default_str()->check(number_in(0, 16));
   path->add_option("--samples", path_opt.samples, "half-tone: samples per pixel, 1, 4 or 16")->capture_default_str()->check(samples_count());
   path->add_option("--shading", path_opt.shading, "half-tone: flat, smooth or auto")->capture_default_str();
   path->add_option("--lights", path_opt.lights, "plan (its point lights, casting shadows) or eye (the light at the eye; faster in a home full of lamps)")->capture_default_str();
@@ -237,6 +241,7 @@ int run_cli(int argc, char** argv) {
       ->capture_default_str();
   walk->add_option("--kernel", walk_opt.kernel, "arithmetic of the traversal")->capture_default_str()->check(kernel_name());
   walk->add_option("--search", walk_opt.search, kSearchHelp)->capture_default_str()->check(search_name());
+  walk->add_option("--detail", walk_opt.detail, kDetailHelp)->capture_default_str()->check(number_in(0, 16));
   walk->add_option("--interocular", walk_opt.interocular, "[m] distance between the eyes")->capture_default_str()->check(number_in(0, 10));
   walk->add_option("--frame-budget", walk_opt.frame_budget_ms,
                    "[ms] while the eye moves, drop samples, then resolution, to keep frames under this; "
@@ -272,6 +277,8 @@ int run_cli(int argc, char** argv) {
       ->capture_default_str()->check(number_in(0, 10000));
   std::string bench_walk_search = "merged";
   bench_walk->add_option("--search", bench_walk_search, "merged or jones, as for walk")->capture_default_str()->check(search_name());
+  double bench_walk_detail = 0.5;
+  bench_walk->add_option("--detail", bench_walk_detail, "as for walk")->capture_default_str()->check(number_in(0, 16));
 
   GenerateOfficeOptions office_opt;
   CLI::App* generate = app.add_subcommand("generate", "write a generated plan");
@@ -297,7 +304,7 @@ int run_cli(int argc, char** argv) {
     if (*bench_accuracy) return run_bench_accuracy(accuracy);
     if (*bench_walk)
       return run_bench_walk(bench_walk_plans, bench_walk_frames, bench_walk_size, bench_walk_budget, bench_walk_lights,
-                            bench_walk_search);
+                            bench_walk_search, bench_walk_detail);
     if (*walk) return run_walk(walk_opt);
     if (*path) return run_path(path_opt);
     if (*office) return run_generate_office(office_opt);

@@ -125,6 +125,7 @@ PathSettings path_settings(const PathOptions& opt, const MpiWalk& mpi) {
     throw std::runtime_error("--shading wants flat, smooth or auto, not '" + opt.shading + "'");
   s.halftone.lights = lights_option(opt.lights);
   s.halftone.object_shadows = object_shadows_option(opt.object_shadows);
+  s.halftone.detail_samples = opt.detail;
   if (opt.threads < 0) throw std::runtime_error("--threads wants a number of threads (0: as many as there are cores)");
   // A process's threads; in an MPI job each rank takes its share of its machine's cores.
   s.halftone.threads = opt.threads;
@@ -250,7 +251,7 @@ class FrameWriter {
     if (s.svg) {
       scene_ = prepare_line_scene(c);
     } else {
-      objects_ = place_objects(c, &said_);
+      objects_ = place_objects(c, &said_, s.halftone.detail_samples > 0);
       effects_.emplace(prepare_effects(c, objects_, s.halftone, s.kernel));  // once for every frame
     }
   }

@@ -24,6 +24,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <iomanip>
 #include <iostream>
 #include <optional>
@@ -88,6 +89,7 @@ class Session {
       throw std::runtime_error("--shading wants flat or smooth, not '" + opt.shading + "'");
     halftone_.lights = lights_option(opt.lights);
     halftone_.object_shadows = object_shadows_option(opt.object_shadows);
+    halftone_.detail_samples = opt.detail;
     if (opt.stereo == "mono") stereo_ = StereoMode::Mono;
     else if (opt.stereo == "side-by-side" || opt.stereo == "parallel") stereo_ = StereoMode::SideBySide;
     else if (opt.stereo == "anaglyph") stereo_ = StereoMode::Anaglyph;
@@ -104,6 +106,12 @@ class Session {
     std::vector<std::string> said;  // what reading the objects' meshes let pass
     objects_ = place_objects(c_, &said);
     print_warnings(plan.path, said);
+    // The furniture's coarser versions take a second or two in a furnished home: made on a
+    // thread of their own while the first frames are drawn in full, handed over when ready
+    // (at once, before the first frame, when a script or --frames drives the walk, so that
+    // its frames do not depend on how fast this machine is).
+    if (opt.detail > 0 && !objects_.empty())
+      coarser_ = std::async(std::launch::async, [this] { return coarser_versions(c_); });
     // Which effects the scene calls for, decided once (and its shadows cast once): deciding
     // means testing the furniture's triangles for crossings, far too dear for every frame.
     effects_ = prepare_effects(c_, objects_, halftone_, kernel_);
@@ -120,6 +128,7 @@ class Session {
     Clock::time_point hud_refreshed = Clock::now() - std::chrono::seconds(1);
     for (long frame = 0; !quit && !viewer_.should_close(); ++frame) {
       if (opt_.frames > 0 && frame >= opt_.frames) break;
+      adopt_coarser(scripted);
       // Wait for input only when nothing would change without it.
       const bool busy = scripted || controls_.active() || moving_ || progressive_pending() || !message_.empty();
       const Clock::time_point start = Clock::now();
@@ -429,6 +438,23 @@ class Session {
   SceneEffects effects_;
   StereoOptions stereo_opt_;
   std::vector<PlacedObject> objects_;
+  /// The objects' coarser versions while they are being made (coarser_versions).
+  std::future<std::vector<std::vector<MeshLevel>>> coarser_;
+
+  /// Hands the coarser versions to the objects once they are made (`wait`: waits for them).
+  /// Between frames, so no drawing is using the objects meanwhile.
+  void adopt_coarser(bool wait) {
+    if (!coarser_.valid()) return;
+    if (!wait && coarser_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+    std::vector<std::vector<MeshLevel>> levels;
+    try {
+      levels = coarser_.get();
+    } catch (const std::exception& e) {
+      say(std::string("the furniture stays in full detail: ") + e.what());
+      return;
+    }
+    for (size_t i = 0; i < objects_.size() && i < levels.size(); ++i) objects_[i].coarser = std::move(levels[i]);
+  }
   std::optional<LineScene> scene_;
   bool lines_ = false, progressive_ = false, hud_on_ = true, help_on_ = false;
   StereoMode stereo_ = StereoMode::Mono, shown_mode_ = StereoMode::Mono;
@@ -494,7 +520,7 @@ int run_walk(const WalkOptions& opt) {
 }
 
 int run_bench_walk(const std::vector<std::string>& plans, long frames, const std::string& size, double frame_budget_ms,
-                   const std::string& lights, const std::string& search) {
+                   const std::string& lights, const std::string& search, double detail) {
   if (frames < 20) throw std::runtime_error("--frames must be at least 20");
   std::vector<std::string> files = plans;
   if (files.empty())
@@ -504,7 +530,7 @@ int run_bench_walk(const std::vector<std::string>& plans, long frames, const std
   std::cout << "walkthrough window, " << size << " half-tone, flat shading, 1 sample, status line on, no vsync; "
             << frames << " frames per plan walking forward while turning 90 deg/s (the first 10 not counted); frame budget "
             << (frame_budget_ms > 0 ? fixed(frame_budget_ms, 1) + " ms" : std::string("off")) << "; lights " << lights
-            << "; search " << search << "; DISPLAY="
+            << "; search " << search << "; detail " << (detail > 0 ? fixed(detail, 2) + " samples" : std::string("full")) << "; DISPLAY="
             << (display ? display : "") << "\n"
             << "frame: period from one frame's start to the next (percentiles); render: visibility and half-tone;\n"
             << "show: texture upload, blit and status line; swap: glfwSwapBuffers (medians); CPU/frame: this\n"
@@ -527,6 +553,7 @@ int run_bench_walk(const std::vector<std::string>& plans, long frames, const std
     opt.frame_budget_ms = frame_budget_ms;
     opt.lights = lights;
     opt.search = search;
+    opt.detail = detail;
     WalkReport report;
     std::string why;
     if (!run_session(plan, opt, events, report, why)) throw std::runtime_error("cannot open the walkthrough window: " + why);

@@ -103,6 +103,7 @@ struct PathOptions {
   double fov = 70;                ///< [deg]
   std::string kernel = "double";
   std::string search = "merged";  ///< merged or jones (TraverseParams::merge_pieces)
+  double detail = 0.5;            ///< [samples] furniture's coarser versions where they move the picture less (0: full)
   int samples = 4;                ///< half-tone: samples per pixel, 1, 4 or 16
   std::string shading = "flat";   ///< half-tone: flat, smooth or auto
   std::string lights = "plan";    ///< plan (its point lights, with shadows) or eye (the light at the eye only)
@@ -149,6 +150,7 @@ struct WalkOptions {
   std::string object_shadows = "auto"; ///< objects' shadows from the plan's lights: auto, on or off
   std::string kernel = "double";
   std::string search = "merged";       ///< merged or jones (TraverseParams::merge_pieces)
+  double detail = 0.5;                 ///< [samples] furniture's coarser versions where they move the picture less (0: full)
   double interocular = 0.065;          ///< [m]
   double converge = 2.0;               ///< [m]
   double frame_budget_ms = 1000.0 / 60;  ///< [ms] >= 0: while moving, less detail to keep frames under it (app/frame_budget.h); 0: never
@@ -162,7 +164,7 @@ bool run_walkthrough(const LoadedPlan& plan, const WalkOptions& opt, int& status
 int run_bench_papers(int threads, int repeats);
 /// `avenues bench walk [PLAN...] [--frames N] [--size WxH]`: frame times of the walkthrough window.
 int run_bench_walk(const std::vector<std::string>& plans, long frames, const std::string& size, double frame_budget_ms,
-                   const std::string& lights = "plan", const std::string& search = "merged");
+                   const std::string& lights = "plan", const std::string& search = "merged", double detail = 0.5);
 /// The camera and eye cell a view option set resolves to.
 struct ViewSetup {
   Viewpoint viewpoint;

@@ -9,6 +9,8 @@
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 
+#include "plans/quiet_openmesh.h"
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -334,26 +336,6 @@ void smooth_corner_normals(Mesh& m, double crease_deg) {
 namespace {
 Mesh mesh_of_openmesh(const PolyMesh& pm, const std::string& path);
 
-/// OpenMesh talks while it reads (a material its OBJ file names but does not define, a face
-/// it refuses): not to Avenues' users, who get Avenues' own messages. Quiet while alive.
-class QuietOpenMesh {
- public:
-  QuietOpenMesh() : log_(::omlog().is_enabled()), err_(::omerr().is_enabled()), out_(::omout().is_enabled()) {
-    ::omlog().disable();
-    ::omerr().disable();
-    ::omout().disable();
-  }
-  ~QuietOpenMesh() {
-    if (log_) ::omlog().enable();
-    if (err_) ::omerr().enable();
-    if (out_) ::omout().enable();
-  }
-  QuietOpenMesh(const QuietOpenMesh&) = delete;
-  QuietOpenMesh& operator=(const QuietOpenMesh&) = delete;
-
- private:
-  bool log_, err_, out_;
-};
 }  // namespace
 
 std::optional<char> up_axis_named(const std::string& name) {

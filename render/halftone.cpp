@@ -319,6 +319,7 @@ SceneOptions scene_options(const HalftoneOptions& options) {
   s.per_side = samples_per_side(options.samples);
   s.shading = options.shading;
   s.cull_back_faces = options.cull_back_faces;
+  s.detail_samples = options.detail_samples;
   return s;
 }
 

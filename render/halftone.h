@@ -46,6 +46,10 @@ struct HalftoneOptions {
   /// it was before effects were planned — the light at the eye, implicit lines searched
   /// wherever objects meet — for comparison.
   bool plan_effects = true;
+  /// > 0: an object with coarser versions (PlacedObject::coarser) is drawn in the coarsest
+  /// whose tolerance moves no point of it on the picture by more than this many samples
+  /// (SceneOptions::detail_samples); 0: always in full. docs/ACCURACY.md, §5.
+  double detail_samples = 0;
 };
 
 /// What a render did and how long it took.

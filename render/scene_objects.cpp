@@ -2,6 +2,7 @@
 #include "render/scene_objects.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 namespace avenues {
@@ -36,18 +37,44 @@ MeshPaint paint_of_mesh(const Mesh& mesh) {
   return paint;
 }
 
-std::vector<PlacedObject> place_objects(const CellComplex& complex, std::vector<std::string>* warnings) {
+namespace {
+double floor_of(const CellComplex& complex, const Object& o) {
+  return o.storey >= 0 && size_t(o.storey) < complex.storeys.size() ? complex.storeys[size_t(o.storey)].elevation : 0;
+}
+}  // namespace
+
+std::vector<std::vector<MeshLevel>> coarser_versions(const CellComplex& complex) {
+  std::map<std::string, Mesh> loaded;
+  for (const Object& o : complex.objects)
+    if (loaded.find(mesh_key(o)) == loaded.end()) loaded.emplace(mesh_key(o), load_object_mesh(o));
+  std::vector<std::string> keys;
+  std::vector<const Mesh*> meshes;
+  for (const auto& [key, mesh] : loaded) keys.push_back(key), meshes.push_back(&mesh);
+  std::vector<std::vector<MeshLevel>> made =
+      coarser_levels_of(meshes, std::vector<double>(std::begin(kDetailFractions), std::end(kDetailFractions)), 500);
+  std::map<std::string, const std::vector<MeshLevel>*> of;
+  for (size_t i = 0; i < keys.size(); ++i) of[keys[i]] = &made[i];
+  std::vector<std::vector<MeshLevel>> out;
+  for (const Object& o : complex.objects) {
+    out.emplace_back();
+    // Rotation keeps lengths; the scale stretches them by at most its largest factor.
+    const double stretch = std::max({std::fabs(o.scale.x), std::fabs(o.scale.y), std::fabs(o.scale.z)});
+    for (const MeshLevel& level : *of[mesh_key(o)])
+      out.back().push_back({place(level.mesh, o, floor_of(complex, o)), level.tolerance * stretch});
+  }
+  return out;
+}
+
+std::vector<PlacedObject> place_objects(const CellComplex& complex, std::vector<std::string>* warnings, bool coarser) {
   std::vector<PlacedObject> out;
   std::map<std::string, Mesh> loaded;
   CellId hint = kNoCell;
   for (const Object& o : complex.objects) {
     auto it = loaded.find(mesh_key(o));
     if (it == loaded.end()) it = loaded.emplace(mesh_key(o), load_object_mesh(o, warnings)).first;
-    const double floor_z =
-        o.storey >= 0 && size_t(o.storey) < complex.storeys.size() ? complex.storeys[size_t(o.storey)].elevation : 0;
     PlacedObject p;
     p.name = o.name;
-    p.mesh = place(it->second, o, floor_z);
+    p.mesh = place(it->second, o, floor_of(complex, o));
     Vec3 centroid{0, 0, 0};
     for (Vec3 v : p.mesh.vertices) {
       centroid = centroid + v;
@@ -60,6 +87,10 @@ std::vector<PlacedObject> place_objects(const CellComplex& complex, std::vector<
       p.paint.materials.push_back(complex.materials[size_t(o.material)]);
     else p.paint = paint_of_mesh(p.mesh);
     out.push_back(std::move(p));
+  }
+  if (coarser) {
+    std::vector<std::vector<MeshLevel>> levels = coarser_versions(complex);
+    for (size_t i = 0; i < out.size(); ++i) out[i].coarser = std::move(levels[i]);
   }
   return out;
 }

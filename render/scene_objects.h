@@ -7,6 +7,7 @@
 
 #include "cells/cell_complex.h"
 #include "plans/mesh.h"
+#include "plans/mesh_detail.h"
 
 namespace avenues {
 
@@ -30,7 +31,16 @@ struct PlacedObject {
   CellId cell = kNoCell;   ///< kNoCell: its centroid lies in a solid or outside the far box; never drawn
   MeshPaint paint;
   Box3 bounds;             ///< of the placed mesh's vertices
+  /// Coarser versions, placed like `mesh` (tolerances in metres, ascending), when
+  /// place_objects was asked for them: a half-tone draws the coarsest whose tolerance
+  /// projects under SceneOptions::detail_samples (scene_view.cpp). Triangles keep their
+  /// polygon numbers, so `paint` serves them too.
+  std::vector<MeshLevel> coarser;
 };
+
+/// The tolerances of an object's coarser versions, as fractions of its model's bounding
+/// box diagonal: 1/1000, 1/250, 1/60 (a 1 m chair: 1, 4 and 17 mm).
+inline constexpr double kDetailFractions[] = {1.0 / 1000, 1.0 / 250, 1.0 / 60};
 
 /// Loads every object of the complex (plans/mesh.h, each file read once), places it on
 /// its storey, and finds the cell holding the centroid of its vertices. Its paint is its
@@ -38,6 +48,16 @@ struct PlacedObject {
 /// std::runtime_error naming the mesh file when one cannot be read; what reading a mesh let
 /// pass (an OBJ's missing MTL library or image, load_object_mesh) goes to `warnings`
 /// when given, once per mesh file.
-std::vector<PlacedObject> place_objects(const CellComplex& complex, std::vector<std::string>* warnings = nullptr);
+/// With `coarser`, every object also gets its coarser versions (coarser_versions), for
+/// films, whose many frames repay the second or two it takes in a furnished home.
+std::vector<PlacedObject> place_objects(const CellComplex& complex, std::vector<std::string>* warnings = nullptr,
+                                        bool coarser = false);
+
+/// Each object's coarser versions (PlacedObject::coarser), in the order of complex.objects:
+/// every distinct model of 500 triangles or more made coarser once (plans/mesh_detail.h,
+/// tolerances kDetailFractions of its box's diagonal, the models spread over TBB's threads),
+/// then placed as each object is. Safe to run on a thread of its own while the objects
+/// placed without them are drawn (the walkthrough hands them over when they are ready).
+std::vector<std::vector<MeshLevel>> coarser_versions(const CellComplex& complex);
 
 }  // namespace avenues

@@ -400,7 +400,8 @@ void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<in
   }
 }
 
-void ScreenSceneBuilder::add_mesh(const Mesh& mesh, const MeshPaint& paint, Placement where, PolygonSource source) {
+void ScreenSceneBuilder::add_mesh(const Mesh& mesh, const MeshPaint& paint, Placement where, PolygonSource source,
+                                  bool polygons) {
   const size_t n = mesh.triangles.size();
   // Meshes made here and there all carry corner normals; one that does not gets them now.
   Mesh with_normals;
@@ -416,7 +417,7 @@ void ScreenSceneBuilder::add_mesh(const Mesh& mesh, const MeshPaint& paint, Plac
   for (size_t t = 0; t < n;) {
     const int polygon = mesh.polygon_of[t];
     size_t end = t + 1;
-    while (end < n && mesh.polygon_of[end] == polygon) ++end;
+    while (polygons && end < n && mesh.polygon_of[end] == polygon) ++end;
     source.polygon = polygon;
     const Material& material = paint.of_polygon(polygon);
     // The input polygon again, from its fan (plans/mesh.h triangulates a polygon a, b, c,

@@ -88,6 +88,9 @@ struct SceneOptions {
   /// the far side of the plane, seen along the camera's forward, is drawn; polygons are cut
   /// there in 3D before the near plane.
   std::optional<Plane> cut;
+  /// > 0: objects' coarser versions where their tolerance projects under this many samples
+  /// (scene_view.cpp); 0: objects in full.
+  double detail_samples = 0;
 };
 
 /// Adds polygons to a ScreenScene (steps 1–5 above).
@@ -114,7 +117,10 @@ class ScreenSceneBuilder {
   /// one intensity each. Smooth: a polygon whose corners' normals are its own is lit from
   /// its plane; a curved one by Gouraud over its triangles. Polygons of a closed mesh
   /// facing away from the eye are dropped when options.cull_back_faces.
-  void add_mesh(const Mesh& mesh, const MeshPaint& paint, Placement where, PolygonSource source);
+  /// `polygons` false: every triangle on its own (a coarser version, whose triangles of one
+  /// input polygon no longer lie in one plane), else the runs of triangles of one polygon
+  /// drawn as the polygon where they form its fan.
+  void add_mesh(const Mesh& mesh, const MeshPaint& paint, Placement where, PolygonSource source, bool polygons = true);
   /// From now on, mesh polygons wholly in front of the near plane and wholly outside this
   /// box of the picture plane (x = X/Z, y = Y/Z) are not added: the mask they would be
   /// clipped to lies inside it, so they could not show. Until no_cull().

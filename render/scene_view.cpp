@@ -35,6 +35,30 @@ namespace {
 /// to the fixed-point grid (1/512), far less than a sample.
 constexpr double kMaskGrowth = 1.0 / 64;
 
+/// The version of an object to draw: the coarsest whose tolerance τ moves no point of it by
+/// more than `samples` on the raster. A point at camera depth Z and picture position (x, y)
+/// moved by δ (|δ| <= τ) moves on the picture plane by at most τ·√2·(1 + max(|x|, |y|))/Z;
+/// Z is bounded below by the nearest corner of the object's box and |x|, |y| by the
+/// raster's extent (what lies outside is not drawn). An object reaching the near plane, or
+/// no `samples`, is drawn in full.
+const Mesh* detail_of(const PlacedObject& object, const Camera& camera, const RasterMap& raster, double samples) {
+  if (!(samples > 0) || object.coarser.empty()) return &object.mesh;
+  double z = HUGE_VAL;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Box3& b = object.bounds;
+    const Vec3 p{corner & 1 ? b.hi.x : b.lo.x, corner & 2 ? b.hi.y : b.lo.y, corner & 4 ? b.hi.z : b.lo.z};
+    z = std::min(z, camera.camera_from_world(p).z);
+  }
+  if (!(z > camera.near)) return &object.mesh;
+  const double reach = std::max({std::fabs(raster.x0), std::fabs(raster.x0 + raster.width * raster.step),
+                                 std::fabs(raster.y0), std::fabs(raster.y0 - raster.height * raster.step)});
+  const double per_metre = std::sqrt(2.0) * (1 + reach) / (z * raster.step);  // [samples / m]
+  const Mesh* best = &object.mesh;
+  for (const MeshLevel& level : object.coarser)
+    if (level.tolerance * per_metre <= samples) best = &level.mesh;
+  return best;
+}
+
 const Material& material_of(const CellComplex& c, MaterialId id) {
   static const Material kDefault;
   return id >= 0 && size_t(id) < c.materials.size() ? c.materials[size_t(id)] : kDefault;
@@ -159,7 +183,8 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
     for (size_t o : in->second) {
       if (!b.may_show(objects[o].bounds)) continue;  // a cell seen through many avenues: not through this one
       source.mesh = int(o);
-      b.add_mesh(objects[o].mesh, objects[o].paint, where, source);
+      const Mesh* mesh = detail_of(objects[o], camera, out.raster, options.detail_samples);
+      b.add_mesh(*mesh, objects[o].paint, where, source, mesh == &objects[o].mesh);
     }
     b.no_cull();
   }
