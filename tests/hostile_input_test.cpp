@@ -174,6 +174,7 @@ TEST_F(Hostile, NumericOptionsAreCheckedAndNamed) {
       {"bench", "walk", "--frames", "0"},     {"bench", "papers", "--repeats", "-2"},
       {"view", kPlan, "--search", "fast"},    {"walk", kPlan, "--search", "tree"},
       {"path", kPlan, "--search", "x"},       {"bench", "walk", "--search", "both"},
+      {"walk", kPlan, "--detail", "-1"},      {"path", kPlan, "--detail", "nan"},
   };
   for (const std::vector<std::string>& args : bad) {
     const Outcome r = run(args);
