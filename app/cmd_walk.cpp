@@ -80,7 +80,7 @@ std::string fixed(double v, int digits) {
 class Session {
  public:
   Session(const LoadedPlan& plan, const WalkOptions& opt, Viewer& viewer)
-      : plan_(plan), c_(plan.complex), opt_(opt), viewer_(viewer), budget_(opt.frame_budget_ms, opt.samples),
+      : plan_(plan), c_(plan.complex), opt_(opt), viewer_(viewer), budget_(opt.frame_budget_ms, opt.samples, lit_by_lamps(plan.complex, opt.lights)),
         state_(plan, opt), exports_(plan, opt) {
     kernel_ = kernel_option(opt.kernel);
     search_ = search_option(opt.search, kernel_);
@@ -115,6 +115,20 @@ class Session {
     // Which effects the scene calls for, decided once (and its shadows cast once): deciding
     // means testing the furniture's triangles for crossings, far too dear for every frame.
     effects_ = prepare_effects(c_, objects_, halftone_, kernel_);
+    // The same scene lit from the eye, for frames the budget makes cheaper (no shadows to cast).
+    if (lit_by_lamps(c_, opt.lights)) {
+      HalftoneOptions at_eye = halftone_;
+      at_eye.lights = Lights::Eye;
+      effects_at_eye_ = prepare_effects(c_, objects_, at_eye, kernel_);
+    }
+  }
+
+  /// Whether the walk's full detail is lit by the plan's own point lights.
+  static bool lit_by_lamps(const CellComplex& c, const std::string& lights) {
+    if (lights != "plan") return false;
+    for (const Light& l : c.lights)
+      if (l.kind == LightKind::Point) return true;
+    return false;
   }
 
   /// Runs until the window closes, the script quits or the frame limit is reached.
@@ -282,7 +296,13 @@ class Session {
     const VisibleSet part = partial ? prefix(vs, shown) : VisibleSet{};
     const VisibleSet& use = partial ? part : vs;
     if (lines_) raster_of_drawing(draw_view(c_, line_scene(), cam, use), out);
-    else render_view(c_, objects_, effects_, cam, use, halftone_, out, storage_);
+    else if (!shown_detail_.lamps && effects_at_eye_) {
+      HalftoneOptions at_eye = halftone_;
+      at_eye.lights = Lights::Eye;
+      render_view(c_, objects_, *effects_at_eye_, cam, use, at_eye, out, storage_);
+    } else {
+      render_view(c_, objects_, effects_, cam, use, halftone_, out, storage_);
+    }
   }
 
   /// Renders the view when it changed (or its detail did); false when the last frame still stands.
@@ -436,6 +456,7 @@ class Session {
   TraverseParams search_;
   HalftoneOptions halftone_;
   SceneEffects effects_;
+  std::optional<SceneEffects> effects_at_eye_;  ///< lit from the eye: the budget's cheaper frames in a plan with lamps
   StereoOptions stereo_opt_;
   std::vector<PlacedObject> objects_;
   /// The objects' coarser versions while they are being made (coarser_versions).

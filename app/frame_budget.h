@@ -1,6 +1,7 @@
 // Avenues — the walkthrough's frame budget: while the eye moves, a frame that ran over its
 // budget (16.7 ms for 60 fps) makes the next ones cheaper — fewer samples per pixel, then
-// fewer pixels (each rendered sample shown as a 2 × 2, then 4 × 4 block) — and frames well
+// (in a plan lit by its own lamps) the light at the eye instead of the lamps and their
+// shadows, then fewer pixels (each rendered sample shown as a 2 × 2, then 4 × 4 block) — and frames well
 // under it, for long enough, bring detail back one step; when the eye stops, the view is
 // rendered once more at full detail (progressive refinement, as a still picture should be).
 //
@@ -17,25 +18,30 @@ namespace avenues::app {
 struct Detail {
   int samples = 1;  ///< half-tone samples per pixel: 1, 4 or 16
   int scale = 1;    ///< window pixels per rendered pixel along each side: 1, 2 or 4
-  bool operator==(const Detail& o) const { return samples == o.samples && scale == o.scale; }
+  bool lamps = true;  ///< the plan's own lights (as asked); false: the light at the eye, no shadows
+  bool operator==(const Detail& o) const { return samples == o.samples && scale == o.scale && lamps == o.lamps; }
   bool operator!=(const Detail& o) const { return !(*this == o); }
 };
 
 /// "4 samples", "half resolution, 1 sample": what a reduced detail gives up, for the status line.
 inline std::string to_string(const Detail& d) {
   std::string s = d.scale == 1 ? "" : d.scale == 2 ? "half resolution, " : d.scale == 4 ? "quarter resolution, " : "";
-  return s + std::to_string(d.samples) + (d.samples == 1 ? " sample" : " samples");
+  return s + std::to_string(d.samples) + (d.samples == 1 ? " sample" : " samples") +
+         (d.lamps ? "" : ", the light at the eye");
 }
 
 class FrameBudget {
  public:
   /// `budget_ms` <= 0: no budget (every frame at full detail). `samples`: the full detail's.
-  FrameBudget(double budget_ms, int samples) : budget_ms_(budget_ms) {
+  /// `lamps`: the full detail is lit by the plan's own point lights (their shadows cast),
+  /// which a frame may give up for the light at the eye before it gives up pixels.
+  FrameBudget(double budget_ms, int samples, bool lamps = false) : budget_ms_(budget_ms) {
     ladder_.push_back({samples, 1});
     if (samples > 4) ladder_.push_back({4, 1});
     if (samples > 1) ladder_.push_back({1, 1});
-    ladder_.push_back({1, 2});
-    ladder_.push_back({1, 4});
+    if (lamps) ladder_.push_back({1, 1, false});
+    ladder_.push_back({1, 2, !lamps});
+    ladder_.push_back({1, 4, !lamps});
   }
 
   double budget_ms() const { return budget_ms_; }

@@ -22,6 +22,20 @@ TEST(FrameBudget, OverBudgetWhileMovingDropsSamplesThenResolutionOneStepAFrame) 
   EXPECT_EQ(one.next(true), (Detail{1, 2}));
 }
 
+// A plan lit by its own lamps: after the samples, the light at the eye (no shadows to
+// draw) goes before the pixels do, and stays while resolution drops.
+TEST(FrameBudget, APlanLitByItsLampsGivesThemUpBeforeItsPixels) {
+  FrameBudget b(16.7, 4, true);
+  const Detail steps[] = {{4, 1, true}, {1, 1, true}, {1, 1, false}, {1, 2, false}, {1, 4, false}};
+  for (const Detail& d : steps) {
+    EXPECT_EQ(b.next(true), d) << to_string(b.next(true));
+    EXPECT_EQ(b.next(false), (Detail{4, 1, true})) << "a still eye gets full detail, lamps and all";
+    b.measured(40, true);
+  }
+  EXPECT_EQ(to_string(Detail{1, 1, false}), "1 sample, the light at the eye");
+  EXPECT_EQ(to_string(b.next(true)), "quarter resolution, 1 sample, the light at the eye");
+}
+
 TEST(FrameBudget, DetailComesBackOneStepAfterHalfASecondWellUnderBudget) {
   FrameBudget b(16.7, 4);
   b.measured(30, true), b.measured(30, true);
