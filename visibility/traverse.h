@@ -210,33 +210,53 @@ class Traversal {
   }
 
   void visit(CellId cell, const Mask<T>& mask, int parent, PortalId via, int depth) {
-    const int self = int(out_.avenues.size());
-    Avenue a;
-    a.cell = cell;
-    a.parent = parent;
-    a.portal = via;
-    a.depth = depth;
-    for (const auto& v : mask.polygon()) a.mask.push_back({to_double_of(v.x), to_double_of(v.y)});
-    const std::vector<Vec2> mask_here = a.mask;  // a is moved into the visible set below
-    out_.avenues.push_back(std::move(a));
+    const int self = emit(cell, mask, parent, via, depth);
+    std::vector<Vec2> mask_here = out_.avenues[size_t(self)].mask;  // a copy: the avenues move as the search adds more
     out_.max_depth = std::max(out_.max_depth, depth);
     on_path_[size_t(cell)] = 1;
     if (prune_) {
       reached_.push_back({mask, box_of(mask_here), last_into_[size_t(cell)]});
       last_into_[size_t(cell)] = self;
     }
-    // Each face's portals; on a long side face (a corridor's wall of doors) only those
-    // within the stretch of wall the mask can see (portals are sorted along side faces).
-    const Cell& cl = c_.cells[size_t(cell)];
-    const std::vector<Plane> cone = cone_planes(mask_here);
-    for (size_t f = 0; f < cl.faces.size(); ++f) {
-      const auto& ps = cl.faces[f].portals;
-      size_t lo = 0, hi = ps.size();
-      if (cl.prism && f < cl.footprint.size() && ps.size() > kLinearScan) side_range(cl, f, mask_here, lo, hi);
-      for (size_t i = lo; i < hi; ++i)
-        if (!surely_outside(cone, ps[i])) consider(cell, mask, self, via, depth, ps[i]);
-    }
+    for_each_portal_seen(cell, std::move(mask_here), [&](PortalId pi) { consider(cell, mask, self, via, depth, pi); });
     on_path_[size_t(cell)] = 0;
+  }
+
+  /// The mask's vertices in double, as an Avenue keeps them.
+  static std::vector<Vec2> doubles_of(const Mask<T>& m) {
+    std::vector<Vec2> v;
+    for (const auto& p : m.polygon()) v.push_back({to_double_of(p.x), to_double_of(p.y)});
+    return v;
+  }
+
+  /// Appends the avenue (cell, mask, ...) to the visible set; returns its index.
+  int emit(CellId cell, const Mask<T>& mask, int parent, PortalId via, int depth) {
+    Avenue a;
+    a.cell = cell;
+    a.parent = parent;
+    a.portal = via;
+    a.depth = depth;
+    a.mask = doubles_of(mask);
+    out_.avenues.push_back(std::move(a));
+    return int(out_.avenues.size()) - 1;
+  }
+
+  /// Calls f for each portal of `cell` that rays through `mask` (its vertices in double)
+  /// may pass: each face's portals, on a long side face (a corridor's wall of doors) only
+  /// those within the stretch of wall the mask can see (portals are sorted along side
+  /// faces), and none that the mask's cone surely misses. `mask` is the caller's own copy:
+  /// f may append avenues, which moves the visible set's masks.
+  template <class F>
+  void for_each_portal_seen(CellId cell, std::vector<Vec2> mask, F&& f) {
+    const Cell& cl = c_.cells[size_t(cell)];
+    const std::vector<Plane> cone = cone_planes(mask);
+    for (size_t k = 0; k < cl.faces.size(); ++k) {
+      const auto& ps = cl.faces[k].portals;
+      size_t lo = 0, hi = ps.size();
+      if (cl.prism && k < cl.footprint.size() && ps.size() > kLinearScan) side_range(cl, k, mask, lo, hi);
+      for (size_t i = lo; i < hi; ++i)
+        if (!surely_outside(cone, ps[i])) f(ps[i]);
+    }
   }
 
   /// The mask's cone (perspective) or prism (parallel) as inward planes n·(v − eye) + d >= 0
@@ -531,11 +551,7 @@ class Traversal {
     // Pairs until none merges (a union made late may merge with a piece passed earlier);
     // their boxes first, made only where there is a pair to test.
     if (ps.size() > 1)
-      for (Piece& p : ps) {
-        std::vector<Vec2> v;
-        for (const auto& q : p.mask.polygon()) v.push_back({to_double_of(q.x), to_double_of(q.y)});
-        p.box = box_of(v);
-      }
+      for (Piece& p : ps) p.box = box_of(doubles_of(p.mask));
     for (bool any = ps.size() > 1; any;) {
       any = false;
       for (size_t i = 0; i < ps.size(); ++i)
@@ -554,31 +570,15 @@ class Traversal {
           j = i + 1;
         }
     }
-    const Cell& cl = c_.cells[size_t(cell)];
     for (Piece& piece : ps) {
-      const int self = int(out_.avenues.size());
-      Avenue a;
-      a.cell = cell;
-      a.parent = piece.parent;
-      a.portal = piece.via;
-      a.depth = piece.depth;
-      for (const auto& v : piece.mask.polygon()) a.mask.push_back({to_double_of(v.x), to_double_of(v.y)});
-      const std::vector<Plane> cone = cone_planes(a.mask);
-      std::vector<Vec2> mask_here = a.mask;
-      out_.avenues.push_back(std::move(a));
-      for (size_t f = 0; f < cl.faces.size(); ++f) {
-        const auto& portals = cl.faces[f].portals;
-        size_t lo = 0, hi = portals.size();
-        if (cl.prism && f < cl.footprint.size() && portals.size() > kLinearScan) side_range(cl, f, mask_here, lo, hi);
-        for (size_t i = lo; i < hi; ++i) {
-          const PortalId pi = portals[i];
-          if (pi == piece.via || surely_outside(cone, pi)) continue;
-          const CellId other = c_.portals[size_t(pi)].other(cell);
-          Mask<T> m = piece.mask;
-          if (!through(cell, pi, m) || on_chain(self, other)) continue;
-          add_piece(other, m, self, pi, piece.depth + 1);
-        }
-      }
+      const int self = emit(cell, piece.mask, piece.parent, piece.via, piece.depth);
+      for_each_portal_seen(cell, out_.avenues[size_t(self)].mask, [&](PortalId pi) {
+        if (pi == piece.via) return;
+        const CellId other = c_.portals[size_t(pi)].other(cell);
+        Mask<T> m = piece.mask;
+        if (!through(cell, pi, m) || on_chain(self, other)) return;
+        add_piece(other, m, self, pi, piece.depth + 1);
+      });
     }
     ps.clear();
     if (pieces_[size_t(cell)].empty()) pieces_[size_t(cell)].swap(ps);  // keep the storage
@@ -600,9 +600,7 @@ class Traversal {
   /// rules containment out without the kernel's arithmetic (a wrong "no" only keeps an avenue).
   bool covered(CellId cell, const Mask<T>& m) const {
     if (last_into_[size_t(cell)] < 0) return false;
-    std::vector<Vec2> v;
-    for (const auto& p : m.polygon()) v.push_back({to_double_of(p.x), to_double_of(p.y)});
-    const std::array<double, 4> box = box_of(v, false);
+    const std::array<double, 4> box = box_of(doubles_of(m), false);
     for (int32_t a = last_into_[size_t(cell)]; a >= 0; a = reached_[size_t(a)].earlier) {
       const Reached& r = reached_[size_t(a)];
       if (box[0] < r.box[0] || box[1] < r.box[1] || box[2] > r.box[2] || box[3] > r.box[3]) continue;
