@@ -84,8 +84,7 @@ class Mask {
         // portal edge met again from the next cell — is never added twice, which would
         // leave two parallel neighbours and no vertex between them. Exact number types
         // need no such bound.
-        const T bound = kSignBound * (std::fabs(l.a * v.x) + std::fabs(l.b * v.y) + std::fabs(l.c));
-        if (!(std::fabs(s) > bound)) s = T(0);
+        if (!(std::fabs(s) > rounding_bound(l, v))) s = T(0);
       }
       side_[k] = s > T(0) ? 1 : (s < T(0) ? -1 : 0);
       any_out |= side_[k] < 0;
@@ -128,8 +127,7 @@ class Mask {
       for (const HalfPlane<T>& l : outer.h_) {
         const T s = l.a * v.x + l.b * v.y + l.c;
         if constexpr (std::is_floating_point_v<T>) {
-          const T bound = kSignBound * (std::fabs(l.a * v.x) + std::fabs(l.b * v.y) + std::fabs(l.c));
-          if (!(s > bound)) return false;
+          if (!(s > rounding_bound(l, v))) return false;
         } else {
           if (s < T(0)) return false;
         }
@@ -214,6 +212,12 @@ class Mask {
   }
 
  private:
+  /// Floating point: the rounding bound of l's sign at vertex v (a computed vertex, then one
+  /// degree-1 evaluation); a sign no larger is taken as zero.
+  static T rounding_bound(const HalfPlane<T>& l, const Point2T<T>& v) {
+    return T(kSignBound * (std::fabs(l.a * v.x) + std::fabs(l.b * v.y) + std::fabs(l.c)));
+  }
+
   /// Whether p and q are one line with opposite insides: exactly in exact number types,
   /// within rounding in floating point.
   static bool opposite(const HalfPlane<T>& p, const HalfPlane<T>& q) {
@@ -237,8 +241,7 @@ class Mask {
         const HalfPlane<T>& l = of.h_[i];
         const T s = l.a * p.x + l.b * p.y + l.c;
         if constexpr (std::is_floating_point_v<T>) {
-          const T bound = kSignBound * (std::fabs(l.a * p.x) + std::fabs(l.b * p.y) + std::fabs(l.c));
-          if (s < -bound) return false;
+          if (s < -rounding_bound(l, p)) return false;
         } else {
           if (s < T(0)) return false;
         }
