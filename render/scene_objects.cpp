@@ -41,28 +41,35 @@ namespace {
 double floor_of(const CellComplex& complex, const Object& o) {
   return o.storey >= 0 && size_t(o.storey) < complex.storeys.size() ? complex.storeys[size_t(o.storey)].elevation : 0;
 }
-}  // namespace
 
-std::vector<std::vector<MeshLevel>> coarser_versions(const CellComplex& complex) {
-  std::map<std::string, Mesh> loaded;
-  for (const Object& o : complex.objects)
-    if (loaded.find(mesh_key(o)) == loaded.end()) loaded.emplace(mesh_key(o), load_object_mesh(o));
-  std::vector<std::string> keys;
+/// Each object's coarser versions from its model among `models` (by mesh_key), each
+/// distinct model made coarser once, then placed as the object is.
+std::vector<std::vector<MeshLevel>> placed_levels(const CellComplex& complex, const std::map<std::string, Mesh>& models) {
   std::vector<const Mesh*> meshes;
-  for (const auto& [key, mesh] : loaded) keys.push_back(key), meshes.push_back(&mesh);
+  for (const auto& entry : models) meshes.push_back(&entry.second);
   std::vector<std::vector<MeshLevel>> made =
       coarser_levels_of(meshes, std::vector<double>(std::begin(kDetailFractions), std::end(kDetailFractions)), 500);
   std::map<std::string, const std::vector<MeshLevel>*> of;
-  for (size_t i = 0; i < keys.size(); ++i) of[keys[i]] = &made[i];
+  size_t i = 0;
+  for (const auto& entry : models) of[entry.first] = &made[i++];
   std::vector<std::vector<MeshLevel>> out;
   for (const Object& o : complex.objects) {
     out.emplace_back();
     // Rotation keeps lengths; the scale stretches them by at most its largest factor.
     const double stretch = std::max({std::fabs(o.scale.x), std::fabs(o.scale.y), std::fabs(o.scale.z)});
-    for (const MeshLevel& level : *of[mesh_key(o)])
-      out.back().push_back({place(level.mesh, o, floor_of(complex, o)), level.tolerance * stretch});
+    const double floor_z = floor_of(complex, o);
+    for (const MeshLevel& level : *of.at(mesh_key(o)))
+      out.back().push_back({place(level.mesh, o, floor_z), level.tolerance * stretch});
   }
   return out;
+}
+}  // namespace
+
+std::vector<std::vector<MeshLevel>> coarser_versions(const CellComplex& complex) {
+  std::map<std::string, Mesh> models;
+  for (const Object& o : complex.objects)
+    if (models.find(mesh_key(o)) == models.end()) models.emplace(mesh_key(o), load_object_mesh(o));
+  return placed_levels(complex, models);
 }
 
 std::vector<PlacedObject> place_objects(const CellComplex& complex, std::vector<std::string>* warnings, bool coarser) {
@@ -88,8 +95,8 @@ std::vector<PlacedObject> place_objects(const CellComplex& complex, std::vector<
     else p.paint = paint_of_mesh(p.mesh);
     out.push_back(std::move(p));
   }
-  if (coarser) {
-    std::vector<std::vector<MeshLevel>> levels = coarser_versions(complex);
+  if (coarser) {  // from the models just read, not read again
+    std::vector<std::vector<MeshLevel>> levels = placed_levels(complex, loaded);
     for (size_t i = 0; i < out.size(); ++i) out[i].coarser = std::move(levels[i]);
   }
   return out;
