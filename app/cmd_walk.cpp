@@ -116,11 +116,13 @@ class Session {
     // means testing the furniture's triangles for crossings, far too dear for every frame.
     effects_ = prepare_effects(c_, objects_, halftone_, kernel_);
     // The same scene lit from the eye, for frames the budget makes cheaper (no shadows to cast).
-    if (lit_by_lamps(c_, opt.lights)) {
-      HalftoneOptions at_eye = halftone_;
-      at_eye.lights = Lights::Eye;
-      effects_at_eye_ = prepare_effects(c_, objects_, at_eye, kernel_);
-    }
+    if (lit_by_lamps(c_, opt.lights)) effects_at_eye_ = prepare_effects(c_, objects_, lit_at_eye(halftone_), kernel_);
+  }
+
+  /// The same options with the light at the eye instead of the plan's.
+  static HalftoneOptions lit_at_eye(HalftoneOptions o) {
+    o.lights = Lights::Eye;
+    return o;
   }
 
   /// Whether the walk's full detail is lit by the plan's own point lights.
@@ -296,13 +298,9 @@ class Session {
     const VisibleSet part = partial ? prefix(vs, shown) : VisibleSet{};
     const VisibleSet& use = partial ? part : vs;
     if (lines_) raster_of_drawing(draw_view(c_, line_scene(), cam, use), out);
-    else if (!shown_detail_.lamps && effects_at_eye_) {
-      HalftoneOptions at_eye = halftone_;
-      at_eye.lights = Lights::Eye;
-      render_view(c_, objects_, *effects_at_eye_, cam, use, at_eye, out, storage_);
-    } else {
-      render_view(c_, objects_, effects_, cam, use, halftone_, out, storage_);
-    }
+    else if (!shown_detail_.lamps && effects_at_eye_)
+      render_view(c_, objects_, *effects_at_eye_, cam, use, lit_at_eye(halftone_), out, storage_);
+    else render_view(c_, objects_, effects_, cam, use, halftone_, out, storage_);
   }
 
   /// Renders the view when it changed (or its detail did); false when the last frame still stands.
