@@ -43,13 +43,6 @@ struct Tally {
   long avenues = 0, pruned = 0, merged_avenues = 0;
 };
 
-/// The area of a polygon on the picture plane (either orientation).
-double polygon_area(const std::vector<Vec2>& p) {
-  double a = 0;
-  for (size_t i = 0; i < p.size(); ++i) a += p[i].x * p[(i + 1) % p.size()].y - p[(i + 1) % p.size()].x * p[i].y;
-  return 0.5 * std::fabs(a);
-}
-
 VisibleSet search(const CellComplex& c, const Camera& cam, CellId cell, Kernel k, bool prune) {
   TraverseParams p;
   p.kernel = k;
@@ -107,8 +100,8 @@ void expect_same_view(const Scene& s, const Camera& cam, CellId cell, bool exact
     EXPECT_LE(merged.avenues.size(), all.avenues.size());
     t.merged_avenues += long(merged.avenues.size());
     std::map<CellId, double> area_all, area_merged;
-    for (const Avenue& a : all.avenues) area_all[a.cell] += polygon_area(a.mask);
-    for (const Avenue& a : merged.avenues) area_merged[a.cell] += polygon_area(a.mask);
+    for (const Avenue& a : all.avenues) area_all[a.cell] += std::fabs(signed_area(a.mask));
+    for (const Avenue& a : merged.avenues) area_merged[a.cell] += std::fabs(signed_area(a.mask));
     const double tol = (k == Kernel::Float ? 1e-5 : 1e-9) * (1 + cam.half_width() * cam.half_height());
     for (const auto& [id, area] : area_all) EXPECT_NEAR(area_merged[id], area, tol) << "cell " << id;
     for (const Avenue& a : merged.avenues)
