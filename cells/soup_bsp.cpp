@@ -26,6 +26,9 @@
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Projection_traits_xy_3.h>
+#include <CGAL/Projection_traits_xz_3.h>
+#include <CGAL/Projection_traits_yz_3.h>
 #include <CGAL/convex_hull_2.h>
 #include <CGAL/intersections.h>
 
@@ -257,6 +260,8 @@ Where split(const Poly& p, const Pl& h, const Pl& o, Poly* neg, Poly* pos) {
 }
 
 Where split(const Poly& p, const Pl& h, Poly* neg, Poly* pos) { return split(p, h, opposite_of(h), neg, pos); }
+
+bool same_plane(const Pl& a, const Pl& b) { return CGAL::identical(a, b) || a == b; }
 
 /// The axis along which h's normal is largest (h is never parallel to it).
 int dominant_axis(const Pl& h) {
@@ -546,6 +551,132 @@ struct Contact {
   std::vector<Poly> open;    ///< not covered: portals (from the lower-numbered leaf)
 };
 
+/// The side of h (whose opposite_of is o) on which corner i of p lies: on it when p's
+/// support or one of the corner's two edges is h or o, known by identity; else side_of_vertex.
+Side side_of_corner(const Pl& h, const Pl& o, const Poly& p, size_t i) {
+  auto same = [&](const Pl& e) { return CGAL::identical(h, e) || CGAL::identical(o, e); };
+  const size_t n = p.v.size();
+  if (same(p.support) || same(p.e[i]) || same(p.e[(i + n - 1) % n])) return ON_ORIENTED_BOUNDARY;
+  return side_of_vertex(h, p, i);
+}
+
+/// Leaves joined into one convex cell (Teller 1992 §3 and qbsp merge a BSP's leaves the same
+/// way): every splitting plane runs on across the whole cell it cuts, far beyond the polygon
+/// it came from, so free space away from the scene ends up in many leaves whose common faces
+/// hold nothing. Two unions g and h are joined across a face when that face, on g's side and
+/// on h's, is open onto the other alone (no fragment on it: no opaque piece), and every corner
+/// of each lies inside every face plane of the other (but the shared one): then g ∪ h is the
+/// intersection of both sets of half-spaces, convex, exactly.
+struct Union {
+  struct Face {
+    Pl plane;                               ///< outward: every part's support
+    std::vector<std::pair<int, int>> parts; ///< (leaf, face of the leaf) on this plane
+  };
+  std::vector<int> leaves;  ///< empty once joined into another
+  std::vector<Face> faces;
+};
+
+std::vector<Union> join_leaves(const std::vector<Builder::Leaf>& leaves,
+                               const std::vector<std::vector<std::vector<Contact>>>& contacts, std::vector<int>& union_of) {
+  const size_t n = leaves.size();
+  std::vector<Union> u(n);
+  union_of.resize(n);
+  for (size_t l = 0; l < n; ++l) {
+    union_of[l] = int(l);
+    u[l].leaves = {int(l)};
+    for (size_t k = 0; k < leaves[l].faces.size(); ++k) u[l].faces.push_back({leaves[l].faces[k].poly.support, {{int(l), int(k)}}});
+  }
+  // The union that face f of union g is wholly open onto, or -1.
+  auto open_onto = [&](int g, const Union::Face& f) {
+    int h = -1;
+    for (const auto& [l, k] : f.parts) {
+      if (leaves[size_t(l)].faces[size_t(k)].id < 0) return -1;  // the far box
+      const std::vector<Contact>& cs = contacts[size_t(l)][size_t(k)];
+      if (cs.empty()) return -1;
+      for (const Contact& c : cs) {
+        const int o = union_of[size_t(c.other)];
+        if (!c.opaque.empty() || o == g || (h >= 0 && o != h)) return -1;
+        h = o;
+      }
+    }
+    return h;
+  };
+  // Every corner of a's faces but skip_a inside every face plane of b but skip_b.
+  auto inside = [&](const Union& a, size_t skip_a, const Union& b, size_t skip_b) {
+    for (size_t q = 0; q < b.faces.size(); ++q) {
+      if (q == skip_b) continue;
+      const Pl& h = b.faces[q].plane;
+      const Pl& o = opposite_of(h);
+      for (size_t f = 0; f < a.faces.size(); ++f) {
+        if (f == skip_a) continue;
+        for (const auto& [l, k] : a.faces[f].parts) {
+          const Poly& p = leaves[size_t(l)].faces[size_t(k)].poly;
+          for (size_t i = 0; i < p.v.size(); ++i)
+            if (side_of_corner(h, o, p, i) == ON_POSITIVE_SIDE) return false;
+        }
+      }
+    }
+    return true;
+  };
+  for (bool joined = true; joined;) {
+    joined = false;
+    for (size_t g = 0; g < n; ++g)
+      for (size_t f = 0; f < u[g].faces.size(); ++f) {
+        const int h = open_onto(int(g), u[g].faces[f]);
+        if (h < 0) continue;
+        Union &G = u[g], &H = u[size_t(h)];
+        const Pl& back = opposite_of(G.faces[f].plane);
+        size_t hf = 0;
+        while (hf < H.faces.size() && !same_plane(H.faces[hf].plane, back)) ++hf;
+        if (hf == H.faces.size() || open_onto(h, H.faces[hf]) != int(g)) continue;
+        if (!inside(H, hf, G, f) || !inside(G, f, H, hf)) continue;
+        std::vector<Union::Face> faces;
+        for (size_t q = 0; q < G.faces.size(); ++q)
+          if (q != f) faces.push_back(std::move(G.faces[q]));
+        const size_t from_g = faces.size();
+        for (size_t q = 0; q < H.faces.size(); ++q) {
+          if (q == hf) continue;
+          size_t j = 0;
+          while (j < from_g && !same_plane(faces[j].plane, H.faces[q].plane)) ++j;
+          if (j < from_g) faces[j].parts.insert(faces[j].parts.end(), H.faces[q].parts.begin(), H.faces[q].parts.end());
+          else faces.push_back(std::move(H.faces[q]));
+        }
+        G.faces = std::move(faces);
+        for (int l : H.leaves) union_of[size_t(l)] = int(g);
+        G.leaves.insert(G.leaves.end(), H.leaves.begin(), H.leaves.end());
+        H.leaves.clear();
+        H.faces.clear();
+        joined = true;
+        f = size_t(-1);  // g has new faces: look at them all again
+      }
+  }
+  return u;
+}
+
+/// The rounded corners of coplanar convex polygons whose union is convex (a union's face
+/// made of several leaves' faces), counter-clockwise seen from inside (about −n, n the
+/// outward normal): the hull of the rounded corners, with exact predicates on those doubles,
+/// so that corners the join leaves in the middle of a straight edge go.
+std::vector<Vec3> joined_face(const std::vector<const Poly*>& parts, Vec3 n) {
+  std::vector<Epick::Point_3> pts;
+  for (const Poly* p : parts)
+    for (const P3& q : p->v) {
+      const Vec3 r = rounded(q);
+      pts.emplace_back(r.x, r.y, r.z);
+    }
+  std::vector<Epick::Point_3> hull;
+  const double ax = std::fabs(n.x), ay = std::fabs(n.y), az = std::fabs(n.z);
+  if (ax >= ay && ax >= az) CGAL::convex_hull_2(pts.begin(), pts.end(), std::back_inserter(hull), CGAL::Projection_traits_yz_3<Epick>());
+  else if (ay >= az) CGAL::convex_hull_2(pts.begin(), pts.end(), std::back_inserter(hull), CGAL::Projection_traits_xz_3<Epick>());
+  else CGAL::convex_hull_2(pts.begin(), pts.end(), std::back_inserter(hull), CGAL::Projection_traits_xy_3<Epick>());
+  std::vector<Vec3> out;
+  for (const Epick::Point_3& p : hull) out.push_back({p.x(), p.y(), p.z()});
+  Vec3 newell{0, 0, 0};
+  for (size_t i = 0; i < out.size(); ++i) newell = newell + cross(out[i] - out[0], out[(i + 1) % out.size()] - out[0]);
+  if (dot(newell, n) > 0) std::reverse(out.begin(), out.end());
+  return out;
+}
+
 }  // namespace
 
 SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Box3& box, CellComplex& out) {
@@ -634,9 +765,21 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
     }
   }
 
-  // Portals, from the lower-numbered leaf of each pair: convex, counter-clockwise about
-  // its outward normal. A piece that rounds to no area stays opaque on both sides.
+  // Leaves joined into convex unions: the cells.
+  std::vector<int> union_of;
+  const std::vector<Union> unions = join_leaves(b.leaves, contacts, union_of);
+  std::vector<CellId> cell_of(unions.size(), kNoCell);
   const CellId base = CellId(out.cells.size());
+  {
+    CellId next = base;
+    for (size_t g = 0; g < unions.size(); ++g)
+      if (!unions[g].leaves.empty()) cell_of[g] = next++;
+  }
+  auto cell_of_leaf = [&](int l) { return cell_of[size_t(union_of[size_t(l)])]; };
+
+  // Portals, from the lower-numbered leaf of each pair in two cells: convex,
+  // counter-clockwise about its outward normal. A piece that rounds to no area stays opaque
+  // on both sides.
   const double tiny = 1e-18 * scale * scale;  // [m²]
   struct Shared {
     std::vector<PortalId> portals;
@@ -658,7 +801,7 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
     for (size_t k = 0; k < b.leaves[l].faces.size(); ++k) {
       const bool about_n = ccw_about_normal(b.leaves[l].faces[k].poly);
       for (const Contact& c : contacts[l][k]) {
-        if (c.other < int(l)) continue;
+        if (c.other < int(l) || cell_of_leaf(c.other) == cell_of_leaf(int(l))) continue;
         Shared& s = shared[{int(l), c.other}];
         for (const Poly& p : c.open) {
           std::vector<Vec3> poly = rounded(p, !about_n);
@@ -667,7 +810,7 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
             continue;
           }
           Portal portal;
-          portal.cell[0] = base + CellId(l), portal.cell[1] = base + CellId(c.other);
+          portal.cell[0] = cell_of_leaf(int(l)), portal.cell[1] = cell_of_leaf(c.other);
           portal.poly = std::move(poly);
           portal.plane = planes[l][k];
           portal.kind = PortalKind::Open;
@@ -678,8 +821,8 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
     }
 
   // The cells: faces rounded, counter-clockwise seen from inside (about −n).
-  for (size_t l = 0; l < b.leaves.size(); ++l) {
-    const Builder::Leaf& leaf = b.leaves[l];
+  for (const Union& un : unions) {
+    if (un.leaves.empty()) continue;
     Cell cell;
     cell.kind = CellKind::Outside;
     cell.prism = false;
@@ -688,32 +831,47 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
     // points took a fifth of the Viking room's time in comparisons of constructed points).
     std::vector<Epick::Point_2> xy;
     cell.z0 = HUGE_VAL, cell.z1 = -HUGE_VAL;
-    for (const CellFace& f : leaf.faces)
-      for (const P3& p : f.poly.v) {
-        const Vec3 q = rounded(p);
-        xy.emplace_back(q.x, q.y);
-        cell.z0 = std::min(cell.z0, q.z), cell.z1 = std::max(cell.z1, q.z);
-      }
+    for (const Union::Face& uf : un.faces)
+      for (const auto& [l, k] : uf.parts)
+        for (const P3& p : b.leaves[size_t(l)].faces[size_t(k)].poly.v) {
+          const Vec3 q = rounded(p);
+          xy.emplace_back(q.x, q.y);
+          cell.z0 = std::min(cell.z0, q.z), cell.z1 = std::max(cell.z1, q.z);
+        }
     std::vector<Epick::Point_2> hull;
     CGAL::convex_hull_2(xy.begin(), xy.end(), std::back_inserter(hull));
     for (const Epick::Point_2& p : hull) cell.footprint.push_back({p.x(), p.y()});
-    for (size_t k = 0; k < leaf.faces.size(); ++k) {
-      const CellFace& cf = leaf.faces[k];
-      const bool about_n = ccw_about_normal(cf.poly);
+    for (const Union::Face& uf : un.faces) {
       Face face;
-      face.plane = planes[l][k];
-      face.poly = rounded(cf.poly, about_n);
-      if (cf.id < 0) face.opaque.push_back({face.poly, -1});
-      for (const Contact& c : contacts[l][k]) {
-        for (size_t i = 0; i < c.opaque.size(); ++i) face.opaque.push_back({rounded(c.opaque[i], about_n), c.material[i]});
-        const bool lower = int(l) < c.other;
-        const auto it = shared.find(lower ? std::pair{int(l), c.other} : std::pair{c.other, int(l)});
-        if (it == shared.end()) continue;
-        for (PortalId p : it->second.portals) face.portals.push_back(p);
-        for (const std::vector<Vec3>& poly : it->second.closed) {
-          std::vector<Vec3> q = poly;
-          if (lower) std::reverse(q.begin(), q.end());
-          face.opaque.push_back({std::move(q), -1});
+      if (uf.parts.size() == 1) {
+        const auto [l, k] = uf.parts.front();
+        const CellFace& cf = b.leaves[size_t(l)].faces[size_t(k)];
+        face.plane = planes[size_t(l)][size_t(k)];
+        face.poly = rounded(cf.poly, ccw_about_normal(cf.poly));
+      } else {
+        std::vector<const Poly*> polys;
+        for (const auto& [l, k] : uf.parts) polys.push_back(&b.leaves[size_t(l)].faces[size_t(k)].poly);
+        face.plane.n = planes[size_t(uf.parts.front().first)][size_t(uf.parts.front().second)].n;
+        face.poly = joined_face(polys, face.plane.n);
+        double d = 0;
+        for (Vec3 p : face.poly) d -= dot(face.plane.n, p);
+        face.plane.d = d / double(face.poly.size());
+      }
+      for (const auto& [l, k] : uf.parts) {
+        const CellFace& cf = b.leaves[size_t(l)].faces[size_t(k)];
+        const bool about_n = ccw_about_normal(cf.poly);
+        if (cf.id < 0) face.opaque.push_back({rounded(cf.poly, about_n), -1});
+        for (const Contact& c : contacts[size_t(l)][size_t(k)]) {
+          for (size_t i = 0; i < c.opaque.size(); ++i) face.opaque.push_back({rounded(c.opaque[i], about_n), c.material[i]});
+          const bool lower = l < c.other;
+          const auto it = shared.find(lower ? std::pair{l, c.other} : std::pair{c.other, l});
+          if (it == shared.end()) continue;
+          for (PortalId p : it->second.portals) face.portals.push_back(p);
+          for (const std::vector<Vec3>& poly : it->second.closed) {
+            std::vector<Vec3> q = poly;
+            if (lower) std::reverse(q.begin(), q.end());
+            face.opaque.push_back({std::move(q), -1});
+          }
         }
       }
       cell.portals.insert(cell.portals.end(), face.portals.begin(), face.portals.end());
@@ -724,6 +882,7 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
                      [](const Face& x, const Face& y) { return x.portals.size() < y.portals.size(); });
     out.cells.push_back(std::move(cell));
   }
+  b.stats.cells = out.cells.size() - size_t(base);
   return b.stats;
 }
 

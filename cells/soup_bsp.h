@@ -28,7 +28,8 @@ struct SoupBspStats {
   size_t triangles = 0;      ///< non-degenerate triangles used
   std::vector<size_t> degenerate;  ///< input triangles with no area (collinear corners), dropped
   size_t nodes = 0;          ///< splitting planes in the tree
-  size_t leaves = 0;         ///< cells before rounding
+  size_t leaves = 0;         ///< leaves of the tree
+  size_t cells = 0;          ///< cells made of them (leaves joined where the union stays convex)
   size_t fragments = 0;      ///< pieces of triangles in leaves (triangles cut by splits)
   int depth = 0;             ///< deepest leaf
 };
@@ -39,7 +40,8 @@ struct SoupBspStats {
 /// leaf boundaries no triangle covers); opaque pieces are the parts covered by a
 /// triangle and the far box's faces. Splitting planes: the triangles' own planes, chosen
 /// at each node by a cheap cost (splits and balance on a sample of the node's
-/// triangles, axis-aligned planes preferred). Leaves are not merged.
+/// triangles, axis-aligned planes preferred). Leaves are then joined across faces that
+/// hold nothing wherever the union stays convex, exactly: one cell is then several leaves.
 SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Box3& far_box, CellComplex& out);
 
 }  // namespace avenues

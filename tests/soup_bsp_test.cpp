@@ -17,6 +17,7 @@
 using namespace avenues;
 using avenues::testing::box_volume;
 using avenues::testing::free_volume;
+using avenues::testing::mesh_from;
 using avenues::testing::expect_soup_views_agree_with_rays;
 using avenues::testing::outside_path;
 using avenues::testing::triangles_missing_from_export;
@@ -95,6 +96,84 @@ TEST(SoupBsp, AnOpenCubeLetsFreeSpaceFlowInWithNoRepair) {
   // The open side's four edges are sheet lines.
   EXPECT_EQ(std::count_if(c.lines.begin(), c.lines.end(), [](const RealLine& l) { return l.kind == LineKind::Sheet; }), 4);
   expect_soup_views_agree_with_rays(c, 12, 17, 96, 64, 1);
+}
+
+// The tree's leaves are joined where their union stays convex: a grid of open boxes (a
+// floor and four walls each) slices the space around it into many leaves; fewer cells come
+// out, each still convex and sound, and no two cells are left that could be joined (a face
+// wholly open onto one cell whose facing face is wholly open back, with every corner of each
+// inside the other's other face planes).
+TEST(SoupBsp, LeavesAreJoinedWhereTheUnionStaysConvex) {
+  Mesh m;
+  m.path = "open-boxes.obj";
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const double x = 2.0 * i, y = 2.5 * j;
+      const Mesh b = mesh_from({{x, y, 0}, {x + 1, y, 0}, {x + 1, y + 1, 0}, {x, y + 1, 0}, {x, y, 1}, {x + 1, y, 1},
+                                {x + 1, y + 1, 1}, {x, y + 1, 1}},
+                               {{0, 3, 2, 1}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}});
+      const int base = int(m.vertices.size()), poly = m.polygon_of.empty() ? 0 : m.polygon_of.back() + 1;
+      m.vertices.insert(m.vertices.end(), b.vertices.begin(), b.vertices.end());
+      for (size_t t = 0; t < b.triangles.size(); ++t) {
+        m.triangles.push_back({b.triangles[t][0] + base, b.triangles[t][1] + base, b.triangles[t][2] + base});
+        m.polygon_of.push_back(poly + b.polygon_of[t]);
+      }
+    }
+  std::vector<SoupTriangle> soup;
+  for (const auto& t : m.triangles) soup.push_back({{m.vertices[size_t(t[0])], m.vertices[size_t(t[1])], m.vertices[size_t(t[2])]}});
+  CellComplex direct;
+  direct.far_box = {{-3, -3, -3}, {9, 11, 4}};
+  const SoupBspStats stats = decompose_soup(soup, direct.far_box, direct);
+  EXPECT_LT(stats.cells, stats.leaves);
+  EXPECT_EQ(stats.cells, direct.cells.size());
+
+  const CellComplex c = build_mesh_scene({m});
+  ASSERT_EQ(cells_are_valid(c), "");
+  EXPECT_NEAR(free_volume(c), box_volume(c.far_box), 1e-9 * box_volume(c.far_box));
+  EXPECT_EQ(triangles_missing_from_export(c, {m}), 0);
+  auto corners = [](const Cell& cell) {
+    std::vector<Vec3> v;
+    for (const Face& f : cell.faces) v.insert(v.end(), f.poly.begin(), f.poly.end());
+    return v;
+  };
+  auto area = [](const std::vector<Vec3>& p) {
+    Vec3 s{0, 0, 0};
+    for (size_t i = 1; i + 1 < p.size(); ++i) s = s + cross(p[i] - p[0], p[i + 1] - p[0]);
+    return length(s) / 2;
+  };
+  // The cell a face is wholly open onto (its portals cover it, all to that cell), else -1.
+  auto open_onto = [&](CellId self, const Face& f) {
+    CellId other = kNoCell;
+    double covered = 0;
+    for (PortalId p : f.portals) {
+      const CellId o = c.portals[size_t(p)].other(self);
+      if (other != kNoCell && o != other) return kNoCell;
+      other = o;
+      covered += area(c.portals[size_t(p)].poly);
+    }
+    return std::fabs(covered - area(f.poly)) < 1e-9 * std::max(1.0, area(f.poly)) ? other : kNoCell;
+  };
+  auto inside_others = [&](const Cell& a, const Face& shared, const Cell& b) {
+    for (const Face& f : b.faces) {
+      if (dot(f.plane.n, shared.plane.n) < -1 + 1e-12) continue;  // b's face on the shared plane
+      for (Vec3 v : corners(a))
+        if (f.plane.eval(v) > 1e-9) return false;
+    }
+    return true;
+  };
+  size_t joinable = 0;
+  for (CellId i = 0; i < CellId(c.cells.size()); ++i)
+    for (const Face& f : c.cells[size_t(i)].faces) {
+      const CellId j = open_onto(i, f);
+      if (j == kNoCell) continue;
+      const Cell &a = c.cells[size_t(i)], &b = c.cells[size_t(j)];
+      for (const Face& g : b.faces)
+        if (dot(g.plane.n, f.plane.n) < -1 + 1e-12 && std::fabs(g.plane.d + f.plane.d) < 1e-9 && open_onto(j, g) == i &&
+            inside_others(a, f, b) && inside_others(b, g, a))
+          ++joinable;
+    }
+  EXPECT_EQ(joinable, 0u);
+  expect_soup_views_agree_with_rays(c, 12, 21, 96, 64, 1);
 }
 
 TEST(SoupBsp, CrossingTrianglesAreCutWhereTheyMeetAndADegenerateOneIsReported) {
