@@ -20,8 +20,10 @@
 //               as boundary. A cell all of whose fragments lie on its boundary is a leaf.
 //   cells     — each leaf face not on the far box is pushed down the other side of the
 //               node that made it, into the pieces facing each neighbouring leaf; each piece
-//               minus the leaf's fragments on that face is portal, the rest opaque. Rounded
-//               to double once.
+//               minus the leaf's fragments on that face is portal, the rest opaque. Leaves
+//               are then joined across faces wholly open between them wherever the union
+//               stays convex (join_leaves), and the joined faces' outlines made from the
+//               rounded corners. Rounded to double once.
 #include "cells/soup_bsp.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
