@@ -104,14 +104,16 @@ class Session {
     progressive_ = opt.progressive;
     hud_on_ = opt.hud;
     std::vector<std::string> said;  // what reading the objects' meshes let pass
-    objects_ = place_objects(c_, &said);
+    ObjectModels models;  // as read, for their coarser versions
+    objects_ = place_objects(c_, &said, false, &models);
     print_warnings(plan.path, said);
     // The furniture's coarser versions take a second or two in a furnished home: made on a
     // thread of their own while the first frames are drawn in full, handed over when ready
     // (at once, before the first frame, when a script or --frames drives the walk, so that
     // its frames do not depend on how fast this machine is).
     if (opt.detail > 0 && !objects_.empty())
-      coarser_ = std::async(std::launch::async, [this] { return coarser_versions(c_); });
+      coarser_ = std::async(std::launch::async,
+                            [this, models = std::move(models)] { return coarser_versions(c_, models); });
     // Which effects the scene calls for, decided once (and its shadows cast once): deciding
     // means testing the furniture's triangles for crossings, far too dear for every frame.
     effects_ = prepare_effects(c_, objects_, halftone_, kernel_);

@@ -44,7 +44,7 @@ double floor_of(const CellComplex& complex, const Object& o) {
 
 /// Each object's coarser versions from its model among `models` (by mesh_key), each
 /// distinct model made coarser once, then placed as the object is.
-std::vector<std::vector<MeshLevel>> placed_levels(const CellComplex& complex, const std::map<std::string, Mesh>& models) {
+std::vector<std::vector<MeshLevel>> placed_levels(const CellComplex& complex, const ObjectModels& models) {
   std::vector<const Mesh*> meshes;
   for (const auto& entry : models) meshes.push_back(&entry.second);
   std::vector<std::vector<MeshLevel>> made =
@@ -65,16 +65,14 @@ std::vector<std::vector<MeshLevel>> placed_levels(const CellComplex& complex, co
 }
 }  // namespace
 
-std::vector<std::vector<MeshLevel>> coarser_versions(const CellComplex& complex) {
-  std::map<std::string, Mesh> models;
-  for (const Object& o : complex.objects)
-    if (models.find(mesh_key(o)) == models.end()) models.emplace(mesh_key(o), load_object_mesh(o));
+std::vector<std::vector<MeshLevel>> coarser_versions(const CellComplex& complex, const ObjectModels& models) {
   return placed_levels(complex, models);
 }
 
-std::vector<PlacedObject> place_objects(const CellComplex& complex, std::vector<std::string>* warnings, bool coarser) {
+std::vector<PlacedObject> place_objects(const CellComplex& complex, std::vector<std::string>* warnings, bool coarser,
+                                        ObjectModels* models_read) {
   std::vector<PlacedObject> out;
-  std::map<std::string, Mesh> loaded;
+  ObjectModels loaded;
   CellId hint = kNoCell;
   for (const Object& o : complex.objects) {
     auto it = loaded.find(mesh_key(o));
@@ -99,6 +97,7 @@ std::vector<PlacedObject> place_objects(const CellComplex& complex, std::vector<
     std::vector<std::vector<MeshLevel>> levels = placed_levels(complex, loaded);
     for (size_t i = 0; i < out.size(); ++i) out[i].coarser = std::move(levels[i]);
   }
+  if (models_read) *models_read = std::move(loaded);
   return out;
 }
 

@@ -2,6 +2,7 @@
 // cells, or meshes alone (the papers' scenes).
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -50,14 +51,21 @@ inline constexpr double kDetailFractions[] = {1.0 / 1000, 1.0 / 250, 1.0 / 60};
 /// when given, once per mesh file.
 /// With `coarser`, every object also gets its coarser versions (coarser_versions), for
 /// films, whose many frames repay the second or two it takes in a furnished home.
+/// The distinct models of a complex's objects as read, by mesh_key.
+using ObjectModels = std::map<std::string, Mesh>;
+
+/// With `models_read`, the models it read are kept there (for coarser_versions later,
+/// without reading them again).
 std::vector<PlacedObject> place_objects(const CellComplex& complex, std::vector<std::string>* warnings = nullptr,
-                                        bool coarser = false);
+                                        bool coarser = false, ObjectModels* models_read = nullptr);
 
 /// Each object's coarser versions (PlacedObject::coarser), in the order of complex.objects:
 /// every distinct model of 500 triangles or more made coarser once (plans/mesh_detail.h,
 /// tolerances kDetailFractions of its box's diagonal, the models spread over TBB's threads),
 /// then placed as each object is. Safe to run on a thread of its own while the objects
 /// placed without them are drawn (the walkthrough hands them over when they are ready).
-std::vector<std::vector<MeshLevel>> coarser_versions(const CellComplex& complex);
+/// `models`: the objects' models as place_objects read them (ObjectModels), so no file is
+/// read again.
+std::vector<std::vector<MeshLevel>> coarser_versions(const CellComplex& complex, const ObjectModels& models);
 
 }  // namespace avenues
