@@ -22,6 +22,7 @@
 
 #include "cells/build_cells.h"
 #include "core/angles.h"
+#include "cells/solid_insides.h"
 #include "cells/soup_bsp.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
@@ -388,8 +389,8 @@ void drop_slivers(CellComplex& out) {
   const double scale = std::max({1.0, std::fabs(fb.lo.x), std::fabs(fb.hi.x), std::fabs(fb.lo.y), std::fabs(fb.hi.y),
                                  std::fabs(fb.lo.z), std::fabs(fb.hi.z)});
   const double thin = 1e-9 * scale;
-  std::vector<CellId> new_id(out.cells.size(), kNoCell);
-  CellId kept = 0;
+  std::vector<bool> sliver(out.cells.size(), false);
+  size_t dropped = 0;
   double thinnest = HUGE_VAL;
   for (size_t i = 0; i < out.cells.size(); ++i) {
     const Cell& cell = out.cells[i];
@@ -400,13 +401,26 @@ void drop_slivers(CellComplex& out) {
         for (Vec3 v : g.poly) depth = std::max(depth, -f.plane.eval(v));
       width = std::min(width, depth);
     }
-    const bool sliver = cell.faces.size() < 4 || cell.footprint.size() < 3 || !(width > thin) ||
-                        !(signed_area(cell.footprint) > thin * thin) || !(cell.z1 > cell.z0);
-    if (sliver) thinnest = std::min(thinnest, width);
-    else new_id[i] = kept++;
+    sliver[i] = cell.faces.size() < 4 || cell.footprint.size() < 3 || !(width > thin) ||
+                !(signed_area(cell.footprint) > thin * thin) || !(cell.z1 > cell.z0);
+    if (sliver[i]) thinnest = std::min(thinnest, width), ++dropped;
   }
+  if (dropped == 0) return;
+  remove_cells(out, sliver);
+  char what[200];
+  std::snprintf(what, sizeof what,
+                "%zu slivers of free space thinner than %.3g m (the thinnest %.3g m), left by rounding the exact cells "
+                "to double, were dropped; the portals into them became opaque",
+                dropped, thin, std::max(thinnest, 0.0));
+  out.warnings.push_back(what);
+}
+
+void remove_cells(CellComplex& out, const std::vector<bool>& drop) {
+  std::vector<CellId> new_id(out.cells.size(), kNoCell);
+  CellId kept = 0;
+  for (size_t i = 0; i < out.cells.size(); ++i)
+    if (!drop[i]) new_id[i] = kept++;
   if (kept == CellId(out.cells.size())) return;
-  const size_t dropped = out.cells.size() - size_t(kept);
   std::vector<PortalId> new_portal(out.portals.size(), -1);
   std::vector<Portal> portals;
   for (size_t p = 0; p < out.portals.size(); ++p) {
@@ -428,7 +442,7 @@ void drop_slivers(CellComplex& out) {
           keep.push_back(new_portal[size_t(p)]);
           continue;
         }
-        // Into a sliver: opaque now, counter-clockwise seen from this cell.
+        // Into a dropped cell: opaque now, counter-clockwise seen from this cell.
         const Portal& q = out.portals[size_t(p)];
         std::vector<Vec3> poly = q.poly;
         if (q.cell[0] == CellId(i)) std::reverse(poly.begin(), poly.end());
@@ -441,12 +455,6 @@ void drop_slivers(CellComplex& out) {
   }
   out.cells = std::move(cells);
   out.portals = std::move(portals);
-  char what[200];
-  std::snprintf(what, sizeof what,
-                "%zu slivers of free space thinner than %.3g m (the thinnest %.3g m), left by rounding the exact cells "
-                "to double, were dropped; the portals into them became opaque",
-                dropped, thin, std::max(thinnest, 0.0));
-  out.warnings.push_back(what);
 }
 
 namespace {
@@ -770,23 +778,6 @@ void frame_scene(CellComplex& out, const Box3& box, double m) {
   out.view = Viewpoint{eye, middle, std::clamp(fov, 40.0, 120.0)};
 }
 
-/// The generalized winding number of the triangles about p (Jacobson et al. 2013): the sum
-/// of their solid angles seen from p (Van Oosterom and Strackee's formula) over 4π. About 1
-/// inside a closed surface whose triangles turn counter-clockwise seen from outside (a
-/// solid), about −1 inside one turned the other way (a room modelled from inside), about 0
-/// outside both or inside one of each (a room within a building's shell).
-double winding_number(const std::vector<SoupTriangle>& soup, Vec3 p) {
-  double sum = 0;
-  for (const SoupTriangle& t : soup) {
-    const Vec3 a = t.p[0] - p, b = t.p[1] - p, c = t.p[2] - p;
-    const double la = length(a), lb = length(b), lc = length(c);
-    const double num = dot(a, cross(b, c));
-    const double den = la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb;
-    sum += 2 * std::atan2(num, den);
-  }
-  return sum / (4 * std::numbers::pi);
-}
-
 /// The first view inside the scene's largest enclosed free region, where it has one: free
 /// space that no portal joins to the far box's (the inside of a closed house, a room with
 /// its door shut), of at least a tenth of the scene's box, and not inside a closed solid
@@ -877,6 +868,23 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     out.warnings.push_back((meshes[mesh].path.empty() ? std::string("mesh") : meshes[mesh].path) + ": " +
                            std::to_string(count) + " triangles with no area (corners on a line): dropped");
   drop_slivers(out);
+  {
+    // A closed, outward-oriented solid is seen from outside only: the cells inside it go.
+    ScopedStageTimer t(out.timings, "solids");
+    const std::vector<ClosedSolid> solids = closed_solids(meshes);
+    const std::vector<int> inside = cells_inside_solids(out, solids);
+    std::vector<bool> drop(inside.size());
+    std::vector<bool> named(solids.size(), false);
+    for (size_t i = 0; i < inside.size(); ++i)
+      if ((drop[i] = inside[i] >= 0)) named[size_t(inside[i])] = true;
+    remove_cells(out, drop);
+    for (size_t k = 0; k < solids.size(); ++k) {
+      if (!named[k]) continue;
+      const Box3& b = solids[k].box;
+      out.solids.push_back({{{b.lo.x, b.lo.y}, {b.hi.x, b.lo.y}, {b.hi.x, b.hi.y}, {b.lo.x, b.hi.y}}, b.lo.z, b.hi.z,
+                            solids[k].name});
+    }
+  }
   out.index();  // before the lines: add_real_lines takes its candidate cells from it
   view_inside_largest_region(out, box, soup);
   {

@@ -23,8 +23,9 @@ namespace avenues {
 /// How a mesh scene's free space is cut into cells.
 enum class MeshSceneMethod : uint8_t {
   /// A BSP of the polygons themselves (cells/soup_bsp.h): every polygon an opaque surface
-  /// seen from both sides, nothing closed or repaired; free space is all the rest of the
-  /// far box, including the insides of closed meshes.
+  /// seen from both sides unless it belongs to a closed, outward-oriented solid (seen from
+  /// outside only: its inside is not free space, cells/solid_insides.h), nothing closed or
+  /// repaired; free space is all the rest of the far box.
   Bsp,
   /// The far box minus the meshes as closed solids (CGAL Nef polyhedra), open parts
   /// repaired into hulls and plates: the former path, kept for comparison.
@@ -44,7 +45,9 @@ struct MeshSceneParams {
 
 /// The free space of meshes as convex cells (Cell::prism = false, CellKind::Outside), by
 /// params.method. Bsp: every triangle is opaque from both sides (CellComplex::warnings
-/// counts those with no area, dropped); faces of the far box are opaque; portals
+/// counts those with no area, dropped), except that the inside of a closed, outward-oriented
+/// component is solid (CellComplex::solids names it for locate); faces of the far box are
+/// opaque; portals
 /// (PortalKind::Open) are the rest of the cells' boundaries. Real lines: the edges between
 /// polygons that are not coplanar, and the open edges of surfaces (LineKind::Sheet).
 ///
@@ -76,6 +79,10 @@ void add_real_lines(CellComplex& complex, const std::vector<RealLine>& lines);
 /// far box's scale across some face, or with no outline from above); the portals into
 /// them become opaque pieces of their neighbours' faces, and one warning counts them.
 void drop_slivers(CellComplex& complex);
+
+/// Drops the cells marked in `drop` (one flag per cell), renumbering the rest; a portal
+/// into a dropped cell becomes an opaque piece of its kept neighbour's face.
+void remove_cells(CellComplex& complex, const std::vector<bool>& drop);
 
 /// The connected components of a mesh (triangles joined by shared vertices), each a mesh
 /// of its own with the vertices it uses; polygon_of is kept (renumbered from 0).

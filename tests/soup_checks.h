@@ -13,6 +13,7 @@
 #include <string>
 
 #include "cells/mesh_scene.h"
+#include "cells/solid_insides.h"
 #include "ray_oracle.h"
 #include "test_files.h"
 #include "visibility/visible_set.h"
@@ -21,9 +22,11 @@ namespace avenues::testing {
 
 
 /// Input triangles (of some area) with no opaque piece of the complex covering their
-/// centroid, on their plane. Each triangle is looked up among the opaque pieces whose
-/// bounds hold the centroid.
-inline int triangles_missing_from_export(const CellComplex& c, const std::vector<Mesh>& meshes) {
+/// centroid, on their plane, as (mesh, triangle) indices. Each triangle is looked up among
+/// the opaque pieces whose bounds hold the centroid. `near` [m]: how far off the triangle's
+/// plane a covering piece may lie (0: the rounding of one coordinate, 1e-9 of the far box).
+inline std::vector<std::pair<size_t, size_t>> missing_triangles(const CellComplex& c, const std::vector<Mesh>& meshes,
+                                                                double near = 0) {
   struct Piece {
     const OpaquePoly* op;
     const Face* face;
@@ -40,10 +43,12 @@ inline int triangles_missing_from_export(const CellComplex& c, const std::vector
   std::sort(pieces.begin(), pieces.end(), [](const Piece& a, const Piece& b) { return a.box.lo.x < b.box.lo.x; });
   const double scale = std::max({1.0, std::fabs(c.far_box.lo.x), std::fabs(c.far_box.hi.x), std::fabs(c.far_box.lo.y),
                                  std::fabs(c.far_box.hi.y), std::fabs(c.far_box.lo.z), std::fabs(c.far_box.hi.z)});
-  const double tol = 1e-9 * scale;
-  int missing = 0;
-  for (const Mesh& m : meshes)
-    for (const auto& t : m.triangles) {
+  const double tol = std::max(near, 1e-9 * scale);
+  std::vector<std::pair<size_t, size_t>> missing;
+  for (size_t mi = 0; mi < meshes.size(); ++mi)
+    for (size_t ti = 0; ti < meshes[mi].triangles.size(); ++ti) {
+      const Mesh& m = meshes[mi];
+      const auto& t = m.triangles[ti];
       const Vec3 a = m.vertices[size_t(t[0])], b = m.vertices[size_t(t[1])], d = m.vertices[size_t(t[2])];
       const Vec3 n = cross(b - a, d - a);
       if (!(length(n) > 1e-20 * scale * scale)) continue;  // no area: dropped, with a warning
@@ -61,9 +66,52 @@ inline int triangles_missing_from_export(const CellComplex& c, const std::vector
           break;
         }
       }
-      missing += !found;
+      if (!found) missing.emplace_back(mi, ti);
     }
   return missing;
+}
+
+/// How many input triangles missing_triangles finds.
+inline int triangles_missing_from_export(const CellComplex& c, const std::vector<Mesh>& meshes) {
+  return int(missing_triangles(c, meshes).size());
+}
+
+/// Whether p lies inside a closed, outward-oriented solid of the meshes (closed_solids):
+/// their winding numbers about it sum to over ½.
+inline bool inside_closed_solid(const std::vector<ClosedSolid>& solids, Vec3 p) {
+  double w = 0;
+  for (const ClosedSolid& s : solids)
+    if (s.box.contains(p, 1e-9 * length(s.box.hi - s.box.lo))) w += winding_number(s.triangles, p);  // else about 0
+  return w > 0.5;
+}
+
+/// Input triangles missing from the export (triangles_missing_from_export) that someone
+/// could see: those with a side not inside a closed solid, and not hidden by another
+/// surface within a micrometre of them (coincident faces of two elements, of which the
+/// complex keeps the one in front). A triangle between two solids that touch, or inside a
+/// solid, is seen from neither side, and is not counted. Its sides are tested a micrometre
+/// off its centroid.
+inline int visible_triangles_missing_from_export(const CellComplex& c, const std::vector<Mesh>& meshes) {
+  const std::vector<ClosedSolid> solids = closed_solids(meshes);
+  int missing = 0;
+  for (const auto& [mi, ti] : missing_triangles(c, meshes, 1e-6)) {
+    const Mesh& m = meshes[mi];
+    const auto& t = m.triangles[ti];
+    const Vec3 a = m.vertices[size_t(t[0])], b = m.vertices[size_t(t[1])], d = m.vertices[size_t(t[2])];
+    const Vec3 g = (1.0 / 3) * (a + b + d);
+    Vec3 n = cross(b - a, d - a);
+    n = (1e-6 / length(n)) * n;
+    missing += !inside_closed_solid(solids, g + n) || !inside_closed_solid(solids, g - n);
+  }
+  return missing;
+}
+
+/// The volume of the meshes' closed solids (closed_solids), which are not free space:
+/// with solids that do not overlap, the far box's volume less this is the free volume.
+inline double closed_solids_volume(const std::vector<Mesh>& meshes) {
+  double v = 0;
+  for (const ClosedSolid& s : closed_solids(meshes)) v += s.volume;
+  return v;
 }
 
 /// `views` random views from random cells at `width` × `height`, one ray every `step`
