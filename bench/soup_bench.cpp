@@ -7,14 +7,17 @@
 // duplex IFC model read as a soup (Assimp's triangles, 12,718) in <= 10 s; on a
 // k x k grid of open boxes (k = 4..64, 10 k^2 triangles) the time per triangle growing no
 // faster than log n. The Nef path runs once on the Viking room and on the small grids
-// (it takes minutes beyond). Counters: triangles, cells, portals.
+// (it takes minutes beyond). Counters: triangles, cells, portals, and each stage's seconds;
+// `bsp-1-thread` is the same decomposition with TBB held to one thread.
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <benchmark/benchmark.h>
+#include <tbb/global_control.h>
 
 #include "cells/mesh_scene.h"
 
@@ -47,9 +50,13 @@ Mesh open_boxes(int k) {
   return m;
 }
 
-void decompose(benchmark::State& state, const std::vector<Mesh>& meshes, MeshSceneMethod method) {
+/// Decomposes the meshes once an iteration; `threads` > 0 caps TBB's threads (1: the
+/// one-thread peer of the same code, in the same process).
+void decompose(benchmark::State& state, const std::vector<Mesh>& meshes, MeshSceneMethod method, int threads) {
   MeshSceneParams params;
   params.method = method;
+  std::optional<tbb::global_control> cap;
+  if (threads > 0) cap.emplace(tbb::global_control::max_allowed_parallelism, size_t(threads));
   CellComplex c;
   for (auto _ : state) {
     try {
@@ -67,6 +74,18 @@ void decompose(benchmark::State& state, const std::vector<Mesh>& meshes, MeshSce
   state.counters["portals"] = double(c.portals.size());
   state.counters["us_per_triangle"] = benchmark::Counter(1e-6 * double(triangles),
                                                          benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  // The last iteration's stages [s]: where the time goes.
+  for (const StageTime& t : c.timings) state.counters[t.stage + "_s"] = t.seconds;
+}
+
+void decompose_bsp(benchmark::State& state, const std::vector<Mesh>& meshes) {
+  decompose(state, meshes, MeshSceneMethod::Bsp, 0);
+}
+void decompose_bsp_one_thread(benchmark::State& state, const std::vector<Mesh>& meshes) {
+  decompose(state, meshes, MeshSceneMethod::Bsp, 1);
+}
+void decompose_nef(benchmark::State& state, const std::vector<Mesh>& meshes) {
+  decompose(state, meshes, MeshSceneMethod::Nef, 0);
 }
 
 [[maybe_unused]] const bool registered = [] {
@@ -76,10 +95,11 @@ void decompose(benchmark::State& state, const std::vector<Mesh>& meshes, MeshSce
   } catch (const std::exception&) {
   }
   if (!viking.empty()) {
-    benchmark::RegisterBenchmark("soup/viking-room/bsp", decompose, viking, MeshSceneMethod::Bsp)
+    benchmark::RegisterBenchmark("soup/viking-room/bsp", decompose_bsp, viking)->Unit(benchmark::kSecond)->Iterations(1);
+    benchmark::RegisterBenchmark("soup/viking-room/bsp-1-thread", decompose_bsp_one_thread, viking)
         ->Unit(benchmark::kSecond)
         ->Iterations(1);
-    benchmark::RegisterBenchmark("soup/viking-room/nef", decompose, viking, MeshSceneMethod::Nef)
+    benchmark::RegisterBenchmark("soup/viking-room/nef", decompose_nef, viking)
         ->Unit(benchmark::kSecond)
         ->Iterations(1);
   }
@@ -88,19 +108,19 @@ void decompose(benchmark::State& state, const std::vector<Mesh>& meshes, MeshSce
     duplex.push_back(load_mesh(outside("ifc/duplex.ifc")));
   } catch (const std::exception&) {
   }
-  if (!duplex.empty())
-    benchmark::RegisterBenchmark("soup/duplex/bsp", decompose, duplex, MeshSceneMethod::Bsp)
+  if (!duplex.empty()) {
+    benchmark::RegisterBenchmark("soup/duplex/bsp", decompose_bsp, duplex)->Unit(benchmark::kSecond)->Iterations(1);
+    benchmark::RegisterBenchmark("soup/duplex/bsp-1-thread", decompose_bsp_one_thread, duplex)
         ->Unit(benchmark::kSecond)
         ->Iterations(1);
+  }
   for (int k : {4, 8, 16, 32, 64}) {
     const std::vector<Mesh> boxes{open_boxes(k)};
-    benchmark::RegisterBenchmark(("soup/open-boxes-" + std::to_string(k) + "/bsp").c_str(), decompose, boxes,
-                                 MeshSceneMethod::Bsp)
+    benchmark::RegisterBenchmark(("soup/open-boxes-" + std::to_string(k) + "/bsp").c_str(), decompose_bsp, boxes)
         ->Unit(benchmark::kSecond)
         ->Iterations(1);
     if (k <= 8)
-      benchmark::RegisterBenchmark(("soup/open-boxes-" + std::to_string(k) + "/nef").c_str(), decompose, boxes,
-                                   MeshSceneMethod::Nef)
+      benchmark::RegisterBenchmark(("soup/open-boxes-" + std::to_string(k) + "/nef").c_str(), decompose_nef, boxes)
           ->Unit(benchmark::kSecond)
           ->Iterations(1);
   }

@@ -35,6 +35,8 @@
 #include <CGAL/intersections.h>
 
 #include <boost/container/small_vector.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
@@ -44,6 +46,10 @@
 #include <optional>
 #include <stdexcept>
 #include <unordered_map>
+
+#ifndef CGAL_HAS_THREADS
+#error "soup_bsp.cpp shares CGAL's lazy numbers between threads: it needs CGAL_HAS_THREADS"
+#endif
 
 namespace avenues {
 
@@ -728,7 +734,9 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
   }
 
   ScopedStageTimer timer(out.timings, "cells");
-  // What each leaf sees across each face, exact.
+  // What each leaf sees across each face, exact. (In order, on one thread: where a side
+  // test falls back to exact points, it settles them, and how each point is later rounded
+  // depends on that; threads would make the output depend on their timing.)
   std::vector<std::vector<std::vector<Contact>>> contacts(b.leaves.size());
   for (size_t l = 0; l < b.leaves.size(); ++l) {
     const Builder::Leaf& leaf = b.leaves[l];
@@ -788,6 +796,25 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
     std::vector<std::vector<Vec3>> closed;  ///< counter-clockwise about the lower leaf's outward normal
   };
   std::map<std::pair<int, int>, Shared> shared;
+  // Every point to be rounded below made tight first (rounded: the exact value where the
+  // interval is wide), in parallel: whether a point is made exact depends only on its
+  // interval before this pass, not on the threads; what follows then reads settled
+  // intervals only, so each point rounds to the same double wherever it is rounded.
+  // CGAL's lazy numbers are safe to share between threads (CGAL_HAS_THREADS: their exact
+  // values are made once, under std::call_once).
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, b.leaves.size(), 64), [&](const tbb::blocked_range<size_t>& range) {
+    auto tighten = [](const Poly& p) {
+      for (const P3& q : p.v) rounded(q);
+    };
+    for (size_t l = range.begin(); l != range.end(); ++l)
+      for (size_t k = 0; k < b.leaves[l].faces.size(); ++k) {
+        tighten(b.leaves[l].faces[k].poly);
+        for (const Contact& c : contacts[l][k]) {
+          for (const Poly& p : c.opaque) tighten(p);
+          for (const Poly& p : c.open) tighten(p);
+        }
+      }
+  });
   std::vector<std::vector<Plane>> planes(b.leaves.size());
   for (size_t l = 0; l < b.leaves.size(); ++l)
     for (const CellFace& face : b.leaves[l].faces) {

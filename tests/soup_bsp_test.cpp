@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include <tbb/global_control.h>
+
 #include "cells/build_cells.h"
 #include "cells/mesh_scene.h"
 #include "cells/solid_insides.h"
@@ -272,6 +274,26 @@ TEST(SoupBsp, LeavesAreJoinedWhereTheUnionStaysConvex) {
     }
   EXPECT_EQ(joinable, 0u);
   expect_soup_views_agree_with_rays(c, 12, 21, 96, 64, 1);
+}
+
+// The decomposition settles its points' exact values on two threads where there are two
+// (the pass before rounding): the cells come out the same, to the bit, on one thread.
+TEST(SoupBsp, OneThreadOrManyMakeTheSameCellsToTheBit) {
+  std::vector<Mesh> meshes;
+  for (const char* f : {"meshes/alpine-cabin/house.obj", "meshes/alpine-cabin/roof.obj", "meshes/CornellBox-Original.obj"})
+    meshes.push_back(load_mesh(outside_path(f)));
+  auto bytes = [&](CellComplex c) {
+    c.timings.clear();
+    return cells_bytes(c);
+  };
+  const std::string many = bytes(build_mesh_scene(meshes));
+  std::string one;
+  {
+    tbb::global_control cap(tbb::global_control::max_allowed_parallelism, 1);
+    one = bytes(build_mesh_scene(meshes));
+  }
+  EXPECT_EQ(many.size(), one.size());
+  EXPECT_TRUE(many == one);
 }
 
 TEST(SoupBsp, CrossingTrianglesAreCutWhereTheyMeetAndADegenerateOneIsReported) {
