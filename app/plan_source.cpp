@@ -109,10 +109,14 @@ PlanSpec parse_plan_spec(const std::string& plan) {
     }
   }
   spec.format = detect_format(spec.file);
-  // Models other readers know only by extension (glTF is JSON, which would pass for text).
-  if ((spec.format == FileFormat::Toml || spec.format == FileFormat::Unknown) &&
-      format_of_extension(spec.file) == FileFormat::Unknown &&
-      assimp_reads_extension(lower(fs::path(spec.file).extension().string())))
+  // Models other readers know only by extension: glTF is JSON, which would pass for text;
+  // a 3MF model is a zip archive, as a Sweet Home home is; a Blender file saved compressed
+  // is gzip. Where the content says only that much, an extension Assimp reads decides.
+  const std::string ext = lower(fs::path(spec.file).extension().string());
+  const bool container = spec.format == FileFormat::Gzip || (spec.format == FileFormat::SweetHome &&
+                                                             format_of_extension(spec.file) != FileFormat::SweetHome);
+  if ((spec.format == FileFormat::Toml || spec.format == FileFormat::Unknown || container) &&
+      format_of_extension(spec.file) == FileFormat::Unknown && assimp_reads_extension(ext))
     spec.format = FileFormat::Model;
   return spec;
 }

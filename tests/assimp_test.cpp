@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cells/build_cells.h"
+#include "app/plan_source.h"
 #include "cells/mesh_scene.h"
 #include "plans/assimp_reader.h"
 #include "plans/formats/ifc_building.h"
@@ -248,6 +249,29 @@ TEST(AssimpModels, TestModelsStandOnTheirFeet) {
   // The glTF box, with its root's own turn: a unit cube centred on the origin.
   const Box3 box = bounds(load_mesh((kModels / "glTF2/BoxTextured-glTF/BoxTextured.gltf").string()));
   EXPECT_NEAR(box.hi.z - box.lo.z, 1, 1e-6);
+}
+
+// A 3MF model is a zip archive (as a Sweet Home home is) and a Blender file saved
+// compressed is gzip: the content says only that much, so Assimp's extension decides, and
+// each opens as a whole scene.
+TEST(AssimpModels, ZippedAndGzippedModelsOpenByTheirExtension) {
+  if (!fs::exists(kModels / "3MF/box.3mf")) GTEST_SKIP() << "assimp-testmodels not installed (.ci/install-deps)";
+  for (const char* name : {"3MF/box.3mf", "BLEND/BlenderDefault_250_Compressed.blend", "BLEND/MirroredCube_252.blend"}) {
+    SCOPED_TRACE(name);
+    const std::string path = (kModels / name).string();
+    EXPECT_EQ(app::parse_plan_spec(path).format, FileFormat::Model);
+    const app::LoadedPlan loaded = app::load_plan_source(path, app::ImportOptions{});
+    ASSERT_EQ(cells_are_valid(loaded.complex), "");
+    EXPECT_GT(loaded.complex.cells.size(), 1u);
+  }
+  // A zip named as a home, or by no name a reader knows, is still taken for a home.
+  const fs::path dir = fs::temp_directory_path() / "avenues-zip-names";
+  fs::create_directories(dir);
+  for (const char* name : {"home.sh3d", "archive.zip", "noname"}) {
+    std::ofstream(dir / name, std::ios::binary) << std::string("PK\x03\x04", 4) << std::string(60, '\0');
+    EXPECT_EQ(app::parse_plan_spec((dir / name).string()).format, FileFormat::SweetHome) << name;
+  }
+  fs::remove_all(dir);
 }
 
 TEST(AssimpModels, TruncatedAndEmptyFilesNameTheFile) {
