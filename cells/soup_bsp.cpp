@@ -403,8 +403,11 @@ struct Builder {
   SoupBspStats stats;
 
   /// The splitter for a cell: the plane of one of its interior fragments, the cheapest by
-  /// 8·splits + |front − back| on a sample, non-axis-aligned planes paying extra.
-  int choose(const std::vector<Frag>& frags, const std::vector<size_t>& interior) const {
+  /// 8·splits + |front − back| on a sample, non-axis-aligned planes paying extra. `lopsided`:
+  /// whether even that one leaves nearly every sampled fragment on one side and cuts none
+  /// worth counting (a convex cluster, such as a sphere's faces, where each face's plane has
+  /// all the others behind it).
+  int choose(const std::vector<Frag>& frags, const std::vector<size_t>& interior, bool* lopsided = nullptr) const {
     constexpr size_t kCandidates = 12, kSample = 64;
     const size_t m = interior.size();
     const size_t cstep = std::max<size_t>(1, m / kCandidates), sstep = std::max<size_t>(1, m / kSample);
@@ -428,9 +431,44 @@ struct Builder {
       }
       const double n = front + back + cut + on;
       const double cost = 8 * cut + std::fabs(front - back) - on + (h.axis ? 0 : 0.25 * n);
-      if (cost < best_cost) best_cost = cost, best = tri;
+      if (cost < best_cost) {
+        best_cost = cost, best = tri;
+        if (lopsided) *lopsided = std::min(front, back) + cut + on <= n / 16;
+      }
     }
     return best;
+  }
+
+  /// Where no fragment's plane divides a large cell's fragments (choose's `lopsided`), each
+  /// such plane would peel off one fragment: a chain as deep as the cluster is large, every
+  /// level handling every fragment again (a sphere of 18,000 triangles took minutes). Such a
+  /// cell is halved instead by an axis-aligned plane (exact: its offset is a double) through
+  /// the median of the fragments' middles along their longest extent; fragments it crosses
+  /// are cut like any others, and leaves of free space it parts are joined again where
+  /// their union is convex. None when the fragments have no extent (all in one plane).
+  std::optional<Pl> halving(const std::vector<Frag>& frags, const std::vector<size_t>& interior) const {
+    Box3 b;
+    std::vector<Vec3> middles;
+    for (size_t i : interior) {
+      Vec3 m{0, 0, 0};
+      for (const P3& q : frags[i].poly.v) {
+        const auto& a = CGAL::approx(q);
+        const Vec3 p{CGAL::to_double(a.x()), CGAL::to_double(a.y()), CGAL::to_double(a.z())};
+        b.add(p);
+        m = m + p;
+      }
+      middles.push_back((1.0 / double(frags[i].poly.v.size())) * m);
+    }
+    const Vec3 e = b.hi - b.lo;
+    const int axis = e.x >= e.y && e.x >= e.z ? 0 : e.y >= e.z ? 1 : 2;
+    auto coord = [axis](Vec3 p) { return axis == 0 ? p.x : axis == 1 ? p.y : p.z; };
+    const double lo = coord(b.lo), hi = coord(b.hi);
+    if (!(hi - lo > 1e3 * tol)) return std::nullopt;
+    std::nth_element(middles.begin(), middles.begin() + std::ptrdiff_t(middles.size() / 2), middles.end(),
+                     [&](Vec3 p, Vec3 q) { return coord(p) < coord(q); });
+    // Inside the fragments' extent, clear of its ends: the plane crosses the cell.
+    const double at = std::clamp(coord(middles[middles.size() / 2]), lo + 0.1 * (hi - lo), hi - 0.1 * (hi - lo));
+    return Pl(axis == 0 ? 1 : 0, axis == 1 ? 1 : 0, axis == 2 ? 1 : 0, -at);
   }
 
   void build(std::vector<CellFace> root_faces, std::vector<Frag> root_frags) {
@@ -457,7 +495,12 @@ struct Builder {
         continue;
       }
       const int id = t.node;
-      const Pl h = support_of[size_t(choose(t.frags, interior))];
+      constexpr size_t kHalveFrom = 1024;  ///< interior fragments; fewer make a chain short enough
+      bool lopsided = false;
+      const int tri = choose(t.frags, interior, &lopsided);
+      std::optional<Pl> halve;
+      if (lopsided && interior.size() >= kHalveFrom) halve = halving(t.frags, interior);
+      const Pl h = halve ? *halve : support_of[size_t(tri)];
       const Pl o = opposite_of(h);
       nodes[size_t(id)].plane = h;
       nodes[size_t(id)].opposite = o;
