@@ -40,7 +40,9 @@ struct SoupBspStats {
 /// leaf boundaries no triangle covers); opaque pieces are the parts covered by a
 /// triangle and the far box's faces. Splitting planes: the triangles' own planes, chosen
 /// at each node by a cheap cost (splits and balance on a sample of the node's
-/// triangles, axis-aligned planes preferred). Leaves are then joined across faces that
+/// triangles, axis-aligned planes preferred); where a cell holds 1,024 or more triangles
+/// and none of their planes divides them (a convex cluster: a sphere), an axis-aligned
+/// plane through their median halves it instead. Leaves are then joined across faces that
 /// hold nothing wherever the union stays convex, exactly: one cell is then several leaves.
 SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Box3& far_box, CellComplex& out);
 
