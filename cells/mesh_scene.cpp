@@ -41,7 +41,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
-#include <numbers>
 #include <numeric>
 #include <stdexcept>
 
