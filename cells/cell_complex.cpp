@@ -72,6 +72,14 @@ bool Cell::contains(Vec3 p, double tol) const {
   return in_convex(footprint, {p.x, p.y}, tol);
 }
 
+Vec3 Cell::middle() const {
+  Vec3 s{0, 0, 0};
+  double k = 0;
+  for (const Face& f : faces)
+    for (Vec3 p : f.poly) s = s + p, k += 1;
+  return (1.0 / k) * s;
+}
+
 double Cell::volume() const {
   if (prism) return signed_area(footprint) * (z1 - z0);
   // A general convex polyhedron: pyramids from one of its vertices to every face.

@@ -130,6 +130,8 @@ struct Cell {
   /// [m³] its footprint's area times its height (a prism), else pyramids from one of its
   /// vertices to every face.
   double volume() const;
+  /// [m] the mean of its faces' corners: inside it, as it is convex.
+  Vec3 middle() const;
   /// Closed containment with tolerance tol [m] (positive grows the cell).
   bool contains(Vec3 p, double tol = 0) const;
 };

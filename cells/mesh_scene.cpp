@@ -21,6 +21,7 @@
 #include "cells/mesh_scene.h"
 
 #include "cells/build_cells.h"
+#include "cells/free_regions.h"
 #include "core/angles.h"
 #include "cells/solid_insides.h"
 #include "cells/soup_bsp.h"
@@ -786,52 +787,26 @@ void frame_scene(CellComplex& out, const Box3& box, double m) {
 /// frame_scene's, outside looking at the scene.
 void view_inside_largest_region(CellComplex& out, const Box3& scene, const std::vector<SoupTriangle>& soup) {
   const size_t n = out.cells.size();
-  std::vector<size_t> parent(n);
-  for (size_t i = 0; i < n; ++i) parent[i] = i;
-  auto find = [&](size_t i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
-  for (const Portal& p : out.portals) parent[find(size_t(p.cell[0]))] = find(size_t(p.cell[1]));
-  const Box3& fb = out.far_box;
-  const Location corner = out.locate(fb.lo + 1e-3 * (fb.hi - fb.lo));
-  if (corner.what != Location::What::Cell) return;
-  const size_t outside = find(size_t(corner.cell));
-  std::vector<double> volume(n, 0), region(n, 0);
-  for (size_t i = 0; i < n; ++i) {
-    volume[i] = out.cells[i].volume();
-    region[find(i)] += volume[i];
-  }
-  auto middle = [&](size_t i) {
-    Vec3 s{0, 0, 0};
-    double k = 0;
-    for (const Face& f : out.cells[i].faces)
-      for (Vec3 p : f.poly) s = s + p, k += 1;
-    return (1.0 / k) * s;
-  };
-  std::vector<size_t> biggest(n, n);  // per region, its largest cell
-  for (size_t i = 0; i < n; ++i) {
-    size_t& b = biggest[find(i)];
-    if (b == n || volume[i] > volume[b]) b = i;
-  }
+  const FreeRegions regions = free_regions(out);
+  if (regions.outside == n) return;
   const Vec3 e = scene.hi - scene.lo;
-  std::vector<size_t> regions;
+  std::vector<size_t> roots;
   for (size_t i = 0; i < n; ++i)
-    if (find(i) == i && i != outside && region[i] >= 0.1 * e.x * e.y * e.z) regions.push_back(i);
-  std::sort(regions.begin(), regions.end(), [&](size_t a, size_t b) { return region[a] > region[b]; });
+    if (regions.of[i] == i && i != regions.outside && regions.volume[i] >= 0.1 * e.x * e.y * e.z) roots.push_back(i);
+  std::sort(roots.begin(), roots.end(), [&](size_t a, size_t b) { return regions.volume[a] > regions.volume[b]; });
   size_t best = n;
-  for (size_t r : regions)
-    if (winding_number(soup, middle(biggest[r])) < 0.5) {
+  for (size_t r : roots)
+    if (winding_number(soup, out.cells[regions.largest[r]].middle()) < 0.5) {
       best = r;
       break;
     }
   if (best == n) return;
-  const Vec3 eye = middle(biggest[best]);
+  const Vec3 eye = out.cells[regions.largest[best]].middle();
   Vec3 look = eye + Vec3{1, 0, 0};
   double far = 0;
   for (size_t i = 0; i < n; ++i) {
-    if (find(i) != best) continue;
-    const Vec3 m = middle(i);
+    if (regions.of[i] != best) continue;
+    const Vec3 m = out.cells[i].middle();
     const double d = std::hypot(m.x - eye.x, m.y - eye.y);
     if (d > far) far = d, look = {m.x, m.y, eye.z};
   }

@@ -1,6 +1,8 @@
 // Avenues — the insides of closed solids in a soup (solid_insides.h).
 #include "cells/solid_insides.h"
 
+#include "cells/free_regions.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -104,29 +106,11 @@ std::vector<int> cells_inside_solids(const CellComplex& c, const std::vector<Clo
   const size_t n = c.cells.size();
   std::vector<int> inside(n, -1);
   if (solids.empty() || n == 0) return inside;
-  Groups regions(n);
-  for (const Portal& p : c.portals) regions.join(size_t(p.cell[0]), size_t(p.cell[1]));
-  std::vector<size_t> biggest(n, n);  // per region root, its largest cell
-  std::vector<double> volume(n);
-  for (size_t i = 0; i < n; ++i) {
-    volume[i] = c.cells[i].volume();
-    size_t& b = biggest[regions.find(i)];
-    if (b == n || volume[i] > volume[b]) b = i;
-  }
-  // The far box's corner region is outside everything.
-  const Box3& fb = c.far_box;
-  const Vec3 corner = fb.lo + 1e-3 * (fb.hi - fb.lo);
-  size_t outside = n;
-  for (size_t i = 0; i < n && outside == n; ++i)
-    if (c.cells[i].contains(corner)) outside = regions.find(i);
+  const FreeRegions regions = free_regions(c);
   std::vector<int> solid_of_region(n, -1);
   for (size_t r = 0; r < n; ++r) {
-    if (biggest[r] == n || r == outside) continue;
-    Vec3 s{0, 0, 0};
-    double k = 0;
-    for (const Face& f : c.cells[biggest[r]].faces)
-      for (Vec3 p : f.poly) s = s + p, k += 1;
-    const Vec3 middle = (1.0 / k) * s;
+    if (regions.largest[r] == n || r == regions.outside) continue;  // not a root, or outside everything
+    const Vec3 middle = c.cells[regions.largest[r]].middle();
     double w = 0, most = 0;
     int named = -1;  // the solid that winds most about the point: the one it is said to be in
     for (size_t i = 0; i < solids.size(); ++i) {
@@ -137,7 +121,7 @@ std::vector<int> cells_inside_solids(const CellComplex& c, const std::vector<Clo
     }
     if (w > 0.5) solid_of_region[r] = named;
   }
-  for (size_t i = 0; i < n; ++i) inside[i] = solid_of_region[regions.find(i)];
+  for (size_t i = 0; i < n; ++i) inside[i] = solid_of_region[regions.of[i]];
   return inside;
 }
 
