@@ -36,6 +36,9 @@ inline double first_hit(const CellComplex& c, Vec3 o, Vec3 dir) {
         in = bounds.contains(p, tol);
         for (size_t k = 0; k < m && in; ++k) {
           Vec3 a = op.poly[k], b = op.poly[(k + 1) % m];
+          // Two corners a rounding apart bound nothing: the edge between them has no
+          // direction of its own, and may turn the rounded polygon inward.
+          if (length(b - a) <= 1e-12 * std::max({1.0, std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)})) continue;
           in = dot(cross(b - a, p - a), f.plane.n) <= 1e-12;
         }
         if (in) {

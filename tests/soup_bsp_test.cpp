@@ -304,7 +304,7 @@ TEST(SoupBsp, OneThreadOrManyMakeTheSameCellsToTheBit) {
 // hold yet, with halving or without: every face kept and the ray oracle. The tangent planes
 // of a fine sphere leave slivers thinner than rounding beside its surface; they are dropped
 // (drop_slivers), and with them a few hundred of its faces and some cells a ray sees.
-TEST(SoupBsp, ASphereIsHalvedNotPeeledFaceByFace) {
+TEST(SoupBsp, ASphereIsHalvedNotPeeledFaceByFaceAndKeepsEveryFaceAndView) {
   Mesh sphere;
   sphere.path = "sphere.obj";
   constexpr int kAround = 48, kRings = 20;
@@ -335,12 +335,20 @@ TEST(SoupBsp, ASphereIsHalvedNotPeeledFaceByFace) {
   EXPECT_EQ(stats.triangles, soup.size());
   EXPECT_LT(stats.depth, 1000) << soup.size() << " triangles";
 
+  // Its nearly coplanar neighbours (a planar quad's two triangles, not quite coplanar in
+  // doubles) leave cells and portals whose rounded corners lie a few units in the last
+  // place apart, the edge between them turned inward. Every face is still kept, and the
+  // search still passes every portal a ray passes (it once lost whole chains of cells
+  // there: the edge's plane through the eye cut away the rays the portal lets through).
   const CellComplex c = build_mesh_scene({sphere});
   ASSERT_EQ(cells_are_valid(c), "");
   EXPECT_EQ(c.locate({0, 0, 0}).what, Location::What::Solid);
   EXPECT_EQ(c.locate({0, 0, 2}).what, Location::What::Cell);
+  const int missing = visible_triangles_missing_from_export(c, {sphere});
   std::printf("  sphere: %zu triangles, depth %d, %zu cells, %d visible triangles missing from the export\n",
-              soup.size(), stats.depth, c.cells.size(), visible_triangles_missing_from_export(c, {sphere}));
+              soup.size(), stats.depth, c.cells.size(), missing);
+  EXPECT_EQ(missing, 0);
+  expect_soup_views_agree_with_rays(c, 8, 7, 96, 64, 8);
 }
 
 TEST(SoupBsp, CrossingTrianglesAreCutWhereTheyMeetAndADegenerateOneIsReported) {
@@ -405,10 +413,9 @@ TEST(SoupBsp, EveryMeshFromOutsideKeepsAllItsFacesAndAgreesWithRayCasting) {
 /// Its elements are closed solids that touch and overlap (walls into slabs), so their
 /// volumes summed are at least what they fill together: the free volume lies between the
 /// far box less that sum and the far box, and no cell is inside a solid. Faces between
-/// touching solids are seen by nobody and are not kept; one face still is missing (a door
-/// jamb's, at x = 6.165, outside every solid): the sliver cells on both its sides, thinner
-/// than rounding, are dropped (drop_slivers), and the portals into them become opaque
-/// pieces of no material in their neighbours, a few nanometres away.
+/// touching solids are seen by nobody and are not kept. One face (a door jamb's, at
+/// x = 6.165) once seemed missing: the opaque piece holding it has two corners a rounding
+/// apart, whose edge turns inward, and the check took that edge for a side.
 /// Its walls' faces meet many nearly parallel planes, where a vertex's interval can be
 /// millimetres wide: a fragment covering a piece of a leaf face was once culled by the
 /// middles of such intervals on one side of the face and not on the other, and the face
@@ -438,6 +445,7 @@ TEST(SoupBsp, TheDuplexModelAsASoupKeepsEveryFaceAndItsCellsAreSound) {
               "of them visible\n",
               meshes[0].triangles.size(), solids.size(), c.cells.size(), c.portals.size(),
               triangles_missing_from_export(c, meshes), visible_missing);
-  EXPECT_LE(visible_missing, 1);
+  EXPECT_EQ(visible_missing, 0);
   expect_soup_views_agree_with_rays(c, 3, 2012, 96, 64, 8);
 }
+

@@ -59,8 +59,13 @@ inline std::vector<std::pair<size_t, size_t>> missing_triangles(const CellComple
         if (!p.box.contains(g, tol) || std::fabs(p.face->plane.eval(g)) > tol) continue;
         bool in = true;
         const auto& q = p.op->poly;
-        for (size_t k = 0; k < q.size() && in; ++k)
-          in = dot(cross(q[(k + 1) % q.size()] - q[k], g - q[k]), p.face->plane.n) <= tol * length(q[(k + 1) % q.size()] - q[k]);
+        for (size_t k = 0; k < q.size() && in; ++k) {
+          // Two corners a rounding apart bound nothing: the edge between them has no
+          // direction of its own, and may turn the rounded piece inward.
+          const Vec3 e = q[(k + 1) % q.size()] - q[k];
+          if (length(e) <= 1e-12 * scale) continue;
+          in = dot(cross(e, g - q[k]), p.face->plane.n) <= tol * length(e);
+        }
         if (in) {
           found = true;
           break;

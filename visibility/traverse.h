@@ -40,6 +40,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "visibility/mask.h"
 #include "visibility/visible_set.h"
@@ -188,6 +189,19 @@ class Traversal {
   };
 
   static Vec3T<T> in(Vec3 v) { return {T(v.x), T(v.y), T(v.z)}; }
+
+  /// Whether two neighbouring corners of a portal are only a rounding apart: two exact
+  /// corners (a soup's, say) that rounded to doubles a few units in the last place apart.
+  /// The edge between them has no direction of its own: it may even turn the rounded
+  /// polygon inward, and the plane through it and the eye would then cut away rays the
+  /// portal passes. Such an edge bounds nothing; skipping it widens the rays let through
+  /// by a rounding at most (as cone_planes skips coinciding mask vertices).
+  static bool rounded_apart(Vec3 a, Vec3 b) {
+    const double scale = std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(a.z), std::fabs(b.x), std::fabs(b.y),
+                                   std::fabs(b.z)});
+    const double d = std::max({std::fabs(b.x - a.x), std::fabs(b.y - a.y), std::fabs(b.z - a.z)});
+    return d <= 64 * std::numeric_limits<double>::epsilon() * scale;
+  }
 
   /// [m] An eye this near a face's plane stands on it: far below any plan's detail, far
   /// above the rounding of coordinates of a building's size.
@@ -415,8 +429,17 @@ class Traversal {
   bool through(CellId cell, PortalId pi, Mask<T>& m) {
     const Portal& p = c_.portals[size_t(pi)];
     ++out_.portals_tested;
-    // Which side of the portal's plane is the eye on? Exactly, from input vertices.
-    const Vec3T<T> v0 = in(p.poly[0]), v1 = in(p.poly[1]), v2 = in(p.poly[2]);
+    // Which side of the portal's plane is the eye on? Exactly, from input vertices: the
+    // corners spanning the most area (not simply the first three, which may hold two
+    // corners a rounding apart: see rounded_apart).
+    const size_t n = p.poly.size();
+    size_t k1 = 1;
+    double most = -1;
+    for (size_t k = 1; k + 1 < n; ++k) {
+      const double a = length(cross(p.poly[k] - p.poly[0], p.poly[k + 1] - p.poly[0]));
+      if (a > most) most = a, k1 = k;
+    }
+    const Vec3T<T> v0 = in(p.poly[0]), v1 = in(p.poly[k1]), v2 = in(p.poly[k1 + 1]);
     const Vec3T<T> N = crossT(sub(v1, v0), sub(v2, v0));  // points into p.cell[1]
     // Parallel: the eye is at infinity behind the picture, s = N·(−f).
     const T s = parallel_ ? -dotT(N, forward_) : dotT(N, sub(eye_, v0));
@@ -433,8 +456,8 @@ class Traversal {
       // Rays through the portal: inside every plane through the eye and an edge.
       // With the eye behind N (s < 0) the edge normals (a-e)×(b-e) point inwards; for
       // parallel rays their limit as the eye recedes along −f, f×(b−a).
-      const size_t n = p.poly.size();
       for (size_t k = 0; k < n; ++k) {
+        if (rounded_apart(p.poly[k], p.poly[(k + 1) % n])) continue;
         const Vec3T<T> a = in(p.poly[k]), b = in(p.poly[(k + 1) % n]);
         Vec3T<T> e = parallel_ ? crossT(forward_, sub(b, a)) : crossT(sub(a, eye_), sub(b, eye_));
         if (s > T(0)) e = {-e.x, -e.y, -e.z};
@@ -613,6 +636,7 @@ class Traversal {
   bool eye_in_polygon(const Portal& p, const Vec3T<T>& N) const {
     const size_t n = p.poly.size();
     for (size_t k = 0; k < n; ++k) {
+      if (rounded_apart(p.poly[k], p.poly[(k + 1) % n])) continue;
       Vec3T<T> a = in(p.poly[k]), b = in(p.poly[(k + 1) % n]);
       if (dotT(crossT(sub(b, a), sub(eye_, a)), N) < T(0)) return false;
     }
