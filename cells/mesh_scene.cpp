@@ -407,13 +407,32 @@ void drop_slivers(CellComplex& out) {
   }
   if (dropped == 0) return;
   remove_cells(out, sliver);
-  char what[200];
+  char what[320];
   std::snprintf(what, sizeof what,
                 "%zu slivers of free space thinner than %.3g m (the thinnest %.3g m), left by rounding the exact cells "
-                "to double, were dropped; the portals into them became opaque",
+                "to double, were dropped; the portals into them became opaque, in the material seen through them",
                 dropped, thin, std::max(thinnest, 0.0));
   out.warnings.push_back(what);
 }
+
+namespace {
+
+/// The material a cell dropped as a sliver showed through a face of outward normal n of
+/// its neighbour: that of the largest opaque piece on the sliver's far side (its face
+/// turned most nearly along n), or none (-1) where that side is open too.
+MaterialId material_beyond(const Cell& dropped, Vec3 n) {
+  const Face* far = nullptr;
+  for (const Face& g : dropped.faces)
+    if (!far || dot(g.plane.n, n) > dot(far->plane.n, n)) far = &g;
+  MaterialId m = -1;
+  double most = 0;
+  if (far && dot(far->plane.n, n) > 0.5)
+    for (const OpaquePoly& o : far->opaque)
+      if (const double a = polygon_area(o.poly); a > most) most = a, m = o.material;
+  return m;
+}
+
+}  // namespace
 
 void remove_cells(CellComplex& out, const std::vector<bool>& drop) {
   std::vector<CellId> new_id(out.cells.size(), kNoCell);
@@ -442,11 +461,12 @@ void remove_cells(CellComplex& out, const std::vector<bool>& drop) {
           keep.push_back(new_portal[size_t(p)]);
           continue;
         }
-        // Into a dropped cell: opaque now, counter-clockwise seen from this cell.
+        // Into a dropped cell: opaque now, counter-clockwise seen from this cell, with the
+        // material of what was seen through it (the dropped cell's surface on its far side).
         const Portal& q = out.portals[size_t(p)];
         std::vector<Vec3> poly = q.poly;
         if (q.cell[0] == CellId(i)) std::reverse(poly.begin(), poly.end());
-        f.opaque.push_back({std::move(poly), -1});
+        f.opaque.push_back({std::move(poly), material_beyond(out.cells[size_t(q.other(CellId(i)))], f.plane.n)});
       }
       f.portals = keep;
       cell.portals.insert(cell.portals.end(), keep.begin(), keep.end());
