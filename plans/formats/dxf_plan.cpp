@@ -835,7 +835,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     r.where = {path, 0, 0, "room '" + r.name + "'"};
     plan.rooms.push_back(r);
   }
-  std::vector<int> placed(gaps.size(), 0);
+  std::vector<int> placed(gaps.size(), 0), faces_room(gaps.size(), 0);
   int doors = 0, windows = 0;
   for (const Sheet& s : arr.sheets) {
     Wall w;
@@ -847,6 +847,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     // On a closing line: between two spaces any piece is the opening; onto a wall face
     // or the outside (a door out of the building, a window in an outer wall) a piece wide
     // enough to be one, not a sliver beside a door frame.
+    if (s.closes >= 0) faces_room[size_t(s.closes)] = 1;  // a sheet: a room on one side at least
     if (s.closes >= 0 && (s.between_spaces || length(s.b - s.a) >= 0.25)) {
       const Gap& g = gaps[size_t(s.closes)];
       Opening o;
@@ -869,7 +870,11 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     if (!placed[g])
       plan.warnings.push_back(std::string(gaps[g].door ? "the door" : "the window") + " at (" +
                               format_number("%.2f", gaps[g].where.x) + ", " + format_number("%.2f", gaps[g].where.y) +
-                              ") m joins no two spaces (in no wall gap, or the gap is not closed): not placed");
+                              ") m " +
+                              (faces_room[g] ? "has a closed room on one side only, and less than 0.25 m of its line faces it"
+                                             : "has no closed room on either side (the walls around it leave a gap "
+                                               "elsewhere, or it is in no wall gap)") +
+                              ": not placed");
   int outside_texts = 0;
   for (int sp : arr.probe_space) outside_texts += sp == -2;
   if (outside_texts > 0)
