@@ -91,6 +91,18 @@ class TinyDxf {
       dxf.writeInsert(dw, DL_InsertData("DOOR-SINGLE", at.x, at.y, 0, 1, 1, 1, deg, 1, 1, 0, 0), attr(layer));
     });
   }
+  /// A block of lines (on layer 0, taking the INSERT's layer) inserted at `at` turned by `deg`.
+  void block_of_lines(const std::string& name, const std::string& layer, std::vector<std::pair<Vec2, Vec2>> lines,
+                      Vec2 at, double deg) {
+    blocks_.push_back([=](DL_Dxf& dxf, DL_WriterA& dw) {
+      dxf.writeBlock(dw, DL_BlockData(name, 0, 0, 0, 0));
+      for (const auto& [a, b] : lines) dxf.writeLine(dw, DL_LineData(a.x, a.y, 0, b.x, b.y, 0), attr("0"));
+      dxf.writeEndBlock(dw, name);
+    });
+    body_.push_back([=](DL_Dxf& dxf, DL_WriterA& dw) {
+      dxf.writeInsert(dw, DL_InsertData(name, at.x, at.y, 0, 1, 1, 1, deg, 1, 1, 0, 0), attr(layer));
+    });
+  }
   std::string write(const std::string& name) const {
     const fs::path dir = fs::temp_directory_path() / ("avenues-dxf-" + std::to_string(::getpid()));
     fs::create_directories(dir);
@@ -265,6 +277,62 @@ TEST(DxfPlan, TheLeavesOfADoubleDoorMeetMidway) {
   EXPECT_GE(avenues::testing::check_views_from_rooms(r.plan, c), 8);
 }
 
+TEST(DxfPlan, ASlidingDoorClosesItsGapWithADoor) {
+  // Two panels (thin outlines on the door layer) overlapping in the middle of the
+  // partition's gap, no swing: the gap is closed by a door, not by the panels as walls.
+  TinyDxf d;
+  two_rooms_in_double_lines(d, "A-WALL");
+  d.polyline("A-DOOR", {{4.15, 1.0}, {4.19, 1.0}, {4.19, 1.5}, {4.15, 1.5}}, true);
+  d.polyline("A-DOOR", {{4.21, 1.4}, {4.25, 1.4}, {4.25, 1.9}, {4.21, 1.9}}, true);
+  const DxfPlan r = read_dxf_plan(d.write("sliding.dxf"));
+  expect_walkable(r.plan, 2, 1);
+  double open = 0;
+  for (const Wall& w : r.plan.walls)
+    for (const Opening& o : w.openings) open += o.kind == OpeningKind::Door ? o.width : 0;
+  EXPECT_NEAR(open, 0.9, 0.02);  // the whole gap, jamb to jamb
+  EXPECT_TRUE(r.plan.warnings.empty()) << r.plan.warnings.front();
+}
+
+TEST(DxfPlan, APocketDoorDrawnOpenInItsWall) {
+  // The two leaves slid into pockets in the wall either side of the gap, each overlapping
+  // the gap by 5 cm, arrows between them: one door across the whole gap.
+  TinyDxf d;
+  two_rooms_in_double_lines(d, "Walls");
+  d.polyline("Doors", {{4.18, 0.55}, {4.22, 0.55}, {4.22, 1.05}, {4.18, 1.05}}, true);
+  d.polyline("Doors", {{4.18, 1.85}, {4.22, 1.85}, {4.22, 2.35}, {4.18, 2.35}}, true);
+  d.line("Doors", {4.35, 1.1}, {4.35, 1.35});  // arrows beside the gap
+  d.line("Doors", {4.35, 1.55}, {4.35, 1.8});
+  const DxfPlan r = read_dxf_plan(d.write("pocket.dxf"));
+  expect_walkable(r.plan, 2, 1);
+  EXPECT_NE(r.summary[1].find("1 doors without a swing"), std::string::npos) << r.summary[1];
+}
+
+TEST(DxfPlan, ADoorBlockWithoutASwingByItsName) {
+  // A block "Sliding Door 900" on a layer named for nothing, holding the two leaves as
+  // lines along the gap (y 1.0-1.9 once turned by 90°): read as a door by its name.
+  TinyDxf d;
+  two_rooms_in_double_lines(d, "Wand");
+  d.block_of_lines("Sliding Door 900", "Ausbau", {{{0, 0.02}, {0.5, 0.02}}, {{0.4, -0.02}, {0.9, -0.02}}}, {4.2, 1.0}, 90);
+  const DxfPlan r = read_dxf_plan(d.write("sliding-block.dxf"));
+  expect_walkable(r.plan, 2, 1);
+}
+
+TEST(DxfPlan, DoorSizedLinesInNoWallGapAreNamedNotPlaced) {
+  // Closed partition; a wardrobe's sliding front on the door layer stands in the room,
+  // in no wall gap: a warning naming where and the layer, and the rooms stay two.
+  TinyDxf d;
+  two_rooms_in_double_lines(d, "Walls");
+  d.line("Walls", {4.1, 1.0}, {4.1, 1.9});
+  d.line("Walls", {4.3, 1.0}, {4.3, 1.9});
+  d.polyline("Doors", {{1.0, 2.0}, {2.2, 2.0}, {2.2, 2.04}, {1.0, 2.04}}, true);
+  const DxfPlan r = read_dxf_plan(d.write("wardrobe.dxf"));
+  ASSERT_EQ(r.plan.rooms.size(), 2u);
+  EXPECT_EQ(doors_in(r.plan), 0);
+  ASSERT_EQ(r.plan.warnings.size(), 1u);
+  EXPECT_NE(r.plan.warnings[0].find("(1.60, 2.02) m, layer 'Doors', drawn without a swing"), std::string::npos)
+      << r.plan.warnings[0];
+}
+
 TEST(DxfPlan, AWindowInAnOuterWall) {
   // A gap in the south wall (x 1.5–2.7) with the window's glass lines across it: the
   // room is closed by the window, which opens onto the outside.
@@ -404,6 +472,8 @@ TEST(DxfPlan, EachOutsideDrawingOpensOrIsRefusedClearly) {
       if (name == "anandkothartrdl-plan.dxf") {
         EXPECT_GE(avenues::testing::door_portals(c), 2);
         EXPECT_GE(doors_in(r.plan, OpeningKind::Window), 1);
+        // The gym's pocket doors to the study, drawn without a swing.
+        EXPECT_NE(r.summary[1].find("1 doors without a swing"), std::string::npos) << r.summary[1];
       }
       if (name == "ground-floor-lhs.dxf") {
         EXPECT_GE(doors_in(r.plan), 4);

@@ -18,6 +18,7 @@
 
 #include "core/angles.h"
 #include "core/number_format.h"
+#include "plans/formats/swingless_doors.h"
 #include "plans/formats/wall_arrangement.h"
 #include "plans/formats/wall_line_ends.h"
 
@@ -36,6 +37,7 @@ struct SegPiece {
   Vec2 a, b;
   std::string layer;
   bool curved = false;  ///< a piece of an arc, circle, ellipse or spline (a swing, never a door frame)
+  bool door_block = false;  ///< inside a block whose name says door (its panels, whatever their layer)
 };
 struct TextPiece {
   Vec2 p;
@@ -339,10 +341,12 @@ struct Flat {
   std::vector<std::string> missing_blocks;
 };
 
+/// A block holding a door: door, Tür/Tuer, porte, sliding, pocket, bi-fold in its name.
 bool says_door(const std::string& name) {
   const std::string n = lower(name);
-  return n.find("door") != std::string::npos || n.find("tür") != std::string::npos ||
-         n.find("tuer") != std::string::npos || n.find("tur") == 0;
+  for (const char* w : {"door", "tür", "tuer", "porte", "sliding", "pocket", "bifold", "bi-fold"})
+    if (n.find(w) != std::string::npos) return true;
+  return n.find("tur") == 0;
 }
 
 void flatten(const Collector& col, const Group& g, const std::vector<Placement>& chain, const std::string& layer_0,
@@ -356,7 +360,7 @@ void flatten(const Collector& col, const Group& g, const std::vector<Placement>&
   for (const Placement& pl : chain) mirrored ^= (pl.scale.x * pl.scale.y < 0);
   double scale = 1;
   for (const Placement& pl : chain) scale *= std::fabs(pl.scale.x);
-  for (const SegPiece& s : g.segs) out.segs.push_back({place(s.a), place(s.b), lay(s.layer), s.curved});
+  for (const SegPiece& s : g.segs) out.segs.push_back({place(s.a), place(s.b), lay(s.layer), s.curved, door_block});
   for (const ArcPiece& a : g.arcs) {
     ArcPiece b{place(a.c), place(a.p0), place(a.p1), a.r * scale, a.sweep_deg, lay(a.layer)};
     if (mirrored) std::swap(b.p0, b.p1);
@@ -600,9 +604,47 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   // the window lines, each carrying its window: the room closes at the window's lines,
   // and its face there is the window.
   struct WallLine { Vec2 a, b; int closes = -1; };
+  // Doors drawn without a swing (sliding, pocket, bi-fold, leaves as lines): their panels
+  // are no wall lines, and each closes its gap from end to end (swingless_doors.h).
+  std::vector<SwinglessDoor> swingless;
+  std::vector<bool> panel(flat.segs.size(), false);
+  {
+    std::vector<std::pair<Vec2, Vec2>> door_lines, wall_lines;
+    std::vector<bool> door_line_is_wall;
+    std::vector<size_t> seg_of;
+    for (size_t i = 0; i < flat.segs.size(); ++i) {
+      const SegPiece& s = flat.segs[i];
+      if (s.curved) continue;
+      const Role r = role[s.layer];
+      if (r == Role::Doors || s.door_block) {
+        door_lines.push_back({m(s.a), m(s.b)});
+        door_line_is_wall.push_back(r == Role::Doors || r == Role::Walls);
+        seg_of.push_back(i);
+      } else if (r == Role::Walls || r == Role::Windows) {
+        wall_lines.push_back({m(s.a), m(s.b)});
+      }
+    }
+    std::vector<Vec2> swing_points;
+    for (const auto& [a, in_door_block] : flat.arcs)  // swings (as below), not a bi-fold's small arcs
+      if ((role[a.layer] == Role::Doors || in_door_block) && a.r * unit >= 0.4 && a.r * unit <= 1.6 &&
+          a.sweep_deg >= 60 && a.sweep_deg <= 120)
+        for (Vec2 p : {a.c, a.p0, a.p1}) swing_points.push_back(m(p));
+    for (const Flat::Curve& cv : flat.curves)
+      if ((role[cv.layer] == Role::Doors || cv.door_block) && !cv.pts.empty())
+        for (Vec2 p : {cv.pts.front(), cv.pts.back()}) swing_points.push_back(m(p));
+    swingless = find_swingless_doors(door_lines, door_line_is_wall, wall_lines, swing_points);
+    for (SwinglessDoor& d : swingless) {
+      for (int& i : d.lines) i = int(seg_of[size_t(i)]);  // now indices into flat.segs
+      if (d.placed)
+        for (int i : d.lines) panel[size_t(i)] = true;
+    }
+  }
   std::vector<WallLine> walls;
-  for (const SegPiece& s : flat.segs)
-    if (role[s.layer] == Role::Walls || (role[s.layer] == Role::Doors && !s.curved)) walls.push_back({m(s.a), m(s.b)});
+  for (size_t i = 0; i < flat.segs.size(); ++i) {
+    const SegPiece& s = flat.segs[i];
+    if (!panel[i] && (role[s.layer] == Role::Walls || (role[s.layer] == Role::Doors && !s.curved)))
+      walls.push_back({m(s.a), m(s.b)});
+  }
   for (size_t i = 0; i < win.size(); ++i) walls.push_back({win[i].a, win[i].b, window_of[i]});
   // The gaps a drawing leaves at its wall lines' ends: partitions stopping short, walls'
   // ends left open across their thickness.
@@ -722,6 +764,18 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     }
     gaps.push_back({sw.hinge, sw.closed, true, sw.hinge});
   }
+  int swingless_placed = 0;
+  for (const SwinglessDoor& d : swingless) {
+    const std::string& layer = flat.segs[size_t(d.lines.front())].layer;
+    if (!d.placed) {
+      plan.warnings.push_back("the door-sized lines at (" + format_number("%.2f", d.where.x) + ", " +
+                              format_number("%.2f", d.where.y) + ") m, layer '" + layer +
+                              "', drawn without a swing, lie in no wall gap: not placed");
+      continue;
+    }
+    ++swingless_placed;
+    gaps.push_back({d.a, d.b, true, d.where});
+  }
   for (size_t g = window_gaps; g < gaps.size(); ++g) {
     const Vec2 d = gaps[g].b - gaps[g].a;
     const double len = length(d);
@@ -781,7 +835,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     r.where = {path, 0, 0, "room '" + r.name + "'"};
     plan.rooms.push_back(r);
   }
-  std::vector<int> placed(gaps.size(), 0);
+  std::vector<int> placed(gaps.size(), 0), faces_room(gaps.size(), 0);
   int doors = 0, windows = 0;
   for (const Sheet& s : arr.sheets) {
     Wall w;
@@ -793,6 +847,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     // On a closing line: between two spaces any piece is the opening; onto a wall face
     // or the outside (a door out of the building, a window in an outer wall) a piece wide
     // enough to be one, not a sliver beside a door frame.
+    if (s.closes >= 0) faces_room[size_t(s.closes)] = 1;  // a sheet: a room on one side at least
     if (s.closes >= 0 && (s.between_spaces || length(s.b - s.a) >= 0.25)) {
       const Gap& g = gaps[size_t(s.closes)];
       Opening o;
@@ -815,7 +870,11 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     if (!placed[g])
       plan.warnings.push_back(std::string(gaps[g].door ? "the door" : "the window") + " at (" +
                               format_number("%.2f", gaps[g].where.x) + ", " + format_number("%.2f", gaps[g].where.y) +
-                              ") m joins no two spaces (in no wall gap, or the gap is not closed): not placed");
+                              ") m " +
+                              (faces_room[g] ? "has a closed room on one side only, and less than 0.25 m of its line faces it"
+                                             : "has no closed room on either side (the walls around it leave a gap "
+                                               "elsewhere, or it is in no wall gap)") +
+                              ": not placed");
   int outside_texts = 0;
   for (int sp : arr.probe_space) outside_texts += sp == -2;
   if (outside_texts > 0)
@@ -830,7 +889,8 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   };
   out.summary.push_back("walls from layers " + joined(taken[int(Role::Walls)]));
   out.summary.push_back("doors from layers " + joined(taken[int(Role::Doors)]) + " and door blocks: " +
-                        std::to_string(swings) + " swings");
+                        std::to_string(swings) + " swings, " +
+                        std::to_string(swingless_placed) + " doors without a swing (sliding, pocket, folding)");
   out.summary.push_back("windows from layers " + joined(taken[int(Role::Windows)]));
   out.summary.push_back("unit " + unit_said);
   out.summary.push_back(std::to_string(ends.free_ends) + " wall line ends touching no line: " +

@@ -27,6 +27,10 @@
 //    be at a wall line or at another swing's closed end (a double door); the pieces
 //    of that line between two spaces, or between a space and a wall face or the outside
 //    when 0.25 m or wider (a door out of the building), are its door opening;
+//  * doors without a swing (sliding, pocket, bi-fold, leaves drawn as lines; door blocks
+//    whose name says door, Tür, porte, sliding, pocket or bi-fold): their straight lines
+//    away from any swing, lying along one axis, close the wall gap they lie in from end
+//    to end with a door (plans/formats/swingless_doors.h); their panels are no walls;
 //  * windows: each cluster of window-layer lines closes its gap with its longest line,
 //    the same way: a window (sill 0.9 m, head 2.1 m) between two rooms or in an outer
 //    wall, where it opens onto the solid outside (there is no view out);
@@ -37,8 +41,8 @@
 // A drawing with no wall layer, or whose wall lines close no room, is a PlanError listing
 // its layers and how to name them. Known limits: a swing whose hinge or closed end is over
 // 0.15 m from every wall line is not placed (a warning); arcs are arranged as their
-// straight pieces (16 per half turn), not as exact circular arcs; a sliding door (no
-// swing) leaves its gap open, so the rooms either side are one space.
+// straight pieces (16 per half turn), not as exact circular arcs; door-sized lines on
+// a door layer in no wall gap (a wardrobe's sliding front) are not placed (a warning).
 #pragma once
 
 #include <string>
