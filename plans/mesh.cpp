@@ -171,6 +171,14 @@ void check_ply(const std::string& path) {
       bad("its header announces " + std::to_string(e.count) + " " + e.name + " elements, more than its " +
           std::to_string(static_cast<long long>(std::max<long double>(body, 0))) + " bytes of data can hold");
   }
+  // Only faces make a surface: a scan's point cloud (vertices alone) has nothing to stand
+  // between free space and free space.
+  long long faces = 0;
+  for (const Element& e : elements)
+    if (e.name == "face") faces += e.count;
+  if (faces == 0)
+    bad("it holds " + std::to_string(elements.front().count) +
+        " points and no faces (a point cloud): Avenues needs surfaces, polygons joining the points");
 }
 
 /// A binary STL's triangle count against the file's size, and every vertex by the rule

@@ -317,6 +317,8 @@ TEST_F(Hostile, BrokenMeshesNameTheFileAndTheFault) {
   write("big.ply",
         "ply\nformat ascii 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\nproperty float z\n"
         "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n");
+  write("points.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                     "end_header\n0 0 0\n1 0 0\n0 1 0\n");
   write("huge.off", "OFF\n4 1 0\n0 0 0\n1e300 0 0\n0 1 0\n0 0 1\n3 0 1 2\n");
   write("bad-index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
   write("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
@@ -337,6 +339,7 @@ TEST_F(Hostile, BrokenMeshesNameTheFileAndTheFault) {
   } cases[] = {
       {"noise.off", {"noise.off"}},
       {"big.ply", {"big.ply", "4000000000", "vertex"}},
+      {"points.ply", {"points.ply", "3 points and no faces", "point cloud"}},
       {"huge.off", {"huge.off", "line 4", "1e300"}},
       {"bad-index.obj", {"bad-index.obj", "line 4", "'7'"}},
       {"nan.obj", {"nan.obj", "line 2", "nan"}},
