@@ -237,6 +237,22 @@ TEST(DxfPlan, WallEndsLeftOpenAreClosed) {
   expect_walkable(r.plan, 2, 1);
 }
 
+TEST(DxfPlan, APartitionsCornerARoundingShortOfTheWallClosesItsRooms) {
+  // The partition's upper piece is one polyline whose corners stop 0.06 mm below the
+  // wall's face (0.1 mm once snapped to the reader's grid): no end is free there, and
+  // the sliver between them joined the two rooms into one face.
+  TinyDxf d;
+  d.polyline("Walls", {{0, 0}, {8.4, 0}, {8.4, 3.4}, {0, 3.4}}, true);
+  d.polyline("Walls", {{0.2, 0.2}, {8.2, 0.2}, {8.2, 3.2}, {0.2, 3.2}}, true);
+  d.polyline("Walls", {{4.1, 0.2}, {4.1, 1.0}, {4.3, 1.0}, {4.3, 0.2}}, false);
+  d.polyline("Walls", {{4.1, 1.9}, {4.1, 3.19994}, {4.3, 3.19994}, {4.3, 1.9}}, false);
+  d.line("Walls", {4.1, 1.9}, {4.3, 1.9});
+  d.arc("Doors", {4.1, 1.0}, 0.9, 90, 180);
+  const DxfPlan r = read_dxf_plan(d.write("corner-short.dxf"));
+  for (const std::string& w : r.plan.warnings) ADD_FAILURE() << w;
+  expect_walkable(r.plan, 2, 1);
+}
+
 TEST(DxfPlan, PartitionsOnTheDoorLayerWithADoorBlock) {
   // As in ground-floor-lhs.dxf: the outer walls on the wall layer, the partition drawn on
   // the door layer with its door, a block holding the swing and the open leaf.

@@ -655,23 +655,6 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     ends = close_wall_line_ends(lines);
     for (const auto& [a, b] : ends.added) walls.push_back({a, b});
   }
-  // Snap to 0.1 mm, and reach 1 mm past each end that no other line ends at, so that
-  // lines drawn to meet do meet. Ends drawn at one point stay there: carried on, two
-  // lines drawn end to end in one direction would lie side by side a rounding apart.
-  auto snap = [](Vec2 p) { return Vec2{std::round(p.x * 1e4) / 1e4, std::round(p.y * 1e4) / 1e4}; };
-  {
-    std::map<std::pair<double, double>, int> ends_at;
-    for (const WallLine& s : walls)
-      if (length(s.b - s.a) >= 1e-4)
-        for (Vec2 p : {snap(s.a), snap(s.b)}) ++ends_at[{p.x, p.y}];
-    auto shared = [&](Vec2 p) { return ends_at[{p.x, p.y}] > 1; };
-    for (const WallLine& s : walls) {
-      const double len = length(s.b - s.a);
-      if (len < 1e-4) continue;
-      const Vec2 u = (0.001 / len) * (s.b - s.a), a = snap(s.a), b = snap(s.b);
-      arr_in.segments.push_back({shared(a) ? a : snap(s.a - u), shared(b) ? b : snap(s.b + u), s.closes});
-    }
-  }
   for (const HatchPiece& h : flat.hatches)
     if (role[h.layer] == Role::Walls) {
       std::vector<std::vector<Vec2>> rings;
@@ -776,13 +759,42 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     ++swingless_placed;
     gaps.push_back({d.a, d.b, true, d.where});
   }
+  // The lines across the door gaps, into the jambs. They run along the walls' faces,
+  // where a jamb's corner may lie a rounding beside them: such ends are joined to them.
+  std::vector<WallLine> across;
   for (size_t g = window_gaps; g < gaps.size(); ++g) {
     const Vec2 d = gaps[g].b - gaps[g].a;
     const double len = length(d);
     if (len < 1e-3) continue;
     const Vec2 u = (0.03 / len) * d;  // into the jambs
-    arr_in.segments.push_back({snap(gaps[g].a - u), snap(gaps[g].b + u), int(g)});
+    across.push_back({gaps[g].a - u, gaps[g].b + u, int(g)});
   }
+  {
+    std::vector<std::pair<Vec2, Vec2>> lines;
+    for (const WallLine& s : walls) lines.push_back({s.a, s.b});
+    for (const WallLine& s : across) lines.push_back({s.a, s.b});
+    const auto joins = join_wall_line_ends(lines, walls.size());
+    ends.joined += int(joins.size());
+    for (const auto& [a, b] : joins) walls.push_back({a, b});
+  }
+  // Snap to 0.1 mm, and reach 1 mm past each end that no other line ends at, so that
+  // lines drawn to meet do meet. Ends drawn at one point stay there: carried on, two
+  // lines drawn end to end in one direction would lie side by side a rounding apart.
+  auto snap = [](Vec2 p) { return Vec2{std::round(p.x * 1e4) / 1e4, std::round(p.y * 1e4) / 1e4}; };
+  {
+    std::map<std::pair<double, double>, int> ends_at;
+    for (const WallLine& s : walls)
+      if (length(s.b - s.a) >= 1e-4)
+        for (Vec2 p : {snap(s.a), snap(s.b)}) ++ends_at[{p.x, p.y}];
+    auto shared = [&](Vec2 p) { return ends_at[{p.x, p.y}] > 1; };
+    for (const WallLine& s : walls) {
+      const double len = length(s.b - s.a);
+      if (len < 1e-4) continue;
+      const Vec2 u = (0.001 / len) * (s.b - s.a), a = snap(s.a), b = snap(s.b);
+      arr_in.segments.push_back({shared(a) ? a : snap(s.a - u), shared(b) ? b : snap(s.b + u), s.closes});
+    }
+  }
+  for (const WallLine& s : across) arr_in.segments.push_back({snap(s.a), snap(s.b), s.closes});
 
   // Room names: texts, and closed polylines on "Room - NAME" layers.
   std::vector<std::string> probe_name;
@@ -893,7 +905,8 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
                         std::to_string(swingless_placed) + " doors without a swing (sliding, pocket, folding)");
   out.summary.push_back("windows from layers " + joined(taken[int(Role::Windows)]));
   out.summary.push_back("unit " + unit_said);
-  out.summary.push_back(std::to_string(ends.free_ends) + " wall line ends touching no line: " +
+  out.summary.push_back(std::to_string(ends.joined) + " short lines joining wall line ends to a line they stop within 2 mm of; " +
+                        std::to_string(ends.free_ends) + " ends touching no line: " +
                         std::to_string(ends.extended) + " carried on to the line they stop short of, " +
                         std::to_string(ends.capped) + " pairs joined across a wall's end");
   out.summary.push_back(std::to_string(arr.faces) + " faces in the walls' arrangement, " + std::to_string(arr.wall_faces) +

@@ -2,9 +2,13 @@
 #include "plans/formats/wall_line_ends.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
+#include <set>
+#include <tuple>
 #include <unordered_map>
 
 namespace avenues {
@@ -81,6 +85,110 @@ double ray_hit(Vec2 p, Vec2 u, double reach, Vec2 a, Vec2 b) {
   return t;
 }
 
+/// Pass 0 (see wall_line_ends.h): joins each end of a line to the lines it nearly
+/// touches, for pairs with at least one line at index >= first_new. Appends the joining
+/// lines to `added`; per line end, whether it was joined and whether it touches a line.
+constexpr double kCarriedOn = 0.001;  ///< [m] how far the arrangement carries an end no other line ends at
+struct NearEnds { std::vector<std::array<bool, 2>> joined, touches; };
+NearEnds join_near_ends(const std::vector<std::pair<Vec2, Vec2>>& lines, size_t first_new, bool shared_only,
+                        const WallLineEndParams& prm, std::vector<std::pair<Vec2, Vec2>>& added) {
+  NearEnds ne{std::vector<std::array<bool, 2>>(lines.size(), {false, false}),
+              std::vector<std::array<bool, 2>>(lines.size(), {false, false})};
+  if (lines.empty()) return ne;
+  SegmentGrid grid(lines, std::max(prm.cap, 0.1));
+  // Lines meeting exactly at an end point, for walking along the drawing.
+  std::map<std::pair<double, double>, std::vector<size_t>> at_point;
+  for (size_t i = 0; i < lines.size(); ++i)
+    for (Vec2 p : {lines[i].first, lines[i].second}) at_point[{p.x, p.y}].push_back(i);
+  // The lines reached from p along lines meeting end to end, within `budget` of walking:
+  // a line this near along the drawing is a piece of the same curve (a finely drawn
+  // column's outline), not one the end stops short of.
+  auto reached = [&](Vec2 p, double budget) {
+    std::map<std::pair<double, double>, double> best{{{p.x, p.y}, 0}};
+    std::vector<std::pair<Vec2, double>> todo{{p, 0}};
+    std::vector<size_t> out_lines;
+    while (!todo.empty() && out_lines.size() < 4096) {
+      const auto [q, d] = todo.back();
+      todo.pop_back();
+      for (size_t k : at_point[{q.x, q.y}]) {
+        out_lines.push_back(k);
+        const Vec2 r = lines[k].first == q ? lines[k].second : lines[k].first;
+        const double dr = d + length(r - q);
+        if (dr > budget) continue;
+        auto [it, fresh] = best.emplace(std::pair{r.x, r.y}, dr);
+        if (!fresh && it->second <= dr) continue;
+        it->second = dr;
+        todo.push_back({r, dr});
+      }
+    }
+    std::sort(out_lines.begin(), out_lines.end());
+    return out_lines;
+  };
+
+  const double sin_along = std::sin(10 * 3.14159265358979323846 / 180);  // runs along a line below 10°
+  std::set<std::tuple<double, double, size_t>> done;  // (end point, line joined to): a corner's lines join once
+  for (size_t i = 0; i < lines.size(); ++i) {
+    const auto [a, b] = lines[i];
+    const double len = length(b - a);
+    if (!(len > 0)) continue;
+    for (int w = 0; w < 2; ++w) {
+      const Vec2 p = w ? b : a, u = (1 / len) * (w ? b - a : a - b);
+      std::vector<size_t> near_lines;
+      grid.near(p, std::max(prm.touch, prm.join), [&](size_t j) {
+        if (j == i) return;
+        const auto [c, d] = lines[j];
+        const double dist = distance_to_segment(p, c, d);
+        if (dist <= prm.touch) ne.touches[i][size_t(w)] = true;
+        if (i < first_new && j < first_new) return;
+        if (dist <= prm.join && p != c && p != d) near_lines.push_back(j);  // not meeting it at its end exactly
+      });
+      if (near_lines.empty()) continue;
+      // An end where no other line ends is carried on 1 mm by the arrangement (see
+      // `touch`): it needs no joining line to a line that carrying on crosses.
+      bool shared = false;
+      grid.near(p, 2e-4, [&](size_t j) {
+        shared = shared || (j != i && (length(lines[j].first - p) < 2e-4 || length(lines[j].second - p) < 2e-4));
+      });
+      if (shared_only && !shared) continue;
+      const std::vector<size_t> along = reached(p, 4 * prm.join);
+      for (size_t j : near_lines) {
+        if (std::binary_search(along.begin(), along.end(), j)) continue;
+        if (!done.insert({p.x, p.y, j}).second) {
+          ne.joined[i][size_t(w)] = true;
+          continue;
+        }
+        const auto [c, d] = lines[j];
+        if (!shared) {
+          const double den = cross(u, d - c);
+          const double th = std::fabs(den) > 1e-12 ? cross(c - p, d - c) / den : -1;
+          const double sh = std::fabs(den) > 1e-12 ? cross(c - p, u) / den : -1;
+          if (th >= -1e-9 && th <= 0.8 * kCarriedOn && sh > 0.01 && sh < 0.99) continue;
+        }
+        const double lj = length(d - c), dist = distance_to_segment(p, c, d);
+        if (!(lj > 0)) continue;
+        const Vec2 v = (1 / lj) * (d - c), n{-v.y, v.x};
+        const double t = dot(p - c, v);
+        if (t <= 0 || t >= lj) {  // nearest at its end: joined to that end, point to point
+          added.push_back({p, t <= 0 ? c : d});
+          ne.joined[i][size_t(w)] = true;
+          continue;
+        }
+        // Beside it: a free end running along it stays free (a wall's end capped in pass 2).
+        if (dist > prm.touch && std::fabs(cross(u, v)) < sin_along) continue;
+        const Vec2 f = c + t * v;
+        const double side = cross(v, p - c);  // which side of it the end lies, + the left
+        // The reader snaps the drawing to 0.1 mm afterwards, moving the end and the line
+        // by up to 0.07 mm: an end nearer than 0.1 mm (`touch`/5) may land on either side,
+        // so it is joined across to both.
+        if (std::fabs(side) < 0.2 * prm.touch || side < 0) added.push_back({p, f + prm.join_overshoot * n});
+        if (std::fabs(side) < 0.2 * prm.touch || side > 0) added.push_back({p, f - prm.join_overshoot * n});
+        ne.joined[i][size_t(w)] = true;
+      }
+    }
+  }
+  return ne;
+}
+
 }  // namespace
 
 WallLineEnds close_wall_line_ends(const std::vector<std::pair<Vec2, Vec2>>& lines, const WallLineEndParams& prm) {
@@ -88,20 +196,18 @@ WallLineEnds close_wall_line_ends(const std::vector<std::pair<Vec2, Vec2>>& line
   if (lines.empty()) return out;
   SegmentGrid grid(lines, std::max(prm.cap, 0.1));
 
-  // Free ends: (line, which end) whose point no other line comes within `touch` of.
+  // Pass 0, then the free ends: (line, which end) whose point no other line comes within
+  // `touch` of and that is joined to none.
+  const NearEnds ne = join_near_ends(lines, 0, true, prm, out.added);
+  out.joined = int(out.added.size());
   struct End { size_t line; int which; Vec2 p, u; };  // u: the line's direction out of this end
   std::vector<End> free;
   for (size_t i = 0; i < lines.size(); ++i) {
     const auto [a, b] = lines[i];
     const double len = length(b - a);
-    if (!(len > prm.touch)) continue;
     for (int w = 0; w < 2; ++w) {
-      const Vec2 p = w ? b : a, u = (1 / len) * (w ? b - a : a - b);
-      bool touches = false;
-      grid.near(p, prm.touch, [&](size_t j) {
-        if (j != i && distance_to_segment(p, lines[j].first, lines[j].second) <= prm.touch) touches = true;
-      });
-      if (!touches) free.push_back({i, w, p, u});
+      if (!(len > prm.touch) || ne.touches[i][size_t(w)]) continue;
+      free.push_back({i, w, w ? b : a, (1 / len) * (w ? b - a : a - b)});
     }
   }
   out.free_ends = int(free.size());
@@ -147,6 +253,13 @@ WallLineEnds close_wall_line_ends(const std::vector<std::pair<Vec2, Vec2>>& line
     }
   }
   return out;
+}
+
+std::vector<std::pair<Vec2, Vec2>> join_wall_line_ends(const std::vector<std::pair<Vec2, Vec2>>& lines, size_t first_new,
+                                                        const WallLineEndParams& params) {
+  std::vector<std::pair<Vec2, Vec2>> added;
+  join_near_ends(lines, first_new, false, params, added);
+  return added;
 }
 
 }  // namespace avenues
