@@ -171,7 +171,9 @@ std::optional<Side> side_of_meeting(const Coefficients& p, const Coefficients& q
                                     const Coefficients& r, const Coefficients& h) {
   // Column pairs (j, k), j < k, and their complements, in the order of the expansion.
   static constexpr int kPairs[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-  mpz_class top[6], bottom[6], t;
+  // Kept per thread: their limbs stay allocated from one call to the next (this is the
+  // hottest exact test of the decomposition; fresh integers cost a malloc and free each).
+  thread_local mpz_class top[6], bottom[6], t, n, det;
   for (int m = 0; m < 6; ++m) {
     const size_t j = size_t(kPairs[m][0]), k = size_t(kPairs[m][1]);
     top[m] = p[j] * q[k];
@@ -182,7 +184,7 @@ std::optional<Side> side_of_meeting(const Coefficients& p, const Coefficients& q
     bottom[m] -= t;
   }
   // det N = |p q r| over columns 0, 1, 2: r_2·top(0,1) − r_1·top(0,2) + r_0·top(1,2).
-  mpz_class n = r[2] * top[0];
+  n = r[2] * top[0];
   t = r[1] * top[1];
   n -= t;
   t = r[0] * top[3];
@@ -190,18 +192,18 @@ std::optional<Side> side_of_meeting(const Coefficients& p, const Coefficients& q
   const int sn = sgn(n);
   if (sn == 0) return std::nullopt;
   // det M = Σ ± top(j,k) · bottom(complement): (01)(23) − (02)(13) + (03)(12) + (12)(03) − (13)(02) + (23)(01).
-  mpz_class m = top[0] * bottom[5];
+  det = top[0] * bottom[5];
   t = top[1] * bottom[4];
-  m -= t;
+  det -= t;
   t = top[2] * bottom[3];
-  m += t;
+  det += t;
   t = top[3] * bottom[2];
-  m += t;
+  det += t;
   t = top[4] * bottom[1];
-  m -= t;
+  det -= t;
   t = top[5] * bottom[0];
-  m += t;
-  const int sign = sgn(m) * sn;
+  det += t;
+  const int sign = sgn(det) * sn;
   return sign > 0 ? ON_POSITIVE_SIDE : sign < 0 ? ON_NEGATIVE_SIDE : ON_ORIENTED_BOUNDARY;
 }
 
