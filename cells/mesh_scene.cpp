@@ -378,12 +378,171 @@ struct FaceBuild {
 
 }  // namespace
 
+namespace {
+
+/// A convex polygon of a plane in 2D: coordinates along u and v (unit, u × v = w).
+struct PlaneFrame {
+  Vec3 origin, u, v, w;
+  explicit PlaneFrame(const std::vector<Vec3>& on, Vec3 normal) : origin(on.front()), w(normal) {
+    const Vec3 a = std::fabs(w.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+    u = cross(a, w);
+    u = (1 / length(u)) * u;
+    v = cross(w, u);
+  }
+  Vec2 flat(Vec3 p) const { return {dot(p - origin, u), dot(p - origin, v)}; }
+  Vec3 lift(Vec2 p) const { return origin + p.x * u + p.y * v; }
+  std::vector<Vec2> flat(const std::vector<Vec3>& poly) const {
+    std::vector<Vec2> out;
+    for (Vec3 p : poly) out.push_back(flat(p));
+    if (signed_area(out) < 0) std::reverse(out.begin(), out.end());
+    return out;
+  }
+};
+
+/// The part of convex polygon a inside convex polygon b (both counter-clockwise).
+std::vector<Vec2> convex_clip(std::vector<Vec2> a, const std::vector<Vec2>& b) {
+  for (size_t k = 0; k < b.size() && a.size() >= 3; ++k) {
+    const Vec2 p = b[k], q = b[(k + 1) % b.size()];
+    auto side = [&](Vec2 x) { return (q.x - p.x) * (x.y - p.y) - (q.y - p.y) * (x.x - p.x); };
+    std::vector<Vec2> kept;
+    for (size_t i = 0; i < a.size(); ++i) {
+      const Vec2 c = a[i], d = a[(i + 1) % a.size()];
+      const double sc = side(c), sd = side(d);
+      if (sc >= 0) kept.push_back(c);
+      if ((sc > 0 && sd < 0) || (sc < 0 && sd > 0)) kept.push_back(c + (sc / (sc - sd)) * (d - c));
+    }
+    a = std::move(kept);
+  }
+  return a.size() >= 3 ? a : std::vector<Vec2>{};
+}
+
+/// Rays crossed a free sliver from one kept neighbour into another: where the sliver's
+/// two large faces lie back to back (turned apart within 1e-10, each a rounding from the
+/// other) and hold only portals to kept cells and opaque pieces, each portal P of one face
+/// and each piece Q of the other are joined over P ∩ Q (Q projected on P's plane): a portal
+/// between the two neighbours, or an opaque piece of P's cell in Q's material. Those
+/// portals are then taken off the sliver, so remove_cells does not close them. The join is
+/// as exact as the rounding that made the sliver: a point moves across it by its width,
+/// under the tolerance cells_are_valid allows. Returns how many portals it made.
+size_t join_across_slivers(CellComplex& out, const std::vector<bool>& sliver, double thin) {
+  size_t made = 0;
+  std::vector<bool> handled(out.portals.size(), false);  // taken off their sliver already
+  for (size_t s = 0; s < out.cells.size(); ++s) {
+    if (!sliver[s]) continue;
+    const Cell& cell = out.cells[s];
+    for (size_t fa = 0; fa < cell.faces.size(); ++fa)
+      for (size_t fb = fa + 1; fb < cell.faces.size(); ++fb) {
+        const Face &A = cell.faces[fa], &B = cell.faces[fb];
+        if (dot(A.plane.n, B.plane.n) > -(1 - 1e-10)) continue;
+        // Each face within the tolerance of the other's plane, and only portals to kept
+        // cells beside opaque pieces.
+        bool usable = true;
+        for (Vec3 p : A.poly) usable = usable && std::fabs(B.plane.eval(p)) <= 0.9 * thin;
+        for (Vec3 p : B.poly) usable = usable && std::fabs(A.plane.eval(p)) <= 0.9 * thin;
+        for (const Face* f : {&A, &B})
+          for (PortalId p : f->portals)
+            usable = usable && !handled[size_t(p)] && !sliver[size_t(out.portals[size_t(p)].other(CellId(s)))];
+        if (!usable || (A.portals.empty() && B.portals.empty())) continue;
+        // Which portals leave the sliver here, with the neighbour and its face holding them.
+        struct Side {
+          PortalId portal;
+          CellId cell;
+          size_t face;
+        };
+        auto sides = [&](const Face& f) {
+          std::vector<Side> v;
+          for (PortalId p : f.portals) {
+            const CellId o = out.portals[size_t(p)].other(CellId(s));
+            const Cell& oc = out.cells[size_t(o)];
+            for (size_t k = 0; k < oc.faces.size(); ++k)
+              if (std::find(oc.faces[k].portals.begin(), oc.faces[k].portals.end(), p) != oc.faces[k].portals.end())
+                v.push_back({p, o, k});
+          }
+          return v;
+        };
+        const std::vector<Side> sa = sides(A), sb = sides(B);
+        if (sa.size() != A.portals.size() || sb.size() != B.portals.size()) continue;
+        // Face A of the sliver is turned towards the cells of sa (its outward normal points
+        // into them), so from them the way across is −A's normal, into B's cells.
+        std::vector<Portal> portals;
+        std::vector<std::vector<size_t>> portal_of_a(sa.size()), portal_of_b(sb.size());
+        std::vector<std::vector<OpaquePoly>> opaque_a(sa.size()), opaque_b(sb.size());
+        const double tiny = thin * thin;
+        for (size_t i = 0; i < sa.size(); ++i) {
+          const Portal& pa = out.portals[size_t(sa[i].portal)];
+          const PlaneFrame frame(pa.poly, -1.0 * A.plane.n);  // right-handed about the way across
+          const std::vector<Vec2> a2 = frame.flat(pa.poly);
+          for (size_t j = 0; j < sb.size(); ++j) {
+            if (sb[j].cell == sa[i].cell) continue;
+            const std::vector<Vec2> x = convex_clip(a2, frame.flat(out.portals[size_t(sb[j].portal)].poly));
+            if (!(signed_area(x) > tiny)) continue;
+            Portal q;
+            q.cell[0] = sa[i].cell, q.cell[1] = sb[j].cell;
+            for (Vec2 p : x) q.poly.push_back(frame.lift(p));  // counter-clockwise about the way across
+            q.plane = out.cells[size_t(sa[i].cell)].faces[sa[i].face].plane;  // outward from cell[0]: into cell[1]
+            portal_of_a[i].push_back(portals.size());
+            portal_of_b[j].push_back(portals.size());
+            portals.push_back(std::move(q));
+          }
+          for (const OpaquePoly& o : B.opaque) {  // turned into the sliver: towards sa's cells
+            const std::vector<Vec2> x = convex_clip(a2, frame.flat(o.poly));
+            if (!(signed_area(x) > tiny)) continue;
+            OpaquePoly piece{{}, o.material};
+            for (auto it = x.rbegin(); it != x.rend(); ++it) piece.poly.push_back(frame.lift(*it));  // seen from sa's cell
+            opaque_a[i].push_back(std::move(piece));
+          }
+        }
+        for (size_t j = 0; j < sb.size(); ++j) {
+          const Portal& pb = out.portals[size_t(sb[j].portal)];
+          const PlaneFrame frame(pb.poly, -1.0 * B.plane.n);
+          const std::vector<Vec2> b2 = frame.flat(pb.poly);
+          for (const OpaquePoly& o : A.opaque) {
+            const std::vector<Vec2> x = convex_clip(b2, frame.flat(o.poly));
+            if (!(signed_area(x) > tiny)) continue;
+            OpaquePoly piece{{}, o.material};
+            for (auto it = x.rbegin(); it != x.rend(); ++it) piece.poly.push_back(frame.lift(*it));
+            opaque_b[j].push_back(std::move(piece));
+          }
+        }
+        // Only where the pieces cover each portal they replace (the two faces' extents
+        // alike): else the sliver is left to remove_cells.
+        auto covered = [&](const Portal& p, const std::vector<size_t>& joins, const std::vector<OpaquePoly>& pieces) {
+          double a = 0;
+          for (size_t k : joins) a += polygon_area(portals[k].poly);
+          for (const OpaquePoly& o : pieces) a += polygon_area(o.poly);
+          return std::fabs(a - polygon_area(p.poly)) <= 1e-9 * std::max(1.0, polygon_area(p.poly));
+        };
+        bool all = true;
+        for (size_t i = 0; i < sa.size(); ++i) all = all && covered(out.portals[size_t(sa[i].portal)], portal_of_a[i], opaque_a[i]);
+        for (size_t j = 0; j < sb.size(); ++j) all = all && covered(out.portals[size_t(sb[j].portal)], portal_of_b[j], opaque_b[j]);
+        if (!all) continue;
+        // In place of each portal into the sliver: its joins and opaque pieces.
+        const PortalId first = PortalId(out.portals.size());
+        for (Portal& q : portals) out.portals.push_back(std::move(q));
+        auto replace = [&](const Side& side, const std::vector<size_t>& joins, std::vector<OpaquePoly>& pieces) {
+          Face& f = out.cells[size_t(side.cell)].faces[side.face];
+          f.portals.erase(std::find(f.portals.begin(), f.portals.end(), side.portal));
+          for (size_t k : joins) f.portals.push_back(first + PortalId(k));
+          for (OpaquePoly& o : pieces) f.opaque.push_back(std::move(o));
+        };
+        for (size_t i = 0; i < sa.size(); ++i) replace(sa[i], portal_of_a[i], opaque_a[i]), handled[size_t(sa[i].portal)] = true;
+        for (size_t j = 0; j < sb.size(); ++j) replace(sb[j], portal_of_b[j], opaque_b[j]), handled[size_t(sb[j].portal)] = true;
+        made += portals.size();
+      }
+  }
+  return made;
+}
+
+}  // namespace
+
 /// Cells that rounding to double leaves without a shape: thinner than `1e-9 · scale`
 /// (the tolerance cells_are_valid allows coordinates rounded once) across some face, or
 /// with no outline from above. Where shallow solids cross (the ripple torus) the exact
-/// decomposition leaves a few such slivers, nanometres across. They are dropped; the
-/// portals into them become opaque pieces of their neighbours' faces (of that size, they
-/// hide nothing), and one warning counts them.
+/// decomposition leaves a few such slivers, nanometres across; a soup's nearly coplanar
+/// faces leave many, some between free cells. They are dropped: their neighbours joined
+/// across them where they can be (join_across_slivers), the other portals into them
+/// opaque pieces of their neighbours' faces in the material seen through them
+/// (material_beyond); one warning counts them.
 void drop_slivers(CellComplex& out) {
   const Box3& fb = out.far_box;
   const double scale = std::max({1.0, std::fabs(fb.lo.x), std::fabs(fb.hi.x), std::fabs(fb.lo.y), std::fabs(fb.hi.y),
@@ -406,12 +565,14 @@ void drop_slivers(CellComplex& out) {
     if (sliver[i]) thinnest = std::min(thinnest, width), ++dropped;
   }
   if (dropped == 0) return;
+  const size_t joined = join_across_slivers(out, sliver, thin);
   remove_cells(out, sliver);
-  char what[320];
+  char what[400];
   std::snprintf(what, sizeof what,
                 "%zu slivers of free space thinner than %.3g m (the thinnest %.3g m), left by rounding the exact cells "
-                "to double, were dropped; the portals into them became opaque, in the material seen through them",
-                dropped, thin, std::max(thinnest, 0.0));
+                "to double, were dropped; %zu portals join the cells on their two sides, and the other portals into "
+                "them became opaque, in the material seen through them",
+                dropped, thin, std::max(thinnest, 0.0), joined);
   out.warnings.push_back(what);
 }
 

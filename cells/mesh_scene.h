@@ -76,8 +76,10 @@ CellComplex read_mesh_scene(const std::string& path, const MeshSceneParams& para
 void add_real_lines(CellComplex& complex, const std::vector<RealLine>& lines);
 
 /// Drops cells that rounding to double leaves without a shape (thinner than 1e-9 of the
-/// far box's scale across some face, or with no outline from above); the portals into
-/// them become opaque pieces of their neighbours' faces, and one warning counts them.
+/// far box's scale across some face, or with no outline from above). Where such a sliver
+/// lies between free cells, its neighbours are joined across it by portals; the other
+/// portals into it become opaque pieces of their neighbours' faces, in the material seen
+/// through the sliver. One warning counts them.
 void drop_slivers(CellComplex& complex);
 
 /// Drops the cells marked in `drop` (one flag per cell), renumbering the rest; a portal
