@@ -380,40 +380,29 @@ struct FaceBuild {
 
 namespace {
 
-/// A convex polygon of a plane in 2D: coordinates along u and v (unit, u × v = w).
-struct PlaneFrame {
-  Vec3 origin, u, v, w;
-  explicit PlaneFrame(const std::vector<Vec3>& on, Vec3 normal) : origin(on.front()), w(normal) {
-    const Vec3 a = std::fabs(w.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-    u = cross(a, w);
-    u = (1 / length(u)) * u;
-    v = cross(w, u);
-  }
-  Vec2 flat(Vec3 p) const { return {dot(p - origin, u), dot(p - origin, v)}; }
-  Vec3 lift(Vec2 p) const { return origin + p.x * u + p.y * v; }
-  std::vector<Vec2> flat(const std::vector<Vec3>& poly) const {
-    std::vector<Vec2> out;
-    for (Vec3 p : poly) out.push_back(flat(p));
-    if (signed_area(out) < 0) std::reverse(out.begin(), out.end());
-    return out;
-  }
-};
+/// A planar polygon's normal, turned by its corners' order (right hand), twice its area long.
+Vec3 polygon_normal(const std::vector<Vec3>& p) {
+  Vec3 n{0, 0, 0};
+  for (size_t i = 0; i + 2 < p.size(); ++i) n = n + cross(p[i + 1] - p[0], p[i + 2] - p[0]);
+  return n;
+}
 
-/// The part of convex polygon a inside convex polygon b (both counter-clockwise).
-std::vector<Vec2> convex_clip(std::vector<Vec2> a, const std::vector<Vec2>& b) {
-  for (size_t k = 0; k < b.size() && a.size() >= 3; ++k) {
-    const Vec2 p = b[k], q = b[(k + 1) % b.size()];
-    auto side = [&](Vec2 x) { return (q.x - p.x) * (x.y - p.y) - (q.y - p.y) * (x.x - p.x); };
-    std::vector<Vec2> kept;
-    for (size_t i = 0; i < a.size(); ++i) {
-      const Vec2 c = a[i], d = a[(i + 1) % a.size()];
-      const double sc = side(c), sd = side(d);
-      if (sc >= 0) kept.push_back(c);
-      if ((sc > 0 && sd < 0) || (sc < 0 && sd > 0)) kept.push_back(c + (sc / (sc - sd)) * (d - c));
-    }
-    a = std::move(kept);
+/// The part of convex polygon p inside convex polygon q seen along w (q projected along w
+/// on to p's plane): p cut (core's cut_polygon) by the plane through each edge of q that
+/// holds w. Empty when nothing of area is left.
+std::vector<Vec3> clip_along(std::vector<Vec3> p, const std::vector<Vec3>& q, Vec3 w) {
+  const double turn = dot(polygon_normal(q), w) >= 0 ? 1 : -1;  // q counter-clockwise about w: inside on the left
+  for (size_t k = 0; k < q.size() && p.size() >= 3; ++k) {
+    const Vec3 a = q[k], left = turn * cross(w, q[(k + 1) % q.size()] - a);
+    p = cut_polygon(p, [&](Vec3 x) { return dot(left, x - a); });
   }
-  return a.size() >= 3 ? a : std::vector<Vec2>{};
+  return p.size() >= 3 ? p : std::vector<Vec3>{};
+}
+
+/// p turned counter-clockwise about n (its corners' order reversed if it turns the other way).
+std::vector<Vec3> turned_about(std::vector<Vec3> p, Vec3 n) {
+  if (dot(polygon_normal(p), n) < 0) std::reverse(p.begin(), p.end());
+  return p;
 }
 
 /// Rays crossed a free sliver from one kept neighbour into another: where the sliver's
@@ -468,40 +457,33 @@ size_t join_across_slivers(CellComplex& out, const std::vector<bool>& sliver, do
         std::vector<std::vector<size_t>> portal_of_a(sa.size()), portal_of_b(sb.size());
         std::vector<std::vector<OpaquePoly>> opaque_a(sa.size()), opaque_b(sb.size());
         const double tiny = thin * thin;
+        // The way across from sa's cells is −A's normal: a new portal turns counter-
+        // clockwise about it (its normal into cell[1]), an opaque piece of sa's cell about
+        // A's normal (seen from inside that cell); the same for sb's cells with B.
         for (size_t i = 0; i < sa.size(); ++i) {
-          const Portal& pa = out.portals[size_t(sa[i].portal)];
-          const PlaneFrame frame(pa.poly, -1.0 * A.plane.n);  // right-handed about the way across
-          const std::vector<Vec2> a2 = frame.flat(pa.poly);
+          const std::vector<Vec3>& pa = out.portals[size_t(sa[i].portal)].poly;
           for (size_t j = 0; j < sb.size(); ++j) {
             if (sb[j].cell == sa[i].cell) continue;
-            const std::vector<Vec2> x = convex_clip(a2, frame.flat(out.portals[size_t(sb[j].portal)].poly));
-            if (!(signed_area(x) > tiny)) continue;
+            std::vector<Vec3> x = clip_along(pa, out.portals[size_t(sb[j].portal)].poly, A.plane.n);
+            if (!(polygon_area(x) > tiny)) continue;
             Portal q;
             q.cell[0] = sa[i].cell, q.cell[1] = sb[j].cell;
-            for (Vec2 p : x) q.poly.push_back(frame.lift(p));  // counter-clockwise about the way across
+            q.poly = turned_about(std::move(x), -1.0 * A.plane.n);
             q.plane = out.cells[size_t(sa[i].cell)].faces[sa[i].face].plane;  // outward from cell[0]: into cell[1]
             portal_of_a[i].push_back(portals.size());
             portal_of_b[j].push_back(portals.size());
             portals.push_back(std::move(q));
           }
           for (const OpaquePoly& o : B.opaque) {  // turned into the sliver: towards sa's cells
-            const std::vector<Vec2> x = convex_clip(a2, frame.flat(o.poly));
-            if (!(signed_area(x) > tiny)) continue;
-            OpaquePoly piece{{}, o.material};
-            for (auto it = x.rbegin(); it != x.rend(); ++it) piece.poly.push_back(frame.lift(*it));  // seen from sa's cell
-            opaque_a[i].push_back(std::move(piece));
+            std::vector<Vec3> x = clip_along(pa, o.poly, A.plane.n);
+            if (polygon_area(x) > tiny) opaque_a[i].push_back({turned_about(std::move(x), A.plane.n), o.material});
           }
         }
         for (size_t j = 0; j < sb.size(); ++j) {
-          const Portal& pb = out.portals[size_t(sb[j].portal)];
-          const PlaneFrame frame(pb.poly, -1.0 * B.plane.n);
-          const std::vector<Vec2> b2 = frame.flat(pb.poly);
+          const std::vector<Vec3>& pb = out.portals[size_t(sb[j].portal)].poly;
           for (const OpaquePoly& o : A.opaque) {
-            const std::vector<Vec2> x = convex_clip(b2, frame.flat(o.poly));
-            if (!(signed_area(x) > tiny)) continue;
-            OpaquePoly piece{{}, o.material};
-            for (auto it = x.rbegin(); it != x.rend(); ++it) piece.poly.push_back(frame.lift(*it));
-            opaque_b[j].push_back(std::move(piece));
+            std::vector<Vec3> x = clip_along(pb, o.poly, B.plane.n);
+            if (polygon_area(x) > tiny) opaque_b[j].push_back({turned_about(std::move(x), B.plane.n), o.material});
           }
         }
         // Only where the pieces cover each portal they replace (the two faces' extents
