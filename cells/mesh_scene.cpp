@@ -376,17 +376,6 @@ struct FaceBuild {
   std::map<CellId, std::vector<Nef::Vertex_const_handle>> toward;  ///< portal vertices per neighbour
 };
 
-}  // namespace
-
-namespace {
-
-/// A planar polygon's normal, turned by its corners' order (right hand), twice its area long.
-Vec3 polygon_normal(const std::vector<Vec3>& p) {
-  Vec3 n{0, 0, 0};
-  for (size_t i = 0; i + 2 < p.size(); ++i) n = n + cross(p[i + 1] - p[0], p[i + 2] - p[0]);
-  return n;
-}
-
 /// The part of convex polygon p inside convex polygon q seen along w (q projected along w
 /// on to p's plane): p cut (core's cut_polygon) by the plane through each edge of q that
 /// holds w. Empty when nothing of area is left.
@@ -515,6 +504,21 @@ size_t join_across_slivers(CellComplex& out, const std::vector<bool>& sliver, do
   return made;
 }
 
+/// The material a cell dropped as a sliver showed through a face of outward normal n of
+/// its neighbour: that of the largest opaque piece on the sliver's far side (its face
+/// turned most nearly along n), or none (-1) where that side is open too.
+MaterialId material_beyond(const Cell& dropped, Vec3 n) {
+  const Face* far = nullptr;
+  for (const Face& g : dropped.faces)
+    if (!far || dot(g.plane.n, n) > dot(far->plane.n, n)) far = &g;
+  MaterialId m = -1;
+  double most = 0;
+  if (far && dot(far->plane.n, n) > 0.5)
+    for (const OpaquePoly& o : far->opaque)
+      if (const double a = polygon_area(o.poly); a > most) most = a, m = o.material;
+  return m;
+}
+
 }  // namespace
 
 /// Cells that rounding to double leaves without a shape: thinner than `1e-9 · scale`
@@ -557,25 +561,6 @@ void drop_slivers(CellComplex& out) {
                 dropped, thin, std::max(thinnest, 0.0), joined);
   out.warnings.push_back(what);
 }
-
-namespace {
-
-/// The material a cell dropped as a sliver showed through a face of outward normal n of
-/// its neighbour: that of the largest opaque piece on the sliver's far side (its face
-/// turned most nearly along n), or none (-1) where that side is open too.
-MaterialId material_beyond(const Cell& dropped, Vec3 n) {
-  const Face* far = nullptr;
-  for (const Face& g : dropped.faces)
-    if (!far || dot(g.plane.n, n) > dot(far->plane.n, n)) far = &g;
-  MaterialId m = -1;
-  double most = 0;
-  if (far && dot(far->plane.n, n) > 0.5)
-    for (const OpaquePoly& o : far->opaque)
-      if (const double a = polygon_area(o.poly); a > most) most = a, m = o.material;
-  return m;
-}
-
-}  // namespace
 
 void remove_cells(CellComplex& out, const std::vector<bool>& drop) {
   std::vector<CellId> new_id(out.cells.size(), kNoCell);

@@ -70,12 +70,16 @@ std::vector<Vec3> cut_polygon(const std::vector<Vec3>& in, F f) {
   return out;
 }
 
-/// Area [m²] of a planar polygon in space (convex, or simple and fanned from its first vertex).
-inline double polygon_area(const std::vector<Vec3>& p) {
+/// Normal of a planar polygon in space (convex, or simple and fanned from its first
+/// vertex), turned by its corners' order (right hand), twice its area long.
+inline Vec3 polygon_normal(const std::vector<Vec3>& p) {
   Vec3 n{0, 0, 0};
   for (size_t i = 0; i + 2 < p.size(); ++i) n = n + cross(p[i + 1] - p[0], p[i + 2] - p[0]);
-  return 0.5 * length(n);
+  return n;
 }
+
+/// Area [m²] of a planar polygon in space (convex, or simple and fanned from its first vertex).
+inline double polygon_area(const std::vector<Vec3>& p) { return 0.5 * length(polygon_normal(p)); }
 
 /// Signed area [m²] of a simple polygon: positive when counter-clockwise.
 inline double signed_area(const std::vector<Vec2>& p) {
