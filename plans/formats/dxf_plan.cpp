@@ -27,6 +27,11 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
+/// A door's swing, drawn as an arc: a leaf 0.4 to 1.6 m wide, opening 60 to 120 degrees
+/// (a quarter turn, drawn loosely; not a bi-fold's small arcs, not a revolving door).
+bool door_swing_radius(double r_m) { return r_m >= 0.4 && r_m <= 1.6; }
+bool door_swing_sweep(double deg) { return deg >= 60 && deg <= 120; }
+
 /// A circular arc: centre, its two ends (counter-clockwise from p0 to p1), its sweep.
 struct ArcPiece {
   Vec2 c, p0, p1;
@@ -626,8 +631,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     }
     std::vector<Vec2> swing_points;
     for (const auto& [a, in_door_block] : flat.arcs)  // swings (as below), not a bi-fold's small arcs
-      if ((role[a.layer] == Role::Doors || in_door_block) && a.r * unit >= 0.4 && a.r * unit <= 1.6 &&
-          a.sweep_deg >= 60 && a.sweep_deg <= 120)
+      if ((role[a.layer] == Role::Doors || in_door_block) && door_swing_radius(a.r * unit) && door_swing_sweep(a.sweep_deg))
         for (Vec2 p : {a.c, a.p0, a.p1}) swing_points.push_back(m(p));
     for (const Flat::Curve& cv : flat.curves)
       if ((role[cv.layer] == Role::Doors || cv.door_block) && !cv.pts.empty())
@@ -687,7 +691,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   for (const auto& [a0, in_door_block] : flat.arcs) {
     if (role[a0.layer] != Role::Doors && !in_door_block) continue;
     const double r = a0.r * unit;
-    if (r < 0.4 || r > 1.6 || a0.sweep_deg < 60 || a0.sweep_deg > 120) continue;
+    if (!door_swing_radius(r) || !door_swing_sweep(a0.sweep_deg)) continue;
     ++swings;
     const Vec2 c = m(a0.c), e0 = m(a0.p0), e1 = m(a0.p1);
     found.push_back({c, closed_end(c, e0, e1), a0.layer});
@@ -719,7 +723,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
       }
       const Vec2 p = m(pts.front()), q = m(pts.back()), mid = m(pts[pts.size() / 2]);
       const double chord = length(q - p), r = chord / std::sqrt(2.0);
-      if (r < 0.4 || r > 1.6) continue;
+      if (!door_swing_radius(r)) continue;
       const Vec2 half = 0.5 * (p + q), n = 0.5 * Vec2{-(q.y - p.y), q.x - p.x};  // half the chord, across it
       for (const Vec2 c : {half + n, half - n}) {
         if (std::fabs(length(mid - c) - r) > 0.08 * r) continue;
@@ -790,7 +794,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     for (const WallLine& s : walls) {
       const double len = length(s.b - s.a);
       if (len < 1e-4) continue;
-      const Vec2 u = (0.001 / len) * (s.b - s.a), a = snap(s.a), b = snap(s.b);
+      const Vec2 u = (kWallLineCarriedOn / len) * (s.b - s.a), a = snap(s.a), b = snap(s.b);
       arr_in.segments.push_back({shared(a) ? a : snap(s.a - u), shared(b) ? b : snap(s.b + u), s.closes});
     }
   }

@@ -6,6 +6,8 @@
 #include <functional>
 #include <numeric>
 
+#include "core/angles.h"
+
 namespace avenues {
 namespace {
 
@@ -102,7 +104,7 @@ std::vector<SwinglessDoor> find_swingless_doors(const std::vector<std::pair<Vec2
   for (size_t i = 0; i < pieces.size(); ++i)
     for (size_t j = i + 1; j < pieces.size(); ++j) {
       const Piece &p = pieces[i], &q = pieces[j];
-      if (std::fabs(cross(p.u, q.u)) > std::sin(10 * 3.14159265358979 / 180)) continue;
+      if (std::fabs(cross(p.u, q.u)) > std::sin(rad_from_deg(10))) continue;
       const Vec2 nrm{-p.u.y, p.u.x};
       if (std::fabs(dot(q.mid - p.mid, nrm)) > prm.max_across) continue;
       const double off = dot(q.mid - p.mid, p.u);
@@ -138,7 +140,7 @@ std::vector<SwinglessDoor> find_swingless_doors(const std::vector<std::pair<Vec2
       const double len = length(b - a);
       if (len < 1e-6) return;
       const double sa = dot(a - c, nrm), sb = dot(b - c, nrm), ta = dot(a - c, u), tb = dot(b - c, u);
-      const bool parallel = std::fabs(cross(u, (1 / len) * (b - a))) < std::sin(15 * 3.14159265358979 / 180);
+      const bool parallel = std::fabs(cross(u, (1 / len) * (b - a))) < std::sin(rad_from_deg(15));
       if (parallel) {
         if (std::max(std::fabs(sa), std::fabs(sb)) > prm.max_half_wall) return;
         // A face beside the axis: the gap ends where it begins (a face running through the
@@ -159,7 +161,7 @@ std::vector<SwinglessDoor> find_swingless_doors(const std::vector<std::pair<Vec2
       bool goes_on = false;
       each_wall([&](Vec2 a, Vec2 b) {
         const double len = length(b - a);
-        if (goes_on || len < 1e-6 || std::fabs(cross(u, (1 / len) * (b - a))) > std::sin(15 * 3.14159265358979 / 180)) return;
+        if (goes_on || len < 1e-6 || std::fabs(cross(u, (1 / len) * (b - a))) > std::sin(rad_from_deg(15))) return;
         if (std::max(std::fabs(dot(a - c, nrm)), std::fabs(dot(b - c, nrm))) > prm.max_half_wall) return;
         const double ta = sign * dot(a - c, u) - end[side], tb = sign * dot(b - c, u) - end[side];
         goes_on = std::min(ta, tb) < 0.3 && std::max(ta, tb) > 0.05;

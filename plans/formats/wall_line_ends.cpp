@@ -11,6 +11,8 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "core/angles.h"
+
 namespace avenues {
 namespace {
 
@@ -88,7 +90,6 @@ double ray_hit(Vec2 p, Vec2 u, double reach, Vec2 a, Vec2 b) {
 /// Pass 0 (see wall_line_ends.h): joins each end of a line to the lines it nearly
 /// touches, for pairs with at least one line at index >= first_new. Appends the joining
 /// lines to `added`; per line end, whether it was joined and whether it touches a line.
-constexpr double kCarriedOn = 0.001;  ///< [m] how far the arrangement carries an end no other line ends at
 struct NearEnds { std::vector<std::array<bool, 2>> joined, touches; };
 NearEnds join_near_ends(const std::vector<std::pair<Vec2, Vec2>>& lines, size_t first_new, bool shared_only,
                         const WallLineEndParams& prm, std::vector<std::pair<Vec2, Vec2>>& added) {
@@ -125,7 +126,7 @@ NearEnds join_near_ends(const std::vector<std::pair<Vec2, Vec2>>& lines, size_t 
     return out_lines;
   };
 
-  const double sin_along = std::sin(10 * 3.14159265358979323846 / 180);  // runs along a line below 10°
+  const double sin_along = std::sin(rad_from_deg(10));  // runs along a line below 10°
   std::set<std::tuple<double, double, size_t>> done;  // (end point, line joined to): a corner's lines join once
   for (size_t i = 0; i < lines.size(); ++i) {
     const auto [a, b] = lines[i];
@@ -162,7 +163,7 @@ NearEnds join_near_ends(const std::vector<std::pair<Vec2, Vec2>>& lines, size_t 
           const double den = cross(u, d - c);
           const double th = std::fabs(den) > 1e-12 ? cross(c - p, d - c) / den : -1;
           const double sh = std::fabs(den) > 1e-12 ? cross(c - p, u) / den : -1;
-          if (th >= -1e-9 && th <= 0.8 * kCarriedOn && sh > 0.01 && sh < 0.99) continue;
+          if (th >= -1e-9 && th <= 0.8 * kWallLineCarriedOn && sh > 0.01 && sh < 0.99) continue;
         }
         const double lj = length(d - c), dist = distance_to_segment(p, c, d);
         if (!(lj > 0)) continue;

@@ -26,6 +26,10 @@
 
 namespace avenues {
 
+/// [m] How far the arrangement carries a wall line on past an end no other line ends at,
+/// so that a line drawn onto another one crosses it.
+constexpr double kWallLineCarriedOn = 0.001;
+
 struct WallLineEndParams {
   double touch = 0.0005; ///< [m] an end nearer than this to another line is not free (the arrangement
                          ///< carries every line 1 mm on past its ends)
