@@ -415,8 +415,10 @@ class Traversal {
     if (pi == via) return;
     const CellId other = c_.portals[size_t(pi)].other(cell);
     if (on_path_[size_t(other)]) return;
+    Facing fc;
+    if (!facing(cell, pi, fc)) return;  // before copying the mask: most portals end here
     Mask<T> m = mask;
-    if (!through(cell, pi, m)) return;
+    if (!through(cell, pi, fc, m)) return;
     if (prune_ && covered(other, m)) {
       ++out_.avenues_pruned;
       return;
@@ -424,9 +426,16 @@ class Traversal {
     visit(other, m, self, pi, depth + 1);
   }
 
-  /// Narrows mask m (of an avenue in `cell`) to the rays that also pass portal pi, seen
-  /// from `cell`: false when none of area do (seen from behind, edge-on, or clipped away).
-  bool through(CellId cell, PortalId pi, Mask<T>& m) {
+  /// How a portal faces the eye: its normal N (into p.cell[1], exact in T) and the eye's
+  /// side of its plane, s = N·(eye − corner) (parallel: N·(−forward)).
+  struct Facing {
+    Vec3T<T> N;
+    T s;
+  };
+
+  /// The first half of through(), without the mask: false when no ray from the eye in
+  /// `cell` can cross portal pi (seen from behind, or edge-on by parallel rays).
+  bool facing(CellId cell, PortalId pi, Facing& fc) {
     const Portal& p = c_.portals[size_t(pi)];
     ++out_.portals_tested;
     // Which side of the portal's plane is the eye on? Exactly, from input vertices: the
@@ -440,11 +449,22 @@ class Traversal {
       if (a > most) most = a, k1 = k;
     }
     const Vec3T<T> v0 = in(p.poly[0]), v1 = in(p.poly[k1]), v2 = in(p.poly[k1 + 1]);
-    const Vec3T<T> N = crossT(sub(v1, v0), sub(v2, v0));  // points into p.cell[1]
+    fc.N = crossT(sub(v1, v0), sub(v2, v0));  // points into p.cell[1]
     // Parallel: the eye is at infinity behind the picture, s = N·(−f).
-    const T s = parallel_ ? -dotT(N, forward_) : dotT(N, sub(eye_, v0));
+    fc.s = parallel_ ? -dotT(fc.N, forward_) : dotT(fc.N, sub(eye_, v0));
+    if (fc.s == T(0)) return !parallel_;  // parallel rays never cross a portal seen edge-on
+    return (fc.s < T(0)) == (cell == p.cell[0]);  // else seen from behind
+  }
+
+  /// Narrows mask m (of an avenue in `cell`) to the rays that also pass portal pi, seen
+  /// from `cell`, once facing() said it may be crossed: false when none of area do (the
+  /// eye in the portal's plane but outside it, or clipped away).
+  bool through(CellId cell, PortalId pi, const Facing& fc, Mask<T>& m) {
+    const Portal& p = c_.portals[size_t(pi)];
+    const size_t n = p.poly.size();
+    const Vec3T<T>& N = fc.N;
+    const T& s = fc.s;
     const bool from_first = cell == p.cell[0];
-    if (s == T(0) && parallel_) return false;  // parallel rays never cross a portal seen edge-on
     if (s == T(0)) {
       // The eye stands in the portal's plane: through it, if it stands in the portal,
       // lies the whole half-space on the far side; otherwise it is seen edge-on.
@@ -452,7 +472,6 @@ class Traversal {
       const Vec3T<T> toward = from_first ? N : Vec3T<T>{-N.x, -N.y, -N.z};
       if (!m.clip(trace(toward, eye_))) return false;
     } else {
-      if ((s < T(0)) != from_first) return false;  // seen from behind
       // Rays through the portal: inside every plane through the eye and an edge.
       // With the eye behind N (s < 0) the edge normals (a-e)×(b-e) point inwards; for
       // parallel rays their limit as the eye recedes along −f, f×(b−a).
@@ -598,8 +617,10 @@ class Traversal {
       for_each_portal_seen(cell, out_.avenues[size_t(self)].mask, [&](PortalId pi) {
         if (pi == piece.via) return;
         const CellId other = c_.portals[size_t(pi)].other(cell);
+        Facing fc;
+        if (!facing(cell, pi, fc)) return;  // before copying the mask: most portals end here
         Mask<T> m = piece.mask;
-        if (!through(cell, pi, m) || on_chain(self, other)) return;
+        if (!through(cell, pi, fc, m) || on_chain(self, other)) return;
         add_piece(other, m, self, pi, piece.depth + 1);
       });
     }
