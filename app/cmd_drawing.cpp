@@ -141,10 +141,11 @@ int run_drawing(const DrawingOptions& opt) {
   if (!picture && !is_drawing_path(opt.output))
     throw std::runtime_error("cannot write '" + opt.output + "': unknown format '" + lower_extension(opt.output) +
                              "' (drawings: " + drawing_extensions() + "; pictures: " + raster_extensions() + ")");
-  if (picture) start_threads(0);  // the half-tone's threads start while the plan is read
+  start_threads(0);  // the drawing's (and half-tone's) threads start while the plan is read
   LoadedPlan plan = load_plan_source(opt.plan, opt.import);
   const CellComplex& c = plan.complex;
-  const ArchitecturalView s = set_up_drawing(c, opt);
+  ArchitecturalView s = set_up_drawing(c, opt);
+  s.options.threads = 0;  // every core, as the half-tone
   const VisibleSet vs = find_visible_from_cut(c, s.camera, s.cut, search_option(opt.search, kernel));
   const auto t0 = std::chrono::steady_clock::now();
   const LineScene scene = prepare_line_scene(c);

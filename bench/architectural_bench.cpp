@@ -7,7 +7,8 @@
 // room, looking north) in <= 50 ms, plus
 // its export. For each kind: .../visibility is Jones's search from the cut plane
 // (find_visible_from_cut, double), .../drawing that search and the drawing
-// (draw_architectural: cut outlines, fill, lines beyond), .../export_svg and .../export_pdf
+// (draw_architectural: cut outlines, fill, lines beyond; on every core, as the command
+// draws, and .../drawing-1-thread on one), .../export_svg and .../export_pdf
 // the drawing put on paper, and .../llvmpipe Mesa's llvmpipe drawing every opaque triangle
 // of the building with a z-buffer in the same parallel projection (glOrtho from the cut
 // plane), on a picture of the same size. The plan is drawn at 1:500 (4 px a paper mm).
@@ -70,13 +71,15 @@ void visibility(benchmark::State& state, const std::string& kind) {
   state.counters["pixels"] = double(v.camera.width) * v.camera.height;
 }
 
-void drawing(benchmark::State& state, const std::string& kind) {
+void drawing(benchmark::State& state, const std::string& kind, int threads) {
   const Office& o = office();
   const ArchitecturalView& v = o.views.at(kind);
+  ArchitecturalOptions options = v.options;
+  options.threads = threads;
   size_t lines = 0;
   for (auto _ : state) {
     const VisibleSet vs = find_visible_from_cut(o.complex, v.camera, v.cut);
-    const Drawing d = draw_architectural(o.complex, o.scene, v.camera, v.cut, vs, v.options);
+    const Drawing d = draw_architectural(o.complex, o.scene, v.camera, v.cut, vs, options);
     lines = d.strokes.size();
     benchmark::DoNotOptimize(d.strokes.data());
   }
@@ -112,7 +115,10 @@ int register_all() {
     const std::string base = "Architectural/office100x100/" + kind;
     benchmark::RegisterBenchmark((base + "/visibility").c_str(), [kind](benchmark::State& s) { visibility(s, kind); })
         ->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly(true);
-    benchmark::RegisterBenchmark((base + "/drawing").c_str(), [kind](benchmark::State& s) { drawing(s, kind); })
+    // As `avenues drawing` draws (every core), and its one-thread peer.
+    benchmark::RegisterBenchmark((base + "/drawing").c_str(), [kind](benchmark::State& s) { drawing(s, kind, 0); })
+        ->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly(true);
+    benchmark::RegisterBenchmark((base + "/drawing-1-thread").c_str(), [kind](benchmark::State& s) { drawing(s, kind, 1); })
         ->Unit(benchmark::kMillisecond)->UseRealTime()->Repetitions(5)->ReportAggregatesOnly(true);
     for (const std::string ext : {".svg", ".pdf"})
       benchmark::RegisterBenchmark((base + "/export_" + ext.substr(1)).c_str(),

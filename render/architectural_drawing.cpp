@@ -10,6 +10,7 @@
 #include "core/angles.h"
 #include "render/interval_clip.h"
 #include "render/stroke_merge.h"
+#include "render/thread_arena.h"
 
 namespace avenues {
 
@@ -147,13 +148,23 @@ ArchitecturalView axonometric_view(const CellComplex& c, double azimuth_deg, dou
 // sill lies exactly in the cut), so that the wall's outline closes there too.
 bool cut_segment(const std::vector<Vec3>& poly, const Plane& cut, Vec3& a, Vec3& b) {
   const double scale = length(cut.n);
-  std::vector<Vec3> at;
+  auto side = [&](Vec3 p) {
+    const double e = cut.eval(p) / scale;
+    return std::fabs(e) <= kOnCut ? 0.0 : e;
+  };
+  // Most polygons lie wholly to one side: settled without gathering points.
+  bool below = false, above = false;
+  for (const Vec3& p : poly) {
+    const double e = side(p);
+    below |= e <= 0, above |= e >= 0;
+  }
+  if (!below || !above) return false;
+  thread_local std::vector<Vec3> at;
+  at.clear();
   bool off = false;
   for (size_t k = 0; k < poly.size(); ++k) {
     const Vec3 p = poly[k], q = poly[(k + 1) % poly.size()];
-    double ep = cut.eval(p) / scale, eq = cut.eval(q) / scale;
-    if (std::fabs(ep) <= kOnCut) ep = 0;
-    if (std::fabs(eq) <= kOnCut) eq = 0;
+    const double ep = side(p), eq = side(q);
     off |= ep != 0;
     if (ep == 0) at.push_back(p);
     else if ((ep < 0 && eq > 0) || (ep > 0 && eq < 0)) at.push_back(p + (ep / (ep - eq)) * (q - p));
@@ -172,20 +183,28 @@ Drawing draw_architectural(const CellComplex& c, const LineScene& scene, const C
   LineOptions lo;
   lo.cut = cut;
   lo.furniture = false;
+  lo.merge = !options.cut;  // with the cut, merged once below
+  lo.threads = options.threads;
   Drawing d = draw_view(c, scene, cam, vs, lo);
   for (Stroke& s : d.strokes)
     if (s.layer == Layer::Architecture) s.layer = Layer::Beyond;
 
   if (options.cut) {
-    // The cut outlines: each opaque polygon of a cut cell that the plane meets.
-    for (CellId id : vs.cut_cells)
-      for (const Face& f : c.cells[size_t(id)].faces)
-        for (const OpaquePoly& op : f.opaque) {
-          Vec3 wa, wb;
-          if (!cut_segment(op.poly, cut, wa, wb)) continue;
-          Vec2 a = raster_of(cam, wa), b = raster_of(cam, wb);
-          if (clip_to_page(a, b, d.width, d.height)) d.strokes.push_back({a, b, Weight::Cut, Layer::Cut});
-        }
+    // The cut outlines: each opaque polygon of a cut cell that the plane meets (in chunks
+    // of cells on options.threads threads, joined in order).
+    const size_t chunks = options.threads == 1 || vs.cut_cells.size() < 1024 ? 1 : 16;
+    std::vector<std::vector<Stroke>> outlines(chunks);
+    for_each_chunk(options.threads, vs.cut_cells.size(), chunks, [&](size_t chunk, size_t first, size_t last) {
+      for (size_t i = first; i < last; ++i)
+        for (const Face& f : c.cells[size_t(vs.cut_cells[i])].faces)
+          for (const OpaquePoly& op : f.opaque) {
+            Vec3 wa, wb;
+            if (!cut_segment(op.poly, cut, wa, wb)) continue;
+            Vec2 a = raster_of(cam, wa), b = raster_of(cam, wb);
+            if (clip_to_page(a, b, d.width, d.height)) outlines[chunk].push_back({a, b, Weight::Cut, Layer::Cut});
+          }
+    });
+    for (const std::vector<Stroke>& o : outlines) d.strokes.insert(d.strokes.end(), o.begin(), o.end());
     // The fill: the page less the cross-sections (the avenues the search started from).
     d.fill.push_back({{0, 0}, {double(d.width), 0}, {double(d.width), double(d.height)}, {0, double(d.height)}});
     for (const Avenue& a : vs.avenues) {
@@ -194,7 +213,7 @@ Drawing draw_architectural(const CellComplex& c, const LineScene& scene, const C
       for (Vec2 m : a.mask) ring.push_back(cam.raster_from_image(m));
       d.fill.push_back(std::move(ring));
     }
-    merge_collinear(d.strokes);  // the cut keeps what it shares with a line beyond
+    merge_collinear(d.strokes);// the cut keeps what it shares with a line beyond
   }
 
   if (options.labels >= 0) {

@@ -31,6 +31,7 @@ struct ArchitecturalOptions {
   bool cut = true;            ///< draw the cut (outlines and fill); false for an elevation
   StoreyId labels = -1;       ///< >= 0: label the rooms of this storey (a plan)
   double label_height = 12;   ///< [px] > 0: height of a room name's capitals
+  int threads = 1;            ///< up to this many threads draw (0: as many as TBB offers); the drawing is the same
 };
 
 /// Where an architect's drawing looks from: a parallel camera fitted to what it shows (1 m

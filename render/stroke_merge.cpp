@@ -5,6 +5,10 @@
 #include <cmath>
 #include <cstdint>
 
+#include <boost/sort/spreadsort/float_sort.hpp>
+
+#include "render/thread_arena.h"
+
 namespace avenues {
 
 namespace {
@@ -13,7 +17,6 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kAngle = 1e-9;     ///< [rad] directions closer than this are one direction
 constexpr double kOffset = 1e-6;    ///< [px] parallel lines closer than this are one line
 constexpr double kTouch = 1e-6;     ///< [px] collinear strokes closer than this touch
-constexpr double kShortest = 1e-9;  ///< [px] shorter strokes draw nothing
 
 /// A point of a picture line: its coordinate s along the line, and the point itself.
 struct End {
@@ -56,25 +59,33 @@ void merge_sorted(std::vector<Piece>& v) {
   v.resize(out);
 }
 
-/// Appends to `out` what of `p` the sorted, disjoint `claimed` leaves.
-void subtract(const Piece& p, const std::vector<Piece>& claimed, std::vector<Piece>& out) {
+/// Appends to `out` what of `p` the sorted, disjoint `claimed` leaves. `from` is where in
+/// `claimed` to start looking; it moves on past what ends before p, so that pieces given in
+/// order scan `claimed` once, not once each.
+void subtract(const Piece& p, const std::vector<Piece>& claimed, size_t& from, std::vector<Piece>& out) {
+  while (from < claimed.size() && claimed[from].hi.s <= p.lo.s) ++from;
   End lo = p.lo;
-  for (const Piece& c : claimed) {
+  for (size_t k = from; k < claimed.size(); ++k) {
+    const Piece& c = claimed[k];
     if (c.hi.s <= lo.s) continue;
     if (c.lo.s >= p.hi.s) break;
-    if (c.lo.s > lo.s + kShortest) out.push_back({lo, c.lo});
+    if (c.lo.s > lo.s + kShortestStroke) out.push_back({lo, c.lo});
     lo = c.hi;
   }
-  if (p.hi.s > lo.s + kShortest) out.push_back({lo, p.hi});
+  if (p.hi.s > lo.s + kShortestStroke) out.push_back({lo, p.hi});
 }
 
 /// Resolves one picture line: rank by rank, each merges its own pieces and keeps what the
 /// ranks before it did not claim.
-void resolve(std::vector<Item>& line, std::vector<std::pair<uint32_t, Stroke>>& out) {
+struct Scratch {
+  std::vector<Piece> claimed, mine, kept;
+};
+void resolve(std::vector<Item>& line, std::vector<std::pair<uint32_t, Stroke>>& out, Scratch& scratch) {
   std::sort(line.begin(), line.end(), [](const Item& a, const Item& b) {
     return a.rank != b.rank ? a.rank < b.rank : a.piece.lo.s < b.piece.lo.s;
   });
-  std::vector<Piece> claimed, mine, kept;
+  auto& [claimed, mine, kept] = scratch;
+  claimed.clear();
   for (size_t i = 0; i < line.size();) {
     const int rank = line[i].rank;
     uint32_t order = line[i].order;
@@ -85,7 +96,8 @@ void resolve(std::vector<Item>& line, std::vector<std::pair<uint32_t, Stroke>>& 
     }
     merge_sorted(mine);
     kept.clear();
-    for (const Piece& p : mine) subtract(p, claimed, kept);
+    size_t from = 0;
+    for (const Piece& p : mine) subtract(p, claimed, from, kept);  // mine is sorted and disjoint
     for (const Piece& p : kept) out.push_back({order, stroke_of(rank, p)});
     claimed.insert(claimed.end(), mine.begin(), mine.end());
     std::sort(claimed.begin(), claimed.end(), [](const Piece& a, const Piece& b) { return a.lo.s < b.lo.s; });
@@ -95,52 +107,94 @@ void resolve(std::vector<Item>& line, std::vector<std::pair<uint32_t, Stroke>>& 
 
 }  // namespace
 
-void merge_collinear(std::vector<Stroke>& strokes) {
-  std::vector<Item> items;
-  items.reserve(strokes.size());
+void merge_collinear(std::vector<Stroke>& strokes, int threads) {
+  // Sorted as small keys (direction or offset, and an index), not as whole items: a plan
+  // has a hundred thousand strokes, and moving keys is what the sorts cost.
+  struct Key {
+    double v;
+    uint32_t i;
+  };
+  // Boost's spreadsort (a radix sort of the doubles' bits): several times faster than a
+  // comparison sort here, where directions and offsets repeat by the thousand.
+  auto sort_keys = [](std::vector<Key>& k) {
+    boost::sort::spreadsort::float_sort(
+        k.begin(), k.end(),
+        [](const Key& x, unsigned shift) { return boost::sort::spreadsort::float_mem_cast<double, int64_t>(x.v) >> shift; },
+        [](const Key& x, const Key& y) { return x.v < y.v; });
+  };
+  std::vector<Key> dirs;  // direction, index into strokes
+  dirs.reserve(strokes.size());
   for (size_t i = 0; i < strokes.size(); ++i) {
     const Stroke& s = strokes[i];
-    Vec2 a = s.a, b = s.b;
-    if (length(b - a) < kShortest) continue;
-    double theta = std::atan2(b.y - a.y, b.x - a.x);
-    if (theta > kPi / 2 - kAngle) theta -= kPi, std::swap(a, b);
-    else if (theta <= -kPi / 2 - kAngle) theta += kPi, std::swap(a, b);
-    items.push_back({theta, 0, {{0, a}, {0, b}}, rank_of(s), uint32_t(i)});
+    if (length(s.b - s.a) < kShortestStroke) continue;
+    double theta = std::atan2(s.b.y - s.a.y, s.b.x - s.a.x);
+    if (theta > kPi / 2 - kAngle) theta -= kPi;
+    else if (theta <= -kPi / 2 - kAngle) theta += kPi;
+    dirs.push_back({theta, uint32_t(i)});
   }
-  std::sort(items.begin(), items.end(), [](const Item& x, const Item& y) { return x.theta < y.theta; });
+  sort_keys(dirs);
 
-  std::vector<std::pair<uint32_t, Stroke>> out;
-  out.reserve(items.size());
-  std::vector<Item> line;
-  for (size_t i = 0; i < items.size();) {
+  // The runs of one direction are independent: spread over threads, each run whole.
+  std::vector<size_t> runs;  // where each direction's run of dirs starts, and the end
+  for (size_t i = 0; i < dirs.size();) {
+    runs.push_back(i);
     // One direction: anchored at its first item, so tolerances do not chain.
     size_t j = i;
-    while (j < items.size() && items[j].theta - items[i].theta <= kAngle) ++j;
-    const Vec2 u{std::cos(items[i].theta), std::sin(items[i].theta)}, n{-u.y, u.x};
-    for (size_t k = i; k < j; ++k) {
-      Item& it = items[k];
-      it.rho = dot(n, 0.5 * (it.piece.lo.p + it.piece.hi.p));
-      it.piece.lo.s = dot(u, it.piece.lo.p);
-      it.piece.hi.s = dot(u, it.piece.hi.p);
-      if (it.piece.lo.s > it.piece.hi.s) std::swap(it.piece.lo, it.piece.hi);
-    }
-    std::sort(items.begin() + long(i), items.begin() + long(j), [](const Item& x, const Item& y) { return x.rho < y.rho; });
-    for (size_t k = i; k < j;) {
-      size_t m = k;
-      while (m < j && items[m].rho - items[k].rho <= kOffset) ++m;
-      if (m - k == 1) {
-        out.push_back({items[k].order, strokes[items[k].order]});
-      } else {
-        line.assign(items.begin() + long(k), items.begin() + long(m));
-        resolve(line, out);
-      }
-      k = m;
-    }
+    while (j < dirs.size() && dirs[j].v - dirs[i].v <= kAngle) ++j;
     i = j;
   }
-  std::stable_sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-  strokes.clear();
-  for (const auto& [order, s] : out) strokes.push_back(s);
+  runs.push_back(dirs.size());
+  const size_t chunks = threads == 1 ? 1 : 16;
+  std::vector<std::vector<std::pair<uint32_t, Stroke>>> outs(chunks);
+  for_each_chunk(threads, dirs.size(), chunks, [&](size_t chunk, size_t lo, size_t hi) {
+    std::vector<std::pair<uint32_t, Stroke>>& out = outs[chunk];
+    std::vector<Item> items, line;
+    std::vector<Key> offsets;  // offset, index into items
+    Scratch scratch;
+    for (size_t r = size_t(std::lower_bound(runs.begin(), runs.end(), lo) - runs.begin());
+         r + 1 < runs.size() && runs[r] < hi; ++r) {
+      const size_t i = runs[r], j = runs[r + 1];
+      const Vec2 u{std::cos(dirs[i].v), std::sin(dirs[i].v)}, n{-u.y, u.x};
+      items.clear();
+      offsets.clear();
+      for (size_t k = i; k < j; ++k) {
+        const Stroke& st = strokes[dirs[k].i];
+        Item it{dirs[k].v, dot(n, 0.5 * (st.a + st.b)), {{dot(u, st.a), st.a}, {dot(u, st.b), st.b}}, rank_of(st), dirs[k].i};
+        if (it.piece.lo.s > it.piece.hi.s) std::swap(it.piece.lo, it.piece.hi);
+        offsets.push_back({it.rho, uint32_t(items.size())});
+        items.push_back(it);
+      }
+      sort_keys(offsets);
+      for (size_t k = 0; k < offsets.size();) {
+        size_t m = k;
+        while (m < offsets.size() && offsets[m].v - offsets[k].v <= kOffset) ++m;
+        if (m - k == 1) {
+          out.push_back({items[offsets[k].i].order, strokes[items[offsets[k].i].order]});
+        } else {
+          line.clear();
+          for (size_t q = k; q < m; ++q) {
+            if (q + 8 < m) __builtin_prefetch(&items[offsets[q + 8].i]);  // in rho's order, items lie anywhere
+            line.push_back(items[offsets[q].i]);
+          }
+          resolve(line, out, scratch);
+        }
+        k = m;
+      }
+    }
+  });
+  // Back in the input's order (stable: a counting sort by input index; the pieces of one
+  // input stroke all come from one run, so the chunks' order does not matter).
+  std::vector<uint32_t> start(strokes.size() + 1, 0);
+  size_t total = 0;
+  for (const auto& out : outs) {
+    total += out.size();
+    for (const auto& o : out) ++start[o.first + 1];
+  }
+  for (size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
+  std::vector<Stroke> merged(total);
+  for (const auto& out : outs)
+    for (const auto& [order, s] : out) merged[start[order]++] = s;
+  strokes = std::move(merged);
 }
 
 }  // namespace avenues

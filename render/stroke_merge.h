@@ -17,8 +17,14 @@
 
 namespace avenues {
 
+/// [px] A stroke shorter than this draws nothing: merge_collinear drops it, and a drawing
+/// need not make it (a line seen end-on).
+constexpr double kShortestStroke = 1e-9;
+
 /// Rewrites `strokes` so that no two share a piece of positive length and no two that touch
 /// end to end on one line have the same weight and layer. Untouched strokes keep their order.
-void merge_collinear(std::vector<Stroke>& strokes);
+/// The picture's directions are merged on up to `threads` threads (0: as many as TBB
+/// offers); the result is the same with any number.
+void merge_collinear(std::vector<Stroke>& strokes, int threads = 1);
 
 }  // namespace avenues

@@ -9,6 +9,7 @@
 #include "render/interval_clip.h"
 #include "render/shadow_outline.h"
 #include "render/stroke_merge.h"
+#include "render/thread_arena.h"
 
 namespace avenues {
 
@@ -193,39 +194,63 @@ Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& ca
     seen_start[pieces.size()] = int32_t(seen.size());
   }
 
-  // Jones: each avenue's cell, its lines clipped to the avenue's mask.
-  std::vector<Vec3> sides;
-  std::vector<KeyedInterval> lines, edges;  // keyed by LineId, by index into `seen`
-  for (const Avenue& a : vs.avenues) {
-    mask_sides(a.mask, sides);
-    const Cell& cell = c.cells[size_t(a.cell)];
-    const uint8_t* shows = scene.faces.shows.data() + scene.faces.cell_start[size_t(a.cell)];
-    for (size_t k = 0; k < cell.lines.size(); ++k) {
-      if (!shows[k]) continue;  // the far side of a wall of no thickness
-      const CellLine& cl = cell.lines[k];
-      const RealLine& l = c.lines[size_t(cl.line)];
-      Interval s{cl.t0, cl.t1};
-      if (clip_to_avenue(s, pr, l.a, l.b, sides))
-        lines.push_back({cl.line, s});
-    }
-    if (seen.empty()) continue;
-    for (size_t i = 0; i + 1 < seen_start.size(); ++i) {
-      const FurniturePiece& p = scene.furniture.pieces[i];
-      if (seen_start[i] == seen_start[i + 1] || !std::binary_search(p.cells.begin(), p.cells.end(), a.cell)) continue;
-      for (int32_t k = seen_start[i]; k < seen_start[i + 1]; ++k) {
-        const FurnitureEdge& e = p.edges[size_t(seen[size_t(k)].edge)];
-        const Vec3 w0 = p.mesh.vertices[size_t(e.v[0])], w1 = p.mesh.vertices[size_t(e.v[1])];
-        Interval s{0, 1};
-        bool alive = true;
-        for (size_t f = 0; f < cell.faces.size() && alive; ++f) {  // inside the cell's prism
-          const Plane& pl = cell.faces[f].plane;
-          alive = clip_interval(s, kOnFace - pl.eval(w0), kOnFace - pl.eval(w1));
+  // A line seen end-on in a parallel projection (a wall's vertical edge in a plan) is a
+  // point on paper, shorter than any stroke drawn: none of its pieces need clipping.
+  auto seen_end_on = [&](const RealLine& l) {
+    const Vec3 p0 = pr.picture(l.a), p1 = pr.picture(l.b);
+    return length(cam.raster_from_image({p1.x, p1.y}) - cam.raster_from_image({p0.x, p0.y})) < kShortestStroke;
+  };
+
+  // Jones: each avenue's cell, its lines clipped to the avenue's mask. In chunks of
+  // avenues on options.threads threads, joined in order: the same pieces with any number.
+  const size_t chunks = options.threads == 1 || vs.avenues.size() < 1024 ? 1 : 16;
+  std::vector<std::vector<KeyedInterval>> chunk_lines(chunks), chunk_edges(chunks);
+  for_each_chunk(options.threads, vs.avenues.size(), chunks, [&](size_t chunk, size_t first, size_t last) {
+    std::vector<Vec3> sides;
+    std::vector<KeyedInterval>& lines = chunk_lines[chunk];  // keyed by LineId
+    std::vector<KeyedInterval>& edges = chunk_edges[chunk];  // keyed by index into `seen`
+    for (size_t ai = first; ai < last; ++ai) {
+      const Avenue& a = vs.avenues[ai];
+      mask_sides(a.mask, sides);
+      const Cell& cell = c.cells[size_t(a.cell)];
+      const uint8_t* shows = scene.faces.shows.data() + scene.faces.cell_start[size_t(a.cell)];
+      // The cell's lines lie anywhere in the complex's table: ask for them all at once, so
+      // that their loads overlap instead of waiting one after the other.
+      for (const CellLine& cl : cell.lines) __builtin_prefetch(&c.lines[size_t(cl.line)]);
+      for (size_t k = 0; k < cell.lines.size(); ++k) {
+        if (!shows[k]) continue;  // the far side of a wall of no thickness
+        const CellLine& cl = cell.lines[k];
+        const RealLine& l = c.lines[size_t(cl.line)];
+        if (cam.is_parallel() && seen_end_on(l)) continue;
+        Interval s{cl.t0, cl.t1};
+        if (clip_to_avenue(s, pr, l.a, l.b, sides))
+          lines.push_back({cl.line, s});
+      }
+      if (seen.empty()) continue;
+      for (size_t i = 0; i + 1 < seen_start.size(); ++i) {
+        const FurniturePiece& p = scene.furniture.pieces[i];
+        if (seen_start[i] == seen_start[i + 1] || !std::binary_search(p.cells.begin(), p.cells.end(), a.cell)) continue;
+        for (int32_t k = seen_start[i]; k < seen_start[i + 1]; ++k) {
+          const FurnitureEdge& e = p.edges[size_t(seen[size_t(k)].edge)];
+          const Vec3 w0 = p.mesh.vertices[size_t(e.v[0])], w1 = p.mesh.vertices[size_t(e.v[1])];
+          Interval s{0, 1};
+          bool alive = true;
+          for (size_t f = 0; f < cell.faces.size() && alive; ++f) {  // inside the cell's prism
+            const Plane& pl = cell.faces[f].plane;
+            alive = clip_interval(s, kOnFace - pl.eval(w0), kOnFace - pl.eval(w1));
+          }
+          if (alive && clip_to_avenue(s, pr, w0, w1, sides))
+            edges.push_back({k, s});
         }
-        if (alive && clip_to_avenue(s, pr, w0, w1, sides))
-          edges.push_back({k, s});
       }
     }
-  }
+  });
+  auto joined = [](std::vector<std::vector<KeyedInterval>>& parts) {
+    std::vector<KeyedInterval> all = std::move(parts[0]);
+    for (size_t k = 1; k < parts.size(); ++k) all.insert(all.end(), parts[k].begin(), parts[k].end());
+    return all;
+  };
+  std::vector<KeyedInterval> lines = joined(chunk_lines), edges = joined(chunk_edges);
 
   // Each line once: the union of its pieces, less what furniture hides, as strokes.
   std::vector<Interval> intervals;
@@ -248,7 +273,7 @@ Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& ca
     hide_behind(occluders, p0, p1, s);
     add_strokes(cam, p0, p1, s, se.weight, Layer::Furniture, d.strokes);
   });
-  merge_collinear(d.strokes);
+  if (options.merge) merge_collinear(d.strokes, options.threads);
   if (options.shadows && !cam.is_parallel()) draw_shadow_outlines(c, scene, cam, vs, occluders, d.strokes);
   return d;
 }

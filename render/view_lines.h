@@ -44,6 +44,12 @@ struct LineOptions {
   /// searched from, find_visible_from_cut); none: beyond the picture plane. Furniture and
   /// shadow outlines are drawn in perspective only.
   std::optional<Plane> cut;
+  /// Merge collinear strokes (merge_collinear) before returning. A caller adding strokes of
+  /// its own turns this off and merges once, after.
+  bool merge = true;
+  /// Up to this many threads clip the avenues' lines and merge the strokes (0: as many as
+  /// TBB offers). The drawing is the same with any number.
+  int threads = 1;
 };
 
 /// What drawing a complex needs besides its cells, prepared once and shared by every view

@@ -17,10 +17,13 @@
 #include <nlohmann/json.hpp>
 
 #include "app/plan_source.h"
+#include "cells/build_cells.h"
+#include "plans/generate.h"
 #include "render/architectural_drawing.h"
 #include "render/halftone.h"
 #include "render/plan_drawing.h"
 #include "render/raster.h"
+#include "render/stroke_merge.h"
 #include "tests/avenues_run.h"
 #include "tests/drawing_readers.h"
 #include "tests/ray_oracle.h"
@@ -351,6 +354,39 @@ TEST_F(ArchitecturalDrawing, ParallelViewFromTheEye) {
   long white = 0;
   for (size_t i = 0; i + 2 < img.data.size(); i += 3) white += img.data[i] == 255 && img.data[i + 1] == 255 && img.data[i + 2] == 255;
   EXPECT_LT(white, 600 * 300 / 10);
+}
+
+// A plan large enough to be drawn in chunks (1,024 or more cut cells, avenues) on several
+// threads: the same strokes, in the same order, as on one thread; and the lines beyond,
+// merged once with the cut (not also before it), are each on paper once.
+TEST(ArchitecturalThreads, AnyNumberOfThreadsDrawsTheSameStrokes) {
+  const CellComplex c = build_cells(parse_plan(generate_office_toml(24, 24), "office 24x24"));
+  const LineScene scene = prepare_line_scene(c);
+  for (const ArchitecturalView& v : {plan_view(c, 0, 1.2, 8.0), axonometric_view(c, 30, 40, 1.2, 8.0)}) {
+    SCOPED_TRACE(v.kind);
+    const VisibleSet vs = find_visible_from_cut(c, v.camera, v.cut);
+    if (v.kind == "plan") {
+      ASSERT_GE(vs.cut_cells.size(), 1024u);
+    }
+    ASSERT_GE(vs.avenues.size(), 1024u);
+    ArchitecturalOptions one = v.options, many = v.options;
+    one.threads = 1;
+    many.threads = 0;
+    const Drawing a = draw_architectural(c, scene, v.camera, v.cut, vs, one);
+    const Drawing b = draw_architectural(c, scene, v.camera, v.cut, vs, many);
+    ASSERT_EQ(a.strokes.size(), b.strokes.size());
+    for (size_t i = 0; i < a.strokes.size(); ++i) {
+      EXPECT_EQ(a.strokes[i].a, b.strokes[i].a) << i;
+      EXPECT_EQ(a.strokes[i].b, b.strokes[i].b) << i;
+      EXPECT_EQ(a.strokes[i].weight, b.strokes[i].weight) << i;
+      EXPECT_EQ(a.strokes[i].layer, b.strokes[i].layer) << i;
+    }
+    EXPECT_GT(a.strokes.size(), 1000u);
+    // Merging again changes nothing: each stroke is on paper once.
+    std::vector<Stroke> again = a.strokes;
+    merge_collinear(again);
+    EXPECT_EQ(again.size(), a.strokes.size());
+  }
 }
 
 // A drawing's picture is the scanline half-tone of the same parallel view (a perspective from
