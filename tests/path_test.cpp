@@ -338,8 +338,10 @@ TEST_F(Path, MpiRankKilledMidWalkAndResumeCompletesTheFilm) {
                                          "--size", "160x90", "--samples", "4",     "-o",     out};
   avenues::testing::Child job = start_argv(mpirun(2, args));
   ASSERT_GT(job.pid(), 0);
-  // Both ranks found first; once a few frames are written, both are stopped at once, so the
-  // walk cannot end before rank 1 is killed however the machine's load delays this test.
+  // Both ranks are stopped as soon as they are found (long before their first frame), then
+  // let run in slices of 2 ms until a few frames are written: a slice holds at most a few
+  // frames, so the walk cannot end before rank 1 is killed however the machine's load
+  // delays this test (polling a running walk once missed all 235 frames of it).
   pid_t ranks[2] = {-1, -1};
   for (int tries = 0; tries < 1200 && (ranks[0] < 0 || ranks[1] < 0); ++tries) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
@@ -348,15 +350,16 @@ TEST_F(Path, MpiRankKilledMidWalkAndResumeCompletesTheFilm) {
   }
   ASSERT_GT(ranks[0], 0) << "rank 0 never showed up";
   ASSERT_GT(ranks[1], 0) << "rank 1 never showed up";
-  bool stopped = false;
-  for (int tries = 0; tries < 6000 && !stopped; ++tries) {
+  auto signal_both = [&](int sig) { return ::kill(ranks[0], sig) == 0 && ::kill(ranks[1], sig) == 0; };
+  ASSERT_TRUE(signal_both(SIGSTOP)) << "the walk ended before its ranks could be stopped";
+  bool ready = false;
+  for (int slice = 0; slice < 30000 && !ready; ++slice) {
+    ASSERT_TRUE(signal_both(SIGCONT)) << "a rank ended before the walk's first frames";
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    if (fs::exists(path(out)) && frames(out).size() >= 3) {
-      stopped = ::kill(ranks[0], SIGSTOP) == 0 && ::kill(ranks[1], SIGSTOP) == 0;
-      ASSERT_TRUE(stopped) << "the walk ended before its ranks could be stopped";
-    }
+    ASSERT_TRUE(signal_both(SIGSTOP)) << "a rank ended before the walk's first frames";
+    ready = fs::exists(path(out)) && frames(out).size() >= 3;
   }
-  ASSERT_TRUE(stopped) << "no frames written";
+  ASSERT_TRUE(ready) << "no frames written";
   ASSERT_EQ(::kill(ranks[1], SIGKILL), 0);
   ASSERT_EQ(::kill(ranks[0], SIGCONT), 0);  // rank 0 reports the frames in progress as the job stops
   Outcome r = finish(job);
