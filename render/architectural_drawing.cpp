@@ -213,7 +213,7 @@ Drawing draw_architectural(const CellComplex& c, const LineScene& scene, const C
       for (Vec2 m : a.mask) ring.push_back(cam.raster_from_image(m));
       d.fill.push_back(std::move(ring));
     }
-    merge_collinear(d.strokes);// the cut keeps what it shares with a line beyond
+    merge_collinear(d.strokes, options.threads);  // the cut keeps what it shares with a line beyond
   }
 
   if (options.labels >= 0) {
