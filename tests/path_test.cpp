@@ -334,8 +334,12 @@ pid_t rank_process(int rank, const std::string& marker) {
 // (That the frames of an MPI walk are those of one process is shown above.)
 TEST_F(Path, MpiRankKilledMidWalkAndResumeCompletesTheFilm) {
   const std::string out = "killed-" + std::to_string(::getpid());  // names this job's processes
+  // Frames large enough that the walk lasts several seconds: under a loaded suite, finding
+  // the ranks in /proc once took longer than a walk of 160 x 90 frames, which had ended
+  // (all 235 frames written, the film being encoded) by the time its ranks were stopped.
+  // At 960 x 540 the test takes about 7 s on its own.
   const std::vector<std::string> args = {"path",   kHouse,    "--through", "L,K,D", "--step", "0.05",
-                                         "--size", "160x90", "--samples", "4",     "-o",     out};
+                                         "--size", "960x540", "--samples", "16",    "-o",     out};
   avenues::testing::Child job = start_argv(mpirun(2, args));
   ASSERT_GT(job.pid(), 0);
   // Both ranks are stopped as soon as they are found (long before their first frame), then
