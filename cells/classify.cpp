@@ -149,6 +149,10 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
   // Named rooms first (RoomId = index in plan.rooms), then enclosed spaces nobody named.
   for (const Room& r : plan.rooms) C.rooms.push_back({r.name, r.storey, true, 0});
   std::vector<std::vector<RoomId>> room_of_comp(static_cast<size_t>(S));
+  // Per storey and component: an enclosed space no room claims, which is solid
+  // (Plan::unnamed_spaces_solid: a drawing's wall faces).
+  std::vector<std::vector<uint8_t>> solid_comp(static_cast<size_t>(S));
+  const bool unnamed_solid = plan.outside_solid || plan.unnamed_spaces_solid;
   std::vector<int32_t> stack;
   for (int s = 0; s < S; ++s) {
     auto& cs = comp[size_t(s)];
@@ -205,7 +209,7 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
     name_by_wall_sides(plan, outline, T, s, cs, outside_comp, rc, C.warnings);
     int unnamed = 0;
     for (int c = 0; c < ncomp; ++c) {
-      if (outside_comp[size_t(c)] || rc[size_t(c)] >= 0 || plan.outside_solid) continue;
+      if (outside_comp[size_t(c)] || rc[size_t(c)] >= 0 || unnamed_solid) continue;
       rc[size_t(c)] = RoomId(C.rooms.size());
       C.rooms.push_back({"space " + std::to_string(++unnamed) + " of " + plan.storeys[size_t(s)].name, s, false, 0});
     }
@@ -213,6 +217,9 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
     if (plan.outside_solid)
       for (int c = 0; c < ncomp; ++c)
         if (outside_comp[size_t(c)]) rc[size_t(c)] = -1;
+    solid_comp[size_t(s)].assign(size_t(ncomp), 0);
+    if (plan.unnamed_spaces_solid && !plan.outside_solid)
+      for (int c = 0; c < ncomp; ++c) solid_comp[size_t(s)][size_t(c)] = !outside_comp[size_t(c)] && rc[size_t(c)] < 0;
   }
 
   // --- classes. Shared ones first.
@@ -279,8 +286,10 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
       return false;
     };
     auto footprint = [&](int s, int t) {
-      return s >= 0 && s < S && (covered[size_t(s)][size_t(t)] || comp[size_t(s)][size_t(t)] >= 0) &&
-             (covered[size_t(s)][size_t(t)] || room_of_comp[size_t(s)][size_t(comp[size_t(s)][size_t(t)])] >= 0);
+      if (s < 0 || s >= S) return false;
+      if (covered[size_t(s)][size_t(t)]) return true;
+      const int32_t c = comp[size_t(s)][size_t(t)];
+      return c >= 0 && (room_of_comp[size_t(s)][size_t(c)] >= 0 || solid_comp[size_t(s)][size_t(c)]);
     };
     for (int t = 0; t < n; ++t) {
       switch (band.kind) {
@@ -300,8 +309,9 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
         case Band::Kind::Storey: {
           const int s = band.storey;
           if (!covered[size_t(s)][size_t(t)]) {
-            RoomId r = room_of_comp[size_t(s)][size_t(comp[size_t(s)][size_t(t)])];
-            of[size_t(t)] = r >= 0 ? room_class[size_t(r)] : outside;
+            const int32_t c = comp[size_t(s)][size_t(t)];
+            RoomId r = room_of_comp[size_t(s)][size_t(c)];
+            of[size_t(t)] = r >= 0 ? room_class[size_t(r)] : solid_comp[size_t(s)][size_t(c)] ? -1 : outside;
             break;
           }
           // Under wall regions of this storey: free where all of them are open.

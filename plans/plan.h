@@ -183,6 +183,10 @@ struct Plan {
   /// Everything outside the rooms is solid (a Doom map's void): no outside cells, and
   /// the sky only above rooms open to it. Enclosed spaces no room claims are solid too.
   bool outside_solid = false;
+  /// Enclosed spaces no room claims are solid, while the outside stays free: a 2D
+  /// drawing's wall faces, bounded by walls of no thickness (TOML `unnamed_spaces_solid`).
+  /// Implied by outside_solid.
+  bool unnamed_spaces_solid = false;
   /// An imported plan (Sweet Home 3D): a room label in a wall or outside the walls is a
   /// warning and the room is dropped; two labels in one space share it (names joined).
   bool lenient = false;

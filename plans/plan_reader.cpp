@@ -394,7 +394,7 @@ void Reader::unique(std::unordered_set<std::string>& seen, const std::string& na
 
 void Reader::read_settings(const toml::table& root) {
   Element e(*this, root, "plan");
-  e.allow({"name", "units", "arc_tolerance", "far_margin", "lenient", "ground", "sky", "roof", "view", "materials",
+  e.allow({"name", "units", "arc_tolerance", "far_margin", "lenient", "unnamed_spaces_solid", "ground", "sky", "roof", "view", "materials",
            "storey", "wall", "floor_opening", "room", "object", "light"});
   if (auto u = e.string("units")) {
     auto it = std::find_if(std::begin(kUnits), std::end(kUnits), [&](const Unit& x) { return x.name == *u; });
@@ -414,6 +414,12 @@ void Reader::read_settings(const toml::table& root) {
   if (const toml::node* l = e.get("lenient")) {
     if (!l->is_boolean()) e.fail("lenient", "'lenient' must be true or false, not " + std::string(type_name(*l)));
     plan_.lenient = l->as_boolean()->get();
+  }
+  if (const toml::node* u = e.get("unnamed_spaces_solid")) {
+    if (!u->is_boolean())
+      e.fail("unnamed_spaces_solid",
+             "'unnamed_spaces_solid' must be true or false, not " + std::string(type_name(*u)));
+    plan_.unnamed_spaces_solid = u->as_boolean()->get();
   }
 }
 

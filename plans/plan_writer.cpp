@@ -184,6 +184,7 @@ std::string plan_as_toml(const Plan& plan, const std::vector<std::string>& model
   if (!lights.empty()) root.insert("light", std::move(lights));
   // The importer's leniency travels with the plan, so that it reads back as it was read.
   if (plan.lenient) root.insert("lenient", true);
+  if (plan.unnamed_spaces_solid && !plan.outside_solid) root.insert("unnamed_spaces_solid", true);
   if (plan.outside_solid) left_out.push_back("a solid outside");
 
   std::ostringstream out;

@@ -16,10 +16,12 @@
 
 #include <filesystem>
 #include <functional>
+#include <set>
 #include <string>
 
 #include "plan_import_oracle.h"
 #include "plans/formats/dxf_plan.h"
+#include "plans/plan_writer.h"
 
 namespace avenues {
 namespace {
@@ -134,11 +136,14 @@ class TinyDxf {
   std::vector<std::function<void(DL_Dxf&, DL_WriterA&)>> blocks_, body_;
 };
 
+/// Doors (or windows) in the plan: the openings of one gap, on however many walls its
+/// line and the faces in its gap were cut into, share its name.
 int doors_in(const Plan& p, OpeningKind kind = OpeningKind::Door) {
-  int n = 0;
+  std::set<std::string> names;
   for (const Wall& w : p.walls)
-    for (const Opening& o : w.openings) n += o.kind == kind;
-  return n;
+    for (const Opening& o : w.openings)
+      if (o.kind == kind) names.insert(o.name);
+  return int(names.size());
 }
 
 /// Two rooms 3.9 x 3 m in walls 0.2 m thick drawn as pairs of lines; the partition at
@@ -362,7 +367,43 @@ TEST(DxfPlan, AWindowInAnOuterWall) {
   const DxfPlan r = read_dxf_plan(d.write("outer-window.dxf"));
   ASSERT_EQ(r.plan.rooms.size(), 1u);
   EXPECT_EQ(doors_in(r.plan, OpeningKind::Window), 1);
-  EXPECT_EQ(cells_are_valid(build_cells(r.plan)), "");
+  const CellComplex c = build_cells(r.plan);
+  EXPECT_EQ(cells_are_valid(c), "");
+  // The window looks out: the outside is free space, the wall ring between is solid.
+  EXPECT_GE(avenues::testing::portals_out(c, PortalKind::Window), 1);
+  EXPECT_GT(avenues::testing::check_views_from_rooms(r.plan, c), 0);
+}
+
+TEST(DxfPlan, AFrontDoorLeadsOutAndTheWallRingStaysSolid) {
+  // A room in a 0.2 m wall ring, with a 0.9 m door gap in its south wall (x 1.5–2.4)
+  // and the door's swing inside: the door opens onto the outside.
+  TinyDxf d;
+  d.polyline("Walls", {{1.5, 0}, {0, 0}, {0, 3.4}, {4.4, 3.4}, {4.4, 0}, {2.4, 0}}, false);
+  d.polyline("Walls", {{1.5, 0.2}, {0.2, 0.2}, {0.2, 3.2}, {4.2, 3.2}, {4.2, 0.2}, {2.4, 0.2}}, false);
+  d.line("Walls", {1.5, 0}, {1.5, 0.2});
+  d.line("Walls", {2.4, 0}, {2.4, 0.2});
+  d.line("Doors", {1.5, 0.2}, {1.5, 1.1});  // the leaf, open
+  d.arc("Doors", {1.5, 0.2}, 0.9, 0, 90);
+  const DxfPlan r = read_dxf_plan(d.write("front-door.dxf"));
+  ASSERT_EQ(r.plan.rooms.size(), 1u);
+  EXPECT_EQ(doors_in(r.plan), 1);
+  EXPECT_TRUE(r.plan.unnamed_spaces_solid);
+  EXPECT_FALSE(r.plan.outside_solid);
+  const CellComplex c = build_cells(r.plan);
+  EXPECT_EQ(cells_are_valid(c), "");
+  EXPECT_EQ(avenues::testing::portals_out(c, PortalKind::Door), 1);
+  // No free cell stands in the wall ring: the middle of its west side is solid.
+  for (const Cell& cell : c.cells) {
+    if (cell.kind == CellKind::Sky) continue;
+    EXPECT_FALSE(cell.contains({0.1, 1.7, 1.2})) << "cell of kind " << int(cell.kind) << " in the wall";
+  }
+  EXPECT_GT(avenues::testing::check_views_from_rooms(r.plan, c), 0);
+  // Saved and read back, the plan is the same building.
+  const std::string toml = plan_as_toml(r.plan);
+  EXPECT_NE(toml.find("unnamed_spaces_solid = true"), std::string::npos);
+  const CellComplex back = build_cells(parse_plan(toml, "front-door.toml"));
+  EXPECT_EQ(back.cells.size(), c.cells.size());
+  EXPECT_EQ(back.portals.size(), c.portals.size());
 }
 
 TEST(DxfPlan, UnitsFromInsunitsOrTheOption) {
@@ -375,7 +416,7 @@ TEST(DxfPlan, UnitsFromInsunitsOrTheOption) {
   double hi = 0;
   for (const Wall& w : r.plan.walls)
     for (Vec2 p : w.centre) hi = std::max(hi, p.x);
-  EXPECT_NEAR(hi, 8.2, 0.01);  // the inner face: the outside is solid
+  EXPECT_NEAR(hi, 8.4, 0.01);  // the outer face, between the wall and the outside
   DxfPlanOptions cm;
   cm.unit = "cm";
   const DxfPlan r2 = read_dxf_plan(path, cm);

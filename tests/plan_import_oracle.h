@@ -36,6 +36,16 @@ inline int check_views_from_rooms(const Plan& plan, const CellComplex& c) {
   return views;
 }
 
+/// Portals of `kind` onto an outside cell: a way out of the building (from a room, or
+/// from the doorway cell of a window's glass).
+inline int portals_out(const CellComplex& c, PortalKind kind) {
+  int n = 0;
+  for (const Portal& p : c.portals)
+    n += p.kind == kind && (c.cells[size_t(p.cell[0])].kind == CellKind::Outside ||
+                            c.cells[size_t(p.cell[1])].kind == CellKind::Outside);
+  return n;
+}
+
 /// Door portals in the complex.
 inline int door_portals(const CellComplex& c) {
   int n = 0;

@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <string>
 
+#include "cells/build_cells.h"
+#include "cells/cell_complex.h"
 #include "plans/formats/floorplan_vectors.h"
 #include "plans/plan.h"
 #include "plans/plan_writer.h"
@@ -88,6 +90,35 @@ TEST(PlanWriter, LenientIsABooleanSettingOfThePlan) {
   } catch (const PlanError& e) {
     EXPECT_NE(std::string(e.what()).find("bad.toml:1"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("'lenient' must be true or false, not a string"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PlanWriter, UnnamedSpacesSolidIsABooleanSettingOfThePlan) {
+  // A box with a closet walled off by walls of no thickness and no room label in it.
+  const std::string walls =
+      "[[wall]]\nname = 'box'\nthickness = 0.2\npath = [[0, 0], [4, 0], [4, 3], [0, 3], [0, 0]]\n"
+      "[[wall]]\nname = 'closet'\nthickness = 0\npath = [[3, 0.1], [3, 1], [3.9, 1]]\n"
+      "[[room]]\nname = 'room'\nat = [1, 1.5]\n";
+  const Plan plain = parse_plan(walls, "plain.toml");
+  EXPECT_FALSE(plain.unnamed_spaces_solid);
+  const Plan solid = parse_plan("unnamed_spaces_solid = true\n" + walls, "solid.toml");
+  EXPECT_TRUE(solid.unnamed_spaces_solid);
+  EXPECT_NE(plan_as_toml(solid).find("unnamed_spaces_solid = true"), std::string::npos);
+  // The closet is a room of its own ("space 1") unless unnamed spaces are solid; the
+  // outside stays free either way.
+  const CellComplex a = build_cells(plain), b = build_cells(solid);
+  EXPECT_EQ(a.rooms.size(), 2u);
+  EXPECT_EQ(b.rooms.size(), 1u);
+  EXPECT_EQ(cells_are_valid(b), "");
+  int outside = 0;
+  for (const Cell& c : b.cells) outside += c.kind == CellKind::Outside;
+  EXPECT_GT(outside, 0);
+  try {
+    parse_plan("unnamed_spaces_solid = 1\n" + walls, "bad.toml");
+    ADD_FAILURE() << "a number for unnamed_spaces_solid was taken";
+  } catch (const PlanError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.toml:1"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'unnamed_spaces_solid' must be true or false"), std::string::npos) << e.what();
   }
 }
 

@@ -480,8 +480,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   plan.name = std::filesystem::path(path).stem().string();
   plan.source = path;
   plan.lenient = true;
-  plan.outside_solid = true;
-  plan.far_margin = 5;
+  plan.unnamed_spaces_solid = true;  // the wall faces; the outside is free
   for (const std::string& s : col.skipped) plan.warnings.push_back(s + ": skipped");
 
   // Which layer is what: --layers first, then the usual names.
@@ -852,6 +851,20 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     plan.rooms.push_back(r);
   }
   std::vector<int> placed(gaps.size(), 0), faces_room(gaps.size(), 0);
+  // The opening of gap `gi` along a line `width` long from its start: a door from the
+  // floor, a window from its sill (0.9 m), both to 2.1 m, within the storey.
+  auto gap_opening = [&](int gi, double width) {
+    const bool door = gaps[size_t(gi)].door;
+    Opening o;
+    o.kind = door ? OpeningKind::Door : OpeningKind::Window;
+    o.name = (door ? "door " : "window ") + std::to_string(gi + 1);
+    o.at = 0;
+    o.width = width;
+    o.sill = door ? 0 : std::min(0.9, opt.storey_height / 3);
+    o.head = std::min(2.1, opt.storey_height);
+    o.where = {path, 0, 0, o.name};
+    return o;
+  };
   int doors = 0, windows = 0;
   for (const Sheet& s : arr.sheets) {
     Wall w;
@@ -864,22 +877,38 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     // or the outside (a door out of the building, a window in an outer wall) a piece wide
     // enough to be one, not a sliver beside a door frame.
     if (s.closes >= 0) faces_room[size_t(s.closes)] = 1;  // a sheet: a room on one side at least
-    if (s.closes >= 0 && (s.between_spaces || length(s.b - s.a) >= 0.25)) {
+    if (s.closes >= 0 && (s.between_spaces || s.beside_gap_face || length(s.b - s.a) >= 0.25)) {
       const Gap& g = gaps[size_t(s.closes)];
-      Opening o;
-      o.kind = g.door ? OpeningKind::Door : OpeningKind::Window;
-      o.name = (g.door ? "door " : "window ") + std::to_string(s.closes + 1);
-      o.at = 0;
-      o.width = length(s.b - s.a);
-      o.sill = g.door ? 0 : std::min(0.9, opt.storey_height / 3);
-      o.head = std::min(2.1, opt.storey_height);
-      o.where = {path, 0, 0, o.name};
+      const Opening o = gap_opening(s.closes, length(s.b - s.a));
       if (o.width > 0.01) {
         if (!placed[size_t(s.closes)]) (g.door ? doors : windows) += 1;
         placed[size_t(s.closes)] = 1;
         w.openings.push_back(o);
       }
     }
+    plan.walls.push_back(w);
+  }
+  // The faces lying in a gap (a window's glass between its lines): free from sill to
+  // head, as a wall of their own shape with the opening across all of it.
+  for (const GapFace& f : arr.gap_faces) {
+    const Gap& g = gaps[size_t(f.closes)];
+    Wall w;
+    w.name = "wall " + std::to_string(plan.walls.size() + 1) + " (in " + (g.door ? "door " : "window ") +
+             std::to_string(f.closes + 1) + ")";
+    size_t longest = 0;
+    for (size_t k = 0; k < f.poly.size(); ++k)
+      if (length(f.poly[(k + 1) % f.poly.size()] - f.poly[k]) >
+          length(f.poly[(longest + 1) % f.poly.size()] - f.poly[longest]))
+        longest = k;
+    const Vec2 a = f.poly[longest], b = f.poly[(longest + 1) % f.poly.size()];
+    double width = 0;
+    for (Vec2 p : f.poly) width = std::max(width, std::fabs(cross(b - a, p - a)) / length(b - a));
+    w.centre = {a, b};
+    w.from_arc = {false};
+    w.thickness = width;
+    w.footprint = f.poly;
+    w.where = {path, 0, 0, "wall '" + w.name + "'"};
+    w.openings.push_back(gap_opening(f.closes, length(b - a)));
     plan.walls.push_back(w);
   }
   for (size_t g = 0; g < gaps.size(); ++g)
@@ -914,7 +943,8 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
                         std::to_string(ends.extended) + " carried on to the line they stop short of, " +
                         std::to_string(ends.capped) + " pairs joined across a wall's end");
   out.summary.push_back(std::to_string(arr.faces) + " faces in the walls' arrangement, " + std::to_string(arr.wall_faces) +
-                        " of them wall (" + std::to_string(arr.hatched_faces) + " by hatching)");
+                        " of them wall (" + std::to_string(arr.hatched_faces) + " by hatching), " +
+                        std::to_string(arr.gap_faces.size()) + " in door and window gaps (open)");
   out.summary.push_back(std::to_string(plan.walls.size()) + " walls, " + std::to_string(doors) + " doors, " +
                         std::to_string(windows) + " windows, " + std::to_string(plan.rooms.size()) + " rooms (" +
                         std::to_string(named_rooms) + " named from text)");

@@ -19,8 +19,10 @@
 //    walls), with the gaps left at wall lines' ends closed (plans/formats/wall_line_ends.h:
 //    a line stopping short of another carried on to it, a wall's open end capped);
 //    its narrow or hatched faces are wall, the rest are spaces; every edge between a space
-//    and anything else becomes a wall of no thickness (Jones's sheet), so that any wall
-//    shape the drawing has is kept; the plan's outside is solid (Plan::outside_solid);
+//    and anything else, or between a wall face and the outside, becomes a wall of no
+//    thickness (Jones's sheet), so that any wall shape the drawing has is kept; the wall
+//    faces are solid (Plan::unnamed_spaces_solid) and the outside is free, up to the far
+//    box, so that a door out of the building leads out and a window looks out;
 //  * doors: each swing (an arc of 60–120° and 0.4–1.6 m radius, drawn on a door layer or
 //    inside a door block) closes its gap with a line from its hinge to the arc's closed
 //    end (the end its leaf is not drawn to; else the end nearer the walls), which must
@@ -33,7 +35,7 @@
 //    to end with a door (plans/formats/swingless_doors.h); their panels are no walls;
 //  * windows: each cluster of window-layer lines closes its gap with its longest line,
 //    the same way: a window (sill 0.9 m, head 2.1 m) between two rooms or in an outer
-//    wall, where it opens onto the solid outside (there is no view out);
+//    wall, where it opens onto the outside;
 //  * rooms: each space is a room, named by the TEXT/MTEXT inside it (or by a layer
 //    "Room - NAME" polyline around it), else "space N";
 //  * units from $INSUNITS, `unit` overriding; a drawing without units is taken as

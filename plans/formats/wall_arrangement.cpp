@@ -130,6 +130,47 @@ WallArrangement arrange_walls(const WallArrangementInput& in) {
     if (inside[i])
       for (const auto& h : in.hatches) hatched = hatched || in_rings(*inside[i], h);
     if (hatched && !wall) ++out.hatched_faces;
+    if (wall && !hatched && inside[i] && faces[i]->number_of_inner_ccbs() == 0) {
+      // A gap face? Its boundary's length on each gap's closing lines.
+      std::map<int, double> on_gap;
+      auto e = faces[i]->outer_ccb();
+      do {
+        if (e->twin()->face() == e->face()) continue;
+        const double len = length(to_vec(e->target()->point()) - to_vec(e->source()->point()));
+        for (int d : e->curve().data())
+          if (d >= 0) on_gap[d] += len;
+      } while (++e != faces[i]->outer_ccb());
+      int best = -1;
+      for (auto [g, len] : on_gap)
+        if (len >= in.gap_share * perimeter[i] && (best < 0 || len > on_gap[best])) best = g;
+      if (best >= 0) {
+        // Convex (exactly), its corners where the boundary turns.
+        std::vector<Point> ring;
+        e = faces[i]->outer_ccb();
+        do ring.push_back(e->source()->point());
+        while (++e != faces[i]->outer_ccb());
+        std::vector<Point> corners;
+        bool convex = true;
+        for (size_t k = 0; k < ring.size(); ++k) {
+          const Point& a = ring[(k + ring.size() - 1) % ring.size()];
+          const Point& b = ring[k];
+          const Point& c = ring[(k + 1) % ring.size()];
+          const CGAL::Orientation o = CGAL::orientation(a, b, c);
+          if (o == CGAL::RIGHT_TURN) convex = false;
+          if (o == CGAL::LEFT_TURN) corners.push_back(b);
+        }
+        GapFace gf;
+        for (const Point& p : corners) gf.poly.push_back(to_vec(p));
+        gf.closes = best;
+        // Convex in doubles too, as a plan's footprint must be (a sliver a few units in
+        // the last place wide may turn the other way once rounded: it stays wall).
+        if (convex && is_convex_ccw(gf.poly)) {
+          cls[i] = -3 - int(out.gap_faces.size());
+          out.gap_faces.push_back(std::move(gf));
+          continue;
+        }
+      }
+    }
     if (wall || hatched) {
       ++out.wall_faces;
       continue;
@@ -137,17 +178,28 @@ WallArrangement arrange_walls(const WallArrangementInput& in) {
     cls[i] = int(out.spaces.size());
     out.spaces.push_back({*inside[i], area[i]});
   }
+  // >= 0: a space; -1: a wall face; -2: the outside; <= -3: gap face -3 - k.
   auto class_of = [&](Arr::Face_const_handle f) {
     if (f->is_unbounded()) return -2;
     return cls[size_t(index.at(f))];
   };
 
-  // Sheets: edges with a space on at least one side and something else on the other.
+  // Sheets: edges with a space on at least one side and something else on the other,
+  // and edges between a wall face and the outside (so that the wall face is enclosed).
   for (auto e = arr.edges_begin(); e != arr.edges_end(); ++e) {
     const int c1 = class_of(e->face()), c2 = class_of(e->twin()->face());
-    if (c1 == c2 || (c1 < 0 && c2 < 0)) continue;
+    if (c1 == c2 || (c1 == -1 && c2 == -1)) continue;
     Sheet s{to_vec(e->source()->point()), to_vec(e->target()->point()), -1, c1 >= 0 && c2 >= 0};
-    for (int d : e->curve().data()) s.closes = std::max(s.closes, d);  // on a door's or window's closing line
+    const int gap_face = c1 <= -3 ? c1 : c2 <= -3 ? c2 : 0;
+    if (gap_face < 0) {
+      // Its jambs (beside a wall face) are wall; its other sides are the opening.
+      if (c1 != -1 && c2 != -1) {
+        s.closes = out.gap_faces[size_t(-3 - gap_face)].closes;
+        s.beside_gap_face = true;
+      }
+    } else if (c1 >= 0 || c2 >= 0) {
+      for (int d : e->curve().data()) s.closes = std::max(s.closes, d);  // on a door's or window's closing line
+    }
     out.sheets.push_back(s);
   }
 
@@ -155,7 +207,7 @@ WallArrangement arrange_walls(const WallArrangementInput& in) {
   for (Vec2 p : in.probes) probes.emplace_back(finite(p) ? p.x : 1e300, finite(p) ? p.y : 1e300);
   const std::vector<Arr::Face_const_handle> at = locate_all(arr, probes);
   for (const Arr::Face_const_handle& f : at)
-    out.probe_space.push_back(f == Arr::Face_const_handle() ? -1 : class_of(f));
+    out.probe_space.push_back(f == Arr::Face_const_handle() ? -1 : std::max(-2, class_of(f) <= -3 ? -1 : class_of(f)));
   return out;
 }
 

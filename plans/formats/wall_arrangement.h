@@ -2,13 +2,18 @@
 //
 // The one CGAL boundary of plans/formats: arrange_walls() builds the exact planar
 // arrangement (CGAL Arrangement_2, Epeck) of the wall lines of a 2D drawing together with
-// the lines that close its door and window gaps, tells each bounded face a wall face
-// (hatched, or narrow: twice its area over its perimeter, the width of a strip, at most
-// `max_wall_width`, as between two near-parallel wall lines) or a space, and returns
-// the edges that separate a space from anything else as plain segments ("sheets", walls
-// of no thickness), with the closing line they lie on, and each space with a point
-// inside it. A face's width counts each edge bounding it once: lines standing free in a
-// room (a door leaf, an arrow) have the room on both sides and are not its boundary. Plain structs in, plain structs out.
+// the lines that close its door and window gaps, and tells each bounded face
+//  * a wall face: hatched, or narrow (twice its area over its perimeter, the width of a
+//    strip, at most `max_wall_width`, as between two near-parallel wall lines);
+//  * a gap face: narrow, convex, and bounded for at least `gap_share` of its perimeter by
+//    the closing lines of one door or window (the glass between a window's lines);
+//  * or a space.
+// It returns the edges that separate a space or a gap face from anything else, or a wall
+// face from the outside, as plain segments ("sheets", walls of no thickness), with the
+// closing line they lie on (not on a wall face's edges), each space with a point inside
+// it, and the gap faces. A face's width counts each edge bounding it once: lines standing
+// free in a room (a door leaf, an arrow) have the room on both sides and are not its
+// boundary. Plain structs in, plain structs out.
 #pragma once
 
 #include <vector>
@@ -31,12 +36,24 @@ struct WallArrangementInput {
   std::vector<std::vector<std::vector<Vec2>>> hatches;
   std::vector<Vec2> probes;      ///< points to locate (room names' texts)
   double max_wall_width = 0.45;  ///< [m] a narrower face is a wall
+  double gap_share = 0.4;        ///< of a narrow face's perimeter on one gap's lines: a gap face
 };
 
 struct Sheet {
   Vec2 a, b;         ///< [m]
   int closes = -1;   ///< the gap whose closing line it lies on, or -1 (a wall's face)
-  bool between_spaces = false;  ///< a space on both sides (else a space and a wall face or the outside)
+  bool between_spaces = false;  ///< a space on both sides (else a space and a wall face or the
+                                ///< outside, or a wall face and the outside)
+  bool beside_gap_face = false; ///< a GapFace on one side: the opening, however short the piece
+};
+
+/// A narrow face lying in a door or window gap: between the lines of one window (its
+/// glass and frame lines), or between a door's closing line and a threshold. It is free
+/// over the opening's height, not wall: the sheets around it carry the opening, but
+/// those it shares with a wall face (its jambs). Convex, counter-clockwise, in metres.
+struct GapFace {
+  std::vector<Vec2> poly;
+  int closes = -1;   ///< the gap it lies in
 };
 
 struct Space {
@@ -47,6 +64,7 @@ struct Space {
 struct WallArrangement {
   std::vector<Sheet> sheets;
   std::vector<Space> spaces;       ///< the bounded faces that are not walls
+  std::vector<GapFace> gap_faces;  ///< narrow faces in a door or window gap
   std::vector<int> probe_space;    ///< per probe: index into spaces, -1 in a wall face or on a line, -2 outside
   int faces = 0, wall_faces = 0;   ///< bounded faces, and of them walls
   int hatched_faces = 0;
