@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <tuple>
 #include <unordered_map>
@@ -16,12 +17,13 @@
 namespace avenues {
 namespace {
 
-/// Segments binned in square cells of side `cell`; a query visits the cells a box covers.
+/// Segments (those from index `first` on) binned in square cells of side `cell`; a
+/// query visits the cells a box covers.
 class SegmentGrid {
  public:
-  SegmentGrid(const std::vector<std::pair<Vec2, Vec2>>& lines, double cell)
+  SegmentGrid(const std::vector<std::pair<Vec2, Vec2>>& lines, double cell, size_t first = 0)
       : cell_(cell), seen_(lines.size(), 0) {
-    for (size_t i = 0; i < lines.size(); ++i) {
+    for (size_t i = first; i < lines.size(); ++i) {
       const auto [a, b] = lines[i];
       const Vec2 lo{std::min(a.x, b.x), std::min(a.y, b.y)}, hi{std::max(a.x, b.x), std::max(a.y, b.y)};
       // A very long line is binned along its length only (cells it passes near); one
@@ -77,6 +79,15 @@ class SegmentGrid {
   uint64_t stamp_ = 0;
 };
 
+/// The squared distance from p to segment [a, b] (no square root: the hot test of pass 0).
+double distance2_to_segment(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 d = b - a;
+  const double dd = dot(d, d);
+  const double t = dd > 0 ? std::clamp(dot(p - a, d) / dd, 0.0, 1.0) : 0.0;
+  const Vec2 q = p - (a + t * d);
+  return dot(q, q);
+}
+
 /// Where the ray p + t·u (t in (0, reach]) first meets segment [a, b], or +inf.
 double ray_hit(Vec2 p, Vec2 u, double reach, Vec2 a, Vec2 b) {
   const Vec2 d = b - a;
@@ -89,36 +100,50 @@ double ray_hit(Vec2 p, Vec2 u, double reach, Vec2 a, Vec2 b) {
 
 /// Pass 0 (see wall_line_ends.h): joins each end of a line to the lines it nearly
 /// touches, for pairs with at least one line at index >= first_new. Appends the joining
-/// lines to `added`; per line end, whether it was joined and whether it touches a line.
+/// lines to `added`; per line end, whether it was joined and whether it touches a line
+/// (with first_new > 0, an old line's end is tested against the new lines only).
 struct NearEnds { std::vector<std::array<bool, 2>> joined, touches; };
 NearEnds join_near_ends(const std::vector<std::pair<Vec2, Vec2>>& lines, size_t first_new, bool shared_only,
                         const WallLineEndParams& prm, std::vector<std::pair<Vec2, Vec2>>& added) {
   NearEnds ne{std::vector<std::array<bool, 2>>(lines.size(), {false, false}),
               std::vector<std::array<bool, 2>>(lines.size(), {false, false})};
   if (lines.empty()) return ne;
-  SegmentGrid grid(lines, std::max(prm.cap, 0.1));
+  // Queries reach a few millimetres: cells of 5 cm keep a dense drawing's bins short.
+  const double reach = std::max(prm.touch, prm.join);
+  const double cell = std::max(4 * reach, 0.05);
+  SegmentGrid grid(lines, cell);
+  // The old lines' ends need only meet the new lines.
+  std::optional<SegmentGrid> new_lines;
+  if (first_new > 0) new_lines.emplace(lines, cell, first_new);
   // Lines meeting exactly at an end point, for walking along the drawing.
-  std::map<std::pair<double, double>, std::vector<size_t>> at_point;
+  struct PointHash {
+    size_t operator()(const std::pair<double, double>& p) const {
+      return std::hash<double>()(p.first) * 0x9E3779B97F4A7C15ull ^ std::hash<double>()(p.second);
+    }
+  };
+  std::unordered_map<std::pair<double, double>, std::vector<size_t>, PointHash> at_point;
   for (size_t i = 0; i < lines.size(); ++i)
     for (Vec2 p : {lines[i].first, lines[i].second}) at_point[{p.x, p.y}].push_back(i);
   // The lines reached from p along lines meeting end to end, within `budget` of walking:
   // a line this near along the drawing is a piece of the same curve (a finely drawn
   // column's outline), not one the end stops short of.
   auto reached = [&](Vec2 p, double budget) {
-    std::map<std::pair<double, double>, double> best{{{p.x, p.y}, 0}};
+    // The shortest walk to each point reached (few: the budget is millimetres).
+    std::vector<std::pair<Vec2, double>> best{{p, 0}};
     std::vector<std::pair<Vec2, double>> todo{{p, 0}};
     std::vector<size_t> out_lines;
     while (!todo.empty() && out_lines.size() < 4096) {
       const auto [q, d] = todo.back();
       todo.pop_back();
-      for (size_t k : at_point[{q.x, q.y}]) {
+      for (size_t k : at_point.at({q.x, q.y})) {
         out_lines.push_back(k);
         const Vec2 r = lines[k].first == q ? lines[k].second : lines[k].first;
         const double dr = d + length(r - q);
         if (dr > budget) continue;
-        auto [it, fresh] = best.emplace(std::pair{r.x, r.y}, dr);
-        if (!fresh && it->second <= dr) continue;
-        it->second = dr;
+        auto it = std::find_if(best.begin(), best.end(), [&](const auto& b) { return b.first == r; });
+        if (it == best.end()) best.push_back({r, dr});
+        else if (it->second <= dr) continue;
+        else it->second = dr;
         todo.push_back({r, dr});
       }
     }
@@ -126,6 +151,7 @@ NearEnds join_near_ends(const std::vector<std::pair<Vec2, Vec2>>& lines, size_t 
     return out_lines;
   };
 
+  std::unordered_map<std::pair<double, double>, std::vector<size_t>, PointHash> reached_from;
   const double sin_along = std::sin(rad_from_deg(10));  // runs along a line below 10°
   std::set<std::tuple<double, double, size_t>> done;  // (end point, line joined to): a corner's lines join once
   for (size_t i = 0; i < lines.size(); ++i) {
@@ -135,15 +161,16 @@ NearEnds join_near_ends(const std::vector<std::pair<Vec2, Vec2>>& lines, size_t 
     for (int w = 0; w < 2; ++w) {
       const Vec2 p = w ? b : a, u = (1 / len) * (w ? b - a : a - b);
       std::vector<size_t> near_lines;
-      grid.near(p, std::max(prm.touch, prm.join), [&](size_t j) {
+      (i < first_new ? *new_lines : grid).near(p, reach, [&](size_t j) {
         if (j == i) return;
         const auto [c, d] = lines[j];
-        const double dist = distance_to_segment(p, c, d);
-        if (dist <= prm.touch) ne.touches[i][size_t(w)] = true;
+        const double dist2 = distance2_to_segment(p, c, d);
+        if (dist2 <= prm.touch * prm.touch) ne.touches[i][size_t(w)] = true;
         if (i < first_new && j < first_new) return;
-        if (dist <= prm.join && p != c && p != d) near_lines.push_back(j);  // not meeting it at its end exactly
+        if (dist2 <= prm.join * prm.join && p != c && p != d) near_lines.push_back(j);  // not meeting it at its end exactly
       });
       if (near_lines.empty()) continue;
+      std::sort(near_lines.begin(), near_lines.end());  // in the drawing's order, not the grid's
       // An end where no other line ends is carried on 1 mm by the arrangement (see
       // `touch`): it needs no joining line to a line that carrying on crosses.
       bool shared = false;
@@ -151,7 +178,10 @@ NearEnds join_near_ends(const std::vector<std::pair<Vec2, Vec2>>& lines, size_t 
         shared = shared || (j != i && (length(lines[j].first - p) < 2e-4 || length(lines[j].second - p) < 2e-4));
       });
       if (shared_only && !shared) continue;
-      const std::vector<size_t> along = reached(p, 4 * prm.join);
+      // Many line ends meet at one point of a dense drawing: walk from each point once.
+      auto [cached, first_time] = reached_from.try_emplace({p.x, p.y});
+      if (first_time) cached->second = reached(p, 4 * prm.join);
+      const std::vector<size_t>& along = cached->second;
       for (size_t j : near_lines) {
         if (std::binary_search(along.begin(), along.end(), j)) continue;
         if (!done.insert({p.x, p.y, j}).second) {
