@@ -155,9 +155,9 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
     build(parsed);
   };
   // A mesh as a whole scene: OpenMesh or Assimp by its format, turned to z-up metres.
-  auto read_mesh = [&](const std::string& file) {
+  auto read_mesh = [&](const std::string& file, const MeshAxes& axes) {
     std::vector<std::string> said;  // its materials' missing files
-    Mesh mesh = load_mesh(file, import.mesh_axes(), &said);  // names the file when unreadable
+    Mesh mesh = load_mesh(file, axes, &said);  // names the file when unreadable
     out.stages.push_back({"read mesh", seconds_since(t0)});
     try {
       out.complex = build_mesh_scene({mesh});
@@ -195,10 +195,10 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
         if (format_of_extension(spec.file) != spec.format)
           throw std::runtime_error(spec.file + " is " + format_name(spec.format) +
                                    " under another extension: name it as one to read it as a scene");
-        read_mesh(spec.file);
+        read_mesh(spec.file, import.mesh_axes());
         break;
       }
-      case FileFormat::Model: read_mesh(spec.file); break;
+      case FileFormat::Model: read_mesh(spec.file, import.mesh_axes()); break;
       case FileFormat::Ifc: {
         build(read_ifc_building(spec.file, &out.stages));  // its reader times its own stages
         break;
@@ -212,6 +212,16 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
       }
       case FileFormat::Dxf: {
         const DxfPlan d = read_dxf_plan(spec.file, {import.layers, import.unit, import.storey_height});
+        if (d.model_faces > 0) {
+          // A 3D model in DXF: its faces are the scene, in the unit its $INSUNITS says.
+          MeshAxes axes = import.mesh_axes();
+          if (!axes.metres_per_unit && d.metres_per_unit > 0) axes.metres_per_unit = d.metres_per_unit;
+          std::cerr << spec.file << ": a 3D model (" << d.model_faces
+                    << " 3D faces and meshes, no line on a wall layer): read as a mesh scene, z up"
+                    << (import.up.empty() ? " (drawn Y-up? say --up y)" : "") << "\n";
+          read_mesh(spec.file, axes);
+          break;
+        }
         for (const std::string& line : d.summary) std::cerr << spec.file << ": " << line << "\n";
         out.drawing = d.drawing;
         decompose(d.plan, "read drawing");

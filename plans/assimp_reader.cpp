@@ -26,6 +26,7 @@ struct OutputAxes {
   bool up_negative = false;  ///< FBX's UpAxisSign = -1
   double metres_per_unit = 1;
   bool declares_up = false, declares_unit = false;
+  bool dxf_turned = false;  ///< Assimp's DXF reader turned the file's z to y: --up names the file's axes
 };
 
 template <class T>
@@ -57,6 +58,11 @@ OutputAxes output_axes(const aiScene& scene, const std::string& format) {
   } else if (has("3DS")) {
     a.up = 'y';  // Assimp turns 3DS's z-up to Y-up; the format has no unit
     a.declares_up = true;
+  } else if (has("DXF")) {
+    // Assimp turns AutoCAD's z-up to Y-up (the file's z is its y, the file's y its -z);
+    // the file does not say, and a model drawn Y-up (LightWave's) is read with --up y.
+    a.up = 'y';
+    a.dxf_turned = true;
   } else if (has("FBX")) {
     int axis = 1, sign = 1;
     if (meta_number(scene.mMetaData, "UpAxis", axis) && axis >= 0 && axis <= 2) {
@@ -188,6 +194,12 @@ ImportedScene import_scene(const std::string& path, const ImportOptions& options
   if (options.axes.up) {
     if (axes.declares_up)
       out.warnings.push_back("up axis '" + std::string(1, *options.axes.up) + "' ignored: " + named + " declares the file's own");
+    else if (!axes.dxf_turned)
+      axes.up = *options.axes.up;
+    else if (*options.axes.up == 'z')
+      axes.up = 'y';
+    else if (*options.axes.up == 'y')
+      axes.up = 'z', axes.up_negative = true;
     else
       axes.up = *options.axes.up;
   }

@@ -662,6 +662,22 @@ TEST_F(Cli, IfcModelIsABuildingAndBadUpOrUnitIsRefused) {
   EXPECT_EQ(run({"cells", model, "--unit", "furlong"}).status, 2);
 }
 
+// A 3D model saved as DXF (no wall layer, 3D faces) opens as a mesh scene, not as a
+// floor plan refused for its layers.
+TEST_F(Cli, DxfThatIsA3dModelOpensAsAMeshScene) {
+  const std::string model = "/usr/share/assimp/models/DXF/wuson.dxf";
+  if (!fs::exists(model)) GTEST_SKIP() << "assimp-testmodels not installed (.ci/install-deps)";
+  const Outcome r = run({"cells", model, "--up", "y", "--json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("a 3D model"), std::string::npos) << r.err;
+  const json j = parse_json(r);
+  EXPECT_GT(j["cells"].get<int>(), 100);
+  // Naming a wall layer asks for a floor plan, which it is not: refused, its layers listed.
+  const Outcome plan = run({"cells", model, "--layers", "walls=1"});
+  EXPECT_EQ(plan.status, 2);
+  EXPECT_NE(plan.err.find("wuson.dxf"), std::string::npos) << plan.err;
+}
+
 // --- 2D plans from elsewhere (issue 19): what was understood, refusals, --save-plan.
 
 TEST_F(Cli, DxfPlanSaysWhatItUnderstoodAndSavesItAsToml) {

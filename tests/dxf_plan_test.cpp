@@ -21,6 +21,7 @@
 
 #include "plan_import_oracle.h"
 #include "plans/formats/dxf_plan.h"
+#include "plans/mesh.h"
 #include "plans/plan_writer.h"
 
 namespace avenues {
@@ -56,6 +57,12 @@ class TinyDxf {
   void arc(const std::string& layer, Vec2 c, double r, double a0_deg, double a1_deg) {
     body_.push_back([=](DL_Dxf& dxf, DL_WriterA& dw) {
       dxf.writeArc(dw, DL_ArcData(c.x, c.y, 0, r, a0_deg, a1_deg), attr(layer));
+    });
+  }
+  /// A 3DFACE with corners a, b, c, d (d = c for a triangle).
+  void face3d(const std::string& layer, Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+    body_.push_back([=](DL_Dxf& dxf, DL_WriterA& dw) {
+      dxf.write3dFace(dw, DL_3dFaceData(a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z, d.x, d.y, d.z), attr(layer));
     });
   }
   void text(const std::string& layer, Vec2 p, const std::string& t) {
@@ -427,6 +434,43 @@ TEST(DxfPlan, UnitsFromInsunitsOrTheOption) {
   EXPECT_EQ(r2.plan.rooms.size(), 2u);
   cm.unit = "furlong";
   EXPECT_THROW(read_dxf_plan(path, cm), PlanError);
+}
+
+TEST(DxfPlan, A3dModelIsToldFromAFloorPlanAndReadAsAMesh) {
+  // A box 2 x 1 x 0.5 m drawn in millimetres as six 3DFACEs, z up (AutoCAD's axes).
+  TinyDxf d(4);
+  const double X = 2000, Y = 1000, Z = 500;
+  d.face3d("Model", {0, 0, 0}, {0, Y, 0}, {X, Y, 0}, {X, 0, 0});
+  d.face3d("Model", {0, 0, Z}, {X, 0, Z}, {X, Y, Z}, {0, Y, Z});
+  d.face3d("Model", {0, 0, 0}, {X, 0, 0}, {X, 0, Z}, {0, 0, Z});
+  d.face3d("Model", {0, Y, 0}, {0, Y, Z}, {X, Y, Z}, {X, Y, 0});
+  d.face3d("Model", {0, 0, 0}, {0, 0, Z}, {0, Y, Z}, {0, Y, 0});
+  d.face3d("Model", {X, 0, 0}, {X, Y, 0}, {X, Y, Z}, {X, 0, Z});
+  const std::string path = d.write("box-3d.dxf");
+  const DxfPlan r = read_dxf_plan(path);
+  EXPECT_EQ(r.model_faces, 6);
+  EXPECT_DOUBLE_EQ(r.metres_per_unit, 0.001);
+  EXPECT_TRUE(r.plan.rooms.empty());
+  // Assimp reads its faces; AutoCAD's z stays up, in the unit $INSUNITS said.
+  const Mesh m = load_mesh(path, MeshAxes{std::nullopt, r.metres_per_unit});
+  ASSERT_EQ(m.triangles.size(), 12u);
+  Vec3 lo{1e9, 1e9, 1e9}, hi{-1e9, -1e9, -1e9};
+  for (Vec3 v : m.vertices) {
+    lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
+    hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
+  }
+  EXPECT_NEAR(hi.x - lo.x, 2, 1e-6);
+  EXPECT_NEAR(hi.y - lo.y, 1, 1e-6);
+  EXPECT_NEAR(hi.z - lo.z, 0.5, 1e-6);
+  // Drawn Y-up (LightWave's DXF), --up y stands it on its y.
+  const Mesh ym = load_mesh(path, MeshAxes{'y', r.metres_per_unit});
+  lo = {1e9, 1e9, 1e9}, hi = {-1e9, -1e9, -1e9};
+  for (Vec3 v : ym.vertices) lo.z = std::min(lo.z, v.z), hi.z = std::max(hi.z, v.z);
+  EXPECT_NEAR(hi.z - lo.z, 1, 1e-6);
+  // Naming its layer as walls asks for a floor plan: there is none.
+  DxfPlanOptions o;
+  o.layers = "walls=Model";
+  EXPECT_THROW(read_dxf_plan(path, o), PlanError);
 }
 
 TEST(DxfPlan, NoWallLayerIsAClearErrorAndLayersOverride) {

@@ -146,6 +146,7 @@ class Collector : public DL_CreationAdapter {
   Group model;
   std::map<std::string, Group> blocks;
   int insunits = 0;
+  int faces_3d = 0;  ///< 3DFACEs and polygon or polyface mesh POLYLINEs: a 3D model's
   std::map<std::string, int> layer_entities;
   std::vector<std::string> skipped;
 
@@ -191,12 +192,19 @@ class Collector : public DL_CreationAdapter {
     flush();
     pending_layer_ = getAttributes().getLayer();
     in_poly_ = (d.flags & (16 | 64)) == 0;  // not a polygon or polyface mesh
-    if (!in_poly_) skipped.push_back("a 3D mesh POLYLINE on layer '" + layer() + "'");
+    if (!in_poly_) {
+      skipped.push_back("a 3D mesh POLYLINE on layer '" + layer() + "'");
+      ++faces_3d;
+    }
     poly_closed_ = (d.flags & 1) != 0;
     poly_.clear();
   }
   void addVertex(const DL_VertexData& d) override {
     if (in_poly_) poly_.push_back({{d.x, d.y}, d.bulge});
+  }
+  void add3dFace(const DL_3dFaceData&) override {
+    flush();
+    ++faces_3d;
   }
   void addSpline(const DL_SplineData& d) override {
     flush();
@@ -528,6 +536,12 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   std::set<std::string> wall_layers_used;
   for (const SegPiece& s : flat.segs)
     if (role[s.layer] == Role::Walls) wall_layers_used.insert(s.layer);
+  // No wall lines but 3D faces: a 3D model (SketchUp's, LightWave's), read as a mesh.
+  if (wall_layers_used.empty() && given.empty() && col.faces_3d > 0) {
+    out.model_faces = col.faces_3d;
+    out.metres_per_unit = metres_of_insunits(col.insunits);
+    return out;
+  }
   if (wall_layers_used.empty()) {
     std::string list;
     for (const std::string& l : layers) {

@@ -69,12 +69,19 @@ struct DxfPlan {
   /// [m] every line of the drawing (blocks placed, curves as their straight pieces), in
   /// the plan's axes: what the plan was understood from, to draw under it.
   std::vector<std::pair<Vec2, Vec2>> drawing;
+  /// > 0: the file is a 3D model, not a floor plan: this many 3D faces (3DFACE entities,
+  /// polygon and polyface mesh POLYLINEs) and no line on a wall layer (and no `layers`
+  /// given). `plan` is then empty: read the file as a mesh scene (Assimp reads DXF's
+  /// 3D faces).
+  int model_faces = 0;
+  double metres_per_unit = 0;  ///< a 3D model's unit from $INSUNITS; 0 when it says none
 };
 
 /// True when the text starts like an ASCII DXF file (group code 0, SECTION).
 bool looks_like_dxf(const std::string& head);
 
-/// Reads a DXF drawing as a one-storey plan. Throws PlanError naming the file.
+/// Reads a DXF drawing as a one-storey plan, or tells it is a 3D model (model_faces).
+/// Throws PlanError naming the file.
 DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& options = {});
 
 }  // namespace avenues
