@@ -436,6 +436,29 @@ TEST(DxfPlan, UnitsFromInsunitsOrTheOption) {
   EXPECT_THROW(read_dxf_plan(path, cm), PlanError);
 }
 
+TEST(DxfPlan, ACurvedWallIsCutAsFinelyAsAPlansArcs) {
+  // A round room 10 m across in a ring wall 0.2 m thick, each circle drawn as two arcs.
+  TinyDxf d;  // metres
+  for (double r : {5.0, 5.2}) {
+    d.arc("Walls", {0, 0}, r, 0, 180);
+    d.arc("Walls", {0, 0}, r, 180, 360);
+  }
+  const DxfPlan p = read_dxf_plan(d.write("round.dxf"));
+  ASSERT_EQ(p.plan.rooms.size(), 1u);
+  // Every piece of the inner face strays no further from its circle than a plan's arcs
+  // do (Plan::arc_tolerance, 1 cm); 16 pieces per half turn would stray 2.4 cm.
+  int inner = 0;
+  for (const Wall& w : p.plan.walls) {
+    const Vec2 a = w.centre.front(), b = w.centre.back();
+    // (the drawing is snapped to 0.1 mm)
+    if (std::fabs(length(a) - 5) > 1e-4 || std::fabs(length(b) - 5) > 1e-4) continue;
+    ++inner;
+    EXPECT_GE(length(0.5 * (a + b)), 5 - p.plan.arc_tolerance - 1e-4);
+  }
+  EXPECT_GE(inner, 50);
+  EXPECT_EQ(cells_are_valid(build_cells(p.plan)), "");
+}
+
 TEST(DxfPlan, A3dModelIsToldFromAFloorPlanAndReadAsAMesh) {
   // A box 2 x 1 x 0.5 m drawn in millimetres as six 3DFACEs, z up (AutoCAD's axes).
   TinyDxf d(4);

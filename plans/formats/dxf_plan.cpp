@@ -71,10 +71,34 @@ struct Group {
   std::vector<std::pair<std::vector<Vec2>, std::string>> curves;  ///< splines as points (swings drawn as splines)
 };
 
-/// Points along an arc from angle a0 to a1 (radians, counter-clockwise), ends exact.
-std::vector<Vec2> arc_points(Vec2 c, double r, double a0, double a1) {
+/// Metres per drawing unit from $INSUNITS (0 when unitless or unknown).
+double metres_of_insunits(int u) {
+  switch (u) {
+    case 1: return 0.0254;
+    case 2: return 0.3048;
+    case 4: return 0.001;
+    case 5: return 0.01;
+    case 6: return 1;
+    case 14: return 0.1;
+    default: return 0;
+  }
+}
+
+/// Metres per unit of --unit's name ("m", "cm", "mm", "in", "ft", any case); 0 when unknown.
+double metres_of_unit_name(const std::string& name) {
+  std::string u = name;
+  for (char& ch : u) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  return u == "m" ? 1 : u == "cm" ? 0.01 : u == "mm" ? 0.001 : u == "in" ? 0.0254 : u == "ft" ? 0.3048 : 0;
+}
+
+/// Points along an arc from angle a0 to a1 (radians, counter-clockwise), ends exact: 16
+/// pieces per half turn at least, more where a piece would stray further than `sagitta`
+/// (drawing units; 0: no bound) from the arc, as Plan::arc_tolerance asks of a plan's.
+std::vector<Vec2> arc_points(Vec2 c, double r, double a0, double a1, double sagitta = 0) {
   while (a1 <= a0) a1 += 2 * kPi;
-  const int n = std::clamp(int(std::ceil((a1 - a0) / (kPi / 16))), 2, 64);
+  double step = kPi / 16;
+  if (sagitta > 0 && r > sagitta) step = std::min(step, 2 * std::acos(1 - sagitta / r));
+  const int n = std::clamp(int(std::ceil((a1 - a0) / step)), 2, 1024);
   std::vector<Vec2> out;
   for (int i = 0; i <= n; ++i) {
     const double a = a0 + (a1 - a0) * i / n;
@@ -146,12 +170,16 @@ class Collector : public DL_CreationAdapter {
   Group model;
   std::map<std::string, Group> blocks;
   int insunits = 0;
+  double sagitta = 0;  ///< [drawing units] an arc's pieces' furthest from it; 0 while no unit is known
   int faces_3d = 0;  ///< 3DFACEs and polygon or polyface mesh POLYLINEs: a 3D model's
   std::map<std::string, int> layer_entities;
   std::vector<std::string> skipped;
 
   void setVariableInt(const std::string& key, int value, int) override {
-    if (key == "$INSUNITS") insunits = value;
+    if (key != "$INSUNITS") return;
+    insunits = value;
+    // The header comes before the entities: arcs are cut as finely as a plan's would be.
+    if (const double m = metres_of_insunits(value); m > 0 && sagitta == 0) sagitta = Plan{}.arc_tolerance / m;
   }
   void addLayer(const DL_LayerData& d) override { layer_entities.emplace(d.name, 0); }
   void addBlock(const DL_BlockData& d) override {
@@ -171,7 +199,7 @@ class Collector : public DL_CreationAdapter {
   }
   void addCircle(const DL_CircleData& d) override {
     flush();
-    const std::vector<Vec2> pts = arc_points({d.cx, d.cy}, d.radius, 0, 2 * kPi);
+    const std::vector<Vec2> pts = arc_points({d.cx, d.cy}, d.radius, 0, 2 * kPi, sagitta);
     for (size_t i = 0; i + 1 < pts.size(); ++i) seg(pts[i], pts[i + 1], true);
   }
   void addEllipse(const DL_EllipseData& d) override {
@@ -256,7 +284,7 @@ class Collector : public DL_CreationAdapter {
     } else if (e.type == 2) {
       double a0 = e.angle1, a1 = e.angle2;
       if (!e.ccw) a0 = -e.angle2, a1 = -e.angle1;
-      std::vector<Vec2> pts = arc_points({e.cx, e.cy}, e.radius, a0, a1);
+      std::vector<Vec2> pts = arc_points({e.cx, e.cy}, e.radius, a0, a1, sagitta);
       if (!e.ccw) {
         for (Vec2& p : pts) p.y = 2 * e.cy - p.y;  // mirrored back: clockwise arcs
       }
@@ -311,7 +339,7 @@ class Collector : public DL_CreationAdapter {
     if (!in_poly_ && !in_spline_) count();
   }
   void arc(Vec2 c, double r, double a0, double a1) {
-    const std::vector<Vec2> pts = arc_points(c, r, a0, a1);
+    const std::vector<Vec2> pts = arc_points(c, r, a0, a1, sagitta);
     for (size_t i = 0; i + 1 < pts.size(); ++i) seg(pts[i], pts[i + 1], true);
     double sweep = a1 - a0;
     while (sweep <= 0) sweep += 2 * kPi;
@@ -438,18 +466,6 @@ Role role_by_name(const std::string& layer) {
   return Role::None;
 }
 
-/// Metres per drawing unit from $INSUNITS (0 when unitless or unknown).
-double metres_of_insunits(int u) {
-  switch (u) {
-    case 1: return 0.0254;
-    case 2: return 0.3048;
-    case 4: return 0.001;
-    case 5: return 0.01;
-    case 6: return 1;
-    case 14: return 0.1;
-    default: return 0;
-  }
-}
 
 }  // namespace
 
@@ -479,6 +495,8 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     if (!looks_like_dxf(head)) throw PlanError(file, "not a DXF drawing (it does not start with '0 SECTION')");
   }
   Collector col;
+  // --unit first: it decides how finely arcs are cut (a bad one is refused below).
+  if (const double m = metres_of_unit_name(opt.unit); m > 0) col.sagitta = Plan{}.arc_tolerance / m;
   DL_Dxf dxf;
   if (!dxf.in(path, &col)) throw PlanError(file, "dxflib cannot read the file");
   col.flush();
@@ -558,8 +576,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   double unit = 0;
   std::string unit_said;
   if (!opt.unit.empty()) {
-    const std::string u = lower(opt.unit);
-    unit = u == "m" ? 1 : u == "cm" ? 0.01 : u == "mm" ? 0.001 : u == "in" ? 0.0254 : u == "ft" ? 0.3048 : 0;
+    unit = metres_of_unit_name(opt.unit);
     if (unit == 0) throw PlanError({path, 0, 0, "--unit"}, "unknown unit '" + opt.unit + "' (use m, cm, mm, in or ft)");
     unit_said = opt.unit + " (--unit)";
   } else if ((unit = metres_of_insunits(col.insunits)) > 0) {

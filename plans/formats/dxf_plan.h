@@ -43,7 +43,8 @@
 // A drawing with no wall layer, or whose wall lines close no room, is a PlanError listing
 // its layers and how to name them. Known limits: a swing whose hinge or closed end is over
 // 0.15 m from every wall line is not placed (a warning); arcs are arranged as their
-// straight pieces (16 per half turn), not as exact circular arcs; door-sized lines on
+// straight pieces (16 per half turn at least, and within Plan::arc_tolerance of the arc
+// once the unit is known from $INSUNITS or `unit`), not as exact circular arcs; door-sized lines on
 // a door layer in no wall gap (a wardrobe's sliding front) are not placed (a warning).
 #pragma once
 
