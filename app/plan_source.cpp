@@ -161,6 +161,8 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
     out.stages.push_back({"read mesh", seconds_since(t0)});
     try {
       out.complex = build_mesh_scene({mesh});
+    } catch (const std::bad_alloc&) {
+      throw;  // "out of memory while decomposing FILE", below
     } catch (const std::exception& e) {
       throw std::runtime_error(file + ": " + e.what());
     }
@@ -200,7 +202,16 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
       }
       case FileFormat::Model: read_mesh(spec.file, import.mesh_axes()); break;
       case FileFormat::Ifc: {
-        build(read_ifc_building(spec.file, &out.stages));  // its reader times its own stages
+        std::optional<Plan> building;
+        try {
+          building = read_ifc_building(spec.file, &out.stages);  // its reader times its own stages
+        } catch (const IfcWithoutWalls& e) {
+          // A structural model, a piece of equipment: its elements' faces are the scene.
+          std::cerr << e.what() << ": read as a mesh scene, every element's faces\n";
+          read_mesh(spec.file, import.mesh_axes());
+          break;
+        }
+        build(*building);
         break;
       }
       case FileFormat::FloorplanVectors: {

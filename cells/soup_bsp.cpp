@@ -26,6 +26,8 @@
 //               rounded corners. Rounded to double once.
 #include "cells/soup_bsp.h"
 
+#include "core/memory_reserve.h"
+
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Projection_traits_xy_3.h>
@@ -484,6 +486,7 @@ struct Builder {
     std::vector<Task> stack;
     stack.push_back({0, std::move(root_faces), std::move(root_frags), 0});
     while (!stack.empty()) {
+      check_memory_reserve();  // a model sliced finely can outgrow the machine (core/memory_reserve.h)
       Task t = std::move(stack.back());
       stack.pop_back();
       std::vector<size_t> interior;
@@ -784,6 +787,7 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
   // depends on that; threads would make the output depend on their timing.)
   std::vector<std::vector<std::vector<Contact>>> contacts(b.leaves.size());
   for (size_t l = 0; l < b.leaves.size(); ++l) {
+    check_memory_reserve();
     const Builder::Leaf& leaf = b.leaves[l];
     contacts[l].resize(leaf.faces.size());
     for (size_t k = 0; k < leaf.faces.size(); ++k) {
@@ -851,6 +855,7 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
     auto tighten = [](const Poly& p) {
       for (const P3& q : p.v) rounded(q);
     };
+    check_memory_reserve();
     for (size_t l = range.begin(); l != range.end(); ++l)
       for (size_t k = 0; k < b.leaves[l].faces.size(); ++k) {
         tighten(b.leaves[l].faces[k].poly);

@@ -678,6 +678,22 @@ TEST_F(Cli, DxfThatIsA3dModelOpensAsAMeshScene) {
   EXPECT_NE(plan.err.find("wuson.dxf"), std::string::npos) << plan.err;
 }
 
+// An IFC model with nothing to walk between (a structural model's members, equipment) is
+// shown as a scene of its elements' faces rather than refused.
+TEST_F(Cli, IfcModelWithoutWallsOpensAsAMeshScene) {
+  std::string ifc = slurp(std::string(AVENUES_SOURCE_DIR) + "/tests/fuzz/corpus/ifc/l-walled-room.ifc");
+  for (size_t at = ifc.find("IFCWALL("); at != std::string::npos; at = ifc.find("IFCWALL(", at))
+    ifc.replace(at, 8, "IFCMEMBER(");  // the same solids, as members: no wall left
+  write("members.ifc", ifc);
+  const Outcome r = run({"cells", path("members.ifc").string(), "--json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("no walls or columns to walk between"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("read as a mesh scene"), std::string::npos) << r.err;
+  const json j = parse_json(r);
+  EXPECT_GT(j["cells"].get<int>(), 4);
+  EXPECT_EQ(j["storeys"].get<int>(), 0);  // a scene, not a building
+}
+
 // --- 2D plans from elsewhere (issue 19): what was understood, refusals, --save-plan.
 
 TEST_F(Cli, DxfPlanSaysWhatItUnderstoodAndSavesItAsToml) {

@@ -391,7 +391,7 @@ class Builder {
     make_objects();
     make_view();
     if (plan_.walls.empty())
-      throw PlanError({path_, 0, 0, ""}, "the model has no walls or columns to walk between (" +
+      throw IfcWithoutWalls({path_, 0, 0, ""}, "the model has no walls or columns to walk between (" +
                                               std::to_string(elements_.size()) + " elements, none a usable wall)");
     if (dropped_.size() > kWarningsListed)
       plan_.warnings.push_back(std::to_string(dropped_.size() - kWarningsListed) + " more elements dropped");

@@ -28,14 +28,22 @@
 
 namespace avenues {
 
+/// A model with no walls or columns to walk between (a structural model of beams and
+/// members, a single piece of equipment): not a building's plan, though its elements have
+/// faces that can be shown as a scene.
+class IfcWithoutWalls : public PlanError {
+ public:
+  using PlanError::PlanError;
+};
+
 /// Reads an IFC file (STEP physical file, IFC2X3 or the part of IFC4 Assimp reads) as a
 /// lenient Plan, its first view at eye height in the largest named space of the entrance
 /// storey (the storey with spaces whose floor is nearest the ground, z = 0), looking along
 /// its longest free direction. Throws PlanError naming the file for a file that is not a
 /// STEP file, is cut short or has a broken record or dangling reference (naming the line),
 /// with Assimp's reason (naming the entity) for what it cannot read or that its reader
-/// crashed (it reads the model in a child process first), and for a model with no walls
-/// or columns to walk between. When `stages` is given,
+/// crashed (it reads the model in a child process first), and IfcWithoutWalls for a model
+/// with no walls or columns to walk between. When `stages` is given,
 /// the time of Assimp's own import ("assimp import") and of the slicing after it ("IFC to
 /// plan") are appended to it.
 Plan read_ifc_building(const std::string& path, std::vector<StageTime>* stages = nullptr);
