@@ -156,6 +156,9 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
   };
   // A mesh as a whole scene: OpenMesh or Assimp by its format, turned to z-up metres.
   auto read_mesh = [&](const std::string& file, const MeshAxes& axes) {
+    if (!import.save_plan.empty())  // told before the work, and nothing written
+      throw std::runtime_error(file + " is read as a mesh scene, which has no plan: --save-plan " +
+                               import.save_plan + " cannot be written");
     std::vector<std::string> said;  // its materials' missing files
     Mesh mesh = load_mesh(file, axes, &said);  // names the file when unreadable
     out.stages.push_back({"read mesh", seconds_since(t0)});

@@ -694,6 +694,16 @@ TEST_F(Cli, IfcModelWithoutWallsOpensAsAMeshScene) {
   EXPECT_EQ(j["storeys"].get<int>(), 0);  // a scene, not a building
 }
 
+// --save-plan asks for a plan; a mesh scene (an OBJ, a DXF that is a 3D model) has none.
+TEST_F(Cli, SavePlanOfAMeshSceneIsRefusedBeforeTheWork) {
+  const std::string torus = std::string(AVENUES_SOURCE_DIR) + "/plans/scenes/torus.off";
+  const Outcome r = run({"cells", torus, "--save-plan", "torus.toml"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--save-plan"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("torus.off"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("torus.toml")));
+}
+
 // --- 2D plans from elsewhere (issue 19): what was understood, refusals, --save-plan.
 
 TEST_F(Cli, DxfPlanSaysWhatItUnderstoodAndSavesItAsToml) {
