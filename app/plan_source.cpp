@@ -210,16 +210,13 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
       }
       case FileFormat::Model: read_mesh(spec.file, import.mesh_axes()); break;
       case FileFormat::Ifc: {
-        std::optional<Plan> building;
         try {
-          building = read_ifc_building(spec.file, &out.stages);  // its reader times its own stages
-        } catch (const IfcWithoutWalls& e) {
+          build(read_ifc_building(spec.file, &out.stages));  // its reader times its own stages
+        } catch (const IfcWithoutWalls& e) {  // thrown by the reader only
           // A structural model, a piece of equipment: its elements' faces are the scene.
           std::cerr << e.what() << ": read as a mesh scene, every element's faces\n";
           read_mesh(spec.file, import.mesh_axes());
-          break;
         }
-        build(*building);
         break;
       }
       case FileFormat::FloorplanVectors: {

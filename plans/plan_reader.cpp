@@ -313,6 +313,12 @@ class Element {
     if (!n) return std::nullopt;
     return length_of(*n, quote(key));
   }
+  std::optional<bool> boolean(std::string_view key) const {
+    auto* n = get(key);
+    if (!n) return std::nullopt;
+    if (!n->is_boolean()) fail(key, quote(key) + " must be true or false, not " + std::string(type_name(*n)));
+    return n->as_boolean()->get();
+  }
   /// A required key: fails naming it when absent.
   const toml::node& need(std::string_view key) const {
     auto* n = get(key);
@@ -411,16 +417,8 @@ void Reader::read_settings(const toml::table& root) {
     if (*m <= 0) e.fail("far_margin", "'far_margin' must be > 0, not " + len(*m));
     plan_.far_margin = *m;
   }
-  if (const toml::node* l = e.get("lenient")) {
-    if (!l->is_boolean()) e.fail("lenient", "'lenient' must be true or false, not " + std::string(type_name(*l)));
-    plan_.lenient = l->as_boolean()->get();
-  }
-  if (const toml::node* u = e.get("unnamed_spaces_solid")) {
-    if (!u->is_boolean())
-      e.fail("unnamed_spaces_solid",
-             "'unnamed_spaces_solid' must be true or false, not " + std::string(type_name(*u)));
-    plan_.unnamed_spaces_solid = u->as_boolean()->get();
-  }
+  if (auto l = e.boolean("lenient")) plan_.lenient = *l;
+  if (auto u = e.boolean("unnamed_spaces_solid")) plan_.unnamed_spaces_solid = *u;
 }
 
 // --- [materials.NAME] ----------------------------------------------------------------

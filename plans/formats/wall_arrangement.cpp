@@ -206,8 +206,10 @@ WallArrangement arrange_walls(const WallArrangementInput& in) {
   std::vector<Point> probes;
   for (Vec2 p : in.probes) probes.emplace_back(finite(p) ? p.x : 1e300, finite(p) ? p.y : 1e300);
   const std::vector<Arr::Face_const_handle> at = locate_all(arr, probes);
-  for (const Arr::Face_const_handle& f : at)
-    out.probe_space.push_back(f == Arr::Face_const_handle() ? -1 : std::max(-2, class_of(f) <= -3 ? -1 : class_of(f)));
+  for (const Arr::Face_const_handle& f : at) {
+    const int c = f == Arr::Face_const_handle() ? -1 : class_of(f);
+    out.probe_space.push_back(c <= -3 ? -1 : c);  // a gap face counts as wall here
+  }
   return out;
 }
 
