@@ -20,6 +20,7 @@
 #include <string>
 
 #include "plan_import_oracle.h"
+#include "plans/formats/dxf_layer_names.h"
 #include "plans/formats/dxf_plan.h"
 #include "plans/mesh.h"
 #include "plans/plan_writer.h"
@@ -516,6 +517,87 @@ TEST(DxfPlan, NoWallLayerIsAClearErrorAndLayersOverride) {
   EXPECT_THROW(read_dxf_plan(path, o), PlanError);
   o.layers = "floors=Lines";
   EXPECT_THROW(read_dxf_plan(path, o), PlanError);
+}
+
+TEST(DxfLayerNames, TheNamesDrawingsUseInManyLanguages) {
+  const std::vector<std::pair<std::string, LayerRole>> names = {
+      // AIA and its modifiers: tags, demolition, what is above, elevations are no walls.
+      {"A-WALL", LayerRole::Walls}, {"A-WALL-EXTR", LayerRole::Walls}, {"A-WALL-PATT", LayerRole::Walls},
+      {"A-DOOR", LayerRole::Doors}, {"A-GLAZ", LayerRole::Windows}, {"A-DOOR-GLAZ", LayerRole::Doors},
+      {"A-DOOR-IDEN", LayerRole::None}, {"A-WALL-DEMO", LayerRole::None}, {"A-WALL-ABOV", LayerRole::None},
+      {"A-GLAZ-ELEV", LayerRole::None}, {"A-WALL-NPLT", LayerRole::None}, {"A-ANNO-TEXT", LayerRole::None},
+      // English and German, joined words included.
+      {"Walls", LayerRole::Walls}, {"Interior Partitions", LayerRole::Walls}, {"Ext Windows", LayerRole::Windows},
+      {"Aussenwand", LayerRole::Walls}, {"Innenwände", LayerRole::Walls}, {"INNENWÄNDE", LayerRole::Walls},
+      {"Haustür", LayerRole::Doors}, {"TÜREN", LayerRole::Doors}, {"Dachfenster", LayerRole::Windows},
+      {"Fenster und Türen", LayerRole::Doors}, {"Möbel", LayerRole::None}, {"Wand-Bemaßung", LayerRole::None},
+      // DXF's \U+ escape of R2000 and older: INNENW\U+00C4NDE.
+      {"INNENW\\U+00C4NDE", LayerRole::Walls},
+      // French, Spanish, Italian, Portuguese, Dutch.
+      {"MURS", LayerRole::Walls}, {"Murs porteurs", LayerRole::Walls}, {"Cloisons", LayerRole::Walls},
+      {"PORTES", LayerRole::Doors}, {"FENÊTRES", LayerRole::Windows}, {"Porte-fenêtre", LayerRole::Doors},
+      {"Menuiseries", LayerRole::Doors}, {"Cotation", LayerRole::None}, {"Supporte", LayerRole::None},
+      {"MUROS", LayerRole::Walls}, {"Tabiques", LayerRole::Walls}, {"PUERTAS", LayerRole::Doors},
+      {"VENTANAS", LayerRole::Windows}, {"Carpintería", LayerRole::Doors},
+      {"Muri", LayerRole::Walls}, {"Tramezzi", LayerRole::Walls}, {"Porte", LayerRole::Doors}, {"Finestre", LayerRole::Windows},
+      {"Infissi", LayerRole::Doors}, {"Arredo", LayerRole::None},
+      {"Paredes", LayerRole::Walls}, {"Portas", LayerRole::Doors}, {"Janelas", LayerRole::Windows},
+      {"Muren", LayerRole::Walls}, {"binnenwanden", LayerRole::Walls}, {"Deuren", LayerRole::Doors},
+      {"Ramen", LayerRole::Windows}, {"Kozijnen", LayerRole::Doors}, {"Profondeur", LayerRole::None},
+      // Nordic, Slavic, Turkish; Chinese and Japanese.
+      {"Vägg", LayerRole::Walls}, {"Dörrar", LayerRole::Doors}, {"Fönster", LayerRole::Windows},
+      {"Vinduer", LayerRole::Windows}, {"Ściany", LayerRole::Walls}, {"Drzwi", LayerRole::Doors}, {"Okna", LayerRole::Windows},
+      {"СТЕНЫ", LayerRole::Walls}, {"Перегородки", LayerRole::Walls}, {"Двери", LayerRole::Doors}, {"Окна", LayerRole::Windows},
+      {"Duvar", LayerRole::Walls}, {"Kapı", LayerRole::Doors}, {"Pencere", LayerRole::Windows},
+      {"墙体", LayerRole::Walls}, {"门", LayerRole::Doors}, {"窗", LayerRole::Windows}, {"门窗", LayerRole::Doors},
+      {"壁", LayerRole::Walls}, {"ドア", LayerRole::Doors}, {"窓", LayerRole::Windows}, {"家具", LayerRole::None},
+      // Nothing said.
+      {"0", LayerRole::None}, {"Defpoints", LayerRole::None}, {"A786g - Works of Art - sculpture-murals", LayerRole::None}, {"Furniture", LayerRole::None}};
+  for (const auto& [name, role] : names) EXPECT_EQ(layer_role_by_name(name), role) << name;
+  EXPECT_TRUE(names_a_door("PORTE_90"));
+  EXPECT_TRUE(names_a_door("Tür 88.5"));
+  EXPECT_TRUE(names_a_door("SLIDING-2P"));
+  EXPECT_FALSE(names_a_door("SUPPORT"));
+  EXPECT_FALSE(names_a_door("WINDOW-1200"));
+}
+
+TEST(DxfPlan, AFrenchDrawingOpensByItsLayerNames) {
+  // MURS, PORTES, FENETRES: the rooms, the door from its swing and the window.
+  TinyDxf d;
+  two_rooms_in_double_lines(d, "MURS");
+  d.arc("PORTES", {4.3, 1.0}, 0.9, 0, 90);
+  d.line("PORTES", {4.3, 1.0}, {5.2, 1.0});
+  // A window in the outer wall of the first room: a 1.2 m gap, its glass across it.
+  d.line("FENETRES", {1.4, 3.3}, {2.6, 3.3});
+  const DxfPlan r = read_dxf_plan(d.write("francais.dxf"));
+  EXPECT_EQ(r.plan.rooms.size(), 2u);
+  EXPECT_EQ(doors_in(r.plan), 1);
+  bool said = false;
+  for (const std::string& s : r.summary) said |= s.find("walls from layers 'MURS'") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
+TEST(DxfPlan, DoorTagsOnAnIdenLayerAreNoWalls) {
+  // AIA's A-DOOR-IDEN holds door numbers in hexagons: drawn in the middle of a room they
+  // would be a column there if the layer counted as a door layer (whose straight lines close
+  // the walls), and its numbers are no room names.
+  TinyDxf d;
+  two_rooms_in_double_lines(d, "A-WALL");
+  d.arc("A-DOOR", {4.3, 1.0}, 0.9, 0, 90);
+  std::vector<Vec2> hex;
+  for (int k = 0; k < 6; ++k) hex.push_back(Vec2{2, 2.4} + 0.25 * Vec2{std::cos(k * M_PI / 3), std::sin(k * M_PI / 3)});
+  d.polyline("A-DOOR-IDEN", hex, true);
+  d.text("A-DOOR-IDEN", {1.9, 2.35}, "101");
+  const DxfPlan r = read_dxf_plan(d.write("tags.dxf"));
+  ASSERT_EQ(r.plan.rooms.size(), 2u);
+  const CellComplex c = build_cells(r.plan);
+  EXPECT_EQ(cells_are_valid(c), "");
+  double named_area = 0;
+  for (const RoomInfo& room : c.rooms) {
+    if (room.named) named_area += room.area;
+    EXPECT_EQ(room.name.find("101"), std::string::npos) << "a door's number named a room: " << room.name;
+  }
+  EXPECT_NEAR(named_area, 2 * 3.9 * 3.0 + 0.2 * 0.9, 0.05);  // the two rooms and the door's gap
 }
 
 TEST(DxfPlan, NotADxfFile) {

@@ -18,6 +18,7 @@
 
 #include "core/angles.h"
 #include "core/number_format.h"
+#include "plans/formats/dxf_layer_names.h"
 #include "plans/formats/swingless_doors.h"
 #include "plans/formats/wall_arrangement.h"
 #include "plans/formats/wall_line_ends.h"
@@ -383,13 +384,6 @@ struct Flat {
 };
 
 /// A block holding a door: door, Tür/Tuer, porte, sliding, pocket, bi-fold in its name.
-bool says_door(const std::string& name) {
-  const std::string n = lower(name);
-  for (const char* w : {"door", "tür", "tuer", "porte", "sliding", "pocket", "bifold", "bi-fold"})
-    if (n.find(w) != std::string::npos) return true;
-  return n.find("tur") == 0;
-}
-
 void flatten(const Collector& col, const Group& g, const std::vector<Placement>& chain, const std::string& layer_0,
              bool door_block, int depth, Flat& out, int chain_of_insert = -1) {
   auto place = [&](Vec2 p) {
@@ -445,27 +439,11 @@ void flatten(const Collector& col, const Group& g, const std::vector<Placement>&
       pl.c = std::cos(a), pl.s = std::sin(a);
       std::vector<Placement> next = chain;
       next.push_back(pl);
-      flatten(col, it->second, next, lay(ins.layer), door_block || says_door(ins.block), depth + 1, out,
+      flatten(col, it->second, next, lay(ins.layer), door_block || names_a_door(ins.block), depth + 1, out,
               out.placements++);
     }
   }
 }
-
-enum class Role { None, Walls, Doors, Windows };
-
-/// The usual names: AIA/ISO 13567 (A-WALL, A-DOOR, A-GLAZ), English and German words.
-Role role_by_name(const std::string& layer) {
-  const std::string n = lower(layer);
-  auto has = [&](const char* w) { return n.find(w) != std::string::npos; };
-  if (has("virtual") || has("furn") || has("dim") || has("text") || has("hatch-") || has("grid")) return Role::None;
-  if (has("glaz") || has("window") || has("fenster")) return Role::Windows;
-  if (has("door") || has("tür") || has("tuer") || has("türen")) return Role::Doors;
-  if (has("wall") || has("wand") || has("wände") || has("waende") || has("mauer") || has("structure") ||
-      has("partition") || has("a-wall") || has("tragwerk"))
-    return Role::Walls;
-  return Role::None;
-}
-
 
 }  // namespace
 
@@ -510,19 +488,19 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   for (const std::string& s : col.skipped) plan.warnings.push_back(s + ": skipped");
 
   // Which layer is what: --layers first, then the usual names.
-  std::map<std::string, Role> given;
+  std::map<std::string, LayerRole> given;
   if (!opt.layers.empty()) {
     std::istringstream spec(opt.layers);
     for (std::string part; std::getline(spec, part, ';');) {
       if (part.empty()) continue;
       const size_t eq = part.find('=');
       const std::string key = lower(part.substr(0, eq));
-      Role r = key == "walls" ? Role::Walls : key == "doors" ? Role::Doors : key == "windows" ? Role::Windows : Role::None;
-      if (eq == std::string::npos || r == Role::None)
+      LayerRole r = key == "walls" ? LayerRole::Walls : key == "doors" ? LayerRole::Doors : key == "windows" ? LayerRole::Windows : LayerRole::None;
+      if (eq == std::string::npos || r == LayerRole::None)
         throw PlanError({path, 0, 0, "--layers"}, "'" + part + "': expected walls=NAME,..., doors=... or windows=...");
       std::istringstream names(part.substr(eq + 1));
       for (std::string nm; std::getline(names, nm, ',');)
-        if (!nm.empty()) given[lower(nm)] = r;
+        if (!nm.empty()) given[fold_layer_name(nm)] = r;
     }
   }
   Flat flat;
@@ -530,30 +508,30 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   std::set<std::string> layers;
   for (const auto& [l, n] : col.layer_entities) layers.insert(l);
   for (const SegPiece& s : flat.segs) layers.insert(s.layer);
-  std::map<std::string, Role> role;
+  std::map<std::string, LayerRole> role;
   for (const std::string& l : layers) {
-    auto it = given.find(lower(l));
-    role[l] = it != given.end() ? it->second : (given.empty() ? role_by_name(l) : Role::None);
+    auto it = given.find(fold_layer_name(l));
+    role[l] = it != given.end() ? it->second : (given.empty() ? layer_role_by_name(l) : LayerRole::None);
   }
   // With --layers, a role it does not name still goes by the usual names.
   if (!given.empty()) {
-    std::set<Role> named;
+    std::set<LayerRole> named;
     for (const auto& [l, r] : given) named.insert(r);
     for (const std::string& l : layers)
-      if (role[l] == Role::None && !given.count(lower(l)) && !named.count(role_by_name(l))) role[l] = role_by_name(l);
+      if (role[l] == LayerRole::None && !given.count(fold_layer_name(l)) && !named.count(layer_role_by_name(l))) role[l] = layer_role_by_name(l);
   }
   std::vector<std::string> taken[4];
   for (const auto& [l, r] : role)
-    if (r != Role::None) taken[int(r)].push_back(l);
+    if (r != LayerRole::None) taken[int(r)].push_back(l);
   for (const auto& named : given) {  // (clang before 16 cannot capture a structured binding)
     const std::string& nm = named.first;
-    if (std::none_of(layers.begin(), layers.end(), [&](const std::string& l) { return lower(l) == nm; }))
+    if (std::none_of(layers.begin(), layers.end(), [&](const std::string& l) { return fold_layer_name(l) == nm; }))
       throw PlanError({path, 0, 0, "--layers"}, "the drawing has no layer '" + nm + "'");
   }
 
   std::set<std::string> wall_layers_used;
   for (const SegPiece& s : flat.segs)
-    if (role[s.layer] == Role::Walls) wall_layers_used.insert(s.layer);
+    if (role[s.layer] == LayerRole::Walls) wall_layers_used.insert(s.layer);
   // No wall lines but 3D faces: a 3D model (SketchUp's, LightWave's), read as a mesh.
   if (wall_layers_used.empty() && given.empty() && col.faces_3d > 0) {
     out.model_faces = col.faces_3d;
@@ -567,8 +545,8 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
       list += "\n  '" + l + "'";
       if (it != col.layer_entities.end() && it->second > 0) list += " (" + std::to_string(it->second) + " entities)";
     }
-    throw PlanError(file, "no layer holds walls by its name (A-WALL, Walls, Wand, ... Existing Structure, "
-                          "partitions): its layers are" + list +
+    throw PlanError(file, "no layer holds walls by its name (A-WALL, Walls, partitions, ... Existing Structure, "
+                          "Wand, Murs, Muros, Muri, Paredes, Muren, Стены, 墙): its layers are" + list +
                           "\nname the wall layers with --layers 'walls=NAME,NAME;doors=NAME;windows=NAME'");
   }
 
@@ -584,7 +562,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   } else {
     double lo_x = 1e300, hi_x = -1e300, lo_y = 1e300, hi_y = -1e300;
     for (const SegPiece& s : flat.segs)
-      if (role[s.layer] == Role::Walls)
+      if (role[s.layer] == LayerRole::Walls)
         for (Vec2 p : {s.a, s.b}) lo_x = std::min(lo_x, p.x), hi_x = std::max(hi_x, p.x), lo_y = std::min(lo_y, p.y), hi_y = std::max(hi_y, p.y);
     const double across = std::max(hi_x - lo_x, hi_y - lo_y);
     unit = across > 1000 ? 0.001 : 1;
@@ -603,7 +581,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   std::vector<Gap> gaps;
   std::vector<SegPiece> win;
   for (const SegPiece& s : flat.segs)
-    if (role[s.layer] == Role::Windows) win.push_back({m(s.a), m(s.b), s.layer, s.curved});
+    if (role[s.layer] == LayerRole::Windows) win.push_back({m(s.a), m(s.b), s.layer, s.curved});
   std::vector<int> window_of(win.size(), -1);  // per window line: its gap, or -1 (too small to be a window)
   {
     std::vector<int> parent(win.size());
@@ -650,21 +628,21 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     for (size_t i = 0; i < flat.segs.size(); ++i) {
       const SegPiece& s = flat.segs[i];
       if (s.curved) continue;
-      const Role r = role[s.layer];
-      if (r == Role::Doors || s.door_block) {
+      const LayerRole r = role[s.layer];
+      if (r == LayerRole::Doors || s.door_block) {
         door_lines.push_back({m(s.a), m(s.b)});
-        door_line_is_wall.push_back(r == Role::Doors || r == Role::Walls);
+        door_line_is_wall.push_back(r == LayerRole::Doors || r == LayerRole::Walls);
         seg_of.push_back(i);
-      } else if (r == Role::Walls || r == Role::Windows) {
+      } else if (r == LayerRole::Walls || r == LayerRole::Windows) {
         wall_lines.push_back({m(s.a), m(s.b)});
       }
     }
     std::vector<Vec2> swing_points;
     for (const auto& [a, in_door_block] : flat.arcs)  // swings (as below), not a bi-fold's small arcs
-      if ((role[a.layer] == Role::Doors || in_door_block) && door_swing_radius(a.r * unit) && door_swing_sweep(a.sweep_deg))
+      if ((role[a.layer] == LayerRole::Doors || in_door_block) && door_swing_radius(a.r * unit) && door_swing_sweep(a.sweep_deg))
         for (Vec2 p : {a.c, a.p0, a.p1}) swing_points.push_back(m(p));
     for (const Flat::Curve& cv : flat.curves)
-      if ((role[cv.layer] == Role::Doors || cv.door_block) && !cv.pts.empty())
+      if ((role[cv.layer] == LayerRole::Doors || cv.door_block) && !cv.pts.empty())
         for (Vec2 p : {cv.pts.front(), cv.pts.back()}) swing_points.push_back(m(p));
     swingless = find_swingless_doors(door_lines, door_line_is_wall, wall_lines, swing_points);
     for (SwinglessDoor& d : swingless) {
@@ -676,7 +654,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   std::vector<WallLine> walls;
   for (size_t i = 0; i < flat.segs.size(); ++i) {
     const SegPiece& s = flat.segs[i];
-    if (!panel[i] && (role[s.layer] == Role::Walls || (role[s.layer] == Role::Doors && !s.curved)))
+    if (!panel[i] && (role[s.layer] == LayerRole::Walls || (role[s.layer] == LayerRole::Doors && !s.curved)))
       walls.push_back({m(s.a), m(s.b)});
   }
   for (size_t i = 0; i < win.size(); ++i) walls.push_back({win[i].a, win[i].b, window_of[i]});
@@ -690,7 +668,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     for (const auto& [a, b] : ends.added) walls.push_back({a, b});
   }
   for (const HatchPiece& h : flat.hatches)
-    if (role[h.layer] == Role::Walls) {
+    if (role[h.layer] == LayerRole::Walls) {
       std::vector<std::vector<Vec2>> rings;
       for (const auto& r : h.rings)
         if (r.size() >= 3) {
@@ -719,7 +697,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   struct Swing { Vec2 hinge, closed; std::string layer; };
   std::vector<Swing> found;
   for (const auto& [a0, in_door_block] : flat.arcs) {
-    if (role[a0.layer] != Role::Doors && !in_door_block) continue;
+    if (role[a0.layer] != LayerRole::Doors && !in_door_block) continue;
     const double r = a0.r * unit;
     if (!door_swing_radius(r) || !door_swing_sweep(a0.sweep_deg)) continue;
     ++swings;
@@ -731,7 +709,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   {
     std::vector<const Flat::Curve*> door_curves;
     for (const Flat::Curve& cv : flat.curves)
-      if (role[cv.layer] == Role::Doors || cv.door_block) door_curves.push_back(&cv);
+      if (role[cv.layer] == LayerRole::Doors || cv.door_block) door_curves.push_back(&cv);
     std::vector<bool> used(door_curves.size(), false);
     for (size_t i = 0; i < door_curves.size(); ++i) {
       if (used[i]) continue;
@@ -833,7 +811,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   // Room names: texts, and closed polylines on "Room - NAME" layers.
   std::vector<std::string> probe_name;
   for (const TextPiece& t : flat.texts)
-    if (!t.text.empty() && role[t.layer] == Role::None) {
+    if (!t.text.empty() && role[t.layer] == LayerRole::None && !names_openings(t.layer)) {
       arr_in.probes.push_back(m(t.p));
       probe_name.push_back(t.text);
     }
@@ -850,7 +828,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   if (arr.spaces.empty())
     throw PlanError(file, "the lines on the wall layers " + [&] {
       std::string l;
-      for (const std::string& x : taken[int(Role::Walls)]) l += (l.empty() ? "'" : ", '") + x + "'";
+      for (const std::string& x : taken[int(LayerRole::Walls)]) l += (l.empty() ? "'" : ", '") + x + "'";
       return l;
     }() + " enclose no space (" + std::to_string(arr.faces) + " closed faces, all narrow enough to be walls): "
           "every room must be closed by wall lines, door swings or window lines; name other wall layers with "
@@ -963,11 +941,11 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     for (const std::string& x : v) s += (s.empty() ? "'" : ", '") + x + "'";
     return s.empty() ? std::string("none") : s;
   };
-  out.summary.push_back("walls from layers " + joined(taken[int(Role::Walls)]));
-  out.summary.push_back("doors from layers " + joined(taken[int(Role::Doors)]) + " and door blocks: " +
+  out.summary.push_back("walls from layers " + joined(taken[int(LayerRole::Walls)]));
+  out.summary.push_back("doors from layers " + joined(taken[int(LayerRole::Doors)]) + " and door blocks: " +
                         std::to_string(swings) + " swings, " +
                         std::to_string(swingless_placed) + " doors without a swing (sliding, pocket, folding)");
-  out.summary.push_back("windows from layers " + joined(taken[int(Role::Windows)]));
+  out.summary.push_back("windows from layers " + joined(taken[int(LayerRole::Windows)]));
   out.summary.push_back("unit " + unit_said);
   out.summary.push_back(std::to_string(ends.joined) + " short lines joining wall line ends to a line they stop within 2 mm of; " +
                         std::to_string(ends.free_ends) + " ends touching no line: " +

@@ -1,0 +1,155 @@
+// Avenues — what a DXF layer's name says it holds (see dxf_layer_names.h).
+#include "plans/formats/dxf_layer_names.h"
+
+#include <cctype>
+#include <initializer_list>
+#include <string_view>
+#include <vector>
+
+namespace avenues {
+namespace {
+
+void put_utf8(std::string& out, unsigned cp) {
+  if (cp < 0x80) {
+    out += char(cp);
+  } else if (cp < 0x800) {
+    out += char(0xC0 | (cp >> 6));
+    out += char(0x80 | (cp & 0x3F));
+  } else {
+    out += char(0xE0 | (cp >> 12));
+    out += char(0x80 | ((cp >> 6) & 0x3F));
+    out += char(0x80 | (cp & 0x3F));
+  }
+}
+
+/// The lower case of a code point of Latin-1, Latin Extended-A or basic Cyrillic.
+unsigned lower_code_point(unsigned cp) {
+  if (cp >= 0xC0 && cp <= 0xDE && cp != 0xD7) return cp + 0x20;
+  if ((cp >= 0x100 && cp <= 0x137) || (cp >= 0x14A && cp <= 0x177)) return cp | 1u;
+  if ((cp >= 0x139 && cp <= 0x148) || (cp >= 0x179 && cp <= 0x17E)) return cp % 2 ? cp + 1 : cp;
+  if (cp >= 0x410 && cp <= 0x42F) return cp + 0x20;
+  if (cp >= 0x400 && cp <= 0x40F) return cp + 0x50;
+  return cp;
+}
+
+int hex_digit(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+bool contains(std::string_view s, std::initializer_list<std::string_view> words) {
+  for (std::string_view w : words)
+    if (s.find(w) != std::string_view::npos) return true;
+  return false;
+}
+
+/// The name's words: runs of letters and digits (any byte of a UTF-8 sequence is a letter).
+std::vector<std::string_view> words_of(std::string_view s) {
+  std::vector<std::string_view> out;
+  size_t i = 0;
+  auto letter = [](unsigned char c) { return c >= 0x80 || std::isalnum(c); };
+  while (i < s.size()) {
+    while (i < s.size() && !letter(static_cast<unsigned char>(s[i]))) ++i;
+    const size_t start = i;
+    while (i < s.size() && letter(static_cast<unsigned char>(s[i]))) ++i;
+    if (i > start) out.push_back(s.substr(start, i - start));
+  }
+  return out;
+}
+
+bool a_word_starts(const std::vector<std::string_view>& words, std::initializer_list<std::string_view> stems) {
+  for (std::string_view w : words)
+    for (std::string_view s : stems)
+      if (w.substr(0, s.size()) == s) return true;
+  return false;
+}
+
+bool a_word_is(const std::vector<std::string_view>& words, std::initializer_list<std::string_view> names) {
+  for (std::string_view w : words)
+    for (std::string_view n : names)
+      if (w == n) return true;
+  return false;
+}
+
+// The words, folded. Stems found anywhere in the name are long or unmistakable (German and
+// Dutch join words: Außenwand, Innentüren, binnendeuren); short ones must begin a word
+// ("pared" begins paredes), and a few must be the word ("mur" is no wall in "murals",
+// "porte" no door in "porteurs" or "supporte").
+bool says_door_words(std::string_view n, const std::vector<std::string_view>& w) {
+  return contains(n, {"door", "tür", "tuer", "puerta", "deuren", "drzwi", "двер", "dörr", "dorr", "ドア", "扉", "门", "門"}) ||
+         a_word_starts(w, {"deur", "kapı", "kapi", "dør", "dveř", "dvere"}) ||
+         a_word_is(w, {"porte", "portes", "porta", "portas", "ovi", "ovet"});
+}
+
+bool says_window_words(std::string_view n, const std::vector<std::string_view>& w) {
+  return contains(n, {"glaz", "window", "fenster", "fenêtre", "fenetre", "ventana", "finestr", "janela", "окн", "pencere",
+                      "fönster", "fonster", "vindu", "ikkun", "窗", "窓"}) ||
+         a_word_starts(w, {"raam", "ramen", "okn", "okien"});
+}
+
+}  // namespace
+
+std::string fold_layer_name(const std::string& name) {
+  std::string out;
+  out.reserve(name.size());
+  for (size_t i = 0; i < name.size();) {
+    const auto c = static_cast<unsigned char>(name[i]);
+    unsigned cp = 0;
+    size_t used = 0;
+    if (c == '\\' && i + 6 < name.size() && (name[i + 1] == 'U' || name[i + 1] == 'u') && name[i + 2] == '+') {
+      int h[4] = {hex_digit(name[i + 3]), hex_digit(name[i + 4]), hex_digit(name[i + 5]), hex_digit(name[i + 6])};
+      if (h[0] >= 0 && h[1] >= 0 && h[2] >= 0 && h[3] >= 0) cp = unsigned(h[0] << 12 | h[1] << 8 | h[2] << 4 | h[3]), used = 7;
+    } else if ((c & 0xE0) == 0xC0 && i + 1 < name.size() && (static_cast<unsigned char>(name[i + 1]) & 0xC0) == 0x80) {
+      cp = unsigned(c & 0x1F) << 6 | (static_cast<unsigned char>(name[i + 1]) & 0x3F), used = 2;
+    }
+    if (used > 0 && cp >= 0x80) {
+      put_utf8(out, lower_code_point(cp));
+      i += used;
+    } else {
+      out += char(std::tolower(c));
+      ++i;
+    }
+  }
+  return out;
+}
+
+LayerRole layer_role_by_name(const std::string& name) {
+  const std::string folded = fold_layer_name(name);
+  const std::string_view n = folded;
+  const std::vector<std::string_view> w = words_of(n);
+  if (contains(n, {"virtual", "furn", "dim", "text", "hatch-", "grid", "möbel", "moebel", "mobili", "arredo", "cotation",
+                   "bemaß", "bemass", "beschrift", "annot", "demoli", "abbruch", "rückbau", "текст", "размер", "мебел",
+                   "标注", "文字", "家具", "轴网"}) ||
+      a_word_is(w, {"iden", "demo", "abov", "above", "ovhd", "elev", "nplt", "note", "notes", "symb", "tag", "tags", "cote",
+                    "cotes", "cotas", "quote"}))
+    return LayerRole::None;
+  const bool door = says_door_words(n, w), window = says_window_words(n, w);
+  if (contains(n, {"menuiser", "carpinter", "infiss", "serrament", "esquadri", "kozijn"}) || (door && window))
+    return LayerRole::Doors;
+  if (window) return LayerRole::Windows;
+  if (door) return LayerRole::Doors;
+  if (contains(n, {"wall", "wand", "wänd", "waend", "mauer", "partition", "tragwerk", "structure", "cloison", "tabique",
+                   "tramezz", "alvenaria", "muratur", "ścian", "scian", "стен", "перегород", "duvar", "vägg", "vagg",
+                   "væg", "vegg", "墙", "牆", "壁"}) ||
+      a_word_is(w, {"mur", "murs", "muro", "muros", "muri", "muur", "muren"}) ||
+      a_word_starts(w, {"pared", "seinä", "seina", "stěn", "steny"}))
+    return LayerRole::Walls;
+  return LayerRole::None;
+}
+
+bool names_openings(const std::string& name) {
+  const std::string folded = fold_layer_name(name);
+  const std::vector<std::string_view> w = words_of(folded);
+  return says_door_words(folded, w) || says_window_words(folded, w);
+}
+
+bool names_a_door(const std::string& name) {
+  const std::string folded = fold_layer_name(name);
+  const std::string_view n = folded;
+  if (contains(n, {"sliding", "pocket", "bifold", "bi-fold"}) || n.substr(0, 3) == "tur") return true;
+  return says_door_words(n, words_of(n));
+}
+
+}  // namespace avenues
