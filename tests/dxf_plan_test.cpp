@@ -60,6 +60,60 @@ class TinyDxf {
       dxf.writeArc(dw, DL_ArcData(c.x, c.y, 0, r, a0_deg, a1_deg), attr(layer));
     });
   }
+  /// An arc written as a program that mirrored it writes it: in its object coordinates
+  /// with extrusion direction (0, 0, -1), where x runs the other way. The arc it draws is
+  /// centred at c from a0 to a1 degrees, counter-clockwise, in the plan.
+  void arc_mirrored(const std::string& layer, Vec2 c, double r, double a0_deg, double a1_deg) {
+    body_.push_back([=](DL_Dxf&, DL_WriterA& dw) {
+      dw.dxfString(0, "ARC");
+      dw.dxfString(8, layer);
+      dw.dxfReal(10, -c.x), dw.dxfReal(20, c.y), dw.dxfReal(30, 0);
+      dw.dxfReal(40, r);
+      dw.dxfReal(210, 0), dw.dxfReal(220, 0), dw.dxfReal(230, -1);
+      dw.dxfReal(50, 180 - a1_deg), dw.dxfReal(51, 180 - a0_deg);
+    });
+  }
+  /// An MLINE through `pts` (open) of two elements `width` apart about its middle, as
+  /// AutoCAD writes one: per vertex its segment's direction, the miter, and per element
+  /// the offset along the miter followed by where the element starts and, past each cut,
+  /// stops and starts again (`cuts`, per segment: distances along it).
+  void mline(const std::string& layer, std::vector<Vec2> pts, double width, std::vector<std::vector<double>> cuts = {}) {
+    body_.push_back([=](DL_Dxf&, DL_WriterA& dw) {
+      dw.dxfString(0, "MLINE");
+      dw.dxfString(100, "AcDbEntity");
+      dw.dxfString(8, layer);
+      dw.dxfString(100, "AcDbMline");
+      dw.dxfString(2, "STANDARD");
+      dw.dxfReal(40, width), dw.dxfInt(70, 1), dw.dxfInt(71, 1);
+      dw.dxfInt(72, int(pts.size())), dw.dxfInt(73, 2);
+      dw.dxfReal(10, pts[0].x), dw.dxfReal(20, pts[0].y), dw.dxfReal(30, 0);
+      for (size_t i = 0; i < pts.size(); ++i) {
+        auto unit = [](Vec2 v) { return (1 / length(v)) * v; };
+        const Vec2 in = i > 0 ? unit(pts[i] - pts[i - 1]) : unit(pts[1] - pts[0]);
+        const Vec2 out = i + 1 < pts.size() ? unit(pts[i + 1] - pts[i]) : in;
+        // The miter halves the turn; an element offset h from the middle meets it at h / sin.
+        const Vec2 left_in{-in.y, in.x}, left_out{-out.y, out.x};
+        const Vec2 miter = unit(left_in + left_out);
+        const double along = 1 / dot(miter, left_out);
+        dw.dxfReal(11, pts[i].x), dw.dxfReal(21, pts[i].y), dw.dxfReal(31, 0);
+        dw.dxfReal(12, out.x), dw.dxfReal(22, out.y), dw.dxfReal(32, 0);
+        dw.dxfReal(13, miter.x), dw.dxfReal(23, miter.y), dw.dxfReal(33, 0);
+        for (double h : {width / 2, -width / 2}) {
+          std::vector<double> params{h * along, 0};
+          if (i < cuts.size()) params.insert(params.end(), cuts[i].begin(), cuts[i].end());
+          dw.dxfInt(74, int(params.size()));
+          for (double v : params) dw.dxfReal(41, v);
+          dw.dxfInt(75, 0);
+        }
+      }
+    });
+  }
+  /// A filled SOLID quadrilateral, corners in DXF's order (1 2 4 3 around).
+  void solid(const std::string& layer, Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+    body_.push_back([=](DL_Dxf& dxf, DL_WriterA& dw) {
+      dxf.writeSolid(dw, DL_SolidData(a.x, a.y, 0, b.x, b.y, 0, d.x, d.y, 0, c.x, c.y, 0), attr(layer));
+    });
+  }
   /// A 3DFACE with corners a, b, c, d (d = c for a triangle).
   void face3d(const std::string& layer, Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
     body_.push_back([=](DL_Dxf& dxf, DL_WriterA& dw) {
@@ -99,6 +153,25 @@ class TinyDxf {
     });
     body_.push_back([=](DL_Dxf& dxf, DL_WriterA& dw) {
       dxf.writeInsert(dw, DL_InsertData("DOOR-SINGLE", at.x, at.y, 0, 1, 1, 1, deg, 1, 1, 0, 0), attr(layer));
+    });
+  }
+  /// A door block inserted mirrored as some programs write it: extrusion -Z, the
+  /// insertion point's x negated. In the plan its hinge is at `at`, its leaf stands open
+  /// along +x and its swing closes towards (at.x, at.y + width).
+  void door_block_mirrored(const std::string& layer, Vec2 at, double width) {
+    blocks_.push_back([=](DL_Dxf& dxf, DL_WriterA& dw) {
+      dxf.writeBlock(dw, DL_BlockData("DOOR-M", 0, 0, 0, 0));
+      // Drawn to be mirrored: the leaf along -x, the swing from +y round to it.
+      dxf.writeArc(dw, DL_ArcData(0, 0, 0, width, 90, 180), attr("0"));
+      dxf.writeLine(dw, DL_LineData(0, 0, 0, -width, 0, 0), attr("0"));
+      dxf.writeEndBlock(dw, "DOOR-M");
+    });
+    body_.push_back([=](DL_Dxf&, DL_WriterA& dw) {
+      dw.dxfString(0, "INSERT");
+      dw.dxfString(8, layer);
+      dw.dxfString(2, "DOOR-M");
+      dw.dxfReal(10, -at.x), dw.dxfReal(20, at.y), dw.dxfReal(30, 0);
+      dw.dxfReal(210, 0), dw.dxfReal(220, 0), dw.dxfReal(230, -1);
     });
   }
   /// A block of lines (on layer 0, taking the INSERT's layer) inserted at `at` turned by `deg`.
@@ -221,6 +294,42 @@ TEST(DxfPlan, AHatchTellsAThickWall) {
   EXPECT_EQ(read_dxf_plan(plain.write("ring.dxf")).plan.rooms.size(), 2u);
   const DxfPlan r = read_dxf_plan(hatched.write("hatched-ring.dxf"));
   expect_walkable(r.plan, 1, 0);
+}
+
+TEST(DxfPlan, SolidsTellAThickWallAsAHatchDoes) {
+  TinyDxf d;
+  d.polyline("A-WALL", {{0, 0}, {5.2, 0}, {5.2, 5.2}, {0, 5.2}}, true);
+  d.polyline("A-WALL", {{0.6, 0.6}, {4.6, 0.6}, {4.6, 4.6}, {0.6, 4.6}}, true);
+  d.solid("A-WALL", {0, 0}, {5.2, 0}, {4.6, 0.6}, {0.6, 0.6});
+  d.solid("A-WALL", {5.2, 0}, {5.2, 5.2}, {4.6, 4.6}, {4.6, 0.6});
+  d.solid("A-WALL", {5.2, 5.2}, {0, 5.2}, {0.6, 4.6}, {4.6, 4.6});
+  d.solid("A-WALL", {0, 5.2}, {0, 0}, {0.6, 0.6}, {0.6, 4.6});
+  expect_walkable(read_dxf_plan(d.write("solid-ring.dxf")).plan, 1, 0);
+}
+
+TEST(DxfPlan, MirroredArcsAndBlocksPlaceTheirDoors) {
+  // A swing stored mirrored (extrusion -Z, x running the other way) lies in the gap all
+  // the same, and so does a door block inserted mirrored: each places its door.
+  TinyDxf arc, block;
+  two_rooms_in_double_lines(arc, "Walls");
+  arc.arc_mirrored("Doors", {4.3, 1.0}, 0.9, 0, 90);
+  expect_walkable(read_dxf_plan(arc.write("mirrored-arc.dxf")).plan, 2, 1);
+  two_rooms_in_double_lines(block, "Walls");
+  block.door_block_mirrored("Doors", {4.3, 1.0}, 0.9);
+  expect_walkable(read_dxf_plan(block.write("mirrored-block.dxf")).plan, 2, 1);
+}
+
+TEST(DxfPlan, WallsDrawnAsMultilinesWithACutForTheDoor) {
+  // AutoCAD's MLINE, how many drawings draw walls: the outer ring and the partition are
+  // multilines 0.2 m wide, the partition cut (MLEDIT) where its door is.
+  TinyDxf d;
+  d.mline("A-WALL", {{0.1, 0.1}, {8.3, 0.1}, {8.3, 3.3}, {0.1, 3.3}, {0.1, 0.1}}, 0.2);
+  d.mline("A-WALL", {{4.2, 0.1}, {4.2, 3.3}}, 0.2, {{0.9, 1.8}});
+  d.arc("A-DOOR", {4.3, 1.0}, 0.9, 0, 90);
+  d.text("Text", {2, 1.5}, "Kitchen");
+  d.text("Text", {6, 1.5}, "Hall");
+  const DxfPlan r = read_dxf_plan(d.write("mline.dxf"));
+  expect_walkable(r.plan, 2, 1);
 }
 
 TEST(DxfPlan, AWindowAcrossAGapBetweenTwoRooms) {

@@ -10,6 +10,7 @@
 #include <functional>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -165,6 +166,48 @@ std::vector<Vec2> spline_points(int degree, const std::vector<double>& knots, co
   return out;
 }
 
+/// An entity's object coordinate system, as a map of its 2D points (and elevation) into
+/// the plan: AutoCAD's arbitrary axis algorithm for its extrusion direction. Identity for
+/// +Z; a mirror in x for -Z (what mirroring an arc, circle, polyline, text, hatch or block
+/// in some programs writes); a projection onto the plan for any other direction.
+struct Ocs {
+  Vec3 ax{1, 0, 0}, ay{0, 1, 0}, n{0, 0, 1};
+  bool flat = true;  ///< normal ±Z: a similarity of the plan (mirrored for -Z)
+  bool mirrored = false;
+  Vec2 operator()(Vec2 p, double z = 0) const {
+    const Vec3 w = p.x * ax + p.y * ay + z * n;
+    return {w.x, w.y};
+  }
+  static Ocs of(const double* d) {
+    Ocs o;
+    Vec3 n{d[0], d[1], d[2]};
+    const double len = length(n);
+    if (!(len > 0) || !std::isfinite(len)) return o;
+    n = (1 / len) * n;
+    if (std::fabs(n.x) < 1e-9 && std::fabs(n.y) < 1e-9) {
+      if (n.z < 0) o.ax = {-1, 0, 0}, o.n = {0, 0, -1}, o.mirrored = true;
+      return o;
+    }
+    const Vec3 ax = std::fabs(n.x) < 1.0 / 64 && std::fabs(n.y) < 1.0 / 64 ? cross(Vec3{0, 1, 0}, n) : cross(Vec3{0, 0, 1}, n);
+    o.ax = (1 / length(ax)) * ax;
+    o.ay = cross(n, o.ax);
+    o.n = n;
+    o.flat = false;
+    return o;
+  }
+};
+
+/// An MLINE (AutoCAD's multiline, how walls were drawn with MLINE): its vertices, and per
+/// vertex and element the line's parameters (code 41: the offset along the miter, then
+/// where the element starts and stops along the segment; cuts for openings).
+struct MLine {
+  std::string layer;
+  bool closed = false;
+  struct Vertex { Vec2 p, dir, miter; std::vector<std::vector<double>> params; };
+  std::vector<Vertex> vertices;
+  int next_coord = 0;  ///< the 2x code expected next (21, 22, 23), or 0
+};
+
 /// dxflib's callbacks, collecting model space and blocks into Groups.
 class Collector : public DL_CreationAdapter {
  public:
@@ -193,19 +236,27 @@ class Collector : public DL_CreationAdapter {
   // POLYLINE's vertices are entities of their own that follow it (up to its SEQEND).
   void endSequence() override { flush(); }
 
-  void addLine(const DL_LineData& d) override { flush(), seg({d.x1, d.y1}, {d.x2, d.y2}); }
+  // LINE, SPLINE, ELLIPSE, MTEXT and MLINE are in world coordinates; ARC, CIRCLE,
+  // LWPOLYLINE and 2D POLYLINE, TEXT, INSERT, HATCH, SOLID and TRACE in their own (Ocs).
+  void addLine(const DL_LineData& d) override { flush(), map_ = {}, seg({d.x1, d.y1}, {d.x2, d.y2}); }
   void addArc(const DL_ArcData& d) override {
     flush();
+    map_ = Ocs::of(getExtrusion()->getDirection()), z_ = d.cz;
     arc({d.cx, d.cy}, d.radius, rad_from_deg(d.angle1), rad_from_deg(d.angle2));
   }
   void addCircle(const DL_CircleData& d) override {
     flush();
+    map_ = Ocs::of(getExtrusion()->getDirection()), z_ = d.cz;
     const std::vector<Vec2> pts = arc_points({d.cx, d.cy}, d.radius, 0, 2 * kPi, sagitta);
     for (size_t i = 0; i + 1 < pts.size(); ++i) seg(pts[i], pts[i + 1], true);
   }
   void addEllipse(const DL_EllipseData& d) override {
     flush();
-    const Vec2 c{d.cx, d.cy}, m{d.mx, d.my}, n{-d.my * d.ratio, d.mx * d.ratio};
+    map_ = {};
+    // The minor axis is the extrusion direction x the major axis, times the ratio.
+    const Ocs o = Ocs::of(getExtrusion()->getDirection());
+    const Vec3 minor = d.ratio * cross(o.n, Vec3{d.mx, d.my, d.mz});
+    const Vec2 c{d.cx, d.cy}, m{d.mx, d.my}, n{minor.x, minor.y};
     double a1 = d.angle2;
     while (a1 <= d.angle1) a1 += 2 * kPi;
     const int steps = std::clamp(int((a1 - d.angle1) / (kPi / 16)) + 1, 2, 64);
@@ -219,6 +270,8 @@ class Collector : public DL_CreationAdapter {
   }
   void addPolyline(const DL_PolylineData& d) override {
     flush();
+    map_ = (d.flags & 8) ? Ocs{} : Ocs::of(getExtrusion()->getDirection());  // a 3D polyline's are world's
+    z_ = d.elevation;
     pending_layer_ = getAttributes().getLayer();
     in_poly_ = (d.flags & (16 | 64)) == 0;  // not a polygon or polyface mesh
     if (!in_poly_) {
@@ -235,6 +288,41 @@ class Collector : public DL_CreationAdapter {
     flush();
     ++faces_3d;
   }
+  // A SOLID or TRACE (a filled quadrilateral, its corners in the order 1 2 4 3) tells a
+  // wall's face as a hatch does.
+  void addSolid(const DL_SolidData& d) override { filled_quad(d); }
+  void addTrace(const DL_TraceData& d) override { filled_quad(d); }
+  void processCodeValuePair(unsigned int code, const std::string& value) override {
+    if (code == 0) {
+      if (mline_) {
+        emit_mline(*mline_);
+        mline_.reset();
+      }
+      if (value == "MLINE") mline_.emplace();
+      return;
+    }
+    if (!mline_) return;
+    MLine& ml = *mline_;
+    char* end = nullptr;
+    const double v = std::strtod(value.c_str(), &end);
+    if (code == 8) { ml.layer = value; return; }
+    if (end == value.c_str() || !std::isfinite(v)) return;
+    if (code == 71 && std::fabs(v) < 1e9) ml.closed = (int(v) & 2) != 0;
+    if (code == 11 && ml.vertices.size() < 100000) {
+      ml.vertices.push_back({{v, 0}, {1, 0}, {0, 1}, {}});
+      ml.next_coord = 21;
+      return;
+    }
+    if (ml.vertices.empty()) return;
+    MLine::Vertex& vx = ml.vertices.back();
+    if (code == 21 && ml.next_coord == 21) vx.p.y = v, ml.next_coord = 0;
+    else if (code == 12) vx.dir.x = v, ml.next_coord = 22;
+    else if (code == 22 && ml.next_coord == 22) vx.dir.y = v, ml.next_coord = 0;
+    else if (code == 13) vx.miter.x = v, ml.next_coord = 23;
+    else if (code == 23 && ml.next_coord == 23) vx.miter.y = v, ml.next_coord = 0;
+    else if (code == 74 && vx.params.size() < 16) vx.params.emplace_back();
+    else if (code == 41 && !vx.params.empty() && vx.params.back().size() < 34) vx.params.back().push_back(v);
+  }
   void addSpline(const DL_SplineData& d) override {
     flush();
     pending_layer_ = getAttributes().getLayer();
@@ -247,19 +335,27 @@ class Collector : public DL_CreationAdapter {
   void addFitPoint(const DL_FitPointData& d) override { fit_.push_back({d.x, d.y}); }
   void addInsert(const DL_InsertData& d) override {
     flush();
-    cur_->inserts.push_back({d.name, layer(), {d.ipx, d.ipy}, {d.sx, d.sy}, d.angle, std::max(d.cols, 1),
-                             std::max(d.rows, 1), d.colSp, d.rowSp});
+    map_ = {};
+    // Mirrored by its extrusion (-Z): x -> -x after the placement, that is the insertion
+    // point's x, the x scale and the angle negated.
+    const Ocs o = Ocs::of(getExtrusion()->getDirection());
+    const bool mirror = o.flat && o.mirrored;
+    cur_->inserts.push_back({d.name, layer(), o({d.ipx, d.ipy}, d.ipz), {mirror ? -d.sx : d.sx, d.sy},
+                             mirror ? -d.angle : d.angle, std::max(d.cols, 1), std::max(d.rows, 1), d.colSp, d.rowSp});
     count();
   }
   void addText(const DL_TextData& d) override {
     flush();
+    map_ = {};
+    const Ocs o = Ocs::of(getExtrusion()->getDirection());
     // Justified text is placed by its alignment point.
     const bool aligned = d.hJustification != 0 || d.vJustification != 0;
-    cur_->texts.push_back({aligned ? Vec2{d.apx, d.apy} : Vec2{d.ipx, d.ipy}, plain_text(d.text), layer()});
+    cur_->texts.push_back({aligned ? o({d.apx, d.apy}, d.apz) : o({d.ipx, d.ipy}, d.ipz), plain_text(d.text), layer()});
     count();
   }
   void addMText(const DL_MTextData& d) override {
     flush();
+    map_ = {};
     cur_->texts.push_back({{d.ipx, d.ipy}, plain_text(mtext_ + d.text), layer()});
     mtext_.clear();
     count();
@@ -267,6 +363,8 @@ class Collector : public DL_CreationAdapter {
   void addMTextChunk(const std::string& text) override { mtext_ += text; }
   void addHatch(const DL_HatchData&) override {
     flush();
+    map_ = {};
+    hatch_map_ = Ocs::of(getExtrusion()->getDirection());
     cur_->hatches.push_back({{}, layer()});
     count();
   }
@@ -276,6 +374,7 @@ class Collector : public DL_CreationAdapter {
   void addHatchEdge(const DL_HatchEdgeData& e) override {
     if (cur_->hatches.empty() || cur_->hatches.back().rings.empty()) return;
     std::vector<Vec2>& ring = cur_->hatches.back().rings.back();
+    const size_t first = ring.size();
     if (e.type == 0) {
       for (const std::vector<double>& v : e.vertices)
         if (v.size() >= 2) ring.push_back({v[0], v[1]});
@@ -291,6 +390,7 @@ class Collector : public DL_CreationAdapter {
       }
       ring.insert(ring.end(), pts.begin(), pts.end());
     }
+    for (size_t i = first; i < ring.size(); ++i) ring[i] = hatch_map_(ring[i]);
   }
 
   /// Ends a polyline or spline under way.
@@ -316,10 +416,12 @@ class Collector : public DL_CreationAdapter {
         if (bulge > 0) arc(c, r, aa, ab);
         else arc(c, r, ab, aa);
       }
+      for (Vec2& p : ring) p = map_(p, z_);
       if (poly_closed_ && n >= 3) cur_->closed.push_back({ring, layer()});
       count();
     }
     if (in_spline_) {
+      map_ = {};
       const std::vector<Vec2> pts =
           !ctrl_.empty() ? spline_points(spline_degree_, knots_, ctrl_) : fit_;
       for (size_t i = 0; i + 1 < pts.size(); ++i) seg(pts[i], pts[i + 1], true);
@@ -335,19 +437,64 @@ class Collector : public DL_CreationAdapter {
   /// (it is flushed when a later entity begins).
   std::string layer() { return in_poly_ || in_spline_ ? pending_layer_ : getAttributes().getLayer(); }
   void count() { ++layer_entities[layer()]; }
+  /// A line of the entity being read, from its own coordinates (map_).
   void seg(Vec2 a, Vec2 b, bool curved = false) {
-    cur_->segs.push_back({a, b, layer(), curved});
+    cur_->segs.push_back({map_(a, z_), map_(b, z_), layer(), curved});
     if (!in_poly_ && !in_spline_) count();
   }
   void arc(Vec2 c, double r, double a0, double a1) {
     const std::vector<Vec2> pts = arc_points(c, r, a0, a1, sagitta);
     for (size_t i = 0; i + 1 < pts.size(); ++i) seg(pts[i], pts[i + 1], true);
+    if (!map_.flat) return;  // seen edge-on or slanted: an ellipse in the plan, no door swing
     double sweep = a1 - a0;
     while (sweep <= 0) sweep += 2 * kPi;
-    cur_->arcs.push_back({c, pts.front(), pts.back(), r, deg_from_rad(sweep), layer()});
+    ArcPiece piece{map_(c, z_), map_(pts.front(), z_), map_(pts.back(), z_), r, deg_from_rad(sweep), layer()};
+    if (map_.mirrored) std::swap(piece.p0, piece.p1);  // counter-clockwise from p0 to p1 again
+    cur_->arcs.push_back(piece);
+  }
+  void filled_quad(const DL_TraceData& d) {
+    flush();
+    map_ = {};
+    const Ocs o = Ocs::of(getExtrusion()->getDirection());
+    std::vector<Vec2> ring;
+    for (int k : {0, 1, 3, 2}) ring.push_back(o({d.x[k], d.y[k]}, d.z[k]));
+    cur_->hatches.push_back({{ring}, layer()});
+    count();
+  }
+  /// An MLINE's elements as lines, their cuts left open.
+  void emit_mline(const MLine& ml) {
+    flush();
+    const size_t n = ml.vertices.size();
+    if (n < 2) return;
+    const size_t segs = ml.closed ? n : n - 1;
+    for (size_t i = 0; i < segs; ++i) {
+      const MLine::Vertex &v = ml.vertices[i], &w = ml.vertices[(i + 1) % n];
+      const double dl = length(v.dir);
+      if (!(dl > 0)) continue;
+      const Vec2 d = (1 / dl) * v.dir;
+      for (size_t k = 0; k < v.params.size() && k < w.params.size(); ++k) {
+        const std::vector<double>& pv = v.params[k];
+        const Vec2 start = v.p + (pv.empty() ? 0.0 : pv[0]) * v.miter;
+        const Vec2 stop = w.p + (w.params[k].empty() ? 0.0 : w.params[k][0]) * w.miter;
+        const double t_end = dot(stop - start, d);
+        // After the offset: where the element starts, then where it stops and starts
+        // again past each cut; an odd count runs on to the next vertex's miter.
+        std::vector<double> at(pv.size() > 1 ? pv.begin() + 1 : pv.end(), pv.end());
+        if (at.empty()) at.push_back(0);
+        if (at.size() % 2 == 1) at.push_back(t_end);
+        for (size_t j = 0; j + 1 < at.size(); j += 2) {
+          const double t0 = std::max(at[j], 0.0), t1 = std::min(at[j + 1], t_end);
+          if (t1 > t0) cur_->segs.push_back({start + t0 * d, start + t1 * d, ml.layer, false});
+        }
+      }
+    }
+    ++layer_entities[ml.layer];
   }
 
   Group* cur_ = &model;
+  Ocs map_, hatch_map_;  ///< the coordinates of the entity being read (of its edges, for a hatch)
+  double z_ = 0;         ///< its elevation in them
+  std::optional<MLine> mline_;
   bool in_poly_ = false, poly_closed_ = false, in_spline_ = false;
   std::vector<std::pair<Vec2, double>> poly_;
   int spline_degree_ = 3;
