@@ -546,6 +546,36 @@ TEST(DxfPlan, UnitsFromInsunitsOrTheOption) {
   EXPECT_THROW(read_dxf_plan(path, cm), PlanError);
 }
 
+TEST(DxfPlan, WithoutInsunitsTheDoorSwingsTellTheUnit) {
+  // The same two rooms drawn in centimetres and in inches, no $INSUNITS: 840 or 331 units
+  // across reads as metres by the extent alone (a 840 m house); the 90 cm (35.4 in)
+  // swing says cm (in). Without a swing the extent still decides.
+  auto hi_x = [](const Plan& p) {
+    double hi = 0;
+    for (const Wall& w : p.walls)
+      for (Vec2 q : w.centre) hi = std::max(hi, q.x);
+    return hi;
+  };
+  for (const auto& [unit, name] : {std::pair{0.01, "cm"}, std::pair{0.0254, "in"}}) {
+    SCOPED_TRACE(name);
+    TinyDxf d(0);
+    const double k = 1 / unit;  // drawing units per metre
+    d.polyline("Walls", {{0, 0}, {8.4 * k, 0}, {8.4 * k, 3.4 * k}, {0, 3.4 * k}}, true);
+    d.polyline("Walls", {{0.2 * k, 0.2 * k}, {4.1 * k, 0.2 * k}, {4.1 * k, 3.2 * k}, {0.2 * k, 3.2 * k}}, true);
+    d.polyline("Walls", {{4.3 * k, 0.2 * k}, {8.2 * k, 0.2 * k}, {8.2 * k, 3.2 * k}, {4.3 * k, 3.2 * k}}, true);
+    d.arc("Doors", {4.3 * k, 1.0 * k}, 0.9 * k, 0, 90);
+    const DxfPlan r = read_dxf_plan(d.write(std::string("no-units-") + name + ".dxf"));
+    EXPECT_NEAR(hi_x(r.plan), 8.4, 0.01);
+    bool said = false;
+    for (const std::string& w : r.plan.warnings) said |= w.find(std::string("taken as ") + name + ", guessed from its door swings") != std::string::npos;
+    EXPECT_TRUE(said);
+  }
+  TinyDxf d(0);
+  d.polyline("Walls", {{0, 0}, {8400, 0}, {8400, 3400}, {0, 3400}}, true);
+  d.polyline("Walls", {{200, 200}, {8200, 200}, {8200, 3200}, {200, 3200}}, true);
+  EXPECT_NEAR(hi_x(read_dxf_plan(d.write("no-units-no-doors.dxf")).plan), 8.4, 0.01);  // mm by its extent
+}
+
 TEST(DxfPlan, ACurvedWallIsCutAsFinelyAsAPlansArcs) {
   // A round room 10 m across in a ring wall 0.2 m thick, each circle drawn as two arcs.
   TinyDxf d;  // metres

@@ -712,9 +712,28 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
       if (role[s.layer] == LayerRole::Walls)
         for (Vec2 p : {s.a, s.b}) lo_x = std::min(lo_x, p.x), hi_x = std::max(hi_x, p.x), lo_y = std::min(lo_y, p.y), hi_y = std::max(hi_y, p.y);
     const double across = std::max(hi_x - lo_x, hi_y - lo_y);
-    unit = across > 1000 ? 0.001 : 1;
-    unit_said = std::string(unit == 1 ? "m" : "mm") + ", guessed from the walls' extent of " + format_number(across) +
-                " units (no $INSUNITS; say --unit)";
+    // A door's swing is 0.55-1.3 m in any building: its radius in drawing units tells the
+    // unit where mm, cm, m, inches and feet give disjoint ranges (a plan in cm, as many
+    // European offices draw, is 800-2,000 units across, which its extent alone reads as mm).
+    std::vector<double> radii;
+    for (const auto& [a, in_door_block] : flat.arcs)
+      if ((role[a.layer] == LayerRole::Doors || in_door_block) && door_swing_sweep(a.sweep_deg) && a.r > 0) radii.push_back(a.r);
+    double by_doors = 0;
+    if (!radii.empty()) {
+      std::nth_element(radii.begin(), radii.begin() + long(radii.size() / 2), radii.end());
+      const double r = radii[radii.size() / 2];
+      for (const double u : {0.001, 0.01, 1.0, 0.0254, 0.3048})
+        if (r * u >= 0.55 && r * u <= 1.3 && across * u >= 2 && across * u <= 2000) by_doors = u;
+      if (by_doors > 0)
+        unit = by_doors,
+        unit_said = std::string(unit == 0.001 ? "mm" : unit == 0.01 ? "cm" : unit == 1 ? "m" : unit == 0.0254 ? "in" : "ft") +
+                    ", guessed from its door swings' radius of " + format_number(r) + " units (no $INSUNITS; say --unit)";
+    }
+    if (by_doors == 0) {
+      unit = across > 1000 ? 0.001 : 1;
+      unit_said = std::string(unit == 1 ? "m" : "mm") + ", guessed from the walls' extent of " + format_number(across) +
+                  " units (no $INSUNITS; say --unit)";
+    }
     plan.warnings.push_back("the drawing states no unit: taken as " + unit_said);
   }
   auto m = [&](Vec2 p) { return unit * p; };
