@@ -174,6 +174,35 @@ class TinyDxf {
       dw.dxfReal(210, 0), dw.dxfReal(220, 0), dw.dxfReal(230, -1);
     });
   }
+  /// A room tag: a block (its frame) inserted at `at` with attributes (tag, value) after
+  /// it, each written at the insertion point, as AutoCAD writes a tag's ATTRIBs.
+  void room_tag(const std::string& layer, Vec2 at, std::vector<std::pair<std::string, std::string>> attributes) {
+    blocks_.push_back([=](DL_Dxf& dxf, DL_WriterA& dw) {
+      dxf.writeBlock(dw, DL_BlockData("ROOMTAG", 0, 0, 0, 0));
+      for (auto [a, b] : {std::pair{Vec2{-0.5, -0.2}, Vec2{0.5, -0.2}}, {Vec2{0.5, -0.2}, Vec2{0.5, 0.2}},
+                          {Vec2{0.5, 0.2}, Vec2{-0.5, 0.2}}, {Vec2{-0.5, 0.2}, Vec2{-0.5, -0.2}}})
+        dxf.writeLine(dw, DL_LineData(a.x, a.y, 0, b.x, b.y, 0), attr("0"));
+      dxf.writeEndBlock(dw, "ROOMTAG");
+    });
+    body_.push_back([=](DL_Dxf&, DL_WriterA& dw) {
+      dw.dxfString(0, "INSERT");
+      dw.dxfString(8, layer);
+      dw.dxfInt(66, 1);
+      dw.dxfString(2, "ROOMTAG");
+      dw.dxfReal(10, at.x), dw.dxfReal(20, at.y), dw.dxfReal(30, 0);
+      for (const auto& [tag, value] : attributes) {
+        dw.dxfString(0, "ATTRIB");
+        dw.dxfString(8, layer);
+        dw.dxfReal(10, at.x), dw.dxfReal(20, at.y), dw.dxfReal(30, 0);
+        dw.dxfReal(40, 0.2);
+        dw.dxfString(1, value);
+        dw.dxfString(2, tag);
+        dw.dxfInt(70, 0);
+      }
+      dw.dxfString(0, "SEQEND");
+      dw.dxfString(8, layer);
+    });
+  }
   /// A block of lines (on layer 0, taking the INSERT's layer) inserted at `at` turned by `deg`.
   void block_of_lines(const std::string& name, const std::string& layer, std::vector<std::pair<Vec2, Vec2>> lines,
                       Vec2 at, double deg) {
@@ -330,6 +359,21 @@ TEST(DxfPlan, WallsDrawnAsMultilinesWithACutForTheDoor) {
   d.text("Text", {6, 1.5}, "Hall");
   const DxfPlan r = read_dxf_plan(d.write("mline.dxf"));
   expect_walkable(r.plan, 2, 1);
+}
+
+TEST(DxfPlan, RoomTagsNameTheirRoomsByTheirNameAttribute) {
+  // Rooms named by tag blocks (AIA's A-AREA-IDEN): the NAME attribute names the room, the
+  // number and the area do not.
+  TinyDxf d;
+  d.polyline("A-WALL", {{0, 0}, {8.4, 0}, {8.4, 3.4}, {0, 3.4}}, true);
+  d.polyline("A-WALL", {{0.2, 0.2}, {4.1, 0.2}, {4.1, 3.2}, {0.2, 3.2}}, true);
+  d.polyline("A-WALL", {{4.3, 0.2}, {8.2, 0.2}, {8.2, 3.2}, {4.3, 3.2}}, true);
+  d.room_tag("A-AREA-IDEN", {2, 1.5}, {{"NAME", "Kitchen"}, {"NUMBER", "101"}, {"AREA", "11.7 m2"}});
+  d.room_tag("A-AREA-IDEN", {6, 1.5}, {{"ROOM_NAME", "Hall"}, {"ROOMNUM", "102"}});
+  const DxfPlan r = read_dxf_plan(d.write("room-tags.dxf"));
+  std::set<std::string> names;
+  for (const Room& room : r.plan.rooms) names.insert(room.name);
+  EXPECT_EQ(names, (std::set<std::string>{"Kitchen", "Hall"}));
 }
 
 TEST(DxfPlan, AWindowAcrossAGapBetweenTwoRooms) {

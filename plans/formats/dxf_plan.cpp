@@ -353,6 +353,27 @@ class Collector : public DL_CreationAdapter {
     cur_->texts.push_back({aligned ? o({d.apx, d.apy}, d.apz) : o({d.ipx, d.ipy}, d.ipz), plain_text(d.text), layer()});
     count();
   }
+  // A block's attribute whose tag says name (a room tag's NAME, as AIA's A-AREA-IDEN tags
+  // carry it; ROOM, RAUM, NOM, TITLE, LABEL, SPACE ...) names a room as a text does; its
+  // number, area, finish or height do not.
+  void addAttribute(const DL_AttributeData& d) override {
+    flush();
+    map_ = {};
+    const std::string tag = fold_layer_name(d.tag), text = plain_text(d.text);
+    bool names = false;
+    for (const char* w : {"name", "nom", "room", "raum", "title", "titel", "label", "bezeich", "desc", "use", "nutzung",
+                          "function", "funktion", "designation", "zimmer", "stanza", "piece", "pièce", "local", "space",
+                          "espace", "ambiente", "ruimte"})
+      names |= tag.find(w) != std::string::npos;
+    for (const char* w : {"num", "area", "fläche", "flaeche", "surf", "height", "finish"})
+      names &= tag.find(w) == std::string::npos;
+    if (!names || std::none_of(text.begin(), text.end(), [](char c) { return std::isalpha(static_cast<unsigned char>(c)) || (c & 0x80); }))
+      return;
+    const Ocs o = Ocs::of(getExtrusion()->getDirection());
+    const bool aligned = d.hJustification != 0 || d.vJustification != 0;
+    cur_->texts.push_back({aligned ? o({d.apx, d.apy}, d.apz) : o({d.ipx, d.ipy}, d.ipz), text, layer()});
+    count();
+  }
   void addMText(const DL_MTextData& d) override {
     flush();
     map_ = {};
