@@ -81,10 +81,13 @@ inline Vec3 polygon_normal(const std::vector<Vec3>& p) {
 /// Area [m²] of a planar polygon in space (convex, or simple and fanned from its first vertex).
 inline double polygon_area(const std::vector<Vec3>& p) { return 0.5 * length(polygon_normal(p)); }
 
-/// Signed area [m²] of a simple polygon: positive when counter-clockwise.
+/// Signed area [m²] of a simple polygon: positive when counter-clockwise. Taken about its
+/// first corner, so that a plan placed in national grid coordinates (x 2,500,000 m) keeps
+/// its square millimetres: about the origin each product would be 1e13 and lose them.
 inline double signed_area(const std::vector<Vec2>& p) {
+  if (p.empty()) return 0;
   double a = 0;
-  for (size_t i = 0, n = p.size(); i < n; ++i) a += cross(p[i], p[(i + 1) % n]);
+  for (size_t i = 1, n = p.size(); i + 1 < n; ++i) a += cross(p[i] - p[0], p[i + 1] - p[0]);
   return a / 2;
 }
 
@@ -101,20 +104,23 @@ inline bool is_convex_ccw(const std::vector<Vec2>& p) {
   return turned < 2 * 3.14159265358979323846 + 1e-6;  // once around, not a star
 }
 
-/// Area centroid of a simple polygon (the vertex mean when it has no area).
+/// Area centroid of a simple polygon (the vertex mean when it has no area), about its first
+/// corner as signed_area is.
 inline Vec2 centroid(const std::vector<Vec2>& p) {
+  if (p.empty()) return {};
+  const Vec2 o = p[0];
   double a = 0, cx = 0, cy = 0;
   for (size_t i = 0, n = p.size(); i < n; ++i) {
-    const Vec2 u = p[i], v = p[(i + 1) % n];
+    const Vec2 u = p[i] - o, v = p[(i + 1) % n] - o;
     const double w = cross(u, v);
     a += w, cx += (u.x + v.x) * w, cy += (u.y + v.y) * w;
   }
   if (std::fabs(a) < 1e-12) {
     Vec2 s;
-    for (Vec2 q : p) s = s + q;
-    return p.empty() ? Vec2{} : (1.0 / double(p.size())) * s;
+    for (Vec2 q : p) s = s + (q - o);
+    return o + (1.0 / double(p.size())) * s;
   }
-  return {cx / (3 * a), cy / (3 * a)};
+  return o + Vec2{cx / (3 * a), cy / (3 * a)};
 }
 
 /// Axis-aligned box; empty when lo > hi on any axis.

@@ -71,6 +71,21 @@ TEST(Geometry, CutPolygonAndItsArea) {
   EXPECT_NEAR(polygon_area(far), 4, 1e-6);
 }
 
+TEST(Geometry, AreaAndCentroidKeepTheirMillimetresFarFromTheOrigin) {
+  // A 3.9 x 3 m room in national grid coordinates (x 2,500 km, y 5,600 km): about the
+  // origin each cross product is about 1.4e13 m² and its rounding about 2e-3 m², so the
+  // area and the centroid came out metres wrong.
+  const Vec2 far{2'500'000.1, 5'600'000.2};
+  std::vector<Vec2> room{{0.2, 0.2}, {4.1, 0.2}, {4.1, 3.2}, {0.2, 3.2}};
+  for (Vec2& q : room) q = q + far;
+  EXPECT_NEAR(signed_area(room), 11.7, 1e-6);
+  const Vec2 c = centroid(room) - far;
+  EXPECT_NEAR(c.x, 2.15, 1e-6);
+  EXPECT_NEAR(c.y, 1.7, 1e-6);
+  EXPECT_EQ(centroid(std::vector<Vec2>{}).x, 0);
+  EXPECT_EQ(signed_area(std::vector<Vec2>{}), 0);
+}
+
 TEST(AtomicFile, WritesWholeOrLeavesTheTargetAlone) {
   namespace fs = std::filesystem;
   const avenues::testing::TempDir scratch("avenues-core");  // the test's own, named for it
