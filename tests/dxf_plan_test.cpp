@@ -24,6 +24,7 @@
 #include "plans/formats/dxf_plan.h"
 #include "plans/mesh.h"
 #include "plans/plan_writer.h"
+#include "visibility/viewpoint.h"
 
 namespace avenues {
 namespace {
@@ -43,12 +44,16 @@ class TinyDxf {
   }
   TinyDxf(const TinyDxf&) = delete;
   TinyDxf& operator=(const TinyDxf&) = delete;
+  /// Where the drawing's own origin lies: what line, polyline, arc and text draw is moved there.
+  void place_at(Vec2 origin) { o_ = origin; }
   void line(const std::string& layer, Vec2 a, Vec2 b) {
+    a = a + o_, b = b + o_;
     body_.push_back([=](DL_Dxf& dxf, DL_WriterA& dw) {
       dxf.writeLine(dw, DL_LineData(a.x, a.y, 0, b.x, b.y, 0), attr(layer));
     });
   }
   void polyline(const std::string& layer, std::vector<Vec2> pts, bool closed) {
+    for (Vec2& p : pts) p = p + o_;
     body_.push_back([=](DL_Dxf& dxf, DL_WriterA& dw) {
       dxf.writePolyline(dw, DL_PolylineData(int(pts.size()), 0, 0, closed ? 1 : 0), attr(layer));
       for (Vec2 p : pts) dxf.writeVertex(dw, DL_VertexData(p.x, p.y, 0, 0));
@@ -56,6 +61,7 @@ class TinyDxf {
     });
   }
   void arc(const std::string& layer, Vec2 c, double r, double a0_deg, double a1_deg) {
+    c = c + o_;
     body_.push_back([=](DL_Dxf& dxf, DL_WriterA& dw) {
       dxf.writeArc(dw, DL_ArcData(c.x, c.y, 0, r, a0_deg, a1_deg), attr(layer));
     });
@@ -108,6 +114,20 @@ class TinyDxf {
       }
     });
   }
+  /// An LWPOLYLINE drawn `width` wide (its constant width, code 43).
+  void wide_polyline(const std::string& layer, std::vector<Vec2> pts, bool closed, double width) {
+    for (Vec2& p : pts) p = p + o_;
+    body_.push_back([=](DL_Dxf&, DL_WriterA& dw) {
+      dw.dxfString(0, "LWPOLYLINE");
+      dw.dxfString(100, "AcDbEntity");
+      dw.dxfString(8, layer);
+      dw.dxfString(100, "AcDbPolyline");
+      dw.dxfInt(90, int(pts.size()));
+      dw.dxfInt(70, closed ? 1 : 0);
+      dw.dxfReal(43, width);
+      for (Vec2 p : pts) dw.dxfReal(10, p.x), dw.dxfReal(20, p.y);
+    });
+  }
   /// A filled SOLID quadrilateral, corners in DXF's order (1 2 4 3 around).
   void solid(const std::string& layer, Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
     body_.push_back([=](DL_Dxf& dxf, DL_WriterA& dw) {
@@ -121,6 +141,7 @@ class TinyDxf {
     });
   }
   void text(const std::string& layer, Vec2 p, const std::string& t) {
+    p = p + o_;
     body_.push_back([=](DL_Dxf& dxf, DL_WriterA& dw) {
       dxf.writeText(dw, DL_TextData(p.x, p.y, 0, p.x, p.y, 0, 0.2, 1, 0, 0, 0, t, "standard", 0), attr(layer));
     });
@@ -243,6 +264,7 @@ class TinyDxf {
   static DL_Attributes attr(const std::string& layer) { return DL_Attributes(layer, 256, -1, "BYLAYER", 1.0); }
   mutable std::vector<fs::path> written_;  ///< by write(), removed with the drawing
   int insunits_;
+  Vec2 o_{0, 0};
   std::vector<std::function<void(DL_Dxf&, DL_WriterA&)>> blocks_, body_;
 };
 
@@ -374,6 +396,48 @@ TEST(DxfPlan, RoomTagsNameTheirRoomsByTheirNameAttribute) {
   std::set<std::string> names;
   for (const Room& room : r.plan.rooms) names.insert(room.name);
   EXPECT_EQ(names, (std::set<std::string>{"Kitchen", "Hall"}));
+}
+
+TEST(DxfPlan, ADrawingInNationalGridCoordinatesOpensWhereItIs) {
+  // Many offices draw a building where it stands in the national grid (metres, x about
+  // 2,500 km). The two rooms there open as at the origin, and the default view stands in
+  // a room: it stood 80 m off, outside the far box, when cell centroids were taken about
+  // the origin.
+  TinyDxf d;
+  const Vec2 far{2'500'000, 5'600'000};
+  d.place_at(far);
+  two_rooms_in_double_lines(d, "Walls");
+  d.arc("Doors", {4.3, 1.0}, 0.9, 0, 90);
+  const DxfPlan r = read_dxf_plan(d.write("national-grid.dxf"));
+  expect_walkable(r.plan, 2, 1);
+  const CellComplex c = build_cells(r.plan);
+  const Viewpoint v = default_viewpoint(c);
+  EXPECT_EQ(c.locate(v.eye).what, Location::What::Cell);
+  EXPECT_NEAR(v.eye.x - far.x, 2.15, 1.0);
+}
+
+TEST(DxfPlan, WallsDrawnAsWidePolylinesAreAsThickAsDrawn) {
+  // Walls drawn with PLINE's width, 0.2 m, along their middles: the outer ring closed, the
+  // partition in two pieces either side of the door. The rooms are as large as between
+  // the bands' faces, and a thin (1 cm, a heavy pen) polyline on a wall layer is a line.
+  TinyDxf d;
+  d.wide_polyline("Walls", {{0.1, 0.1}, {8.3, 0.1}, {8.3, 3.3}, {0.1, 3.3}}, true, 0.2);
+  d.wide_polyline("Walls", {{4.2, 0.1}, {4.2, 1.0}}, false, 0.2);
+  d.wide_polyline("Walls", {{4.2, 1.9}, {4.2, 3.3}}, false, 0.2);
+  d.arc("Doors", {4.3, 1.0}, 0.9, 0, 90);
+  d.text("Text", {2, 1.5}, "Kitchen");
+  d.text("Text", {6, 1.5}, "Hall");
+  const DxfPlan r = read_dxf_plan(d.write("wide.dxf"));
+  expect_walkable(r.plan, 2, 1);
+  const CellComplex c = build_cells(r.plan);
+  for (const RoomInfo& room : c.rooms) {
+    if (room.named) {
+      EXPECT_NEAR(room.area, 3.9 * 3.0, 0.2) << room.name;  // the door's gap goes to one of them
+    }
+  }
+  bool said = false;
+  for (const std::string& line : r.summary) said |= line.find("3 wide polylines on wall layers") != std::string::npos;
+  EXPECT_TRUE(said);
 }
 
 TEST(DxfPlan, AWindowAcrossAGapBetweenTwoRooms) {

@@ -61,6 +61,14 @@ struct InsertPiece {
   int cols = 1, rows = 1;
   double col_sp = 0, row_sp = 0;
 };
+/// A polyline drawn with a constant width (LWPOLYLINE's 43, POLYLINE's 40 = 41): a wall
+/// drawn as a wide line, on a wall layer, is the band it covers.
+struct Band {
+  std::vector<Vec2> pts;  ///< along its middle, arcs cut into pieces
+  bool closed = false;
+  double width = 0;
+  std::string layer;
+};
 /// Entities of model space or of one block, in drawing units.
 struct Group {
   Vec2 base;
@@ -71,6 +79,7 @@ struct Group {
   std::vector<InsertPiece> inserts;
   std::vector<std::pair<std::vector<Vec2>, std::string>> closed;  ///< closed polylines (room outlines)
   std::vector<std::pair<std::vector<Vec2>, std::string>> curves;  ///< splines as points (swings drawn as splines)
+  std::vector<Band> bands;
 };
 
 /// Metres per drawing unit from $INSUNITS (0 when unitless or unknown).
@@ -279,6 +288,7 @@ class Collector : public DL_CreationAdapter {
       ++faces_3d;
     }
     poly_closed_ = (d.flags & 1) != 0;
+    poly_width_ = ended_width_;
     poly_.clear();
   }
   void addVertex(const DL_VertexData& d) override {
@@ -293,6 +303,19 @@ class Collector : public DL_CreationAdapter {
   void addSolid(const DL_SolidData& d) override { filled_quad(d); }
   void addTrace(const DL_TraceData& d) override { filled_quad(d); }
   void processCodeValuePair(unsigned int code, const std::string& value) override {
+    // dxflib hands over an entity when the next one's 0 arrives, after this call: the
+    // width of the polyline just ended waits in ended_width_.
+    if (code == 0) {
+      ended_width_ = width_start_ > 0 && width_start_ == width_end_ ? width_start_ : 0;
+      entity_ = value, width_start_ = width_end_ = 0;
+    } else if ((entity_ == "LWPOLYLINE" && code == 43) || (entity_ == "POLYLINE" && (code == 40 || code == 41))) {
+      char* end = nullptr;
+      const double w = std::strtod(value.c_str(), &end);
+      if (end != value.c_str() && std::isfinite(w) && w > 0) {
+        if (code != 41) width_start_ = w;
+        if (code != 40) width_end_ = w;
+      }
+    }
     if (code == 0) {
       if (mline_) {
         emit_mline(*mline_);
@@ -417,6 +440,7 @@ class Collector : public DL_CreationAdapter {
   /// Ends a polyline or spline under way.
   void flush() {
     if (in_poly_ && poly_.size() >= 2) {
+      if (poly_width_ > 0) band_.emplace(Band{{}, poly_closed_, poly_width_, layer()});
       const size_t n = poly_.size(), segs = poly_closed_ ? n : n - 1;
       std::vector<Vec2> ring;
       for (size_t i = 0; i < segs; ++i) {
@@ -439,6 +463,11 @@ class Collector : public DL_CreationAdapter {
       }
       for (Vec2& p : ring) p = map_(p, z_);
       if (poly_closed_ && n >= 3) cur_->closed.push_back({ring, layer()});
+      if (band_) {
+        if (band_->closed && band_->pts.size() > 1 && length(band_->pts.back() - band_->pts.front()) == 0) band_->pts.pop_back();
+        if (band_->pts.size() >= 2) cur_->bands.push_back(std::move(*band_));
+        band_.reset();
+      }
       count();
     }
     if (in_spline_) {
@@ -460,6 +489,11 @@ class Collector : public DL_CreationAdapter {
   void count() { ++layer_entities[layer()]; }
   /// A line of the entity being read, from its own coordinates (map_).
   void seg(Vec2 a, Vec2 b, bool curved = false) {
+    if (band_) {  // a wide polyline's middle, its pieces in order
+      if (band_->pts.empty()) band_->pts.push_back(map_(a, z_));
+      band_->pts.push_back(map_(b, z_));
+      return;
+    }
     cur_->segs.push_back({map_(a, z_), map_(b, z_), layer(), curved});
     if (!in_poly_ && !in_spline_) count();
   }
@@ -516,6 +550,9 @@ class Collector : public DL_CreationAdapter {
   Ocs map_, hatch_map_;  ///< the coordinates of the entity being read (of its edges, for a hatch)
   double z_ = 0;         ///< its elevation in them
   std::optional<MLine> mline_;
+  std::string entity_;                ///< the type of the entity whose pairs are being read
+  double width_start_ = 0, width_end_ = 0, ended_width_ = 0, poly_width_ = 0;
+  std::optional<Band> band_;          ///< a wide polyline being flushed
   bool in_poly_ = false, poly_closed_ = false, in_spline_ = false;
   std::vector<std::pair<Vec2, double>> poly_;
   int spline_degree_ = 3;
@@ -547,9 +584,52 @@ struct Flat {
   /// Spline curves, a chain of pieces per door block placed (`chain` numbers it; -1 in model space).
   struct Curve { std::vector<Vec2> pts; std::string layer; bool door_block; int chain; };
   std::vector<Curve> curves;
+  std::vector<Band> bands;
   int placements = 0;
   std::vector<std::string> missing_blocks;
 };
+
+/// The outline of a wide polyline, half-width h either side of its middle: mitred where it
+/// turns (bevelled where it turns back sharper than 135 degrees), capped square at the ends
+/// of an open one.
+std::vector<std::pair<Vec2, Vec2>> band_outline(std::vector<Vec2> pts, bool closed, double h) {
+  std::vector<Vec2> p;
+  for (Vec2 q : pts)
+    if (p.empty() || length(q - p.back()) > 0) p.push_back(q);
+  if (closed && p.size() > 1 && length(p.back() - p.front()) == 0) p.pop_back();
+  std::vector<std::pair<Vec2, Vec2>> out;
+  const size_t n = p.size();
+  if (n < 2 || !(h > 0)) return out;
+  const bool ring = closed && n >= 3;
+  const size_t segs = ring ? n : n - 1;
+  auto left_of = [&](size_t i) {  // unit left normal of segment i
+    const Vec2 d = p[(i + 1) % n] - p[i];
+    return (1 / length(d)) * Vec2{-d.y, d.x};
+  };
+  for (const double side : {1.0, -1.0}) {
+    std::vector<Vec2> edge;
+    for (size_t i = 0; i < n; ++i) {
+      const bool has_in = ring || i > 0, has_out = ring || i + 1 < n;
+      if (!has_in) { edge.push_back(p[i] + side * h * left_of(i)); continue; }
+      const Vec2 n_in = left_of((i + segs - 1) % segs);
+      if (!has_out) { edge.push_back(p[i] + side * h * n_in); continue; }
+      const Vec2 n_out = left_of(i % segs);
+      const double c = 1 + dot(n_in, n_out);
+      if (c < 0.3) {
+        edge.push_back(p[i] + side * h * n_in), edge.push_back(p[i] + side * h * n_out);
+      } else {
+        edge.push_back(p[i] + (side * h / c) * (n_in + n_out));
+      }
+    }
+    for (size_t i = 0; i + 1 < edge.size(); ++i) out.push_back({edge[i], edge[i + 1]});
+    if (ring) out.push_back({edge.back(), edge.front()});
+  }
+  if (!ring) {  // the caps
+    out.push_back({p[0] + h * left_of(0), p[0] - h * left_of(0)});
+    out.push_back({p[n - 1] + h * left_of(n - 2), p[n - 1] - h * left_of(n - 2)});
+  }
+  return out;
+}
 
 /// A block holding a door: door, Tür/Tuer, porte, sliding, pocket, bi-fold in its name.
 void flatten(const Collector& col, const Group& g, const std::vector<Placement>& chain, const std::string& layer_0,
@@ -588,6 +668,11 @@ void flatten(const Collector& col, const Group& g, const std::vector<Placement>&
     std::vector<Vec2> r;
     for (Vec2 p : pts) r.push_back(place(p));
     out.curves.push_back({r, lay(l), door_block, chain_no});
+  }
+  for (const Band& b : g.bands) {
+    Band k{{}, b.closed, b.width * scale, lay(b.layer)};
+    for (Vec2 p : b.pts) k.pts.push_back(place(p));
+    out.bands.push_back(std::move(k));
   }
   if (depth >= 8) return;
   for (const InsertPiece& ins : g.inserts) {
@@ -676,6 +761,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   std::set<std::string> layers;
   for (const auto& [l, n] : col.layer_entities) layers.insert(l);
   for (const SegPiece& s : flat.segs) layers.insert(s.layer);
+  for (const Band& b : flat.bands) layers.insert(b.layer);
   std::map<std::string, LayerRole> role;
   for (const std::string& l : layers) {
     auto it = given.find(fold_layer_name(l));
@@ -700,6 +786,8 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   std::set<std::string> wall_layers_used;
   for (const SegPiece& s : flat.segs)
     if (role[s.layer] == LayerRole::Walls) wall_layers_used.insert(s.layer);
+  for (const Band& b : flat.bands)
+    if (role[b.layer] == LayerRole::Walls) wall_layers_used.insert(b.layer);
   // No wall lines but 3D faces: a 3D model (SketchUp's, LightWave's), read as a mesh.
   if (wall_layers_used.empty() && given.empty() && col.faces_3d > 0) {
     out.model_faces = col.faces_3d;
@@ -732,6 +820,9 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     for (const SegPiece& s : flat.segs)
       if (role[s.layer] == LayerRole::Walls)
         for (Vec2 p : {s.a, s.b}) lo_x = std::min(lo_x, p.x), hi_x = std::max(hi_x, p.x), lo_y = std::min(lo_y, p.y), hi_y = std::max(hi_y, p.y);
+    for (const Band& b : flat.bands)
+      if (role[b.layer] == LayerRole::Walls)
+        for (Vec2 p : b.pts) lo_x = std::min(lo_x, p.x), hi_x = std::max(hi_x, p.x), lo_y = std::min(lo_y, p.y), hi_y = std::max(hi_y, p.y);
     const double across = std::max(hi_x - lo_x, hi_y - lo_y);
     // A door's swing is 0.55-1.3 m in any building: its radius in drawing units tells the
     // unit where mm, cm, m, inches and feet give disjoint ranges (a plan in cm, as many
@@ -758,6 +849,20 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     plan.warnings.push_back("the drawing states no unit: taken as " + unit_said);
   }
   auto m = [&](Vec2 p) { return unit * p; };
+  // Wide polylines: on a wall layer and 5 cm wide or more, the wall's faces (the band's
+  // outline); elsewhere, or thinner (a heavy pen), the line along their middle.
+  int bands_as_walls = 0;
+  for (const Band& b : flat.bands) {
+    if (role[b.layer] == LayerRole::Walls && b.width * unit >= 0.05) {
+      for (const auto& [a, c] : band_outline(b.pts, b.closed, b.width / 2)) flat.segs.push_back({a, c, b.layer});
+      ++bands_as_walls;
+    } else {
+      for (size_t i = 0; i + 1 < b.pts.size(); ++i) flat.segs.push_back({b.pts[i], b.pts[i + 1], b.layer});
+      if (b.closed) flat.segs.push_back({b.pts.back(), b.pts.front(), b.layer});
+    }
+  }
+  if (bands_as_walls > 0)
+    out.summary.push_back(std::to_string(bands_as_walls) + " wide polylines on wall layers taken as walls as wide as they are drawn");
   out.drawing.reserve(flat.segs.size());
   for (const SegPiece& s : flat.segs) out.drawing.push_back({m(s.a), m(s.b)});
 
