@@ -440,6 +440,23 @@ TEST(DxfPlan, WallsDrawnAsWidePolylinesAreAsThickAsDrawn) {
   EXPECT_TRUE(said);
 }
 
+TEST(DxfPlan, AreasAndSizesUnderARoomsNameAreNoPartOfIt) {
+  // Drawings write a room's area or size under its name, in the same MTEXT or a text of
+  // its own: the name is the name. A room's number stays.
+  TinyDxf d;
+  d.polyline("Walls", {{0, 0}, {8.4, 0}, {8.4, 3.4}, {0, 3.4}}, true);
+  d.polyline("Walls", {{0.2, 0.2}, {4.1, 0.2}, {4.1, 3.2}, {0.2, 3.2}}, true);
+  d.polyline("Walls", {{4.3, 0.2}, {8.2, 0.2}, {8.2, 3.2}, {4.3, 3.2}}, true);
+  d.text("Text", {2, 1.5}, "KITCHEN\\P12'-9\" x 9'-10\"");  // one MTEXT-style string, paragraphs apart
+  d.text("Text", {2, 1.0}, "11.70 m\xc2\xb2");
+  d.text("Text", {6, 1.5}, "Bedroom 2");
+  d.text("Text", {6, 1.0}, "3,90 x 3,00");
+  const DxfPlan r = read_dxf_plan(d.write("areas.dxf"));
+  std::set<std::string> names;
+  for (const Room& room : r.plan.rooms) names.insert(room.name);
+  EXPECT_EQ(names, (std::set<std::string>{"KITCHEN", "Bedroom 2"}));
+}
+
 TEST(DxfPlan, AWindowAcrossAGapBetweenTwoRooms) {
   TinyDxf d;
   two_rooms_in_double_lines(d, "Walls");
@@ -450,6 +467,21 @@ TEST(DxfPlan, AWindowAcrossAGapBetweenTwoRooms) {
   for (const Wall& w : r.plan.walls)
     for (const Opening& o : w.openings) EXPECT_DOUBLE_EQ(o.sill, 0.9);
   EXPECT_EQ(cells_are_valid(build_cells(r.plan)), "");
+}
+
+TEST(DxfPlan, AWindowBlockOnLayerZeroIsAWindow) {
+  // A window drawn as a block named for it, inserted on layer 0 (which says nothing): its
+  // glass lines are a window's, as if on a window layer.
+  TinyDxf d;
+  two_rooms_in_double_lines(d, "Walls");
+  d.block_of_lines("WINDOW-900", "0", {{{0, 0}, {0.9, 0}}, {{0, 0.05}, {0.9, 0.05}}}, {4.175, 1.0}, 90);
+  const DxfPlan r = read_dxf_plan(d.write("window-block.dxf"));
+  ASSERT_EQ(r.plan.rooms.size(), 2u);
+  EXPECT_EQ(doors_in(r.plan, OpeningKind::Window), 1);
+  EXPECT_EQ(cells_are_valid(build_cells(r.plan)), "");
+  bool said = false;
+  for (const std::string& line : r.summary) said |= line.find("windows from layers 'block WINDOW-900'") != std::string::npos;
+  EXPECT_TRUE(said);
 }
 
 TEST(DxfPlan, WallEndsLeftOpenAreClosed) {
@@ -806,6 +838,9 @@ TEST(DxfLayerNames, TheNamesDrawingsUseInManyLanguages) {
   EXPECT_TRUE(names_a_door("SLIDING-2P"));
   EXPECT_FALSE(names_a_door("SUPPORT"));
   EXPECT_FALSE(names_a_door("WINDOW-1200"));
+  EXPECT_TRUE(names_a_window("WINDOW-1200"));
+  EXPECT_TRUE(names_a_window("Fenster_2-flg"));
+  EXPECT_FALSE(names_a_window("Porte-fenêtre"));  // a glazed door is a door
 }
 
 TEST(DxfPlan, AFrenchDrawingOpensByItsLayerNames) {

@@ -145,6 +145,12 @@ bool names_openings(const std::string& name) {
   return says_door_words(folded, w) || says_window_words(folded, w);
 }
 
+bool names_a_window(const std::string& name) {
+  const std::string folded = fold_layer_name(name);
+  const std::vector<std::string_view> w = words_of(folded);
+  return says_window_words(folded, w) && !says_door_words(folded, w);
+}
+
 bool names_a_door(const std::string& name) {
   const std::string folded = fold_layer_name(name);
   const std::string_view n = folded;

@@ -29,6 +29,9 @@ LayerRole layer_role_by_name(const std::string& name);
 /// numbers are no room names).
 bool names_openings(const std::string& name);
 
+/// Whether a block's name says it is a window (and not a door: a glazed door is a door).
+bool names_a_window(const std::string& name);
+
 /// Whether a block's name says it is a door (a door, a sliding, pocket or folding one).
 bool names_a_door(const std::string& name);
 

@@ -45,6 +45,7 @@ struct SegPiece {
   std::string layer;
   bool curved = false;  ///< a piece of an arc, circle, ellipse or spline (a swing, never a door frame)
   bool door_block = false;  ///< inside a block whose name says door (its panels, whatever their layer)
+  std::string window_block;  ///< the name of the block whose name says window that it is in, if any
 };
 struct TextPiece {
   Vec2 p;
@@ -148,6 +149,54 @@ std::string plain_text(const std::string& t) {
   for (size_t k; (k = out.find("%%")) != std::string::npos;) out.erase(k, 3);
   const size_t b = out.find_first_not_of(" \t"), e = out.find_last_not_of(" \t");
   return b == std::string::npos ? "" : out.substr(b, e - b + 1);
+}
+
+/// Whether a line of text is a measurement, not a name: an area or size written under a
+/// room's name ("25.3 m²", "12'-0\" x 14'-6\"", "3,20 x 4,10 m", "150 sq ft"). Its
+/// words are all numbers, units and "x"; a bare number ("101", a room's number) is none.
+bool is_measurement(const std::string& line) {
+  std::string t;
+  for (char c : line) t += (c == '\'' || c == '"' || c == '(' || c == ')' || c == '=' || c == ':') ? ' ' : c;
+  std::istringstream words(t);
+  bool digits = false, unit_or_mark = line.find_first_of("'\"") != std::string::npos;
+  int n = 0;
+  for (std::string w; words >> w; ++n) {
+    std::string f;
+    for (char c : w) f += char(std::tolower(static_cast<unsigned char>(c)));
+    if (f == "x" || f == "\xc3\x97") { unit_or_mark = true; continue; }  // x, ×
+    for (const char* u : {"m\xc2\xb2", "m2", "m^2", "sq.ft.", "sqft", "sq", "ft", "ft2", "sf", "mq", "qm", "m", "cm", "mm", "in"})
+      if (f == u) { unit_or_mark = true, f.clear(); break; }
+    if (f.empty()) continue;
+    // A number, perhaps with its unit joined on ("25.3m²", "4,10m", "-6").
+    size_t k = 0;
+    while (k < f.size() && (std::isdigit(static_cast<unsigned char>(f[k])) || f[k] == '.' || f[k] == ',' || f[k] == '-' || f[k] == '/' || f[k] == '+'))
+      digits |= std::isdigit(static_cast<unsigned char>(f[k])) != 0, ++k;
+    if (k == 0) return false;
+    const std::string rest = f.substr(k);
+    if (rest.empty()) {
+      if (f.find_first_of(".,") != std::string::npos) unit_or_mark = true;
+      continue;
+    }
+    bool unit = false;
+    for (const char* u : {"m\xc2\xb2", "m2", "m", "cm", "mm", "ft", "sf", "sqft", "mq", "qm", "in"}) unit |= rest == u;
+    if (!unit) return false;
+    unit_or_mark = true;
+  }
+  return n > 0 && digits && unit_or_mark;
+}
+
+/// A text's words as a room's name: MTEXT's paragraphs that are not measurements.
+std::string label_text(const std::string& raw) {
+  std::string out;
+  size_t from = 0;
+  while (from <= raw.size()) {
+    size_t to = raw.find("\\P", from);
+    if (to == std::string::npos) to = raw.size();
+    const std::string line = plain_text(raw.substr(from, to - from));
+    if (!line.empty() && !is_measurement(line)) out += (out.empty() ? "" : " ") + line;
+    from = to + 2;
+  }
+  return out;
 }
 
 /// De Boor evaluation of a non-rational B-spline at `samples` points.
@@ -373,7 +422,7 @@ class Collector : public DL_CreationAdapter {
     const Ocs o = Ocs::of(getExtrusion()->getDirection());
     // Justified text is placed by its alignment point.
     const bool aligned = d.hJustification != 0 || d.vJustification != 0;
-    cur_->texts.push_back({aligned ? o({d.apx, d.apy}, d.apz) : o({d.ipx, d.ipy}, d.ipz), plain_text(d.text), layer()});
+    cur_->texts.push_back({aligned ? o({d.apx, d.apy}, d.apz) : o({d.ipx, d.ipy}, d.ipz), label_text(d.text), layer()});
     count();
   }
   // A block's attribute whose tag says name (a room tag's NAME, as AIA's A-AREA-IDEN tags
@@ -382,7 +431,7 @@ class Collector : public DL_CreationAdapter {
   void addAttribute(const DL_AttributeData& d) override {
     flush();
     map_ = {};
-    const std::string tag = fold_layer_name(d.tag), text = plain_text(d.text);
+    const std::string tag = fold_layer_name(d.tag), text = label_text(d.text);
     bool names = false;
     for (const char* w : {"name", "nom", "room", "raum", "title", "titel", "label", "bezeich", "desc", "use", "nutzung",
                           "function", "funktion", "designation", "zimmer", "stanza", "piece", "pièce", "local", "space",
@@ -400,7 +449,7 @@ class Collector : public DL_CreationAdapter {
   void addMText(const DL_MTextData& d) override {
     flush();
     map_ = {};
-    cur_->texts.push_back({{d.ipx, d.ipy}, plain_text(mtext_ + d.text), layer()});
+    cur_->texts.push_back({{d.ipx, d.ipy}, label_text(mtext_ + d.text), layer()});
     mtext_.clear();
     count();
   }
@@ -494,7 +543,7 @@ class Collector : public DL_CreationAdapter {
       band_->pts.push_back(map_(b, z_));
       return;
     }
-    cur_->segs.push_back({map_(a, z_), map_(b, z_), layer(), curved});
+    cur_->segs.push_back({map_(a, z_), map_(b, z_), layer(), curved, false, {}});
     if (!in_poly_ && !in_spline_) count();
   }
   void arc(Vec2 c, double r, double a0, double a1) {
@@ -539,7 +588,7 @@ class Collector : public DL_CreationAdapter {
         if (at.size() % 2 == 1) at.push_back(t_end);
         for (size_t j = 0; j + 1 < at.size(); j += 2) {
           const double t0 = std::max(at[j], 0.0), t1 = std::min(at[j + 1], t_end);
-          if (t1 > t0) cur_->segs.push_back({start + t0 * d, start + t1 * d, ml.layer, false});
+          if (t1 > t0) cur_->segs.push_back({start + t0 * d, start + t1 * d, ml.layer, false, false, {}});
         }
       }
     }
@@ -631,9 +680,10 @@ std::vector<std::pair<Vec2, Vec2>> band_outline(std::vector<Vec2> pts, bool clos
   return out;
 }
 
-/// A block holding a door: door, Tür/Tuer, porte, sliding, pocket, bi-fold in its name.
+/// `door_block`: inside a block whose name says door (door, Tür, porte, sliding, pocket,
+/// bi-fold ...); `window_block`: the name of the block whose name says window it is in.
 void flatten(const Collector& col, const Group& g, const std::vector<Placement>& chain, const std::string& layer_0,
-             bool door_block, int depth, Flat& out, int chain_of_insert = -1) {
+             bool door_block, int depth, Flat& out, int chain_of_insert = -1, const std::string& window_block = {}) {
   auto place = [&](Vec2 p) {
     for (auto it = chain.rbegin(); it != chain.rend(); ++it) p = (*it)(p);
     return p;
@@ -643,7 +693,7 @@ void flatten(const Collector& col, const Group& g, const std::vector<Placement>&
   for (const Placement& pl : chain) mirrored ^= (pl.scale.x * pl.scale.y < 0);
   double scale = 1;
   for (const Placement& pl : chain) scale *= std::fabs(pl.scale.x);
-  for (const SegPiece& s : g.segs) out.segs.push_back({place(s.a), place(s.b), lay(s.layer), s.curved, door_block});
+  for (const SegPiece& s : g.segs) out.segs.push_back({place(s.a), place(s.b), lay(s.layer), s.curved, door_block, window_block});
   for (const ArcPiece& a : g.arcs) {
     ArcPiece b{place(a.c), place(a.p0), place(a.p1), a.r * scale, a.sweep_deg, lay(a.layer)};
     if (mirrored) std::swap(b.p0, b.p1);
@@ -692,8 +742,9 @@ void flatten(const Collector& col, const Group& g, const std::vector<Placement>&
       pl.c = std::cos(a), pl.s = std::sin(a);
       std::vector<Placement> next = chain;
       next.push_back(pl);
-      flatten(col, it->second, next, lay(ins.layer), door_block || names_a_door(ins.block), depth + 1, out,
-              out.placements++);
+      const bool door = door_block || names_a_door(ins.block);
+      flatten(col, it->second, next, lay(ins.layer), door, depth + 1, out, out.placements++,
+              door ? std::string() : names_a_window(ins.block) ? ins.block : window_block);
     }
   }
 }
@@ -774,6 +825,13 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     for (const std::string& l : layers)
       if (role[l] == LayerRole::None && !given.count(fold_layer_name(l)) && !named.count(layer_role_by_name(l))) role[l] = layer_role_by_name(l);
   }
+  // A window block's lines on a layer that says nothing (layer 0, a generic one) are
+  // window lines: they go on a layer of their own, named after the block, for the summary.
+  for (SegPiece& s : flat.segs)
+    if (!s.window_block.empty() && role[s.layer] == LayerRole::None) {
+      s.layer = "block " + s.window_block;
+      role[s.layer] = LayerRole::Windows;
+    }
   std::vector<std::string> taken[4];
   for (const auto& [l, r] : role)
     if (r != LayerRole::None) taken[int(r)].push_back(l);
@@ -854,11 +912,11 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   int bands_as_walls = 0;
   for (const Band& b : flat.bands) {
     if (role[b.layer] == LayerRole::Walls && b.width * unit >= 0.05) {
-      for (const auto& [a, c] : band_outline(b.pts, b.closed, b.width / 2)) flat.segs.push_back({a, c, b.layer});
+      for (const auto& [a, c] : band_outline(b.pts, b.closed, b.width / 2)) flat.segs.push_back({a, c, b.layer, false, false, {}});
       ++bands_as_walls;
     } else {
-      for (size_t i = 0; i + 1 < b.pts.size(); ++i) flat.segs.push_back({b.pts[i], b.pts[i + 1], b.layer});
-      if (b.closed) flat.segs.push_back({b.pts.back(), b.pts.front(), b.layer});
+      for (size_t i = 0; i + 1 < b.pts.size(); ++i) flat.segs.push_back({b.pts[i], b.pts[i + 1], b.layer, false, false, {}});
+      if (b.closed) flat.segs.push_back({b.pts.back(), b.pts.front(), b.layer, false, false, {}});
     }
   }
   if (bands_as_walls > 0)
@@ -873,7 +931,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   std::vector<Gap> gaps;
   std::vector<SegPiece> win;
   for (const SegPiece& s : flat.segs)
-    if (role[s.layer] == LayerRole::Windows) win.push_back({m(s.a), m(s.b), s.layer, s.curved});
+    if (role[s.layer] == LayerRole::Windows) win.push_back({m(s.a), m(s.b), s.layer, s.curved, false, {}});
   std::vector<int> window_of(win.size(), -1);  // per window line: its gap, or -1 (too small to be a window)
   {
     std::vector<int> parent(win.size());
