@@ -25,6 +25,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 using avenues::testing::Outcome;
+using avenues::testing::RunOptions;
 using avenues::testing::slurp;
 
 namespace {
@@ -62,6 +63,18 @@ TEST_F(Cli, HelpWorksForEverySubcommand) {
   Outcome r = run({"--help"});
   for (const char* sub : {"cells", "export", "generate", "view"})
     EXPECT_NE(r.out.find(sub), std::string::npos) << "--help does not mention " << sub;
+}
+
+TEST_F(Cli, TheProgramsMallocIsJemallocKeepingTheFreedPages) {
+  // app/allocator.cpp: jemalloc replaces glibc's malloc in `avenues`, set never to hand
+  // freed pages back (docs/PERFORMANCE.md, "The allocator"). Its own statistics say so.
+  RunOptions o;
+  o.set_env = {"MALLOC_CONF=stats_print:true"};
+  const Outcome r = run({"--version"}, o);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("jemalloc statistics"), std::string::npos) << r.err.substr(0, 400);
+  EXPECT_NE(r.err.find("opt.dirty_decay_ms: -1"), std::string::npos) << r.err.substr(0, 2000);
+  EXPECT_NE(r.err.find("opt.muzzy_decay_ms: -1"), std::string::npos) << r.err.substr(0, 2000);
 }
 
 TEST_F(Cli, BadCommandLinesExitWithStatus2) {
