@@ -296,6 +296,14 @@ void two_rooms_in_double_lines(TinyDxf& d, const std::string& walls) {
   d.text("Text", {6, 1.5}, "Hall");
 }
 
+/// The same two rooms, each inside a closed polyline of its own and the outer face one
+/// more: no door between them.
+void two_rooms_in_closed_polylines(TinyDxf& d, const std::string& walls) {
+  d.polyline(walls, {{0, 0}, {8.4, 0}, {8.4, 3.4}, {0, 3.4}}, true);
+  d.polyline(walls, {{0.2, 0.2}, {4.1, 0.2}, {4.1, 3.2}, {0.2, 3.2}}, true);
+  d.polyline(walls, {{4.3, 0.2}, {8.2, 0.2}, {8.2, 3.2}, {4.3, 3.2}}, true);
+}
+
 void expect_walkable(const Plan& plan, int rooms, int doors) {
   ASSERT_EQ(int(plan.rooms.size()), rooms);
   EXPECT_EQ(doors_in(plan), doors);
@@ -326,9 +334,7 @@ TEST(DxfPlan, ADoorBlockInsertClosesItsGap) {
 
 TEST(DxfPlan, ClosedPolylinesAroundEachRoom) {
   TinyDxf d;
-  d.polyline("Walls", {{0, 0}, {8.4, 0}, {8.4, 3.4}, {0, 3.4}}, true);
-  d.polyline("Walls", {{0.2, 0.2}, {4.1, 0.2}, {4.1, 3.2}, {0.2, 3.2}}, true);
-  d.polyline("Walls", {{4.3, 0.2}, {8.2, 0.2}, {8.2, 3.2}, {4.3, 3.2}}, true);
+  two_rooms_in_closed_polylines(d, "Walls");
   const DxfPlan r = read_dxf_plan(d.write("polylines.dxf"));
   expect_walkable(r.plan, 2, 0);
   EXPECT_EQ(r.plan.rooms[0].name.rfind("space", 0), 0u);  // no text: named by number
@@ -387,9 +393,7 @@ TEST(DxfPlan, RoomTagsNameTheirRoomsByTheirNameAttribute) {
   // Rooms named by tag blocks (AIA's A-AREA-IDEN): the NAME attribute names the room, the
   // number and the area do not.
   TinyDxf d;
-  d.polyline("A-WALL", {{0, 0}, {8.4, 0}, {8.4, 3.4}, {0, 3.4}}, true);
-  d.polyline("A-WALL", {{0.2, 0.2}, {4.1, 0.2}, {4.1, 3.2}, {0.2, 3.2}}, true);
-  d.polyline("A-WALL", {{4.3, 0.2}, {8.2, 0.2}, {8.2, 3.2}, {4.3, 3.2}}, true);
+  two_rooms_in_closed_polylines(d, "A-WALL");
   d.room_tag("A-AREA-IDEN", {2, 1.5}, {{"NAME", "Kitchen"}, {"NUMBER", "101"}, {"AREA", "11.7 m2"}});
   d.room_tag("A-AREA-IDEN", {6, 1.5}, {{"ROOM_NAME", "Hall"}, {"ROOMNUM", "102"}});
   const DxfPlan r = read_dxf_plan(d.write("room-tags.dxf"));
@@ -444,9 +448,7 @@ TEST(DxfPlan, AreasAndSizesUnderARoomsNameAreNoPartOfIt) {
   // Drawings write a room's area or size under its name, in the same MTEXT or a text of
   // its own: the name is the name. A room's number stays.
   TinyDxf d;
-  d.polyline("Walls", {{0, 0}, {8.4, 0}, {8.4, 3.4}, {0, 3.4}}, true);
-  d.polyline("Walls", {{0.2, 0.2}, {4.1, 0.2}, {4.1, 3.2}, {0.2, 3.2}}, true);
-  d.polyline("Walls", {{4.3, 0.2}, {8.2, 0.2}, {8.2, 3.2}, {4.3, 3.2}}, true);
+  two_rooms_in_closed_polylines(d, "Walls");
   d.text("Text", {2, 1.5}, "KITCHEN\\P12'-9\" x 9'-10\"");  // one MTEXT-style string, paragraphs apart
   d.text("Text", {2, 1.0}, "11.70 m\xc2\xb2");
   d.text("Text", {6, 1.5}, "Bedroom 2");
