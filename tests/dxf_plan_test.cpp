@@ -459,6 +459,24 @@ TEST(DxfPlan, AreasAndSizesUnderARoomsNameAreNoPartOfIt) {
   EXPECT_EQ(names, (std::set<std::string>{"KITCHEN", "Bedroom 2"}));
 }
 
+TEST(DxfPlan, WallsDrawnOnlyAsFillsAreWalls) {
+  // Some exports draw walls as solid hatches alone, no line along them: the hatch's
+  // outline is the walls' faces. Two rooms in one wall fill with two holes, and a door
+  // gap left in the fill between them.
+  TinyDxf d;
+  d.hatch("A-WALL", {{{0, 0}, {8.4, 0}, {8.4, 3.4}, {0, 3.4}},
+                     {{0.2, 0.2}, {4.1, 0.2}, {4.1, 1.0}, {4.3, 1.0}, {4.3, 0.2}, {8.2, 0.2}, {8.2, 3.2}, {4.3, 3.2},
+                      {4.3, 1.9}, {4.1, 1.9}, {4.1, 3.2}, {0.2, 3.2}}});
+  d.arc("A-DOOR", {4.3, 1.0}, 0.9, 0, 90);
+  d.text("Text", {2, 1.5}, "Kitchen");
+  d.text("Text", {6, 1.5}, "Hall");
+  const DxfPlan r = read_dxf_plan(d.write("fills.dxf"));
+  expect_walkable(r.plan, 2, 1);
+  bool said = false;
+  for (const std::string& line : r.summary) said |= line.find("fills' outlines taken as the walls' faces") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
 TEST(DxfPlan, AWindowAcrossAGapBetweenTwoRooms) {
   TinyDxf d;
   two_rooms_in_double_lines(d, "Walls");

@@ -846,6 +846,21 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     if (role[s.layer] == LayerRole::Walls) wall_layers_used.insert(s.layer);
   for (const Band& b : flat.bands)
     if (role[b.layer] == LayerRole::Walls) wall_layers_used.insert(b.layer);
+  // Walls drawn only as fills (hatches, SOLIDs) on a wall layer, not a line beside them:
+  // the fills' outlines are the wall lines (and the fills still tell the wall faces).
+  bool walls_from_fills = false;
+  if (wall_layers_used.empty()) {
+    for (const HatchPiece& h : flat.hatches) {
+      if (role[h.layer] != LayerRole::Walls) continue;
+      for (const auto& r : h.rings)
+        for (size_t i = 0; r.size() >= 3 && i < r.size(); ++i)
+          if (length(r[(i + 1) % r.size()] - r[i]) > 0) {
+            flat.segs.push_back({r[i], r[(i + 1) % r.size()], h.layer, false, false, {}});
+            wall_layers_used.insert(h.layer);
+          }
+    }
+    walls_from_fills = !wall_layers_used.empty();
+  }
   // No wall lines but 3D faces: a 3D model (SketchUp's, LightWave's), read as a mesh.
   if (wall_layers_used.empty() && given.empty() && col.faces_3d > 0) {
     out.model_faces = col.faces_3d;
@@ -919,6 +934,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
       if (b.closed) flat.segs.push_back({b.pts.back(), b.pts.front(), b.layer, false, false, {}});
     }
   }
+  if (walls_from_fills) out.summary.push_back("the wall layers hold fills and no lines: the fills' outlines taken as the walls' faces");
   if (bands_as_walls > 0)
     out.summary.push_back(std::to_string(bands_as_walls) + " wide polylines on wall layers taken as walls as wide as they are drawn");
   out.drawing.reserve(flat.segs.size());
