@@ -89,6 +89,17 @@ bool says_window_words(std::string_view n, const std::vector<std::string_view>& 
          a_word_starts(w, {"raam", "ramen", "okn", "okien"});
 }
 
+/// A name folded, and its words (views into it: not copied).
+struct Folded {
+  std::string text;
+  std::vector<std::string_view> words;
+  explicit Folded(const std::string& name);
+  Folded(const Folded&) = delete;
+  Folded& operator=(const Folded&) = delete;
+  bool door() const { return says_door_words(text, words); }
+  bool window() const { return says_window_words(text, words); }
+};
+
 }  // namespace
 
 std::string fold_layer_name(const std::string& name) {
@@ -115,17 +126,19 @@ std::string fold_layer_name(const std::string& name) {
   return out;
 }
 
+Folded::Folded(const std::string& name) : text(fold_layer_name(name)), words(words_of(text)) {}
+
 LayerRole layer_role_by_name(const std::string& name) {
-  const std::string folded = fold_layer_name(name);
-  const std::string_view n = folded;
-  const std::vector<std::string_view> w = words_of(n);
+  const Folded f(name);
+  const std::string_view n = f.text;
+  const std::vector<std::string_view>& w = f.words;
   if (contains(n, {"virtual", "furn", "dim", "text", "hatch-", "grid", "möbel", "moebel", "mobili", "arredo", "cotation",
                    "bemaß", "bemass", "beschrift", "annot", "demoli", "abbruch", "rückbau", "текст", "размер", "мебел",
                    "标注", "文字", "家具", "轴网"}) ||
       a_word_is(w, {"iden", "demo", "abov", "above", "ovhd", "elev", "nplt", "note", "notes", "symb", "tag", "tags", "cote",
                     "cotes", "cotas", "quote"}))
     return LayerRole::None;
-  const bool door = says_door_words(n, w), window = says_window_words(n, w);
+  const bool door = f.door(), window = f.window();
   if (contains(n, {"menuiser", "carpinter", "infiss", "serrament", "esquadri", "kozijn"}) || (door && window))
     return LayerRole::Doors;
   if (window) return LayerRole::Windows;
@@ -140,22 +153,18 @@ LayerRole layer_role_by_name(const std::string& name) {
 }
 
 bool names_openings(const std::string& name) {
-  const std::string folded = fold_layer_name(name);
-  const std::vector<std::string_view> w = words_of(folded);
-  return says_door_words(folded, w) || says_window_words(folded, w);
+  const Folded f(name);
+  return f.door() || f.window();
 }
 
 bool names_a_window(const std::string& name) {
-  const std::string folded = fold_layer_name(name);
-  const std::vector<std::string_view> w = words_of(folded);
-  return says_window_words(folded, w) && !says_door_words(folded, w);
+  const Folded f(name);
+  return f.window() && !f.door();
 }
 
 bool names_a_door(const std::string& name) {
-  const std::string folded = fold_layer_name(name);
-  const std::string_view n = folded;
-  if (contains(n, {"sliding", "pocket", "bifold", "bi-fold"}) || n.substr(0, 3) == "tur") return true;
-  return says_door_words(n, words_of(n));
+  const Folded f(name);
+  return contains(f.text, {"sliding", "pocket", "bifold", "bi-fold"}) || f.text.rfind("tur", 0) == 0 || f.door();
 }
 
 }  // namespace avenues

@@ -96,11 +96,20 @@ double metres_of_insunits(int u) {
   }
 }
 
+/// The lengths a drawing may be in, by their --unit names.
+struct LengthUnit {
+  const char* name;
+  double metres;
+};
+constexpr LengthUnit kLengthUnits[] = {{"mm", 0.001}, {"cm", 0.01}, {"m", 1}, {"in", 0.0254}, {"ft", 0.3048}};
+
 /// Metres per unit of --unit's name ("m", "cm", "mm", "in", "ft", any case); 0 when unknown.
 double metres_of_unit_name(const std::string& name) {
   std::string u = name;
   for (char& ch : u) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-  return u == "m" ? 1 : u == "cm" ? 0.01 : u == "mm" ? 0.001 : u == "in" ? 0.0254 : u == "ft" ? 0.3048 : 0;
+  for (const LengthUnit& l : kLengthUnits)
+    if (u == l.name) return l.metres;
+  return 0;
 }
 
 /// Points along an arc from angle a0 to a1 (radians, counter-clockwise), ends exact: 16
@@ -299,12 +308,12 @@ class Collector : public DL_CreationAdapter {
   void addLine(const DL_LineData& d) override { flush(), map_ = {}, seg({d.x1, d.y1}, {d.x2, d.y2}); }
   void addArc(const DL_ArcData& d) override {
     flush();
-    map_ = Ocs::of(getExtrusion()->getDirection()), z_ = d.cz;
+    map_ = ocs(), z_ = d.cz;
     arc({d.cx, d.cy}, d.radius, rad_from_deg(d.angle1), rad_from_deg(d.angle2));
   }
   void addCircle(const DL_CircleData& d) override {
     flush();
-    map_ = Ocs::of(getExtrusion()->getDirection()), z_ = d.cz;
+    map_ = ocs(), z_ = d.cz;
     const std::vector<Vec2> pts = arc_points({d.cx, d.cy}, d.radius, 0, 2 * kPi, sagitta);
     for (size_t i = 0; i + 1 < pts.size(); ++i) seg(pts[i], pts[i + 1], true);
   }
@@ -312,7 +321,7 @@ class Collector : public DL_CreationAdapter {
     flush();
     map_ = {};
     // The minor axis is the extrusion direction x the major axis, times the ratio.
-    const Ocs o = Ocs::of(getExtrusion()->getDirection());
+    const Ocs o = ocs();
     const Vec3 minor = d.ratio * cross(o.n, Vec3{d.mx, d.my, d.mz});
     const Vec2 c{d.cx, d.cy}, m{d.mx, d.my}, n{minor.x, minor.y};
     double a1 = d.angle2;
@@ -328,7 +337,7 @@ class Collector : public DL_CreationAdapter {
   }
   void addPolyline(const DL_PolylineData& d) override {
     flush();
-    map_ = (d.flags & 8) ? Ocs{} : Ocs::of(getExtrusion()->getDirection());  // a 3D polyline's are world's
+    map_ = (d.flags & 8) ? Ocs{} : ocs();  // a 3D polyline's are world's
     z_ = d.elevation;
     pending_layer_ = getAttributes().getLayer();
     in_poly_ = (d.flags & (16 | 64)) == 0;  // not a polygon or polyface mesh
@@ -357,15 +366,6 @@ class Collector : public DL_CreationAdapter {
     if (code == 0) {
       ended_width_ = width_start_ > 0 && width_start_ == width_end_ ? width_start_ : 0;
       entity_ = value, width_start_ = width_end_ = 0;
-    } else if ((entity_ == "LWPOLYLINE" && code == 43) || (entity_ == "POLYLINE" && (code == 40 || code == 41))) {
-      char* end = nullptr;
-      const double w = std::strtod(value.c_str(), &end);
-      if (end != value.c_str() && std::isfinite(w) && w > 0) {
-        if (code != 41) width_start_ = w;
-        if (code != 40) width_end_ = w;
-      }
-    }
-    if (code == 0) {
       if (mline_) {
         emit_mline(*mline_);
         mline_.reset();
@@ -373,12 +373,22 @@ class Collector : public DL_CreationAdapter {
       if (value == "MLINE") mline_.emplace();
       return;
     }
-    if (!mline_) return;
-    MLine& ml = *mline_;
+    if (mline_ && code == 8) {
+      mline_->layer = value;
+      return;
+    }
     char* end = nullptr;
     const double v = std::strtod(value.c_str(), &end);
-    if (code == 8) { ml.layer = value; return; }
     if (end == value.c_str() || !std::isfinite(v)) return;
+    if ((entity_ == "LWPOLYLINE" && code == 43) || (entity_ == "POLYLINE" && (code == 40 || code == 41))) {
+      if (v > 0) {
+        if (code != 41) width_start_ = v;
+        if (code != 40) width_end_ = v;
+      }
+      return;
+    }
+    if (!mline_) return;
+    MLine& ml = *mline_;
     if (code == 71 && std::fabs(v) < 1e9) ml.closed = (int(v) & 2) != 0;
     if (code == 11 && ml.vertices.size() < 100000) {
       ml.vertices.push_back({{v, 0}, {1, 0}, {0, 1}, {}});
@@ -410,7 +420,7 @@ class Collector : public DL_CreationAdapter {
     map_ = {};
     // Mirrored by its extrusion (-Z): x -> -x after the placement, that is the insertion
     // point's x, the x scale and the angle negated.
-    const Ocs o = Ocs::of(getExtrusion()->getDirection());
+    const Ocs o = ocs();
     const bool mirror = o.flat && o.mirrored;
     cur_->inserts.push_back({d.name, layer(), o({d.ipx, d.ipy}, d.ipz), {mirror ? -d.sx : d.sx, d.sy},
                              mirror ? -d.angle : d.angle, std::max(d.cols, 1), std::max(d.rows, 1), d.colSp, d.rowSp});
@@ -419,10 +429,7 @@ class Collector : public DL_CreationAdapter {
   void addText(const DL_TextData& d) override {
     flush();
     map_ = {};
-    const Ocs o = Ocs::of(getExtrusion()->getDirection());
-    // Justified text is placed by its alignment point.
-    const bool aligned = d.hJustification != 0 || d.vJustification != 0;
-    cur_->texts.push_back({aligned ? o({d.apx, d.apy}, d.apz) : o({d.ipx, d.ipy}, d.ipz), label_text(d.text), layer()});
+    cur_->texts.push_back({text_at(d, ocs()), label_text(d.text), layer()});
     count();
   }
   // A block's attribute whose tag says name (a room tag's NAME, as AIA's A-AREA-IDEN tags
@@ -441,9 +448,7 @@ class Collector : public DL_CreationAdapter {
       names &= tag.find(w) == std::string::npos;
     if (!names || std::none_of(text.begin(), text.end(), [](char c) { return std::isalpha(static_cast<unsigned char>(c)) || (c & 0x80); }))
       return;
-    const Ocs o = Ocs::of(getExtrusion()->getDirection());
-    const bool aligned = d.hJustification != 0 || d.vJustification != 0;
-    cur_->texts.push_back({aligned ? o({d.apx, d.apy}, d.apz) : o({d.ipx, d.ipy}, d.ipz), text, layer()});
+    cur_->texts.push_back({text_at(d, ocs()), text, layer()});
     count();
   }
   void addMText(const DL_MTextData& d) override {
@@ -457,7 +462,7 @@ class Collector : public DL_CreationAdapter {
   void addHatch(const DL_HatchData&) override {
     flush();
     map_ = {};
-    hatch_map_ = Ocs::of(getExtrusion()->getDirection());
+    hatch_map_ = ocs();
     cur_->hatches.push_back({{}, layer()});
     count();
   }
@@ -536,6 +541,13 @@ class Collector : public DL_CreationAdapter {
   /// (it is flushed when a later entity begins).
   std::string layer() { return in_poly_ || in_spline_ ? pending_layer_ : getAttributes().getLayer(); }
   void count() { ++layer_entities[layer()]; }
+  /// The object coordinates of the entity being read, by its extrusion direction.
+  Ocs ocs() { return Ocs::of(getExtrusion()->getDirection()); }
+  /// Where a text (or an attribute) stands: justified text by its alignment point.
+  static Vec2 text_at(const DL_TextData& d, const Ocs& o) {
+    const bool aligned = d.hJustification != 0 || d.vJustification != 0;
+    return aligned ? o({d.apx, d.apy}, d.apz) : o({d.ipx, d.ipy}, d.ipz);
+  }
   /// A line of the entity being read, from its own coordinates (map_).
   void seg(Vec2 a, Vec2 b, bool curved = false) {
     if (band_) {  // a wide polyline's middle, its pieces in order
@@ -559,7 +571,7 @@ class Collector : public DL_CreationAdapter {
   void filled_quad(const DL_TraceData& d) {
     flush();
     map_ = {};
-    const Ocs o = Ocs::of(getExtrusion()->getDirection());
+    const Ocs o = ocs();
     std::vector<Vec2> ring;
     for (int k : {0, 1, 3, 2}) ring.push_back(o({d.x[k], d.y[k]}, d.z[k]));
     cur_->hatches.push_back({{ring}, layer()});
@@ -890,12 +902,12 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     unit_said = format_number(unit) + " m per unit ($INSUNITS " + std::to_string(col.insunits) + ")";
   } else {
     double lo_x = 1e300, hi_x = -1e300, lo_y = 1e300, hi_y = -1e300;
+    auto grow = [&](Vec2 p) { lo_x = std::min(lo_x, p.x), hi_x = std::max(hi_x, p.x), lo_y = std::min(lo_y, p.y), hi_y = std::max(hi_y, p.y); };
     for (const SegPiece& s : flat.segs)
-      if (role[s.layer] == LayerRole::Walls)
-        for (Vec2 p : {s.a, s.b}) lo_x = std::min(lo_x, p.x), hi_x = std::max(hi_x, p.x), lo_y = std::min(lo_y, p.y), hi_y = std::max(hi_y, p.y);
+      if (role[s.layer] == LayerRole::Walls) grow(s.a), grow(s.b);
     for (const Band& b : flat.bands)
       if (role[b.layer] == LayerRole::Walls)
-        for (Vec2 p : b.pts) lo_x = std::min(lo_x, p.x), hi_x = std::max(hi_x, p.x), lo_y = std::min(lo_y, p.y), hi_y = std::max(hi_y, p.y);
+        for (Vec2 p : b.pts) grow(p);
     const double across = std::max(hi_x - lo_x, hi_y - lo_y);
     // A door's swing is 0.55-1.3 m in any building: its radius in drawing units tells the
     // unit where mm, cm, m, inches and feet give disjoint ranges (a plan in cm, as many
@@ -903,18 +915,17 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     std::vector<double> radii;
     for (const auto& [a, in_door_block] : flat.arcs)
       if ((role[a.layer] == LayerRole::Doors || in_door_block) && door_swing_sweep(a.sweep_deg) && a.r > 0) radii.push_back(a.r);
-    double by_doors = 0;
+    const LengthUnit* by_doors = nullptr;
     if (!radii.empty()) {
       std::nth_element(radii.begin(), radii.begin() + long(radii.size() / 2), radii.end());
       const double r = radii[radii.size() / 2];
-      for (const double u : {0.001, 0.01, 1.0, 0.0254, 0.3048})
-        if (r * u >= 0.55 && r * u <= 1.3 && across * u >= 2 && across * u <= 2000) by_doors = u;
-      if (by_doors > 0)
-        unit = by_doors,
-        unit_said = std::string(unit == 0.001 ? "mm" : unit == 0.01 ? "cm" : unit == 1 ? "m" : unit == 0.0254 ? "in" : "ft") +
-                    ", guessed from its door swings' radius of " + format_number(r) + " units (no $INSUNITS; say --unit)";
+      for (const LengthUnit& l : kLengthUnits)
+        if (r * l.metres >= 0.55 && r * l.metres <= 1.3 && across * l.metres >= 2 && across * l.metres <= 2000) by_doors = &l;
+      if (by_doors)
+        unit = by_doors->metres, unit_said = std::string(by_doors->name) + ", guessed from its door swings' radius of " +
+                                             format_number(r) + " units (no $INSUNITS; say --unit)";
     }
-    if (by_doors == 0) {
+    if (!by_doors) {
       unit = across > 1000 ? 0.001 : 1;
       unit_said = std::string(unit == 1 ? "m" : "mm") + ", guessed from the walls' extent of " + format_number(across) +
                   " units (no $INSUNITS; say --unit)";
