@@ -52,11 +52,13 @@ class TinyDxf {
       dxf.writeLine(dw, DL_LineData(a.x, a.y, 0, b.x, b.y, 0), attr(layer));
     });
   }
-  void polyline(const std::string& layer, std::vector<Vec2> pts, bool closed) {
+  /// `bulges`, per vertex: the tangent of a quarter of the arc to the next (none: straight).
+  void polyline(const std::string& layer, std::vector<Vec2> pts, bool closed, std::vector<double> bulges = {}) {
     for (Vec2& p : pts) p = p + o_;
+    bulges.resize(pts.size(), 0);
     body_.push_back([=](DL_Dxf& dxf, DL_WriterA& dw) {
       dxf.writePolyline(dw, DL_PolylineData(int(pts.size()), 0, 0, closed ? 1 : 0), attr(layer));
-      for (Vec2 p : pts) dxf.writeVertex(dw, DL_VertexData(p.x, p.y, 0, 0));
+      for (size_t i = 0; i < pts.size(); ++i) dxf.writeVertex(dw, DL_VertexData(pts[i].x, pts[i].y, 0, bulges[i]));
       dxf.writePolylineEnd(dw);
     });
   }
@@ -569,6 +571,38 @@ TEST(DxfPlan, TheLeavesOfADoubleDoorMeetMidway) {
   for (const Wall& w : r.plan.walls)
     for (const Opening& o : w.openings) open += o.kind == OpeningKind::Door ? o.width : 0;
   EXPECT_NEAR(open, 1.6, 0.01);
+  const CellComplex c = build_cells(r.plan);
+  EXPECT_EQ(cells_are_valid(c), "");
+  EXPECT_GE(avenues::testing::door_portals(c), 1);
+  EXPECT_GE(avenues::testing::check_views_from_rooms(r.plan, c), 8);
+}
+
+TEST(DxfPlan, DoubleActingLeavesOnTheWallLayerAreADoorNotHalfDiscRooms) {
+  // As ground-floor-lhs.dxf draws a double-acting pair, all on the wall layer: a 1.8 m gap
+  // (y 0.8–2.6) in the partition, each leaf drawn open both ways across the wall at its
+  // hinge (a 4 cm outline along the chord) and a half circle about the hinge, once as a
+  // bulged polyline, once as an ARC. A half circle of the same size whose ends stand on
+  // the outer wall (a niche) stays a wall.
+  TinyDxf d;
+  d.polyline("Walls", {{0, 0}, {8.4, 0}, {8.4, 3.4}, {0, 3.4}}, true);
+  d.polyline("Walls", {{0.2, 0.2}, {8.2, 0.2}, {8.2, 3.2}, {0.2, 3.2}}, true);
+  d.polyline("Walls", {{4.1, 0.2}, {4.1, 0.8}, {4.3, 0.8}, {4.3, 0.2}}, false);
+  d.polyline("Walls", {{4.1, 3.2}, {4.1, 2.6}, {4.3, 2.6}, {4.3, 3.2}}, false);
+  d.polyline("Walls", {{3.3, 0.8}, {5.1, 0.8}, {5.1, 0.84}, {3.3, 0.84}}, true);  // the lower leaf
+  d.polyline("Walls", {{5.1, 0.8}, {3.3, 0.8}}, false, {1.0});                    // its half circle
+  d.polyline("Walls", {{3.3, 2.6}, {5.1, 2.6}, {5.1, 2.56}, {3.3, 2.56}}, true);  // the upper leaf
+  d.arc("Walls", {4.2, 2.6}, 0.9, 180, 360);
+  d.arc("Walls", {7.0, 0.2}, 0.6, 0, 180);  // a niche standing on the wall's inner face
+  const DxfPlan r = read_dxf_plan(d.write("double-acting.dxf"));
+  EXPECT_NE(r.summary.back().find(", 2 doors,"), std::string::npos) << r.summary.back();
+  double open = 0;  // the leaves shut across the whole gap
+  for (const Wall& w : r.plan.walls)
+    for (const Opening& o : w.openings) open += o.kind == OpeningKind::Door ? o.width : 0;
+  EXPECT_NEAR(open, 1.8, 0.02);
+  std::string said;
+  for (const std::string& line : r.summary) said += line + "\n";
+  EXPECT_NE(said.find(": 2 swings,"), std::string::npos) << said;
+  EXPECT_EQ(r.plan.rooms.size(), 2u) << said;  // no half-disc rooms beside the gap
   const CellComplex c = build_cells(r.plan);
   EXPECT_EQ(cells_are_valid(c), "");
   EXPECT_GE(avenues::testing::door_portals(c), 1);
