@@ -479,6 +479,32 @@ TEST(DxfPlan, WallsDrawnOnlyAsFillsAreWalls) {
   EXPECT_TRUE(said);
 }
 
+TEST(DxfPlan, AColumnDrawnOnlyAsAFillBesideWallLinesIsAWall) {
+  // Walls drawn as lines, and a column 0.3 m square in the kitchen drawn only as a SOLID
+  // on the wall layer: its outline bounds the room. A hatch along the wall lines (the
+  // usual poché) adds nothing.
+  TinyDxf d;
+  two_rooms_in_double_lines(d, "A-WALL");
+  d.arc("A-DOOR", {4.1, 1.0}, 0.9, 90, 180);
+  d.solid("A-WALL", {1.5, 1.5}, {1.8, 1.5}, {1.8, 1.8}, {1.5, 1.8});
+  d.hatch("A-WALL", {{{0, 0}, {8.4, 0}, {8.4, 3.4}, {0, 3.4}}, {{0.2, 0.2}, {8.2, 0.2}, {8.2, 3.2}, {0.2, 3.2}}});
+  const DxfPlan r = read_dxf_plan(d.write("column.dxf"));
+  expect_walkable(r.plan, 2, 1);
+  std::string said;
+  for (const std::string& line : r.summary) said += line + "\n";
+  EXPECT_NE(said.find("1 fills on wall layers with no wall line along their outline"), std::string::npos) << said;
+  double around = 0;  // walls along the column's four sides
+  auto on_column = [](Vec2 p) {
+    const bool x_in = p.x > 1.5 - 1e-3 && p.x < 1.8 + 1e-3, y_in = p.y > 1.5 - 1e-3 && p.y < 1.8 + 1e-3;
+    const bool x_side = std::fabs(p.x - 1.5) < 1e-3 || std::fabs(p.x - 1.8) < 1e-3;
+    const bool y_side = std::fabs(p.y - 1.5) < 1e-3 || std::fabs(p.y - 1.8) < 1e-3;
+    return x_in && y_in && (x_side || y_side);
+  };
+  for (const Wall& w : r.plan.walls)
+    if (on_column(w.centre.front()) && on_column(w.centre.back())) around += length(w.centre.back() - w.centre.front());
+  EXPECT_NEAR(around, 1.2, 0.01);
+}
+
 TEST(DxfPlan, AWindowAcrossAGapBetweenTwoRooms) {
   TinyDxf d;
   two_rooms_in_double_lines(d, "Walls");

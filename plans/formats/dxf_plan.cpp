@@ -20,6 +20,7 @@
 #include "core/angles.h"
 #include "core/number_format.h"
 #include "plans/formats/dxf_layer_names.h"
+#include "plans/formats/segment_grid.h"
 #include "plans/formats/swingless_doors.h"
 #include "plans/formats/wall_arrangement.h"
 #include "plans/formats/wall_line_ends.h"
@@ -945,7 +946,45 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
       if (b.closed) flat.segs.push_back({b.pts.back(), b.pts.front(), b.layer, false, false, {}});
     }
   }
+  // Fills standing for walls beside walls drawn as lines (columns drawn as SOLID squares, a
+  // core hatched without an outline): where no wall line runs along most of a wall-layer
+  // fill's outline, its edges that no line runs along are wall lines.
+  int fills_as_walls = 0;
+  if (!walls_from_fills) {
+    std::vector<std::pair<Vec2, Vec2>> lines;
+    for (const SegPiece& s : flat.segs)
+      if (role[s.layer] == LayerRole::Walls) lines.push_back({m(s.a), m(s.b)});
+    SegmentGrid grid(lines, 0.5);
+    constexpr double kAlong = 0.01;  // [m]
+    auto near_a_line = [&](Vec2 p) {
+      bool near = false;
+      grid.near(p, kAlong, [&](size_t j) { near = near || distance_to_segment(p, lines[j].first, lines[j].second) < kAlong; });
+      return near;
+    };
+    for (const HatchPiece& h : flat.hatches) {
+      if (role[h.layer] != LayerRole::Walls) continue;
+      for (const auto& r : h.rings) {
+        if (r.size() < 3) continue;
+        double perimeter = 0, along = 0;
+        std::vector<std::pair<Vec2, Vec2>> bare;
+        for (size_t i = 0; i < r.size(); ++i) {
+          const Vec2 a = r[i], b = r[(i + 1) % r.size()];
+          const double len = length(m(b) - m(a));
+          if (!(len > 0)) continue;
+          perimeter += len;
+          if (near_a_line(m(a)) && near_a_line(m(0.5 * (a + b))) && near_a_line(m(b))) along += len;
+          else bare.push_back({a, b});
+        }
+        if (!(along < 0.5 * perimeter)) continue;
+        for (const auto& [a, b] : bare) flat.segs.push_back({a, b, h.layer, false, false, {}});
+        ++fills_as_walls;
+      }
+    }
+  }
   if (walls_from_fills) out.summary.push_back("the wall layers hold fills and no lines: the fills' outlines taken as the walls' faces");
+  if (fills_as_walls > 0)
+    out.summary.push_back(std::to_string(fills_as_walls) +
+                          " fills on wall layers with no wall line along their outline (columns, cores): their outlines taken as walls");
   if (bands_as_walls > 0)
     out.summary.push_back(std::to_string(bands_as_walls) + " wide polylines on wall layers taken as walls as wide as they are drawn");
   out.drawing.reserve(flat.segs.size());

@@ -13,71 +13,10 @@
 #include <unordered_map>
 
 #include "core/angles.h"
+#include "plans/formats/segment_grid.h"
 
 namespace avenues {
 namespace {
-
-/// Segments (those from index `first` on) binned in square cells of side `cell`; a
-/// query visits the cells a box covers.
-class SegmentGrid {
- public:
-  SegmentGrid(const std::vector<std::pair<Vec2, Vec2>>& lines, double cell, size_t first = 0)
-      : cell_(cell), seen_(lines.size(), 0) {
-    for (size_t i = first; i < lines.size(); ++i) {
-      const auto [a, b] = lines[i];
-      const Vec2 lo{std::min(a.x, b.x), std::min(a.y, b.y)}, hi{std::max(a.x, b.x), std::max(a.y, b.y)};
-      // A very long line is binned along its length only (cells it passes near); one
-      // longer than kMaxSteps cells (or not finite: a broken drawing) is met by every query.
-      const double len = length(b - a);
-      if (!(len / cell < kMaxSteps) || !(std::fabs(lo.x) < kFar && std::fabs(lo.y) < kFar && std::fabs(hi.x) < kFar && std::fabs(hi.y) < kFar)) {
-        everywhere_.push_back(i);
-        continue;
-      }
-      const int steps = std::max(1, int(std::ceil(len / cell)));
-      if ((hi.x - lo.x) * (hi.y - lo.y) > 16 * double(steps) * cell * cell) {
-        for (int s = 0; s <= steps; ++s) {
-          const Vec2 p = a + (double(s) / steps) * (b - a);
-          for (int dx = -1; dx <= 1; ++dx)
-            for (int dy = -1; dy <= 1; ++dy) add(key(ix(p.x) + dx, ix(p.y) + dy), i);
-        }
-        continue;
-      }
-      for (int64_t x = ix(lo.x); x <= ix(hi.x); ++x)
-        for (int64_t y = ix(lo.y); y <= ix(hi.y); ++y) add(key(x, y), i);
-    }
-  }
-  /// Calls f(index) once for each line binned in a cell the box [p - r, p + r] covers.
-  template <class F>
-  void near(Vec2 p, double r, F f) {
-    ++stamp_;
-    for (size_t i : everywhere_) f(i);
-    if (!(std::fabs(p.x) < kFar && std::fabs(p.y) < kFar)) return;
-    for (int64_t x = ix(p.x - r); x <= ix(p.x + r); ++x)
-      for (int64_t y = ix(p.y - r); y <= ix(p.y + r); ++y) {
-        auto it = bins_.find(key(x, y));
-        if (it == bins_.end()) continue;
-        for (size_t i : it->second) {
-          if (seen_[i] == stamp_) continue;
-          seen_[i] = stamp_;
-          f(i);
-        }
-      }
-  }
-
- private:
-  static constexpr double kMaxSteps = 1 << 12, kFar = 1e12;  ///< [cells] (1.8 km at 0.45 m), [m]
-  int64_t ix(double v) const { return int64_t(std::floor(v / cell_)); }
-  static uint64_t key(int64_t x, int64_t y) { return (uint64_t(x) << 32) ^ uint64_t(uint32_t(y)); }
-  void add(uint64_t k, size_t i) {
-    std::vector<size_t>& bin = bins_[k];
-    if (bin.empty() || bin.back() != i) bin.push_back(i);
-  }
-  double cell_;
-  std::unordered_map<uint64_t, std::vector<size_t>> bins_;
-  std::vector<uint64_t> seen_;
-  std::vector<size_t> everywhere_;
-  uint64_t stamp_ = 0;
-};
 
 /// The squared distance from p to segment [a, b] (no square root: the hot test of pass 0).
 double distance2_to_segment(Vec2 p, Vec2 a, Vec2 b) {
