@@ -16,6 +16,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <numbers>
 #include <set>
 #include <string>
 
@@ -477,6 +478,33 @@ TEST(DxfPlan, WallsDrawnOnlyAsFillsAreWalls) {
   bool said = false;
   for (const std::string& line : r.summary) said |= line.find("fills' outlines taken as the walls' faces") != std::string::npos;
   EXPECT_TRUE(said);
+}
+
+TEST(DxfPlan, ASwingDrawnAsShortStraightLinesIsASwing) {
+  // The swing of DoubleLinesWithADoorSwing as a program that writes arcs as lines draws
+  // it: twelve lines of 7.5 degrees, once as one polyline and once as separate LINEs,
+  // with the leaf drawn from the hinge to the swing's open end. As lines on the door
+  // layer they were frames: a curved wall across the gap, and no way between the rooms.
+  const Vec2 hinge{4.1, 1.0};
+  std::vector<Vec2> arc;
+  for (int i = 0; i <= 12; ++i) {
+    const double t = (90 + 7.5 * i) * std::numbers::pi / 180;
+    arc.push_back(hinge + 0.9 * Vec2{std::cos(t), std::sin(t)});
+  }
+  TinyDxf as_polyline, as_lines;
+  for (TinyDxf* d : {&as_polyline, &as_lines}) {
+    two_rooms_in_double_lines(*d, "A-WALL");
+    d->line("A-DOOR", hinge, arc.back());  // the leaf, open
+  }
+  as_polyline.polyline("A-DOOR", arc, false);
+  for (size_t i = 0; i + 1 < arc.size(); ++i) as_lines.line("A-DOOR", arc[i], arc[i + 1]);
+  for (TinyDxf* d : {&as_polyline, &as_lines}) {
+    const DxfPlan r = read_dxf_plan(d->write(d == &as_lines ? "swing-lines.dxf" : "swing-polyline.dxf"));
+    std::string said;
+    for (const std::string& line : r.summary) said += line + "\n";
+    EXPECT_NE(said.find("1 curves drawn as short straight lines on door layers taken as arcs"), std::string::npos) << said;
+    expect_walkable(r.plan, 2, 1);
+  }
 }
 
 TEST(DxfPlan, AColumnDrawnOnlyAsAFillBesideWallLinesIsAWall) {

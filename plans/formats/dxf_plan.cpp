@@ -762,6 +762,96 @@ void flatten(const Collector& col, const Group& g, const std::vector<Placement>&
   }
 }
 
+/// Door swings drawn as short straight lines, as programs that write arcs as polylines or
+/// lines do (conversions from PDF, SketchUp, Rhino): a chain of three or more lines on a
+/// door layer or in a door block, end to end, turning the same way by at most 36 degrees
+/// at each corner, its corners on one circle. Each such chain is an arc, its lines curved
+/// pieces as an ARC's are (no frame, no wall: as straight lines they closed the door's gap
+/// with a curved wall, and the rooms either side had no way between them). Returns how
+/// many were found.
+int swings_drawn_as_lines(Flat& flat, const std::map<std::string, LayerRole>& role) {
+  std::vector<size_t> cand;
+  double extent = 1;
+  for (size_t i = 0; i < flat.segs.size(); ++i) {
+    const SegPiece& s = flat.segs[i];
+    if (s.curved || !(length(s.b - s.a) > 0) || (role.at(s.layer) != LayerRole::Doors && !s.door_block)) continue;
+    cand.push_back(i);
+    extent = std::max({extent, std::fabs(s.a.x), std::fabs(s.a.y), std::fabs(s.b.x), std::fabs(s.b.y)});
+  }
+  // Ends meet where they agree to a billionth of the drawing's extent.
+  const double q = extent * 1e-9;
+  auto key = [q](Vec2 p) { return std::pair<int64_t, int64_t>(std::llround(p.x / q), std::llround(p.y / q)); };
+  std::map<std::pair<int64_t, int64_t>, std::vector<size_t>> at;  // end -> indices into cand
+  for (size_t k = 0; k < cand.size(); ++k) {
+    const SegPiece& s = flat.segs[cand[k]];
+    at[key(s.a)].push_back(k);
+    if (key(s.b) != key(s.a)) at[key(s.b)].push_back(k);
+  }
+  auto other_end = [&](size_t k, Vec2 p) {
+    const SegPiece& s = flat.segs[cand[k]];
+    return key(s.a) == key(p) ? s.b : s.a;
+  };
+  constexpr double kMostTurn = 36 * kPi / 180;  // ten lines to a circle at the coarsest
+  // The other line at end p of line k, where exactly two lines meet there, turning gently.
+  auto next = [&](size_t k, Vec2 p) -> std::optional<size_t> {
+    const std::vector<size_t>& v = at[key(p)];
+    if (v.size() != 2) return std::nullopt;
+    const size_t n = v[0] == k ? v[1] : v[0];
+    const Vec2 u = p - other_end(k, p), w = other_end(n, p) - p;
+    if (!(std::fabs(std::atan2(cross(u, w), dot(u, w))) < kMostTurn)) return std::nullopt;
+    return n;
+  };
+  std::vector<bool> used(cand.size(), false);
+  int found = 0;
+  for (size_t k0 = 0; k0 < cand.size(); ++k0) {
+    if (used[k0]) continue;
+    // Walk back from k0's end a to the chain's start, then forward collecting corners.
+    size_t k = k0;
+    Vec2 p = flat.segs[cand[k0]].a;
+    for (size_t steps = 0; steps < cand.size(); ++steps) {
+      const std::optional<size_t> n = next(k, p);
+      if (!n || *n == k0) break;  // an open end, or round a closed loop
+      p = other_end(*n, p), k = *n;
+    }
+    std::vector<size_t> lines;
+    std::vector<Vec2> pts{p};
+    for (std::optional<size_t> cur = k; cur && !used[*cur];) {
+      used[*cur] = true;
+      lines.push_back(cand[*cur]);
+      pts.push_back(other_end(*cur, pts.back()));
+      cur = next(*cur, pts.back());
+    }
+    if (lines.size() < 3 || key(pts.front()) == key(pts.back())) continue;  // too short, or a closed outline
+    // Turning the same way, gently, at every corner.
+    double turned = 0;
+    bool smooth = true;
+    for (size_t i = 1; i + 1 < pts.size() && smooth; ++i) {
+      const Vec2 u = pts[i] - pts[i - 1], v = pts[i + 1] - pts[i];
+      const double t = std::atan2(cross(u, v), dot(u, v));
+      smooth = std::fabs(t) > 1e-3 && std::fabs(t) < kMostTurn && (i == 1 || (t > 0) == (turned > 0));
+      turned += t;
+    }
+    if (!smooth) continue;
+    // The circle through the first, middle and last corners holds them all.
+    const Vec2 a = pts.front(), b = pts[pts.size() / 2], c = pts.back();
+    const double d = 2 * cross(b - a, c - a);
+    if (!(std::fabs(d) > 0)) continue;
+    const Vec2 ab = b - a, ac = c - a;
+    const Vec2 centre = a + (1 / d) * Vec2{ac.y * dot(ab, ab) - ab.y * dot(ac, ac), ab.x * dot(ac, ac) - ac.x * dot(ab, ab)};
+    const double r = length(a - centre);
+    if (!std::all_of(pts.begin(), pts.end(), [&](Vec2 corner) { return std::fabs(length(corner - centre) - r) <= 0.02 * r; })) continue;
+    // The arc's sweep: each line's angle about the centre, summed.
+    double sweep = 0;
+    for (size_t i = 0; i + 1 < pts.size(); ++i) sweep += std::fabs(std::atan2(cross(pts[i] - centre, pts[i + 1] - centre), dot(pts[i] - centre, pts[i + 1] - centre)));
+    const SegPiece& first = flat.segs[lines.front()];
+    const bool ccw = turned > 0;
+    flat.arcs.push_back({ArcPiece{centre, ccw ? a : c, ccw ? c : a, r, sweep * 180 / kPi, first.layer}, first.door_block});
+    for (size_t i : lines) flat.segs[i].curved = true;
+    ++found;
+  }
+  return found;
+}
+
 }  // namespace
 
 bool looks_like_dxf(const std::string& head) {
@@ -845,6 +935,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
       s.layer = "block " + s.window_block;
       role[s.layer] = LayerRole::Windows;
     }
+  const int swings_as_lines = swings_drawn_as_lines(flat, role);
   std::vector<std::string> taken[4];
   for (const auto& [l, r] : role)
     if (r != LayerRole::None) taken[int(r)].push_back(l);
@@ -982,6 +1073,8 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     }
   }
   if (walls_from_fills) out.summary.push_back("the wall layers hold fills and no lines: the fills' outlines taken as the walls' faces");
+  if (swings_as_lines > 0)
+    out.summary.push_back(std::to_string(swings_as_lines) + " curves drawn as short straight lines on door layers taken as arcs (swings)");
   if (fills_as_walls > 0)
     out.summary.push_back(std::to_string(fills_as_walls) +
                           " fills on wall layers with no wall line along their outline (columns, cores): their outlines taken as walls");
