@@ -149,6 +149,17 @@ class TinyDxf {
       dxf.writeText(dw, DL_TextData(p.x, p.y, 0, p.x, p.y, 0, 0.2, 1, 0, 0, 0, t, "standard", 0), attr(layer));
     });
   }
+  /// A line and a text in paper space (group 67), as a layout's sheet holds them.
+  void on_paper(const std::string& layer, Vec2 a, Vec2 b, const std::string& t) {
+    body_.push_back([=](DL_Dxf&, DL_WriterA& dw) {
+      dw.dxfString(0, "LINE"), dw.dxfString(100, "AcDbEntity"), dw.dxfInt(67, 1), dw.dxfString(8, layer);
+      dw.dxfString(100, "AcDbLine");
+      dw.dxfReal(10, a.x), dw.dxfReal(20, a.y), dw.dxfReal(30, 0), dw.dxfReal(11, b.x), dw.dxfReal(21, b.y), dw.dxfReal(31, 0);
+      dw.dxfString(0, "TEXT"), dw.dxfString(100, "AcDbEntity"), dw.dxfInt(67, 1), dw.dxfString(8, layer);
+      dw.dxfString(100, "AcDbText");
+      dw.dxfReal(10, a.x), dw.dxfReal(20, a.y + 0.3), dw.dxfReal(30, 0), dw.dxfReal(40, 0.2), dw.dxfString(1, t);
+    });
+  }
   /// A solid hatch of rings (each a closed polygon).
   void hatch(const std::string& layer, std::vector<std::vector<Vec2>> rings) {
     body_.push_back([=](DL_Dxf& dxf, DL_WriterA& dw) {
@@ -325,6 +336,21 @@ TEST(DxfPlan, DoubleLinesWithADoorSwing) {
   EXPECT_EQ(r.plan.rooms[0].name == "Kitchen" || r.plan.rooms[1].name == "Kitchen", true);
   EXPECT_EQ(r.plan.rooms[0].name == "Hall" || r.plan.rooms[1].name == "Hall", true);
   EXPECT_NE(r.summary[0].find("'A-WALL'"), std::string::npos) << r.summary[0];
+}
+
+TEST(DxfPlan, PaperSpaceIsNoPartOfThePlan) {
+  // A layout's sheet in paper space, its coordinates overlapping the plan's: a frame line
+  // across the kitchen on the wall layer and the sheet's title inside it. Neither is read.
+  TinyDxf d;
+  two_rooms_in_double_lines(d, "A-WALL");
+  d.arc("A-DOOR", {4.1, 1.0}, 0.9, 90, 180);
+  d.on_paper("A-WALL", {2.0, 0.1}, {2.0, 3.3}, "GROUND FLOOR PLAN");
+  const DxfPlan r = read_dxf_plan(d.write("paper-space.dxf"));
+  expect_walkable(r.plan, 2, 1);
+  for (const Room& room : r.plan.rooms) EXPECT_TRUE(room.name == "Kitchen" || room.name == "Hall") << room.name;
+  std::string said;
+  for (const std::string& line : r.summary) said += line + "\n";
+  EXPECT_NE(said.find("2 lines, texts, fills and inserts in paper space"), std::string::npos) << said;
 }
 
 TEST(DxfPlan, ADoorBlockInsertClosesItsGap) {

@@ -271,6 +271,7 @@ struct Ocs {
 struct MLine {
   std::string layer;
   bool closed = false;
+  bool paper = false;  ///< in paper space (group 67)
   struct Vertex { Vec2 p, dir, miter; std::vector<std::vector<double>> params; };
   std::vector<Vertex> vertices;
   int next_coord = 0;  ///< the 2x code expected next (21, 22, 23), or 0
@@ -280,6 +281,7 @@ struct MLine {
 class Collector : public DL_CreationAdapter {
  public:
   Group model;
+  Group paper;  ///< paper space's entities (a layout's title block, notes): read and left out
   std::map<std::string, Group> blocks;
   int insunits = 0;
   double sagitta = 0;  ///< [drawing units] an arc's pieces' furthest from it; 0 while no unit is known
@@ -298,8 +300,9 @@ class Collector : public DL_CreationAdapter {
     flush();
     cur_ = &blocks[d.name];
     cur_->base = {d.bpx, d.bpy};
+    in_block_ = true;
   }
-  void endBlock() override { flush(), cur_ = &model; }
+  void endBlock() override { in_block_ = false, flush(), cur_ = &model; }
   // No flush at endSection: dxflib calls it after every entity, and an old-style
   // POLYLINE's vertices are entities of their own that follow it (up to its SEQEND).
   void endSequence() override { flush(); }
@@ -376,6 +379,10 @@ class Collector : public DL_CreationAdapter {
     }
     if (mline_ && code == 8) {
       mline_->layer = value;
+      return;
+    }
+    if (mline_ && code == 67) {
+      mline_->paper = value.find_first_not_of(" 0") != std::string::npos;
       return;
     }
     char* end = nullptr;
@@ -535,6 +542,10 @@ class Collector : public DL_CreationAdapter {
     }
     in_poly_ = in_spline_ = false;
     poly_.clear();
+    // What follows is the entity being read (flush runs as each begins): in model space,
+    // or in a layout's paper space (group 67: title blocks, viewports' frames, notes in
+    // paper coordinates that would land among the rooms), which is no part of the plan.
+    if (!in_block_) cur_ = getAttributes().isInPaperSpace() ? &paper : &model;
   }
 
  private:
@@ -581,6 +592,7 @@ class Collector : public DL_CreationAdapter {
   /// An MLINE's elements as lines, their cuts left open.
   void emit_mline(const MLine& ml) {
     flush();
+    if (!in_block_) cur_ = ml.paper ? &paper : &model;
     const size_t n = ml.vertices.size();
     if (n < 2) return;
     const size_t segs = ml.closed ? n : n - 1;
@@ -609,6 +621,7 @@ class Collector : public DL_CreationAdapter {
   }
 
   Group* cur_ = &model;
+  bool in_block_ = false;  ///< between a BLOCK and its ENDBLK
   Ocs map_, hatch_map_;  ///< the coordinates of the entity being read (of its edges, for a hatch)
   double z_ = 0;         ///< its elevation in them
   std::optional<MLine> mline_;
@@ -1511,6 +1524,8 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     for (const std::string& x : v) s += (s.empty() ? "'" : ", '") + x + "'";
     return s.empty() ? std::string("none") : s;
   };
+  if (const size_t n = col.paper.segs.size() + col.paper.texts.size() + col.paper.hatches.size() + col.paper.inserts.size(); n > 0)
+    out.summary.push_back(std::to_string(n) + " lines, texts, fills and inserts in paper space (a layout's sheet, not the plan) left out");
   out.summary.push_back("walls from layers " + joined(taken[int(LayerRole::Walls)]));
   out.summary.push_back("doors from layers " + joined(taken[int(LayerRole::Doors)]) + " and door blocks: " +
                         std::to_string(swings) + " swings, " +
