@@ -559,6 +559,24 @@ TEST(DxfPlan, AColumnDrawnOnlyAsAFillBesideWallLinesIsAWall) {
   EXPECT_NEAR(around, 1.2, 0.01);
 }
 
+TEST(DxfPlan, AColumnOnAColumnLayerStandsInItsRoom) {
+  // AIA's structural column layer: a 0.3 m square in the kitchen is solid, not floor.
+  TinyDxf d;
+  two_rooms_in_double_lines(d, "A-WALL");
+  d.arc("A-DOOR", {4.1, 1.0}, 0.9, 90, 180);
+  d.polyline("S-COLS", {{1.5, 1.5}, {1.8, 1.5}, {1.8, 1.8}, {1.5, 1.8}}, true);
+  const DxfPlan r = read_dxf_plan(d.write("column-layer.dxf"));
+  expect_walkable(r.plan, 2, 1);
+  double around = 0;
+  for (const Wall& w : r.plan.walls) {
+    const Vec2 a = w.centre.front(), b = w.centre.back();
+    const bool on = std::max({std::fabs(a.x - 1.65), std::fabs(a.y - 1.65), std::fabs(b.x - 1.65), std::fabs(b.y - 1.65)}) < 0.151;
+    if (on) around += length(b - a);
+  }
+  EXPECT_NEAR(around, 1.2, 0.01);
+  EXPECT_NE(r.summary[0].find("'S-COLS'"), std::string::npos) << r.summary[0];
+}
+
 TEST(DxfPlan, AWindowAcrossAGapBetweenTwoRooms) {
   TinyDxf d;
   two_rooms_in_double_lines(d, "Walls");
@@ -964,6 +982,10 @@ TEST(DxfLayerNames, TheNamesDrawingsUseInManyLanguages) {
       {"Duvar", LayerRole::Walls}, {"Kapı", LayerRole::Doors}, {"Pencere", LayerRole::Windows},
       {"墙体", LayerRole::Walls}, {"门", LayerRole::Doors}, {"窗", LayerRole::Windows}, {"门窗", LayerRole::Doors},
       {"壁", LayerRole::Walls}, {"ドア", LayerRole::Doors}, {"窓", LayerRole::Windows}, {"家具", LayerRole::None},
+      // Columns are walls; their grid is not.
+      {"S-COLS", LayerRole::Walls}, {"A-COLS", LayerRole::Walls}, {"Columns", LayerRole::Walls}, {"Stützen", LayerRole::Walls},
+      {"Poteaux", LayerRole::Walls}, {"Pilares", LayerRole::Walls}, {"Colonne", LayerRole::Walls}, {"Колонны", LayerRole::Walls},
+      {"柱", LayerRole::Walls}, {"S-GRID", LayerRole::None}, {"A-COLS-IDEN", LayerRole::None}, {"Colour", LayerRole::None},
       // Nothing said.
       {"0", LayerRole::None}, {"Defpoints", LayerRole::None}, {"A786g - Works of Art - sculpture-murals", LayerRole::None}, {"Furniture", LayerRole::None}};
   for (const auto& [name, role] : names) EXPECT_EQ(layer_role_by_name(name), role) << name;

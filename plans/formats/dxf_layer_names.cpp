@@ -149,6 +149,11 @@ LayerRole layer_role_by_name(const std::string& name) {
       a_word_is(w, {"mur", "murs", "muro", "muros", "muri", "muur", "muren"}) ||
       a_word_starts(w, {"pared", "seinä", "seina", "stěn", "steny"}))
     return LayerRole::Walls;
+  // Columns stand in the way as walls do (AIA's A-COLS and S-COLS; their grid is none).
+  if (contains(n, {"column", "colonne", "stütze", "stuetze", "säule", "saeule", "poteau", "pilastr", "kolom", "pelare",
+                   "słup", "колонн", "柱"}) ||
+      a_word_is(w, {"col", "cols"}) || a_word_starts(w, {"columna", "pilar"}))
+    return LayerRole::Walls;
   return LayerRole::None;
 }
 
