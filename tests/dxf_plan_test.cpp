@@ -506,6 +506,26 @@ TEST(DxfPlan, WallsDrawnOnlyAsFillsAreWalls) {
   EXPECT_TRUE(said);
 }
 
+TEST(DxfPlan, ASwingOnTheWallLayerIsADoorNotAQuarterDiscRoom) {
+  // A drawing with its doors on the wall layer: the swing about the jamb at (4.1, 1.0),
+  // once with its leaf drawn open and once without. A rounded corner of the same radius
+  // (ends on two walls, its centre in the room) stays a wall.
+  TinyDxf with_leaf, without;
+  for (TinyDxf* d : {&with_leaf, &without}) {
+    two_rooms_in_double_lines(*d, "Walls");
+    d->arc("Walls", {4.1, 1.0}, 0.9, 90, 180);
+    d->arc("Walls", {7.3, 2.3}, 0.9, 0, 90);
+  }
+  with_leaf.line("Walls", {4.1, 1.0}, {3.2, 1.0});
+  for (TinyDxf* d : {&with_leaf, &without}) {
+    const DxfPlan r = read_dxf_plan(d->write(d == &without ? "wall-swing.dxf" : "wall-swing-leaf.dxf"));
+    std::string said;
+    for (const std::string& line : r.summary) said += line + "\n";
+    EXPECT_NE(said.find(": 1 swings,"), std::string::npos) << said;
+    expect_walkable(r.plan, 2, 1);
+  }
+}
+
 TEST(DxfPlan, ASwingDrawnAsShortStraightLinesIsASwing) {
   // The swing of DoubleLinesWithADoorSwing as a program that writes arcs as lines draws
   // it: twelve lines of 7.5 degrees, once as one polyline and once as separate LINEs,
