@@ -149,6 +149,14 @@ class TinyDxf {
       dxf.writeText(dw, DL_TextData(p.x, p.y, 0, p.x, p.y, 0, 0.2, 1, 0, 0, 0, t, "standard", 0), attr(layer));
     });
   }
+  /// An entity of a type dxflib does not know (AutoCAD Architecture's AEC_WALL ...), with
+  /// some of the binary proxy graphics such objects carry.
+  void foreign(const std::string& type, const std::string& layer) {
+    body_.push_back([=](DL_Dxf&, DL_WriterA& dw) {
+      dw.dxfString(0, type), dw.dxfString(100, "AcDbEntity"), dw.dxfString(8, layer);
+      dw.dxfInt(92, 16), dw.dxfString(310, "0123456789ABCDEF0123456789ABCDEF");
+    });
+  }
   /// A line and a text in paper space (group 67), as a layout's sheet holds them.
   void on_paper(const std::string& layer, Vec2 a, Vec2 b, const std::string& t) {
     body_.push_back([=](DL_Dxf&, DL_WriterA& dw) {
@@ -968,6 +976,33 @@ TEST(DxfPlan, NoWallLayerIsAClearErrorAndLayersOverride) {
   EXPECT_THROW(read_dxf_plan(path, o), PlanError);
   o.layers = "floors=Lines";
   EXPECT_THROW(read_dxf_plan(path, o), PlanError);
+}
+
+TEST(DxfPlan, AutoCadArchitectureObjectsAreNamedWithTheWayToExportThem) {
+  // Walls and doors as AutoCAD Architecture's objects, which no reader but AutoCAD's own
+  // draws: not "no layer holds walls" (A-WALL does), but what they are and what to do.
+  TinyDxf aec;
+  for (int i = 0; i < 4; ++i) aec.foreign("AEC_WALL", "A-WALL");
+  aec.foreign("AEC_DOOR", "A-DOOR");
+  try {
+    read_dxf_plan(aec.write("aec.dxf"));
+    FAIL() << "no error";
+  } catch (const PlanError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("4 AEC_WALL"), std::string::npos) << what;
+    EXPECT_NE(what.find("1 AEC_DOOR"), std::string::npos) << what;
+    EXPECT_NE(what.find("-AECEXPORTTOAUTOCAD"), std::string::npos) << what;
+  }
+  // Beside walls drawn as lines, they are skipped with a warning naming them.
+  TinyDxf mixed;
+  two_rooms_in_double_lines(mixed, "A-WALL");
+  mixed.arc("A-DOOR", {4.1, 1.0}, 0.9, 90, 180);
+  mixed.foreign("ACAD_PROXY_ENTITY", "A-FURN");
+  const DxfPlan r = read_dxf_plan(mixed.write("proxy.dxf"));
+  expect_walkable(r.plan, 2, 1);
+  bool warned = false;
+  for (const std::string& w : r.plan.warnings) warned |= w.find("1 ACAD_PROXY_ENTITY") != std::string::npos;
+  EXPECT_TRUE(warned);
 }
 
 TEST(DxfLayerNames, TheNamesDrawingsUseInManyLanguages) {

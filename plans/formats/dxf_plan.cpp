@@ -288,6 +288,16 @@ class Collector : public DL_CreationAdapter {
   int faces_3d = 0;  ///< 3DFACEs and polygon or polyface mesh POLYLINEs: a 3D model's
   std::map<std::string, int> layer_entities;
   std::vector<std::string> skipped;
+  std::map<std::string, int> foreign_objects;  ///< AEC_WALL, ACAD_PROXY_ENTITY ...: by type, how many
+
+  /// What foreign_objects means for the plan, or "" when there are none.
+  std::string foreign_note() const {
+    if (foreign_objects.empty()) return {};
+    std::string list;
+    for (const auto& [type, n] : foreign_objects) list += (list.empty() ? "" : ", ") + std::to_string(n) + " " + type;
+    return "the drawing holds objects that only AutoCAD Architecture (or another of AutoCAD's verticals) can draw (" +
+           list + "); save it with its Export to AutoCAD (-AECEXPORTTOAUTOCAD), which turns them into lines, and open that";
+  }
 
   void setVariableInt(const std::string& key, int value, int) override {
     if (key != "$INSUNITS") return;
@@ -367,9 +377,14 @@ class Collector : public DL_CreationAdapter {
   void processCodeValuePair(unsigned int code, const std::string& value) override {
     // dxflib hands over an entity when the next one's 0 arrives, after this call: the
     // width of the polyline just ended waits in ended_width_.
+    if (code == 2 && entity_ == "SECTION") section_ = value;
     if (code == 0) {
       ended_width_ = width_start_ > 0 && width_start_ == width_end_ ? width_start_ : 0;
       entity_ = value, width_start_ = width_end_ = 0;
+      // Objects of AutoCAD's verticals (Architecture's AEC_WALL, AEC_DOOR ...; proxies),
+      // which only those programs can draw: counted, to say so.
+      if ((section_ == "ENTITIES" || section_ == "BLOCKS") && (value.rfind("AEC", 0) == 0 || value == "ACAD_PROXY_ENTITY"))
+        ++foreign_objects[value];
       if (mline_) {
         emit_mline(*mline_);
         mline_.reset();
@@ -626,6 +641,7 @@ class Collector : public DL_CreationAdapter {
   double z_ = 0;         ///< its elevation in them
   std::optional<MLine> mline_;
   std::string entity_;                ///< the type of the entity whose pairs are being read
+  std::string section_;               ///< the section being read (HEADER, BLOCKS, ENTITIES ...)
   double width_start_ = 0, width_end_ = 0, ended_width_ = 0, poly_width_ = 0;
   std::optional<Band> band_;          ///< a wide polyline being flushed
   bool in_poly_ = false, poly_closed_ = false, in_spline_ = false;
@@ -906,6 +922,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   plan.lenient = true;
   plan.unnamed_spaces_solid = true;  // the wall faces; the outside is free
   for (const std::string& s : col.skipped) plan.warnings.push_back(s + ": skipped");
+  if (!col.foreign_note().empty()) plan.warnings.push_back(col.foreign_note() + "; they are skipped");
 
   // Which layer is what: --layers first, then the usual names.
   std::map<std::string, LayerRole> given;
@@ -991,6 +1008,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
       list += "\n  '" + l + "'";
       if (it != col.layer_entities.end() && it->second > 0) list += " (" + std::to_string(it->second) + " entities)";
     }
+    if (!col.foreign_note().empty()) throw PlanError(file, "no wall lines: " + col.foreign_note());
     throw PlanError(file, "no layer holds walls by its name (A-WALL, Walls, partitions, ... Existing Structure, "
                           "Wand, Murs, Muros, Muri, Paredes, Muren, Стены, 墙): its layers are" + list +
                           "\nname the wall layers with --layers 'walls=NAME,NAME;doors=NAME;windows=NAME'");
@@ -1441,7 +1459,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
       return l;
     }() + " enclose no space (" + std::to_string(arr.faces) + " closed faces, all narrow enough to be walls): "
           "every room must be closed by wall lines, door swings or window lines; name other wall layers with "
-          "--layers 'walls=NAME,NAME;doors=NAME;windows=NAME'");
+          "--layers 'walls=NAME,NAME;doors=NAME;windows=NAME'" + (col.foreign_note().empty() ? "" : "; " + col.foreign_note()));
 
   Storey storey;
   storey.name = "ground";
