@@ -1037,6 +1037,12 @@ TEST(DxfLayerNames, TheNamesDrawingsUseInManyLanguages) {
       {"Duvar", LayerRole::Walls}, {"Kapı", LayerRole::Doors}, {"Pencere", LayerRole::Windows},
       {"墙体", LayerRole::Walls}, {"门", LayerRole::Doors}, {"窗", LayerRole::Windows}, {"门窗", LayerRole::Doors},
       {"壁", LayerRole::Walls}, {"ドア", LayerRole::Doors}, {"窓", LayerRole::Windows}, {"家具", LayerRole::None},
+      // A German office's layers (ROHBAU: the shell, AUSBAU: the fit-out); what walls are made of.
+      {"ROHBAU - Darstellungen - Waende", LayerRole::Walls}, {"AUSBAU - Darstellungen - Trennwaende", LayerRole::Walls},
+      {"AUSBAU - Darstellungen - Trockenbau", LayerRole::Walls}, {"AUSBAU - Darstellungen - Fassade", LayerRole::Walls},
+      {"AUSBAU - Objekte - Tueren", LayerRole::Doors}, {"ROHBAU - Darstellungen - Decken", LayerRole::None},
+      {"AUSBAU - Darstellungen - Fassade-Bemaßung", LayerRole::None}, {"A-Drywall", LayerRole::Walls},
+      {"Masonry", LayerRole::Walls}, {"Maçonnerie", LayerRole::Walls}, {"Façade", LayerRole::Walls},
       // Columns are walls; their grid is not.
       {"S-COLS", LayerRole::Walls}, {"A-COLS", LayerRole::Walls}, {"Columns", LayerRole::Walls}, {"Stützen", LayerRole::Walls},
       {"Poteaux", LayerRole::Walls}, {"Pilares", LayerRole::Walls}, {"Colonne", LayerRole::Walls}, {"Колонны", LayerRole::Walls},

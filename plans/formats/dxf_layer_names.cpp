@@ -145,7 +145,10 @@ LayerRole layer_role_by_name(const std::string& name) {
   if (door) return LayerRole::Doors;
   if (contains(n, {"wall", "wand", "wänd", "waend", "mauer", "partition", "tragwerk", "structure", "cloison", "tabique",
                    "tramezz", "alvenaria", "muratur", "ścian", "scian", "стен", "перегород", "duvar", "vägg", "vagg",
-                   "væg", "vegg", "墙", "牆", "壁"}) ||
+                   "væg", "vegg", "墙", "牆", "壁",
+                   // what walls are made of, and the building's face
+                   "drywall", "masonry", "trockenbau", "maçonner", "maconner", "mamposter", "cartongess", "facade",
+                   "façade", "fassade", "fachada", "facciata", "gevel"}) ||
       a_word_is(w, {"mur", "murs", "muro", "muros", "muri", "muur", "muren"}) ||
       a_word_starts(w, {"pared", "seinä", "seina", "stěn", "steny"}))
     return LayerRole::Walls;
