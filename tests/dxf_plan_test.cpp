@@ -514,6 +514,31 @@ TEST(DxfPlan, WallsDrawnOnlyAsFillsAreWalls) {
   EXPECT_TRUE(said);
 }
 
+TEST(DxfPlan, ADoorDrawnOverAWallNotCutForItOpensTheWall) {
+  // A sketch: the partition's two faces drawn straight through, the door's swing (an arc,
+  // or a door block) drawn on top with its hinge and closed end on the near face. The
+  // partition is opened between them, and the door joins the rooms.
+  TinyDxf arc, block;
+  for (TinyDxf* d : {&arc, &block}) {
+    d->polyline("A-WALL", {{0, 0}, {8.4, 0}, {8.4, 3.4}, {0, 3.4}}, true);
+    d->polyline("A-WALL", {{0.2, 0.2}, {8.2, 0.2}, {8.2, 3.2}, {0.2, 3.2}}, true);
+    d->line("A-WALL", {4.1, 0.2}, {4.1, 3.2});
+    d->line("A-WALL", {4.3, 0.2}, {4.3, 3.2});
+    d->text("Text", {2, 1.5}, "Kitchen");
+    d->text("Text", {6, 1.5}, "Hall");
+  }
+  arc.arc("A-DOOR", {4.1, 1.0}, 0.9, 90, 180);
+  arc.line("A-DOOR", {4.1, 1.0}, {3.2, 1.0});
+  block.door_block("Tuer", {4.1, 1.9}, 270, 0.9);
+  for (TinyDxf* d : {&arc, &block}) {
+    const DxfPlan r = read_dxf_plan(d->write(d == &arc ? "uncut-arc.dxf" : "uncut-block.dxf"));
+    std::string said;
+    for (const std::string& line : r.summary) said += line + "\n";
+    EXPECT_NE(said.find("1 doors drawn over walls not cut for them"), std::string::npos) << said;
+    expect_walkable(r.plan, 2, 1);
+  }
+}
+
 TEST(DxfPlan, ASwingOnTheWallLayerIsADoorNotAQuarterDiscRoom) {
   // A drawing with its doors on the wall layer: the swing about the jamb at (4.1, 1.0),
   // once with its leaf drawn open and once without. A rounded corner of the same radius

@@ -1285,6 +1285,73 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     if (!panel[i] && (role[s.layer] == LayerRole::Walls || (role[s.layer] == LayerRole::Doors && !s.curved)))
       walls.push_back({m(s.a), m(s.b)});
   }
+  // Doors drawn over walls not cut for them (a sketch's walls drawn straight through, the
+  // door symbol on top): a swing whose hinge and one end both lie on a wall line that runs
+  // on past both is a door in that wall. The wall is opened there: that line and the lines
+  // parallel to it behind it (the wall's other face: within 0.6 m, on the side of the
+  // nearest such line across the span) lose the span between the two; the ends so left
+  // are capped across the wall like any wall's open end (below).
+  int walls_opened = 0;
+  for (const auto& [a, in_door_block] : flat.arcs) {
+    if (role[a.layer] != LayerRole::Doors && !in_door_block) continue;
+    const double r = a.r * unit;
+    if (!door_swing_radius(r) || !door_swing_sweep(a.sweep_deg)) continue;
+    const Vec2 c = m(a.c);
+    for (const Vec2 e : {m(a.p0), m(a.p1)}) {
+      const Vec2 open = length(e - m(a.p0)) < 1e-9 ? m(a.p1) : m(a.p0);
+      // The wall line through the hinge and e, running on past both by a centimetre.
+      int through = -1;
+      for (size_t i = 0; i < walls.size() && through < 0; ++i) {
+        const Vec2 d = walls[i].b - walls[i].a;
+        const double len = length(d);
+        if (!(len > 0) || distance_to_segment(c, walls[i].a, walls[i].b) > 0.02 || distance_to_segment(e, walls[i].a, walls[i].b) > 0.02)
+          continue;
+        const double tc = dot(c - walls[i].a, d) / len, te = dot(e - walls[i].a, d) / len;
+        if (std::min(tc, te) > 0.01 && std::max(tc, te) < len - 0.01) through = int(i);
+      }
+      if (through < 0) continue;
+      const Vec2 u = (1 / length(walls[size_t(through)].b - walls[size_t(through)].a)) * (walls[size_t(through)].b - walls[size_t(through)].a);
+      const double t0 = std::min(dot(c, u), dot(e, u)), t1 = std::max(dot(c, u), dot(e, u));
+      auto parallel_across = [&](const WallLine& w) {  // within 2 degrees, and over the span
+        const Vec2 d = w.b - w.a;
+        const double len = length(d);
+        return w.closes < 0 && len > 0 && std::fabs(cross(d, u)) < 0.035 * len &&
+               std::max(dot(w.a, u), dot(w.b, u)) > t0 && std::min(dot(w.a, u), dot(w.b, u)) < t1;
+      };
+      // The wall's body lies toward its other face: the nearest parallel line across the span.
+      Vec2 n{-u.y, u.x};
+      double nearest = 0.6;
+      for (const WallLine& w : walls) {
+        const double depth = 0.5 * (dot(w.a, n) + dot(w.b, n)) - dot(c, n);
+        if (parallel_across(w) && std::fabs(depth) > 0.01 && std::fabs(depth) < std::fabs(nearest)) nearest = depth;
+      }
+      if (nearest < 0) n = -1.0 * n;
+      if (std::fabs(nearest) >= 0.6 && dot(open - c, n) > 0) n = -1.0 * n;  // a wall of one line
+      const double off = dot(c, n);
+      std::vector<WallLine> kept;
+      for (const WallLine& w : walls) {
+        const double depth_a = dot(w.a, n) - off, depth_b = dot(w.b, n) - off;
+        if (!parallel_across(w) || std::min(depth_a, depth_b) < -0.01 || std::max(depth_a, depth_b) > 0.6) {
+          kept.push_back(w);
+          continue;
+        }
+        const bool forward = dot(w.b - w.a, u) > 0;
+        const Vec2 lo = forward ? w.a : w.b, hi = forward ? w.b : w.a;
+        const double tl = dot(lo, u), th = dot(hi, u);
+        if (th <= t0 || tl >= t1) {
+          kept.push_back(w);
+          continue;
+        }
+        if (tl < t0) kept.push_back({lo, lo + ((t0 - tl) / (th - tl)) * (hi - lo)});
+        if (th > t1) kept.push_back({lo + ((t1 - tl) / (th - tl)) * (hi - lo), hi});
+      }
+      walls = std::move(kept);
+      ++walls_opened;
+      break;
+    }
+  }
+  if (walls_opened > 0)
+    out.summary.push_back(std::to_string(walls_opened) + " doors drawn over walls not cut for them: the walls opened there");
   for (size_t i = 0; i < win.size(); ++i) walls.push_back({win[i].a, win[i].b, window_of[i]});
   // The gaps a drawing leaves at its wall lines' ends: partitions stopping short, walls'
   // ends left open across their thickness.
