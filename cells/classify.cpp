@@ -346,7 +346,7 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
               if (rank(k) <= best) continue;
               best = rank(k);
               c.wall = reg.wall;
-              c.opening = opening_id(plan, reg.wall, reg.opening);
+              c.opening = opening_id(outline, reg.wall, reg.opening);
               c.portal = k == OpeningKind::Door     ? PortalKind::Door
                          : k == OpeningKind::Window ? PortalKind::Window
                          : k == OpeningKind::Hatch  ? PortalKind::Hatch

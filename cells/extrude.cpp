@@ -278,7 +278,7 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
           PortalKind kind = kind_between(c, out.cells[size_t(r.d)], opening);
           if (r.sheet_opening >= 0) {  // an opening in a wall of no thickness
             const Region& reg = outline.regions[size_t(r.sheet_opening)];
-            opening = opening_id(plan, reg.wall, reg.opening);
+            opening = opening_id(outline, reg.wall, reg.opening);
             OpeningKind ok = plan.walls[size_t(reg.wall)].openings[size_t(reg.opening)].kind;
             kind = ok == OpeningKind::Door ? PortalKind::Door : ok == OpeningKind::Window ? PortalKind::Window
                    : ok == OpeningKind::Hatch ? PortalKind::Hatch : PortalKind::Gap;

@@ -29,11 +29,7 @@ Intervals intersect(const Intervals& a, const Intervals& b) {
   return unite(out);
 }
 
-int opening_id(const Plan& plan, int wall, int opening) {
-  int id = 0;
-  for (int w = 0; w < wall; ++w) id += int(plan.walls[size_t(w)].openings.size());
-  return id + opening;
-}
+int opening_id(const Outline& outline, int wall, int opening) { return outline.first_opening[size_t(wall)] + opening; }
 
 namespace {
 
@@ -75,6 +71,11 @@ double distance(Vec2 p, Vec2 a, Vec2 b) {
 
 Outline make_outline(const Plan& plan) {
   Outline out;
+  int openings = 0;  // (a running count: summing the walls before each was quadratic in walls)
+  for (const Wall& w : plan.walls) {
+    out.first_opening.push_back(openings);
+    openings += int(w.openings.size());
+  }
   // Jones's "large opaque box surrounding the objects": the plan's extent plus a margin.
   Vec2 lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
   auto grow = [&](Vec2 p) {

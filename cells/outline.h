@@ -36,12 +36,14 @@ struct Outline {
   std::vector<std::vector<Vec2>> holes;  ///< floor openings, same order as Plan::floor_openings
   Vec2 lo, hi;                           ///< far box in plan [m]
   double z_bottom = 0, z_top = 0;        ///< far box heights [m]
+  std::vector<int> first_opening;        ///< per wall, the id of its first opening (see opening_id)
 };
 
 /// Builds the outlines of every wall of the plan.
 Outline make_outline(const Plan& plan);
 
-/// Stable id of a wall opening across the whole plan (for portal/cell `opening`).
-int opening_id(const Plan& plan, int wall, int opening);
+/// Stable id of a wall opening across the whole plan (for portal/cell `opening`): the
+/// openings numbered wall by wall, in order.
+int opening_id(const Outline& outline, int wall, int opening);
 
 }  // namespace avenues::detail

@@ -1292,63 +1292,82 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   // nearest such line across the span) lose the span between the two; the ends so left
   // are capped across the wall like any wall's open end (below).
   int walls_opened = 0;
-  for (const auto& [a, in_door_block] : flat.arcs) {
-    if (role[a.layer] != LayerRole::Doors && !in_door_block) continue;
-    const double r = a.r * unit;
-    if (!door_swing_radius(r) || !door_swing_sweep(a.sweep_deg)) continue;
-    const Vec2 c = m(a.c);
-    for (const Vec2 e : {m(a.p0), m(a.p1)}) {
-      const Vec2 open = length(e - m(a.p0)) < 1e-9 ? m(a.p1) : m(a.p0);
-      // The wall line through the hinge and e, running on past both by a centimetre.
-      int through = -1;
-      for (size_t i = 0; i < walls.size() && through < 0; ++i) {
-        const Vec2 d = walls[i].b - walls[i].a;
-        const double len = length(d);
-        if (!(len > 0) || distance_to_segment(c, walls[i].a, walls[i].b) > 0.02 || distance_to_segment(e, walls[i].a, walls[i].b) > 0.02)
-          continue;
-        const double tc = dot(c - walls[i].a, d) / len, te = dot(e - walls[i].a, d) / len;
-        if (std::min(tc, te) > 0.01 && std::max(tc, te) < len - 0.01) through = int(i);
-      }
-      if (through < 0) continue;
-      const Vec2 u = (1 / length(walls[size_t(through)].b - walls[size_t(through)].a)) * (walls[size_t(through)].b - walls[size_t(through)].a);
-      const double t0 = std::min(dot(c, u), dot(e, u)), t1 = std::max(dot(c, u), dot(e, u));
-      auto parallel_across = [&](const WallLine& w) {  // within 2 degrees, and over the span
-        const Vec2 d = w.b - w.a;
-        const double len = length(d);
-        return w.closes < 0 && len > 0 && std::fabs(cross(d, u)) < 0.035 * len &&
-               std::max(dot(w.a, u), dot(w.b, u)) > t0 && std::min(dot(w.a, u), dot(w.b, u)) < t1;
-      };
-      // The wall's body lies toward its other face: the nearest parallel line across the span.
-      Vec2 n{-u.y, u.x};
-      double nearest = 0.6;
-      for (const WallLine& w : walls) {
-        const double depth = 0.5 * (dot(w.a, n) + dot(w.b, n)) - dot(c, n);
-        if (parallel_across(w) && std::fabs(depth) > 0.01 && std::fabs(depth) < std::fabs(nearest)) nearest = depth;
-      }
-      if (nearest < 0) n = -1.0 * n;
-      if (std::fabs(nearest) >= 0.6 && dot(open - c, n) > 0) n = -1.0 * n;  // a wall of one line
-      const double off = dot(c, n);
-      std::vector<WallLine> kept;
-      for (const WallLine& w : walls) {
-        const double depth_a = dot(w.a, n) - off, depth_b = dot(w.b, n) - off;
-        if (!parallel_across(w) || std::min(depth_a, depth_b) < -0.01 || std::max(depth_a, depth_b) > 0.6) {
-          kept.push_back(w);
-          continue;
+  {
+    std::vector<std::pair<Vec2, Vec2>> pairs;
+    for (const WallLine& w : walls) pairs.push_back({w.a, w.b});
+    SegmentGrid grid(pairs, 0.5);
+    std::vector<std::vector<std::pair<Vec2, Vec2>>> cuts(walls.size());  // per line: the spans to open
+    for (const auto& [a, in_door_block] : flat.arcs) {
+      if (role[a.layer] != LayerRole::Doors && !in_door_block) continue;
+      const double r = a.r * unit;
+      if (!door_swing_radius(r) || !door_swing_sweep(a.sweep_deg)) continue;
+      const Vec2 c = m(a.c);
+      for (const Vec2 e : {m(a.p0), m(a.p1)}) {
+        const Vec2 open = length(e - m(a.p0)) < 1e-9 ? m(a.p1) : m(a.p0);
+        // The wall line through the hinge and e, running on past both by a centimetre.
+        int through = -1;
+        grid.near(c, 0.02, [&](size_t i) {
+          const Vec2 d = walls[i].b - walls[i].a;
+          const double len = length(d);
+          if (through >= 0 || !(len > 0) || distance_to_segment(c, walls[i].a, walls[i].b) > 0.02 ||
+              distance_to_segment(e, walls[i].a, walls[i].b) > 0.02)
+            return;
+          const double tc = dot(c - walls[i].a, d) / len, te = dot(e - walls[i].a, d) / len;
+          if (std::min(tc, te) > 0.01 && std::max(tc, te) < len - 0.01) through = int(i);
+        });
+        if (through < 0) continue;
+        const WallLine& l = walls[size_t(through)];
+        const Vec2 u = (1 / length(l.b - l.a)) * (l.b - l.a);
+        const double t0 = std::min(dot(c, u), dot(e, u)), t1 = std::max(dot(c, u), dot(e, u));
+        auto parallel_across = [&](const WallLine& w) {  // within 2 degrees, and over the span
+          const Vec2 d = w.b - w.a;
+          const double len = length(d);
+          return w.closes < 0 && len > 0 && std::fabs(cross(d, u)) < 0.035 * len &&
+                 std::max(dot(w.a, u), dot(w.b, u)) > t0 && std::min(dot(w.a, u), dot(w.b, u)) < t1;
+        };
+        std::vector<size_t> near;
+        grid.near(0.5 * (c + e), 0.5 * (t1 - t0) + 0.6, [&](size_t i) {
+          if (parallel_across(walls[i])) near.push_back(i);
+        });
+        // The wall's body lies toward its other face: the nearest parallel line across the span.
+        Vec2 n{-u.y, u.x};
+        double nearest = 0.6;
+        for (size_t i : near) {
+          const double depth = 0.5 * (dot(walls[i].a, n) + dot(walls[i].b, n)) - dot(c, n);
+          if (std::fabs(depth) > 0.01 && std::fabs(depth) < std::fabs(nearest)) nearest = depth;
         }
-        const bool forward = dot(w.b - w.a, u) > 0;
-        const Vec2 lo = forward ? w.a : w.b, hi = forward ? w.b : w.a;
-        const double tl = dot(lo, u), th = dot(hi, u);
-        if (th <= t0 || tl >= t1) {
-          kept.push_back(w);
-          continue;
+        if (nearest < 0) n = -1.0 * n;
+        if (std::fabs(nearest) >= 0.6 && dot(open - c, n) > 0) n = -1.0 * n;  // a wall of one line
+        const double off = dot(c, n);
+        for (size_t i : near) {
+          const double depth_a = dot(walls[i].a, n) - off, depth_b = dot(walls[i].b, n) - off;
+          if (std::min(depth_a, depth_b) >= -0.01 && std::max(depth_a, depth_b) <= 0.6) cuts[i].push_back({c, e});
         }
-        if (tl < t0) kept.push_back({lo, lo + ((t0 - tl) / (th - tl)) * (hi - lo)});
-        if (th > t1) kept.push_back({lo + ((t1 - tl) / (th - tl)) * (hi - lo), hi});
+        ++walls_opened;
+        break;
       }
-      walls = std::move(kept);
-      ++walls_opened;
-      break;
     }
+    // Each line cut loses the union of its spans (its ends' projections on it).
+    std::vector<WallLine> kept;
+    for (size_t i = 0; i < walls.size(); ++i) {
+      const WallLine& w = walls[i];
+      if (cuts[i].empty()) {
+        kept.push_back(w);
+        continue;
+      }
+      const Vec2 d = w.b - w.a;
+      const double dd = dot(d, d);
+      std::vector<std::pair<double, double>> spans;
+      for (const auto& [p, q] : cuts[i]) spans.push_back(std::minmax(dot(p - w.a, d) / dd, dot(q - w.a, d) / dd));
+      std::sort(spans.begin(), spans.end());
+      double from = 0;
+      for (const auto& [lo, hi] : spans) {
+        if (lo > from) kept.push_back({w.a + from * d, w.a + std::min(lo, 1.0) * d});
+        from = std::max(from, hi);
+      }
+      if (from < 1) kept.push_back({w.a + from * d, w.b});
+    }
+    walls = std::move(kept);
   }
   if (walls_opened > 0)
     out.summary.push_back(std::to_string(walls_opened) + " doors drawn over walls not cut for them: the walls opened there");
@@ -1373,8 +1392,17 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
       if (!rings.empty()) arr_in.hatches.push_back(rings);
     }
 
+  // The distance from p to the nearest wall line: from the lines binned near p when one
+  // lies within 2 m (exact: any line that near is binned in a cell the query covers), else
+  // from all of them.
+  std::vector<std::pair<Vec2, Vec2>> wall_pairs;
+  for (const WallLine& s : walls) wall_pairs.push_back({s.a, s.b});
+  SegmentGrid wall_grid(wall_pairs, 0.5);
   auto near_walls = [&](Vec2 p) {
+    constexpr double kReach = 2;
     double best = 1e300;
+    wall_grid.near(p, kReach, [&](size_t i) { best = std::min(best, distance_to_segment(p, walls[i].a, walls[i].b)); });
+    if (best <= kReach) return best;
     for (const WallLine& s : walls) best = std::min(best, distance_to_segment(p, s.a, s.b));
     return best;
   };
@@ -1437,13 +1465,27 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   }
   // A swing is placed when its hinge is at a wall and its closed end at a wall too, or
   // at the closed end of another swing (the two leaves of a double door meet midway).
+  // (Points binned in 10 cm cells: a plan of thousands of doors compares each with its
+  // neighbours only.)
+  auto bin_of = [](Vec2 p) { return std::pair<int64_t, int64_t>(int64_t(std::floor(p.x / 0.1)), int64_t(std::floor(p.y / 0.1))); };
+  auto for_near = [&](const std::map<std::pair<int64_t, int64_t>, std::vector<size_t>>& bins, Vec2 p, auto&& f) {
+    const auto [bx, by] = bin_of(p);
+    for (int64_t x = bx - 1; x <= bx + 1; ++x)
+      for (int64_t y = by - 1; y <= by + 1; ++y)
+        if (auto it = bins.find({x, y}); it != bins.end())
+          for (size_t k : it->second) f(k);
+  };
+  std::map<std::pair<int64_t, int64_t>, std::vector<size_t>> closed_at, door_gap_at;  // swings by closed end, gaps by hinge
+  for (size_t j = 0; j < found.size(); ++j) closed_at[bin_of(found[j].closed)].push_back(j);
   for (size_t i = 0; i < found.size(); ++i) {
     const Swing& sw = found[i];
     bool twice = false, meets = false;
-    for (size_t g = window_gaps; g < gaps.size(); ++g)
+    for_near(door_gap_at, sw.hinge, [&](size_t g) {
       twice = twice || (length(gaps[g].a - sw.hinge) < 0.02 && length(gaps[g].b - sw.closed) < 0.02);
-    for (size_t j = 0; j < found.size(); ++j)
+    });
+    for_near(closed_at, sw.closed, [&](size_t j) {
       meets = meets || (j != i && length(found[j].closed - sw.closed) < 0.05 && length(found[j].hinge - sw.hinge) > 0.3);
+    });
     if (twice) continue;
     if (near_walls(sw.hinge) > 0.15 || (near_walls(sw.closed) > 0.15 && !meets)) {
       plan.warnings.push_back("the door swing at (" + format_number("%.2f", sw.hinge.x) + ", " +
@@ -1451,6 +1493,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
                               "', is in no wall gap: not placed");
       continue;
     }
+    door_gap_at[bin_of(sw.hinge)].push_back(gaps.size());
     gaps.push_back({sw.hinge, sw.closed, true, sw.hinge});
   }
   int swingless_placed = 0;
