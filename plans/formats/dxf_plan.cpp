@@ -1127,12 +1127,16 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     std::vector<int> parent(win.size());
     for (size_t i = 0; i < win.size(); ++i) parent[i] = int(i);
     std::function<int(int)> root = [&](int i) { return parent[size_t(i)] == i ? i : parent[size_t(i)] = root(parent[size_t(i)]); };
+    // Lines touch when an end of one lies within 2 cm of the other (the lines near each
+    // end from a grid: a curtain wall's thousands of lines are not compared pairwise).
+    std::vector<std::pair<Vec2, Vec2>> lines;
+    for (const SegPiece& w : win) lines.push_back({w.a, w.b});
+    SegmentGrid grid(lines, 0.5);
     for (size_t i = 0; i < win.size(); ++i)
-      for (size_t j = i + 1; j < win.size(); ++j) {
-        const double d = std::min({distance_to_segment(win[i].a, win[j].a, win[j].b), distance_to_segment(win[i].b, win[j].a, win[j].b),
-                                   distance_to_segment(win[j].a, win[i].a, win[i].b), distance_to_segment(win[j].b, win[i].a, win[i].b)});
-        if (d < 0.02) parent[size_t(root(int(i)))] = root(int(j));
-      }
+      for (const Vec2 e : {win[i].a, win[i].b})
+        grid.near(e, 0.02, [&](size_t j) {
+          if (j != i && distance_to_segment(e, win[j].a, win[j].b) < 0.02) parent[size_t(root(int(i)))] = root(int(j));
+        });
     std::map<int, int> longest;
     for (size_t i = 0; i < win.size(); ++i) {
       const int r = root(int(i));
