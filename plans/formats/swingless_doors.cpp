@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "core/angles.h"
+#include "plans/formats/segment_grid.h"
 
 namespace avenues {
 namespace {
@@ -16,12 +17,19 @@ double segment_distance(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
                    distance_to_segment(d, a, b)});
 }
 
+/// Sets joined; each set's root is its smallest member, whatever order the joins come in.
 struct UnionFind {
   std::vector<int> parent;
   explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
   int root(int i) { return parent[size_t(i)] == i ? i : parent[size_t(i)] = root(parent[size_t(i)]); }
-  void join(int i, int j) { parent[size_t(root(i))] = root(j); }
+  void join(int i, int j) {
+    const int a = root(i), b = root(j);
+    if (a != b) parent[size_t(std::max(a, b))] = std::min(a, b);
+  }
 };
+
+/// The middle of a segment and a reach from it that covers the segment and `r` about it.
+std::pair<Vec2, double> about(Vec2 a, Vec2 b, double r) { return {0.5 * (a + b), 0.5 * length(b - a) + r}; }
 
 /// A set of lines seen along an axis: its main direction (unit), a point on its middle
 /// line, its extent along (lo..hi from `mid`) and across.
@@ -80,41 +88,68 @@ std::vector<SwinglessDoor> find_swingless_doors(const std::vector<std::pair<Vec2
                                                 const std::vector<Vec2>& swing_points,
                                                 const SwinglessDoorParams& prm) {
   const size_t n = door_lines.size();
+  // (Near neighbours come from grids of segments throughout: an office of thousands of
+  // doors is not compared pair by pair.)
   // 1. Pieces: lines touching one another; a piece near a swing belongs to that door.
   UnionFind touch(n);
-  for (size_t i = 0; i < n; ++i)
-    for (size_t j = i + 1; j < n; ++j)
-      if (segment_distance(door_lines[i].first, door_lines[i].second, door_lines[j].first, door_lines[j].second) < 0.02)
+  SegmentGrid line_grid(door_lines, 0.5);
+  for (size_t i = 0; i < n; ++i) {
+    const auto [mid, reach] = about(door_lines[i].first, door_lines[i].second, 0.02);
+    line_grid.near(mid, reach, [&](size_t j) {
+      if (j > i && segment_distance(door_lines[i].first, door_lines[i].second, door_lines[j].first, door_lines[j].second) < 0.02)
         touch.join(int(i), int(j));
+    });
+  }
+  std::vector<std::pair<Vec2, Vec2>> swing_at;
+  for (Vec2 s : swing_points) swing_at.push_back({s, s});
+  SegmentGrid swing_grid(swing_at, 0.5);
   std::vector<std::vector<int>> members(n);
   for (size_t i = 0; i < n; ++i) members[size_t(touch.root(int(i)))].push_back(int(i));
   std::vector<Piece> pieces;
   for (const std::vector<int>& m : members) {
     if (m.empty()) continue;
     bool by_swing = false;
-    for (int i : m)
-      for (Vec2 s : swing_points)
-        by_swing = by_swing || distance_to_segment(s, door_lines[size_t(i)].first, door_lines[size_t(i)].second) < prm.near_swing;
+    for (int i : m) {
+      const auto& [a, b] = door_lines[size_t(i)];
+      const auto [mid, reach] = about(a, b, prm.near_swing);
+      swing_grid.near(mid, reach, [&](size_t k) { by_swing = by_swing || distance_to_segment(swing_points[k], a, b) < prm.near_swing; });
+    }
     if (by_swing) continue;
     Piece p = measure(m, door_lines);
     if (p.across <= prm.max_across && p.hi - p.lo <= prm.max_width + 0.5) pieces.push_back(p);
   }
   // 2. Pieces along one axis are one door.
   UnionFind along(pieces.size());
-  for (size_t i = 0; i < pieces.size(); ++i)
-    for (size_t j = i + 1; j < pieces.size(); ++j) {
+  std::vector<std::pair<Vec2, Vec2>> axes;
+  for (const Piece& p : pieces) axes.push_back({p.mid + p.lo * p.u, p.mid + p.hi * p.u});
+  SegmentGrid axis_grid(axes, 0.5);
+  for (size_t i = 0; i < pieces.size(); ++i) {
+    const auto [centre, reach] = about(axes[i].first, axes[i].second, 1.0 + prm.max_across);
+    axis_grid.near(centre, reach, [&](size_t j) {
+      if (j <= i) return;
       const Piece &p = pieces[i], &q = pieces[j];
-      if (std::fabs(cross(p.u, q.u)) > std::sin(rad_from_deg(10))) continue;
+      if (std::fabs(cross(p.u, q.u)) > std::sin(rad_from_deg(10))) return;
       const Vec2 nrm{-p.u.y, p.u.x};
-      if (std::fabs(dot(q.mid - p.mid, nrm)) > prm.max_across) continue;
+      if (std::fabs(dot(q.mid - p.mid, nrm)) > prm.max_across) return;
       const double off = dot(q.mid - p.mid, p.u);
       const double q_lo = off + std::min(q.lo * dot(q.u, p.u), q.hi * dot(q.u, p.u)),
                    q_hi = off + std::max(q.lo * dot(q.u, p.u), q.hi * dot(q.u, p.u));
       const double apart = std::max(q_lo - p.hi, p.lo - q_hi);
       if (apart < 1.0) along.join(int(i), int(j));
-    }
+    });
+  }
   std::vector<std::vector<int>> groups(pieces.size());
   for (size_t i = 0; i < pieces.size(); ++i) groups[size_t(along.root(int(i)))].push_back(int(i));
+
+  // The walls a gap may end at: the wall lines, then the door lines that are walls.
+  std::vector<std::pair<Vec2, Vec2>> walls = wall_lines;
+  std::vector<size_t> door_line_of;  // per entry of walls past wall_lines: its door line
+  for (size_t i = 0; i < n; ++i)
+    if (door_line_is_wall[i]) walls.push_back(door_lines[i]), door_line_of.push_back(i);
+  SegmentGrid wall_grid(walls, 0.5);
+  // Any line that could end a gap narrower than max_width, or tell that a wall goes on past
+  // its end, passes within this of the gap's middle.
+  const double reach = prm.max_width + prm.max_half_wall + 0.5;
 
   std::vector<SwinglessDoor> out;
   for (const std::vector<int>& g : groups) {
@@ -126,13 +161,14 @@ std::vector<SwinglessDoor> find_swingless_doors(const std::vector<std::pair<Vec2
       continue;
     const Vec2 u = door.u, nrm{-u.y, u.x};
     const Vec2 c = door.mid + (0.5 * (door.lo + door.hi)) * u;
-    std::vector<bool> own(n, false);
-    for (int i : lines) own[size_t(i)] = true;
+    std::vector<int> own = lines;  // sorted, to look up (a door's few lines, not every door line)
+    std::sort(own.begin(), own.end());
     // 3. The gap's ends, looking both ways from the middle.
     auto each_wall = [&](const std::function<void(Vec2, Vec2)>& f) {
-      for (const auto& [a, b] : wall_lines) f(a, b);
-      for (size_t i = 0; i < n; ++i)
-        if (door_line_is_wall[i] && !own[i]) f(door_lines[i].first, door_lines[i].second);
+      wall_grid.near(c, reach, [&](size_t k) {
+        if (k >= wall_lines.size() && std::binary_search(own.begin(), own.end(), int(door_line_of[k - wall_lines.size()]))) return;
+        f(walls[k].first, walls[k].second);
+      });
     };
     double end[2] = {1e300, 1e300};
     bool crossed[2] = {false, false};
