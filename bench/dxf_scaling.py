@@ -2,11 +2,12 @@
 """How reading a DXF floor plan grows with the drawing: k x k rooms of 4 m in walls drawn as
 double lines 0.2 m apart (R12 LINEs on A-WALL, the outer walls whole), a door gap in every
 inner wall of every room with its swing on A-DOOR and the jamb caps drawn, a name in every
-room. Each drawing is read by `avenues cells` (each binary given, in turn, `runs` times) and
+room; with --leaves, each door's leaf and two frame lines across the wall too (door lines
+that are not swings, which the search for doors drawn without a swing looks through). Each drawing is read by `avenues cells` (each binary given, in turn, `runs` times) and
 the `read drawing` stage and the total are printed as a table for docs/PERFORMANCE.md, with
 what the reader understood. Several binaries are run alternately, as peers in one script.
 
-    python3 bench/dxf_scaling.py [--runs N] [--k 10,30,60,100] AVENUES [AVENUES ...]
+    python3 bench/dxf_scaling.py [--runs N] [--k 10,30,60,100] [--leaves] AVENUES [AVENUES ...]
 
 Standard library only; the drawings go to a temporary folder.
 """
@@ -30,7 +31,7 @@ def arc(layer, c, r, a0, a1):
             "50", repr(a0), "51", repr(a1)]
 
 
-def wall(e, vertical, at, lo, hi, gaps):
+def wall(e, vertical, at, lo, hi, gaps, leaves):
     """A wall's two faces from lo to hi along it, cut at each gap (capped, with a swing)."""
     def pt(along, across):
         return (across, along) if vertical else (along, across)
@@ -45,14 +46,19 @@ def wall(e, vertical, at, lo, hi, gaps):
             e.append(arc("A-DOOR", (at - T, g0), g1 - g0, 90, 180))
         else:
             e.append(arc("A-DOOR", (g0, at + T), g1 - g0, 0, 90))
+        if leaves:
+            hinge = pt(g0, at - T) if vertical else pt(g0, at + T)
+            e.append(line("A-DOOR", hinge, pt(g0, at - T - (g1 - g0)) if vertical else pt(g0, at + T + (g1 - g0))))
+            for v in (g0 + 0.05, g1 - 0.05):
+                e.append(line("A-DOOR", pt(v, at - T), pt(v, at + T)))
 
 
-def drawing(k):
+def drawing(k, leaves):
     e = []
     for i in range(k + 1):
         gaps = [] if i in (0, k) else [(S * j + 1.5, S * j + 2.4) for j in range(k)]
-        wall(e, True, S * i, -T, S * k + T, gaps)
-        wall(e, False, S * i, -T, S * k + T, gaps)
+        wall(e, True, S * i, -T, S * k + T, gaps, leaves)
+        wall(e, False, S * i, -T, S * k + T, gaps, leaves)
     for i in range(k):
         for j in range(k):
             e.append(["0", "TEXT", "8", "Text", "10", repr(S * i + 2), "20", repr(S * j + 3), "30", "0",
@@ -78,6 +84,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--k", default="10,30,60,100")
+    ap.add_argument("--leaves", action="store_true")
     ap.add_argument("avenues", nargs="+")
     args = ap.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
@@ -86,7 +93,7 @@ def main():
         for k in [int(v) for v in args.k.split(",")]:
             path = os.path.join(tmp, "grid%d.dxf" % k)
             with open(path, "w") as f:
-                f.write(drawing(k))
+                f.write(drawing(k, args.leaves))
             times = {b: [] for b in args.avenues}
             said = {}
             for _ in range(args.runs):
