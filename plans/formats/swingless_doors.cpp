@@ -110,7 +110,7 @@ std::vector<SwinglessDoor> find_swingless_doors(const std::vector<std::pair<Vec2
     if (m.empty()) continue;
     bool by_swing = false;
     for (int i : m) {
-      const auto& [a, b] = door_lines[size_t(i)];
+      const Vec2 a = door_lines[size_t(i)].first, b = door_lines[size_t(i)].second;
       const auto [mid, reach] = about(a, b, prm.near_swing);
       swing_grid.near(mid, reach, [&](size_t k) { by_swing = by_swing || distance_to_segment(swing_points[k], a, b) < prm.near_swing; });
     }
