@@ -185,6 +185,18 @@ class TinyDxf {
       dxf.writeHatch2(dw, h, attr(layer));
     });
   }
+  /// A solid hatch of a disc, its boundary a polyline of two vertices bulged into half
+  /// circles (how a round column's fill is saved).
+  void hatch_disc(const std::string& layer, Vec2 c, double r) {
+    body_.push_back([=](DL_Dxf&, DL_WriterA& dw) {
+      dw.dxfString(0, "HATCH"), dw.dxfString(100, "AcDbEntity"), dw.dxfString(8, layer), dw.dxfString(100, "AcDbHatch");
+      dw.dxfReal(10, 0), dw.dxfReal(20, 0), dw.dxfReal(30, 0), dw.dxfReal(210, 0), dw.dxfReal(220, 0), dw.dxfReal(230, 1);
+      dw.dxfString(2, "SOLID"), dw.dxfInt(70, 1), dw.dxfInt(71, 0), dw.dxfInt(91, 1);
+      dw.dxfInt(92, 2), dw.dxfInt(72, 1), dw.dxfInt(73, 1), dw.dxfInt(93, 2);
+      for (double side : {-1.0, 1.0}) dw.dxfReal(10, c.x + side * r), dw.dxfReal(20, c.y), dw.dxfReal(42, 1);
+      dw.dxfInt(97, 0), dw.dxfInt(75, 0), dw.dxfInt(76, 1), dw.dxfInt(98, 0);
+    });
+  }
   /// A block "door" holding a swing, inserted at `at` turned by `deg`: its leaf stands
   /// open along +y from the hinge at the origin, its swing closes towards (width, 0).
   void door_block(const std::string& layer, Vec2 at, double deg, double width) {
@@ -610,6 +622,24 @@ TEST(DxfPlan, AColumnDrawnOnlyAsAFillBesideWallLinesIsAWall) {
   for (const Wall& w : r.plan.walls)
     if (on_column(w.centre.front()) && on_column(w.centre.back())) around += length(w.centre.back() - w.centre.front());
   EXPECT_NEAR(around, 1.2, 0.01);
+}
+
+TEST(DxfPlan, ARoundColumnFilledWithABulgedBoundaryStandsInItsRoom) {
+  // A fill's boundary saved as a polyline with bulges (two half circles): the column is
+  // round, 0.4 m across, not a two-point ring read as nothing.
+  TinyDxf d;
+  two_rooms_in_double_lines(d, "A-WALL");
+  d.arc("A-DOOR", {4.1, 1.0}, 0.9, 90, 180);
+  d.hatch_disc("A-WALL", {2.0, 2.4}, 0.2);
+  const DxfPlan r = read_dxf_plan(d.write("round-column.dxf"));
+  expect_walkable(r.plan, 2, 1);
+  double around = 0;  // walls on the column's circle, as long as its circumference
+  for (const Wall& w : r.plan.walls) {
+    const Vec2 a = w.centre.front(), b = w.centre.back();
+    if (std::fabs(length(a - Vec2{2.0, 2.4}) - 0.2) < 2e-3 && std::fabs(length(b - Vec2{2.0, 2.4}) - 0.2) < 2e-3)
+      around += length(b - a);
+  }
+  EXPECT_NEAR(around, 2 * std::numbers::pi * 0.2, 0.02);
 }
 
 TEST(DxfPlan, AColumnOnAColumnLayerStandsInItsRoom) {

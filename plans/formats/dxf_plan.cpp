@@ -129,6 +129,22 @@ std::vector<Vec2> arc_points(Vec2 c, double r, double a0, double a1, double sagi
   return out;
 }
 
+/// The points of a polyline's bulged piece from a to b (a bulge is tan(θ/4) of the arc's
+/// angle θ, positive counter-clockwise), a and b included; the chord when it has no bulge.
+std::vector<Vec2> bulge_points(Vec2 a, Vec2 b, double bulge, double sagitta = 0) {
+  const double chord = length(b - a);
+  if (std::fabs(bulge) < 1e-9 || !(chord > 0) || !std::isfinite(bulge)) return {a, b};
+  const double theta = 4 * std::atan(bulge), r = chord / (2 * std::sin(std::fabs(theta) / 2));
+  const Vec2 m = 0.5 * (a + b), u = (1 / chord) * (b - a), left{-u.y, u.x};
+  const double h = r * std::cos(theta / 2);  // centre to chord, signed with the bulge
+  const Vec2 c = m + (bulge > 0 ? h : -h) * left;
+  const double aa = std::atan2(a.y - c.y, a.x - c.x), ab = std::atan2(b.y - c.y, b.x - c.x);
+  std::vector<Vec2> pts = bulge > 0 ? arc_points(c, r, aa, ab, sagitta) : arc_points(c, r, ab, aa, sagitta);
+  if (bulge < 0) std::reverse(pts.begin(), pts.end());
+  pts.front() = a, pts.back() = b;
+  return pts;
+}
+
 std::string lower(std::string s) {
   for (char& ch : s) ch = char(std::tolower(static_cast<unsigned char>(ch)));
   return s;
@@ -496,9 +512,16 @@ class Collector : public DL_CreationAdapter {
     if (cur_->hatches.empty() || cur_->hatches.back().rings.empty()) return;
     std::vector<Vec2>& ring = cur_->hatches.back().rings.back();
     const size_t first = ring.size();
-    if (e.type == 0) {
-      for (const std::vector<double>& v : e.vertices)
-        if (v.size() >= 2) ring.push_back({v[0], v[1]});
+    if (e.type == 0) {  // a polyline boundary, its pieces bulged (arcs) where a vertex says so
+      std::vector<std::pair<Vec2, double>> v;
+      for (const std::vector<double>& x : e.vertices)
+        if (x.size() >= 2) v.push_back({{x[0], x[1]}, x.size() >= 3 ? x[2] : 0.0});
+      for (size_t i = 0; i < v.size(); ++i) {
+        ring.push_back(v[i].first);
+        if (v[i].second == 0 || v.size() < 2) continue;
+        const std::vector<Vec2> arc = bulge_points(v[i].first, v[(i + 1) % v.size()].first, v[i].second, sagitta);
+        ring.insert(ring.end(), arc.begin() + 1, arc.end() - 1);
+      }
     } else if (e.type == 1) {
       if (ring.empty()) ring.push_back({e.x1, e.y1});
       ring.push_back({e.x2, e.y2});
