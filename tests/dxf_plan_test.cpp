@@ -866,6 +866,37 @@ TEST(DxfPlan, AWindowInAnOuterWall) {
   EXPECT_GT(avenues::testing::check_views_from_rooms(r.plan, c), 0);
 }
 
+TEST(DxfPlan, AWindowDrawnOnLayerZeroClosesItsGap) {
+  // The window of AWindowInAnOuterWall drawn on layer 0, as anandkothartrdl-plan.dxf draws
+  // its living room's: the glass, two frames at the jambs, a sill line outside the wall.
+  // Furniture on layer 0 (a sofa 0.9 m deep against the wall, a bookcase spanning the
+  // room's width) stays furniture. Before, the room was outside through the gap.
+  TinyDxf d;
+  d.polyline("Walls", {{1.5, 0}, {0, 0}, {0, 3.4}, {4.4, 3.4}, {4.4, 0}, {2.7, 0}}, false);
+  d.polyline("Walls", {{1.5, 0.2}, {0.2, 0.2}, {0.2, 3.2}, {4.2, 3.2}, {4.2, 0.2}, {2.7, 0.2}}, false);
+  d.line("Walls", {1.5, 0}, {1.5, 0.2});
+  d.line("Walls", {2.7, 0}, {2.7, 0.2});
+  d.line("0", {1.55, 0.08}, {2.65, 0.08});
+  d.line("0", {1.55, 0.12}, {2.65, 0.12});
+  d.polyline("0", {{1.5, 0.05}, {1.55, 0.05}, {1.55, 0.15}, {1.5, 0.15}}, true);
+  d.polyline("0", {{2.65, 0.05}, {2.7, 0.05}, {2.7, 0.15}, {2.65, 0.15}}, true);
+  d.line("0", {1.45, -0.1}, {2.75, -0.1});  // the sill, outside
+  d.polyline("0", {{1.0, 3.2}, {3.0, 3.2}, {3.0, 2.3}, {1.0, 2.3}}, true);   // a sofa
+  d.polyline("0", {{0.2, 1.6}, {4.2, 1.6}, {4.2, 1.9}, {0.2, 1.9}}, true);   // a bookcase, wall to wall
+  d.text("Text", {1.0, 1.0}, "Living");
+  const DxfPlan r = read_dxf_plan(d.write("window-on-0.dxf"));
+  ASSERT_EQ(r.plan.rooms.size(), 1u);
+  EXPECT_EQ(r.plan.rooms[0].name, "Living");
+  EXPECT_EQ(doors_in(r.plan, OpeningKind::Window), 1);
+  std::string said;
+  for (const std::string& line : r.summary) said += line + "\n";
+  EXPECT_NE(said.find("'0 (lines in wall gaps)'"), std::string::npos) << said;
+  const CellComplex c = build_cells(r.plan);
+  EXPECT_EQ(cells_are_valid(c), "");
+  EXPECT_GE(avenues::testing::portals_out(c, PortalKind::Window), 1);
+  EXPECT_GT(avenues::testing::check_views_from_rooms(r.plan, c), 0);
+}
+
 TEST(DxfPlan, AFrontDoorLeadsOutAndTheWallRingStaysSolid) {
   // A room in a 0.2 m wall ring, with a 0.9 m door gap in its south wall (x 1.5–2.4)
   // and the door's swing inside: the door opens onto the outside.

@@ -1137,6 +1137,50 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   out.drawing.reserve(flat.segs.size());
   for (const SegPiece& s : flat.segs) out.drawing.push_back({m(s.a), m(s.b)});
 
+  // Windows drawn on layer 0 (anandkothartrdl-plan.dxf draws its living room's glazing so,
+  // and the room was read as outside through the gap): lines on layer 0 that lie in a wall
+  // gap from end to end, thin across it (at most 0.35 m) and 0.3–6 m long, found as doors
+  // without a swing are (swingless_doors.h), are window lines. Furniture on layer 0 is
+  // thicker across, or stands in a room, not in a gap in a wall.
+  int windows_on_layer_0 = 0;
+  {
+    std::vector<std::pair<Vec2, Vec2>> loose, wall_lines;
+    std::vector<size_t> seg_of;
+    for (size_t i = 0; i < flat.segs.size(); ++i) {
+      const SegPiece& s = flat.segs[i];
+      if (s.curved) continue;
+      if (s.layer == "0" && !s.door_block && s.window_block.empty()) loose.push_back({m(s.a), m(s.b)}), seg_of.push_back(i);
+      else if (role[s.layer] == LayerRole::Walls || role[s.layer] == LayerRole::Windows) wall_lines.push_back({m(s.a), m(s.b)});
+    }
+    if (!loose.empty()) {
+      SwinglessDoorParams prm;
+      prm.min_width = 0.3, prm.max_width = 6.0;
+      prm.max_across = 0.6, prm.join_across = 0.05;  // thick across (sills inside and out), not joined across
+      const std::string layer = "0 (lines in wall gaps)";
+      std::vector<SwinglessDoor> found = find_swingless_doors(loose, std::vector<bool>(loose.size(), false), wall_lines, {}, prm);
+      // One window per gap: of the pieces found in one gap (the glass with its frames, a sill
+      // line inside, another outside), the one of most lines, then the longest, is the window.
+      std::erase_if(found, [](const SwinglessDoor& w) { return !w.placed; });
+      std::sort(found.begin(), found.end(), [](const SwinglessDoor& a, const SwinglessDoor& b) {
+        return a.lines.size() != b.lines.size() ? a.lines.size() > b.lines.size() : length(a.b - a.a) > length(b.b - b.a);
+      });
+      std::vector<const SwinglessDoor*> kept;
+      for (const SwinglessDoor& w : found) {
+        const Vec2 u = (1 / std::max(1e-9, length(w.b - w.a))) * (w.b - w.a), n{-u.y, u.x};
+        const bool same_gap = std::any_of(kept.begin(), kept.end(), [&](const SwinglessDoor* k) {
+          const double lo = std::min(dot(k->a - w.a, u), dot(k->b - w.a, u)), hi = std::max(dot(k->a - w.a, u), dot(k->b - w.a, u));
+          return std::fabs(dot(k->where - w.where, n)) < 0.6 && hi > 0 && lo < length(w.b - w.a);
+        });
+        if (same_gap) continue;
+        kept.push_back(&w);
+        for (int i : w.lines) flat.segs[seg_of[size_t(i)]].layer = layer;
+        role[layer] = LayerRole::Windows;
+        ++windows_on_layer_0;
+      }
+      if (windows_on_layer_0 > 0) taken[int(LayerRole::Windows)].push_back(layer);
+    }
+  }
+
   WallArrangementInput arr_in;
   // Door and window gaps, windows first: each cluster of window-layer lines (glass,
   // frames, mullions, sills touching one another) is one window.

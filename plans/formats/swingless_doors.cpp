@@ -130,7 +130,7 @@ std::vector<SwinglessDoor> find_swingless_doors(const std::vector<std::pair<Vec2
       const Piece &p = pieces[i], &q = pieces[j];
       if (std::fabs(cross(p.u, q.u)) > std::sin(rad_from_deg(10))) return;
       const Vec2 nrm{-p.u.y, p.u.x};
-      if (std::fabs(dot(q.mid - p.mid, nrm)) > prm.max_across) return;
+      if (std::fabs(dot(q.mid - p.mid, nrm)) > (prm.join_across < 0 ? prm.max_across : prm.join_across)) return;
       const double off = dot(q.mid - p.mid, p.u);
       const double q_lo = off + std::min(q.lo * dot(q.u, p.u), q.hi * dot(q.u, p.u)),
                    q_hi = off + std::max(q.lo * dot(q.u, p.u), q.hi * dot(q.u, p.u));

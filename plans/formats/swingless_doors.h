@@ -34,6 +34,7 @@ struct SwinglessDoorParams {
   double max_across = 0.35;    ///< [m] the thickest a door's drawing is across its gap
   double max_half_wall = 0.25; ///< [m] how far a wall's face may lie beside the gap's axis
   double near_swing = 0.1;     ///< [m] lines this near a swing's hinge or ends belong to the swing door
+  double join_across = -1;     ///< [m] how far apart across pieces along one axis may lie to be one door (< 0: max_across)
 };
 
 struct SwinglessDoor {
