@@ -131,6 +131,18 @@ class TinyDxf {
       for (Vec2 p : pts) dw.dxfReal(10, p.x), dw.dxfReal(20, p.y);
     });
   }
+  /// An LWPOLYLINE whose pieces have widths of their own (per vertex, its piece's start and
+  /// end width, codes 40 and 41), as AutoCAD's PLINE writes it when the width is changed
+  /// along the way.
+  void polyline_of_widths(const std::string& layer, std::vector<Vec2> pts, bool closed, std::vector<double> widths) {
+    for (Vec2& p : pts) p = p + o_;
+    body_.push_back([=](DL_Dxf&, DL_WriterA& dw) {
+      dw.dxfString(0, "LWPOLYLINE"), dw.dxfString(100, "AcDbEntity"), dw.dxfString(8, layer);
+      dw.dxfString(100, "AcDbPolyline"), dw.dxfInt(90, int(pts.size())), dw.dxfInt(70, closed ? 1 : 0);
+      for (size_t i = 0; i < pts.size(); ++i)
+        dw.dxfReal(10, pts[i].x), dw.dxfReal(20, pts[i].y), dw.dxfReal(40, widths[i]), dw.dxfReal(41, widths[i]);
+    });
+  }
   /// A filled SOLID quadrilateral, corners in DXF's order (1 2 4 3 around).
   void solid(const std::string& layer, Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
     body_.push_back([=](DL_Dxf& dxf, DL_WriterA& dw) {
@@ -493,6 +505,25 @@ TEST(DxfPlan, WallsDrawnAsWidePolylinesAreAsThickAsDrawn) {
   EXPECT_TRUE(said);
 }
 
+TEST(DxfPlan, APolylineWhoseWidthChangesAlongTheWayIsAsThickAsDrawnPieceByPiece) {
+  // A room drawn as one closed wide polyline: 0.3 m walls, but 0.1 m along the top. Each
+  // run of one width is its band: the room's faces lie half a width inside each piece.
+  TinyDxf d;
+  d.polyline_of_widths("Walls", {{0, 0}, {4, 0}, {4, 4}, {0, 4}}, true, {0.3, 0.3, 0.1, 0.3});
+  d.text("Text", {2, 2}, "Room");
+  const DxfPlan r = read_dxf_plan(d.write("widths.dxf"));
+  ASSERT_EQ(r.plan.rooms.size(), 1u);
+  double top = 0, bottom = 0;  // the lengths of wall along the room's top and bottom faces
+  for (const Wall& w : r.plan.walls) {
+    const Vec2 a = w.centre.front(), b = w.centre.back();
+    if (std::fabs(a.y - 3.95) < 1e-3 && std::fabs(b.y - 3.95) < 1e-3) top += length(b - a);
+    if (std::fabs(a.y - 0.15) < 1e-3 && std::fabs(b.y - 0.15) < 1e-3) bottom += length(b - a);
+  }
+  EXPECT_NEAR(top, 3.7, 0.01);
+  EXPECT_NEAR(bottom, 3.7, 0.01);
+  EXPECT_EQ(cells_are_valid(build_cells(r.plan)), "");
+}
+
 TEST(DxfPlan, AreasAndSizesUnderARoomsNameAreNoPartOfIt) {
   // Drawings write a room's area or size under its name, in the same MTEXT or a text of
   // its own: the name is the name. A room's number stays.
@@ -524,6 +555,22 @@ TEST(DxfPlan, WallsDrawnOnlyAsFillsAreWalls) {
   bool said = false;
   for (const std::string& line : r.summary) said |= line.find("fills' outlines taken as the walls' faces") != std::string::npos;
   EXPECT_TRUE(said);
+}
+
+TEST(DxfPlan, ASwingOnLayerZeroIsADoorAndACornerShelfIsNot) {
+  // Walls on their layer, the door's swing and leaf on layer 0, as a drawing with no door
+  // layer has them; a quarter-round shelf of door radius in the hall's corner (its ends on
+  // the two walls) is furniture.
+  TinyDxf d;
+  two_rooms_in_double_lines(d, "Walls");
+  d.arc("0", {4.1, 1.0}, 0.9, 90, 180);
+  d.line("0", {4.1, 1.0}, {3.2, 1.0});
+  d.arc("0", {8.2, 3.2}, 0.6, 180, 270);
+  const DxfPlan r = read_dxf_plan(d.write("swing-on-0.dxf"));
+  std::string said;
+  for (const std::string& line : r.summary) said += line + "\n";
+  EXPECT_NE(said.find(": 1 swings,"), std::string::npos) << said;
+  expect_walkable(r.plan, 2, 1);
 }
 
 TEST(DxfPlan, ADoorDrawnOverAWallNotCutForItOpensTheWall) {

@@ -19,6 +19,7 @@
 
 #include "core/angles.h"
 #include "core/number_format.h"
+#include "plans/formats/arcs_in_lines.h"
 #include "plans/formats/dxf_layer_names.h"
 #include "plans/formats/segment_grid.h"
 #include "plans/formats/swingless_doors.h"
@@ -378,9 +379,20 @@ class Collector : public DL_CreationAdapter {
     poly_closed_ = (d.flags & 1) != 0;
     poly_width_ = ended_width_;
     poly_.clear();
+    piece_widths_.clear();
+    lw_widths_ = ended_vertex_widths_;  // an LWPOLYLINE's, per vertex (an old POLYLINE's come with each VERTEX)
   }
   void addVertex(const DL_VertexData& d) override {
-    if (in_poly_) poly_.push_back({{d.x, d.y}, d.bulge});
+    if (!in_poly_) return;
+    // The width of the piece from this vertex on: its own start and end widths when it has
+    // them and they agree, else the polyline's constant one; -1 when it tapers.
+    std::pair<double, double> w{-1, -1};
+    if (poly_.size() < lw_widths_.size()) w = lw_widths_[poly_.size()];
+    else if (!ended_vertex_widths_.empty()) w = ended_vertex_widths_.front();
+    if (w.first < 0) w.first = poly_width_;
+    if (w.second < 0) w.second = poly_width_;
+    piece_widths_.push_back(w.first == w.second ? w.first : -1);
+    poly_.push_back({{d.x, d.y}, d.bulge});
   }
   void add3dFace(const DL_3dFaceData&) override {
     flush();
@@ -396,6 +408,8 @@ class Collector : public DL_CreationAdapter {
     if (code == 2 && entity_ == "SECTION") section_ = value;
     if (code == 0) {
       ended_width_ = width_start_ > 0 && width_start_ == width_end_ ? width_start_ : 0;
+      ended_vertex_widths_ = std::move(vertex_widths_);
+      vertex_widths_.clear();
       entity_ = value, width_start_ = width_end_ = 0;
       // Objects of AutoCAD's verticals (Architecture's AEC_WALL, AEC_DOOR ...; proxies),
       // which only those programs can draw: counted, to say so.
@@ -419,6 +433,16 @@ class Collector : public DL_CreationAdapter {
     char* end = nullptr;
     const double v = std::strtod(value.c_str(), &end);
     if (end == value.c_str() || !std::isfinite(v)) return;
+    // Widths per vertex (its piece's start and end): an LWPOLYLINE's after each vertex's
+    // 10, an old-style POLYLINE's on each VERTEX.
+    if ((entity_ == "LWPOLYLINE" && code == 10) || (entity_ == "VERTEX" && vertex_widths_.empty())) {
+      if (vertex_widths_.size() < 1000000) vertex_widths_.push_back({-1, -1});
+    }
+    if (((entity_ == "LWPOLYLINE" && !vertex_widths_.empty()) || entity_ == "VERTEX") && (code == 40 || code == 41) && v >= 0) {
+      if (vertex_widths_.empty()) vertex_widths_.push_back({-1, -1});
+      (code == 40 ? vertex_widths_.back().first : vertex_widths_.back().second) = v;
+      return;
+    }
     if ((entity_ == "LWPOLYLINE" && code == 43) || (entity_ == "POLYLINE" && (code == 40 || code == 41))) {
       if (v > 0) {
         if (code != 41) width_start_ = v;
@@ -537,15 +561,32 @@ class Collector : public DL_CreationAdapter {
     for (size_t i = first; i < ring.size(); ++i) ring[i] = hatch_map_(ring[i]);
   }
 
+  /// Ends the wide polyline's band under way, if any.
+  void end_band() {
+    if (!band_) return;
+    if (band_->closed && band_->pts.size() > 1 && length(band_->pts.back() - band_->pts.front()) == 0) band_->pts.pop_back();
+    if (band_->pts.size() >= 2) cur_->bands.push_back(std::move(*band_));
+    band_.reset();
+  }
+
   /// Ends a polyline or spline under way.
   void flush() {
     if (in_poly_ && poly_.size() >= 2) {
-      if (poly_width_ > 0) band_.emplace(Band{{}, poly_closed_, poly_width_, layer()});
+      // Widths: one for the whole polyline (a closed band), or per piece (AutoCAD's PLINE
+      // with its width changed along the way): each run of pieces of one width its band.
       const size_t n = poly_.size(), segs = poly_closed_ ? n : n - 1;
+      piece_widths_.resize(n, poly_width_);
+      const bool one_width =
+          std::all_of(piece_widths_.begin(), piece_widths_.begin() + std::ptrdiff_t(segs), [&](double w) { return w == piece_widths_[0]; });
+      if (one_width && piece_widths_[0] > 0) band_.emplace(Band{{}, poly_closed_, piece_widths_[0], layer()});
       std::vector<Vec2> ring;
       for (size_t i = 0; i < segs; ++i) {
         const Vec2 a = poly_[i].first, b = poly_[(i + 1) % n].first;
         const double bulge = poly_[i].second;
+        if (!one_width && (i == 0 || piece_widths_[i] != piece_widths_[i - 1])) {
+          end_band();
+          if (piece_widths_[i] > 0) band_.emplace(Band{{}, false, piece_widths_[i], layer()});
+        }
         ring.push_back(a);
         if (std::fabs(bulge) < 1e-9 || length(b - a) == 0) {
           seg(a, b);
@@ -563,11 +604,7 @@ class Collector : public DL_CreationAdapter {
       }
       for (Vec2& p : ring) p = map_(p, z_);
       if (poly_closed_ && n >= 3) cur_->closed.push_back({ring, layer()});
-      if (band_) {
-        if (band_->closed && band_->pts.size() > 1 && length(band_->pts.back() - band_->pts.front()) == 0) band_->pts.pop_back();
-        if (band_->pts.size() >= 2) cur_->bands.push_back(std::move(*band_));
-        band_.reset();
-      }
+      end_band();
       count();
     }
     if (in_spline_) {
@@ -666,6 +703,10 @@ class Collector : public DL_CreationAdapter {
   std::string entity_;                ///< the type of the entity whose pairs are being read
   std::string section_;               ///< the section being read (HEADER, BLOCKS, ENTITIES ...)
   double width_start_ = 0, width_end_ = 0, ended_width_ = 0, poly_width_ = 0;
+  /// Per vertex, its piece's start and end width (-1: not given): being read, of the entity
+  /// just ended, and of the LWPOLYLINE under way.
+  std::vector<std::pair<double, double>> vertex_widths_, ended_vertex_widths_, lw_widths_;
+  std::vector<double> piece_widths_;  ///< per vertex of the polyline under way: its piece's width, -1 tapering
   std::optional<Band> band_;          ///< a wide polyline being flushed
   bool in_poly_ = false, poly_closed_ = false, in_spline_ = false;
   std::vector<std::pair<Vec2, double>> poly_;
@@ -814,94 +855,26 @@ void flatten(const Collector& col, const Group& g, const std::vector<Placement>&
   }
 }
 
-/// Door swings drawn as short straight lines, as programs that write arcs as polylines or
-/// lines do (conversions from PDF, SketchUp, Rhino): a chain of three or more lines on a
-/// door layer or in a door block, end to end, turning the same way by at most 36 degrees
-/// at each corner, its corners on one circle. Each such chain is an arc, its lines curved
-/// pieces as an ARC's are (no frame, no wall: as straight lines they closed the door's gap
-/// with a curved wall, and the rooms either side had no way between them). Returns how
-/// many were found.
+/// Door swings drawn as short straight lines (arcs_in_lines.h) on a door layer or in a door
+/// block: each is an arc, its lines curved pieces as an ARC's are (no frame, no wall: as
+/// straight lines they closed the door's gap with a curved wall, and the rooms either side
+/// had no way between them). Returns how many were found.
 int swings_drawn_as_lines(Flat& flat, const std::map<std::string, LayerRole>& role) {
-  std::vector<size_t> cand;
-  double extent = 1;
+  std::vector<size_t> seg_of;
+  std::vector<std::pair<Vec2, Vec2>> lines;
   for (size_t i = 0; i < flat.segs.size(); ++i) {
     const SegPiece& s = flat.segs[i];
     if (s.curved || !(length(s.b - s.a) > 0) || (role.at(s.layer) != LayerRole::Doors && !s.door_block)) continue;
-    cand.push_back(i);
-    extent = std::max({extent, std::fabs(s.a.x), std::fabs(s.a.y), std::fabs(s.b.x), std::fabs(s.b.y)});
+    seg_of.push_back(i);
+    lines.push_back({s.a, s.b});
   }
-  // Ends meet where they agree to a billionth of the drawing's extent.
-  const double q = extent * 1e-9;
-  auto key = [q](Vec2 p) { return std::pair<int64_t, int64_t>(std::llround(p.x / q), std::llround(p.y / q)); };
-  std::map<std::pair<int64_t, int64_t>, std::vector<size_t>> at;  // end -> indices into cand
-  for (size_t k = 0; k < cand.size(); ++k) {
-    const SegPiece& s = flat.segs[cand[k]];
-    at[key(s.a)].push_back(k);
-    if (key(s.b) != key(s.a)) at[key(s.b)].push_back(k);
+  const std::vector<ArcOfLines> arcs = arcs_in_lines(lines);
+  for (const ArcOfLines& a : arcs) {
+    const SegPiece& first = flat.segs[seg_of[a.lines.front()]];
+    flat.arcs.push_back({ArcPiece{a.centre, a.from, a.to, a.r, a.sweep_deg, first.layer}, first.door_block});
+    for (size_t k : a.lines) flat.segs[seg_of[k]].curved = true;
   }
-  auto other_end = [&](size_t k, Vec2 p) {
-    const SegPiece& s = flat.segs[cand[k]];
-    return key(s.a) == key(p) ? s.b : s.a;
-  };
-  constexpr double kMostTurn = 36 * kPi / 180;  // ten lines to a circle at the coarsest
-  // The other line at end p of line k, where exactly two lines meet there, turning gently.
-  auto next = [&](size_t k, Vec2 p) -> std::optional<size_t> {
-    const std::vector<size_t>& v = at[key(p)];
-    if (v.size() != 2) return std::nullopt;
-    const size_t n = v[0] == k ? v[1] : v[0];
-    const Vec2 u = p - other_end(k, p), w = other_end(n, p) - p;
-    if (!(std::fabs(std::atan2(cross(u, w), dot(u, w))) < kMostTurn)) return std::nullopt;
-    return n;
-  };
-  std::vector<bool> used(cand.size(), false);
-  int found = 0;
-  for (size_t k0 = 0; k0 < cand.size(); ++k0) {
-    if (used[k0]) continue;
-    // Walk back from k0's end a to the chain's start, then forward collecting corners.
-    size_t k = k0;
-    Vec2 p = flat.segs[cand[k0]].a;
-    for (size_t steps = 0; steps < cand.size(); ++steps) {
-      const std::optional<size_t> n = next(k, p);
-      if (!n || *n == k0) break;  // an open end, or round a closed loop
-      p = other_end(*n, p), k = *n;
-    }
-    std::vector<size_t> lines;
-    std::vector<Vec2> pts{p};
-    for (std::optional<size_t> cur = k; cur && !used[*cur];) {
-      used[*cur] = true;
-      lines.push_back(cand[*cur]);
-      pts.push_back(other_end(*cur, pts.back()));
-      cur = next(*cur, pts.back());
-    }
-    if (lines.size() < 3 || key(pts.front()) == key(pts.back())) continue;  // too short, or a closed outline
-    // Turning the same way, gently, at every corner.
-    double turned = 0;
-    bool smooth = true;
-    for (size_t i = 1; i + 1 < pts.size() && smooth; ++i) {
-      const Vec2 u = pts[i] - pts[i - 1], v = pts[i + 1] - pts[i];
-      const double t = std::atan2(cross(u, v), dot(u, v));
-      smooth = std::fabs(t) > 1e-3 && std::fabs(t) < kMostTurn && (i == 1 || (t > 0) == (turned > 0));
-      turned += t;
-    }
-    if (!smooth) continue;
-    // The circle through the first, middle and last corners holds them all.
-    const Vec2 a = pts.front(), b = pts[pts.size() / 2], c = pts.back();
-    const double d = 2 * cross(b - a, c - a);
-    if (!(std::fabs(d) > 0)) continue;
-    const Vec2 ab = b - a, ac = c - a;
-    const Vec2 centre = a + (1 / d) * Vec2{ac.y * dot(ab, ab) - ab.y * dot(ac, ac), ab.x * dot(ac, ac) - ac.x * dot(ab, ab)};
-    const double r = length(a - centre);
-    if (!std::all_of(pts.begin(), pts.end(), [&](Vec2 corner) { return std::fabs(length(corner - centre) - r) <= 0.02 * r; })) continue;
-    // The arc's sweep: each line's angle about the centre, summed.
-    double sweep = 0;
-    for (size_t i = 0; i + 1 < pts.size(); ++i) sweep += std::fabs(std::atan2(cross(pts[i] - centre, pts[i + 1] - centre), dot(pts[i] - centre, pts[i + 1] - centre)));
-    const SegPiece& first = flat.segs[lines.front()];
-    const bool ccw = turned > 0;
-    flat.arcs.push_back({ArcPiece{centre, ccw ? a : c, ccw ? c : a, r, sweep * 180 / kPi, first.layer}, first.door_block});
-    for (size_t i : lines) flat.segs[i].curved = true;
-    ++found;
-  }
-  return found;
+  return int(arcs.size());
 }
 
 }  // namespace
@@ -1253,8 +1226,9 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     for (const auto& [a, in_door_block] : flat.arcs) {
       const LayerRole lr = role[a.layer];
       const double r = a.r * unit;
-      const bool both_ways = a.sweep_deg >= 150 && a.sweep_deg <= 210 && (lr == LayerRole::Walls || lr == LayerRole::Doors || in_door_block);
-      const bool one_way = door_swing_sweep(a.sweep_deg) && lr == LayerRole::Walls && !in_door_block;
+      const bool on_0 = a.layer == "0" && !in_door_block;  // a layer that says nothing
+      const bool both_ways = a.sweep_deg >= 150 && a.sweep_deg <= 210 && (lr == LayerRole::Walls || lr == LayerRole::Doors || in_door_block || on_0);
+      const bool one_way = door_swing_sweep(a.sweep_deg) && (lr == LayerRole::Walls || on_0) && !in_door_block;
       if (!door_swing_radius(r) || (!both_ways && !one_way)) continue;
       const Vec2 c = m(a.c), p0 = m(a.p0), p1 = m(a.p1);
       const double half = 0.5 * a.sweep_deg * kPi / 180, cs = std::cos(half), sn = std::sin(half);
