@@ -23,6 +23,7 @@
 #include "plans/formats/dxf_layer_names.h"
 #include "plans/formats/segment_grid.h"
 #include "plans/formats/swingless_doors.h"
+#include "plans/formats/uncut_walls.h"
 #include "plans/formats/wall_arrangement.h"
 #include "plans/formats/wall_line_ends.h"
 
@@ -1330,92 +1331,21 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     if (!panel[i] && (role[s.layer] == LayerRole::Walls || (role[s.layer] == LayerRole::Doors && !s.curved)))
       walls.push_back({m(s.a), m(s.b)});
   }
-  // Doors drawn over walls not cut for them (a sketch's walls drawn straight through, the
-  // door symbol on top): a swing whose hinge and one end both lie on a wall line that runs
-  // on past both is a door in that wall. The wall is opened there: that line and the lines
-  // parallel to it behind it (the wall's other face: within 0.6 m, on the side of the
-  // nearest such line across the span) lose the span between the two; the ends so left
-  // are capped across the wall like any wall's open end (below).
-  int walls_opened = 0;
+  // Doors drawn over walls not cut for them (uncut_walls.h): the walls opened under them.
   {
-    std::vector<std::pair<Vec2, Vec2>> pairs;
-    for (const WallLine& w : walls) pairs.push_back({w.a, w.b});
-    SegmentGrid grid(pairs, 0.5);
-    std::vector<std::vector<std::pair<Vec2, Vec2>>> cuts(walls.size());  // per line: the spans to open
-    for (const auto& [a, in_door_block] : flat.arcs) {
-      if (role[a.layer] != LayerRole::Doors && !in_door_block) continue;
-      const double r = a.r * unit;
-      if (!door_swing_radius(r) || !door_swing_sweep(a.sweep_deg)) continue;
-      const Vec2 c = m(a.c);
-      for (const Vec2 e : {m(a.p0), m(a.p1)}) {
-        const Vec2 open = length(e - m(a.p0)) < 1e-9 ? m(a.p1) : m(a.p0);
-        // The wall line through the hinge and e, running on past both by a centimetre.
-        int through = -1;
-        grid.near(c, 0.02, [&](size_t i) {
-          const Vec2 d = walls[i].b - walls[i].a;
-          const double len = length(d);
-          if (through >= 0 || !(len > 0) || distance_to_segment(c, walls[i].a, walls[i].b) > 0.02 ||
-              distance_to_segment(e, walls[i].a, walls[i].b) > 0.02)
-            return;
-          const double tc = dot(c - walls[i].a, d) / len, te = dot(e - walls[i].a, d) / len;
-          if (std::min(tc, te) > 0.01 && std::max(tc, te) < len - 0.01) through = int(i);
-        });
-        if (through < 0) continue;
-        const WallLine& l = walls[size_t(through)];
-        const Vec2 u = (1 / length(l.b - l.a)) * (l.b - l.a);
-        const double t0 = std::min(dot(c, u), dot(e, u)), t1 = std::max(dot(c, u), dot(e, u));
-        auto parallel_across = [&](const WallLine& w) {  // within 2 degrees, and over the span
-          const Vec2 d = w.b - w.a;
-          const double len = length(d);
-          return w.closes < 0 && len > 0 && std::fabs(cross(d, u)) < 0.035 * len &&
-                 std::max(dot(w.a, u), dot(w.b, u)) > t0 && std::min(dot(w.a, u), dot(w.b, u)) < t1;
-        };
-        std::vector<size_t> near;
-        grid.near(0.5 * (c + e), 0.5 * (t1 - t0) + 0.6, [&](size_t i) {
-          if (parallel_across(walls[i])) near.push_back(i);
-        });
-        // The wall's body lies toward its other face: the nearest parallel line across the span.
-        Vec2 n{-u.y, u.x};
-        double nearest = 0.6;
-        for (size_t i : near) {
-          const double depth = 0.5 * (dot(walls[i].a, n) + dot(walls[i].b, n)) - dot(c, n);
-          if (std::fabs(depth) > 0.01 && std::fabs(depth) < std::fabs(nearest)) nearest = depth;
-        }
-        if (nearest < 0) n = -1.0 * n;
-        if (std::fabs(nearest) >= 0.6 && dot(open - c, n) > 0) n = -1.0 * n;  // a wall of one line
-        const double off = dot(c, n);
-        for (size_t i : near) {
-          const double depth_a = dot(walls[i].a, n) - off, depth_b = dot(walls[i].b, n) - off;
-          if (std::min(depth_a, depth_b) >= -0.01 && std::max(depth_a, depth_b) <= 0.6) cuts[i].push_back({c, e});
-        }
-        ++walls_opened;
-        break;
-      }
+    std::vector<SwingArc> swings;
+    for (const auto& [a, in_door_block] : flat.arcs)
+      if ((role[a.layer] == LayerRole::Doors || in_door_block) && door_swing_radius(a.r * unit) && door_swing_sweep(a.sweep_deg))
+        swings.push_back({m(a.c), m(a.p0), m(a.p1)});
+    std::vector<std::pair<Vec2, Vec2>> lines;
+    for (const WallLine& w : walls) lines.push_back({w.a, w.b});
+    const OpenedWalls opened = open_walls_under_swings(lines, swings);
+    if (opened.doors > 0) {
+      walls.clear();
+      for (const auto& [a, b] : opened.lines) walls.push_back({a, b});
+      out.summary.push_back(std::to_string(opened.doors) + " doors drawn over walls not cut for them: the walls opened there");
     }
-    // Each line cut loses the union of its spans (its ends' projections on it).
-    std::vector<WallLine> kept;
-    for (size_t i = 0; i < walls.size(); ++i) {
-      const WallLine& w = walls[i];
-      if (cuts[i].empty()) {
-        kept.push_back(w);
-        continue;
-      }
-      const Vec2 d = w.b - w.a;
-      const double dd = dot(d, d);
-      std::vector<std::pair<double, double>> spans;
-      for (const auto& [p, q] : cuts[i]) spans.push_back(std::minmax(dot(p - w.a, d) / dd, dot(q - w.a, d) / dd));
-      std::sort(spans.begin(), spans.end());
-      double from = 0;
-      for (const auto& [lo, hi] : spans) {
-        if (lo > from) kept.push_back({w.a + from * d, w.a + std::min(lo, 1.0) * d});
-        from = std::max(from, hi);
-      }
-      if (from < 1) kept.push_back({w.a + from * d, w.b});
-    }
-    walls = std::move(kept);
   }
-  if (walls_opened > 0)
-    out.summary.push_back(std::to_string(walls_opened) + " doors drawn over walls not cut for them: the walls opened there");
   for (size_t i = 0; i < win.size(); ++i) walls.push_back({win[i].a, win[i].b, window_of[i]});
   // The gaps a drawing leaves at its wall lines' ends: partitions stopping short, walls'
   // ends left open across their thickness.
