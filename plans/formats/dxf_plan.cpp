@@ -24,6 +24,7 @@
 #include "plans/formats/segment_grid.h"
 #include "plans/formats/swingless_doors.h"
 #include "plans/formats/uncut_walls.h"
+#include "plans/formats/wall_swings.h"
 #include "plans/formats/wall_arrangement.h"
 #include "plans/formats/wall_line_ends.h"
 
@@ -1202,93 +1203,34 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   // the window lines, each carrying its window: the room closes at the window's lines,
   // and its face there is the window.
   struct WallLine { Vec2 a, b; int closes = -1; };
-  // Swings drawn where walls are: a door layer's arcs are swings (below), a wall layer's
-  // are curved walls, except these, which would close their gaps with a curved wall and
-  // make a half- or quarter-disc room:
-  //  - double-acting doors (a leaf swinging both ways: kitchens, corridors, the pair in
-  //    ground-floor-lhs.dxf): a half circle (150–210°) about the hinge, from the leaf open
-  //    one way to the leaf open the other, often with the leaf itself drawn open across the
-  //    wall along its chord, on a wall or door layer or in a door block; the leaf shuts
-  //    across the gap, from the hinge to the half circle's middle;
-  //  - a swing on a wall layer (drawings that put their doors with their walls): a 60–120°
-  //    arc about a wall's end, its open end free of walls but for the leaf drawn to it.
-  // Both have door radius and stand at a wall's end; the arc and the leaf are no walls. A
-  // curved wall (a niche, a bay, a rounded corner) ends on walls at both ends.
+  // Swings drawn where the walls are (wall_swings.h): double-acting doors' half circles on
+  // a wall or door layer, layer 0 or in a door block; swings on a wall layer or layer 0.
   std::vector<bool> panel(flat.segs.size(), false);  // door leaves and panels: no wall lines
   struct Swing { Vec2 hinge, closed; std::string layer; };
   std::vector<Swing> swings_among_walls;
   {
-    std::vector<size_t> wall_segs;
+    std::vector<size_t> seg_of;
+    std::vector<WallSwingLine> lines;
     for (size_t i = 0; i < flat.segs.size(); ++i) {
       const SegPiece& s = flat.segs[i];
       if (role[s.layer] == LayerRole::Walls || ((role[s.layer] == LayerRole::Doors || s.door_block) && !s.curved))
-        wall_segs.push_back(i);
+        seg_of.push_back(i), lines.push_back({m(s.a), m(s.b), s.curved});
     }
+    std::vector<WallSwingArc> arcs;
+    std::vector<const ArcPiece*> arc_of;
     for (const auto& [a, in_door_block] : flat.arcs) {
       const LayerRole lr = role[a.layer];
-      const double r = a.r * unit;
       const bool on_0 = a.layer == "0" && !in_door_block;  // a layer that says nothing
-      const bool both_ways = a.sweep_deg >= 150 && a.sweep_deg <= 210 && (lr == LayerRole::Walls || lr == LayerRole::Doors || in_door_block || on_0);
-      const bool one_way = door_swing_sweep(a.sweep_deg) && (lr == LayerRole::Walls || on_0) && !in_door_block;
-      if (!door_swing_radius(r) || (!both_ways && !one_way)) continue;
-      const Vec2 c = m(a.c), p0 = m(a.p0), p1 = m(a.p1);
-      const double half = 0.5 * a.sweep_deg * kPi / 180, cs = std::cos(half), sn = std::sin(half);
-      const Vec2 u = (1 / r) * (p0 - c), mid_dir{cs * u.x - sn * u.y, sn * u.x + cs * u.y};
-      auto on_arc = [&](const SegPiece& s) {
-        const Vec2 sa = m(s.a), sb = m(s.b);
-        return s.curved && std::fabs(length(sa - c) - r) < 0.005 && std::fabs(length(sb - c) - r) < 0.005 &&
-               dot(sa - c, mid_dir) > std::cos(half) * r - 0.01 && dot(sb - c, mid_dir) > std::cos(half) * r - 0.01;
-      };
-      // The leaf drawn open: straight lines along the line through `from` and `to`, within the
-      // circle, long or out at its rim (not a wall end's short cap at the hinge).
-      auto leaf = [&](const SegPiece& s, Vec2 from, Vec2 to) {
-        const Vec2 sa = m(s.a), sb = m(s.b), axis = to - from;
-        const double axis_len = length(axis);
-        auto off_axis = [&](Vec2 p) { return std::fabs(cross(axis, p - from)) / axis_len; };
-        if (s.curved || !(axis_len > 0) || off_axis(sa) > 0.07 || off_axis(sb) > 0.07) return false;
-        if (length(sa - c) > 1.05 * r || length(sb - c) > 1.05 * r) return false;
-        return length(sb - sa) >= r / 2 || length(0.5 * (sa + sb) - c) > r / 2;
-      };
-      // Whether end e touches a wall line that is neither the arc nor a leaf along (from, to).
-      auto touches = [&](Vec2 e, Vec2 from, Vec2 to) {
-        for (size_t i : wall_segs) {
-          const SegPiece& s = flat.segs[i];
-          if (!on_arc(s) && !leaf(s, from, to) && distance_to_segment(e, m(s.a), m(s.b)) < 0.02) return true;
-        }
-        return false;
-      };
-      auto leaf_drawn = [&](Vec2 e) {
-        return std::any_of(wall_segs.begin(), wall_segs.end(), [&](size_t i) { return leaf(flat.segs[i], c, e); });
-      };
-      Vec2 from, to, shut;  // the leaf's axis, and where it shuts
-      if (both_ways) {
-        from = p0, to = p1, shut = c + r * mid_dir;
-        if (touches(p0, from, to) || touches(p1, from, to)) continue;
-      } else {
-        const bool free0 = !touches(p0, c, p0), free1 = !touches(p1, c, p1);
-        if (!free0 && !free1) continue;
-        const bool open0 = free0 && free1 ? leaf_drawn(p0) && !leaf_drawn(p1) : free0;
-        if (free0 && free1 && leaf_drawn(p0) == leaf_drawn(p1)) continue;  // which way it shuts is not told
-        from = c, to = open0 ? p0 : p1, shut = open0 ? p1 : p0;
-      }
-      // At a wall's end: a wall line not along the leaf within 15 cm of the hinge.
-      bool at_wall = false;
-      const Vec2 axis = to - from;
-      for (size_t i : wall_segs) {
-        const SegPiece& s = flat.segs[i];
-        if (on_arc(s) || leaf(s, from, to)) continue;
-        const Vec2 sa = m(s.a), sb = m(s.b), d = sb - sa;
-        const double len = length(d);
-        if (len > 0 && distance_to_segment(c, sa, sb) < 0.15 && std::fabs(dot(d, axis)) < 0.87 * len * length(axis)) at_wall = true;
-      }
-      if (!at_wall) continue;
-      for (size_t i = 0; i < flat.segs.size(); ++i) {
-        const SegPiece& s = flat.segs[i];
-        if (on_arc(s) || ((role[s.layer] == LayerRole::Walls || role[s.layer] == LayerRole::Doors || s.door_block) && leaf(s, from, to)))
-          panel[i] = true;
-      }
-      swings_among_walls.push_back({c, shut, a.layer});
+      WallSwingArc w{m(a.c), m(a.p0), m(a.p1), a.r * unit, a.sweep_deg, false, false};
+      w.both_ways = a.sweep_deg >= 150 && a.sweep_deg <= 210 && (lr == LayerRole::Walls || lr == LayerRole::Doors || in_door_block || on_0);
+      w.one_way = door_swing_sweep(a.sweep_deg) && (lr == LayerRole::Walls || on_0) && !in_door_block;
+      if (!door_swing_radius(w.r) || (!w.both_ways && !w.one_way)) continue;
+      arcs.push_back(w), arc_of.push_back(&a);
     }
+    const WallSwings found = find_wall_swings(lines, arcs);
+    for (size_t k = 0; k < lines.size(); ++k)
+      if (found.no_wall[k]) panel[seg_of[k]] = true;
+    for (const WallSwing& w : found.swings) swings_among_walls.push_back({w.hinge, w.shut, arc_of[w.arc]->layer});
   }
   // Doors drawn without a swing (sliding, pocket, bi-fold, leaves as lines): their panels
   // are no wall lines, and each closes its gap from end to end (swingless_doors.h).
