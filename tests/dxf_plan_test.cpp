@@ -370,6 +370,24 @@ TEST(DxfPlan, DoubleLinesWithADoorSwing) {
   EXPECT_NE(r.summary[0].find("'A-WALL'"), std::string::npos) << r.summary[0];
 }
 
+TEST(DxfPlan, StoreysDrawnSideBySideAreSaidToBeReadSideBySide) {
+  // Two storeys of one house drawn beside each other, each titled below it: read as two
+  // buildings on one ground, and the reader says so.
+  TinyDxf d;
+  two_rooms_in_double_lines(d, "A-WALL");
+  d.arc("A-DOOR", {4.1, 1.0}, 0.9, 90, 180);
+  d.text("Text", {2, -1}, "GROUND FLOOR PLAN");
+  d.place_at({12, 0});
+  two_rooms_in_double_lines(d, "A-WALL");
+  d.arc("A-DOOR", {4.1, 1.0}, 0.9, 90, 180);
+  d.text("Text", {2, -1}, "FIRST FLOOR PLAN");
+  const DxfPlan r = read_dxf_plan(d.write("side-by-side.dxf"));
+  EXPECT_EQ(r.plan.rooms.size(), 4u);
+  bool said = false;
+  for (const std::string& w : r.plan.warnings) said |= w.find("name 2 storeys ('GROUND FLOOR PLAN', 'FIRST FLOOR PLAN')") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
 TEST(DxfPlan, PaperSpaceIsNoPartOfThePlan) {
   // A layout's sheet in paper space, its coordinates overlapping the plan's: a frame line
   // across the kitchen on the wall layer and the sheet's title inside it. Neither is read.
@@ -1191,6 +1209,11 @@ TEST(DxfLayerNames, TheNamesDrawingsUseInManyLanguages) {
   EXPECT_TRUE(names_a_window("WINDOW-1200"));
   EXPECT_TRUE(names_a_window("Fenster_2-flg"));
   EXPECT_FALSE(names_a_window("Porte-fenêtre"));  // a glazed door is a door
+  for (const char* title : {"GROUND FLOOR PLAN", "First Floor", "1. Obergeschoss", "Grundriss EG", "Rez-de-chaussée",
+                            "1er étage", "Planta baja", "Piano terra", "Begane grond", "Level 2", "Basement"})
+    EXPECT_TRUE(names_a_storey(title)) << title;
+  for (const char* title : {"FLOOR PLAN", "Kitchen", "Scale 1:100", "Floor finish: oak", "Legend"})
+    EXPECT_FALSE(names_a_storey(title)) << title;
 }
 
 TEST(DxfPlan, AFrenchDrawingOpensByItsLayerNames) {

@@ -175,4 +175,22 @@ bool names_a_door(const std::string& name) {
   return contains(f.text, {"sliding", "pocket", "bifold", "bi-fold"}) || f.text.rfind("tur", 0) == 0 || f.door();
 }
 
+bool names_a_storey(const std::string& text) {
+  const Folded f(text);
+  const std::vector<std::string_view>& w = f.words;
+  if (contains(f.text, {"ground floor", "first floor", "second floor", "third floor", "upper floor", "top floor", "1st floor",
+                        "2nd floor", "3rd floor", "lower ground", "basement", "erdgeschoss", "obergeschoss", "untergeschoss",
+                        "dachgeschoss", "kellergeschoss", "rez-de-chauss", "rez de chauss", "sous-sol", "planta baja",
+                        "planta alta", "primer piso", "segundo piso", "piano terra", "primo piano", "secondo piano",
+                        "piano primo", "seminterrato", "begane grond", "verdieping"}))
+    return true;
+  for (size_t i = 0; i < w.size(); ++i) {
+    if (w[i] == "eg" || w[i] == "og" || w[i] == "ug" || w[i] == "dg" || w[i] == "étage" || w[i] == "etage") return true;
+    const bool numbered = i + 1 < w.size() && std::isdigit(static_cast<unsigned char>(w[i + 1][0]));
+    if ((w[i] == "level" || w[i] == "storey" || w[i] == "story" || w[i] == "floor" || w[i] == "niveau" || w[i] == "nivel") && numbered)
+      return true;
+  }
+  return false;
+}
+
 }  // namespace avenues

@@ -35,4 +35,9 @@ bool names_a_window(const std::string& name);
 /// Whether a block's name says it is a door (a door, a sliding, pocket or folding one).
 bool names_a_door(const std::string& name);
 
+/// Whether a drawing's title names a storey ("GROUND FLOOR PLAN", "1. Obergeschoss",
+/// "Rez-de-chaussée", "Planta baja", "Level 2" ...): a drawing whose titles name two is
+/// one of storeys drawn side by side.
+bool names_a_storey(const std::string& text);
+
 }  // namespace avenues

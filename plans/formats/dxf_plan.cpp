@@ -1585,6 +1585,19 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
                               ": not placed");
   int outside_texts = 0;
   for (int sp : arr.probe_space) outside_texts += sp == -2;
+  // Storeys drawn side by side: titles outside every room naming two or more storeys.
+  std::vector<std::string> storey_titles;
+  for (size_t p = 0; p < arr.probe_space.size(); ++p)
+    if (arr.probe_space[p] == -2 && names_a_storey(probe_name[p]) &&
+        std::find(storey_titles.begin(), storey_titles.end(), probe_name[p]) == storey_titles.end())
+      storey_titles.push_back(probe_name[p]);
+  if (storey_titles.size() >= 2) {
+    std::string list;
+    for (const std::string& t : storey_titles) list += (list.empty() ? "'" : ", '") + t + "'";
+    plan.warnings.push_back("the drawing's titles name " + std::to_string(storey_titles.size()) + " storeys (" + list +
+                            "): storeys drawn side by side are read as one storey, beside each other (Avenues does not "
+                            "stack them); to walk one storey alone, save it as a drawing of its own");
+  }
   if (outside_texts > 0)
     plan.warnings.push_back(std::to_string(outside_texts) +
                             " texts lie outside every closed room (the walls around them may not close)");
