@@ -132,17 +132,29 @@ std::vector<Vec2> arc_points(Vec2 c, double r, double a0, double a1, double sagi
   return out;
 }
 
-/// The points of a polyline's bulged piece from a to b (a bulge is tan(θ/4) of the arc's
-/// angle θ, positive counter-clockwise), a and b included; the chord when it has no bulge.
-std::vector<Vec2> bulge_points(Vec2 a, Vec2 b, double bulge, double sagitta = 0) {
-  const double chord = length(b - a);
-  if (std::fabs(bulge) < 1e-9 || !(chord > 0) || !std::isfinite(bulge)) return {a, b};
-  const double theta = 4 * std::atan(bulge), r = chord / (2 * std::sin(std::fabs(theta) / 2));
+/// The arc of a polyline's bulged piece from a to b (a bulge is tan(θ/4) of the arc's angle
+/// θ, positive counter-clockwise): its centre, radius and angles, counter-clockwise from a0
+/// to a1 (from b to a when the bulge is negative). a != b, bulge != 0.
+struct BulgeArc {
+  Vec2 c;
+  double r, a0, a1;
+};
+BulgeArc bulge_arc(Vec2 a, Vec2 b, double bulge) {
+  const double theta = 4 * std::atan(bulge), chord = length(b - a);
+  const double r = chord / (2 * std::sin(std::fabs(theta) / 2));
   const Vec2 m = 0.5 * (a + b), u = (1 / chord) * (b - a), left{-u.y, u.x};
   const double h = r * std::cos(theta / 2);  // centre to chord, signed with the bulge
   const Vec2 c = m + (bulge > 0 ? h : -h) * left;
   const double aa = std::atan2(a.y - c.y, a.x - c.x), ab = std::atan2(b.y - c.y, b.x - c.x);
-  std::vector<Vec2> pts = bulge > 0 ? arc_points(c, r, aa, ab, sagitta) : arc_points(c, r, ab, aa, sagitta);
+  return bulge > 0 ? BulgeArc{c, r, aa, ab} : BulgeArc{c, r, ab, aa};
+}
+
+/// The points of a polyline's bulged piece from a to b, a and b included; the chord when it
+/// has no bulge.
+std::vector<Vec2> bulge_points(Vec2 a, Vec2 b, double bulge, double sagitta = 0) {
+  if (std::fabs(bulge) < 1e-9 || !(length(b - a) > 0) || !std::isfinite(bulge)) return {a, b};
+  const BulgeArc k = bulge_arc(a, b, bulge);
+  std::vector<Vec2> pts = arc_points(k.c, k.r, k.a0, k.a1, sagitta);
   if (bulge < 0) std::reverse(pts.begin(), pts.end());
   pts.front() = a, pts.back() = b;
   return pts;
@@ -594,15 +606,8 @@ class Collector : public DL_CreationAdapter {
           seg(a, b);
           continue;
         }
-        // A bulge is tan(θ/4) of the arc's angle θ, positive counter-clockwise.
-        const double theta = 4 * std::atan(bulge), chord = length(b - a);
-        const double r = chord / (2 * std::sin(std::fabs(theta) / 2));
-        const Vec2 m = 0.5 * (a + b), u = (1 / chord) * (b - a), left{-u.y, u.x};
-        const double h = r * std::cos(theta / 2);  // centre to chord, signed with the bulge
-        const Vec2 c = m + (bulge > 0 ? h : -h) * left;
-        const double aa = std::atan2(a.y - c.y, a.x - c.x), ab = std::atan2(b.y - c.y, b.x - c.x);
-        if (bulge > 0) arc(c, r, aa, ab);
-        else arc(c, r, ab, aa);
+        const BulgeArc k = bulge_arc(a, b, bulge);
+        arc(k.c, k.r, k.a0, k.a1);
       }
       for (Vec2& p : ring) p = map_(p, z_);
       if (poly_closed_ && n >= 3) cur_->closed.push_back({ring, layer()});
@@ -1054,6 +1059,11 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     plan.warnings.push_back("the drawing states no unit: taken as " + unit_said);
   }
   auto m = [&](Vec2 p) { return unit * p; };
+  // A door's swing: an arc of a leaf's radius and a quarter turn, loosely, on a door layer
+  // or in a door block.
+  auto is_swing = [&](const ArcPiece& a, bool in_door_block) {
+    return (role[a.layer] == LayerRole::Doors || in_door_block) && door_swing_radius(a.r * unit) && door_swing_sweep(a.sweep_deg);
+  };
   // Wide polylines: on a wall layer and 5 cm wide or more, the wall's faces (the band's
   // outline); elsewhere, or thinner (a heavy pen), the line along their middle.
   int bands_as_walls = 0;
@@ -1114,10 +1124,9 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
 
   // Windows drawn on layer 0 (anandkothartrdl-plan.dxf draws its living room's glazing so,
   // and the room was read as outside through the gap): lines on layer 0 that lie in a wall
-  // gap from end to end, thin across it (at most 0.35 m) and 0.3–6 m long, found as doors
+  // gap from end to end, thin across it (at most 0.6 m) and 0.3–6 m long, found as doors
   // without a swing are (swingless_doors.h), are window lines. Furniture on layer 0 is
   // thicker across, or stands in a room, not in a gap in a wall.
-  int windows_on_layer_0 = 0;
   {
     std::vector<std::pair<Vec2, Vec2>> loose, wall_lines;
     std::vector<size_t> seg_of;
@@ -1144,15 +1153,14 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
         const Vec2 u = (1 / std::max(1e-9, length(w.b - w.a))) * (w.b - w.a), n{-u.y, u.x};
         const bool same_gap = std::any_of(kept.begin(), kept.end(), [&](const SwinglessDoor* k) {
           const double lo = std::min(dot(k->a - w.a, u), dot(k->b - w.a, u)), hi = std::max(dot(k->a - w.a, u), dot(k->b - w.a, u));
-          return std::fabs(dot(k->where - w.where, n)) < 0.6 && hi > 0 && lo < length(w.b - w.a);
+          return std::fabs(dot(k->where - w.where, n)) < prm.max_across && hi > 0 && lo < length(w.b - w.a);
         });
         if (same_gap) continue;
         kept.push_back(&w);
         for (int i : w.lines) flat.segs[seg_of[size_t(i)]].layer = layer;
         role[layer] = LayerRole::Windows;
-        ++windows_on_layer_0;
       }
-      if (windows_on_layer_0 > 0) taken[int(LayerRole::Windows)].push_back(layer);
+      if (!kept.empty()) taken[int(LayerRole::Windows)].push_back(layer);
     }
   }
 
@@ -1253,7 +1261,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     }
     std::vector<Vec2> swing_points;
     for (const auto& [a, in_door_block] : flat.arcs)  // swings (as below), not a bi-fold's small arcs
-      if ((role[a.layer] == LayerRole::Doors || in_door_block) && door_swing_radius(a.r * unit) && door_swing_sweep(a.sweep_deg))
+      if (is_swing(a, in_door_block))
         for (Vec2 p : {a.c, a.p0, a.p1}) swing_points.push_back(m(p));
     for (const Flat::Curve& cv : flat.curves)
       if ((role[cv.layer] == LayerRole::Doors || cv.door_block) && !cv.pts.empty())
@@ -1268,6 +1276,12 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     }
   }
   std::vector<WallLine> walls;
+  auto segments_of = [](const std::vector<WallLine>& v) {
+    std::vector<std::pair<Vec2, Vec2>> segs;
+    segs.reserve(v.size());
+    for (const WallLine& w : v) segs.push_back({w.a, w.b});
+    return segs;
+  };
   for (size_t i = 0; i < flat.segs.size(); ++i) {
     const SegPiece& s = flat.segs[i];
     if (!panel[i] && (role[s.layer] == LayerRole::Walls || (role[s.layer] == LayerRole::Doors && !s.curved)))
@@ -1277,11 +1291,9 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   {
     std::vector<SwingArc> swings;
     for (const auto& [a, in_door_block] : flat.arcs)
-      if ((role[a.layer] == LayerRole::Doors || in_door_block) && door_swing_radius(a.r * unit) && door_swing_sweep(a.sweep_deg))
+      if (is_swing(a, in_door_block))
         swings.push_back({m(a.c), m(a.p0), m(a.p1)});
-    std::vector<std::pair<Vec2, Vec2>> lines;
-    for (const WallLine& w : walls) lines.push_back({w.a, w.b});
-    const OpenedWalls opened = open_walls_under_swings(lines, swings);
+    const OpenedWalls opened = open_walls_under_swings(segments_of(walls), swings);
     if (opened.doors > 0) {
       walls.clear();
       for (const auto& [a, b] : opened.lines) walls.push_back({a, b});
@@ -1293,9 +1305,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   // ends left open across their thickness.
   WallLineEnds ends;
   {
-    std::vector<std::pair<Vec2, Vec2>> lines;
-    for (const WallLine& s : walls) lines.push_back({s.a, s.b});
-    ends = close_wall_line_ends(lines);
+    ends = close_wall_line_ends(segments_of(walls));
     for (const auto& [a, b] : ends.added) walls.push_back({a, b});
   }
   for (const HatchPiece& h : flat.hatches)
@@ -1312,9 +1322,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   // The distance from p to the nearest wall line: from the lines binned near p when one
   // lies within 2 m (exact: any line that near is binned in a cell the query covers), else
   // from all of them.
-  std::vector<std::pair<Vec2, Vec2>> wall_pairs;
-  for (const WallLine& s : walls) wall_pairs.push_back({s.a, s.b});
-  SegmentGrid wall_grid(wall_pairs, 0.5);
+  SegmentGrid wall_grid(segments_of(walls), 0.5);
   auto near_walls = [&](Vec2 p) {
     constexpr double kReach = 2;
     double best = 1e300;
@@ -1336,9 +1344,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
   int swings = int(swings_among_walls.size());
   std::vector<Swing> found = swings_among_walls;
   for (const auto& [a0, in_door_block] : flat.arcs) {
-    if (role[a0.layer] != LayerRole::Doors && !in_door_block) continue;
-    const double r = a0.r * unit;
-    if (!door_swing_radius(r) || !door_swing_sweep(a0.sweep_deg)) continue;
+    if (!is_swing(a0, in_door_block)) continue;
     ++swings;
     const Vec2 c = m(a0.c), e0 = m(a0.p0), e1 = m(a0.p1);
     found.push_back({c, closed_end(c, e0, e1), a0.layer});
@@ -1436,8 +1442,7 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     across.push_back({gaps[g].a - u, gaps[g].b + u, int(g)});
   }
   {
-    std::vector<std::pair<Vec2, Vec2>> lines;
-    for (const WallLine& s : walls) lines.push_back({s.a, s.b});
+    std::vector<std::pair<Vec2, Vec2>> lines = segments_of(walls);
     for (const WallLine& s : across) lines.push_back({s.a, s.b});
     const auto joins = join_wall_line_ends(lines, walls.size());
     ends.joined += int(joins.size());
