@@ -38,6 +38,7 @@
 
 #include <boost/container/small_vector.hpp>
 #include <tbb/blocked_range.h>
+#include <tbb/concurrent_unordered_map.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -114,10 +115,13 @@ enum class Where { Neg, Pos, On, Both };
 /// What is made of a plane once and kept with it, by its representation (each entry keeps
 /// its plane alive, so no other plane can take its address): its opposite, so that a
 /// vertex made on h's opposite is known to lie on h by identity (split), as one made on h
-/// is; and its exact coefficients as integers (every plane here comes from doubles, so one
-/// power of two clears all four denominators; nullopt for one that is not a power of two,
-/// which no plane here has: the caller then asks CGAL). One table per thread, emptied by
-/// decompose_soup when it ends.
+/// is; and its exact coefficients as integers, up to a positive factor (every plane here
+/// comes from doubles, so a power of two clears every denominator). The planes this file
+/// makes (plane_through, plane_of) get their integers from their doubles as they are made,
+/// without asking CGAL for the plane's exact value: that would build CGAL's rational plane
+/// once per plane, under a std::call_once whose first call costs a futex system call (on
+/// the duplex as a soup, 700,000 of them). One table per thread, emptied by decompose_soup
+/// when it ends.
 using Coefficients = std::array<mpz_class, 4>;
 struct PlaneFacts {
   Pl plane;
@@ -126,10 +130,27 @@ struct PlaneFacts {
   std::optional<Coefficients> integers;
 };
 thread_local std::unordered_map<CGAL::Handle::Id_type, PlaneFacts> plane_facts;
+/// The table's entries last asked for, by representation address: a lookup here is one
+/// load where the table's is two cache misses (its bucket and its node).
+struct RecentFacts {
+  CGAL::Handle::Id_type id = 0;
+  PlaneFacts* facts = nullptr;
+};
+constexpr size_t kRecentFacts = size_t(1) << 12;
+thread_local std::array<RecentFacts, kRecentFacts> recent_facts;
+
+void forget_plane_facts() {
+  plane_facts.clear();
+  recent_facts.fill({});
+}
 
 PlaneFacts& facts_of(const Pl& h) {
-  auto [it, fresh] = plane_facts.try_emplace(h.id());
+  const CGAL::Handle::Id_type id = h.id();
+  RecentFacts& r = recent_facts[(size_t(id) >> 6) & (kRecentFacts - 1)];
+  if (r.facts && r.id == id) return *r.facts;
+  auto [it, fresh] = plane_facts.try_emplace(id);
   if (fresh) it->second.plane = h;
+  r = {id, &it->second};
   return it->second;  // stays valid as the table grows (a node-based map)
 }
 
@@ -137,7 +158,15 @@ const Pl& opposite_of(const Pl& h) {
   PlaneFacts& f = facts_of(h);
   if (!f.opposite) {
     f.opposite = h.opposite();
-    facts_of(*f.opposite).opposite = h;
+    PlaneFacts& g = facts_of(*f.opposite);
+    g.opposite = h;
+    if (f.integers_made) {
+      g.integers_made = true;
+      if (f.integers) {
+        g.integers.emplace();
+        for (size_t k = 0; k < 4; ++k) (*g.integers)[k] = -(*f.integers)[k];
+      }
+    }
   }
   return *f.opposite;
 }
@@ -161,6 +190,85 @@ const std::optional<Coefficients>& integer_plane(const Pl& h) {
     mpz_mul_2exp((*f.integers)[k].get_mpz_t(), q[k].get_num().get_mpz_t(), shift - low);
   }
   return f.integers;
+}
+
+/// Doubles as integers on a common scale: value k is out[k] · 2^E exactly, E ≤ 0 the
+/// least binary exponent of their 53-bit mantissas (so 0 and small integers stay whole).
+template <size_t N>
+long to_common_integers(const std::array<double, N>& in, std::array<mpz_class, N>& out) {
+  long E = 0;
+  std::array<int, N> exp{};
+  for (size_t k = 0; k < N; ++k) {
+    if (in[k] == 0) continue;
+    std::frexp(in[k], &exp[k]);
+    E = std::min(E, long(exp[k]) - 53);
+  }
+  for (size_t k = 0; k < N; ++k) {
+    if (in[k] == 0) {
+      out[k] = 0;
+      continue;
+    }
+    int e = 0;
+    const double m = std::ldexp(std::frexp(in[k], &e), 53);  // a whole number below 2^53
+    out[k] = m;
+    mpz_mul_2exp(out[k].get_mpz_t(), out[k].get_mpz_t(), mp_bitcnt_t(long(e) - 53 - E));
+  }
+  return E;
+}
+
+/// The plane a·x + b·y + c·z + d = 0, its integers known as it is made.
+Pl plane_of(double a, double b, double c, double d) {
+  const Pl h(a, b, c, d);
+  std::array<mpz_class, 4> z;
+  to_common_integers(std::array<double, 4>{a, b, c, d}, z);
+  PlaneFacts& f = facts_of(h);
+  f.integers_made = true;
+  f.integers = z;
+  return h;
+}
+
+/// The plane through p, q and r + t, oriented as CGAL's Plane_3(p, q, r + t) is
+/// (its normal (p − r) × (q − r)), its integers known as it is made: the same formula in
+/// integers on a common scale 2^E, so a positive multiple of CGAL's exact plane. t is a
+/// small integer vector (a unit axis for an edge's plane), or zero.
+Pl plane_through(const P3& p, const P3& q, const P3& r, const std::array<int, 3>& t) {
+  const K::Vector_3 tv(t[0], t[1], t[2]);
+  const Pl h = t == std::array<int, 3>{0, 0, 0} ? Pl(p, q, r) : Pl(p, q, r + tv);
+  // The corners are the soup's doubles (intervals of no width); otherwise CGAL is asked.
+  std::array<double, 9> d{};
+  const P3* corner[3] = {&p, &q, &r};
+  for (size_t i = 0; i < 3; ++i) {
+    const auto& a = CGAL::approx(*corner[i]);
+    const CGAL::Interval_nt<false> c[3] = {a.x(), a.y(), a.z()};
+    for (size_t j = 0; j < 3; ++j) {
+      if (c[j].inf() != c[j].sup()) return h;
+      d[3 * i + j] = c[j].inf();
+    }
+  }
+  std::array<mpz_class, 9> X;
+  const long E = to_common_integers(d, X);
+  mpz_class R[3];
+  for (size_t j = 0; j < 3; ++j) {
+    R[j] = X[6 + j];
+    if (t[j] != 0) {
+      mpz_class one;
+      mpz_ui_pow_ui(one.get_mpz_t(), 2, static_cast<unsigned long>(-E));
+      R[j] += t[j] * one;
+    }
+  }
+  const mpz_class rp[3] = {X[0] - R[0], X[1] - R[1], X[2] - R[2]};
+  const mpz_class rq[3] = {X[3] - R[0], X[4] - R[1], X[5] - R[2]};
+  Coefficients z;
+  z[0] = rp[1] * rq[2] - rq[1] * rp[2];
+  z[1] = rp[2] * rq[0] - rq[2] * rp[0];
+  z[2] = rp[0] * rq[1] - rq[0] * rp[1];
+  z[3] = -(z[0] * R[0] + z[1] * R[1] + z[2] * R[2]);
+  // In the points' own scale: (A, B, C)·2^{2E} and D·2^{3E}; times 2^{-3E}: (A, B, C)·2^{-E}, D.
+  for (size_t k = 0; k < 3; ++k) mpz_mul_2exp(z[k].get_mpz_t(), z[k].get_mpz_t(), mp_bitcnt_t(-E));
+  PlaneFacts& f = facts_of(h);
+  f.integers_made = true;
+  f.integers = std::move(z);
+  return h;
 }
 
 /// The side of h on which the point where planes p, q, r meet lies, from the planes alone:
@@ -277,6 +385,12 @@ bool same_plane(const Pl& a, const Pl& b) { return CGAL::identical(a, b) || a ==
 
 /// The axis along which h's normal is largest (h is never parallel to it).
 int dominant_axis(const Pl& h) {
+  if (const PlaneFacts& f = facts_of(h); f.integers) {
+    const Coefficients& z = *f.integers;
+    const int ab = mpz_cmpabs(z[0].get_mpz_t(), z[1].get_mpz_t()), ac = mpz_cmpabs(z[0].get_mpz_t(), z[2].get_mpz_t());
+    if (ab >= 0 && ac >= 0) return 0;
+    return mpz_cmpabs(z[1].get_mpz_t(), z[2].get_mpz_t()) >= 0 ? 1 : 2;
+  }
   const FT a = CGAL::abs(h.a()), b = CGAL::abs(h.b()), c = CGAL::abs(h.c());
   if (a >= b && a >= c) return 0;
   return b >= c ? 1 : 2;
@@ -287,9 +401,9 @@ Pl box_plane(const Box3& box, int k) {
   const int axis = k / 2;
   const bool hi = k % 2 == 1;
   const double at = axis == 0 ? (hi ? box.hi.x : box.lo.x) : axis == 1 ? (hi ? box.hi.y : box.lo.y) : (hi ? box.hi.z : box.lo.z);
-  FT n[3] = {0, 0, 0};
+  double n[3] = {0, 0, 0};
   n[axis] = hi ? 1 : -1;
-  return Pl(n[0], n[1], n[2], hi ? FT(-at) : FT(at));
+  return plane_of(n[0], n[1], n[2], hi ? -at : at);
 }
 
 /// The plane h cut by the far box's faces across its dominant axis: a quad on h.
@@ -322,24 +436,72 @@ bool ccw_about_normal(const Poly& p) {
   return CGAL::orientation(p.v[0], p.v[1], p.v[2], p.v[0] + p.support.orthogonal_vector()) == CGAL::POSITIVE;
 }
 
-/// An exact point rounded to double once: the middle of its interval when that is
-/// tight, else from its exact value (which then tightens the interval, so that every
-/// later rounding of the point gives the same double).
-Vec3 rounded(const P3& q) {
-  const auto& a = CGAL::approx(q);
-  auto tight = [](const CGAL::Interval_nt<false>& i) { return i.sup() - i.inf() <= 1e-12 * std::max(1.0, std::fabs(i.inf())); };
-  if (!tight(a.x()) || !tight(a.y()) || !tight(a.z())) CGAL::exact(q);
-  const auto& b = CGAL::approx(q);
-  return {CGAL::to_double(b.x()), CGAL::to_double(b.y()), CGAL::to_double(b.z())};
+/// The point where planes p, q and r meet, from their integer coefficients by Cramer's
+/// rule (x_j = −det N_j / det N, N_j the normals with column j taken from the offsets),
+/// each coordinate rounded as CGAL rounds an exact value (the middle of the tightest
+/// interval about it). nullopt when the three do not meet in one point.
+std::optional<Vec3> meeting_rounded(const Coefficients& p, const Coefficients& q, const Coefficients& r) {
+  const mpz_class m01 = p[0] * q[1] - p[1] * q[0], m02 = p[0] * q[2] - p[2] * q[0], m12 = p[1] * q[2] - p[2] * q[1];
+  const mpz_class m03 = p[0] * q[3] - p[3] * q[0], m13 = p[1] * q[3] - p[3] * q[1], m23 = p[2] * q[3] - p[3] * q[2];
+  const mpz_class n = r[0] * m12 - r[1] * m02 + r[2] * m01;
+  if (sgn(n) == 0) return std::nullopt;
+  const mpz_class num[3] = {r[3] * m12 + r[1] * m23 - r[2] * m13, r[2] * m03 - r[0] * m23 - r[3] * m02,
+                            r[0] * m13 - r[1] * m03 + r[3] * m01};
+  double out[3];
+  for (size_t j = 0; j < 3; ++j) {
+    mpq_class x(-num[j], n);
+    x.canonicalize();
+    out[j] = CGAL::to_double(CGAL::Interval_nt<false>(CGAL::to_interval(x)));
+  }
+  return Vec3{out[0], out[1], out[2]};
 }
 
-std::vector<Vec3> rounded(const Poly& p, bool reverse) {
-  std::vector<Vec3> out;
-  out.reserve(p.v.size());
-  for (const P3& q : p.v) out.push_back(rounded(q));
-  if (reverse) std::reverse(out.begin(), out.end());
-  return out;
-}
+/// The corners of the decomposition's polygons rounded to double, each once: the middle
+/// of its interval when that is tight, else its exact value rounded (from the integer
+/// coefficients of the three planes it is the meeting of, or CGAL's exact point where a
+/// plane has none). A corner's double depends on nothing but the corner, so it is the same
+/// wherever and on whichever thread it is asked for; the exact ones are kept, so each is
+/// worked out once. Safe to use from many threads while no plane's facts are being added.
+class Rounding {
+ public:
+  explicit Rounding(const std::unordered_map<CGAL::Handle::Id_type, PlaneFacts>& facts) : facts_(facts) {}
+
+  Vec3 corner(const Poly& p, size_t i) {
+    const P3& q = p.v[i];
+    const auto& a = CGAL::approx(q);
+    auto tight = [](const CGAL::Interval_nt<false>& x) { return x.sup() - x.inf() <= 1e-12 * std::max(1.0, std::fabs(x.inf())); };
+    if (tight(a.x()) && tight(a.y()) && tight(a.z())) return {CGAL::to_double(a.x()), CGAL::to_double(a.y()), CGAL::to_double(a.z())};
+    if (const auto it = exact_.find(q.id()); it != exact_.end()) return it->second;
+    const size_t n = p.v.size();
+    const Coefficients *s = integers(p.support), *e0 = integers(p.e[(i + n - 1) % n]), *e1 = integers(p.e[i]);
+    std::optional<Vec3> r;
+    if (s && e0 && e1) r = meeting_rounded(*s, *e0, *e1);
+    if (!r) {
+      CGAL::exact(q);
+      const auto& b = CGAL::approx(q);
+      r = Vec3{CGAL::to_double(b.x()), CGAL::to_double(b.y()), CGAL::to_double(b.z())};
+    }
+    exact_.emplace(q.id(), *r);
+    return *r;
+  }
+
+  std::vector<Vec3> corners(const Poly& p, bool reverse) {
+    std::vector<Vec3> out;
+    out.reserve(p.v.size());
+    for (size_t i = 0; i < p.v.size(); ++i) out.push_back(corner(p, i));
+    if (reverse) std::reverse(out.begin(), out.end());
+    return out;
+  }
+
+ private:
+  const Coefficients* integers(const Pl& h) const {
+    const auto it = facts_.find(h.id());
+    return it != facts_.end() && it->second.integers ? &*it->second.integers : nullptr;
+  }
+
+  const std::unordered_map<CGAL::Handle::Id_type, PlaneFacts>& facts_;
+  tbb::concurrent_unordered_map<CGAL::Handle::Id_type, Vec3> exact_;
+};
 
 /// Area [m²] of a rounded convex polygon, as a fan from its first vertex.
 double area_of(const std::vector<Vec3>& p) {
@@ -372,15 +534,14 @@ bool boxes_meet(const Box3& a, const Box3& b, double tol) {
 /// dominant axis (small coefficients: differences of input coordinates).
 Poly triangle_poly(const P3& a, const P3& b, const P3& c) {
   Poly p;
-  p.support = Pl(a, b, c);
+  p.support = plane_through(a, b, c, {0, 0, 0});
   const int k = dominant_axis(p.support);
-  const K::Vector_3 axis(k == 0 ? 1 : 0, k == 1 ? 1 : 0, k == 2 ? 1 : 0);
+  const std::array<int, 3> axis{k == 0 ? 1 : 0, k == 1 ? 1 : 0, k == 2 ? 1 : 0};
   p.v = {a, b, c};
   for (int i = 0; i < 3; ++i) {
     const P3 &s = p.v[size_t(i)], &t = p.v[size_t((i + 1) % 3)], &o = p.v[size_t((i + 2) % 3)];
-    Pl e(s, t, s + axis);
-    if (e.oriented_side(o) == ON_POSITIVE_SIDE) e = e.opposite();
-    p.e.push_back(e);
+    const Pl e = plane_through(s, t, s, axis);
+    p.e.push_back(e.oriented_side(o) == ON_POSITIVE_SIDE ? opposite_of(e) : e);
   }
   return p;
 }
@@ -472,7 +633,7 @@ struct Builder {
                      [&](Vec3 p, Vec3 q) { return coord(p) < coord(q); });
     // Inside the fragments' extent, clear of its ends: the plane crosses the cell.
     const double at = std::clamp(coord(middles[middles.size() / 2]), lo + 0.1 * (hi - lo), hi - 0.1 * (hi - lo));
-    return Pl(axis == 0 ? 1 : 0, axis == 1 ? 1 : 0, axis == 2 ? 1 : 0, -at);
+    return plane_of(axis == 0 ? 1 : 0, axis == 1 ? 1 : 0, axis == 2 ? 1 : 0, -at);
   }
 
   void build(std::vector<CellFace> root_faces, std::vector<Frag> root_frags) {
@@ -713,11 +874,11 @@ std::vector<Union> join_leaves(const std::vector<Builder::Leaf>& leaves,
 /// made of several leaves' faces), counter-clockwise seen from inside (about −n, n the
 /// outward normal): the hull of the rounded corners, with exact predicates on those doubles,
 /// so that corners the join leaves in the middle of a straight edge go.
-std::vector<Vec3> joined_face(const std::vector<const Poly*>& parts, Vec3 n) {
+std::vector<Vec3> joined_face(const std::vector<const Poly*>& parts, Vec3 n, Rounding& rounding) {
   std::vector<Epick::Point_3> pts;
   for (const Poly* p : parts)
-    for (const P3& q : p->v) {
-      const Vec3 r = rounded(q);
+    for (size_t i = 0; i < p->v.size(); ++i) {
+      const Vec3 r = rounding.corner(*p, i);
       pts.emplace_back(r.x, r.y, r.z);
     }
   std::vector<Epick::Point_3> hull;
@@ -737,7 +898,7 @@ std::vector<Vec3> joined_face(const std::vector<const Poly*>& parts, Vec3 n) {
 
 SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Box3& box, CellComplex& out) {
   struct ForgetPlanes {
-    ~ForgetPlanes() { plane_facts.clear(); }
+    ~ForgetPlanes() { forget_plane_facts(); }
   } forget;  // on every way out
   const double scale = std::max({1.0, std::fabs(box.lo.x), std::fabs(box.hi.x), std::fabs(box.lo.y), std::fabs(box.hi.y),
                                  std::fabs(box.lo.z), std::fabs(box.hi.z)});
@@ -845,15 +1006,14 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
     std::vector<std::vector<Vec3>> closed;  ///< counter-clockwise about the lower leaf's outward normal
   };
   std::map<std::pair<int, int>, Shared> shared;
-  // Every point to be rounded below made tight first (rounded: the exact value where the
-  // interval is wide), in parallel: whether a point is made exact depends only on its
-  // interval before this pass, not on the threads; what follows then reads settled
-  // intervals only, so each point rounds to the same double wherever it is rounded.
-  // CGAL's lazy numbers are safe to share between threads (CGAL_HAS_THREADS: their exact
-  // values are made once, under std::call_once).
+  // Every point to be rounded below is rounded first in parallel (Rounding: a point's double
+  // depends on nothing but the point, and the exact ones are kept); what follows on one
+  // thread then finds them. Where a plane has no integers, CGAL's lazy numbers are safe to
+  // share between threads (CGAL_HAS_THREADS: exact values made once, under std::call_once).
+  Rounding rounding(plane_facts);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, b.leaves.size(), 64), [&](const tbb::blocked_range<size_t>& range) {
-    auto tighten = [](const Poly& p) {
-      for (const P3& q : p.v) rounded(q);
+    auto tighten = [&rounding](const Poly& p) {
+      for (size_t i = 0; i < p.v.size(); ++i) rounding.corner(p, i);
     };
     check_memory_reserve();
     for (size_t l = range.begin(); l != range.end(); ++l)
@@ -871,7 +1031,7 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
       const Pl& h = face.poly.support;
       Vec3 n{CGAL::to_double(h.a()), CGAL::to_double(h.b()), CGAL::to_double(h.c())};
       n = (1.0 / length(n)) * n;
-      const std::vector<Vec3> poly = rounded(face.poly, false);
+      const std::vector<Vec3> poly = rounding.corners(face.poly, false);
       double d = 0;
       for (Vec3 p : poly) d -= dot(n, p);
       planes[l].push_back({n, d / double(poly.size())});
@@ -883,7 +1043,7 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
         if (c.other < int(l) || cell_of_leaf(c.other) == cell_of_leaf(int(l))) continue;
         Shared& s = shared[{int(l), c.other}];
         for (const Poly& p : c.open) {
-          std::vector<Vec3> poly = rounded(p, !about_n);
+          std::vector<Vec3> poly = rounding.corners(p, !about_n);
           if (!(area_of(poly) > tiny)) {
             s.closed.push_back(std::move(poly));
             continue;
@@ -912,8 +1072,8 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
     cell.z0 = HUGE_VAL, cell.z1 = -HUGE_VAL;
     for (const Union::Face& uf : un.faces)
       for (const auto& [l, k] : uf.parts)
-        for (const P3& p : b.leaves[size_t(l)].faces[size_t(k)].poly.v) {
-          const Vec3 q = rounded(p);
+        for (size_t i = 0; i < b.leaves[size_t(l)].faces[size_t(k)].poly.v.size(); ++i) {
+          const Vec3 q = rounding.corner(b.leaves[size_t(l)].faces[size_t(k)].poly, i);
           xy.emplace_back(q.x, q.y);
           cell.z0 = std::min(cell.z0, q.z), cell.z1 = std::max(cell.z1, q.z);
         }
@@ -926,12 +1086,12 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
         const auto [l, k] = uf.parts.front();
         const CellFace& cf = b.leaves[size_t(l)].faces[size_t(k)];
         face.plane = planes[size_t(l)][size_t(k)];
-        face.poly = rounded(cf.poly, ccw_about_normal(cf.poly));
+        face.poly = rounding.corners(cf.poly, ccw_about_normal(cf.poly));
       } else {
         std::vector<const Poly*> polys;
         for (const auto& [l, k] : uf.parts) polys.push_back(&b.leaves[size_t(l)].faces[size_t(k)].poly);
         face.plane.n = planes[size_t(uf.parts.front().first)][size_t(uf.parts.front().second)].n;
-        face.poly = joined_face(polys, face.plane.n);
+        face.poly = joined_face(polys, face.plane.n, rounding);
         double d = 0;
         for (Vec3 p : face.poly) d -= dot(face.plane.n, p);
         face.plane.d = d / double(face.poly.size());
@@ -939,9 +1099,9 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
       for (const auto& [l, k] : uf.parts) {
         const CellFace& cf = b.leaves[size_t(l)].faces[size_t(k)];
         const bool about_n = ccw_about_normal(cf.poly);
-        if (cf.id < 0) face.opaque.push_back({rounded(cf.poly, about_n), -1});
+        if (cf.id < 0) face.opaque.push_back({rounding.corners(cf.poly, about_n), -1});
         for (const Contact& c : contacts[size_t(l)][size_t(k)]) {
-          for (size_t i = 0; i < c.opaque.size(); ++i) face.opaque.push_back({rounded(c.opaque[i], about_n), c.material[i]});
+          for (size_t i = 0; i < c.opaque.size(); ++i) face.opaque.push_back({rounding.corners(c.opaque[i], about_n), c.material[i]});
           const bool lower = l < c.other;
           const auto it = shared.find(lower ? std::pair{l, c.other} : std::pair{c.other, l});
           if (it == shared.end()) continue;
