@@ -406,11 +406,19 @@ Pl box_plane(const Box3& box, int k) {
   return plane_of(n[0], n[1], n[2], hi ? -at : at);
 }
 
+/// The far box's six face planes (face k as box_plane), made once per decomposition.
+using FarPlanes = std::array<Pl, 6>;
+FarPlanes far_planes(const Box3& box) {
+  FarPlanes f;
+  for (int k = 0; k < 6; ++k) f[size_t(k)] = box_plane(box, k);
+  return f;
+}
+
 /// The plane h cut by the far box's faces across its dominant axis: a quad on h.
-Poly quad_on(const Pl& h, const Box3& box) {
+Poly quad_on(const Pl& h, const FarPlanes& far) {
   const int k = dominant_axis(h), u = (k + 1) % 3, w = (k + 2) % 3;
-  const Pl ulo = box_plane(box, 2 * u), uhi = box_plane(box, 2 * u + 1);
-  const Pl wlo = box_plane(box, 2 * w), whi = box_plane(box, 2 * w + 1);
+  const Pl &ulo = far[size_t(2 * u)], &uhi = far[size_t(2 * u + 1)];
+  const Pl &wlo = far[size_t(2 * w)], &whi = far[size_t(2 * w + 1)];
   Poly q;
   q.support = h;
   q.v = {meet(h, ulo, wlo), meet(h, uhi, wlo), meet(h, uhi, whi), meet(h, ulo, whi)};
@@ -420,8 +428,8 @@ Poly quad_on(const Pl& h, const Box3& box) {
 
 /// h inside a convex cell: the far box's quad on h, cut by each face plane of the cell.
 /// Empty when h misses the cell's interior.
-Poly section(const Pl& h, const std::vector<CellFace>& faces, const Box3& box) {
-  Poly q = quad_on(h, box);
+Poly section(const Pl& h, const std::vector<CellFace>& faces, const FarPlanes& far) {
+  Poly q = quad_on(h, far);
   Poly part;
   for (const CellFace& f : faces) {
     const Where w = split(q, f.poly.support, &part, nullptr);
@@ -431,8 +439,18 @@ Poly section(const Pl& h, const std::vector<CellFace>& faces, const Box3& box) {
   return q;
 }
 
-/// True when the vertices run counter-clockwise about the support's normal.
+/// True when the vertices run counter-clockwise about the support's normal n. From the
+/// planes alone, where they have integers: edge 0 runs along the line where the support
+/// meets e[0] and leaves the polygon at v[1] into e[1]'s positive side, so it runs along
+/// +(n × m0) (m0, m1 the normals of e[0], e[1]) exactly when m1 · (n × m0) > 0, and then
+/// the inside, on e[0]'s negative side, is on its left.
 bool ccw_about_normal(const Poly& p) {
+  const PlaneFacts &n = facts_of(p.support), &e0 = facts_of(p.e[0]), &e1 = facts_of(p.e[1]);
+  if (n.integers && e0.integers && e1.integers) {
+    const Coefficients &a = *e1.integers, &b = *n.integers, &c = *e0.integers;
+    const mpz_class det = a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+    if (sgn(det) != 0) return sgn(det) > 0;
+  }
   return CGAL::orientation(p.v[0], p.v[1], p.v[2], p.v[0] + p.support.orthogonal_vector()) == CGAL::POSITIVE;
 }
 
@@ -555,6 +573,7 @@ struct ApproxPlane {
 
 struct Builder {
   const Box3& box;
+  FarPlanes far;
   std::vector<Node> nodes;
   std::vector<ApproxPlane> approx;
   std::vector<Pl> support_of;  ///< per triangle, its exact plane
@@ -676,7 +695,7 @@ struct Builder {
       nodes.emplace_back();
       nodes.emplace_back();
       // The cell's faces, cut; then the new face on h, outward for each side.
-      Poly cap = section(h, t.faces, box);
+      Poly cap = section(h, t.faces, far);
       if (cap.v.size() < 3) throw std::logic_error("soup bsp: a splitting plane misses its cell");
       for (CellFace& f : t.faces) {
         CellFace a{{}, f.id, f.toward}, b{{}, f.id, f.toward};
@@ -902,7 +921,7 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
   } forget;  // on every way out
   const double scale = std::max({1.0, std::fabs(box.lo.x), std::fabs(box.hi.x), std::fabs(box.lo.y), std::fabs(box.hi.y),
                                  std::fabs(box.lo.z), std::fabs(box.hi.z)});
-  Builder b{box, {}, {}, {}, 1e-12 * scale, {}, {}};
+  Builder b{box, far_planes(box), {}, {}, {}, 1e-12 * scale, {}, {}};
   std::vector<Frag> frags;
   std::vector<CellFace> root;
   std::vector<MaterialId> material;
@@ -932,12 +951,12 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
     b.stats.triangles = frags.size();
     // The far box as a cell: each face the quad on its plane, cut by the others.
     std::vector<CellFace> faces;
-    for (int k = 0; k < 6; ++k) faces.push_back({quad_on(box_plane(box, k), box), -1 - k, 0});
+    for (int k = 0; k < 6; ++k) faces.push_back({quad_on(b.far[size_t(k)], b.far), -1 - k, 0});
     for (int k = 0; k < 6; ++k) {
       std::vector<CellFace> others;
       for (int j = 0; j < 6; ++j)
         if (j != k) others.push_back(faces[size_t(j)]);
-      root.push_back({section(box_plane(box, k), others, box), -1 - k, 0});
+      root.push_back({section(b.far[size_t(k)], others, b.far), -1 - k, 0});
     }
     b.build(std::move(root), std::move(frags));
   }
