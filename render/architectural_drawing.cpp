@@ -20,6 +20,9 @@ constexpr double kOnCut = 1e-9;  ///< [m] a vertex this close to the cut plane l
 constexpr double kMargin = 1.0;  ///< [m] around what the picture shows
 
 Vec2 raster_of(const Camera& cam, Vec3 world) { return cam.raster_from_image(cam.image_from_camera(cam.camera_from_world(world))); }
+Vec2 raster_of(const Camera& cam, const ImageToRaster& to_raster, Vec3 world) {
+  return to_raster(cam.image_from_camera(cam.camera_from_world(world)));
+}
 
 /// Clips the raster segment a→b to the page [0, w] × [0, h]; false when nothing is left.
 bool clip_to_page(Vec2& a, Vec2& b, double w, double h) {
@@ -174,8 +177,8 @@ bool cut_segment(const std::vector<Vec3>& poly, const Plane& cut, Vec3& a, Vec3&
   double best = 0;
   for (size_t i = 0; i < at.size(); ++i)
     for (size_t j = i + 1; j < at.size(); ++j)
-      if (length(at[j] - at[i]) > best) best = length(at[j] - at[i]), a = at[i], b = at[j];
-  return best > kOnCut;
+      if (const Vec3 d = at[j] - at[i]; dot(d, d) > best) best = dot(d, d), a = at[i], b = at[j];
+  return best > kOnCut * kOnCut;
 }
 
 Drawing draw_architectural(const CellComplex& c, const LineScene& scene, const Camera& cam, const Plane& cut,
@@ -190,6 +193,7 @@ Drawing draw_architectural(const CellComplex& c, const LineScene& scene, const C
     if (s.layer == Layer::Architecture) s.layer = Layer::Beyond;
 
   if (options.cut) {
+    const ImageToRaster to_raster = cam.image_to_raster();
     // The cut outlines: each opaque polygon of a cut cell that the plane meets (in chunks
     // of cells on options.threads threads, joined in order).
     const size_t chunks = options.threads == 1 || vs.cut_cells.size() < 1024 ? 1 : 16;
@@ -200,7 +204,7 @@ Drawing draw_architectural(const CellComplex& c, const LineScene& scene, const C
           for (const OpaquePoly& op : f.opaque) {
             Vec3 wa, wb;
             if (!cut_segment(op.poly, cut, wa, wb)) continue;
-            Vec2 a = raster_of(cam, wa), b = raster_of(cam, wb);
+            Vec2 a = raster_of(cam, to_raster, wa), b = raster_of(cam, to_raster, wb);
             if (clip_to_page(a, b, d.width, d.height)) outlines[chunk].push_back({a, b, Weight::Cut, Layer::Cut});
           }
     });
@@ -210,7 +214,7 @@ Drawing draw_architectural(const CellComplex& c, const LineScene& scene, const C
     for (const Avenue& a : vs.avenues) {
       if (a.parent >= 0 || a.mask.size() < 3) continue;
       std::vector<Vec2> ring;
-      for (Vec2 m : a.mask) ring.push_back(cam.raster_from_image(m));
+      for (Vec2 m : a.mask) ring.push_back(to_raster(m));
       d.fill.push_back(std::move(ring));
     }
     merge_collinear(d.strokes, options.threads);  // the cut keeps what it shares with a line beyond

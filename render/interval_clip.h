@@ -15,6 +15,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <boost/sort/spreadsort/integer_sort.hpp>
+
 namespace avenues::detail {
 
 /// A parameter interval [t0, t1] along a segment; empty unless t0 < t1.
@@ -41,10 +43,20 @@ struct KeyedInterval {
 
 /// Sorts by (key, t0) and merges, per key, intervals that overlap or touch (gap <= `touch`):
 /// a line seen through several avenues, or lying on several cells, becomes disjoint pieces.
+/// (Boost's spreadsort, a radix sort, by key (ids, never negative); then each key's few
+/// intervals by t0.)
 inline void merge_intervals(std::vector<KeyedInterval>& v, double touch) {
-  std::sort(v.begin(), v.end(), [](const KeyedInterval& a, const KeyedInterval& b) {
-    return a.key != b.key ? a.key < b.key : a.interval.t0 < b.interval.t0;
-  });
+  boost::sort::spreadsort::integer_sort(
+      v.begin(), v.end(), [](const KeyedInterval& x, unsigned shift) { return x.key >> shift; },
+      [](const KeyedInterval& a, const KeyedInterval& b) { return a.key < b.key; });
+  for (size_t i = 0; i < v.size();) {
+    size_t j = i + 1;
+    while (j < v.size() && v[j].key == v[i].key) ++j;
+    if (j - i > 1)
+      std::sort(v.begin() + std::ptrdiff_t(i), v.begin() + std::ptrdiff_t(j),
+                [](const KeyedInterval& a, const KeyedInterval& b) { return a.interval.t0 < b.interval.t0; });
+    i = j;
+  }
   size_t out = 0;
   for (size_t i = 0; i < v.size(); ++i) {
     if (out > 0 && v[out - 1].key == v[i].key && v[i].interval.t0 <= v[out - 1].interval.t1 + touch)

@@ -28,8 +28,6 @@ struct Piece {
 };
 
 struct Item {
-  double theta;   ///< direction of lo→hi, in (−π/2 − kAngle, π/2 − kAngle]
-  double rho;     ///< offset of the line from the origin, along the group's normal
   Piece piece;
   int rank;       ///< who keeps an overlap: lower first
   uint32_t order; ///< index of the input stroke
@@ -77,22 +75,31 @@ void subtract(const Piece& p, const std::vector<Piece>& claimed, size_t& from, s
 
 /// Resolves one picture line: rank by rank, each merges its own pieces and keeps what the
 /// ranks before it did not claim.
+/// Sorted by (rank, lo.s) as small keys, not as whole items.
+struct LineKey {
+  double s;
+  int32_t rank;
+  uint32_t item;
+};
 struct Scratch {
   std::vector<Piece> claimed, mine, kept;
+  std::vector<LineKey> keys;
 };
-void resolve(std::vector<Item>& line, std::vector<std::pair<uint32_t, Stroke>>& out, Scratch& scratch) {
-  std::sort(line.begin(), line.end(), [](const Item& a, const Item& b) {
-    return a.rank != b.rank ? a.rank < b.rank : a.piece.lo.s < b.piece.lo.s;
-  });
-  auto& [claimed, mine, kept] = scratch;
+void resolve(const std::vector<Item>& line, std::vector<std::pair<uint32_t, Stroke>>& out, Scratch& scratch) {
+  auto& [claimed, mine, kept, keys] = scratch;
+  keys.clear();
+  for (size_t i = 0; i < line.size(); ++i) keys.push_back({line[i].piece.lo.s, line[i].rank, uint32_t(i)});
+  std::sort(keys.begin(), keys.end(),
+            [](const LineKey& a, const LineKey& b) { return a.rank != b.rank ? a.rank < b.rank : a.s < b.s; });
   claimed.clear();
-  for (size_t i = 0; i < line.size();) {
-    const int rank = line[i].rank;
-    uint32_t order = line[i].order;
+  for (size_t i = 0; i < keys.size();) {
+    const int rank = keys[i].rank;
+    uint32_t order = line[keys[i].item].order;
     mine.clear();
-    for (; i < line.size() && line[i].rank == rank; ++i) {
-      mine.push_back(line[i].piece);
-      order = std::min(order, line[i].order);
+    for (; i < keys.size() && keys[i].rank == rank; ++i) {
+      const Item& it = line[keys[i].item];
+      mine.push_back(it.piece);
+      order = std::min(order, it.order);
     }
     merge_sorted(mine);
     kept.clear();
@@ -126,7 +133,7 @@ void merge_collinear(std::vector<Stroke>& strokes, int threads) {
   dirs.reserve(strokes.size());
   for (size_t i = 0; i < strokes.size(); ++i) {
     const Stroke& s = strokes[i];
-    if (length(s.b - s.a) < kShortestStroke) continue;
+    if (const Vec2 d = s.b - s.a; dot(d, d) < kShortestStroke * kShortestStroke) continue;
     double theta = std::atan2(s.b.y - s.a.y, s.b.x - s.a.x);
     if (theta > kPi / 2 - kAngle) theta -= kPi;
     else if (theta <= -kPi / 2 - kAngle) theta += kPi;
@@ -148,33 +155,32 @@ void merge_collinear(std::vector<Stroke>& strokes, int threads) {
   std::vector<std::vector<std::pair<uint32_t, Stroke>>> outs(chunks);
   for_each_chunk(threads, dirs.size(), chunks, [&](size_t chunk, size_t lo, size_t hi) {
     std::vector<std::pair<uint32_t, Stroke>>& out = outs[chunk];
-    std::vector<Item> items, line;
-    std::vector<Key> offsets;  // offset, index into items
+    std::vector<Item> line;
+    std::vector<Key> offsets;  // offset of the line from the origin along the run's normal, index into strokes
     Scratch scratch;
     for (size_t r = size_t(std::lower_bound(runs.begin(), runs.end(), lo) - runs.begin());
          r + 1 < runs.size() && runs[r] < hi; ++r) {
       const size_t i = runs[r], j = runs[r + 1];
       const Vec2 u{std::cos(dirs[i].v), std::sin(dirs[i].v)}, n{-u.y, u.x};
-      items.clear();
       offsets.clear();
       for (size_t k = i; k < j; ++k) {
         const Stroke& st = strokes[dirs[k].i];
-        Item it{dirs[k].v, dot(n, 0.5 * (st.a + st.b)), {{dot(u, st.a), st.a}, {dot(u, st.b), st.b}}, rank_of(st), dirs[k].i};
-        if (it.piece.lo.s > it.piece.hi.s) std::swap(it.piece.lo, it.piece.hi);
-        offsets.push_back({it.rho, uint32_t(items.size())});
-        items.push_back(it);
+        offsets.push_back({dot(n, 0.5 * (st.a + st.b)), dirs[k].i});
       }
       sort_keys(offsets);
       for (size_t k = 0; k < offsets.size();) {
         size_t m = k;
         while (m < offsets.size() && offsets[m].v - offsets[k].v <= kOffset) ++m;
         if (m - k == 1) {
-          out.push_back({items[offsets[k].i].order, strokes[items[offsets[k].i].order]});
+          out.push_back({offsets[k].i, strokes[offsets[k].i]});
         } else {
           line.clear();
           for (size_t q = k; q < m; ++q) {
-            if (q + 8 < m) __builtin_prefetch(&items[offsets[q + 8].i]);  // in rho's order, items lie anywhere
-            line.push_back(items[offsets[q].i]);
+            if (q + 8 < m) __builtin_prefetch(&strokes[offsets[q + 8].i]);  // in rho's order, strokes lie anywhere
+            const Stroke& st = strokes[offsets[q].i];
+            Item it{{{dot(u, st.a), st.a}, {dot(u, st.b), st.b}}, rank_of(st), offsets[q].i};
+            if (it.piece.lo.s > it.piece.hi.s) std::swap(it.piece.lo, it.piece.hi);
+            line.push_back(it);
           }
           resolve(line, out, scratch);
         }

@@ -79,12 +79,12 @@ bool clip_to_avenue(Interval& s, const Projector& pr, Vec3 w0, Vec3 w1, const st
 }
 
 /// Appends the strokes of the intervals of segment p0→p1 in homogeneous picture coordinates.
-void add_strokes(const Camera& cam, Vec3 p0, Vec3 p1, const std::vector<Interval>& intervals, Weight weight, Layer layer,
-                 std::vector<Stroke>& out) {
+void add_strokes(const ImageToRaster& to_raster, Vec3 p0, Vec3 p1, const std::vector<Interval>& intervals, Weight weight,
+                 Layer layer, std::vector<Stroke>& out) {
   const Vec3 d = p1 - p0;
   auto raster = [&](double t) {
     const Vec3 p = p0 + t * d;
-    return cam.raster_from_image({p.x / p.z, p.y / p.z});
+    return to_raster({p.x / p.z, p.y / p.z});
   };
   for (const Interval& s : intervals) out.push_back({raster(s.t0), raster(s.t1), weight, layer});
 }
@@ -113,6 +113,7 @@ void draw_shadow_outlines(const CellComplex& c, const LineScene& scene, const Ca
                           const std::vector<Occluder>& occluders, std::vector<Stroke>& out) {
   if (scene.shadows.lights.empty()) return;
   const Projector pr(cam, std::nullopt);
+  const ImageToRaster to_raster = cam.image_to_raster();
   std::vector<std::array<Vec3, 2>> segments;  // every outline segment of every face seen, once
   std::map<std::pair<size_t, int32_t>, std::pair<int32_t, int32_t>> of_face;  // (light, global face) -> segments
   std::vector<Vec3> sides;
@@ -146,7 +147,7 @@ void draw_shadow_outlines(const CellComplex& c, const LineScene& scene, const Ca
   for_each_line(pieces, intervals, [&](int32_t i, std::vector<Interval>& iv) {
     const Vec3 p0 = cam.camera_from_world(segments[size_t(i)][0]), p1 = cam.camera_from_world(segments[size_t(i)][1]);
     hide_behind(occluders, p0, p1, iv);
-    add_strokes(cam, p0, p1, iv, Weight::Crease, Layer::Shadows, out);
+    add_strokes(to_raster, p0, p1, iv, Weight::Crease, Layer::Shadows, out);
   });
 }
 
@@ -166,6 +167,7 @@ Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& ca
                   const LineOptions& options) {
   Drawing d;
   const Projector pr(cam, options.cut);
+  const ImageToRaster to_raster = cam.image_to_raster();
   d.width = cam.width;
   d.height = cam.height;
   d.title = c.plan_name;
@@ -198,7 +200,8 @@ Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& ca
   // point on paper, shorter than any stroke drawn: none of its pieces need clipping.
   auto seen_end_on = [&](const RealLine& l) {
     const Vec3 p0 = pr.picture(l.a), p1 = pr.picture(l.b);
-    return length(cam.raster_from_image({p1.x, p1.y}) - cam.raster_from_image({p0.x, p0.y})) < kShortestStroke;
+    const Vec2 across = to_raster({p1.x, p1.y}) - to_raster({p0.x, p0.y});
+    return dot(across, across) < kShortestStroke * kShortestStroke;
   };
 
   // Jones: each avenue's cell, its lines clipped to the avenue's mask. In chunks of
@@ -261,7 +264,7 @@ Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& ca
     if (!cam.is_parallel()) hide_behind(occluders, p0, p1, s);
     const Weight w = cam.is_parallel() ? line_weight_along(c, scene.faces, id, cam.forward)
                                        : line_weight(c, scene.faces, id, cam.eye);
-    add_strokes(cam, p0, p1, s, w, Layer::Architecture, d.strokes);
+    add_strokes(to_raster, p0, p1, s, w, Layer::Architecture, d.strokes);
   });
   detail::merge_intervals(edges, kTouch);
   for_each_line(edges, intervals, [&](int32_t k, std::vector<Interval>& s) {
@@ -271,7 +274,7 @@ Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& ca
     const Vec3 p0 = cam.camera_from_world(p.mesh.vertices[size_t(e.v[0])]);
     const Vec3 p1 = cam.camera_from_world(p.mesh.vertices[size_t(e.v[1])]);
     hide_behind(occluders, p0, p1, s);
-    add_strokes(cam, p0, p1, s, se.weight, Layer::Furniture, d.strokes);
+    add_strokes(to_raster, p0, p1, s, se.weight, Layer::Furniture, d.strokes);
   });
   if (options.merge) merge_collinear(d.strokes, options.threads);
   if (options.shadows && !cam.is_parallel()) draw_shadow_outlines(c, scene, cam, vs, occluders, d.strokes);

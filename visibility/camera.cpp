@@ -42,9 +42,9 @@ Camera Camera::parallel(Vec3 eye, Vec3 look, double view_width, int width, int h
 double Camera::half_width() const { return is_parallel() ? view_width / 2 : std::tan(rad_from_deg(fov_deg) / 2); }
 double Camera::half_height() const { return half_width() * height / width; }
 
-Vec2 Camera::raster_from_image(Vec2 xy) const {
-  const double hw = half_width(), hh = half_height();
-  return {(xy.x - (shift_x - hw)) / (2 * hw) * width, ((shift_y + hh) - xy.y) / (2 * hh) * height};
+ImageToRaster Camera::image_to_raster() const {
+  const double hw = half_width(), hh = hw * height / width;  // half_height()
+  return {shift_x - hw, shift_y + hh, 2 * hw, 2 * hh, double(width), double(height)};
 }
 
 Vec2 Camera::image_from_raster(Vec2 px) const {

@@ -27,6 +27,16 @@ enum class Projection : uint8_t {
   Parallel,     ///< rays along forward from the picture plane; image point (X, Y) in metres
 };
 
+/// Picture-plane point → raster position [px], the window's half sizes worked out once
+/// (Camera::raster_from_image works them out, a tangent in perspective, at every call):
+/// the same arithmetic, so the same doubles. For loops over many points.
+struct ImageToRaster {
+  double left = 0, top = 0;     ///< the window's left and top on the picture plane
+  double across = 1, down = 1;  ///< its width and height there
+  double width = 1, height = 1; ///< [px]
+  Vec2 operator()(Vec2 xy) const { return {(xy.x - left) / across * width, (top - xy.y) / down * height}; }
+};
+
 struct Camera {
   Vec3 eye;                        ///< [m] world
   Vec3 right{1, 0, 0}, up{0, 0, 1}, forward{0, 1, 0};  ///< orthonormal, world
@@ -59,7 +69,9 @@ struct Camera {
   /// Camera-space point → picture-plane point: (X/Z, Y/Z), or (X, Y) when parallel.
   Vec2 image_from_camera(Vec3 p) const { return is_parallel() ? Vec2{p.x, p.y} : Vec2{p.x / p.z, p.y / p.z}; }
   /// Picture-plane point → raster position [px] (rows top to bottom).
-  Vec2 raster_from_image(Vec2 xy) const;
+  Vec2 raster_from_image(Vec2 xy) const { return image_to_raster()(xy); }
+  /// The same map, for many points.
+  ImageToRaster image_to_raster() const;
   /// Raster position [px] → picture-plane point.
   Vec2 image_from_raster(Vec2 px) const;
   /// World direction through a raster position (not normalised); forward when parallel.

@@ -310,6 +310,9 @@ class Traversal {
   /// above double rounding), so no ray through the mask can pass the portal.
   bool surely_outside(const std::vector<Plane>& cone, PortalId pi) const {
     const Portal& p = c_.portals[size_t(pi)];
+    // A portal that parallel rays see edge-on (a door in a plan) lies along the side of a
+    // mask's prism, where no plane culls it: leave it to facing(), which refuses it exactly.
+    if (parallel_ && std::fabs(dot(p.plane.n, cam_.forward)) <= 1e-12 * length(p.plane.n)) return false;
     for (const Plane& n : cone) {
       bool all_out = true;
       for (const Vec3& v : p.poly) {
@@ -445,8 +448,8 @@ class Traversal {
     size_t k1 = 1;
     double most = -1;
     for (size_t k = 1; k + 1 < n; ++k) {
-      const double a = length(cross(p.poly[k] - p.poly[0], p.poly[k + 1] - p.poly[0]));
-      if (a > most) most = a, k1 = k;
+      const Vec3 c = cross(p.poly[k] - p.poly[0], p.poly[k + 1] - p.poly[0]);
+      if (const double a = dot(c, c); a > most) most = a, k1 = k;  // twice the area, squared
     }
     const Vec3T<T> v0 = in(p.poly[0]), v1 = in(p.poly[k1]), v2 = in(p.poly[k1 + 1]);
     fc.N = crossT(sub(v1, v0), sub(v2, v0));  // points into p.cell[1]
