@@ -42,6 +42,8 @@
 #include <cmath>
 #include <limits>
 
+#include <boost/container/small_vector.hpp>
+
 #include "visibility/mask.h"
 #include "visibility/visible_set.h"
 
@@ -232,7 +234,7 @@ class Traversal {
       reached_.push_back({mask, box_of(mask_here), last_into_[size_t(cell)]});
       last_into_[size_t(cell)] = self;
     }
-    for_each_portal_seen(cell, std::move(mask_here), [&](PortalId pi) { consider(cell, mask, self, via, depth, pi); });
+    for_each_portal_seen(cell, mask_here, [&](PortalId pi) { consider(cell, mask, self, via, depth, pi); });
     on_path_[size_t(cell)] = 0;
   }
 
@@ -258,12 +260,12 @@ class Traversal {
   /// Calls f for each portal of `cell` that rays through `mask` (its vertices in double)
   /// may pass: each face's portals, on a long side face (a corridor's wall of doors) only
   /// those within the stretch of wall the mask can see (portals are sorted along side
-  /// faces), and none that the mask's cone surely misses. `mask` is the caller's own copy:
-  /// f may append avenues, which moves the visible set's masks.
+  /// faces), and none that the mask's cone surely misses. `mask` must outlive the calls:
+  /// where f may append avenues (which moves the visible set's masks), the caller's own copy.
   template <class F>
-  void for_each_portal_seen(CellId cell, std::vector<Vec2> mask, F&& f) {
+  void for_each_portal_seen(CellId cell, const std::vector<Vec2>& mask, F&& f) {
     const Cell& cl = c_.cells[size_t(cell)];
-    const std::vector<Plane> cone = cone_planes(mask);
+    const Cone cone = cone_planes(mask);
     for (size_t k = 0; k < cl.faces.size(); ++k) {
       const auto& ps = cl.faces[k].portals;
       size_t lo = 0, hi = ps.size();
@@ -275,8 +277,11 @@ class Traversal {
 
   /// The mask's cone (perspective) or prism (parallel) as inward planes n·(v − eye) + d >= 0
   /// (world space, double): through the eye, d = 0; along forward, through a mask vertex.
-  std::vector<Plane> cone_planes(const std::vector<Vec2>& mask) const {
-    std::vector<Plane> n;
+  /// (Inline up to 8 planes: a mask's cone is made for every avenue, and nearly every mask
+  /// has no more sides.)
+  using Cone = boost::container::small_vector<Plane, 8>;
+  Cone cone_planes(const std::vector<Vec2>& mask) const {
+    Cone n;
     if (mask.size() < 3) return n;
     auto dir = [&](Vec2 m) { return m.x * cam_.right + m.y * cam_.up + (parallel_ ? Vec3{0, 0, 0} : cam_.forward); };
     Vec2 c{0, 0};
@@ -308,7 +313,7 @@ class Traversal {
   /// A cheap, conservative cull before the kernel's exact work: true when every vertex of
   /// the portal lies clearly outside one plane of the mask's cone (by more than a margin far
   /// above double rounding), so no ray through the mask can pass the portal.
-  bool surely_outside(const std::vector<Plane>& cone, PortalId pi) const {
+  bool surely_outside(const Cone& cone, PortalId pi) const {
     const Portal& p = c_.portals[size_t(pi)];
     // A portal that parallel rays see edge-on (a door in a plan) lies along the side of a
     // mask's prism, where no plane culls it: leave it to facing(), which refuses it exactly.
@@ -617,6 +622,7 @@ class Traversal {
     }
     for (Piece& piece : ps) {
       const int self = emit(cell, piece.mask, piece.parent, piece.via, piece.depth);
+      // Its own mask, by reference: nothing below appends avenues.
       for_each_portal_seen(cell, out_.avenues[size_t(self)].mask, [&](PortalId pi) {
         if (pi == piece.via) return;
         const CellId other = c_.portals[size_t(pi)].other(cell);
