@@ -394,29 +394,46 @@ int run_path(const PathOptions& opt) {
     }
   }
 
-  // Rank 0 makes the film as the frames appear, in order (a frame that exists is whole),
-  // while the ranks render: by the last frame most of the film is encoded.
+  // Rank 0 makes the film from the frames in order (a frame that exists is whole). With
+  // threads to spare, on a thread of its own while the ranks render: by the last frame most
+  // of the film is encoded. On one thread (--threads 1, or a rank's share of a machine with
+  // as many ranks as cores) between its own frames instead, the encoder on that thread too,
+  // so that the process keeps to the one core it was given.
   const int n = int(walk.frames.size());
   const fs::path mp4 = dir / "walk.mp4";
+  const bool films = mpi.rank() == 0 && !settings->svg;
+  const int threads = settings ? settings->halftone.threads : 1;
+  const bool film_between_frames = films && threads == 1;
   std::atomic<bool> walk_over{false};
   std::string film_error;
+  std::optional<Film> film;
+  int filmed = 0;  // frames in the film so far
+  // Adds the frames from `filmed` on while they exist; with `wait`, waits for each until the
+  // walk is over. False when the walk stopped short of them.
+  auto film_frames = [&](bool wait) {
+    for (; filmed < n; ++filmed) {
+      const std::string frame = frame_path(pattern, filmed, n);
+      std::error_code ec;
+      while (!fs::is_regular_file(frame, ec)) {
+        if (!wait) return true;
+        if (walk_over && !fs::is_regular_file(frame, ec)) return false;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      }
+      const Image picture = read_image(frame);
+      if (!film) {
+        FilmOptions options;
+        options.threads = threads;
+        film.emplace(mp4.string(), picture.width, picture.height, options);
+      }
+      film->add(picture);
+    }
+    return true;
+  };
   std::thread filming;
-  if (mpi.rank() == 0 && !settings->svg)
+  if (films && !film_between_frames)
     filming = std::thread([&] {
       try {
-        std::optional<Film> film;
-        for (int k = 0; k < n; ++k) {
-          const std::string frame = frame_path(pattern, k, n);
-          std::error_code ec;
-          while (!fs::is_regular_file(frame, ec)) {
-            if (walk_over && !fs::is_regular_file(frame, ec)) return;  // the walk stopped short: no film
-            std::this_thread::sleep_for(std::chrono::milliseconds(5));
-          }
-          const Image picture = read_image(frame);
-          if (!film) film.emplace(mp4.string(), picture.width, picture.height);
-          film->add(picture);
-        }
-        film->finish();
+        if (film_frames(true) && film) film->finish();
       } catch (const std::exception& e) {
         film_error = e.what();
       }
@@ -439,6 +456,11 @@ int run_path(const PathOptions& opt) {
       [&](int64_t k) {
         if (!writer) throw std::runtime_error(setup_error);
         writer->write(k);
+        if (film_between_frames && film_error.empty()) try {
+            film_frames(false);
+          } catch (const std::exception& e) {
+            film_error = e.what();
+          }
       },
       [&](int64_t done) {
         const auto now = std::chrono::steady_clock::now();
@@ -451,6 +473,11 @@ int run_path(const PathOptions& opt) {
   const double frames_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   walk_over = true;
   if (filming.joinable()) filming.join();
+  if (film_between_frames && failure.empty() && film_error.empty()) try {
+      if (film_frames(true) && film) film->finish();
+    } catch (const std::exception& e) {
+      film_error = e.what();
+    }
   if (mpi.rank() != 0) return failure.empty() ? 0 : 2;  // rank 0 reports the failure
   if (!failure.empty()) throw std::runtime_error(failure + "; the frames done are complete: run again with --resume to finish the walk");
 

@@ -1,6 +1,7 @@
 // Avenues — a film: pictures, in order, encoded as one video file (see film.h).
 #include "render/film.h"
 
+#include <algorithm>
 #include <memory>
 #include <stdexcept>
 
@@ -116,6 +117,7 @@ Film::Film(const std::string& path, int width, int height, const FilmOptions& op
   c->time_base = AVRational{1, options.fps};
   c->framerate = AVRational{options.fps, 1};
   c->gop_size = 2 * options.fps;
+  c->thread_count = std::max(0, options.threads);
   if (codec->id == AV_CODEC_ID_H264) {
     av_opt_set(c->priv_data, "preset", "medium", 0);  // the `ffmpeg` program's defaults
     av_opt_set(c->priv_data, "crf", "23", 0);

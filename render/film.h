@@ -24,7 +24,8 @@
 namespace avenues {
 
 struct FilmOptions {
-  int fps = 25;  ///< [frames/s] > 0
+  int fps = 25;     ///< [frames/s] > 0
+  int threads = 0;  ///< the encoder's threads; 0: the encoder's own choice (about as many as cores)
 };
 
 class Film {

@@ -117,6 +117,24 @@ TEST_F(Path, FilmHasEveryFrameAtAnEvenSize) {
   for (const std::string& name : names("walk")) EXPECT_EQ(name.find(".tmp-"), std::string::npos) << name;
 }
 
+// Issue 21: on one thread (--threads 1, or an MPI rank's share of a machine with as many
+// ranks as cores) the film is encoded between the frames, on that thread and with a
+// one-thread encoder, not beside them: the film is as whole, and the frames the same bytes.
+TEST_F(Path, OneThreadMakesTheFilmBetweenItsFrames) {
+  std::vector<std::string> args = walk_args("one");
+  args.insert(args.end(), {"--threads", "1"});
+  const Outcome one = run(args);
+  ASSERT_EQ(one.status, 0) << one.err;
+  const Outcome all = run(walk_args("all"));
+  ASSERT_EQ(all.status, 0) << all.err;
+  const auto frames_one = frames("one");
+  ASSERT_GE(frames_one.size(), 5u);
+  EXPECT_EQ(frames_one, frames("all"));
+  EXPECT_EQ(probe_film(path("one/walk.mp4")).frames, long(frames_one.size()));
+  EXPECT_EQ(probe_film(path("all/walk.mp4")).frames, long(frames_one.size()));
+  for (const std::string& name : names("one")) EXPECT_EQ(name.find(".tmp-"), std::string::npos) << name;
+}
+
 // What reading the objects' meshes let pass is said by a walk as by a view: once.
 TEST_F(Path, SaysWhatTheObjectsMeshesLetPass) {
   write("crate.obj", "mtllib crate.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 0 1\nusemtl Paint\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n");
