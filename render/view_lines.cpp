@@ -89,16 +89,20 @@ void add_strokes(const ImageToRaster& to_raster, Vec3 p0, Vec3 p1, const std::ve
   for (const Interval& s : intervals) out.push_back({raster(s.t0), raster(s.t1), weight, layer});
 }
 
-/// Calls f(key, intervals) for each key of merged, sorted `pieces`.
+/// Calls f(key, intervals) for each key of merged, sorted pieces [first, last).
 template <class F>
-void for_each_line(const std::vector<KeyedInterval>& pieces, std::vector<Interval>& intervals, F&& f) {
-  for (size_t i = 0; i < pieces.size();) {
+void for_each_line(const KeyedInterval* first, const KeyedInterval* last, std::vector<Interval>& intervals, F&& f) {
+  for (const KeyedInterval* i = first; i < last;) {
     intervals.clear();
-    size_t j = i;
-    for (; j < pieces.size() && pieces[j].key == pieces[i].key; ++j) intervals.push_back(pieces[j].interval);
-    f(pieces[i].key, intervals);
+    const KeyedInterval* j = i;
+    for (; j < last && j->key == i->key; ++j) intervals.push_back(j->interval);
+    f(i->key, intervals);
     i = j;
   }
+}
+template <class F>
+void for_each_line(const std::vector<KeyedInterval>& pieces, std::vector<Interval>& intervals, F&& f) {
+  for_each_line(pieces.data(), pieces.data() + pieces.size(), intervals, std::forward<F>(f));
 }
 
 /// One furniture edge to draw in this view.
@@ -255,17 +259,30 @@ Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& ca
   };
   std::vector<KeyedInterval> lines = joined(chunk_lines), edges = joined(chunk_edges);
 
-  // Each line once: the union of its pieces, less what furniture hides, as strokes.
+  // Each line once: the union of its pieces, less what furniture hides, as strokes. In
+  // chunks of whole lines on options.threads threads, joined in order (the same strokes).
   std::vector<Interval> intervals;
   detail::merge_intervals(lines, kTouch);
-  for_each_line(lines, intervals, [&](int32_t id, std::vector<Interval>& s) {
-    const RealLine& l = c.lines[size_t(id)];
-    const Vec3 p0 = pr.picture(l.a), p1 = pr.picture(l.b);
-    if (!cam.is_parallel()) hide_behind(occluders, p0, p1, s);
-    const Weight w = cam.is_parallel() ? line_weight_along(c, scene.faces, id, cam.forward)
-                                       : line_weight(c, scene.faces, id, cam.eye);
-    add_strokes(to_raster, p0, p1, s, w, Layer::Architecture, d.strokes);
-  });
+  {
+    const size_t line_chunks = options.threads == 1 || lines.size() < 4096 ? 1 : 16;
+    std::vector<std::vector<Stroke>> parts(line_chunks);
+    for_each_chunk(options.threads, lines.size(), line_chunks, [&](size_t chunk, size_t first, size_t last) {
+      // The lines that start in [first, last): a line's pieces all go to the chunk of its first.
+      while (first > 0 && first < last && lines[first].key == lines[first - 1].key) ++first;
+      while (last < lines.size() && last > first && lines[last].key == lines[last - 1].key) ++last;
+      if (first >= last) return;
+      std::vector<Interval> pieces;
+      for_each_line(lines.data() + first, lines.data() + last, pieces, [&](int32_t id, std::vector<Interval>& s) {
+        const RealLine& l = c.lines[size_t(id)];
+        const Vec3 p0 = pr.picture(l.a), p1 = pr.picture(l.b);
+        if (!cam.is_parallel()) hide_behind(occluders, p0, p1, s);
+        const Weight w = cam.is_parallel() ? line_weight_along(c, scene.faces, id, cam.forward)
+                                           : line_weight(c, scene.faces, id, cam.eye);
+        add_strokes(to_raster, p0, p1, s, w, Layer::Architecture, parts[chunk]);
+      });
+    });
+    for (const std::vector<Stroke>& part : parts) d.strokes.insert(d.strokes.end(), part.begin(), part.end());
+  }
   detail::merge_intervals(edges, kTouch);
   for_each_line(edges, intervals, [&](int32_t k, std::vector<Interval>& s) {
     const SeenEdge& se = seen[size_t(k)];
