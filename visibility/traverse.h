@@ -265,14 +265,28 @@ class Traversal {
   template <class F>
   void for_each_portal_seen(CellId cell, const std::vector<Vec2>& mask, F&& f) {
     const Cell& cl = c_.cells[size_t(cell)];
-    const Cone cone = cone_planes(mask);
+    Cone cone;  // made when the first portal not seen edge-on wants it (a plan's cells may have none)
+    bool cone_made = false;
     for (size_t k = 0; k < cl.faces.size(); ++k) {
       const auto& ps = cl.faces[k].portals;
       size_t lo = 0, hi = ps.size();
       if (cl.prism && k < cl.footprint.size() && ps.size() > kLinearScan) side_range(cl, k, mask, lo, hi);
-      for (size_t i = lo; i < hi; ++i)
-        if (!surely_outside(cone, ps[i])) f(ps[i]);
+      for (size_t i = lo; i < hi; ++i) {
+        if (!seen_edge_on(ps[i])) {
+          if (!cone_made) cone = cone_planes(mask), cone_made = true;
+          if (surely_outside(cone, ps[i])) continue;
+        }
+        f(ps[i]);
+      }
     }
+  }
+
+  /// Whether parallel rays see portal pi edge-on, in double (a door in a plan): such a
+  /// portal lies along the side of a mask's prism, where no plane of it culls the portal;
+  /// facing() refuses it exactly.
+  bool seen_edge_on(PortalId pi) const {
+    const Portal& p = c_.portals[size_t(pi)];
+    return parallel_ && std::fabs(dot(p.plane.n, cam_.forward)) <= 1e-12 * length(p.plane.n);
   }
 
   /// The mask's cone (perspective) or prism (parallel) as inward planes n·(v − eye) + d >= 0
@@ -315,9 +329,6 @@ class Traversal {
   /// above double rounding), so no ray through the mask can pass the portal.
   bool surely_outside(const Cone& cone, PortalId pi) const {
     const Portal& p = c_.portals[size_t(pi)];
-    // A portal that parallel rays see edge-on (a door in a plan) lies along the side of a
-    // mask's prism, where no plane culls it: leave it to facing(), which refuses it exactly.
-    if (parallel_ && std::fabs(dot(p.plane.n, cam_.forward)) <= 1e-12 * length(p.plane.n)) return false;
     for (const Plane& n : cone) {
       bool all_out = true;
       for (const Vec3& v : p.poly) {
