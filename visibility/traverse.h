@@ -610,14 +610,21 @@ class Traversal {
     std::vector<Piece> ps;
     ps.swap(pieces_[size_t(cell)]);
     // Pairs until none merges (a union made late may merge with a piece passed earlier);
-    // their boxes first, made only where there is a pair to test.
+    // their boxes first, made only where there is a pair to test. Each pass sweeps the
+    // pieces in the order of their boxes' left sides, so a piece is tested only against
+    // those whose boxes reach across its own (a cell seen in thousands of pieces from
+    // outside a model would otherwise test every pair).
     if (ps.size() > 1)
       for (Piece& p : ps) p.box = box_of(doubles_of(p.mask));
+    std::vector<uint8_t> gone;
     for (bool any = ps.size() > 1; any;) {
       any = false;
-      for (size_t i = 0; i < ps.size(); ++i)
-        for (size_t j = i + 1; j < ps.size();) {
-          if (!boxes_touch(ps[i].box, ps[j].box) || !ps[i].mask.absorb(ps[j].mask)) {
+      std::sort(ps.begin(), ps.end(), [](const Piece& a, const Piece& b) { return a.box[0] < b.box[0]; });
+      gone.assign(ps.size(), 0);
+      for (size_t i = 0; i < ps.size(); ++i) {
+        if (gone[i]) continue;
+        for (size_t j = i + 1; j < ps.size() && ps[j].box[0] <= ps[i].box[2];) {
+          if (gone[j] || !boxes_touch(ps[i].box, ps[j].box) || !ps[i].mask.absorb(ps[j].mask)) {
             ++j;
             continue;
           }
@@ -625,11 +632,20 @@ class Traversal {
           ps[i].box = {std::min(ps[i].box[0], ps[j].box[0]), std::min(ps[i].box[1], ps[j].box[1]),
                        std::max(ps[i].box[2], ps[j].box[2]), std::max(ps[i].box[3], ps[j].box[3])};
           ++out_.avenues_merged;
-          ps[j] = std::move(ps.back());
-          ps.pop_back();
+          gone[j] = 1;
           any = true;
-          j = i + 1;
+          j = i + 1;  // the union is larger: the pieces passed may join it now
         }
+      }
+      if (any) {
+        size_t kept = 0;
+        for (size_t k = 0; k < ps.size(); ++k)
+          if (!gone[k]) {
+            if (kept != k) ps[kept] = std::move(ps[k]);
+            ++kept;
+          }
+        ps.resize(kept);
+      }
     }
     for (Piece& piece : ps) {
       const int self = emit(cell, piece.mask, piece.parent, piece.via, piece.depth);
