@@ -250,11 +250,7 @@ Pl plane_through(const P3& p, const P3& q, const P3& r, const std::array<int, 3>
   mpz_class R[3];
   for (size_t j = 0; j < 3; ++j) {
     R[j] = X[6 + j];
-    if (t[j] != 0) {
-      mpz_class one;
-      mpz_ui_pow_ui(one.get_mpz_t(), 2, static_cast<unsigned long>(-E));
-      R[j] += t[j] * one;
-    }
+    if (t[j] != 0) R[j] += mpz_class(t[j]) << mp_bitcnt_t(-E);  // t_j in the points' scale
   }
   const mpz_class rp[3] = {X[0] - R[0], X[1] - R[1], X[2] - R[2]};
   const mpz_class rq[3] = {X[3] - R[0], X[4] - R[1], X[5] - R[2]};
@@ -271,6 +267,29 @@ Pl plane_through(const P3& p, const P3& q, const P3& r, const std::array<int, 3>
   return h;
 }
 
+/// The 2 × 2 minors of rows p and q of a matrix of planes, over the column pairs (0, 1),
+/// (0, 2), (0, 3), (1, 2), (1, 3), (2, 3) in that order: m(j, k) = p_j·q_k − p_k·q_j. t is
+/// scratch (the callers keep their integers, and their limbs, from call to call).
+void pair_minors(const Coefficients& p, const Coefficients& q, mpz_class (&m)[6], mpz_class& t) {
+  static constexpr size_t kPairs[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  for (size_t i = 0; i < 6; ++i) {
+    const size_t j = kPairs[i][0], k = kPairs[i][1];
+    m[i] = p[j] * q[k];
+    t = p[k] * q[j];
+    m[i] -= t;
+  }
+}
+
+/// det N, the 3 × 3 determinant of the normals of planes p, q and r (in rows), from p and
+/// q's pair_minors m: r_2·m(0,1) − r_1·m(0,2) + r_0·m(1,2). t is scratch.
+void normals_det(const mpz_class (&m)[6], const Coefficients& r, mpz_class& out, mpz_class& t) {
+  out = r[2] * m[0];
+  t = r[1] * m[1];
+  out -= t;
+  t = r[0] * m[3];
+  out += t;
+}
+
 /// The side of h on which the point where planes p, q, r meet lies, from the planes alone:
 /// with M the 4 × 4 matrix of p, q, r, h and N the 3 × 3 of p, q, r's normals, h at that
 /// point is det M / det N (Cramer: the cofactors of M's last row are orthogonal to p, q, r
@@ -279,26 +298,12 @@ Pl plane_through(const P3& p, const P3& q, const P3& r, const std::array<int, 3>
 /// nullopt when the three do not meet in one point (det N = 0).
 std::optional<Side> side_of_meeting(const Coefficients& p, const Coefficients& q,
                                     const Coefficients& r, const Coefficients& h) {
-  // Column pairs (j, k), j < k, and their complements, in the order of the expansion.
-  static constexpr int kPairs[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
   // Kept per thread: their limbs stay allocated from one call to the next (this is the
   // hottest exact test of the decomposition; fresh integers cost a malloc and free each).
   thread_local mpz_class top[6], bottom[6], t, n, det;
-  for (int m = 0; m < 6; ++m) {
-    const size_t j = size_t(kPairs[m][0]), k = size_t(kPairs[m][1]);
-    top[m] = p[j] * q[k];
-    t = p[k] * q[j];
-    top[m] -= t;
-    bottom[m] = r[j] * h[k];
-    t = r[k] * h[j];
-    bottom[m] -= t;
-  }
-  // det N = |p q r| over columns 0, 1, 2: r_2·top(0,1) − r_1·top(0,2) + r_0·top(1,2).
-  n = r[2] * top[0];
-  t = r[1] * top[1];
-  n -= t;
-  t = r[0] * top[3];
-  n += t;
+  pair_minors(p, q, top, t);
+  pair_minors(r, h, bottom, t);
+  normals_det(top, r, n, t);
   const int sn = sgn(n);
   if (sn == 0) return std::nullopt;
   // det M = Σ ± top(j,k) · bottom(complement): (01)(23) − (02)(13) + (03)(12) + (12)(03) − (13)(02) + (23)(01).
@@ -447,8 +452,9 @@ Poly section(const Pl& h, const std::vector<CellFace>& faces, const FarPlanes& f
 bool ccw_about_normal(const Poly& p) {
   const PlaneFacts &n = facts_of(p.support), &e0 = facts_of(p.e[0]), &e1 = facts_of(p.e[1]);
   if (n.integers && e0.integers && e1.integers) {
-    const Coefficients &a = *e1.integers, &b = *n.integers, &c = *e0.integers;
-    const mpz_class det = a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+    mpz_class m[6], det, t;  // m1 · (n × m0) = det of the normals of n, e[0], e[1]
+    pair_minors(*n.integers, *e0.integers, m, t);
+    normals_det(m, *e1.integers, det, t);
     if (sgn(det) != 0) return sgn(det) > 0;
   }
   return CGAL::orientation(p.v[0], p.v[1], p.v[2], p.v[0] + p.support.orthogonal_vector()) == CGAL::POSITIVE;
@@ -459,12 +465,12 @@ bool ccw_about_normal(const Poly& p) {
 /// each coordinate rounded as CGAL rounds an exact value (the middle of the tightest
 /// interval about it). nullopt when the three do not meet in one point.
 std::optional<Vec3> meeting_rounded(const Coefficients& p, const Coefficients& q, const Coefficients& r) {
-  const mpz_class m01 = p[0] * q[1] - p[1] * q[0], m02 = p[0] * q[2] - p[2] * q[0], m12 = p[1] * q[2] - p[2] * q[1];
-  const mpz_class m03 = p[0] * q[3] - p[3] * q[0], m13 = p[1] * q[3] - p[3] * q[1], m23 = p[2] * q[3] - p[3] * q[2];
-  const mpz_class n = r[0] * m12 - r[1] * m02 + r[2] * m01;
+  mpz_class m[6], n, t;  // m: (0,1), (0,2), (0,3), (1,2), (1,3), (2,3)
+  pair_minors(p, q, m, t);
+  normals_det(m, r, n, t);
   if (sgn(n) == 0) return std::nullopt;
-  const mpz_class num[3] = {r[3] * m12 + r[1] * m23 - r[2] * m13, r[2] * m03 - r[0] * m23 - r[3] * m02,
-                            r[0] * m13 - r[1] * m03 + r[3] * m01};
+  const mpz_class num[3] = {r[3] * m[3] + r[1] * m[5] - r[2] * m[4], r[2] * m[2] - r[0] * m[5] - r[3] * m[1],
+                            r[0] * m[4] - r[1] * m[2] + r[3] * m[0]};
   double out[3];
   for (size_t j = 0; j < 3; ++j) {
     mpq_class x(-num[j], n);
