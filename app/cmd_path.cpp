@@ -429,15 +429,17 @@ int run_path(const PathOptions& opt) {
     }
     return true;
   };
+  // film_frames, its failure kept in film_error; with `to_the_end`, every frame waited for
+  // and the film finished.
+  auto make_film = [&](bool to_the_end) {
+    try {
+      if (film_frames(to_the_end) && to_the_end && film) film->finish();
+    } catch (const std::exception& e) {
+      film_error = e.what();
+    }
+  };
   std::thread filming;
-  if (films && !film_between_frames)
-    filming = std::thread([&] {
-      try {
-        if (film_frames(true) && film) film->finish();
-      } catch (const std::exception& e) {
-        film_error = e.what();
-      }
-    });
+  if (films && !film_between_frames) filming = std::thread([&] { make_film(true); });
   struct JoinFilm {  // on every way out, an exception from a frame included
     std::atomic<bool>& over;
     std::thread& thread;
@@ -456,11 +458,7 @@ int run_path(const PathOptions& opt) {
       [&](int64_t k) {
         if (!writer) throw std::runtime_error(setup_error);
         writer->write(k);
-        if (film_between_frames && film_error.empty()) try {
-            film_frames(false);
-          } catch (const std::exception& e) {
-            film_error = e.what();
-          }
+        if (film_between_frames && film_error.empty()) make_film(false);
       },
       [&](int64_t done) {
         const auto now = std::chrono::steady_clock::now();
@@ -473,11 +471,7 @@ int run_path(const PathOptions& opt) {
   const double frames_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   walk_over = true;
   if (filming.joinable()) filming.join();
-  if (film_between_frames && failure.empty() && film_error.empty()) try {
-      if (film_frames(true) && film) film->finish();
-    } catch (const std::exception& e) {
-      film_error = e.what();
-    }
+  if (film_between_frames && failure.empty() && film_error.empty()) make_film(true);
   if (mpi.rank() != 0) return failure.empty() ? 0 : 2;  // rank 0 reports the failure
   if (!failure.empty()) throw std::runtime_error(failure + "; the frames done are complete: run again with --resume to finish the walk");
 

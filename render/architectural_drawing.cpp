@@ -19,7 +19,6 @@ namespace {
 constexpr double kOnCut = 1e-9;  ///< [m] a vertex this close to the cut plane lies in it
 constexpr double kMargin = 1.0;  ///< [m] around what the picture shows
 
-Vec2 raster_of(const Camera& cam, Vec3 world) { return cam.raster_from_image(cam.image_from_camera(cam.camera_from_world(world))); }
 Vec2 raster_of(const Camera& cam, const ImageToRaster& to_raster, Vec3 world) {
   return to_raster(cam.image_from_camera(cam.camera_from_world(world)));
 }
@@ -192,8 +191,8 @@ Drawing draw_architectural(const CellComplex& c, const LineScene& scene, const C
   for (Stroke& s : d.strokes)
     if (s.layer == Layer::Architecture) s.layer = Layer::Beyond;
 
+  const ImageToRaster to_raster = cam.image_to_raster();
   if (options.cut) {
-    const ImageToRaster to_raster = cam.image_to_raster();
     // The cut outlines: each opaque polygon of a cut cell that the plane meets (in chunks
     // of cells on options.threads threads, joined in order).
     const size_t chunks = options.threads == 1 || vs.cut_cells.size() < 1024 ? 1 : 16;
@@ -234,7 +233,7 @@ Drawing draw_architectural(const CellComplex& c, const LineScene& scene, const C
     for (const auto& [room, where] : at) {
       const RoomInfo& r = c.rooms[size_t(room)];
       if (!r.named || r.name.empty()) continue;
-      const Vec2 p = raster_of(cam, where.second);
+      const Vec2 p = raster_of(cam, to_raster, where.second);
       d.labels.push_back({p, r.name, options.label_height});
       if (r.area > 0) {
         char buf[32];
