@@ -350,6 +350,13 @@ void two_rooms_in_closed_polylines(TinyDxf& d, const std::string& walls) {
   d.polyline(walls, {{4.3, 0.2}, {8.2, 0.2}, {8.2, 3.2}, {4.3, 3.2}}, true);
 }
 
+/// What the reader said of the drawing, its summary's lines one after another.
+std::string summary_text(const DxfPlan& r) {
+  std::string said;
+  for (const std::string& line : r.summary) said += line + "\n";
+  return said;
+}
+
 void expect_walkable(const Plan& plan, int rooms, int doors) {
   ASSERT_EQ(int(plan.rooms.size()), rooms);
   EXPECT_EQ(doors_in(plan), doors);
@@ -398,8 +405,7 @@ TEST(DxfPlan, PaperSpaceIsNoPartOfThePlan) {
   const DxfPlan r = read_dxf_plan(d.write("paper-space.dxf"));
   expect_walkable(r.plan, 2, 1);
   for (const Room& room : r.plan.rooms) EXPECT_TRUE(room.name == "Kitchen" || room.name == "Hall") << room.name;
-  std::string said;
-  for (const std::string& line : r.summary) said += line + "\n";
+  const std::string said = summary_text(r);
   EXPECT_NE(said.find("2 lines, texts, fills and inserts in paper space"), std::string::npos) << said;
 }
 
@@ -585,8 +591,7 @@ TEST(DxfPlan, ASwingOnLayerZeroIsADoorAndACornerShelfIsNot) {
   d.line("0", {4.1, 1.0}, {3.2, 1.0});
   d.arc("0", {8.2, 3.2}, 0.6, 180, 270);
   const DxfPlan r = read_dxf_plan(d.write("swing-on-0.dxf"));
-  std::string said;
-  for (const std::string& line : r.summary) said += line + "\n";
+  const std::string said = summary_text(r);
   EXPECT_NE(said.find(": 1 swings,"), std::string::npos) << said;
   expect_walkable(r.plan, 2, 1);
 }
@@ -609,8 +614,7 @@ TEST(DxfPlan, ADoorDrawnOverAWallNotCutForItOpensTheWall) {
   block.door_block("Tuer", {4.1, 1.9}, 270, 0.9);
   for (TinyDxf* d : {&arc, &block}) {
     const DxfPlan r = read_dxf_plan(d->write(d == &arc ? "uncut-arc.dxf" : "uncut-block.dxf"));
-    std::string said;
-    for (const std::string& line : r.summary) said += line + "\n";
+    const std::string said = summary_text(r);
     EXPECT_NE(said.find("1 doors drawn over walls not cut for them"), std::string::npos) << said;
     expect_walkable(r.plan, 2, 1);
   }
@@ -629,8 +633,7 @@ TEST(DxfPlan, ASwingOnTheWallLayerIsADoorNotAQuarterDiscRoom) {
   with_leaf.line("Walls", {4.1, 1.0}, {3.2, 1.0});
   for (TinyDxf* d : {&with_leaf, &without}) {
     const DxfPlan r = read_dxf_plan(d->write(d == &without ? "wall-swing.dxf" : "wall-swing-leaf.dxf"));
-    std::string said;
-    for (const std::string& line : r.summary) said += line + "\n";
+    const std::string said = summary_text(r);
     EXPECT_NE(said.find(": 1 swings,"), std::string::npos) << said;
     expect_walkable(r.plan, 2, 1);
   }
@@ -656,8 +659,7 @@ TEST(DxfPlan, ASwingDrawnAsShortStraightLinesIsASwing) {
   for (size_t i = 0; i + 1 < arc.size(); ++i) as_lines.line("A-DOOR", arc[i], arc[i + 1]);
   for (TinyDxf* d : {&as_polyline, &as_lines}) {
     const DxfPlan r = read_dxf_plan(d->write(d == &as_lines ? "swing-lines.dxf" : "swing-polyline.dxf"));
-    std::string said;
-    for (const std::string& line : r.summary) said += line + "\n";
+    const std::string said = summary_text(r);
     EXPECT_NE(said.find("1 curves drawn as short straight lines on door layers taken as arcs"), std::string::npos) << said;
     expect_walkable(r.plan, 2, 1);
   }
@@ -674,8 +676,7 @@ TEST(DxfPlan, AColumnDrawnOnlyAsAFillBesideWallLinesIsAWall) {
   d.hatch("A-WALL", {{{0, 0}, {8.4, 0}, {8.4, 3.4}, {0, 3.4}}, {{0.2, 0.2}, {8.2, 0.2}, {8.2, 3.2}, {0.2, 3.2}}});
   const DxfPlan r = read_dxf_plan(d.write("column.dxf"));
   expect_walkable(r.plan, 2, 1);
-  std::string said;
-  for (const std::string& line : r.summary) said += line + "\n";
+  const std::string said = summary_text(r);
   EXPECT_NE(said.find("1 fills on wall layers with no wall line along their outline"), std::string::npos) << said;
   double around = 0;  // walls along the column's four sides
   auto on_column = [](Vec2 p) {
@@ -845,8 +846,7 @@ TEST(DxfPlan, DoubleActingLeavesOnTheWallLayerAreADoorNotHalfDiscRooms) {
   for (const Wall& w : r.plan.walls)
     for (const Opening& o : w.openings) open += o.kind == OpeningKind::Door ? o.width : 0;
   EXPECT_NEAR(open, 1.8, 0.02);
-  std::string said;
-  for (const std::string& line : r.summary) said += line + "\n";
+  const std::string said = summary_text(r);
   EXPECT_NE(said.find(": 2 swings,"), std::string::npos) << said;
   EXPECT_EQ(r.plan.rooms.size(), 2u) << said;  // no half-disc rooms beside the gap
   const CellComplex c = build_cells(r.plan);
@@ -953,8 +953,7 @@ TEST(DxfPlan, AWindowDrawnOnLayerZeroClosesItsGap) {
   ASSERT_EQ(r.plan.rooms.size(), 1u);
   EXPECT_EQ(r.plan.rooms[0].name, "Living");
   EXPECT_EQ(doors_in(r.plan, OpeningKind::Window), 1);
-  std::string said;
-  for (const std::string& line : r.summary) said += line + "\n";
+  const std::string said = summary_text(r);
   EXPECT_NE(said.find("'0 (lines in wall gaps)'"), std::string::npos) << said;
   const CellComplex c = build_cells(r.plan);
   EXPECT_EQ(cells_are_valid(c), "");
