@@ -350,6 +350,15 @@ void two_rooms_in_closed_polylines(TinyDxf& d, const std::string& walls) {
   d.polyline(walls, {{4.3, 0.2}, {8.2, 0.2}, {8.2, 3.2}, {4.3, 3.2}}, true);
 }
 
+/// One room, 4.4 × 3.4 m outside, its walls 0.2 m thick on layer "Walls", with a gap for a
+/// window in its south wall from x = 1.5 to 2.7 (the jambs drawn).
+void room_with_a_gap_in_its_south_wall(TinyDxf& d) {
+  d.polyline("Walls", {{1.5, 0}, {0, 0}, {0, 3.4}, {4.4, 3.4}, {4.4, 0}, {2.7, 0}}, false);
+  d.polyline("Walls", {{1.5, 0.2}, {0.2, 0.2}, {0.2, 3.2}, {4.2, 3.2}, {4.2, 0.2}, {2.7, 0.2}}, false);
+  d.line("Walls", {1.5, 0}, {1.5, 0.2});
+  d.line("Walls", {2.7, 0}, {2.7, 0.2});
+}
+
 /// What the reader said of the drawing, its summary's lines one after another.
 std::string summary_text(const DxfPlan& r) {
   std::string said;
@@ -915,10 +924,7 @@ TEST(DxfPlan, AWindowInAnOuterWall) {
   // A gap in the south wall (x 1.5–2.7) with the window's glass lines across it: the
   // room is closed by the window, which opens onto the outside.
   TinyDxf d;
-  d.polyline("Walls", {{1.5, 0}, {0, 0}, {0, 3.4}, {4.4, 3.4}, {4.4, 0}, {2.7, 0}}, false);
-  d.polyline("Walls", {{1.5, 0.2}, {0.2, 0.2}, {0.2, 3.2}, {4.2, 3.2}, {4.2, 0.2}, {2.7, 0.2}}, false);
-  d.line("Walls", {1.5, 0}, {1.5, 0.2});
-  d.line("Walls", {2.7, 0}, {2.7, 0.2});
+  room_with_a_gap_in_its_south_wall(d);
   d.line("Ext Windows", {1.5, 0.08}, {2.7, 0.08});
   d.line("Ext Windows", {1.5, 0.12}, {2.7, 0.12});
   const DxfPlan r = read_dxf_plan(d.write("outer-window.dxf"));
@@ -937,10 +943,7 @@ TEST(DxfPlan, AWindowDrawnOnLayerZeroClosesItsGap) {
   // Furniture on layer 0 (a sofa 0.9 m deep against the wall, a bookcase spanning the
   // room's width) stays furniture. Before, the room was outside through the gap.
   TinyDxf d;
-  d.polyline("Walls", {{1.5, 0}, {0, 0}, {0, 3.4}, {4.4, 3.4}, {4.4, 0}, {2.7, 0}}, false);
-  d.polyline("Walls", {{1.5, 0.2}, {0.2, 0.2}, {0.2, 3.2}, {4.2, 3.2}, {4.2, 0.2}, {2.7, 0.2}}, false);
-  d.line("Walls", {1.5, 0}, {1.5, 0.2});
-  d.line("Walls", {2.7, 0}, {2.7, 0.2});
+  room_with_a_gap_in_its_south_wall(d);
   d.line("0", {1.55, 0.08}, {2.65, 0.08});
   d.line("0", {1.55, 0.12}, {2.65, 0.12});
   d.polyline("0", {{1.5, 0.05}, {1.55, 0.05}, {1.55, 0.15}, {1.5, 0.15}}, true);
