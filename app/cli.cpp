@@ -36,8 +36,9 @@ namespace avenues::app {
 
 namespace {
 constexpr const char* kSearchHelp =
-    "merged (avenues into a cell joined where their union is convex: the same view, fewer avenues) or jones "
-    "(Jones's tree, one avenue per chain of portals)";
+    "merged (avenues into a cell joined where their union is convex: the same view, fewer avenues), hull "
+    "(joined into their convex hull: one avenue per cell, a conservative view the half-tone resolves by depth; line "
+    "drawings take the merged search) or jones (Jones's tree, one avenue per chain of portals)";
 constexpr const char* kDetailHelp =
     "[samples] furniture far enough away is drawn in a coarser version that moves no point of its picture by more "
     "than this; 0: always in full";
@@ -276,7 +277,7 @@ int run_cli(int argc, char** argv) {
   bench_walk->add_option("--frame-budget", bench_walk_budget, "[ms] the walkthrough's frame budget; 0: none")
       ->capture_default_str()->check(number_in(0, 10000));
   std::string bench_walk_search = "merged";
-  bench_walk->add_option("--search", bench_walk_search, "merged or jones, as for walk")->capture_default_str()->check(search_name());
+  bench_walk->add_option("--search", bench_walk_search, "merged, hull or jones, as for walk")->capture_default_str()->check(search_name());
   double bench_walk_detail = 0.5;
   bench_walk->add_option("--detail", bench_walk_detail, "as for walk")->capture_default_str()->check(number_in(0, 16));
 

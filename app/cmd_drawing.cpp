@@ -146,7 +146,10 @@ int run_drawing(const DrawingOptions& opt) {
   const CellComplex& c = plan.complex;
   ArchitecturalView s = set_up_drawing(c, opt);
   s.options.threads = 0;  // every core, as the half-tone
-  const VisibleSet vs = find_visible_from_cut(c, s.camera, s.cut, search_option(opt.search, kernel));
+  const TraverseParams search = search_option(opt.search, kernel);
+  if (search.hull_pieces)
+    throw std::runtime_error("--search hull makes half-tone pictures only; a drawing's lines need merged or jones");
+  const VisibleSet vs = find_visible_from_cut(c, s.camera, s.cut, search);
   const auto t0 = std::chrono::steady_clock::now();
   const LineScene scene = prepare_line_scene(c);
   Drawing d = draw_architectural(c, scene, s.camera, s.cut, vs, s.options);

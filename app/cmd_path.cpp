@@ -278,7 +278,7 @@ class FrameWriter {
 
  private:
   Drawing draw(const WalkFrame& f) const {
-    return draw_view(c_, scene_, f.camera, find_visible(c_, f.camera, f.cell, s_.search));
+    return draw_view(c_, scene_, f.camera, find_visible(c_, f.camera, f.cell, exact_masks(s_.search)));
   }
   void render(const WalkFrame& f, Image& out) {
     render_view(c_, objects_, *effects_, f.camera, find_visible(c_, f.camera, f.cell, s_.search), s_.halftone, out,

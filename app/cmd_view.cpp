@@ -97,7 +97,7 @@ nlohmann::json view_stats(const LoadedPlan& plan, const ViewSetup& v, const Visi
   }
   j["size"] = {v.camera.width, v.camera.height};
   j["kernel"] = to_string(v.kernel);
-  j["search"] = v.search.merge_pieces ? "merged" : "jones";
+  j["search"] = search_label(v.search);
   j["eye_cell"] = vs.eye_cell;
   const Cell& ec = c.cells[size_t(vs.eye_cell)];
   j["eye_room"] = ec.room >= 0 ? c.rooms[size_t(ec.room)].name : std::string(to_string(ec.kind));
@@ -137,7 +137,7 @@ int run_view(const ViewOptions& opt) {
   std::cout << "eye in cell " << vs.eye_cell << " (" << stats["eye_room"].get<std::string>() << "): "
             << vs.cells.size() << " cells visible through " << vs.avenues.size() << " avenues, "
             << vs.portals_tested << " portals tested, depth " << vs.max_depth << ", " << vs.micros << " us ("
-            << to_string(v.kernel) << ", " << (v.search.merge_pieces ? "merged" : "jones") << ")\n";
+            << to_string(v.kernel) << ", " << search_label(v.search) << ")\n";
   std::string picture = opt.output;
   if (opt.frames > 0) picture = stats["first_frame"].get<std::string>() + " and the next " + std::to_string(opt.frames - 1);
   if (opt.stereo == "pair") picture = "the pair " + opt.output + " (-left, -right)";

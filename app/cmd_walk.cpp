@@ -284,6 +284,7 @@ class Session {
     out.eye_cell = vs.eye_cell;
     out.portals_tested = vs.portals_tested;
     out.micros = vs.micros;
+    out.conservative = vs.conservative;
     out.avenues.assign(vs.avenues.begin(), vs.avenues.begin() + long(std::min(k, vs.avenues.size())));
     out.collect_cells();
     return out;
@@ -334,13 +335,14 @@ class Session {
         }
       }
       shown_mode_ = mode;
+      const TraverseParams search = lines_ ? exact_masks(search_) : search_;  // lines need exact masks
       if (mode == StereoMode::Mono) {
         cam_ = state_.camera(w, h);
-        full_ = find_visible(c_, cam_, cell, search_);
+        full_ = find_visible(c_, cam_, cell, search);
       } else {
         cam_ = rig_.left;
-        full_ = find_visible(c_, rig_.left, rig_.left_at.cell, search_);
-        right_ = find_visible(c_, rig_.right, rig_.right_at.cell, search_);
+        full_ = find_visible(c_, rig_.left, rig_.left_at.cell, search);
+        right_ = find_visible(c_, rig_.right, rig_.right_at.cell, search);
       }
       shown_ = progressive_ ? std::min<size_t>(size_t(opt_.progressive_rate), full_.avenues.size()) : full_.avenues.size();
     } else {
@@ -367,8 +369,9 @@ class Session {
       lines.push_back("over the " + fixed(budget_.budget_ms(), 1) + " ms frame budget (" + fixed(budget_.last_ms(), 1) +
                       " ms): " + to_string(shown_detail_) + " while moving, full detail when the eye stops");
     lines.push_back("frame " + fixed(work_ms, 1) + " ms, render " + fixed(render_ms, 1) + " ms | " +
-                    std::to_string(full_.cells.size()) + " cells seen through " + std::to_string(full_.avenues.size()) +
-                    " avenues");
+                    std::to_string(full_.cells.size()) +
+                    (full_.conservative ? " cells (hull search) through " : " cells seen through ") +
+                    std::to_string(full_.avenues.size()) + " avenues");
     const Vec3 e = state_.eye();
     lines.push_back(state_.place() + " | eye (" + fixed(e.x, 2) + ", " + fixed(e.y, 2) + ", " + fixed(e.z, 2) +
                     ") heading " + fixed(state_.yaw(), 0) + " pitch " + fixed(state_.pitch(), 0) + " fov " +

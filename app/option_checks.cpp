@@ -85,7 +85,8 @@ TraverseParams search_option(const std::string& s, Kernel kernel, const char* op
   TraverseParams p;
   p.kernel = kernel;
   if (s == "merged") p.merge_pieces = true;
-  else if (s != "jones") throw std::runtime_error(std::string(option) + " wants merged or jones, not '" + s + "'");
+  else if (s == "hull") p.merge_pieces = p.hull_pieces = true;
+  else if (s != "jones") throw std::runtime_error(std::string(option) + " wants merged, hull or jones, not '" + s + "'");
   return p;
 }
 
@@ -151,7 +152,7 @@ CLI::Validator kernel_name() {
 }
 
 CLI::Validator search_name() {
-  return from_check([](const std::string& s) { search_option(s, Kernel::Double); }, "merged|jones");
+  return from_check([](const std::string& s) { search_option(s, Kernel::Double); }, "merged|hull|jones");
 }
 
 CLI::Validator samples_count() {

@@ -150,7 +150,7 @@ void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const Visible
     double render_us = 0;
     for (size_t k = 0; k < frames.size(); ++k) {
       auto t0 = std::chrono::steady_clock::now();
-      VisibleSet fv = find_visible(c, frames[k].camera, frames[k].cell, v.search);
+      VisibleSet fv = find_visible(c, frames[k].camera, frames[k].cell, exact_masks(v.search));
       Drawing d = draw_view(c, scene, frames[k].camera, fv, line_options);
       render_us += micros_since(t0);
       lines += write_drawing(d, frame_path(path, int(k), int(frames.size()))).lines;
@@ -169,8 +169,8 @@ void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const Visible
     StereoRig rig = stereo_rig(c, v.camera, {opt.interocular, opt.converge});
     if (rig.problem != StereoRig::Problem::None) throw std::runtime_error(rig.message());
     auto t0 = std::chrono::steady_clock::now();
-    VisibleSet lv = find_visible(c, rig.left, rig.left_at.cell, v.search);
-    VisibleSet rv = find_visible(c, rig.right, rig.right_at.cell, v.search);
+    VisibleSet lv = find_visible(c, rig.left, rig.left_at.cell, exact_masks(v.search));
+    VisibleSet rv = find_visible(c, rig.right, rig.right_at.cell, exact_masks(v.search));
     Drawing left = draw_view(c, scene, rig.left, lv, line_options),
             right = draw_view(c, scene, rig.right, rv, line_options);
     const double render_us = micros_since(t0);
@@ -188,7 +188,9 @@ void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const Visible
   }
 
   auto t0 = std::chrono::steady_clock::now();
-  Drawing d = draw_view(c, scene, v.camera, vs, line_options);
+  // Lines need exact masks: a view searched by hull (for half-tones) is searched again.
+  const VisibleSet exact = vs.conservative ? find_visible(c, v.camera, v.eye_cell, exact_masks(v.search)) : VisibleSet{};
+  Drawing d = draw_view(c, scene, v.camera, vs.conservative ? exact : vs, line_options);
   const double render_us = micros_since(t0);
   add_drawing_stats(stats, write_drawing(d, path), render_us, path);
 }

@@ -158,13 +158,15 @@ double quantile(std::vector<double> v, double q) {
 
 /// Every view once per iteration; the traversal's own time per view (VisibleSet::micros).
 /// `search`: "unpruned" (Jones's tree), "pruned" (TraverseParams::prune_covered) or
-/// "merged" (TraverseParams::merge_pieces).
+/// "merged" (TraverseParams::merge_pieces) or "hull" (TraverseParams::hull_pieces: conservative,
+/// its visible_cells counting cells perhaps not seen).
 void random_views(benchmark::State& state, const std::string& key, const std::string& search) {
   const CellComplex& c = complex_of(key);
   const auto vs = free_views(c, 200);
   TraverseParams params;
   params.prune_covered = search == "pruned";
-  params.merge_pieces = search == "merged";
+  params.merge_pieces = search == "merged" || search == "hull";
+  params.hull_pieces = search == "hull";
   std::vector<double> micros;
   double avenues = 0, most = 0, cells = 0, pruned = 0, merged = 0;
   for (auto _ : state) {
@@ -216,7 +218,7 @@ int register_all() {
       if (fs::exists(file)) plans.push_back({file.stem().string(), "mesh:" + file.string()});
     }
     for (const auto& [name, key] : plans)
-      for (const char* search : {"unpruned", "pruned", "merged"})
+      for (const char* search : {"unpruned", "pruned", "merged", "hull"})
         benchmark::RegisterBenchmark(("VisibilityRandom/" + name + "/" + search).c_str(),
                                      [key = key, search = std::string(search)](benchmark::State& s) {
                                        random_views(s, key, search);

@@ -15,6 +15,11 @@
 //     not of the piece a cell holds, so that no false edge shows where cells meet;
 //   - the objects of its cell, which resolve depth against that cell's faces and each
 //     other, inside the mask only.
+// A conservative visible set (the hull search: masks that may hold more than their cell's
+// view, cells perhaps not seen at all) is drawn by depth instead: every face's opaque
+// pieces and every object in one group, each cut to its avenue's mask (which holds all
+// that can show of it), and Bouknight's depth sort decides what is seen where they
+// overlap — the nearest surface along each ray, which the exact masks would have shown.
 // A parallel view (an architect's drawing, `view --projection parallel`) is drawn as the
 // perspective from far behind its picture plane (distant_eye), cut where its rays start
 // (VisibleSet::cut): the whole pipeline (lights, shadows, smooth shading, objects) is the
@@ -147,6 +152,7 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
     if (clip < 0) continue;
     const Cell& cell = complex.cells[size_t(avenue.cell)];
     ScreenSceneBuilder::Placement where{clip, int32_t(i), avenue.depth, PolygonRole::Face};
+    if (visible.conservative) where = {clip, 0, 0, PolygonRole::Object};  // one group: depth decides
     PolygonSource source;
     source.kind = PolygonSource::Kind::Face;
     source.avenue = int(i);
@@ -157,13 +163,22 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
       source.face = int(k);
       bool one_material = true;
       for (const OpaquePoly& piece : face.opaque) one_material &= piece.material == face.opaque[0].material;
-      if (one_material) {
+      // Resolved by depth, a face must not cover what its portals show, nor the pieces of
+      // its plane that bound other cells (which a mask would have cut away): its opaque
+      // pieces only, each lit as the whole face would be.
+      if (one_material && !visible.conservative) {
         b.add_face(face.poly, face.plane, material_of(complex, face.opaque[0].material), where, source,
                    shade_point(complex, face.opaque[0]));
       } else {
+        // Lit as the whole face: at its first piece's surface, or without one at the
+        // centroid of the face's corners (add_face's own, for the whole face).
+        Vec3 corners{0, 0, 0};
+        for (Vec3 p : face.poly) corners = corners + (1.0 / double(face.poly.size())) * p;
+        const Vec3* whole = shade_point(complex, face.opaque[0]);
+        if (!whole) whole = &corners;
         for (const OpaquePoly& piece : face.opaque)
           b.add_face(piece.poly, face.plane, material_of(complex, piece.material), where, source,
-                     shade_point(complex, piece));
+                     one_material ? whole : shade_point(complex, piece));
       }
     }
     auto in = objects_in.find(avenue.cell);

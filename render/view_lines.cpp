@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <stdexcept>
 
 #include "render/interval_clip.h"
 #include "render/shadow_outline.h"
@@ -169,6 +170,8 @@ LineScene prepare_line_scene(const CellComplex& complex, const LineOptions& opti
 
 Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& cam, const VisibleSet& vs,
                   const LineOptions& options) {
+  if (vs.conservative)
+    throw std::invalid_argument("a hidden-line drawing needs exact masks, not the hull search's (exact_masks)");
   Drawing d;
   const Projector pr(cam, options.cut);
   const ImageToRaster to_raster = cam.image_to_raster();

@@ -68,7 +68,9 @@ LineScene prepare_line_scene(const CellComplex& complex);
 LineScene prepare_line_scene(const CellComplex& complex, const LineOptions& options);
 
 /// The hidden-line drawing of what `camera` sees; `visible` is find_visible() from the same
-/// camera. The drawing's page is the camera's image (width × height px).
+/// camera, with exact masks: a conservative set (the hull search) would draw lines that are
+/// hidden, so it throws std::invalid_argument (exact_masks() gives the search to use).
+/// The drawing's page is the camera's image (width × height px).
 Drawing draw_view(const CellComplex& complex, const LineScene& scene, const Camera& camera, const VisibleSet& visible,
                   const LineOptions& options = {});
 

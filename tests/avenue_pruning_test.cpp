@@ -16,6 +16,7 @@
 #include "cells/build_cells.h"
 #include "plans/formats/doom_map.h"
 #include "plans/formats/sweet_home.h"
+#include "hull_checks.h"
 #include "ray_oracle.h"
 #include "render/drawing.h"
 #include "render/halftone.h"
@@ -41,6 +42,7 @@ struct Scene {
 struct Tally {
   int views = 0;
   long avenues = 0, pruned = 0, merged_avenues = 0;
+  avenues::testing::HullTally hull;
 };
 
 VisibleSet search(const CellComplex& c, const Camera& cam, CellId cell, Kernel k, bool prune) {
@@ -99,6 +101,9 @@ void expect_same_view(const Scene& s, const Camera& cam, CellId cell, bool exact
     EXPECT_EQ(merged.cells, all.cells);
     EXPECT_LE(merged.avenues.size(), all.avenues.size());
     t.merged_avenues += long(merged.avenues.size());
+    // The hull search: conservative, and (double) the merged search's picture.
+    avenues::testing::expect_hull_holds_merged(s.c, cam, cell, k, merged, k == Kernel::Double ? &s.objects : nullptr,
+                                               t.hull);
     std::map<CellId, double> area_all, area_merged;
     for (const Avenue& a : all.avenues) area_all[a.cell] += std::fabs(signed_area(a.mask));
     for (const Avenue& a : merged.avenues) area_merged[a.cell] += std::fabs(signed_area(a.mask));
@@ -172,7 +177,7 @@ TEST(AvenuePruning, BundledPlansDrawTheSamePrunedOrNot) {
     random_views(s, 2026, 12, true, t);
     roof_views(s, 2, true, t);
   }
-  std::printf("[ pruning  ] bundled plans: %d views, %ld avenues unpruned, %ld pruned, %ld merged\n", t.views, t.avenues, t.pruned, t.merged_avenues);
+  std::printf("[ pruning  ] bundled plans: %d views, %ld avenues unpruned, %ld pruned, %ld merged; hull %ld avenues into %ld cells (merged %ld cells), %d pictures compared, %ld of %ld pixels differ\n", t.views, t.avenues, t.pruned, t.merged_avenues, t.hull.hull_avenues, t.hull.hull_cells, t.hull.merged_cells, t.hull.pictures, t.hull.pixels_differ, t.hull.pixels);
 }
 
 // The furnished homes the issue measured (thousands of furniture polygons a view), and the smallest.
@@ -188,7 +193,7 @@ TEST(AvenuePruning, SweetHomeHomesFromAboveTheirRoofsDrawTheSamePrunedOrNot) {
     std::printf("[ pruning  ] %s: %.1f s\n", home,
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }
-  std::printf("[ pruning  ] Sweet Home homes: %d views, %ld avenues unpruned, %ld pruned, %ld merged\n", t.views, t.avenues, t.pruned, t.merged_avenues);
+  std::printf("[ pruning  ] Sweet Home homes: %d views, %ld avenues unpruned, %ld pruned, %ld merged; hull %ld avenues into %ld cells (merged %ld cells), %d pictures compared, %ld of %ld pixels differ\n", t.views, t.avenues, t.pruned, t.merged_avenues, t.hull.hull_avenues, t.hull.hull_cells, t.hull.merged_cells, t.hull.pictures, t.hull.pixels_differ, t.hull.pixels);
 }
 
 TEST(AvenuePruning, FreedoomMapDrawsTheSamePrunedOrNot) {
@@ -197,7 +202,7 @@ TEST(AvenuePruning, FreedoomMapDrawsTheSamePrunedOrNot) {
   Tally t;
   const Scene s(build_cells(read_doom_map(wad, "MAP01")));
   random_views(s, 7, 8, false, t);
-  std::printf("[ pruning  ] freedoom2 MAP01: %d views, %ld avenues unpruned, %ld pruned, %ld merged\n", t.views, t.avenues, t.pruned, t.merged_avenues);
+  std::printf("[ pruning  ] freedoom2 MAP01: %d views, %ld avenues unpruned, %ld pruned, %ld merged; hull %ld avenues into %ld cells (merged %ld cells), %d pictures compared, %ld of %ld pixels differ\n", t.views, t.avenues, t.pruned, t.merged_avenues, t.hull.hull_avenues, t.hull.hull_cells, t.hull.merged_cells, t.hull.pictures, t.hull.pixels_differ, t.hull.pixels);
 }
 
 // --- the per-thread marks when a traversal throws ----------------------------------

@@ -103,3 +103,33 @@ TYPED_TEST(MaskMerge, PiecesFarFromTheOriginMergeAsNearIt) {
   const double wd = as_double(w);
   EXPECT_NEAR(area(left), wd * wd, 1e-6 * wd * wd);
 }
+
+// Mask::hull, the hull search's join (TraverseParams::hull_pieces): two masks apart, and two
+// whose union is not convex, become one convex mask holding both, with the hull's area
+// (exactly in rationals; grown by far less than a sample in floating point).
+TYPED_TEST(MaskMerge, TheHullOfTwoMasksHoldsBothAndNothingFarOutside) {
+  using T = TypeParam;
+  Mask<T> a = Mask<T>::window(T(0), T(1), T(0), T(1));
+  Mask<T> b = Mask<T>::window(T(2), T(3), T(1), T(2));  // apart: the hull is a hexagon
+  b.clip({T(-1), T(-1), T(5) - T(1) / T(2)});            // its corner (3, 2) cut off
+  std::vector<Point2T<T>> points;
+  for (const Mask<T>* m : {&a, &b})
+    for (const auto& v : m->polygon()) points.push_back(v);
+  points.push_back({T(1) / T(2), T(1) / T(2)});  // inside: changes nothing
+  const Mask<T> h = Mask<T>::hull(points);
+  ASSERT_FALSE(h.empty());
+  // The hull of (0,0) (1,0) (3,1) (3,1.5) (2.5,2) (2,2) (0,1): 7 corners, area 3.875 by the shoelace formula.
+  EXPECT_EQ(h.half_planes().size(), 7u);
+  EXPECT_NEAR(area(h), 3.875, (std::is_same_v<T, float> ? 0.1 : 1e-6));  // each side moved out by 1e-3 (float), 1e-8 (double) of 4
+  for (const Mask<T>* m : {&a, &b})
+    for (const auto& v : m->polygon())
+      for (const HalfPlane<T>& l : h.half_planes()) EXPECT_GE(as_double(l.a * v.x + l.b * v.y + l.c), 0.0);
+  // A corner stays where it is (within the growth).
+  bool corner = false;
+  for (const auto& v : h.polygon())
+    corner = corner || (std::fabs(as_double(v.x) - 2.5) < 2e-2 && std::fabs(as_double(v.y) - 2) < 2e-2);
+  EXPECT_TRUE(corner);
+  // Collinear points span no area: no hull.
+  std::vector<Point2T<T>> line{{T(0), T(0)}, {T(1), T(1)}, {T(2), T(2)}};
+  EXPECT_TRUE(Mask<T>::hull(line).empty());
+}

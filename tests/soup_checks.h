@@ -14,6 +14,7 @@
 
 #include "cells/mesh_scene.h"
 #include "cells/solid_insides.h"
+#include "hull_checks.h"
 #include "ray_oracle.h"
 #include "test_files.h"
 #include "visibility/visible_set.h"
@@ -152,6 +153,11 @@ inline void expect_soup_views_agree_with_rays(const CellComplex& c, int views, u
       const OracleResult r = check_visible_set(c, cam, vs, step);
       EXPECT_EQ(r.missing, 0);
       EXPECT_EQ(r.extra, 0);
+      // The hull search, which the walkthrough's half-tone may use: conservative, and the
+      // merged search's picture.
+      static const std::vector<PlacedObject> no_objects;
+      HullTally tally;
+      if (merge) expect_hull_holds_merged(c, cam, loc.cell, Kernel::Double, vs, &no_objects, tally);
     }
   }
 }

@@ -20,6 +20,7 @@
 // where lines and faces are drawn.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <type_traits>
@@ -199,6 +200,94 @@ class Mask {
     return false;
   }
 
+  /// The convex hull of points (the vertices of several masks): the smallest convex mask
+  /// holding them all, for the hull search (TraverseParams::hull_pieces), which trades a
+  /// mask's exactness for one avenue per cell. Its sides are lines through two of the
+  /// points, not traces of portal planes. Exact number types make the hull exactly; in
+  /// floating point every side is moved outward by far more than the points' rounding
+  /// (kHullGrowth of the points' extent), so the hull holds every point however the
+  /// orientation tests round. Empty when the points span no area.
+  static Mask hull(std::vector<Point2T<T>>& points) {
+    Mask m;
+    if (points.size() < 3) return m;
+    std::sort(points.begin(), points.end(),
+              [](const Point2T<T>& p, const Point2T<T>& q) { return p.x < q.x || (p.x == q.x && p.y < q.y); });
+    auto turn = [](const Point2T<T>& o, const Point2T<T>& a, const Point2T<T>& b) {
+      return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+    };
+    // Andrew's monotone chain: the lower hull left to right, then the upper right to left.
+    thread_local std::vector<Point2T<T>> chain;
+    chain.clear();
+    for (int pass = 0; pass < 2; ++pass) {
+      const size_t floor = chain.size();
+      for (size_t i = 0; i < points.size(); ++i) {
+        const Point2T<T>& p = points[pass == 0 ? i : points.size() - 1 - i];
+        while (chain.size() >= floor + 2 && !(turn(chain[chain.size() - 2], chain.back(), p) > T(0))) chain.pop_back();
+        chain.push_back(p);
+      }
+      chain.pop_back();  // the last point of each pass starts the other
+    }
+    if constexpr (std::is_floating_point_v<T>) {
+      // Two sides that nearly run on in one line meet at a vertex their rounding would put
+      // anywhere along them: in floating point a corner turning by less than kCollinear
+      // goes (it lies within kCollinear of the side that replaces it, far inside the growth
+      // below). Taken out of the finished cycle, where its neighbours are its neighbours
+      // along the outline (in the sweep, points of a nearly vertical side come in the order
+      // of their x's rounding).
+      for (bool again = true; again && chain.size() >= 3;) {
+        again = false;
+        for (size_t k = 0; k < chain.size() && chain.size() >= 3; ++k) {
+          const Point2T<T>& o = chain[(k + chain.size() - 1) % chain.size()];
+          const Point2T<T>& b = chain[(k + 1) % chain.size()];
+          const T ax = chain[k].x - o.x, ay = chain[k].y - o.y, bx = b.x - o.x, by = b.y - o.y;
+          if (ax * by - ay * bx > T(kCollinear) * std::sqrt((ax * ax + ay * ay) * (bx * bx + by * by))) continue;
+          chain.erase(chain.begin() + long(k));
+          again = true;
+        }
+      }
+    }
+    if (chain.size() < 3) return m;
+    T grow(0);
+    if constexpr (std::is_floating_point_v<T>) {
+      T extent(0);
+      for (const Point2T<T>& p : chain) extent = std::max({extent, T(std::fabs(p.x)), T(std::fabs(p.y))});
+      grow = T(kHullGrowth) * (T(1) + extent);
+    }
+    for (size_t k = 0; k < chain.size(); ++k) {
+      const Point2T<T>& p = chain[k];
+      const Point2T<T>& q = chain[(k + 1) % chain.size()];
+      // Inside: left of p → q, (q − p) × (x − p) >= 0.
+      HalfPlane<T> l{p.y - q.y, q.x - p.x, T(0)};
+      l.c = -(l.a * p.x + l.b * p.y);
+      if constexpr (std::is_floating_point_v<T>) l.c += grow * (std::fabs(l.a) + std::fabs(l.b));
+      m.h_.push_back(l);
+    }
+    // Vertex k meets side k−1 and side k: the hull's sides are in order from chain[0].
+    return m;
+  }
+
+  /// Whether this mask lies inside `outer` up to the hull's growth: every vertex inside
+  /// every half-plane of `outer` or outside it by at most twice kHullGrowth of its extent
+  /// (floating point; exact number types: closed, exactly). The hull search's test for
+  /// pieces that add nothing to what a cell was searched through already.
+  bool within(const Mask& outer) const {
+    if (empty() || outer.empty()) return false;
+    for (size_t k = 0; k < h_.size(); ++k) {
+      const Point2T<T> v = vertex(k);
+      for (const HalfPlane<T>& l : outer.h_) {
+        const T s = l.a * v.x + l.b * v.y + l.c;
+        if constexpr (std::is_floating_point_v<T>) {
+          const T slack = T(2 * kHullGrowth) * (T(1) + std::max(std::fabs(v.x), std::fabs(v.y))) *
+                          (std::fabs(l.a) + std::fabs(l.b));
+          if (s < -slack) return false;
+        } else {
+          if (s < T(0)) return false;
+        }
+      }
+    }
+    return true;
+  }
+
   /// Twice the signed area (positive for a proper counter-clockwise mask).
   T area2() const {
     T a(0);
@@ -254,6 +343,10 @@ class Mask {
   /// divisions of degree-2 terms, then one more degree-1 evaluation; 2^7 ulps covers it.
   /// [rad] Floating point: lines meeting at a smaller angle are one line where masks merge.
   static constexpr double kCollinear = std::is_same_v<T, float> ? 1e-4 : 1e-9;
+  /// Floating point: how far each side of a hull is moved outward, relative to the points'
+  /// extent (1 + their largest coordinate): above their rounding and the points a nearly
+  /// straight turn drops (kCollinear), far below a sample in double.
+  static constexpr double kHullGrowth = std::is_same_v<T, float> ? 1e-3 : 1e-8;
   static constexpr double kSignBound = std::is_floating_point_v<T> ? 128 * double(std::numeric_limits<T>::epsilon()) : 0;
   std::vector<HalfPlane<T>> h_;
 };

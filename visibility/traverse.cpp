@@ -55,7 +55,10 @@ void VisibleSet::collect_cells() {
 namespace {
 VisibleSet traverse(const CellComplex& complex, const Camera& camera, CellId eye_cell, const TraverseParams& params,
                     const Plane* cut) {
-  const bool prune = params.prune_covered, merge = params.merge_pieces;
+  const bool prune = params.prune_covered;
+  const detail::Join merge = params.hull_pieces    ? detail::Join::Hull
+                             : params.merge_pieces ? detail::Join::Convex
+                                                   : detail::Join::None;
   VisibleSet vs;
   switch (params.kernel) {
     case Kernel::Float: vs = detail::traverse_with<float>(complex, camera, eye_cell, prune, cut, merge); break;

@@ -40,6 +40,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include <boost/container/small_vector.hpp>
@@ -65,11 +66,17 @@ Vec3T<T> crossT(const Vec3T<T>& a, const Vec3T<T>& b) {
 template <class T>
 T dotT(const Vec3T<T>& a, const Vec3T<T>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
+/// How the pieces of view that reach one cell are joined before the search goes on from it:
+/// not at all (Jones), where their union is convex (merged: exact), or into their convex
+/// hull (hull: conservative, for pictures that resolve depth).
+enum class Join : uint8_t { None, Convex, Hull };
+
 template <class T>
 class Traversal {
  public:
-  Traversal(const CellComplex& c, const Camera& cam, bool prune_covered, VisibleSet& out, bool merge = false)
-      : c_(c), out_(out), prune_(prune_covered && !merge), merge_(merge) {
+  Traversal(const CellComplex& c, const Camera& cam, bool prune_covered, VisibleSet& out, Join join = Join::None)
+      : c_(c), out_(out), prune_(prune_covered && join == Join::None), merge_(join != Join::None),
+        hull_(join == Join::Hull) {
     eye_ = in(cam.eye);
     right_ = in(cam.right);
     up_ = in(cam.up);
@@ -186,6 +193,7 @@ class Traversal {
         t.state_[size_t(id)] = kIdle;
         t.pieces_[size_t(id)].clear();
         t.waiters_[size_t(id)].clear();
+        if (t.hull_) t.reach_[size_t(id)] = Mask<T>(), t.rounds_[size_t(id)] = 0;
       }
     }
   };
@@ -544,6 +552,13 @@ class Traversal {
     if (waiters.size() < c_.cells.size()) waiters.resize(c_.cells.size());
     if (state.size() < c_.cells.size()) state.assign(c_.cells.size(), kIdle);
     pieces_ = pieces.data(), waiters_ = waiters.data(), state_ = state.data();
+    if (hull_) {
+      thread_local std::vector<Mask<T>> reach;
+      thread_local std::vector<uint8_t> rounds;
+      if (reach.size() < c_.cells.size()) reach.resize(c_.cells.size());
+      if (rounds.size() < c_.cells.size()) rounds.assign(c_.cells.size(), 0);
+      reach_ = reach.data(), rounds_ = rounds.data();
+    }
     merged_ready_ = true;
   }
 
@@ -614,6 +629,7 @@ class Traversal {
     // pieces in the order of their boxes' left sides, so a piece is tested only against
     // those whose boxes reach across its own (a cell seen in thousands of pieces from
     // outside a model would otherwise test every pair).
+    if (hull_ && !join_hull(cell, ps)) ps.clear();  // nothing the cell was not searched through already
     if (ps.size() > 1)
       for (Piece& p : ps) p.box = box_of(doubles_of(p.mask));
     std::vector<uint8_t> gone;
@@ -656,7 +672,9 @@ class Traversal {
         Facing fc;
         if (!facing(cell, pi, fc)) return;  // before copying the mask: most portals end here
         Mask<T> m = piece.mask;
-        if (!through(cell, pi, fc, m) || on_chain(self, other)) return;
+        // A hull's first parents are not its rays' chain (they may pass cells its other
+        // rays meet later): the hull search ends instead where a cell has nothing new.
+        if (!through(cell, pi, fc, m) || (!hull_ && on_chain(self, other))) return;
         add_piece(other, m, self, pi, piece.depth + 1);
       });
     }
@@ -665,6 +683,39 @@ class Traversal {
     for (CellId w : waiters_[size_t(cell)]) ready_.push_back(w);
     waiters_[size_t(cell)].clear();
   }
+
+  /// The hull search: the pieces become one, the convex hull (Mask::hull) of them and of
+  /// the mask the cell was searched through before (its reach), which holds every ray of
+  /// each and perhaps rays none of them has. It goes on from the first piece's avenue, at
+  /// the deepest piece's depth. Pieces within the reach add nothing and are dropped; false
+  /// when none is left. A cell searched kHullRounds times is searched through the whole
+  /// window next (no cycle of cells can then grow its reach again), so the search ends
+  /// without Jones's rule that an avenue never enters a cell twice, which a hull's chain of
+  /// first parents cannot keep. Pieces left as they are when the hull has no area.
+  bool join_hull(CellId cell, std::vector<Piece>& ps) {
+    Mask<T>& reach = reach_[size_t(cell)];
+    if (!reach.empty()) {
+      ps.erase(std::remove_if(ps.begin(), ps.end(), [&](const Piece& p) { return p.mask.within(reach); }), ps.end());
+      if (ps.empty()) return false;
+    }
+    thread_local std::vector<Point2T<T>> points;
+    points.clear();
+    int depth = 0;
+    for (size_t k = 0; k < reach.half_planes().size(); ++k) points.push_back(reach.vertex(k));
+    for (const Piece& p : ps) {
+      for (size_t k = 0; k < p.mask.half_planes().size(); ++k) points.push_back(p.mask.vertex(k));
+      depth = std::max(depth, p.depth);
+    }
+    Mask<T> h = ++rounds_[size_t(cell)] > kHullRounds ? window_ : Mask<T>::hull(points);
+    if (h.empty()) return true;
+    out_.avenues_merged += long(ps.size()) - 1;
+    ps.resize(1);
+    ps[0].mask = h;
+    ps[0].depth = depth;
+    reach = std::move(h);
+    return true;
+  }
+  static constexpr uint8_t kHullRounds = 3;
 
   /// The box of a mask's vertices (in double: x0, y0, x1, y1), grown by far more than their rounding.
   static std::array<double, 4> box_of(const std::vector<Vec2>& mask, bool grown = true) {
@@ -715,7 +766,10 @@ class Traversal {
   };
   std::vector<Reached> reached_;
   int32_t* last_into_ = nullptr;  ///< per cell: the last avenue into it (thread-local buffer)
-  bool merge_ = false;               ///< TraverseParams::merge_pieces
+  bool merge_ = false;               ///< TraverseParams::merge_pieces (or hull_pieces)
+  bool hull_ = false;                ///< TraverseParams::hull_pieces
+  Mask<T>* reach_ = nullptr;         ///< hull search, per cell: the mask it was searched through (thread-local buffer)
+  uint8_t* rounds_ = nullptr;        ///< hull search, per cell: times it was searched
   bool merged_ready_ = false;
   std::vector<Piece>* pieces_ = nullptr;        ///< per cell: pieces waiting (thread-local buffer)
   std::vector<CellId>* waiters_ = nullptr;      ///< per cell: cells waiting on it
@@ -730,22 +784,23 @@ class Traversal {
 /// one from the picture plane through the eye.
 template <class T>
 VisibleSet traverse_with(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered,
-                         const Plane* cut = nullptr, bool merge = false) {
+                         const Plane* cut = nullptr, Join join = Join::None) {
   VisibleSet out;
   out.eye_cell = eye_cell;
+  out.conservative = join == Join::Hull;
   auto t0 = std::chrono::steady_clock::now();
   if (cam.is_parallel())
-    Traversal<T>(c, cam, prune_covered, out, merge).run_cut(cut ? *cut : cam.picture_plane());
+    Traversal<T>(c, cam, prune_covered, out, join).run_cut(cut ? *cut : cam.picture_plane());
   else
-    Traversal<T>(c, cam, prune_covered, out, merge).run(eye_cell);
+    Traversal<T>(c, cam, prune_covered, out, join).run(eye_cell);
   out.micros = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
   out.collect_cells();
   return out;
 }
 
 VisibleSet traverse_exact(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered,
-                          const Plane* cut = nullptr, bool merge = false);
+                          const Plane* cut = nullptr, Join join = Join::None);
 VisibleSet traverse_filtered(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered,
-                             const Plane* cut = nullptr, bool merge = false);
+                             const Plane* cut = nullptr, Join join = Join::None);
 
 }  // namespace avenues::detail

@@ -17,13 +17,13 @@ template <>
 double to_double_of<Lazy>(const Lazy& x) { return CGAL::to_double(x); }
 
 VisibleSet traverse_exact(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered,
-                          const Plane* cut, bool merge) {
-  return traverse_with<CGAL::Gmpq>(c, cam, eye_cell, prune_covered, cut, merge);
+                          const Plane* cut, Join join) {
+  return traverse_with<CGAL::Gmpq>(c, cam, eye_cell, prune_covered, cut, join);
 }
 
 VisibleSet traverse_filtered(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered,
-                             const Plane* cut, bool merge) {
-  return traverse_with<Lazy>(c, cam, eye_cell, prune_covered, cut, merge);
+                             const Plane* cut, Join join) {
+  return traverse_with<Lazy>(c, cam, eye_cell, prune_covered, cut, join);
 }
 
 }  // namespace avenues::detail

@@ -36,7 +36,11 @@ struct VisibleSet {
   std::vector<CellId> cells;    ///< distinct visible cells, ascending
   long portals_tested = 0;      ///< portals examined (facing test and clipping)
   long avenues_pruned = 0;      ///< avenues not followed: mask inside one already found into the cell
-  long avenues_merged = 0;      ///< merged search: pieces joined into another piece of their cell
+  long avenues_merged = 0;      ///< merged (or hull) search: pieces joined into another piece of their cell
+  /// The hull search (TraverseParams::hull_pieces) found it: the cells hold every visible
+  /// cell and the masks every ray of their cells, but may hold more (so what they show must
+  /// be resolved by depth).
+  bool conservative = false;
   int max_depth = 0;
   double micros = 0;            ///< [µs] time of the traversal
   /// The avenue's portals from the eye outwards.
@@ -61,7 +65,26 @@ struct TraverseParams {
   /// Jones's search finds them; the avenues are fewer and form a graph (an avenue's
   /// `parent` is the first of the avenues its pieces came through). Off: Jones's tree.
   bool merge_pieces = false;
+  /// The hull search: the pieces into a cell are joined into their convex hull, whether or
+  /// not their union is convex (Mask::hull), so every cell is searched once, through one
+  /// mask. Conservative: every ray's cell is found, and perhaps cells no ray reaches; each
+  /// mask holds its cell's view and perhaps more (VisibleSet::conservative). A picture that
+  /// resolves depth among all the faces found (render_view does for such a set) is the same;
+  /// a hidden-line drawing is not, so line drawings take the merged search. Implies merging.
+  bool hull_pieces = false;
 };
+
+/// "jones", "merged" or "hull": the search's name on the command line.
+inline const char* search_label(const TraverseParams& p) {
+  return p.hull_pieces ? "hull" : p.merge_pieces ? "merged" : "jones";
+}
+
+/// The same search with exact masks: the hull search becomes the merged one (what line
+/// drawings and anything else that reads masks as the view itself need).
+inline TraverseParams exact_masks(TraverseParams p) {
+  p.hull_pieces = false;
+  return p;
+}
 
 /// Jones's recursive search of the avenues of sight from `camera.eye`, which lies in
 /// cell `eye_cell` (closed). Exact convex masks; see mask.h for the representation. An eye

@@ -1,0 +1,146 @@
+// Avenues tests — checks of the hull search (TraverseParams::hull_pieces) against the merged
+// one from the same eye, shared by avenue_pruning_test.cpp (plans, homes, a Doom map) and
+// soup_checks.h (the soups): it is conservative (every cell the merged search finds, every
+// mask inside a hull mask of its cell, no ray's cell missing), its half-tone resolved by
+// depth is the merged search's picture within the renderer's edge error, and line drawings
+// refuse it.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "ray_oracle.h"
+#include "render/halftone.h"
+#include "render/view_lines.h"
+#include "visibility/visible_set.h"
+
+namespace avenues::testing {
+
+/// Whether p lies in the convex counter-clockwise polygon m, or within `tol` of it.
+/// Sides shorter than 1e-12 are skipped: two corners of an exact mask a rounding apart in
+/// doubles give a side of no direction (as cone_planes skips them in the search).
+inline bool in_convex(const std::vector<Vec2>& m, Vec2 p, double tol) {
+  for (size_t k = 0; k < m.size(); ++k) {
+    const Vec2 a = m[k], b = m[(k + 1) % m.size()];
+    const double len = std::hypot(b.x - a.x, b.y - a.y);
+    if (!(len > 1e-12)) continue;
+    if ((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x) < -tol * len) return false;
+  }
+  return true;
+}
+
+/// What the hull searches of a run found, against the merged ones.
+struct HullTally {
+  long merged_avenues = 0, hull_avenues = 0, merged_cells = 0, hull_cells = 0;
+  int pictures = 0;
+  long pixels = 0, pixels_differ = 0;  ///< of the pictures compared
+};
+
+/// The hull search from `cam` in kernel k against `merged` (the merged search from the same
+/// eye and kernel). With `objects` (double only) the two half-tones are compared too.
+inline void expect_hull_holds_merged(const CellComplex& c, const Camera& cam, CellId cell, Kernel k,
+                                     const VisibleSet& merged, const std::vector<PlacedObject>* objects,
+                                     HullTally& t) {
+  SCOPED_TRACE(std::string("hull, ") + to_string(k));
+  TraverseParams p;
+  p.kernel = k;
+  p.merge_pieces = p.hull_pieces = true;
+  const VisibleSet hull = find_visible(c, cam, cell, p);
+  EXPECT_TRUE(hull.conservative);
+  EXPECT_FALSE(merged.conservative);
+  t.merged_avenues += long(merged.avenues.size()), t.hull_avenues += long(hull.avenues.size());
+  t.merged_cells += long(merged.cells.size()), t.hull_cells += long(hull.cells.size());
+  EXPECT_TRUE(std::includes(hull.cells.begin(), hull.cells.end(), merged.cells.begin(), merged.cells.end()))
+      << "the hull search lost a cell the merged search sees";
+  // Every vertex of every merged mask inside a hull mask of its cell, within a thousandth
+  // of a pixel (float: 1/200 of the picture plane's unit, its masks' own error): the two searches clip by
+  // the same lines in different orders, and a vertex where nearly parallel lines meet
+  // moves with the rounding of each.
+  const double tol = k == Kernel::Float ? 5e-3 : 1e-3 * 2 * cam.half_width() / cam.width;
+  for (const Avenue& a : merged.avenues)
+    for (Vec2 v : a.mask) {
+      bool held = false;
+      for (const Avenue& h : hull.avenues) held = held || (h.cell == a.cell && in_convex(h.mask, v, tol));
+      if (!held) {
+        int masks = 0;
+        double worst = 0;
+        for (const Avenue& h : hull.avenues)
+          if (h.cell == a.cell) {
+            ++masks;
+            for (size_t q = 0; q < h.mask.size(); ++q) {
+              const Vec2 m0 = h.mask[q], m1 = h.mask[(q + 1) % h.mask.size()];
+              const double len = std::hypot(m1.x - m0.x, m1.y - m0.y);
+              if (!(len > 1e-12)) continue;
+              worst = std::max(worst, -((m1.x - m0.x) * (v.y - m0.y) - (m1.y - m0.y) * (v.x - m0.x)) / len);
+            }
+          }
+        // Where along its avenue the merged view first left the hull search's.
+        auto held_all = [&](const Avenue& x) {
+          for (Vec2 u : x.mask) {
+            bool in = false;
+            for (const Avenue& h : hull.avenues) in = in || (h.cell == x.cell && in_convex(h.mask, u, tol));
+            if (!in) return false;
+          }
+          return true;
+        };
+        std::string chain;
+        for (int up = int(&a - merged.avenues.data()); up >= 0; up = merged.avenues[size_t(up)].parent) {
+          const Avenue& x = merged.avenues[size_t(up)];
+          chain = " -> cell " + std::to_string(x.cell) + " via portal " + std::to_string(x.portal) +
+                  (held_all(x) ? " (held)" : " (NOT held)") + chain;
+        }
+        ADD_FAILURE() << "cell " << a.cell << " (eye's: " << cell << "): a vertex (" << v.x << ", " << v.y
+                      << ") of its view is outside every one of its " << masks << " hull masks, by up to " << worst
+                      << "; its avenue:" << chain;
+      }
+      if (!held) return;
+    }
+  if (k != Kernel::Double) return;
+  const OracleResult r = check_visible_set(c, cam, hull, 2);
+  EXPECT_EQ(r.missing, 0);  // conservative: extra avenues are what it may have
+  EXPECT_THROW(draw_view(c, prepare_line_scene(c), cam, hull), std::invalid_argument);
+  if (!objects) return;
+  HalftoneOptions o;
+  o.threads = 1;
+  Image by_masks, by_depth;
+  render_view(c, *objects, cam, merged, o, by_masks);
+  render_view(c, *objects, cam, hull, o, by_depth);
+  ASSERT_EQ(by_masks.data.size(), by_depth.data.size());
+  ++t.pictures;
+  // The masked picture cuts each cell's faces at its masks (grown by 1/64 of a sample); the
+  // one resolved by depth at the nearest surface's own edges: a sample centred on such an
+  // edge may go either way (the renderer's edge error, docs/ACCURACY.md §2). So a pixel
+  // may differ only on an edge — beside a pixel of another colour in either picture — and
+  // few do.
+  const int w = by_masks.width, hgt = by_masks.height;
+  auto pixel = [&](const Image& im, int x, int y) {
+    const size_t i = 3 * (size_t(y) * size_t(w) + size_t(x));
+    return std::array<uint8_t, 3>{im.data[i], im.data[i + 1], im.data[i + 2]};
+  };
+  auto on_edge = [&](const Image& im, int x, int y) {
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int nx = x + dx, ny = y + dy;
+        if (nx >= 0 && ny >= 0 && nx < w && ny < hgt && pixel(im, nx, ny) != pixel(im, x, y)) return true;
+      }
+    return false;
+  };
+  int differ = 0, inside = 0;
+  for (int y = 0; y < hgt; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (pixel(by_masks, x, y) == pixel(by_depth, x, y)) continue;
+      ++differ;
+      inside += !on_edge(by_masks, x, y) && !on_edge(by_depth, x, y);
+    }
+  t.pixels_differ += differ, t.pixels += long(w) * hgt;
+  EXPECT_EQ(inside, 0) << "the half-tones differ in " << inside << " pixels away from every edge";
+  EXPECT_LE(differ, w * hgt / 200) << "the half-tones differ in " << differ << " pixels";
+}
+
+}  // namespace avenues::testing
