@@ -276,7 +276,7 @@ int run_cli(int argc, char** argv) {
   bench_walk->add_option("--lights", bench_walk_lights, "plan or eye, as for walk")->capture_default_str()->check(CLI::IsMember({"plan", "eye"}));
   bench_walk->add_option("--frame-budget", bench_walk_budget, "[ms] the walkthrough's frame budget; 0: none")
       ->capture_default_str()->check(number_in(0, 10000));
-  std::string bench_walk_search = "merged";
+  std::string bench_walk_search = "hull";
   bench_walk->add_option("--search", bench_walk_search, "merged, hull or jones, as for walk")->capture_default_str()->check(search_name());
   double bench_walk_detail = 0.5;
   bench_walk->add_option("--detail", bench_walk_detail, "as for walk")->capture_default_str()->check(number_in(0, 16));

@@ -161,7 +161,7 @@ class Session {
       // The script's events for this frame.
       const ScriptPlayer::Requests asked = script.play(frame, controls_);
       for (const auto& [rw, rh] : asked.resizes) resize_window(rw, rh);
-      for (int k = 0; k < asked.poses; ++k) std::cout << "pose: " << state_.pose_text(frame_w_, frame_h_) << "\n";
+      for (int k = 0; k < asked.poses; ++k) std::cout << "pose: " << view_options() << "\n";
       quit |= asked.quit;
       const std::vector<std::string>& shots = asked.screenshots;
       // A scripted pad stands in for a real one, as GLFW would report it.
@@ -402,12 +402,18 @@ class Session {
       write_image(viewer_.read_back(), path);
       nlohmann::json shot = pose_json();
       shot["file"] = path;
-      shot["view_options"] = state_.pose_text(frame_w_, frame_h_);
+      shot["view_options"] = view_options();
       report.shots.push_back(shot);
-      std::cout << "screenshot " << path << ": " << state_.pose_text(frame_w_, frame_h_) << "\n";
+      std::cout << "screenshot " << path << ": " << view_options() << "\n";
     } catch (const std::exception& e) {
       say(std::string("screenshot: ") + e.what());
     }
+  }
+
+  /// `avenues view` options that draw the view on screen: the pose, and the search where
+  /// it is not view's own default (the hull search's half-tone).
+  std::string view_options() const {
+    return state_.pose_text(frame_w_, frame_h_) + (search_.hull_pieces && !lines_ ? " --search hull" : "");
   }
 
   ViewSetup view_setup() const {

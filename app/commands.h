@@ -55,7 +55,7 @@ struct ViewOptions {
   double fov = -1;                     ///< [deg]; <= 0: the viewpoint's
   std::string size = "1920x1080";
   std::string kernel = "double";
-  std::string search = "merged";       ///< merged or jones (TraverseParams::merge_pieces)
+  std::string search = "merged";       ///< merged, hull or jones (TraverseParams::merge_pieces, hull_pieces)
   std::string stats_json, overlay, output;
   std::string stereo;                  ///< "", parallel, cross or pair
   double interocular = 0.065;          ///< [m]
@@ -85,7 +85,7 @@ struct DrawingOptions {
   std::optional<double> cut_height;    ///< [m] above the storey's floor (plan: default 1.2)
   std::string scale = "1:50";          ///< paper scale 1:20 ... 1:500
   std::string kernel = "double";
-  std::string search = "merged";       ///< merged or jones (TraverseParams::merge_pieces)
+  std::string search = "merged";       ///< merged, hull or jones (TraverseParams::merge_pieces, hull_pieces)
   int samples = 4;                     ///< pictures: the half-tone's samples per pixel, 1, 4 or 16
 };
 int run_drawing(const DrawingOptions& opt);
@@ -102,7 +102,7 @@ struct PathOptions {
   std::string size = "640x360";
   double fov = 70;                ///< [deg]
   std::string kernel = "double";
-  std::string search = "merged";  ///< merged or jones (TraverseParams::merge_pieces)
+  std::string search = "hull";  ///< hull, merged or jones (TraverseParams): hull for half-tones at walking speed; lines take merged
   double detail = 0.5;            ///< [samples] furniture's coarser versions where they move the picture less (0: full)
   int samples = 4;                ///< half-tone: samples per pixel, 1, 4 or 16
   std::string shading = "flat";   ///< half-tone: flat, smooth or auto
@@ -149,7 +149,7 @@ struct WalkOptions {
   std::string lights = "plan";         ///< plan (its point lights, with shadows) or eye (the light at the eye only)
   std::string object_shadows = "auto"; ///< objects' shadows from the plan's lights: auto, on or off
   std::string kernel = "double";
-  std::string search = "merged";       ///< merged or jones (TraverseParams::merge_pieces)
+  std::string search = "hull";       ///< hull, merged or jones (TraverseParams): hull for half-tones at walking speed; lines take merged
   double detail = 0.5;                 ///< [samples] furniture's coarser versions where they move the picture less (0: full)
   double interocular = 0.065;          ///< [m]
   double converge = 2.0;               ///< [m]
@@ -164,7 +164,7 @@ bool run_walkthrough(const LoadedPlan& plan, const WalkOptions& opt, int& status
 int run_bench_papers(int threads, int repeats);
 /// `avenues bench walk [PLAN...] [--frames N] [--size WxH]`: frame times of the walkthrough window.
 int run_bench_walk(const std::vector<std::string>& plans, long frames, const std::string& size, double frame_budget_ms,
-                   const std::string& lights = "plan", const std::string& search = "merged", double detail = 0.5);
+                   const std::string& lights = "plan", const std::string& search = "hull", double detail = 0.5);
 /// The camera and eye cell a view option set resolves to.
 struct ViewSetup {
   Viewpoint viewpoint;

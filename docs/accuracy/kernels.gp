@@ -1,5 +1,5 @@
 set terminal svg size 720,440 dynamic font 'sans,11' background '#ffffff'
-set output 'docs/accuracy/kernels.svg'
+set output 'kernels.svg'
 set title 'Visibility kernels: time against error (0 errors drawn at 1e-4)'
 set xlabel 'median traversal time per view [µs]'
 set ylabel 'errors per view (cells + mask vertices > 0.5 px + drawings)'
@@ -10,4 +10,4 @@ set format x '%g'
 set format y '%g'
 set logscale y
 set offsets graph 0.1, graph 0.1, graph 0.1, graph 0.1
-plot 'docs/accuracy/kernels.dat' using 2:3 with points pt 7 ps 1.5 notitle, '' using 2:3:1 with labels offset 0,1 notitle
+plot 'kernels.dat' using 2:3 with points pt 7 ps 1.5 notitle, '' using 2:3:1 with labels offset 0,1 notitle
