@@ -684,14 +684,16 @@ class Traversal {
     waiters_[size_t(cell)].clear();
   }
 
-  /// The hull search: the pieces become one, the convex hull (Mask::hull) of them and of
-  /// the mask the cell was searched through before (its reach), which holds every ray of
-  /// each and perhaps rays none of them has. It goes on from the first piece's avenue, at
-  /// the deepest piece's depth. Pieces within the reach add nothing and are dropped; false
-  /// when none is left. A cell searched kHullRounds times is searched through the whole
-  /// window next (no cycle of cells can then grow its reach again), so the search ends
-  /// without Jones's rule that an avenue never enters a cell twice, which a hull's chain of
-  /// first parents cannot keep. Pieces left as they are when the hull has no area.
+  /// The hull search: the pieces become one, their convex hull (Mask::hull), which holds
+  /// every ray of each and perhaps rays none of them has. It goes on from the first
+  /// piece's avenue, at the deepest piece's depth. The cell's reach, the hull of all it was
+  /// searched through, grows by it; pieces within the reach add nothing and are dropped
+  /// (false when none is left), and a cell searched again goes on with the new pieces'
+  /// hull only, so that what lies beyond it is searched again only where it is new. A cell
+  /// searched kHullRounds times is searched through the whole window next (no cycle of
+  /// cells can then grow its reach again), so the search ends without Jones's rule that an
+  /// avenue never enters a cell twice, which a hull's chain of first parents cannot keep.
+  /// Pieces are left as they are when their hull has no area.
   bool join_hull(CellId cell, std::vector<Piece>& ps) {
     Mask<T>& reach = reach_[size_t(cell)];
     if (!reach.empty()) {
@@ -701,21 +703,27 @@ class Traversal {
     thread_local std::vector<Point2T<T>> points;
     points.clear();
     int depth = 0;
-    for (size_t k = 0; k < reach.half_planes().size(); ++k) points.push_back(reach.vertex(k));
     for (const Piece& p : ps) {
       for (size_t k = 0; k < p.mask.half_planes().size(); ++k) points.push_back(p.mask.vertex(k));
       depth = std::max(depth, p.depth);
     }
-    Mask<T> h = ++rounds_[size_t(cell)] > kHullRounds ? window_ : Mask<T>::hull(points);
+    const bool last = ++rounds_[size_t(cell)] > kHullRounds;
+    Mask<T> h = last ? window_ : Mask<T>::hull(points);
     if (h.empty()) return true;
     out_.avenues_merged += long(ps.size()) - 1;
     ps.resize(1);
     ps[0].mask = h;
     ps[0].depth = depth;
-    reach = std::move(h);
+    if (reach.empty() || last) {
+      reach = std::move(h);
+    } else {
+      for (size_t k = 0; k < reach.half_planes().size(); ++k) points.push_back(reach.vertex(k));
+      Mask<T> grown = Mask<T>::hull(points);
+      if (!grown.empty()) reach = std::move(grown);
+    }
     return true;
   }
-  static constexpr uint8_t kHullRounds = 3;
+  static constexpr uint8_t kHullRounds = 8;
 
   /// The box of a mask's vertices (in double: x0, y0, x1, y1), grown by far more than their rounding.
   static std::array<double, 4> box_of(const std::vector<Vec2>& mask, bool grown = true) {
