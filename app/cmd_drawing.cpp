@@ -137,6 +137,9 @@ int run_drawing(const DrawingOptions& opt) {
   Kernel kernel;
   if (!parse_kernel(opt.kernel, kernel))
     throw std::runtime_error("--kernel wants float, double, filtered or exact, not '" + opt.kernel + "'");
+  const TraverseParams search = search_option(opt.search, kernel);
+  if (search.hull_pieces)  // told before the plan is read
+    throw std::runtime_error("--search hull is for walks and films; an architect's drawing takes merged or jones");
   const bool picture = is_raster_path(opt.output);
   if (!picture && !is_drawing_path(opt.output))
     throw std::runtime_error("cannot write '" + opt.output + "': unknown format '" + lower_extension(opt.output) +
@@ -146,9 +149,6 @@ int run_drawing(const DrawingOptions& opt) {
   const CellComplex& c = plan.complex;
   ArchitecturalView s = set_up_drawing(c, opt);
   s.options.threads = 0;  // every core, as the half-tone
-  const TraverseParams search = search_option(opt.search, kernel);
-  if (search.hull_pieces)
-    throw std::runtime_error("--search hull makes half-tone pictures only; a drawing's lines need merged or jones");
   const VisibleSet vs = find_visible_from_cut(c, s.camera, s.cut, search);
   const auto t0 = std::chrono::steady_clock::now();
   const LineScene scene = prepare_line_scene(c);

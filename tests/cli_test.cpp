@@ -402,6 +402,25 @@ TEST_F(Cli, ViewSearchesMergedByDefaultAndJonesOnRequestSeeingTheSameCells) {
   EXPECT_FALSE(j.contains("avenues_merged"));
 }
 
+// --search hull: a superset of the merged search's cells, said in the statistics; its
+// hidden-line drawing is the merged search's (lines need exact masks), and a drawing
+// command asked for it is refused (exit 2, naming the option) before anything is written.
+TEST_F(Cli, TheHullSearchDrawsLinesByTheMergedSearchAndDrawingsRefuseIt) {
+  const std::string plan = std::string(AVENUES_SOURCE_DIR) + "/plans/curved-walls.toml";
+  ASSERT_EQ(run({"view", plan, "--stats-json", "merged.json", "-o", "merged.svg"}).status, 0);
+  ASSERT_EQ(run({"view", plan, "--search", "hull", "--stats-json", "hull.json", "-o", "hull.svg"}).status, 0);
+  const json m = json::parse(slurp(path("merged.json")));
+  const json h = json::parse(slurp(path("hull.json")));
+  EXPECT_EQ(h["search"], "hull");
+  for (const auto& cell : m["visible"])
+    EXPECT_NE(std::find(h["visible"].begin(), h["visible"].end(), cell), h["visible"].end()) << "cell " << cell;
+  EXPECT_EQ(slurp(path("hull.svg")), slurp(path("merged.svg")));
+  const Outcome r = run({"drawing", plan, "--plan", "0", "--search", "hull", "-o", "plan.svg"});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("--search hull"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("plan.svg")));
+}
+
 TEST_F(Cli, ViewExplainSaysWhichEffectsTheSceneCallsForAndWhy) {
   // A line per effect, on or off and why, for scenes with and without each effect.
   auto effects = [&](const std::string& plan, const std::vector<std::string>& args) {
