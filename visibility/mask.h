@@ -122,19 +122,10 @@ class Mask {
   /// so a mask touching `outer`'s boundary from inside, or equal to it, is not taken as
   /// inside: the answer errs only towards "not inside".
   bool inside(const Mask& outer) const {
-    if (empty() || outer.empty()) return false;
-    for (size_t k = 0; k < h_.size(); ++k) {
-      const Point2T<T> v = vertex(k);
-      for (const HalfPlane<T>& l : outer.h_) {
-        const T s = l.a * v.x + l.b * v.y + l.c;
-        if constexpr (std::is_floating_point_v<T>) {
-          if (!(s > rounding_bound(l, v))) return false;
-        } else {
-          if (s < T(0)) return false;
-        }
-      }
-    }
-    return true;
+    return vertices_kept_by(outer, [](const T& s, const HalfPlane<T>& l, const Point2T<T>& v) {
+      if constexpr (std::is_floating_point_v<T>) return s > rounding_bound(l, v);
+      else return !(s < T(0));
+    });
   }
 
   /// The same cycle of half-planes, coefficient for coefficient (from the same index on):
@@ -271,21 +262,15 @@ class Mask {
   /// (floating point; exact number types: closed, exactly). The hull search's test for
   /// pieces that add nothing to what a cell was searched through already.
   bool within(const Mask& outer) const {
-    if (empty() || outer.empty()) return false;
-    for (size_t k = 0; k < h_.size(); ++k) {
-      const Point2T<T> v = vertex(k);
-      for (const HalfPlane<T>& l : outer.h_) {
-        const T s = l.a * v.x + l.b * v.y + l.c;
-        if constexpr (std::is_floating_point_v<T>) {
-          const T slack = T(2 * kHullGrowth) * (T(1) + std::max(std::fabs(v.x), std::fabs(v.y))) *
-                          (std::fabs(l.a) + std::fabs(l.b));
-          if (s < -slack) return false;
-        } else {
-          if (s < T(0)) return false;
-        }
+    return vertices_kept_by(outer, [](const T& s, const HalfPlane<T>& l, const Point2T<T>& v) {
+      if constexpr (std::is_floating_point_v<T>) {
+        const T slack = T(2 * kHullGrowth) * (T(1) + std::max(std::fabs(v.x), std::fabs(v.y))) *
+                        (std::fabs(l.a) + std::fabs(l.b));
+        return !(s < -slack);
+      } else {
+        return !(s < T(0));
       }
-    }
-    return true;
+    });
   }
 
   /// Twice the signed area (positive for a proper counter-clockwise mask).
@@ -301,6 +286,19 @@ class Mask {
   }
 
  private:
+  /// Whether keep(s, l, v) holds for every vertex v of this mask and every half-plane l of
+  /// `outer`, s being l's value at v (false when either mask is empty).
+  template <class Keep>
+  bool vertices_kept_by(const Mask& outer, Keep keep) const {
+    if (empty() || outer.empty()) return false;
+    for (size_t k = 0; k < h_.size(); ++k) {
+      const Point2T<T> v = vertex(k);
+      for (const HalfPlane<T>& l : outer.h_)
+        if (!keep(l.a * v.x + l.b * v.y + l.c, l, v)) return false;
+    }
+    return true;
+  }
+
   /// Floating point: the rounding bound of l's sign at vertex v (a computed vertex, then one
   /// degree-1 evaluation); a sign no larger is taken as zero.
   static T rounding_bound(const HalfPlane<T>& l, const Point2T<T>& v) {
