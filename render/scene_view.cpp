@@ -173,9 +173,11 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
         // Lit as the whole face: at its first piece's surface, or without one at the
         // centroid of the face's corners (add_face's own, for the whole face).
         Vec3 corners{0, 0, 0};
-        for (Vec3 p : face.poly) corners = corners + (1.0 / double(face.poly.size())) * p;
         const Vec3* whole = shade_point(complex, face.opaque[0]);
-        if (!whole) whole = &corners;
+        if (one_material && !whole) {
+          for (Vec3 p : face.poly) corners = corners + (1.0 / double(face.poly.size())) * p;
+          whole = &corners;
+        }
         for (const OpaquePoly& piece : face.opaque)
           b.add_face(piece.poly, face.plane, material_of(complex, piece.material), where, source,
                      one_material ? whole : shade_point(complex, piece));

@@ -193,7 +193,7 @@ class Traversal {
         t.state_[size_t(id)] = kIdle;
         t.pieces_[size_t(id)].clear();
         t.waiters_[size_t(id)].clear();
-        if (t.hull_) t.reach_[size_t(id)] = Mask<T>(), t.rounds_[size_t(id)] = 0;
+        if (t.hull_) t.reach_[size_t(id)].clear(), t.rounds_[size_t(id)] = 0;
       }
     }
   };
@@ -553,7 +553,7 @@ class Traversal {
     if (state.size() < c_.cells.size()) state.assign(c_.cells.size(), kIdle);
     pieces_ = pieces.data(), waiters_ = waiters.data(), state_ = state.data();
     if (hull_) {
-      thread_local std::vector<Mask<T>> reach;
+      thread_local std::vector<std::vector<Mask<T>>> reach;
       thread_local std::vector<uint8_t> rounds;
       if (reach.size() < c_.cells.size()) reach.resize(c_.cells.size());
       if (rounds.size() < c_.cells.size()) rounds.assign(c_.cells.size(), 0);
@@ -685,42 +685,45 @@ class Traversal {
   }
 
   /// The hull search: the pieces become one, their convex hull (Mask::hull), which holds
-  /// every ray of each and perhaps rays none of them has. It goes on from the first
-  /// piece's avenue, at the deepest piece's depth. The cell's reach, the hull of all it was
-  /// searched through, grows by it; pieces within the reach add nothing and are dropped
-  /// (false when none is left), and a cell searched again goes on with the new pieces'
-  /// hull only, so that what lies beyond it is searched again only where it is new. A cell
-  /// searched kHullRounds times is searched through the whole window next (no cycle of
-  /// cells can then grow its reach again), so the search ends without Jones's rule that an
-  /// avenue never enters a cell twice, which a hull's chain of first parents cannot keep.
-  /// Pieces are left as they are when their hull has no area.
+  /// every ray of each and perhaps rays none of them has (one piece too: its hull, grown
+  /// by far less than a sample, is what keeps the search's rounding on the safe side). It
+  /// goes on from the first piece's avenue, at the deepest piece's depth.
+  /// What a cell was searched through is kept (its reach): a piece within one of those
+  /// masks adds nothing and is dropped (false when none is left), so a cell searched again
+  /// goes on with its new pieces only, and what lies beyond it is searched again only where
+  /// it is new. A cell searched kHullRounds times is searched through the whole window next
+  /// (no cycle of cells can then bring it anything new), so the search ends without Jones's
+  /// rule that an avenue never enters a cell twice, which a hull's chain of first parents
+  /// cannot keep. Pieces are left as they are when their hull has no area.
   bool join_hull(CellId cell, std::vector<Piece>& ps) {
-    Mask<T>& reach = reach_[size_t(cell)];
+    std::vector<Mask<T>>& reach = reach_[size_t(cell)];
     if (!reach.empty()) {
-      ps.erase(std::remove_if(ps.begin(), ps.end(), [&](const Piece& p) { return p.mask.within(reach); }), ps.end());
+      ps.erase(std::remove_if(ps.begin(), ps.end(),
+                              [&](const Piece& p) {
+                                for (const Mask<T>& r : reach)
+                                  if (p.mask.within(r)) return true;
+                                return false;
+                              }),
+               ps.end());
       if (ps.empty()) return false;
     }
-    thread_local std::vector<Point2T<T>> points;
-    points.clear();
-    int depth = 0;
-    for (const Piece& p : ps) {
-      for (size_t k = 0; k < p.mask.half_planes().size(); ++k) points.push_back(p.mask.vertex(k));
-      depth = std::max(depth, p.depth);
-    }
     const bool last = ++rounds_[size_t(cell)] > kHullRounds;
-    Mask<T> h = last ? window_ : Mask<T>::hull(points);
-    if (h.empty()) return true;
-    out_.avenues_merged += long(ps.size()) - 1;
-    ps.resize(1);
-    ps[0].mask = h;
-    ps[0].depth = depth;
-    if (reach.empty() || last) {
-      reach = std::move(h);
-    } else {
-      for (size_t k = 0; k < reach.half_planes().size(); ++k) points.push_back(reach.vertex(k));
-      Mask<T> grown = Mask<T>::hull(points);
-      if (!grown.empty()) reach = std::move(grown);
+    {
+      thread_local std::vector<Point2T<T>> points;
+      points.clear();
+      int depth = 0;
+      for (const Piece& p : ps) {
+        for (size_t k = 0; k < p.mask.half_planes().size(); ++k) points.push_back(p.mask.vertex(k));
+        depth = std::max(depth, p.depth);
+      }
+      Mask<T> h = last ? window_ : Mask<T>::hull(points);
+      if (h.empty()) return true;
+      out_.avenues_merged += long(ps.size()) - 1;
+      ps.resize(1);
+      ps[0].mask = std::move(h);
+      ps[0].depth = depth;
     }
+    reach.push_back(ps[0].mask);  // only ever a mask the cell is searched through
     return true;
   }
   static constexpr uint8_t kHullRounds = 8;
@@ -776,7 +779,7 @@ class Traversal {
   int32_t* last_into_ = nullptr;  ///< per cell: the last avenue into it (thread-local buffer)
   bool merge_ = false;               ///< TraverseParams::merge_pieces (or hull_pieces)
   bool hull_ = false;                ///< TraverseParams::hull_pieces
-  Mask<T>* reach_ = nullptr;         ///< hull search, per cell: the mask it was searched through (thread-local buffer)
+  std::vector<Mask<T>>* reach_ = nullptr;  ///< hull search, per cell: the masks it was searched through (thread-local buffer)
   uint8_t* rounds_ = nullptr;        ///< hull search, per cell: times it was searched
   bool merged_ready_ = false;
   std::vector<Piece>* pieces_ = nullptr;        ///< per cell: pieces waiting (thread-local buffer)
