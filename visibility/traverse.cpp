@@ -56,15 +56,15 @@ namespace {
 VisibleSet traverse(const CellComplex& complex, const Camera& camera, CellId eye_cell, const TraverseParams& params,
                     const Plane* cut) {
   const bool prune = params.prune_covered;
-  const detail::Join merge = params.hull_pieces    ? detail::Join::Hull
-                             : params.merge_pieces ? detail::Join::Convex
-                                                   : detail::Join::None;
+  const detail::Join join = params.hull_pieces    ? detail::Join::Hull
+                            : params.merge_pieces ? detail::Join::Convex
+                                                  : detail::Join::None;
   VisibleSet vs;
   switch (params.kernel) {
-    case Kernel::Float: vs = detail::traverse_with<float>(complex, camera, eye_cell, prune, cut, merge); break;
-    case Kernel::Double: vs = detail::traverse_with<double>(complex, camera, eye_cell, prune, cut, merge); break;
-    case Kernel::Filtered: vs = detail::traverse_filtered(complex, camera, eye_cell, prune, cut, merge); break;
-    case Kernel::Exact: vs = detail::traverse_exact(complex, camera, eye_cell, prune, cut, merge); break;
+    case Kernel::Float: vs = detail::traverse_with<float>(complex, camera, eye_cell, prune, cut, join); break;
+    case Kernel::Double: vs = detail::traverse_with<double>(complex, camera, eye_cell, prune, cut, join); break;
+    case Kernel::Filtered: vs = detail::traverse_filtered(complex, camera, eye_cell, prune, cut, join); break;
+    case Kernel::Exact: vs = detail::traverse_exact(complex, camera, eye_cell, prune, cut, join); break;
   }
   if (camera.is_parallel()) vs.cut = cut ? *cut : camera.picture_plane();
   return vs;

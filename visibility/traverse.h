@@ -624,12 +624,12 @@ class Traversal {
     state_[size_t(cell)] = kIdle;
     std::vector<Piece> ps;
     ps.swap(pieces_[size_t(cell)]);
+    if (hull_ && !join_hull(cell, ps)) ps.clear();  // nothing the cell was not searched through already
     // Pairs until none merges (a union made late may merge with a piece passed earlier);
     // their boxes first, made only where there is a pair to test. Each pass sweeps the
     // pieces in the order of their boxes' left sides, so a piece is tested only against
     // those whose boxes reach across its own (a cell seen in thousands of pieces from
     // outside a model would otherwise test every pair).
-    if (hull_ && !join_hull(cell, ps)) ps.clear();  // nothing the cell was not searched through already
     if (ps.size() > 1)
       for (Piece& p : ps) p.box = box_of(doubles_of(p.mask));
     std::vector<uint8_t> gone;
@@ -708,21 +708,19 @@ class Traversal {
       if (ps.empty()) return false;
     }
     const bool last = ++rounds_[size_t(cell)] > kHullRounds;
-    {
-      thread_local std::vector<Point2T<T>> points;
-      points.clear();
-      int depth = 0;
-      for (const Piece& p : ps) {
-        for (size_t k = 0; k < p.mask.half_planes().size(); ++k) points.push_back(p.mask.vertex(k));
-        depth = std::max(depth, p.depth);
-      }
-      Mask<T> h = last ? window_ : Mask<T>::hull(points);
-      if (h.empty()) return true;
-      out_.avenues_merged += long(ps.size()) - 1;
-      ps.resize(1);
-      ps[0].mask = std::move(h);
-      ps[0].depth = depth;
+    thread_local std::vector<Point2T<T>> points;
+    points.clear();
+    int depth = 0;
+    for (const Piece& p : ps) {
+      for (size_t k = 0; k < p.mask.half_planes().size(); ++k) points.push_back(p.mask.vertex(k));
+      depth = std::max(depth, p.depth);
     }
+    Mask<T> h = last ? window_ : Mask<T>::hull(points);
+    if (h.empty()) return true;
+    out_.avenues_merged += long(ps.size()) - 1;
+    ps.resize(1);
+    ps[0].mask = std::move(h);
+    ps[0].depth = depth;
     reach.push_back(ps[0].mask);  // only ever a mask the cell is searched through
     return true;
   }
