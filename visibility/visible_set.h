@@ -82,6 +82,7 @@ inline const char* search_label(const TraverseParams& p) {
 /// The same search with exact masks: the hull search becomes the merged one (what line
 /// drawings and anything else that reads masks as the view itself need).
 inline TraverseParams exact_masks(TraverseParams p) {
+  p.merge_pieces = p.merge_pieces || p.hull_pieces;  // the hull search implies merging
   p.hull_pieces = false;
   return p;
 }
