@@ -45,6 +45,11 @@ struct Tally {
   avenues::testing::HullTally hull;
 };
 
+/// The run's figures, one line.
+void print_tally(const char* what, const Tally& t) {
+  std::printf("[ pruning  ] %s: %d views, %ld avenues unpruned, %ld pruned, %ld merged; hull %ld avenues into %ld cells (merged %ld cells), %d pictures compared, %ld of %ld pixels differ\n", what, t.views, t.avenues, t.pruned, t.merged_avenues, t.hull.hull_avenues, t.hull.hull_cells, t.hull.merged_cells, t.hull.pictures, t.hull.pixels_differ, t.hull.pixels);
+}
+
 VisibleSet search(const CellComplex& c, const Camera& cam, CellId cell, Kernel k, bool prune) {
   TraverseParams p;
   p.kernel = k;
@@ -177,7 +182,7 @@ TEST(AvenuePruning, BundledPlansDrawTheSamePrunedOrNot) {
     random_views(s, 2026, 12, true, t);
     roof_views(s, 2, true, t);
   }
-  std::printf("[ pruning  ] bundled plans: %d views, %ld avenues unpruned, %ld pruned, %ld merged; hull %ld avenues into %ld cells (merged %ld cells), %d pictures compared, %ld of %ld pixels differ\n", t.views, t.avenues, t.pruned, t.merged_avenues, t.hull.hull_avenues, t.hull.hull_cells, t.hull.merged_cells, t.hull.pictures, t.hull.pixels_differ, t.hull.pixels);
+  print_tally("bundled plans", t);
 }
 
 // The furnished homes the issue measured (thousands of furniture polygons a view), and the smallest.
@@ -193,7 +198,7 @@ TEST(AvenuePruning, SweetHomeHomesFromAboveTheirRoofsDrawTheSamePrunedOrNot) {
     std::printf("[ pruning  ] %s: %.1f s\n", home,
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }
-  std::printf("[ pruning  ] Sweet Home homes: %d views, %ld avenues unpruned, %ld pruned, %ld merged; hull %ld avenues into %ld cells (merged %ld cells), %d pictures compared, %ld of %ld pixels differ\n", t.views, t.avenues, t.pruned, t.merged_avenues, t.hull.hull_avenues, t.hull.hull_cells, t.hull.merged_cells, t.hull.pictures, t.hull.pixels_differ, t.hull.pixels);
+  print_tally("Sweet Home homes", t);
 }
 
 TEST(AvenuePruning, FreedoomMapDrawsTheSamePrunedOrNot) {
@@ -202,7 +207,7 @@ TEST(AvenuePruning, FreedoomMapDrawsTheSamePrunedOrNot) {
   Tally t;
   const Scene s(build_cells(read_doom_map(wad, "MAP01")));
   random_views(s, 7, 8, false, t);
-  std::printf("[ pruning  ] freedoom2 MAP01: %d views, %ld avenues unpruned, %ld pruned, %ld merged; hull %ld avenues into %ld cells (merged %ld cells), %d pictures compared, %ld of %ld pixels differ\n", t.views, t.avenues, t.pruned, t.merged_avenues, t.hull.hull_avenues, t.hull.hull_cells, t.hull.merged_cells, t.hull.pictures, t.hull.pixels_differ, t.hull.pixels);
+  print_tally("freedoom2 MAP01", t);
 }
 
 // --- the per-thread marks when a traversal throws ----------------------------------

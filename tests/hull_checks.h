@@ -22,17 +22,19 @@
 
 namespace avenues::testing {
 
-/// Whether p lies in the convex counter-clockwise polygon m, or within `tol` of it.
-/// Sides shorter than 1e-12 are skipped: two corners of an exact mask a rounding apart in
-/// doubles give a side of no direction (as cone_planes skips them in the search).
-inline bool in_convex(const std::vector<Vec2>& m, Vec2 p, double tol) {
+/// How far p lies outside the convex counter-clockwise polygon m: the largest distance to
+/// the outside of one of its sides' lines (0 or less: inside). Sides shorter than 1e-12
+/// are skipped: two corners of an exact mask a rounding apart in doubles give a side of no
+/// direction (as cone_planes skips them in the search).
+inline double outside_by(const std::vector<Vec2>& m, Vec2 p) {
+  double most = 0;
   for (size_t k = 0; k < m.size(); ++k) {
     const Vec2 a = m[k], b = m[(k + 1) % m.size()];
     const double len = std::hypot(b.x - a.x, b.y - a.y);
     if (!(len > 1e-12)) continue;
-    if ((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x) < -tol * len) return false;
+    most = std::max(most, -((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)) / len);
   }
-  return true;
+  return most;
 }
 
 /// What the hull searches of a run found, against the merged ones.
@@ -63,44 +65,35 @@ inline void expect_hull_holds_merged(const CellComplex& c, const Camera& cam, Ce
   // the same lines in different orders, and a vertex where nearly parallel lines meet
   // moves with the rounding of each.
   const double tol = k == Kernel::Float ? 5e-3 : 1e-3 * 2 * cam.half_width() / cam.width;
-  for (const Avenue& a : merged.avenues)
-    for (Vec2 v : a.mask) {
-      bool held = false;
-      for (const Avenue& h : hull.avenues) held = held || (h.cell == a.cell && in_convex(h.mask, v, tol));
-      if (!held) {
-        int masks = 0;
-        double worst = 0;
-        for (const Avenue& h : hull.avenues)
-          if (h.cell == a.cell) {
-            ++masks;
-            for (size_t q = 0; q < h.mask.size(); ++q) {
-              const Vec2 m0 = h.mask[q], m1 = h.mask[(q + 1) % h.mask.size()];
-              const double len = std::hypot(m1.x - m0.x, m1.y - m0.y);
-              if (!(len > 1e-12)) continue;
-              worst = std::max(worst, -((m1.x - m0.x) * (v.y - m0.y) - (m1.y - m0.y) * (v.x - m0.x)) / len);
-            }
-          }
-        // Where along its avenue the merged view first left the hull search's.
-        auto held_all = [&](const Avenue& x) {
-          for (Vec2 u : x.mask) {
-            bool in = false;
-            for (const Avenue& h : hull.avenues) in = in || (h.cell == x.cell && in_convex(h.mask, u, tol));
-            if (!in) return false;
-          }
-          return true;
-        };
-        std::string chain;
-        for (int up = int(&a - merged.avenues.data()); up >= 0; up = merged.avenues[size_t(up)].parent) {
-          const Avenue& x = merged.avenues[size_t(up)];
-          chain = " -> cell " + std::to_string(x.cell) + " via portal " + std::to_string(x.portal) +
-                  (held_all(x) ? " (held)" : " (NOT held)") + chain;
-        }
-        ADD_FAILURE() << "cell " << a.cell << " (eye's: " << cell << "): a vertex (" << v.x << ", " << v.y
-                      << ") of its view is outside every one of its " << masks << " hull masks, by up to " << worst
-                      << "; its avenue:" << chain;
-      }
-      if (!held) return;
+  // How far v lies outside the nearest hull mask of `in` (HUGE_VAL: it has none).
+  auto outside_hull = [&](CellId in, Vec2 v) {
+    double least = HUGE_VAL;
+    for (const Avenue& h : hull.avenues)
+      if (h.cell == in) least = std::min(least, outside_by(h.mask, v));
+    return least;
+  };
+  auto held = [&](const Avenue& a) {
+    for (Vec2 v : a.mask)
+      if (!(outside_hull(a.cell, v) <= tol)) return false;
+    return true;
+  };
+  for (const Avenue& a : merged.avenues) {
+    if (held(a)) continue;
+    Vec2 worst = a.mask[0];
+    for (Vec2 v : a.mask)
+      if (outside_hull(a.cell, v) > outside_hull(a.cell, worst)) worst = v;
+    // Where along its avenue the merged view first left the hull search's.
+    std::string chain;
+    for (int up = int(&a - merged.avenues.data()); up >= 0; up = merged.avenues[size_t(up)].parent) {
+      const Avenue& x = merged.avenues[size_t(up)];
+      chain = " -> cell " + std::to_string(x.cell) + " via portal " + std::to_string(x.portal) +
+              (held(x) ? " (held)" : " (NOT held)") + chain;
     }
+    ADD_FAILURE() << "cell " << a.cell << " (eye's: " << cell << "): a vertex (" << worst.x << ", " << worst.y
+                  << ") of its view lies " << outside_hull(a.cell, worst)
+                  << " outside its nearest hull mask; its avenue:" << chain;
+    return;
+  }
   if (k != Kernel::Double) return;
   const OracleResult r = check_visible_set(c, cam, hull, 2);
   EXPECT_EQ(r.missing, 0);  // conservative: extra avenues are what it may have
