@@ -167,6 +167,7 @@ void ScanlineEngine::reset(const EdgeTable& table, bool implicit_lines) {
   inside_at_.assign(n, -1);
   row_ = 0;
   active_.clear();
+  on_row_.clear();
   by_left_.clear();
   by_right_.clear();
   coverage_.clear();
@@ -199,12 +200,13 @@ void ScanlineEngine::enter(const EdgeTable::Edge& e, int row) {
 
 void ScanlineEngine::enter_polygon(int32_t p) {
   span_left_[size_t(p)] = span_right_[size_t(p)] = kNoSpan;
-  by_left_.push_back(p);
-  by_right_.push_back(p);
+  on_row_.push_back(p);
 }
 
 void ScanlineEngine::start(int row) {
   active_.clear();
+  for (int32_t p : on_row_) span_left_[size_t(p)] = span_right_[size_t(p)] = kNoSpan;
+  on_row_.clear();
   by_left_.clear();
   by_right_.clear();
   row_ = row;
@@ -267,7 +269,8 @@ void ScanlineEngine::spans_of_polygons(bool sort) {
   // on a side: unbounded there), cut by its clip region and the window.
   const int64_t width = table_->width_;
   coverage_.clear();
-  for (int32_t p : by_left_) {
+  entering_.clear();
+  for (int32_t p : on_row_) {
     const Extent& x = polygon_extent_[size_t(p)];
     const bool mine = x.row == row_;
     int64_t l = mine && x.has_left ? x.left : -kUnbounded;
@@ -285,6 +288,7 @@ void ScanlineEngine::spans_of_polygons(bool sort) {
     l = std::max<int64_t>(l, 0);
     r = std::min<int64_t>(r, width);
     if (l < r) {
+      if (span_left_[size_t(p)] == kNoSpan) entering_.push_back(p);
       span_left_[size_t(p)] = int32_t(l);
       span_right_[size_t(p)] = int32_t(r);
       coverage_.push_back({int32_t(l), int32_t(r), p});
@@ -293,21 +297,38 @@ void ScanlineEngine::spans_of_polygons(bool sort) {
     }
   }
   if (!sort) return;
-  // The span ends in scan order. Both lists were in order on the row above and spans move
-  // little from row to row, so an insertion sort has next to nothing to do (Bouknight
-  // sorts his active list anew each scanline; coherence makes it cheap).
-  auto sort_by = [](std::vector<int32_t>& list, const std::vector<int32_t>& key) {
+  // The span ends in scan order: by (end, polygon), a total order, so the lists are the same
+  // however they are sorted. Both were in order on the row above and spans move little from
+  // row to row, so an insertion sort of the spans that go on has next to nothing to do
+  // (Bouknight sorts his active list anew each scanline; coherence makes it cheap). Spans
+  // new on this row are sorted among themselves and merged in: the intersection of a
+  // polygon, its clip region and the window is convex, so each polygon's span begins and
+  // ends once, but where thousands of spans do, inserting each one by one would be
+  // quadratic. A row whose order changed a lot (a bound on the shifts) is sorted afresh.
+  auto order = [](const std::vector<int32_t>& key) {
+    return [&key](int32_t p, int32_t q) { return key[size_t(p)] < key[size_t(q)] || (key[size_t(p)] == key[size_t(q)] && p < q); };
+  };
+  auto sort_by = [&](std::vector<int32_t>& list, const std::vector<int32_t>& key) {
+    list.erase(std::remove_if(list.begin(), list.end(), [&](int32_t p) { return key[size_t(p)] == kNoSpan; }), list.end());
+    const auto before = order(key);
+    size_t shifts = 0;
+    const size_t shift_limit = 4 * list.size() + 64;
     for (size_t i = 1; i < list.size(); ++i) {
       const int32_t p = list[i];
-      const int32_t k = key[size_t(p)];
       size_t j = i;
-      for (; j > 0; --j) {
-        const int32_t q = list[j - 1];
-        if (key[size_t(q)] < k || (key[size_t(q)] == k && q < p)) break;
-        list[j] = q;
-      }
+      for (; j > 0 && before(p, list[j - 1]); --j) list[j] = list[j - 1];
       list[j] = p;
+      shifts += i - j;
+      if (shifts > shift_limit) {
+        std::sort(list.begin(), list.end(), before);
+        break;
+      }
     }
+    if (entering_.empty()) return;
+    std::sort(entering_.begin(), entering_.end(), before);
+    merged_.resize(list.size() + entering_.size());
+    std::merge(list.begin(), list.end(), entering_.begin(), entering_.end(), merged_.begin(), before);
+    list.swap(merged_);
   };
   sort_by(by_left_, span_left_);
   sort_by(by_right_, span_right_);
@@ -364,9 +385,12 @@ void ScanlineEngine::next_row() {
   active_.resize(kept);
   ++row_;
   if (row_ <= table_->height_ && table_->polygons_ending_[size_t(row_)] > 0) {
-    auto ended = [&](int32_t p) { return table_->polygon_rows_[size_t(p)].end <= row_; };
-    by_left_.erase(std::remove_if(by_left_.begin(), by_left_.end(), ended), by_left_.end());
-    by_right_.erase(std::remove_if(by_right_.begin(), by_right_.end(), ended), by_right_.end());
+    auto ended = [&](int32_t p) {
+      if (table_->polygon_rows_[size_t(p)].end > row_) return false;
+      span_left_[size_t(p)] = span_right_[size_t(p)] = kNoSpan;  // out of the sorted lists on the next row
+      return true;
+    };
+    on_row_.erase(std::remove_if(on_row_.begin(), on_row_.end(), ended), on_row_.end());
   }
   if (row_ >= table_->height_) return;
   for (int32_t i = table_->row_start_[size_t(row_)]; i < table_->row_start_[size_t(row_) + 1]; ++i)

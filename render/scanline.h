@@ -226,7 +226,9 @@ class ScanlineEngine {
   std::vector<ActiveEdge> active_;                 ///< the active edge list
   std::vector<Extent> polygon_extent_, clip_extent_;
   std::vector<int32_t> span_left_, span_right_;    ///< per polygon, its span on this row (kNoSpan: none)
-  std::vector<int32_t> by_left_, by_right_;        ///< the polygons on this row, by span start and by span end
+  std::vector<int32_t> on_row_;                    ///< the polygons whose rows include this one, in entry order
+  std::vector<int32_t> by_left_, by_right_;        ///< the polygons with a span on this row, by its start and by its end
+  std::vector<int32_t> entering_, merged_;         ///< spans_of_polygons: spans new on this row; a merge's output
   std::vector<Span> coverage_;
   std::vector<int32_t> inside_;       ///< polygons the scan ray is in
   std::vector<int32_t> inside_at_;    ///< per polygon, its index in inside_ (-1: not in)
