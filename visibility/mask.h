@@ -275,12 +275,17 @@ class Mask {
 
   /// Twice the signed area (positive for a proper counter-clockwise mask).
   T area2() const {
+    // The vertices as polygon() gives them, in the same order, without allocating: a mask's
+    // area is asked at every portal it passes.
     T a(0);
-    auto v = polygon();
-    for (size_t k = 0; k < v.size(); ++k) {
-      const auto& p = v[k];
-      const auto& q = v[(k + 1) % v.size()];
+    const size_t n = h_.size();
+    if (n == 0) return a;
+    const Point2T<T> first = vertex(0);
+    Point2T<T> p = first;
+    for (size_t k = 0; k < n; ++k) {
+      const Point2T<T> q = k + 1 < n ? vertex(k + 1) : first;
       a += p.x * q.y - q.x * p.y;
+      p = q;
     }
     return a;
   }

@@ -249,7 +249,11 @@ class Traversal {
   /// The mask's vertices in double, as an Avenue keeps them.
   static std::vector<Vec2> doubles_of(const Mask<T>& m) {
     std::vector<Vec2> v;
-    for (const auto& p : m.polygon()) v.push_back({to_double_of(p.x), to_double_of(p.y)});
+    v.reserve(m.half_planes().size());
+    for (size_t k = 0; k < m.half_planes().size(); ++k) {
+      const Point2T<T> p = m.vertex(k);
+      v.push_back({to_double_of(p.x), to_double_of(p.y)});
+    }
     return v;
   }
 
@@ -562,8 +566,8 @@ class Traversal {
     merged_ready_ = true;
   }
 
-  void add_piece(CellId cell, const Mask<T>& mask, int parent, PortalId via, int depth) {
-    pieces_[size_t(cell)].push_back({mask, parent, via, depth, {}});
+  void add_piece(CellId cell, Mask<T> mask, int parent, PortalId via, int depth) {
+    pieces_[size_t(cell)].push_back({std::move(mask), parent, via, depth, {}});
     if (state_[size_t(cell)] == kPending) return;
     state_[size_t(cell)] = kPending;
     touched_.push_back(cell);
@@ -675,7 +679,7 @@ class Traversal {
         // A hull's first parents are not its rays' chain (they may pass cells its other
         // rays meet later): the hull search ends instead where a cell has nothing new.
         if (!through(cell, pi, fc, m) || (!hull_ && on_chain(self, other))) return;
-        add_piece(other, m, self, pi, piece.depth + 1);
+        add_piece(other, std::move(m), self, pi, piece.depth + 1);
       });
     }
     ps.clear();
