@@ -36,8 +36,8 @@ void cut(const std::vector<P>& in, F f, std::vector<P>& out) {
 FixedPoint to_fixed(Vec2 r) { return {std::llround(r.x * kSubpixelOne), std::llround(r.y * kSubpixelOne)}; }
 
 /// Convex hull (Andrew's monotone chain), exact in integers; collinear points dropped. Into
-/// `h`'s storage; empty when fewer than three corners are left.
-std::vector<FixedPoint> hull(std::vector<FixedPoint> pts, std::vector<FixedPoint> h) {
+/// `h`'s storage; empty when fewer than three corners are left. Sorts `pts`.
+std::vector<FixedPoint> hull(std::vector<FixedPoint>& pts, std::vector<FixedPoint> h) {
   std::sort(pts.begin(), pts.end(), [](FixedPoint a, FixedPoint b) { return a.x != b.x ? a.x < b.x : a.y < b.y; });
   pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
   h.clear();
@@ -113,13 +113,14 @@ ScreenSceneBuilder::ScreenSceneBuilder(const Camera& camera, const SceneOptions&
 
 int32_t ScreenSceneBuilder::add_clip(const std::vector<Vec2>& picture_polygon, double grow) {
   const int64_t g = std::llround(grow * kSubpixelOne);
-  std::vector<FixedPoint> pts;
+  std::vector<FixedPoint>& pts = clip_points_;
+  pts.clear();
   for (Vec2 p : picture_polygon) {
     const FixedPoint f = to_fixed(out_.raster.raster_from_image(p));
     for (int64_t dx : {-g, g})
       for (int64_t dy : {-g, g}) pts.push_back({f.x + dx, f.y + dy});
   }
-  std::vector<FixedPoint> h = hull(std::move(pts), out_.take_outline());
+  std::vector<FixedPoint> h = hull(pts, out_.take_outline());
   if (h.empty()) {
     out_.keep_outline(std::move(h));
     return -1;
@@ -274,7 +275,8 @@ bool ScreenSceneBuilder::add_lit(const std::vector<Vec3>& points, Vec3 n, double
 
 bool ScreenSceneBuilder::add_face(const std::vector<Vec3>& polygon, const Plane& plane, const Material& material,
                                   Placement where, const PolygonSource& source, const Vec3* shade_at) {
-  std::vector<Vec3> cam;
+  std::vector<Vec3>& cam = face_cam_;
+  cam.clear();
   Vec3 centroid{0, 0, 0};
   for (Vec3 p : polygon) {
     cam.push_back(camera_.camera_from_world(p));

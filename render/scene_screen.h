@@ -196,6 +196,8 @@ class ScreenSceneBuilder {
   bool cull_ = false;
   Vec2 cull_lo_, cull_hi_;
   std::vector<Vec3> near_cut_, plane_cut_;
+  std::vector<Vec3> face_cam_;       ///< add_face: the face in camera space (kept: a view adds thousands)
+  std::vector<FixedPoint> clip_points_;  ///< add_clip: the grown corners
   bool has_cut_ = false;
   Vec3 cut_n_;          ///< options.cut in camera space, kept where dot(cut_n_, P) + cut_d_ >= 0
   double cut_d_ = 0;
