@@ -147,11 +147,14 @@ class BandPainter {
     const LightTerm* terms = mask_lights(sp, shade);
     const int n = sp.x1 - sp.x0;
     for (int i = 0; i < n;) {
-      int j = i + 1;
-      for (; j < n; ++j) {
-        bool same = true;
-        for (int t = 0; t < shade.terms && same; ++t) same = !masks_[size_t(t)] || masks_[size_t(t)][j] == masks_[size_t(t)][i];
-        if (!same) break;
+      // The run ends where some mask first changes: masks hold 0 or 1, so at the first
+      // sample holding the other value (memchr: many samples a step, not one).
+      int j = n;
+      for (int t = 0; t < shade.terms; ++t) {
+        const uint8_t* mask = masks_[size_t(t)];
+        if (!mask || i + 1 >= j) continue;
+        const void* other = std::memchr(mask + i + 1, mask[i] ^ 1, size_t(j - i - 1));
+        if (other) j = int(static_cast<const uint8_t*>(other) - mask);
       }
       std::array<float, 3> light = shade.lit_ambient;
       for (int t = 0; t < shade.terms; ++t)
