@@ -9,6 +9,12 @@
 // faster than log n. The Nef path runs once on the Viking room and on the small grids
 // (it takes minutes beyond). Counters: triangles, cells, portals, and each stage's seconds;
 // `bsp-1-thread` is the same decomposition with TBB held to one thread.
+//
+// `soup/open-boxes-32/grazing-frame/WxH` is the walkthrough's frame where the 32 x 32 grid
+// is hardest: from outside its corner at the height of the walls, looking across the
+// diagonal, so that thousands of cells are seen in slivers (the hull search, then the flat
+// half-tone on two threads, effects prepared once, the frame's storage reused, as
+// `avenues walk` renders).
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
@@ -20,6 +26,11 @@
 #include <tbb/global_control.h>
 
 #include "cells/mesh_scene.h"
+#include "render/effects.h"
+#include "render/halftone.h"
+#include "render/scene_objects.h"
+#include "visibility/camera.h"
+#include "visibility/visible_set.h"
 
 using namespace avenues;
 
@@ -88,6 +99,32 @@ void decompose_nef(benchmark::State& state, const std::vector<Mesh>& meshes) {
   decompose(state, meshes, MeshSceneMethod::Nef, 0);
 }
 
+/// One walkthrough frame of the k = 32 grid per iteration (see the top of this file).
+void grazing_frame(benchmark::State& state, int width, int height) {
+  static const CellComplex c = build_mesh_scene({open_boxes(32)});
+  const Camera cam = Camera::yaw_pitch({-1.0, -0.3, 0.6}, 45, 0, 88, width, height);
+  const CellId eye_cell = c.locate(cam.eye).cell;
+  const std::vector<PlacedObject> objects = place_objects(c);
+  HalftoneOptions options;
+  options.threads = 2;
+  const SceneEffects effects = prepare_effects(c, objects, options);
+  TraverseParams search;
+  search.merge_pieces = search.hull_pieces = true;
+  FrameStorage storage;
+  Image frame;
+  RenderStats stats;
+  VisibleSet visible;
+  for (auto _ : state) {
+    visible = find_visible(c, cam, eye_cell, search);
+    render_view(c, objects, effects, cam, visible, options, frame, storage, &stats);
+    benchmark::DoNotOptimize(frame.data.data());
+  }
+  state.counters["cells_seen"] = double(visible.cells.size());
+  state.counters["visibility_us"] = visible.micros;
+  state.counters["polygons"] = double(stats.polygons);
+  state.counters["AL_max"] = stats.active_max;
+}
+
 [[maybe_unused]] const bool registered = [] {
   std::vector<Mesh> viking;
   try {
@@ -124,6 +161,13 @@ void decompose_nef(benchmark::State& state, const std::vector<Mesh>& meshes) {
           ->Unit(benchmark::kSecond)
           ->Iterations(1);
   }
+  for (const auto& [w, h] : {std::pair{320, 180}, std::pair{1280, 720}})
+    benchmark::RegisterBenchmark(
+        ("soup/open-boxes-32/grazing-frame/" + std::to_string(w) + "x" + std::to_string(h)).c_str(),
+        [w = w, h = h](benchmark::State& s) { grazing_frame(s, w, h); })
+        ->Unit(benchmark::kMillisecond)
+        ->Repetitions(5)
+        ->ReportAggregatesOnly(true);
   return true;
 }();
 
