@@ -219,4 +219,21 @@ std::vector<CellId> CellComplex::cells_holding(Vec3 p, double tol) const {
   return out;
 }
 
+void CellComplex::cells_near(const Box3& b, std::vector<CellId>& out) const {
+  out.clear();
+  if (bands.empty() || bands[0].nx <= 0) {
+    for (CellId c = 0; c < CellId(cells.size()); ++c) out.push_back(c);
+    return;
+  }
+  const Band& g = bands[0];
+  auto square = [&](double v, double v0, int n) { return std::clamp(int((v - v0) / g.cell_size), 0, n - 1); };
+  for (int j = square(b.lo.y, g.y0, g.ny); j <= square(b.hi.y, g.y0, g.ny); ++j)
+    for (int i = square(b.lo.x, g.x0, g.nx); i <= square(b.hi.x, g.x0, g.nx); ++i) {
+      const size_t s = size_t(j) * size_t(g.nx) + size_t(i);
+      out.insert(out.end(), g.items.begin() + g.start[s], g.items.begin() + g.start[s + 1]);
+    }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
 }  // namespace avenues

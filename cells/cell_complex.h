@@ -181,6 +181,10 @@ struct CellComplex {
   /// inside a cell, two or more for a point on a face two cells share (a sheet wall, a
   /// doorway's plane), at a T-junction of sheets or on a common edge.
   std::vector<CellId> cells_holding(Vec3 p, double tol) const;
+  /// Replaces `out` with the cells the spatial index lists in the squares that b's plan
+  /// meets, ascending, each once: every cell whose bounds meet b, and some others (the
+  /// caller tests their bounds). Every cell when there is no index.
+  void cells_near(const Box3& b, std::vector<CellId>& out) const;
 
   /// The room's largest cell of kind Room (by footprint area): where a person stands in
   /// it. kNoCell when the room has no such cell.

@@ -52,8 +52,10 @@ constexpr char kMagic[8] = {'A', 'V', 'C', 'E', 'L', 'L', 'S', '\0'};
 // 4: Object::mesh relative to the folder of the .cells file (3: as the plan gave it, i.e.
 //    relative to the folder avenues ran in), so that a saved complex loads from anywhere;
 // 5: an Object::model's own materials (Mesh::materials, Mesh::material_of: a Sweet Home
-//    model's MTL colours and modelMaterials), after its triangles.
-constexpr uint32_t kVersion = 5;
+//    model's MTL colours and modelMaterials), after its triangles;
+// 6: Object::cell (a large soup's detail, cut to one cell), after the model, and a
+//    model's Mesh::polygon_light, after its triangles' materials.
+constexpr uint32_t kVersion = 6;
 constexpr uint32_t kOldestVersion = 3;
 
 /// An object's mesh file as a .cells file in `cells_dir` stores it: relative to that
@@ -203,7 +205,10 @@ void write_complex(Writer& w, const CellComplex& c, const std::filesystem::path&
       for (const Material& mm : m.materials) write_material(w, mm);
       w.count(m.material_of.size(), "model triangle materials");
       for (MaterialId k : m.material_of) w.i32(k);
+      w.count(m.polygon_light.size(), "model polygon lights");
+      for (const Vec3& v : m.polygon_light) w.vec3(v);
     }
+    w.i32(o.cell);
   }
   w.count(c.lights.size(), "lights");
   for (const Light& l : c.lights) {
@@ -472,8 +477,16 @@ void read_complex(Reader& r, CellComplex& c, uint32_t version, const std::filesy
           if (k < -1 || k >= MaterialId(m.materials.size())) r.fail("a model's triangle names a material it does not have");
         }
       }
+      if (version >= 6) {
+        m.polygon_light.resize(r.count(24, "model polygon lights"));
+        for (Vec3& v : m.polygon_light) v = r.vec3("model polygon light");
+      }
       smooth_corner_normals(m);
       o.model = std::make_shared<const Mesh>(std::move(m));
+    }
+    if (version >= 6) {
+      o.cell = r.i32("object");
+      if (o.cell < -1 || o.cell >= int32_t(c.cells.size())) r.fail("an object names a cell the complex does not have");
     }
   }
   c.lights.resize(r.count(kMinLight, "lights"));

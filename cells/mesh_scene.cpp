@@ -25,6 +25,7 @@
 #include "core/angles.h"
 #include "cells/solid_insides.h"
 #include "cells/soup_bsp.h"
+#include "cells/soup_detail.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Nef_nary_union_3.h>
@@ -43,6 +44,7 @@
 #include <filesystem>
 #include <map>
 #include <numeric>
+#include <sstream>
 #include <stdexcept>
 
 namespace avenues {
@@ -851,13 +853,10 @@ void add_real_lines(CellComplex& c, const std::vector<RealLine>& lines) {
   std::vector<Box3> bounds(c.cells.size());
   for (size_t i = 0; i < c.cells.size(); ++i) bounds[i] = c.cells[i].bounds();
   // The cells a line may touch come from the complex's own grid in plan (CellComplex::
-  // index: each square lists the cells whose bounds overlap it), tested in ascending
-  // order; testing every line against every cell grew as lines × cells.
+  // cells_near), tested in ascending order; testing every line against every cell grew
+  // as lines × cells.
   if (c.bands.empty()) c.index();
-  const CellComplex::Band* grid = c.bands[0].nx > 0 ? &c.bands[0] : nullptr;
-  auto square = [&](double v, double v0, int n) { return std::clamp(int((v - v0) / grid->cell_size), 0, n - 1); };
-  std::vector<size_t> seen_by(c.cells.size(), SIZE_MAX);  // the last line that took each cell as a candidate
-  std::vector<uint32_t> candidates;
+  std::vector<CellId> candidates;
   for (const RealLine& l : lines) {
     const LineId id = LineId(c.lines.size());
     c.lines.push_back(l);
@@ -865,22 +864,9 @@ void add_real_lines(CellComplex& c, const std::vector<RealLine>& lines) {
     lb.add(l.a), lb.add(l.b);
     const double len = length(l.b - l.a);
     if (!(len > min_len)) continue;
-    candidates.clear();
-    if (!grid) {
-      for (size_t i = 0; i < c.cells.size(); ++i) candidates.push_back(uint32_t(i));
-    } else {
-      for (int j = square(lb.lo.y - tol, grid->y0, grid->ny); j <= square(lb.hi.y + tol, grid->y0, grid->ny); ++j)
-        for (int k = square(lb.lo.x - tol, grid->x0, grid->nx); k <= square(lb.hi.x + tol, grid->x0, grid->nx); ++k) {
-          const size_t sq = size_t(j) * size_t(grid->nx) + size_t(k);
-          for (int32_t at = grid->start[sq]; at < grid->start[sq + 1]; ++at) {
-            const uint32_t i = uint32_t(grid->items[size_t(at)]);
-            if (seen_by[i] != size_t(id)) seen_by[i] = size_t(id), candidates.push_back(i);
-          }
-        }
-      std::sort(candidates.begin(), candidates.end());
-    }
-    for (const uint32_t i : candidates) {
-      const Box3& b = bounds[i];
+    c.cells_near({lb.lo - Vec3{tol, tol, tol}, lb.hi + Vec3{tol, tol, tol}}, candidates);
+    for (const CellId i : candidates) {
+      const Box3& b = bounds[size_t(i)];
       if (lb.lo.x > b.hi.x + tol || lb.hi.x < b.lo.x - tol || lb.lo.y > b.hi.y + tol || lb.hi.y < b.lo.y - tol ||
           lb.lo.z > b.hi.z + tol || lb.hi.z < b.lo.z - tol)
         continue;
@@ -888,7 +874,7 @@ void add_real_lines(CellComplex& c, const std::vector<RealLine>& lines) {
       // the cell's heights (grown by tol), which near an acute edge of a cell the grown
       // planes alone do not keep.
       double t0 = 0, t1 = 1;
-      const Cell& cell = c.cells[i];
+      const Cell& cell = c.cells[size_t(i)];
       const double dz = l.b.z - l.a.z;
       if (std::fabs(dz) > 1e-300) {
         const double s0 = (cell.z0 - tol - l.a.z) / dz, s1 = (cell.z1 + tol - l.a.z) / dz;
@@ -896,7 +882,7 @@ void add_real_lines(CellComplex& c, const std::vector<RealLine>& lines) {
       } else if (l.a.z < cell.z0 - tol || l.a.z > cell.z1 + tol) {
         continue;
       }
-      for (const Face& f : c.cells[i].faces) {
+      for (const Face& f : cell.faces) {
         const double a = f.plane.eval(l.a), s = f.plane.eval(l.b) - a;
         if (std::fabs(s) < 1e-300) {
           if (a > tol) t1 = -1;
@@ -907,7 +893,7 @@ void add_real_lines(CellComplex& c, const std::vector<RealLine>& lines) {
         }
         if (t1 < t0) break;
       }
-      if ((t1 - t0) * len > min_len) c.cells[i].lines.push_back({id, t0, t1});
+      if ((t1 - t0) * len > min_len) c.cells[size_t(i)].lines.push_back({id, t0, t1});
     }
   }
 }
@@ -961,11 +947,33 @@ void view_inside_largest_region(CellComplex& out, const Box3& scene, const std::
   out.view = Viewpoint{eye, look, 70};
 }
 
-/// MeshSceneMethod::Bsp: the meshes' triangles as one soup (soup_bsp.h).
+/// The meshes with only the triangles `keep` says (numbered through all meshes in order).
+std::vector<Mesh> meshes_keeping(const std::vector<Mesh>& meshes, const std::vector<bool>& keep) {
+  std::vector<Mesh> out;
+  size_t at = 0;
+  for (const Mesh& m : meshes) {
+    Mesh& k = out.emplace_back();
+    k.path = m.path;
+    k.vertices = m.vertices;
+    k.materials = m.materials;
+    for (size_t t = 0; t < m.triangles.size(); ++t, ++at) {
+      if (!keep[at]) continue;
+      k.triangles.push_back(m.triangles[t]);
+      if (t < m.polygon_of.size()) k.polygon_of.push_back(m.polygon_of[t]);
+      if (t < m.material_of.size()) k.material_of.push_back(m.material_of[t]);
+      for (size_t c = 3 * t; c < 3 * t + 3 && c < m.corner_normals.size(); ++c) k.corner_normals.push_back(m.corner_normals[c]);
+    }
+  }
+  return out;
+}
+
+/// MeshSceneMethod::Bsp: the meshes' triangles as one soup (soup_bsp.h); a large soup's
+/// small polygons as detail (soup_detail.h).
 CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshSceneParams& params) {
   CellComplex out;
   std::vector<SoupTriangle> soup;
-  std::vector<size_t> mesh_of;  // per soup triangle
+  std::vector<size_t> mesh_of;    // per soup triangle
+  std::vector<int64_t> polygon;   // per soup triangle: its input polygon, through all meshes
   Box3 box = params.include;
   for (size_t i = 0; i < meshes.size(); ++i) {
     const Mesh& m = meshes[i];
@@ -978,22 +986,47 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
       const MaterialId material = own >= 0 && size_t(own) < m.materials.size() ? first + own : -1;
       soup.push_back({{m.vertices[size_t(t[0])], m.vertices[size_t(t[1])], m.vertices[size_t(t[2])]}, material});
       mesh_of.push_back(i);
+      polygon.push_back(int64_t(i) << 32 | int64_t(uint32_t(k < m.polygon_of.size() ? m.polygon_of[k] : int(k))));
       for (Vec3 p : soup.back().p) box.add(p);
     }
   }
   if (!(box.lo.x <= box.hi.x)) throw std::invalid_argument("mesh scene: no triangles and nothing to include");
   frame_scene(out, box, params.margin);
-  const SoupBspStats stats = decompose_soup(soup, out.far_box, out);
+  const SoupSplit split = split_detail(soup, polygon, params.detail_above, params.structural_triangles);
+  // What cuts space: the whole soup, or its structural part (`cut_of`: its soup numbers).
+  std::vector<SoupTriangle> structural, detail;
+  std::vector<size_t> cut_of;
+  std::vector<int64_t> detail_polygon;
   std::map<size_t, size_t> dropped;  // mesh -> triangles with no area
-  for (size_t t : stats.degenerate) dropped[mesh_of[t]]++;
+  if (split.detail_triangles > 0) {
+    for (size_t t = 0; t < soup.size(); ++t) {
+      if (!split.detail[t]) {
+        structural.push_back(soup[t]);
+        cut_of.push_back(t);
+      } else if (length(cross(soup[t].p[1] - soup[t].p[0], soup[t].p[2] - soup[t].p[0])) > 0) {
+        detail.push_back(soup[t]);
+        detail_polygon.push_back(polygon[t]);
+      } else {
+        dropped[mesh_of[t]]++;
+      }
+    }
+  }
+  const std::vector<SoupTriangle>& cut = split.detail_triangles > 0 ? structural : soup;
+  const SoupBspStats stats = decompose_soup(cut, out.far_box, out);
+  for (size_t t : stats.degenerate) dropped[mesh_of[cut_of.empty() ? t : cut_of[t]]]++;
   for (const auto& [mesh, count] : dropped)
     out.warnings.push_back((meshes[mesh].path.empty() ? std::string("mesh") : meshes[mesh].path) + ": " +
                            std::to_string(count) + " triangles with no area (corners on a line): dropped");
   drop_slivers(out);
+  // The closed solids and the lines are those of what cuts space; detail draws its own.
+  std::vector<bool> keep(split.detail.size());
+  for (size_t t = 0; t < keep.size(); ++t) keep[t] = !split.detail[t];
+  const std::vector<Mesh> structural_meshes = split.detail_triangles > 0 ? meshes_keeping(meshes, keep) : std::vector<Mesh>{};
+  const std::vector<Mesh>& solid_meshes = split.detail_triangles > 0 ? structural_meshes : meshes;
   {
     // A closed, outward-oriented solid is seen from outside only: the cells inside it go.
     ScopedStageTimer t(out.timings, "solids");
-    const std::vector<ClosedSolid> solids = closed_solids(meshes);
+    const std::vector<ClosedSolid> solids = closed_solids(solid_meshes);
     const std::vector<int> inside = cells_inside_solids(out, solids);
     std::vector<bool> drop(inside.size());
     std::vector<bool> named(solids.size(), false);
@@ -1008,11 +1041,23 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     }
   }
   out.index();  // before the lines: add_real_lines takes its candidate cells from it
-  view_inside_largest_region(out, box, soup);
+  view_inside_largest_region(out, box, cut);
+  if (!detail.empty()) {
+    ScopedStageTimer t(out.timings, "detail");
+    const std::string source = meshes.size() == 1 && !meshes[0].path.empty() ? meshes[0].path : "the meshes";
+    add_detail_objects(out, detail, detail_polygon, source);
+    std::ostringstream said;
+    said << source << ": " << split.structural + split.detail_triangles
+         << " triangles with area, more than a decomposition takes in seconds: its largest polygons (from "
+         << split.smallest_structural << " m², " << split.structural << " triangles) cut space into cells, and the other "
+         << split.detail_triangles << " triangles are detail, drawn in the " << out.objects.size()
+         << " cells they cross; the search sees through detail, the pictures show it";
+    out.warnings.push_back(said.str());
+  }
   {
     ScopedStageTimer t(out.timings, "lines");
     std::vector<RealLine> lines;
-    for (const Mesh& m : meshes) {
+    for (const Mesh& m : solid_meshes) {
       std::vector<RealLine> l = feature_edges(m.vertices, m.triangles, m.polygon_of, true);
       lines.insert(lines.end(), l.begin(), l.end());
     }

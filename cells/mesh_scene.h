@@ -41,6 +41,11 @@ struct MeshSceneParams {
   /// [m] the far box encloses this box too (with the margin): lines with no surfaces,
   /// e.g. Crow's wire objects. Empty by default.
   Box3 include;
+  /// Bsp only: a soup with more triangles of non-zero area than `detail_above` is split
+  /// (cells/soup_detail.h): its largest polygons, up to `structural_triangles` triangles,
+  /// cut space, and every other polygon is detail, drawn in the cells it crosses.
+  size_t detail_above = 50'000;
+  size_t structural_triangles = 16'000;
 };
 
 /// The free space of meshes as convex cells (Cell::prism = false, CellKind::Outside), by

@@ -655,6 +655,7 @@ Mesh place(const Mesh& mesh, const Object& o, double floor_z) {
   Mesh m = mesh;
   const Vec3 at = o.position + Vec3{0, 0, floor_z};
   for (Vec3& v : m.vertices) v = rotate({v.x * o.scale.x, v.y * o.scale.y, v.z * o.scale.z}, o.rotation_deg) + at;
+  for (Vec3& v : m.polygon_light) v = rotate({v.x * o.scale.x, v.y * o.scale.y, v.z * o.scale.z}, o.rotation_deg) + at;
   for (Vec3& n : m.corner_normals) {
     Vec3 r = rotate({n.x / o.scale.x, n.y / o.scale.y, n.z / o.scale.z}, o.rotation_deg);
     double l = length(r);

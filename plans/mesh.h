@@ -32,6 +32,11 @@ struct Mesh {
   /// base) colour; a whole scene's cells carry them onto its faces.
   std::vector<MaterialId> material_of;
   std::vector<Material> materials;
+  /// Per polygon number (optional; empty for every mesh a reader makes): the point [m]
+  /// flat shading lights the polygon from, the centroid of the whole polygon it is a piece
+  /// of, so that the pieces of one polygon cut apart (a soup's detail, cells/soup_detail.h)
+  /// take one shade. Empty: each polygon is lit from its own centroid.
+  std::vector<Vec3> polygon_light;
   bool closed = false;                     ///< every edge shared by exactly two polygons
   int boundary_edges = 0;                  ///< edges with one polygon (0 when closed)
 };

@@ -60,6 +60,7 @@ std::vector<MeshLevel> coarser_levels(const Mesh& m, const std::vector<double>& 
     Mesh out;
     out.path = m.path;
     out.materials = m.materials;
+    out.polygon_light = m.polygon_light;  // polygons keep their numbers
     out.closed = m.closed;  // collapses keep a closed manifold closed, and flips are refused
     out.boundary_edges = m.boundary_edges;
     std::vector<int> index(tm.n_vertices(), -1);

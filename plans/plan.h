@@ -145,6 +145,10 @@ struct Object {
   std::shared_ptr<const Mesh> model;
   MaterialId material = -1;
   SourceLoc where;
+  /// -1 for every object of a plan: it is drawn in the cell holding its centroid. A large
+  /// soup's detail (cells/soup_detail.h), its model already cut to one cell, names that
+  /// cell here (the only object a plan never holds).
+  int32_t cell = -1;
 };
 
 /// A point light shines from its position and casts shadows; an ambient light (Bouknight's

@@ -89,6 +89,11 @@ Furniture place_furniture(const CellComplex& c) {
     find_edges(p);
     Box3 box;
     for (Vec3 v : p.mesh.vertices) box.add(v);
+    if (o.cell >= 0 && size_t(o.cell) < c.cells.size()) {  // cut to that cell already
+      p.cells.push_back(o.cell);
+      f.pieces.push_back(std::move(p));
+      continue;
+    }
     for (CellId id = 0; id < CellId(c.cells.size()); ++id) {
       const Box3 b = c.cells[size_t(id)].bounds();
       if (b.lo.x <= box.hi.x && box.lo.x <= b.hi.x && b.lo.y <= box.hi.y && box.lo.y <= b.hi.y &&

@@ -86,8 +86,12 @@ std::vector<PlacedObject> place_objects(const CellComplex& complex, std::vector<
       p.bounds.add(v);
     }
     centroid = (1.0 / double(p.mesh.vertices.size())) * centroid;
-    const Location at = complex.locate(centroid, hint);
-    if (at.what == Location::What::Cell) p.cell = hint = at.cell;
+    if (o.cell >= 0 && size_t(o.cell) < complex.cells.size()) {
+      p.cell = o.cell;  // cut to that cell already
+    } else {
+      const Location at = complex.locate(centroid, hint);
+      if (at.what == Location::What::Cell) p.cell = hint = at.cell;
+    }
     if (o.material >= 0 && size_t(o.material) < complex.materials.size())
       p.paint.materials.push_back(complex.materials[size_t(o.material)]);
     else p.paint = paint_of_mesh(p.mesh);

@@ -341,6 +341,10 @@ void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<in
   }
   centroid = (1.0 / double(cam.size())) * centroid;
   const Vec3 nc = camera_dir(n);
+  // A piece of a polygon cut apart is lit from the whole polygon's centroid (Mesh::polygon_light).
+  const Vec3 light_from = source.polygon >= 0 && size_t(source.polygon) < mesh.polygon_light.size()
+                              ? camera_.camera_from_world(mesh.polygon_light[size_t(source.polygon)])
+                              : centroid;
   const double d = -dot(nc, centroid);
   // Crow 1981: a closed surface seen from inside is hidden, so a polygon facing away goes.
   if (options_.cull_back_faces && mesh.closed && !(d > 0)) return;
@@ -348,10 +352,10 @@ void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<in
   if (options_.shading.model == ShadingModel::Flat) {
     if (lit_here) {
       const size_t pieces = out_.pieces.size();
-      add_lit(cam, nc, d, lit_planar_shade(material, nc, d, centroid, false, source), where, source, pieces);
+      add_lit(cam, nc, d, lit_planar_shade(material, nc, d, light_from, false, source), where, source, pieces);
       return;
     }
-    add(cam, nc, d, flat_shade(material, nc, centroid, options_.shading), where, source);
+    add(cam, nc, d, flat_shade(material, nc, light_from, options_.shading), where, source);
     return;
   }
   // Smooth: a flat part of the mesh (every corner's normal the polygon's) is lit exactly
@@ -366,12 +370,12 @@ void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<in
     const bool smooth = options_.shading.model == ShadingModel::Smooth;
     if (lit_here) {
       const size_t pieces = out_.pieces.size();
-      add_lit(cam, nc, d, lit_planar_shade(material, nc, d, centroid, smooth, source), where, source, pieces);
+      add_lit(cam, nc, d, lit_planar_shade(material, nc, d, light_from, smooth, source), where, source, pieces);
       return;
     }
     add(cam, nc, d,
         smooth ? eye_light_shade(material, std::fabs(d) / area, options_.shading)
-               : flat_shade(material, nc, centroid, options_.shading),
+               : flat_shade(material, nc, light_from, options_.shading),
         where, source);
     return;
   }

@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "picture_checks.h"
 #include "ray_oracle.h"
 #include "render/halftone.h"
 #include "render/view_lines.h"
@@ -108,32 +109,11 @@ inline void expect_hull_holds_merged(const CellComplex& c, const Camera& cam, Ce
   ++t.pictures;
   // The masked picture cuts each cell's faces at its masks (grown by 1/64 of a sample); the
   // one resolved by depth at the nearest surface's own edges: a sample centred on such an
-  // edge may go either way (the renderer's edge error, docs/ACCURACY.md §2). So a pixel
-  // may differ only on an edge — beside a pixel of another colour in either picture — and
-  // few do.
-  const int w = by_masks.width, hgt = by_masks.height;
-  auto pixel = [&](const Image& im, int x, int y) {
-    const size_t i = 3 * (size_t(y) * size_t(w) + size_t(x));
-    return std::array<uint8_t, 3>{im.data[i], im.data[i + 1], im.data[i + 2]};
-  };
-  auto on_edge = [&](const Image& im, int x, int y) {
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const int nx = x + dx, ny = y + dy;
-        if (nx >= 0 && ny >= 0 && nx < w && ny < hgt && pixel(im, nx, ny) != pixel(im, x, y)) return true;
-      }
-    return false;
-  };
-  int differ = 0, inside = 0;
-  for (int y = 0; y < hgt; ++y)
-    for (int x = 0; x < w; ++x) {
-      if (pixel(by_masks, x, y) == pixel(by_depth, x, y)) continue;
-      ++differ;
-      inside += !on_edge(by_masks, x, y) && !on_edge(by_depth, x, y);
-    }
-  t.pixels_differ += differ, t.pixels += long(w) * hgt;
-  EXPECT_EQ(inside, 0) << "the half-tones differ in " << inside << " pixels away from every edge";
-  EXPECT_LE(differ, w * hgt / 200) << "the half-tones differ in " << differ << " pixels";
+  // edge may go either way, so a pixel may differ only on an edge, and few do.
+  const PictureDifference d = compare_off_edges(by_masks, by_depth);
+  t.pixels_differ += d.differ, t.pixels += d.pixels;
+  EXPECT_EQ(d.off_edges, 0) << "the half-tones differ in " << d.off_edges << " pixels away from every edge";
+  EXPECT_LE(d.differ, d.pixels / 200) << "the half-tones differ in " << d.differ << " pixels";
 }
 
 }  // namespace avenues::testing

@@ -37,4 +37,43 @@ inline void expect_pixel_shows(const Image& pic, const std::array<double, 3>& co
   }
 }
 
+/// How two pictures of one size differ: in how many pixels, and in how many of those away
+/// from every edge (no pixel of another colour beside it, in either picture).
+struct PictureDifference {
+  long pixels = 0, differ = 0, off_edges = 0;
+};
+
+/// Two pictures of one view made two ways that should agree up to the renderer's edge
+/// error (docs/ACCURACY.md §2): a sample centred on an edge may go either way, so a pixel
+/// may differ only beside a pixel of another colour, in either picture.
+inline PictureDifference compare_off_edges(const Image& a, const Image& b) {
+  PictureDifference d;
+  EXPECT_EQ(a.width, b.width);
+  EXPECT_EQ(a.height, b.height);
+  EXPECT_EQ(a.channels, 3);
+  EXPECT_EQ(b.channels, 3);
+  if (a.width != b.width || a.height != b.height || a.channels != 3 || b.channels != 3) return d;
+  const int w = a.width, h = a.height;
+  auto pixel = [&](const Image& im, int x, int y) {
+    const size_t i = 3 * (size_t(y) * size_t(w) + size_t(x));
+    return std::array<uint8_t, 3>{im.data[i], im.data[i + 1], im.data[i + 2]};
+  };
+  auto on_edge = [&](const Image& im, int x, int y) {
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int nx = x + dx, ny = y + dy;
+        if (nx >= 0 && ny >= 0 && nx < w && ny < h && pixel(im, nx, ny) != pixel(im, x, y)) return true;
+      }
+    return false;
+  };
+  d.pixels = long(w) * h;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (pixel(a, x, y) == pixel(b, x, y)) continue;
+      ++d.differ;
+      d.off_edges += !on_edge(a, x, y) && !on_edge(b, x, y);
+    }
+  return d;
+}
+
 }  // namespace avenues::testing

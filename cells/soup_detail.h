@@ -1,0 +1,54 @@
+// Avenues — a large soup's detail: small polygons drawn in the cells they cross, cutting no space.
+//
+// A soup's free space is cut by the planes of all its polygons (cells/soup_bsp.h). A model
+// of a few hundred thousand small polygons in clutter (a steel structure's members, plates
+// and bolts, exported from a BIM tool) makes that grow much faster than its size: each
+// member's planes cut its neighbours, the cells multiply into slivers, and the
+// decomposition runs out of time and memory before it ends. Quake's qbsp met the same
+// growth and answered it with detail brushes: they are drawn, but the tree that vis reads
+// is built from the structural brushes alone. Here the split is made by size, not by
+// hand: where a soup holds more triangles than a decomposition takes in seconds, its
+// largest polygons (the slabs, walls and broad plates that hide most) cut space, up to a
+// budget of triangles, and every other polygon is detail. Each detail polygon is cut to
+// the convex cells it crosses and drawn there as part of that cell's one detail object,
+// by depth, as furniture is (render/scene_view.cpp, render/furniture.h). The search sees
+// through detail (its visible set is conservative there: a cell behind a member is still
+// found), and the picture is exact.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "cells/cell_complex.h"
+#include "cells/soup_bsp.h"
+
+namespace avenues {
+
+/// Which triangles of a soup are detail.
+struct SoupSplit {
+  std::vector<bool> detail;        ///< per soup triangle
+  size_t structural = 0;           ///< triangles with area that cut space
+  size_t detail_triangles = 0;     ///< triangles with area that are detail
+  double smallest_structural = 0;  ///< [m²] the area of the smallest polygon that cuts space
+};
+
+/// With at most `above` triangles of non-zero area, none is detail. With more, the
+/// polygons (`polygon`: one number per triangle, shared by the triangles of one input
+/// polygon) are taken largest area first, ties by number, while their triangles with area
+/// number at most `budget`; the triangles of every other polygon are detail.
+SoupSplit split_detail(const std::vector<SoupTriangle>& soup, const std::vector<int64_t>& polygon, size_t above,
+                       size_t budget);
+
+/// Cuts each detail triangle to every cell of `out` it crosses (in double: the pieces are
+/// drawn, not part of the complex's exact geometry) and appends one Object per cell that
+/// holds pieces: its model the pieces in world coordinates, welded by position, one
+/// polygon per input polygon (`polygon`) so that a polygon's own diagonals are no edges;
+/// Object::cell that cell; named "detail in cell N", its model's path "`source`: detail in
+/// cell N". Each triangle's material indexes out.materials, which each model copies.
+/// Uses out's spatial index (CellComplex::index). Returns the area [m²] the pieces cover.
+double add_detail_objects(CellComplex& out, const std::vector<SoupTriangle>& detail,
+                          const std::vector<int64_t>& polygon, const std::string& source);
+
+}  // namespace avenues

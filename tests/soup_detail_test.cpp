@@ -1,0 +1,251 @@
+// Tests of cells/soup_detail.h: a large soup's small polygons as detail, drawn in the cells
+// they cross and cutting no space. The scene: a grid of open boxes (the polygons that cut
+// space) and thin bars standing in and across them, some tilted (detail), decomposed once
+// whole and once split (MeshSceneParams::detail_above lowered so that a small scene
+// splits). Detail must keep every bit of its area, in the cells it lies in; the search
+// must stay conservative; and the pictures must be the whole soup's, up to the renderer's
+// edge error.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <set>
+#include <string>
+
+#include "cells/build_cells.h"
+#include "cells/mesh_scene.h"
+#include "cells/soup_detail.h"
+#include "hull_checks.h"
+#include "picture_checks.h"
+#include "ray_oracle.h"
+#include "render/halftone.h"
+#include "render/scene_objects.h"
+#include "tests/test_meshes.h"
+#include "visibility/visible_set.h"
+
+using namespace avenues;
+using avenues::testing::mesh_from;
+
+namespace {
+
+Vec3 unit(Vec3 v) { return (1 / length(v)) * v; }
+
+/// The materials of boxes_and_bars: grey boxes, a red bar along the first row, blue
+/// upright bars, green bars along the other rows and leaning.
+enum BarMaterial : MaterialId { kBox, kRowBar, kUprightBar, kLeaningBar };
+
+/// k × k open boxes 1 m wide and high, 2 m apart (a floor and four walls each), and
+/// through them bars 4 cm thick: upright in each box, lying across each row of boxes at
+/// half height (crossing their walls), and one leaning across the whole grid.
+std::vector<Mesh> boxes_and_bars(int k) {
+  std::vector<Vec3> v;
+  std::vector<std::vector<int>> polygons;
+  std::vector<MaterialId> material;  // per polygon
+  MaterialId now = kBox;
+  auto quad = [&](Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+    const int n = int(v.size());
+    v.insert(v.end(), {a, b, c, d});
+    polygons.push_back({n, n + 1, n + 2, n + 3});
+    material.push_back(now);
+  };
+  auto bar = [&](Vec3 a, Vec3 b, double t) {  // a closed square bar from a to b, t thick
+    const Vec3 d = unit(b - a);
+    const Vec3 u = unit(cross(d, std::fabs(d.z) < 0.9 ? Vec3{0, 0, 1} : Vec3{1, 0, 0}));
+    const Vec3 w = cross(d, u);
+    Vec3 c[8];
+    for (int i = 0; i < 8; ++i)
+      c[i] = (i & 4 ? b : a) + (i & 1 ? t / 2 : -t / 2) * u + (i & 2 ? t / 2 : -t / 2) * w;
+    quad(c[0], c[2], c[3], c[1]), quad(c[4], c[5], c[7], c[6]);
+    quad(c[0], c[1], c[5], c[4]), quad(c[2], c[6], c[7], c[3]);
+    quad(c[0], c[4], c[6], c[2]), quad(c[1], c[3], c[7], c[5]);
+  };
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k; ++j) {
+      const double x = 2.0 * i, y = 2.0 * j;
+      quad({x, y, 0}, {x + 1, y, 0}, {x + 1, y + 1, 0}, {x, y + 1, 0});
+      quad({x, y, 0}, {x + 1, y, 0}, {x + 1, y, 1}, {x, y, 1});
+      quad({x + 1, y, 0}, {x + 1, y + 1, 0}, {x + 1, y + 1, 1}, {x + 1, y, 1});
+      quad({x + 1, y + 1, 0}, {x, y + 1, 0}, {x, y + 1, 1}, {x + 1, y + 1, 1});
+      quad({x, y + 1, 0}, {x, y, 0}, {x, y, 1}, {x, y + 1, 1});
+      now = kUprightBar;
+      bar({x + 0.3, y + 0.4, 0}, {x + 0.3, y + 0.4, 1.4}, 0.04);
+      now = kBox;
+    }
+  for (int j = 0; j < k; ++j) {
+    now = j == 0 ? kRowBar : kLeaningBar;
+    bar({-0.5, 2.0 * j + 0.6, 0.5}, {2.0 * k - 0.5, 2.0 * j + 0.6, 0.5}, 0.04);
+  }
+  now = kLeaningBar;
+  bar({-0.4, -0.4, 0.2}, {2.0 * k - 0.6, 2.0 * k - 0.6, 1.3}, 0.04);
+  Mesh m = mesh_from(v, polygons);
+  m.materials.resize(4);
+  m.materials[kRowBar].colour = {0.8, 0.1, 0.1};
+  m.materials[kUprightBar].colour = {0.1, 0.1, 0.8};
+  m.materials[kLeaningBar].colour = {0.1, 0.8, 0.1};
+  for (int p : m.polygon_of) m.material_of.push_back(material[size_t(p)]);
+  return {m};
+}
+
+/// The split: the boxes' 10 triangles each cut space, every bar is detail.
+MeshSceneParams split_params(int k) {
+  MeshSceneParams p;
+  p.detail_above = 0;
+  p.structural_triangles = size_t(10 * k * k);
+  return p;
+}
+
+double area_of(const Mesh& m) {
+  double a = 0;
+  for (const auto& t : m.triangles)
+    a += 0.5 * length(cross(m.vertices[size_t(t[1])] - m.vertices[size_t(t[0])],
+                            m.vertices[size_t(t[2])] - m.vertices[size_t(t[0])]));
+  return a;
+}
+
+}  // namespace
+
+// The largest polygons cut space up to the budget; the rest, whole polygons, are detail.
+TEST(SoupDetail, TheLargestPolygonsCutSpaceUpToTheBudgetAndWholePolygonsAreDetail) {
+  std::vector<SoupTriangle> soup;
+  std::vector<int64_t> polygon;
+  // Polygon p (0..5) is a square of side p + 1, two triangles; polygon 6 has no area.
+  for (int p = 0; p < 6; ++p) {
+    const double s = p + 1;
+    soup.push_back({{Vec3{0, 0, double(p)}, Vec3{s, 0, double(p)}, Vec3{s, s, double(p)}}});
+    soup.push_back({{Vec3{0, 0, double(p)}, Vec3{s, s, double(p)}, Vec3{0, s, double(p)}}});
+    polygon.insert(polygon.end(), {p, p});
+  }
+  soup.push_back({{Vec3{0, 0, 9}, Vec3{1, 0, 9}, Vec3{2, 0, 9}}});
+  polygon.push_back(6);
+  const SoupSplit none = split_detail(soup, polygon, 12, 4);
+  EXPECT_EQ(none.detail_triangles, 0u);
+  EXPECT_EQ(none.structural, 12u);
+  for (bool d : none.detail) EXPECT_FALSE(d);
+  // Budget 5: the squares of side 6 and 5 (4 triangles); the next would make 6.
+  const SoupSplit s = split_detail(soup, polygon, 11, 5);
+  EXPECT_EQ(s.structural, 4u);
+  EXPECT_EQ(s.detail_triangles, 8u);
+  EXPECT_DOUBLE_EQ(s.smallest_structural, 25.0);
+  for (size_t t = 0; t < 12; ++t) EXPECT_EQ(s.detail[t], polygon[t] < 4) << "triangle " << t;
+  EXPECT_TRUE(s.detail[12]) << "a polygon with no area is no larger than any other";
+}
+
+// Every detail triangle is kept, cut to the cells it crosses: the pieces cover its area,
+// each lies in its own cell, and the split complex is sound and says what it did.
+TEST(SoupDetail, DetailIsCutToTheCellsItCrossesAndKeepsEveryBitOfItsArea) {
+  const int k = 3;
+  const std::vector<Mesh> meshes = boxes_and_bars(k);
+  const CellComplex whole = build_mesh_scene(meshes);
+  const CellComplex split = build_mesh_scene(meshes, split_params(k));
+  EXPECT_TRUE(whole.objects.empty());
+  EXPECT_LT(split.cells.size(), whole.cells.size()) << "the bars no longer cut space";
+  ASSERT_FALSE(split.objects.empty());
+  bool said = false;
+  for (const std::string& w : split.warnings) said |= w.find("are detail") != std::string::npos;
+  EXPECT_TRUE(said);
+  // The bars' area: every polygon but the boxes' 5 k² unit squares.
+  double bars = area_of(meshes[0]) - 5.0 * k * k;
+  double pieces = 0;
+  std::vector<bool> seen(split.cells.size(), false);
+  for (const Object& o : split.objects) {
+    ASSERT_GE(o.cell, 0);
+    ASSERT_LT(size_t(o.cell), split.cells.size());
+    EXPECT_FALSE(seen[size_t(o.cell)]) << "one detail object per cell";
+    seen[size_t(o.cell)] = true;
+    ASSERT_TRUE(o.model);
+    EXPECT_FALSE(o.model->closed);
+    pieces += area_of(*o.model);
+    for (Vec3 p : o.model->vertices) EXPECT_TRUE(split.cells[size_t(o.cell)].contains(p, 1e-9)) << o.name;
+  }
+  EXPECT_NEAR(pieces, bars, 1e-9 * bars);
+  // Saved and loaded, each object keeps its cell.
+  const CellComplex again = cells_from_bytes(cells_bytes(split), "split.cells");
+  ASSERT_EQ(again.objects.size(), split.objects.size());
+  for (size_t i = 0; i < again.objects.size(); ++i) {
+    EXPECT_EQ(again.objects[i].cell, split.objects[i].cell);
+    ASSERT_TRUE(again.objects[i].model);
+    EXPECT_EQ(again.objects[i].model->triangles.size(), split.objects[i].model->triangles.size());
+  }
+}
+
+// From eyes in free space, the split complex's search misses no cell a ray reaches, and
+// its pictures (merged and hull searches) are the whole soup's, differing only on edges.
+TEST(SoupDetail, ThePicturesAreTheWholeSoupsAndTheSearchMissesNoCell) {
+  const int k = 3;
+  const std::vector<Mesh> meshes = boxes_and_bars(k);
+  const CellComplex whole = build_mesh_scene(meshes);
+  const CellComplex split = build_mesh_scene(meshes, split_params(k));
+  const std::vector<PlacedObject> no_objects, detail = place_objects(split);
+  std::mt19937 rng(16);
+  std::uniform_real_distribution<double> x(-1.5, 2.0 * k + 0.5), z(0.1, 2.5), yaw(0, 360), pitch(-50, 30);
+  int views = 0;
+  long pixels = 0, differ = 0;
+  while (views < 12) {
+    const Vec3 eye{x(rng), x(rng), z(rng)};
+    const Location in_whole = whole.locate(eye), in_split = split.locate(eye);
+    if (in_whole.what != Location::What::Cell) continue;  // inside a bar
+    ASSERT_EQ(in_split.what, Location::What::Cell);
+    const Camera cam = Camera::yaw_pitch(eye, yaw(rng), pitch(rng), 70, 240, 160);
+    SCOPED_TRACE("eye " + std::to_string(eye.x) + "," + std::to_string(eye.y) + "," + std::to_string(eye.z));
+    ++views;
+    // Lit by ambient light alone, each sample shows its surface's material as it is: the
+    // pictures say which surface is seen where, and nothing of how a shade was found.
+    HalftoneOptions o;
+    o.threads = 1;
+    o.shading.back = 1;
+    TraverseParams merged;
+    merged.merge_pieces = true;
+    Image truth;
+    render_view(whole, no_objects, cam, find_visible(whole, cam, in_whole.cell, merged), o, truth);
+    for (bool hull : {false, true}) {
+      SCOPED_TRACE(hull ? "hull search" : "merged search");
+      TraverseParams p = merged;
+      p.hull_pieces = hull;
+      const VisibleSet vs = find_visible(split, cam, in_split.cell, p);
+      EXPECT_EQ(avenues::testing::check_visible_set(split, cam, vs, 4).missing, 0);
+      Image pic;
+      render_view(split, detail, cam, vs, o, pic);
+      const avenues::testing::PictureDifference d = avenues::testing::compare_off_edges(truth, pic);
+      EXPECT_EQ(d.off_edges, 0) << "the pictures differ in " << d.off_edges << " pixels away from every edge";
+      EXPECT_LE(d.differ, d.pixels / 200) << "the pictures differ in " << d.differ << " pixels";
+      pixels += d.pixels, differ += d.differ;
+    }
+  }
+  RecordProperty("pixels_differ", std::to_string(differ) + " of " + std::to_string(pixels));
+}
+
+// Each piece of a detail polygon is lit from the whole polygon's centroid: a bar lying
+// across the cells of a row of boxes shows one shade on each of its faces, with no seam
+// where it passes from one cell to the next. Lit piece by piece, it would show seams.
+// (The whole soup's picture shows as many shades, not quite the same ones: it lights
+// coplanar faces of one material as one surface, so the three row bars' tops as one.)
+TEST(SoupDetail, APolygonCutIntoManyCellsTakesOneShade) {
+  const int k = 3;
+  const std::vector<Mesh> meshes = boxes_and_bars(k);
+  const CellComplex whole = build_mesh_scene(meshes);
+  const CellComplex split = build_mesh_scene(meshes, split_params(k));
+  const Camera cam = Camera::yaw_pitch({2.5, -1.0, 2.2}, 90, -50, 80, 320, 200);
+  std::vector<PlacedObject> piecewise = place_objects(split);
+  for (PlacedObject& o : piecewise) o.mesh.polygon_light.clear();
+  auto red_shades = [&](const CellComplex& c, const std::vector<PlacedObject>& objects) {
+    const Location at = c.locate(cam.eye);
+    EXPECT_EQ(at.what, Location::What::Cell);
+    TraverseParams p;
+    p.merge_pieces = true;
+    HalftoneOptions o;
+    o.threads = 1;
+    Image pic;
+    render_view(c, objects, cam, find_visible(c, cam, at.cell, p), o, pic);
+    std::set<std::array<uint8_t, 3>> red;
+    for (size_t i = 0; i + 2 < pic.data.size(); i += 3)
+      if (pic.data[i] > 2 * pic.data[i + 1] + 8 && pic.data[i] > 2 * pic.data[i + 2] + 8)
+        red.insert({pic.data[i], pic.data[i + 1], pic.data[i + 2]});
+    return red;
+  };
+  const auto whole_shades = red_shades(whole, {});
+  const auto split_shades = red_shades(split, place_objects(split));
+  const auto piece_shades = red_shades(split, piecewise);
+  EXPECT_GE(whole_shades.size(), 2u) << "two faces of the row bar are in view";
+  EXPECT_EQ(split_shades.size(), whole_shades.size()) << "one shade per face";
+  EXPECT_GT(piece_shades.size(), split_shades.size()) << "lit piece by piece, the pieces differ";
+}
