@@ -53,8 +53,10 @@ constexpr char kMagic[8] = {'A', 'V', 'C', 'E', 'L', 'L', 'S', '\0'};
 //    relative to the folder avenues ran in), so that a saved complex loads from anywhere;
 // 5: an Object::model's own materials (Mesh::materials, Mesh::material_of: a Sweet Home
 //    model's MTL colours and modelMaterials), after its triangles;
-// 6: Object::cell (a large soup's detail, cut to one cell), after the model, and a
-//    model's Mesh::polygon_light, after its triangles' materials.
+// 6: a model's Mesh::polygon_light, after its triangles' materials; and, only when some
+//    object has one, the objects' Object::cell (a large soup's detail, cut to one cell)
+//    as (object, cell) pairs after everything else, so that a complex without detail is
+//    laid out as in version 5.
 constexpr uint32_t kVersion = 6;
 constexpr uint32_t kOldestVersion = 3;
 
@@ -208,7 +210,6 @@ void write_complex(Writer& w, const CellComplex& c, const std::filesystem::path&
       w.count(m.polygon_light.size(), "model polygon lights");
       for (const Vec3& v : m.polygon_light) w.vec3(v);
     }
-    w.i32(o.cell);
   }
   w.count(c.lights.size(), "lights");
   for (const Light& l : c.lights) {
@@ -225,6 +226,13 @@ void write_complex(Writer& w, const CellComplex& c, const std::filesystem::path&
   w.count(c.solids.size(), "solids");
   for (const CellComplex::SolidBox& s : c.solids) {
     w.poly2(s.quad); w.f64(s.z0); w.f64(s.z1); w.str(s.what);
+  }
+  size_t in_one_cell = 0;
+  for (const Object& o : c.objects) in_one_cell += o.cell >= 0;
+  if (in_one_cell > 0) {
+    w.count(in_one_cell, "objects in one cell");
+    for (size_t i = 0; i < c.objects.size(); ++i)
+      if (c.objects[i].cell >= 0) { w.i32(int32_t(i)); w.i32(c.objects[i].cell); }
   }
 }
 
@@ -484,10 +492,6 @@ void read_complex(Reader& r, CellComplex& c, uint32_t version, const std::filesy
       smooth_corner_normals(m);
       o.model = std::make_shared<const Mesh>(std::move(m));
     }
-    if (version >= 6) {
-      o.cell = r.i32("object");
-      if (o.cell < -1 || o.cell >= int32_t(c.cells.size())) r.fail("an object names a cell the complex does not have");
-    }
   }
   c.lights.resize(r.count(kMinLight, "lights"));
   for (Light& l : c.lights) {
@@ -519,6 +523,15 @@ void read_complex(Reader& r, CellComplex& c, uint32_t version, const std::filesy
     s.z0 = r.finite("solid");
     s.z1 = r.finite("solid");
     s.what = r.str("solid");
+  }
+  if (version >= 6 && !r.at_end()) {
+    const size_t n = r.count(8, "objects in one cell");
+    for (size_t k = 0; k < n; ++k) {
+      const int32_t i = r.i32("object in one cell"), cell = r.i32("object in one cell");
+      if (i < 0 || size_t(i) >= c.objects.size()) r.fail("an object in one cell that the complex does not have");
+      if (cell < 0 || size_t(cell) >= c.cells.size()) r.fail("an object names a cell the complex does not have");
+      c.objects[size_t(i)].cell = cell;
+    }
   }
   if (!r.at_end()) r.fail(std::to_string(r.remaining()) + " unexpected bytes after the complex");
 }

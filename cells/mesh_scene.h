@@ -55,6 +55,9 @@ struct MeshSceneParams {
 /// opaque; portals
 /// (PortalKind::Open) are the rest of the cells' boundaries. Real lines: the edges between
 /// polygons that are not coplanar, and the open edges of surfaces (LineKind::Sheet).
+/// A soup with more than params.detail_above triangles with area: only its largest
+/// polygons cut space (cells/soup_detail.h); the others are detail, one Object per cell
+/// they cross (Object::cell), and a warning says how many of each.
 ///
 /// Nef: free space around solids, the far box minus the union of the meshes as CGAL Nef
 /// polyhedra, decomposed by CGAL::convex_decomposition_3 into convex cells (Cell::prism =

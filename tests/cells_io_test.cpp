@@ -268,10 +268,9 @@ TEST_F(CellsIo, VersionFourFilesWithModelsStillLoad) {
   ASSERT_NE(path_at, std::string::npos);
   const size_t counts_at = path_at + box.path.size() + 4 + 24 * box.vertices.size() + 4 + 16 * box.triangles.size() + 1 + 4;
   // After them, what versions 5 and 6 added: no materials, no triangle materials, no
-  // polygon lights (three counts), and the object's cell, -1.
+  // polygon lights (three counts).
   ASSERT_EQ(bytes.substr(counts_at, 12), std::string(12, '\0'));
-  ASSERT_EQ(bytes.substr(counts_at + 12, 4), std::string(4, '\xff'));
-  bytes.erase(counts_at, 16);
+  bytes.erase(counts_at, 12);
   auto put_u32 = [&](size_t at, uint32_t v) { for (int k = 0; k < 4; ++k) bytes[at + size_t(k)] = char(v >> (8 * k)); };
   auto put_u64 = [&](size_t at, uint64_t v) { for (int k = 0; k < 8; ++k) bytes[at + size_t(k)] = char(v >> (8 * k)); };
   const std::string payload = bytes.substr(32);
