@@ -138,10 +138,19 @@ void add_occluders(const FurniturePiece& p, const std::vector<uint8_t>& facing, 
     o.d = -dot(o.n, P[0]);
     if (o.d < 0) o.n = -1.0 * o.n, o.d = -o.d;  // the eye (the origin) on the positive side
     if (!(o.d > kBehind)) continue;             // seen edge-on: hides nothing
+    // The cone's sides, each turned to hold the third corner. A sliver (a corner less than
+    // 1e-9 radians off the plane through the eye and the other two) hides nothing that
+    // could be drawn, and its sides' rounding could turn its cone to hold points nowhere
+    // near it: it is no occluder.
+    bool sliver = false;
     for (int k = 0; k < 3; ++k) {
       o.side[k] = cross(P[k], P[(k + 1) % 3]);
-      if (dot(o.side[k], P[(k + 2) % 3]) < 0) o.side[k] = -1.0 * o.side[k];
+      const Vec3 third = P[(k + 2) % 3];
+      const double s = dot(o.side[k], third);
+      sliver |= !(std::fabs(s) > 1e-9 * length(o.side[k]) * length(third));
+      if (s < 0) o.side[k] = -1.0 * o.side[k];
     }
+    if (sliver) continue;
     const double inf = std::numeric_limits<double>::infinity();
     o.lo = {inf, inf};
     o.hi = {-inf, -inf};
@@ -151,6 +160,10 @@ void add_occluders(const FurniturePiece& p, const std::vector<uint8_t>& facing, 
         o.lo = {std::min(o.lo.x, xy.x), std::min(o.lo.y, xy.y)};
         o.hi = {std::max(o.hi.x, xy.x), std::max(o.hi.y, xy.y)};
       }
+      // Less than 1e-7 across on the picture plane (a ten-thousandth of a pixel at any
+      // size a picture is drawn): it hides nothing that could be drawn, and its sides,
+      // found from corners a rounding apart, may point anywhere.
+      if (!(o.hi.x - o.lo.x > 1e-7 || o.hi.y - o.lo.y > 1e-7)) continue;
     } else {
       o.lo = {-inf, -inf};
       o.hi = {inf, inf};
@@ -159,21 +172,123 @@ void add_occluders(const FurniturePiece& p, const std::vector<uint8_t>& facing, 
   }
 }
 
-void hide_behind(const std::vector<Occluder>& occluders, Vec3 p0, Vec3 p1, std::vector<detail::Interval>& intervals) {
-  if (intervals.empty()) return;
+namespace {
+
+/// The part of the segment's box [lo, hi] on the picture plane where `intervals` lie.
+void segment_box(Vec3 p0, Vec3 p1, const std::vector<detail::Interval>& intervals, Vec2& lo, Vec2& hi) {
   const double first = intervals.front().t0, last = intervals.back().t1;
   const Vec3 d = p1 - p0;
   const Vec3 a = p0 + first * d, b = p0 + last * d;  // Z > 0 on the intervals
-  const Vec2 lo{std::min(a.x / a.z, b.x / b.z), std::min(a.y / a.z, b.y / b.z)};
-  const Vec2 hi{std::max(a.x / a.z, b.x / b.z), std::max(a.y / a.z, b.y / b.z)};
-  for (const Occluder& o : occluders) {
-    if (o.hi.x < lo.x || hi.x < o.lo.x || o.hi.y < lo.y || hi.y < o.lo.y) continue;
-    detail::Interval h{first, last};
-    bool alive = detail::clip_interval(h, -(dot(o.n, p0) + o.d) - kBehind, -(dot(o.n, p1) + o.d) - kBehind);
-    for (int k = 0; k < 3 && alive; ++k) alive = detail::clip_interval(h, dot(o.side[k], p0), dot(o.side[k], p1));
-    if (alive) detail::subtract_interval(intervals, h);
-    if (intervals.empty()) return;
+  lo = {std::min(a.x / a.z, b.x / b.z), std::min(a.y / a.z, b.y / b.z)};
+  hi = {std::max(a.x / a.z, b.x / b.z), std::max(a.y / a.z, b.y / b.z)};
+}
+
+/// Subtracts what occluder o hides of the intervals (a set difference: in any order of
+/// occluders, the same intervals), which lay within [first, last] and
+/// within the box [lo, hi] at the start; false once nothing is left.
+bool hide_behind_one(const Occluder& o, Vec3 p0, Vec3 p1, double first, double last, Vec2 lo, Vec2 hi,
+                     std::vector<detail::Interval>& intervals) {
+  if (o.hi.x < lo.x || hi.x < o.lo.x || o.hi.y < lo.y || hi.y < o.lo.y) return true;
+  detail::Interval h{first, last};
+  bool alive = detail::clip_interval(h, -(dot(o.n, p0) + o.d) - kBehind, -(dot(o.n, p1) + o.d) - kBehind);
+  for (int k = 0; k < 3 && alive; ++k) alive = detail::clip_interval(h, dot(o.side[k], p0), dot(o.side[k], p1));
+  if (alive) detail::subtract_interval(intervals, h);
+  return !intervals.empty();
+}
+
+}  // namespace
+
+void hide_behind(const std::vector<Occluder>& occluders, Vec3 p0, Vec3 p1, std::vector<detail::Interval>& intervals) {
+  if (intervals.empty()) return;
+  const double first = intervals.front().t0, last = intervals.back().t1;
+  Vec2 lo, hi;
+  segment_box(p0, p1, intervals, lo, hi);
+  for (const Occluder& o : occluders)
+    if (!hide_behind_one(o, p0, p1, first, last, lo, hi, intervals)) return;
+}
+
+OccluderGrid::OccluderGrid(std::vector<Occluder> occluders) : occluders_(std::move(occluders)) {
+  Vec2 lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
+  for (const Occluder& o : occluders_)
+    if (std::isfinite(o.lo.x) && std::isfinite(o.hi.x) && std::isfinite(o.lo.y) && std::isfinite(o.hi.y))
+      lo = {std::min(lo.x, o.lo.x), std::min(lo.y, o.lo.y)}, hi = {std::max(hi.x, o.hi.x), std::max(hi.y, o.hi.y)};
+  n_ = std::clamp(int(std::sqrt(double(occluders_.size()) / 4)), 1, 256);
+  lo_ = lo;
+  size_ = {std::max((hi.x - lo.x) / n_, 1e-12), std::max((hi.y - lo.y) / n_, 1e-12)};
+  auto bin = [&](double v, double v0, double s) { return std::clamp(int((v - v0) / s), 0, n_ - 1); };
+  std::vector<int32_t> count(size_t(n_) * size_t(n_) + 1, 0);
+  std::vector<std::array<int, 4>> range(occluders_.size());
+  for (size_t i = 0; i < occluders_.size(); ++i) {
+    const Occluder& o = occluders_[i];
+    auto& r = range[i];
+    if (!(lo.x <= hi.x) || !std::isfinite(o.lo.x) || !std::isfinite(o.hi.x) || !std::isfinite(o.lo.y) ||
+        !std::isfinite(o.hi.y)) {
+      r = {1, 0, 1, 0};  // none: met everywhere
+    } else {
+      r = {bin(o.lo.x, lo_.x, size_.x), bin(o.hi.x, lo_.x, size_.x), bin(o.lo.y, lo_.y, size_.y), bin(o.hi.y, lo_.y, size_.y)};
+      if (4 * (r[1] - r[0] + 1) * (r[3] - r[2] + 1) > n_ * n_ && n_ > 1) r = {1, 0, 1, 0};
+    }
+    if (r[0] > r[1]) {
+      everywhere_.push_back(int32_t(i));
+      continue;
+    }
+    for (int y = r[2]; y <= r[3]; ++y)
+      for (int x = r[0]; x <= r[1]; ++x) count[size_t(y) * size_t(n_) + size_t(x) + 1]++;
   }
+  for (size_t k = 1; k < count.size(); ++k) count[k] += count[k - 1];
+  start_ = count;
+  items_.resize(size_t(count.back()));
+  for (size_t i = 0; i < occluders_.size(); ++i) {
+    const auto& r = range[i];
+    for (int y = r[2]; y <= r[3]; ++y)
+      for (int x = r[0]; x <= r[1]; ++x) items_[size_t(count[size_t(y) * size_t(n_) + size_t(x)]++)] = int32_t(i);
+  }
+}
+
+void OccluderGrid::near(Vec2 a, Vec2 b, std::vector<int32_t>& out) const {
+  out.assign(everywhere_.begin(), everywhere_.end());
+  if (items_.empty()) return;
+  // Each occluder once, without sorting: a mark per occluder, this call's own number.
+  thread_local std::vector<uint64_t> mark;
+  thread_local uint64_t call = 0;
+  if (mark.size() < occluders_.size()) mark.resize(occluders_.size(), 0);
+  ++call;
+  auto bin = [&](double v, double v0, double s) {
+    return int(std::clamp(std::floor((v - v0) / s), -1.0, double(n_)));  // -1 and n_: off the grid
+  };
+  if (a.y > b.y) std::swap(a, b);
+  const int y0 = std::max(bin(a.y, lo_.y, size_.y), 0), y1 = std::min(bin(b.y, lo_.y, size_.y), n_ - 1);
+  for (int y = y0; y <= y1; ++y) {
+    // The stretch of x where the segment crosses this row of bins.
+    double xa = a.x, xb = b.x;
+    if (b.y - a.y > 0) {
+      const double r0 = lo_.y + y * size_.y, r1 = r0 + size_.y;
+      const double t0 = std::clamp((r0 - a.y) / (b.y - a.y), 0.0, 1.0), t1 = std::clamp((r1 - a.y) / (b.y - a.y), 0.0, 1.0);
+      xa = a.x + t0 * (b.x - a.x), xb = a.x + t1 * (b.x - a.x);
+    }
+    if (xa > xb) std::swap(xa, xb);
+    const int x0 = std::max(bin(xa, lo_.x, size_.x) - 1, 0), x1 = std::min(bin(xb, lo_.x, size_.x) + 1, n_ - 1);
+    for (int x = x0; x <= x1; ++x) {
+      const size_t k = size_t(y) * size_t(n_) + size_t(x);
+      for (int32_t at = start_[k]; at < start_[k + 1]; ++at) {
+        const int32_t i = items_[size_t(at)];
+        if (mark[size_t(i)] != call) mark[size_t(i)] = call, out.push_back(i);
+      }
+    }
+  }
+}
+
+void hide_behind(const OccluderGrid& occluders, Vec3 p0, Vec3 p1, std::vector<detail::Interval>& intervals) {
+  if (intervals.empty()) return;
+  const double first = intervals.front().t0, last = intervals.back().t1;
+  Vec2 lo, hi;
+  segment_box(p0, p1, intervals, lo, hi);
+  thread_local std::vector<int32_t> candidates;
+  const Vec3 d = p1 - p0;
+  const Vec3 from = p0 + first * d, to = p0 + last * d;  // Z > 0 on the intervals
+  occluders.near({from.x / from.z, from.y / from.z}, {to.x / to.z, to.y / to.z}, candidates);
+  for (const int32_t i : candidates)
+    if (!hide_behind_one(occluders.all()[size_t(i)], p0, p1, first, last, lo, hi, intervals)) return;
 }
 
 }  // namespace avenues

@@ -115,7 +115,7 @@ struct SeenEdge {
 /// The outlines of the shadows on the faces each avenue sees, clipped to its mask like the
 /// lines of its cell and hidden behind furniture like them (Layer::Shadows, thin).
 void draw_shadow_outlines(const CellComplex& c, const LineScene& scene, const Camera& cam, const VisibleSet& vs,
-                          const std::vector<Occluder>& occluders, std::vector<Stroke>& out) {
+                          const OccluderGrid& occluders, std::vector<Stroke>& out) {
   if (scene.shadows.lights.empty()) return;
   const Projector pr(cam, std::nullopt);
   const ImageToRaster to_raster = cam.image_to_raster();
@@ -182,10 +182,12 @@ Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& ca
   // Furniture in a visible cell: the edges it shows from this eye, and the triangles that hide.
   std::vector<SeenEdge> seen;
   std::vector<int32_t> seen_start;  // per piece, into `seen`; empty unless drawn
-  std::vector<Occluder> occluders;
+  std::map<CellId, std::vector<int32_t>> drawn_in;  // per visible cell: its pieces with edges seen, ascending
+  OccluderGrid occluders;
   if (options.furniture && !cam.is_parallel()) {
     const auto& pieces = scene.furniture.pieces;
     seen_start.assign(pieces.size() + 1, 0);
+    std::vector<Occluder> hiding;
     for (size_t i = 0; i < pieces.size(); ++i) {
       const FurniturePiece& p = pieces[i];
       seen_start[i] = int32_t(seen.size());
@@ -198,9 +200,12 @@ Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& ca
         Weight w;
         if (edge_is_seen(p.edges[e], facing, options.crease_deg, w)) seen.push_back({int32_t(i), int32_t(e), w});
       }
-      add_occluders(p, facing, cam, occluders);
+      if (seen_start[i] != int32_t(seen.size()))
+        for (CellId id : p.cells) drawn_in[id].push_back(int32_t(i));
+      add_occluders(p, facing, cam, hiding);
     }
     seen_start[pieces.size()] = int32_t(seen.size());
+    occluders = OccluderGrid(std::move(hiding));
   }
 
   // A line seen end-on in a parallel projection (a wall's vertical edge in a plan) is a
@@ -237,10 +242,11 @@ Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& ca
           lines.push_back({cl.line, s});
       }
       if (seen.empty()) continue;
-      for (size_t i = 0; i + 1 < seen_start.size(); ++i) {
-        const FurniturePiece& p = scene.furniture.pieces[i];
-        if (seen_start[i] == seen_start[i + 1] || !std::binary_search(p.cells.begin(), p.cells.end(), a.cell)) continue;
-        for (int32_t k = seen_start[i]; k < seen_start[i + 1]; ++k) {
+      const auto in_cell = drawn_in.find(a.cell);
+      if (in_cell == drawn_in.end()) continue;
+      for (const int32_t i : in_cell->second) {
+        const FurniturePiece& p = scene.furniture.pieces[size_t(i)];
+        for (int32_t k = seen_start[size_t(i)]; k < seen_start[size_t(i) + 1]; ++k) {
           const FurnitureEdge& e = p.edges[size_t(seen[size_t(k)].edge)];
           const Vec3 w0 = p.mesh.vertices[size_t(e.v[0])], w1 = p.mesh.vertices[size_t(e.v[1])];
           Interval s{0, 1};

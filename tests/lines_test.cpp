@@ -555,3 +555,49 @@ TEST(Walkthrough, FramesWalkStraightAndAFrameInsideAWallIsNamed) {
   EXPECT_EQ(frame_path("out/walk.svg", 2, 10), "out/walk-0003.svg");
   EXPECT_EQ(frame_path("walk.pdf", 11999, 12000), "walk-12000.pdf");
 }
+
+// The occluders binned on the picture plane hide exactly what testing every occluder
+// hides: thousands of small triangles (a steel structure's members) and a few that reach
+// behind the eye, against segments long and short, steep and level.
+TEST(Lines, TheOccluderGridHidesWhatEveryOccluderHides) {
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> u(-1, 1), depth(2, 20), small(-0.3, 0.3);
+  const Camera cam = Camera::look_at({0, 0, 0}, {1, 0, 0}, 90, 640, 480);
+  FurniturePiece piece;
+  for (int t = 0; t < 4000; ++t) {
+    const Vec3 c{depth(rng), 10 * u(rng), 5 * u(rng)};
+    const int first = int(piece.mesh.vertices.size());
+    for (int k = 0; k < 3; ++k) piece.mesh.vertices.push_back(c + Vec3{small(rng), small(rng), small(rng)});
+    piece.mesh.triangles.push_back({first, first + 1, first + 2});
+    piece.mesh.polygon_of.push_back(t);
+  }
+  for (int t = 0; t < 3; ++t) {  // reaching behind the eye: unbounded on the picture plane
+    const int first = int(piece.mesh.vertices.size());
+    piece.mesh.vertices.insert(piece.mesh.vertices.end(), {{-1, double(t) - 3, -1}, {5, 3 - double(t), -1}, {5, 0, 2}});
+    piece.mesh.triangles.push_back({first, first + 1, first + 2});
+    piece.mesh.polygon_of.push_back(4000 + t);
+  }
+  piece.mesh.closed = false;
+  std::vector<Occluder> all;
+  add_occluders(piece, std::vector<uint8_t>(piece.mesh.triangles.size(), 1), cam, all);
+  ASSERT_GT(all.size(), 3000u);
+  const OccluderGrid grid(all);
+  int hidden = 0;
+  for (int s = 0; s < 3000; ++s) {
+    const double reach = s % 3 == 0 ? 10 : s % 3 == 1 ? 2 : 0.2;
+    const Vec3 a{depth(rng) + 2, 10 * u(rng), 5 * u(rng)};
+    const Vec3 b = a + reach * Vec3{u(rng), u(rng), s % 5 == 0 ? 0 : u(rng)};
+    const Vec3 p0 = cam.camera_from_world(a), p1 = cam.camera_from_world(b);
+    if (!(p0.z > 0.1 && p1.z > 0.1)) continue;
+    std::vector<detail::Interval> every{{0, 1}}, binned{{0, 1}};
+    hide_behind(all, p0, p1, every);
+    hide_behind(grid, p0, p1, binned);
+    ASSERT_EQ(binned.size(), every.size()) << "segment " << s;
+    for (size_t k = 0; k < every.size(); ++k) {
+      EXPECT_EQ(binned[k].t0, every[k].t0) << "segment " << s;
+      EXPECT_EQ(binned[k].t1, every[k].t1) << "segment " << s;
+    }
+    hidden += every.size() != 1 || every[0].t0 != 0 || every[0].t1 != 1;
+  }
+  EXPECT_GT(hidden, 300) << "the occluders hide parts of many segments";
+}
