@@ -992,13 +992,15 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
   }
   if (!(box.lo.x <= box.hi.x)) throw std::invalid_argument("mesh scene: no triangles and nothing to include");
   frame_scene(out, box, params.margin);
-  const SoupSplit split = split_detail(soup, polygon, params.detail_above, params.structural_triangles);
+  SoupSplit split = split_detail(soup, polygon, params.detail_above, params.structural_triangles);
   // What cuts space: the whole soup, or its structural part (`cut_of`: its soup numbers).
   std::vector<SoupTriangle> structural, detail;
   std::vector<size_t> cut_of;
   std::vector<int64_t> detail_polygon;
   std::map<size_t, size_t> dropped;  // mesh -> triangles with no area
-  if (split.detail_triangles > 0) {
+  auto partition = [&] {
+    structural.clear(), detail.clear(), cut_of.clear(), detail_polygon.clear(), dropped.clear();
+    if (split.detail_triangles == 0) return;
     for (size_t t = 0; t < soup.size(); ++t) {
       if (!split.detail[t]) {
         structural.push_back(soup[t]);
@@ -1010,9 +1012,24 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
         dropped[mesh_of[t]]++;
       }
     }
+  };
+  partition();
+  // A cluttered soup (its planes cut space into more than params.leaf_budget leaves) is
+  // split as a large one is, by a quarter of the triangles that cut space at each try.
+  SoupBspStats stats;
+  bool cluttered = false;
+  for (;;) {
+    try {
+      stats = decompose_soup(split.detail_triangles > 0 ? structural : soup, out.far_box, out, params.leaf_budget);
+      break;
+    } catch (const SoupTooCluttered&) {
+      if (!out.timings.empty()) out.timings.back().stage = "decompose, abandoned";
+      cluttered = true;
+      split = split_detail(soup, polygon, 0, split.structural / 4);
+      partition();
+    }
   }
   const std::vector<SoupTriangle>& cut = split.detail_triangles > 0 ? structural : soup;
-  const SoupBspStats stats = decompose_soup(cut, out.far_box, out);
   for (size_t t : stats.degenerate) dropped[mesh_of[cut_of.empty() ? t : cut_of[t]]]++;
   for (const auto& [mesh, count] : dropped)
     out.warnings.push_back((meshes[mesh].path.empty() ? std::string("mesh") : meshes[mesh].path) + ": " +
@@ -1047,8 +1064,10 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     const std::string source = meshes.size() == 1 && !meshes[0].path.empty() ? meshes[0].path : "the meshes";
     add_detail_objects(out, detail, detail_polygon, source);
     std::ostringstream said;
-    said << source << ": " << split.structural + split.detail_triangles
-         << " triangles with area, more than a decomposition takes in seconds: its largest polygons (from "
+    said << source << ": " << split.structural + split.detail_triangles << " triangles with area"
+         << (cluttered ? " whose planes cut space into more than " + std::to_string(params.leaf_budget) + " pieces"
+                       : std::string(", more than a decomposition takes in seconds"))
+         << ": its largest polygons (from "
          << split.smallest_structural << " m², " << split.structural << " triangles) cut space into cells, and the other "
          << split.detail_triangles << " triangles are detail, drawn in the " << out.objects.size()
          << " cells they cross; the search sees through detail, the pictures show it";

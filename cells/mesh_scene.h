@@ -46,6 +46,10 @@ struct MeshSceneParams {
   /// cut space, and every other polygon is detail, drawn in the cells it crosses.
   size_t detail_above = 50'000;
   size_t structural_triangles = 16'000;
+  /// Bsp only: a soup whose planes cut space into more leaves than this (cluttered: it
+  /// would take minutes and gigabytes) is split too, its largest polygons a quarter as
+  /// many triangles at each try (0: no limit).
+  size_t leaf_budget = 60'000;
 };
 
 /// The free space of meshes as convex cells (Cell::prism = false, CellKind::Outside), by
@@ -55,9 +59,10 @@ struct MeshSceneParams {
 /// opaque; portals
 /// (PortalKind::Open) are the rest of the cells' boundaries. Real lines: the edges between
 /// polygons that are not coplanar, and the open edges of surfaces (LineKind::Sheet).
-/// A soup with more than params.detail_above triangles with area: only its largest
-/// polygons cut space (cells/soup_detail.h); the others are detail, one Object per cell
-/// they cross (Object::cell), and a warning says how many of each.
+/// A soup with more than params.detail_above triangles with area, or whose planes cut space
+/// into more than params.leaf_budget leaves: only its largest polygons cut space
+/// (cells/soup_detail.h); the others are detail, one Object per cell they cross
+/// (Object::cell), and a warning says how many of each.
 ///
 /// Nef: free space around solids, the far box minus the union of the meshes as CGAL Nef
 /// polyhedra, decomposed by CGAL::convex_decomposition_3 into convex cells (Cell::prism =

@@ -591,6 +591,7 @@ struct Builder {
   };
   std::vector<Leaf> leaves;
   SoupBspStats stats;
+  size_t leaf_budget = 0;  ///< more leaves throw SoupTooCluttered; 0: no limit
 
   /// The splitter for a cell: the plane of one of its interior fragments, the cheapest by
   /// 8·splits + |front − back| on a sample, non-axis-aligned planes paying extra. `lopsided`:
@@ -683,6 +684,8 @@ struct Builder {
         stats.depth = std::max(stats.depth, t.depth);
         stats.fragments += t.frags.size();
         leaves.push_back({std::move(t.faces), std::move(t.frags)});
+        if (leaf_budget > 0 && leaves.size() > leaf_budget)
+          throw SoupTooCluttered("the soup's planes cut space into more than " + std::to_string(leaf_budget) + " leaves");
         continue;
       }
       const int id = t.node;
@@ -921,13 +924,15 @@ std::vector<Vec3> joined_face(const std::vector<const Poly*>& parts, Vec3 n, Rou
 
 }  // namespace
 
-SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Box3& box, CellComplex& out) {
+SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Box3& box, CellComplex& out,
+                            size_t leaf_budget) {
   struct ForgetPlanes {
     ~ForgetPlanes() { forget_plane_facts(); }
   } forget;  // on every way out
   const double scale = std::max({1.0, std::fabs(box.lo.x), std::fabs(box.hi.x), std::fabs(box.lo.y), std::fabs(box.hi.y),
                                  std::fabs(box.lo.z), std::fabs(box.hi.z)});
   Builder b{box, far_planes(box), {}, {}, {}, 1e-12 * scale, {}, {}};
+  b.leaf_budget = leaf_budget;
   std::vector<Frag> frags;
   std::vector<CellFace> root;
   std::vector<MaterialId> material;

@@ -11,6 +11,8 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
+#include <stdexcept>
 #include <vector>
 
 #include "cells/cell_complex.h"
@@ -34,6 +36,13 @@ struct SoupBspStats {
   int depth = 0;             ///< deepest leaf
 };
 
+/// A soup whose planes cut space into more leaves than the decomposition was given
+/// (decompose_soup's leaf_budget): cluttered, it would take minutes and gigabytes.
+class SoupTooCluttered : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 /// Decomposes `far_box` (which must hold every triangle strictly inside) into the
 /// convex leaves of a BSP of the triangles' planes. Fills out.cells (Cell::prism =
 /// false, CellKind::Outside) and out.portals (PortalKind::Open, convex pieces of the
@@ -44,6 +53,9 @@ struct SoupBspStats {
 /// and none of their planes divides them (a convex cluster: a sphere), an axis-aligned
 /// plane through their median halves it instead. Leaves are then joined across faces that
 /// hold nothing wherever the union stays convex, exactly: one cell is then several leaves.
-SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Box3& far_box, CellComplex& out);
+/// With a leaf_budget, a tree that grows more leaves throws SoupTooCluttered, having added
+/// nothing to `out` but the time it took (a "decompose" timing).
+SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Box3& far_box, CellComplex& out,
+                            size_t leaf_budget = 0);
 
 }  // namespace avenues

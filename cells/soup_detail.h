@@ -7,7 +7,8 @@
 // decomposition runs out of time and memory before it ends. Quake's qbsp met the same
 // growth and answered it with detail brushes: they are drawn, but the tree that vis reads
 // is built from the structural brushes alone. Here the split is made by size, not by
-// hand: where a soup holds more triangles than a decomposition takes in seconds, its
+// hand: where a soup holds more triangles than a decomposition takes in seconds, or its
+// planes cut space into more pieces than that (cells/mesh_scene.h: MeshSceneParams), its
 // largest polygons (the slabs, walls and broad plates that hide most) cut space, up to a
 // budget of triangles, and every other polygon is detail. Each detail polygon is cut to
 // the convex cells it crosses and drawn there as part of that cell's one detail object,

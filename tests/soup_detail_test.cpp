@@ -249,3 +249,31 @@ TEST(SoupDetail, APolygonCutIntoManyCellsTakesOneShade) {
   EXPECT_EQ(split_shades.size(), whole_shades.size()) << "one shade per face";
   EXPECT_GT(piece_shades.size(), split_shades.size()) << "lit piece by piece, the pieces differ";
 }
+
+// A soup under the count that splits a large one, whose planes cut space into more pieces
+// than the decomposition is given (cluttered), is split too: the first try is abandoned,
+// and a quarter of its triangles cut space at each try until the tree fits.
+TEST(SoupDetail, AClutteredSoupIsSplitTooAndSaysSo) {
+  const int k = 3;
+  const std::vector<Mesh> meshes = boxes_and_bars(k);
+  MeshSceneParams whole_params;
+  whole_params.leaf_budget = 0;
+  const CellComplex whole = build_mesh_scene(meshes, whole_params);
+  EXPECT_TRUE(whole.objects.empty());
+  MeshSceneParams p;
+  p.leaf_budget = 40;
+  const CellComplex split = build_mesh_scene(meshes, p);
+  ASSERT_FALSE(split.objects.empty());
+  EXPECT_LT(split.cells.size(), whole.cells.size());
+  bool said = false, abandoned = false;
+  for (const std::string& w : split.warnings) said |= w.find("into more than 40 pieces") != std::string::npos;
+  for (const StageTime& t : split.timings) abandoned |= t.stage == "decompose, abandoned";
+  EXPECT_TRUE(said);
+  EXPECT_TRUE(abandoned);
+  // The try that fitted made at most 40 leaves, so at most 40 cells; nothing of the
+  // abandoned tries is left in the complex (build_mesh_scene checks its invariants).
+  EXPECT_LE(split.cells.size(), 40u);
+  double pieces = 0;
+  for (const Object& o : split.objects) pieces += area_of(*o.model);
+  EXPECT_GT(pieces, area_of(meshes[0]) - 5.0 * k * k - 1e-9) << "every bar is detail, and more";
+}
