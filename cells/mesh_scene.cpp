@@ -864,12 +864,9 @@ void add_real_lines(CellComplex& c, const std::vector<RealLine>& lines) {
     lb.add(l.a), lb.add(l.b);
     const double len = length(l.b - l.a);
     if (!(len > min_len)) continue;
-    c.cells_near({lb.lo - Vec3{tol, tol, tol}, lb.hi + Vec3{tol, tol, tol}}, candidates);
+    c.cells_near(lb.grown(tol), candidates);
     for (const CellId i : candidates) {
-      const Box3& b = bounds[size_t(i)];
-      if (lb.lo.x > b.hi.x + tol || lb.hi.x < b.lo.x - tol || lb.lo.y > b.hi.y + tol || lb.hi.y < b.lo.y - tol ||
-          lb.lo.z > b.hi.z + tol || lb.hi.z < b.lo.z - tol)
-        continue;
+      if (!lb.meets(bounds[size_t(i)], tol)) continue;
       // The stretch inside every face's plane (grown by tol): a + t·s <= tol; and within
       // the cell's heights (grown by tol), which near an acute edge of a cell the grown
       // planes alone do not keep.

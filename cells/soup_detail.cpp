@@ -128,12 +128,9 @@ double add_detail_objects(CellComplex& out, const std::vector<SoupTriangle>& det
     if (!(triangle_area(tri) > 0)) continue;
     Box3 tb;
     for (Vec3 p : tri.p) tb.add(p);
-    out.cells_near({tb.lo - Vec3{tol, tol, tol}, tb.hi + Vec3{tol, tol, tol}}, candidates);
+    out.cells_near(tb.grown(tol), candidates);
     for (const CellId c : candidates) {
-      const Box3& b = bounds[size_t(c)];
-      if (tb.lo.x > b.hi.x + tol || tb.hi.x < b.lo.x - tol || tb.lo.y > b.hi.y + tol || tb.hi.y < b.lo.y - tol ||
-          tb.lo.z > b.hi.z + tol || tb.hi.z < b.lo.z - tol)
-        continue;
+      if (!tb.meets(bounds[size_t(c)], tol)) continue;
       piece.assign(tri.p.begin(), tri.p.end());
       for (const Face& f : out.cells[size_t(c)].faces) {
         piece = cut_polygon(piece, [&](Vec3 p) { return -f.plane.eval(p); });

@@ -134,6 +134,12 @@ struct Box3 {
     return p.x >= lo.x - tol && p.x <= hi.x + tol && p.y >= lo.y - tol && p.y <= hi.y + tol &&
            p.z >= lo.z - tol && p.z <= hi.z + tol;
   }
+  /// Whether this box and o grown by tol share a point (closed).
+  bool meets(const Box3& o, double tol = 0) const {
+    return lo.x <= o.hi.x + tol && o.lo.x - tol <= hi.x && lo.y <= o.hi.y + tol && o.lo.y - tol <= hi.y &&
+           lo.z <= o.hi.z + tol && o.lo.z - tol <= hi.z;
+  }
+  Box3 grown(double tol) const { return {lo - Vec3{tol, tol, tol}, hi + Vec3{tol, tol, tol}}; }
 };
 
 /// Plane n·p + d = 0. For a cell's face, n points out of the cell (unit length).

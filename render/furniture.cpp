@@ -95,10 +95,7 @@ Furniture place_furniture(const CellComplex& c) {
       continue;
     }
     for (CellId id = 0; id < CellId(c.cells.size()); ++id) {
-      const Box3 b = c.cells[size_t(id)].bounds();
-      if (b.lo.x <= box.hi.x && box.lo.x <= b.hi.x && b.lo.y <= box.hi.y && box.lo.y <= b.hi.y &&
-          b.lo.z <= box.hi.z && box.lo.z <= b.hi.z)
-        p.cells.push_back(id);
+      if (c.cells[size_t(id)].bounds().meets(box)) p.cells.push_back(id);
     }
     f.pieces.push_back(std::move(p));
   }
