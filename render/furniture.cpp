@@ -171,13 +171,18 @@ void add_occluders(const FurniturePiece& p, const std::vector<uint8_t>& facing, 
 
 namespace {
 
-/// The part of the segment's box [lo, hi] on the picture plane where `intervals` lie.
-void segment_box(Vec3 p0, Vec3 p1, const std::vector<detail::Interval>& intervals, Vec2& lo, Vec2& hi) {
-  const double first = intervals.front().t0, last = intervals.back().t1;
+/// The ends on the picture plane of the stretch of the segment where `intervals` lie
+/// (from the first's start to the last's end), and their box [lo, hi].
+struct PictureStretch {
+  Vec2 a, b, lo, hi;
+};
+PictureStretch picture_stretch(Vec3 p0, Vec3 p1, const std::vector<detail::Interval>& intervals) {
   const Vec3 d = p1 - p0;
-  const Vec3 a = p0 + first * d, b = p0 + last * d;  // Z > 0 on the intervals
-  lo = {std::min(a.x / a.z, b.x / b.z), std::min(a.y / a.z, b.y / b.z)};
-  hi = {std::max(a.x / a.z, b.x / b.z), std::max(a.y / a.z, b.y / b.z)};
+  const Vec3 a = p0 + intervals.front().t0 * d, b = p0 + intervals.back().t1 * d;  // Z > 0 on the intervals
+  PictureStretch s{{a.x / a.z, a.y / a.z}, {b.x / b.z, b.y / b.z}, {}, {}};
+  s.lo = {std::min(s.a.x, s.b.x), std::min(s.a.y, s.b.y)};
+  s.hi = {std::max(s.a.x, s.b.x), std::max(s.a.y, s.b.y)};
+  return s;
 }
 
 /// Subtracts what occluder o hides of the intervals (a set difference: in any order of
@@ -198,10 +203,9 @@ bool hide_behind_one(const Occluder& o, Vec3 p0, Vec3 p1, double first, double l
 void hide_behind(const std::vector<Occluder>& occluders, Vec3 p0, Vec3 p1, std::vector<detail::Interval>& intervals) {
   if (intervals.empty()) return;
   const double first = intervals.front().t0, last = intervals.back().t1;
-  Vec2 lo, hi;
-  segment_box(p0, p1, intervals, lo, hi);
+  const PictureStretch s = picture_stretch(p0, p1, intervals);
   for (const Occluder& o : occluders)
-    if (!hide_behind_one(o, p0, p1, first, last, lo, hi, intervals)) return;
+    if (!hide_behind_one(o, p0, p1, first, last, s.lo, s.hi, intervals)) return;
 }
 
 OccluderGrid::OccluderGrid(std::vector<Occluder> occluders) : occluders_(std::move(occluders)) {
@@ -278,14 +282,11 @@ void OccluderGrid::near(Vec2 a, Vec2 b, std::vector<int32_t>& out) const {
 void hide_behind(const OccluderGrid& occluders, Vec3 p0, Vec3 p1, std::vector<detail::Interval>& intervals) {
   if (intervals.empty()) return;
   const double first = intervals.front().t0, last = intervals.back().t1;
-  Vec2 lo, hi;
-  segment_box(p0, p1, intervals, lo, hi);
+  const PictureStretch s = picture_stretch(p0, p1, intervals);
   thread_local std::vector<int32_t> candidates;
-  const Vec3 d = p1 - p0;
-  const Vec3 from = p0 + first * d, to = p0 + last * d;  // Z > 0 on the intervals
-  occluders.near({from.x / from.z, from.y / from.z}, {to.x / to.z, to.y / to.z}, candidates);
+  occluders.near(s.a, s.b, candidates);
   for (const int32_t i : candidates)
-    if (!hide_behind_one(occluders.all()[size_t(i)], p0, p1, first, last, lo, hi, intervals)) return;
+    if (!hide_behind_one(occluders.all()[size_t(i)], p0, p1, first, last, s.lo, s.hi, intervals)) return;
 }
 
 }  // namespace avenues
