@@ -132,23 +132,25 @@ int32_t ScreenSceneBuilder::add_clip(const std::vector<Vec2>& picture_polygon, d
 namespace {
 
 /// Whether the box around a fixed-point outline holds the centre (i + ½, j + ½) of some
-/// sample. A sample is inside a polygon only if its centre is (scanline.h), so a polygon
-/// whose box holds none (a far piece of furniture's tiny triangle) colours nothing, takes
-/// part in no depth resolution and is better never put on the raster.
-bool covers_a_sample_centre(const std::vector<FixedPoint>& outline) {
+/// sample of a width × height raster. A sample is inside a polygon only if its centre is
+/// (scanline.h), so a polygon whose box holds none (a far piece of furniture's tiny
+/// triangle, or one wholly off the picture) colours nothing, takes part in no depth
+/// resolution and is better never put on the raster.
+bool covers_a_sample_centre(const std::vector<FixedPoint>& outline, int width, int height) {
   int64_t x0 = outline[0].x, x1 = x0, y0 = outline[0].y, y1 = y0;
   for (const FixedPoint& p : outline) {
     x0 = std::min(x0, p.x), x1 = std::max(x1, p.x);
     y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
   }
   constexpr int64_t half = kSubpixelOne / 2;
-  // The first centre at or after lo, and whether it is at or before hi (floor division).
-  auto holds_centre = [](int64_t lo, int64_t hi) {
+  // The first centre at or after lo (floor division), at least the raster's first, and
+  // whether it is at or before hi and on the raster.
+  auto holds_centre = [](int64_t lo, int64_t hi, int n) {
     const int64_t a = lo - half;
-    const int64_t i = a >= 0 ? (a + kSubpixelOne - 1) / kSubpixelOne : -((-a) / kSubpixelOne);
-    return i * kSubpixelOne + half <= hi;
+    const int64_t i = std::max<int64_t>(0, a >= 0 ? (a + kSubpixelOne - 1) / kSubpixelOne : -((-a) / kSubpixelOne));
+    return i < n && i * kSubpixelOne + half <= hi;
   };
-  return holds_centre(x0, x1) && holds_centre(y0, y1);
+  return holds_centre(x0, x1, width) && holds_centre(y0, y1, height);
 }
 
 }  // namespace
@@ -159,7 +161,7 @@ bool ScreenSceneBuilder::add(const std::vector<Vec3>& points, Vec3 n, double d, 
   ScreenPolygon poly;
   poly.outline = out_.take_outline();
   // Nothing of area on the raster, or it could colour no sample.
-  if (!project(points, poly) || !covers_a_sample_centre(poly.outline)) {
+  if (!project(points, poly) || !covers_a_sample_centre(poly.outline, out_.raster.width, out_.raster.height)) {
     out_.keep_outline(std::move(poly.outline));
     return false;
   }
@@ -311,33 +313,51 @@ bool ScreenSceneBuilder::may_show(const Box3& box) const {
   return !(hi.x < cull_lo_.x || lo.x > cull_hi_.x || hi.y < cull_lo_.y || lo.y > cull_hi_.y);
 }
 
+bool ScreenSceneBuilder::may_cover_a_sample(Vec2 lo, Vec2 hi) const {
+  const RasterMap& m = out_.raster;
+  // The box on the raster (y runs down), grown by 1/16 of a sample: far more than the
+  // 1/512 that rounding to the fixed point moves a corner, so this is never stricter than
+  // covers_a_sample_centre on the outline add() would make.
+  constexpr double grow = 1.0 / 16;
+  const Vec2 a = m.raster_from_image({lo.x, hi.y}), b = m.raster_from_image({hi.x, lo.y});
+  auto holds_centre = [](double from, double to, int n) {
+    const double i = std::max(0.0, std::ceil(from - grow - 0.5));  // the first centre i + ½ at or after from
+    return i < double(n) && i + 0.5 <= to + grow;
+  };
+  return holds_centre(a.x, b.x, m.width) && holds_centre(a.y, b.y, m.height);
+}
+
 void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<int>& corners,
                                           const std::vector<Vec3>& corner_normals, const Material& material,
                                           Placement where, const PolygonSource& source) {
-  std::vector<Vec3> cam;
+  std::vector<Vec3>& cam = polygon_cam_;
+  cam.clear();
   Vec3 n{0, 0, 0}, centroid{0, 0, 0};
   for (size_t k = 0; k < corners.size(); ++k) {
     const Vec3 p = mesh.vertices[size_t(corners[k])], q = mesh.vertices[size_t(corners[(k + 1) % corners.size()])];
     n = n + cross(p, q);  // Newell's normal: outwards for counter-clockwise corners
-    cam.push_back(camera_.camera_from_world(p));
+    cam.push_back(mesh_cam_[size_t(corners[k])]);
     centroid = centroid + cam.back();
   }
   const double area = length(n);
   if (!(area > 0)) return;
-  if (cull_) {
-    // Wholly beyond the near plane and outside the mask's box: it cannot show.
-    Vec2 lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
-    bool in_front = true;
-    for (const Vec3& c : cam) {
-      if (!(c.z >= camera_.near)) {
-        in_front = false;
-        break;
-      }
-      const Vec2 q{c.x / c.z, c.y / c.z};
-      lo = {std::min(lo.x, q.x), std::min(lo.y, q.y)};
-      hi = {std::max(hi.x, q.x), std::max(hi.y, q.y)};
+  // Wholly beyond the near plane, its box on the picture plane tells what cannot show:
+  // a polygon outside the mask's box (the mask it would be clipped to lies inside it), or
+  // one that holds no sample's centre.
+  Vec2 lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
+  bool in_front = true;
+  for (const Vec3& c : cam) {
+    if (!(c.z >= camera_.near)) {
+      in_front = false;
+      break;
     }
-    if (in_front && (hi.x < cull_lo_.x || lo.x > cull_hi_.x || hi.y < cull_lo_.y || lo.y > cull_hi_.y)) return;
+    const Vec2 q{c.x / c.z, c.y / c.z};
+    lo = {std::min(lo.x, q.x), std::min(lo.y, q.y)};
+    hi = {std::max(hi.x, q.x), std::max(hi.y, q.y)};
+  }
+  if (in_front) {
+    if (cull_ && (hi.x < cull_lo_.x || lo.x > cull_hi_.x || hi.y < cull_lo_.y || lo.y > cull_hi_.y)) return;
+    if (!may_cover_a_sample(lo, hi)) return;
   }
   centroid = (1.0 / double(cam.size())) * centroid;
   const Vec3 nc = camera_dir(n);
@@ -418,6 +438,8 @@ void ScreenSceneBuilder::add_mesh(const Mesh& mesh, const MeshPaint& paint, Plac
     m = &with_normals;
   }
   const std::vector<Vec3>& cn = m->corner_normals;
+  mesh_cam_.resize(mesh.vertices.size());
+  for (size_t v = 0; v < mesh.vertices.size(); ++v) mesh_cam_[v] = camera_.camera_from_world(mesh.vertices[v]);
   std::vector<int> corners;
   std::vector<Vec3> normals;
   for (size_t t = 0; t < n;) {
@@ -439,9 +461,11 @@ void ScreenSceneBuilder::add_mesh(const Mesh& mesh, const MeshPaint& paint, Plac
     if (fan) {
       add_mesh_polygon(mesh, corners, normals, material, where, source);
     } else {
-      for (size_t k = t; k < end; ++k)
-        add_mesh_polygon(mesh, {mesh.triangles[k][0], mesh.triangles[k][1], mesh.triangles[k][2]},
-                         {cn[3 * k], cn[3 * k + 1], cn[3 * k + 2]}, material, where, source);
+      for (size_t k = t; k < end; ++k) {
+        triangle_corners_.assign(mesh.triangles[k].begin(), mesh.triangles[k].end());
+        triangle_normals_.assign(cn.begin() + std::ptrdiff_t(3 * k), cn.begin() + std::ptrdiff_t(3 * k + 3));
+        add_mesh_polygon(mesh, triangle_corners_, triangle_normals_, material, where, source);
+      }
     }
     t = end;
   }

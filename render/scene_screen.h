@@ -186,8 +186,15 @@ class ScreenSceneBuilder {
                const PolygonSource& source, size_t pieces_before);
   Vec3 camera_dir(Vec3 v) const { return {dot(v, camera_.right), dot(v, camera_.up), dot(v, camera_.forward)}; }
   /// One input polygon of a mesh: its corners and, per corner, the normal for smooth shading.
+  /// Its corners' camera-space points are mesh_cam_'s (add_mesh puts them there).
   void add_mesh_polygon(const Mesh& mesh, const std::vector<int>& corners, const std::vector<Vec3>& normals,
                         const Material& material, Placement where, const PolygonSource& source);
+  /// Whether a polygon whose picture-plane box (x = X/Z, y = Y/Z, every corner beyond the
+  /// near plane) is [lo, hi] might hold the centre of one of the raster's samples. Grown by
+  /// more than the fixed point's rounding, so that it never says no where add() would
+  /// have drawn: a far piece of furniture smaller than a sample, or one off the picture,
+  /// goes before it is shaded or projected.
+  bool may_cover_a_sample(Vec2 lo, Vec2 hi) const;
 
   Camera camera_;
   SceneOptions options_;
@@ -197,6 +204,10 @@ class ScreenSceneBuilder {
   Vec2 cull_lo_, cull_hi_;
   std::vector<Vec3> near_cut_, plane_cut_;
   std::vector<Vec3> face_cam_;       ///< add_face: the face in camera space (kept: a view adds thousands)
+  std::vector<Vec3> mesh_cam_;       ///< add_mesh: the mesh's vertices in camera space, each transformed once
+  std::vector<Vec3> polygon_cam_;    ///< add_mesh_polygon: the polygon's corners in camera space
+  std::vector<int> triangle_corners_;       ///< add_mesh: one triangle of a polygon that is not a fan
+  std::vector<Vec3> triangle_normals_;      ///< and its corners' normals
   std::vector<FixedPoint> clip_points_;  ///< add_clip: the grown corners
   bool has_cut_ = false;
   Vec3 cut_n_;          ///< options.cut in camera space, kept where dot(cut_n_, P) + cut_d_ >= 0

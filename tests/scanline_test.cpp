@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <map>
 #include <random>
 
 #include "cells/build_cells.h"
@@ -386,6 +387,65 @@ TEST(Scanline, ObjectsInACellResolveDepthAgainstItsFaces) {
     EXPECT_GE(a, 0.999);
     EXPECT_EQ(off_edge, 0);
   }
+}
+
+TEST(Scanline, PolygonsSmallerThanASampleColourTheSamplesTheyHoldAndNoOthers) {
+  // Triangles far smaller than a sample (the far detail of a steel frame), each its own
+  // polygon: some hold one sample's centre, some hold none, some lie across the raster's
+  // edge or wholly beyond it. A polygon that holds a centre on the raster must colour that
+  // sample, however little of the sample it covers; the others must not be drawn at all
+  // (ScreenSceneBuilder drops them before shading them).
+  const Camera cam = Camera::look_at({0, -10, 0}, {0, 0, 0}, 50, 64, 48);
+  const int w = cam.width, h = cam.height;
+  std::mt19937 rng(20261205);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Vec3> vertices;
+  std::vector<std::vector<int>> polygons;
+  auto at = [&](Vec2 raster, double depth) {
+    const Vec2 p = cam.image_from_raster(raster);
+    return cam.eye + depth * (p.x * cam.right + p.y * cam.up + cam.forward);
+  };
+  // A triangle around the raster point c, every corner within `reach` of it (in samples),
+  // at a depth of its own.
+  auto triangle_around = [&](Vec2 c, double reach) {
+    const double depth = 5 + 10 * u(rng), turn = 6.283185307179586 * u(rng);
+    for (int k = 0; k < 3; ++k) {
+      const double a = turn + 2.0943951023931953 * k, r = reach * (0.6 + 0.4 * u(rng));
+      vertices.push_back(at({c.x + r * std::cos(a), c.y + r * std::sin(a)}, depth));
+    }
+    const int n = int(vertices.size());
+    polygons.push_back({n - 3, n - 2, n - 1});
+  };
+  // Samples (i, j) each held by one triangle, from one row and column beyond the raster on
+  // every side; and triangles between four centres, holding none.
+  std::map<int, std::pair<int, int>> holds;  // polygon -> the sample whose centre it holds
+  for (int j = -1; j <= h; ++j)
+    for (int i = -1; i <= w; ++i) {
+      if (u(rng) < 0.3) {
+        holds[int(polygons.size())] = {i, j};
+        triangle_around({i + 0.5 + 0.05 * (u(rng) - 0.5), j + 0.5 + 0.05 * (u(rng) - 0.5)}, 0.2 + 0.25 * u(rng));
+      } else if (u(rng) < 0.4) {
+        triangle_around({i + 1.0 + 0.1 * (u(rng) - 0.5), j + 1.0 + 0.1 * (u(rng) - 0.5)}, 0.1 + 0.3 * u(rng));
+      }
+    }
+  SceneOptions so;
+  so.cull_back_faces = false;
+  const ScreenScene scene = screen_scene_of_meshes({mesh_from(vertices, polygons)}, {}, cam, so);
+  Image picture;
+  std::vector<int32_t> items;
+  render_scene(scene, {}, picture, nullptr, &items);
+  long on_raster = 0, right = 0;
+  for (const auto& [polygon, sample] : holds) {
+    const auto [i, j] = sample;
+    if (i < 0 || j < 0 || i >= w || j >= h) continue;
+    ++on_raster;
+    const int32_t id = items[size_t(j) * size_t(w) + size_t(i)];
+    right += id >= 0 && scene.sources[size_t(id)].polygon == polygon;
+  }
+  EXPECT_GT(on_raster, w * h / 5);  // the test looks at something
+  EXPECT_EQ(right, on_raster);
+  // Exactly the polygons that hold a sample's centre on the raster were put on it.
+  EXPECT_EQ(long(scene.polygons.size()), on_raster);
 }
 
 // --- implicitly defined lines ---------------------------------------------------------------
