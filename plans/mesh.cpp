@@ -31,12 +31,20 @@ namespace avenues {
 namespace {
 using PolyMesh = OpenMesh::PolyMesh_ArrayKernelT<>;
 
-Vec3 rotate(Vec3 p, Vec3 deg) {
-  const double ax = rad_from_deg(deg.x), ay = rad_from_deg(deg.y), az = rad_from_deg(deg.z);
-  Vec3 q{p.x, std::cos(ax) * p.y - std::sin(ax) * p.z, std::sin(ax) * p.y + std::cos(ax) * p.z};
-  q = {std::cos(ay) * q.x + std::sin(ay) * q.z, q.y, -std::sin(ay) * q.x + std::cos(ay) * q.z};
-  return {std::cos(az) * q.x - std::sin(az) * q.y, std::sin(az) * q.x + std::cos(az) * q.y, q.z};
-}
+/// A turn about x, then y, then z (degrees), its sines and cosines taken once: placing a
+/// mesh turns every vertex, corner normal and polygon's light point by one.
+struct Rotation {
+  double cx, sx, cy, sy, cz, sz;
+  explicit Rotation(Vec3 deg) {
+    const double ax = rad_from_deg(deg.x), ay = rad_from_deg(deg.y), az = rad_from_deg(deg.z);
+    cx = std::cos(ax), sx = std::sin(ax), cy = std::cos(ay), sy = std::sin(ay), cz = std::cos(az), sz = std::sin(az);
+  }
+  Vec3 operator()(Vec3 p) const {
+    Vec3 q{p.x, cx * p.y - sx * p.z, sx * p.y + cx * p.z};
+    q = {cy * q.x + sy * q.z, q.y, -sy * q.x + cy * q.z};
+    return {cz * q.x - sz * q.y, sz * q.x + cz * q.y, q.z};
+  }
+};
 }  // namespace
 
 namespace {
@@ -654,10 +662,11 @@ Mesh load_object_mesh(const Object& object, std::vector<std::string>* warnings) 
 Mesh place(const Mesh& mesh, const Object& o, double floor_z) {
   Mesh m = mesh;
   const Vec3 at = o.position + Vec3{0, 0, floor_z};
-  for (Vec3& v : m.vertices) v = rotate({v.x * o.scale.x, v.y * o.scale.y, v.z * o.scale.z}, o.rotation_deg) + at;
-  for (Vec3& v : m.polygon_light) v = rotate({v.x * o.scale.x, v.y * o.scale.y, v.z * o.scale.z}, o.rotation_deg) + at;
+  const Rotation rotate(o.rotation_deg);
+  for (Vec3& v : m.vertices) v = rotate({v.x * o.scale.x, v.y * o.scale.y, v.z * o.scale.z}) + at;
+  for (Vec3& v : m.polygon_light) v = rotate({v.x * o.scale.x, v.y * o.scale.y, v.z * o.scale.z}) + at;
   for (Vec3& n : m.corner_normals) {
-    Vec3 r = rotate({n.x / o.scale.x, n.y / o.scale.y, n.z / o.scale.z}, o.rotation_deg);
+    Vec3 r = rotate({n.x / o.scale.x, n.y / o.scale.y, n.z / o.scale.z});
     double l = length(r);
     n = l > 0 ? (1.0 / l) * r : n;
   }

@@ -46,7 +46,7 @@ double floor_of(const CellComplex& complex, const Object& o) {
 /// distinct model made coarser once, then placed as the object is.
 std::vector<std::vector<MeshLevel>> placed_levels(const CellComplex& complex, const ObjectModels& models) {
   std::vector<const Mesh*> meshes;
-  for (const auto& entry : models) meshes.push_back(&entry.second);
+  for (const auto& entry : models) meshes.push_back(entry.second.get());
   std::vector<std::vector<MeshLevel>> made =
       coarser_levels_of(meshes, std::vector<double>(std::begin(kDetailFractions), std::end(kDetailFractions)), 500);
   std::map<std::string, const std::vector<MeshLevel>*> of;
@@ -75,11 +75,13 @@ std::vector<PlacedObject> place_objects(const CellComplex& complex, std::vector<
   ObjectModels loaded;
   CellId hint = kNoCell;
   for (const Object& o : complex.objects) {
-    auto it = loaded.find(mesh_key(o));
-    if (it == loaded.end()) it = loaded.emplace(mesh_key(o), load_object_mesh(o, warnings)).first;
+    const std::string key = mesh_key(o);
+    auto it = loaded.find(key);
+    if (it == loaded.end())
+      it = loaded.emplace(key, o.model ? o.model : std::make_shared<const Mesh>(load_object_mesh(o, warnings))).first;
     PlacedObject p;
     p.name = o.name;
-    p.mesh = place(it->second, o, floor_of(complex, o));
+    p.mesh = place(*it->second, o, floor_of(complex, o));
     Vec3 centroid{0, 0, 0};
     for (Vec3 v : p.mesh.vertices) {
       centroid = centroid + v;

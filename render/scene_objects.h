@@ -3,6 +3,7 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -51,8 +52,9 @@ inline constexpr double kDetailFractions[] = {1.0 / 1000, 1.0 / 250, 1.0 / 60};
 /// when given, once per mesh file.
 /// With `coarser`, every object also gets its coarser versions (coarser_versions), for
 /// films, whose many frames repay the second or two it takes in a furnished home.
-/// The distinct models of a complex's objects as read, by mesh_key.
-using ObjectModels = std::map<std::string, Mesh>;
+/// The distinct models of a complex's objects as read, by mesh_key (a model the plan
+/// carries, Object::model, is shared, not copied).
+using ObjectModels = std::map<std::string, std::shared_ptr<const Mesh>>;
 
 /// With `models_read`, the models it read are kept there (for coarser_versions later,
 /// without reading them again).
