@@ -299,6 +299,27 @@ bool ScreenSceneBuilder::add_face(const std::vector<Vec3>& polygon, const Plane&
   return add(cam, n, d, shade, where, source);
 }
 
+void ScreenSceneBuilder::cull_outside(int32_t clip, double margin) {
+  cull_ = clip >= 0 && size_t(clip) < out_.clips.size();
+  if (!cull_) return;
+  const std::vector<FixedPoint>& h = out_.clips[size_t(clip)].outline;  // a convex hull, no three corners in line
+  const double one = double(kSubpixelOne);
+  cull_lo_ = {HUGE_VAL, HUGE_VAL}, cull_hi_ = {-HUGE_VAL, -HUGE_VAL};
+  for (const FixedPoint& f : h) {
+    cull_lo_ = {std::min(cull_lo_.x, double(f.x) / one), std::min(cull_lo_.y, double(f.y) / one)};
+    cull_hi_ = {std::max(cull_hi_.x, double(f.x) / one), std::max(cull_hi_.y, double(f.y) / one)};
+  }
+  cull_lo_ = {cull_lo_.x - margin, cull_lo_.y - margin}, cull_hi_ = {cull_hi_.x + margin, cull_hi_.y + margin};
+  cull_sides_.clear();
+  for (size_t i = 0; i < h.size(); ++i) {
+    // hull() turns counter-clockwise in (x, y) as stored: the inside lies to each side's left.
+    const FixedPoint p = h[i], q = h[(i + 1) % h.size()];
+    const double dx = double(q.x - p.x), dy = double(q.y - p.y), len = std::hypot(dx, dy);
+    const double a = -dy / len, b = dx / len;
+    cull_sides_.push_back({a, b, -(a * double(p.x) + b * double(p.y)) / one + margin});
+  }
+}
+
 bool ScreenSceneBuilder::may_show(const Box3& box) const {
   if (!cull_) return true;
   Vec2 lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
@@ -306,25 +327,24 @@ bool ScreenSceneBuilder::may_show(const Box3& box) const {
     const Vec3 w{k & 1 ? box.hi.x : box.lo.x, k & 2 ? box.hi.y : box.lo.y, k & 4 ? box.hi.z : box.lo.z};
     const Vec3 c = camera_.camera_from_world(w);
     if (!(c.z >= camera_.near)) return true;  // reaches the near plane: cannot tell here
-    const Vec2 q{c.x / c.z, c.y / c.z};
-    lo = {std::min(lo.x, q.x), std::min(lo.y, q.y)};
-    hi = {std::max(hi.x, q.x), std::max(hi.y, q.y)};
+    const Vec2 r = out_.raster.raster_from_image({c.x / c.z, c.y / c.z});
+    lo = {std::min(lo.x, r.x), std::min(lo.y, r.y)};
+    hi = {std::max(hi.x, r.x), std::max(hi.y, r.y)};
   }
   return !(hi.x < cull_lo_.x || lo.x > cull_hi_.x || hi.y < cull_lo_.y || lo.y > cull_hi_.y);
 }
 
 bool ScreenSceneBuilder::may_cover_a_sample(Vec2 lo, Vec2 hi) const {
   const RasterMap& m = out_.raster;
-  // The box on the raster (y runs down), grown by 1/16 of a sample: far more than the
-  // 1/512 that rounding to the fixed point moves a corner, so this is never stricter than
-  // covers_a_sample_centre on the outline add() would make.
+  // Grown by 1/16 of a sample: far more than the 1/512 that rounding to the fixed point
+  // moves a corner, so this is never stricter than covers_a_sample_centre on the outline
+  // add() would make.
   constexpr double grow = 1.0 / 16;
-  const Vec2 a = m.raster_from_image({lo.x, hi.y}), b = m.raster_from_image({hi.x, lo.y});
   auto holds_centre = [](double from, double to, int n) {
     const double i = std::max(0.0, std::ceil(from - grow - 0.5));  // the first centre i + ½ at or after from
     return i < double(n) && i + 0.5 <= to + grow;
   };
-  return holds_centre(a.x, b.x, m.width) && holds_centre(a.y, b.y, m.height);
+  return holds_centre(lo.x, hi.x, m.width) && holds_centre(lo.y, hi.y, m.height);
 }
 
 void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<int>& corners,
@@ -341,9 +361,10 @@ void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<in
   }
   const double area = length(n);
   if (!(area > 0)) return;
-  // Wholly beyond the near plane, its box on the picture plane tells what cannot show:
-  // a polygon outside the mask's box (the mask it would be clipped to lies inside it), or
-  // one that holds no sample's centre.
+  // Wholly beyond the near plane, its corners on the raster tell what cannot show: a
+  // polygon outside the region it will be clipped to, or one that holds no sample's centre.
+  std::vector<Vec2>& on_raster = polygon_raster_;
+  on_raster.clear();
   Vec2 lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
   bool in_front = true;
   for (const Vec3& c : cam) {
@@ -351,12 +372,19 @@ void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<in
       in_front = false;
       break;
     }
-    const Vec2 q{c.x / c.z, c.y / c.z};
-    lo = {std::min(lo.x, q.x), std::min(lo.y, q.y)};
-    hi = {std::max(hi.x, q.x), std::max(hi.y, q.y)};
+    const Vec2 r = out_.raster.raster_from_image({c.x / c.z, c.y / c.z});
+    on_raster.push_back(r);
+    lo = {std::min(lo.x, r.x), std::min(lo.y, r.y)};
+    hi = {std::max(hi.x, r.x), std::max(hi.y, r.y)};
   }
   if (in_front) {
-    if (cull_ && (hi.x < cull_lo_.x || lo.x > cull_hi_.x || hi.y < cull_lo_.y || lo.y > cull_hi_.y)) return;
+    if (cull_) {
+      if (hi.x < cull_lo_.x || lo.x > cull_hi_.x || hi.y < cull_lo_.y || lo.y > cull_hi_.y) return;
+      for (const Side& side : cull_sides_)
+        if (std::all_of(on_raster.begin(), on_raster.end(),
+                        [&side](Vec2 r) { return side.a * r.x + side.b * r.y + side.c < 0; }))
+          return;
+    }
     if (!may_cover_a_sample(lo, hi)) return;
   }
   centroid = (1.0 / double(cam.size())) * centroid;

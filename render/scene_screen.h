@@ -121,13 +121,12 @@ class ScreenSceneBuilder {
   /// input polygon no longer lie in one plane), else the runs of triangles of one polygon
   /// drawn as the polygon where they form its fan.
   void add_mesh(const Mesh& mesh, const MeshPaint& paint, Placement where, PolygonSource source, bool polygons = true);
-  /// From now on, mesh polygons wholly in front of the near plane and wholly outside this
-  /// box of the picture plane (x = X/Z, y = Y/Z) are not added: the mask they would be
-  /// clipped to lies inside it, so they could not show. Until no_cull().
-  void cull_outside(Vec2 lo, Vec2 hi) {
-    cull_ = true;
-    cull_lo_ = lo, cull_hi_ = hi;
-  }
+  /// From now on, mesh polygons wholly in front of the near plane and wholly outside clip
+  /// region `clip` (add_clip) grown by `margin` samples are not added: they would be
+  /// clipped to it, so they could not show. Until no_cull(). The region's box alone lets
+  /// through every polygon near a long diagonal sliver of view; beyond one of its sides
+  /// (exact integer directions), a polygon goes.
+  void cull_outside(int32_t clip, double margin);
   void no_cull() { cull_ = false; }
   /// Whether a world box could show inside the cull box (true without one).
   bool may_show(const Box3& box) const;
@@ -189,8 +188,8 @@ class ScreenSceneBuilder {
   /// Its corners' camera-space points are mesh_cam_'s (add_mesh puts them there).
   void add_mesh_polygon(const Mesh& mesh, const std::vector<int>& corners, const std::vector<Vec3>& normals,
                         const Material& material, Placement where, const PolygonSource& source);
-  /// Whether a polygon whose picture-plane box (x = X/Z, y = Y/Z, every corner beyond the
-  /// near plane) is [lo, hi] might hold the centre of one of the raster's samples. Grown by
+  /// Whether a polygon whose box on the raster (in samples; every corner beyond the near
+  /// plane) is [lo, hi] might hold the centre of one of the raster's samples. Grown by
   /// more than the fixed point's rounding, so that it never says no where add() would
   /// have drawn: a far piece of furniture smaller than a sample, or one off the picture,
   /// goes before it is shaded or projected.
@@ -201,11 +200,18 @@ class ScreenSceneBuilder {
   ScreenScene& out_;
   double guard_ = 0;  ///< [samples] the guard band's width around the window
   bool cull_ = false;
-  Vec2 cull_lo_, cull_hi_;
+  Vec2 cull_lo_, cull_hi_;  ///< [samples] the cull region's box on the raster, grown by its margin
+  /// The cull region's sides as half-planes a·u + b·v + c >= 0 on the raster (a, b a unit
+  /// normal pointing in; c taking in the margin).
+  struct Side {
+    double a, b, c;
+  };
+  std::vector<Side> cull_sides_;
   std::vector<Vec3> near_cut_, plane_cut_;
   std::vector<Vec3> face_cam_;       ///< add_face: the face in camera space (kept: a view adds thousands)
   std::vector<Vec3> mesh_cam_;       ///< add_mesh: the mesh's vertices in camera space, each transformed once
   std::vector<Vec3> polygon_cam_;    ///< add_mesh_polygon: the polygon's corners in camera space
+  std::vector<Vec2> polygon_raster_;  ///< and on the raster [samples]
   std::vector<int> triangle_corners_;       ///< add_mesh: one triangle of a polygon that is not a fan
   std::vector<Vec3> triangle_normals_;      ///< and its corners' normals
   std::vector<FixedPoint> clip_points_;  ///< add_clip: the grown corners

@@ -188,15 +188,9 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
     where.role = PolygonRole::Object;
     source.kind = PolygonSource::Kind::Object;
     source.face = -1;
-    // The mask's box on the picture plane, a little grown (two samples): what lies wholly
-    // outside it cannot show through this avenue.
-    Vec2 lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
-    for (Vec2 m : mask) {
-      lo = {std::min(lo.x, m.x), std::min(lo.y, m.y)};
-      hi = {std::max(hi.x, m.x), std::max(hi.y, m.y)};
-    }
-    const double margin = 2 * out.raster.step;
-    b.cull_outside({lo.x - margin, lo.y - margin}, {hi.x + margin, hi.y + margin});
+    // The avenue's clip region, a little grown (two samples): what lies wholly outside it
+    // cannot show through this avenue.
+    b.cull_outside(clip, 2);
     for (size_t o : in->second) {
       if (!b.may_show(objects[o].bounds)) continue;  // a cell seen through many avenues: not through this one
       source.mesh = int(o);
