@@ -1,6 +1,7 @@
 // Avenues — furniture (see furniture.h).
 #include "render/furniture.h"
 #include "core/angles.h"
+#include "render/scene_objects.h"
 
 #include <algorithm>
 #include <cmath>
@@ -78,24 +79,21 @@ void find_edges(FurniturePiece& p) {
 
 Furniture place_furniture(const CellComplex& c) {
   Furniture f;
-  std::map<std::string, Mesh> loaded;
+  ObjectModels loaded;
+  std::vector<CellId> near;
   for (const Object& o : c.objects) {
-    auto it = loaded.find(mesh_key(o));
-    if (it == loaded.end()) it = loaded.emplace(mesh_key(o), load_object_mesh(o)).first;
-    const double floor_z = o.storey >= 0 && size_t(o.storey) < c.storeys.size() ? c.storeys[size_t(o.storey)].elevation : 0;
     FurniturePiece p;
     p.name = o.name;
-    p.mesh = place(it->second, o, floor_z);
+    p.mesh = place(model_of(o, loaded), o, floor_of(c, o));
     find_edges(p);
-    Box3 box;
-    for (Vec3 v : p.mesh.vertices) box.add(v);
-    if (o.cell >= 0 && size_t(o.cell) < c.cells.size()) {  // cut to that cell already
-      p.cells.push_back(o.cell);
-      f.pieces.push_back(std::move(p));
-      continue;
-    }
-    for (CellId id = 0; id < CellId(c.cells.size()); ++id) {
-      if (c.cells[size_t(id)].bounds().meets(box)) p.cells.push_back(id);
+    if (const CellId pinned = pinned_cell(c, o); pinned != kNoCell) {
+      p.cells.push_back(pinned);
+    } else {
+      Box3 box;
+      for (Vec3 v : p.mesh.vertices) box.add(v);
+      c.cells_near(box, near);
+      for (CellId id : near)
+        if (c.cells[size_t(id)].bounds().meets(box)) p.cells.push_back(id);
     }
     f.pieces.push_back(std::move(p));
   }

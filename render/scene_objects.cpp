@@ -37,10 +37,11 @@ MeshPaint paint_of_mesh(const Mesh& mesh) {
   return paint;
 }
 
-namespace {
 double floor_of(const CellComplex& complex, const Object& o) {
   return o.storey >= 0 && size_t(o.storey) < complex.storeys.size() ? complex.storeys[size_t(o.storey)].elevation : 0;
 }
+
+namespace {
 
 /// Each object's coarser versions from its model among `models` (by mesh_key), each
 /// distinct model made coarser once, then placed as the object is.
@@ -65,6 +66,18 @@ std::vector<std::vector<MeshLevel>> placed_levels(const CellComplex& complex, co
 }
 }  // namespace
 
+const Mesh& model_of(const Object& o, ObjectModels& models, std::vector<std::string>* warnings) {
+  const std::string key = mesh_key(o);
+  auto it = models.find(key);
+  if (it == models.end())
+    it = models.emplace(key, o.model ? o.model : std::make_shared<const Mesh>(load_object_mesh(o, warnings))).first;
+  return *it->second;
+}
+
+CellId pinned_cell(const CellComplex& complex, const Object& o) {
+  return o.cell >= 0 && size_t(o.cell) < complex.cells.size() ? o.cell : kNoCell;
+}
+
 std::vector<std::vector<MeshLevel>> coarser_versions(const CellComplex& complex, const ObjectModels& models) {
   return placed_levels(complex, models);
 }
@@ -75,22 +88,17 @@ std::vector<PlacedObject> place_objects(const CellComplex& complex, std::vector<
   ObjectModels loaded;
   CellId hint = kNoCell;
   for (const Object& o : complex.objects) {
-    const std::string key = mesh_key(o);
-    auto it = loaded.find(key);
-    if (it == loaded.end())
-      it = loaded.emplace(key, o.model ? o.model : std::make_shared<const Mesh>(load_object_mesh(o, warnings))).first;
     PlacedObject p;
     p.name = o.name;
-    p.mesh = place(*it->second, o, floor_of(complex, o));
+    p.mesh = place(model_of(o, loaded, warnings), o, floor_of(complex, o));
     Vec3 centroid{0, 0, 0};
     for (Vec3 v : p.mesh.vertices) {
       centroid = centroid + v;
       p.bounds.add(v);
     }
     centroid = (1.0 / double(p.mesh.vertices.size())) * centroid;
-    if (o.cell >= 0 && size_t(o.cell) < complex.cells.size()) {
-      p.cell = o.cell;  // cut to that cell already
-    } else {
+    p.cell = pinned_cell(complex, o);
+    if (p.cell == kNoCell) {
       const Location at = complex.locate(centroid, hint);
       if (at.what == Location::What::Cell) p.cell = hint = at.cell;
     }

@@ -44,6 +44,23 @@ struct PlacedObject {
 /// box diagonal: 1/1000, 1/250, 1/60 (a 1 m chair: 1, 4 and 17 mm).
 inline constexpr double kDetailFractions[] = {1.0 / 1000, 1.0 / 250, 1.0 / 60};
 
+/// The distinct models of a complex's objects as read, by mesh_key (a model the plan
+/// carries, Object::model, is shared, not copied).
+using ObjectModels = std::map<std::string, std::shared_ptr<const Mesh>>;
+
+/// The model of `o` among `models`, read (load_object_mesh) the first time its mesh_key is
+/// asked for; a model the plan carries is shared. What reading it let pass goes to
+/// `warnings` when given.
+const Mesh& model_of(const Object& o, ObjectModels& models, std::vector<std::string>* warnings = nullptr);
+
+/// The elevation of the storey an object stands on (0 without one): its model is placed
+/// from there.
+double floor_of(const CellComplex& complex, const Object& o);
+
+/// The cell an object was cut to already (Object::cell, a soup's detail), or kNoCell: such
+/// an object is drawn in that cell only, wherever its vertices lie.
+CellId pinned_cell(const CellComplex& complex, const Object& o);
+
 /// Loads every object of the complex (plans/mesh.h, each file read once), places it on
 /// its storey, and finds the cell holding the centroid of its vertices. Its paint is its
 /// own material (Object::material) where it has one, else its mesh's (paint_of_mesh). Throws
@@ -52,10 +69,6 @@ inline constexpr double kDetailFractions[] = {1.0 / 1000, 1.0 / 250, 1.0 / 60};
 /// when given, once per mesh file.
 /// With `coarser`, every object also gets its coarser versions (coarser_versions), for
 /// films, whose many frames repay the second or two it takes in a furnished home.
-/// The distinct models of a complex's objects as read, by mesh_key (a model the plan
-/// carries, Object::model, is shared, not copied).
-using ObjectModels = std::map<std::string, std::shared_ptr<const Mesh>>;
-
 /// With `models_read`, the models it read are kept there (for coarser_versions later,
 /// without reading them again).
 std::vector<PlacedObject> place_objects(const CellComplex& complex, std::vector<std::string>* warnings = nullptr,
