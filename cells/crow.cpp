@@ -189,7 +189,6 @@ Mesh crow_mesh(const CrowObject& o) {
   Mesh m;
   m.path = o.path;
   m.vertices = o.points;
-  std::map<std::pair<int, int>, int> edges;
   for (size_t k = 0; k < o.polygons.size(); ++k) {
     // Crow lists polygons clockwise seen from outside; a Mesh wants counter-clockwise.
     std::vector<int> poly(o.polygons[k].rbegin(), o.polygons[k].rend());
@@ -200,13 +199,9 @@ Mesh crow_mesh(const CrowObject& o) {
       m.triangles.push_back(t);
       m.polygon_of.push_back(int(k));
     }
-    for (size_t i = 0; i < poly.size(); ++i) {
-      const int a = poly[i], b = poly[(i + 1) % poly.size()];
-      edges[{std::min(a, b), std::max(a, b)}]++;
-    }
   }
   smooth_corner_normals(m);
-  for (const auto& [e, count] : edges) m.boundary_edges += count == 1;
+  m.boundary_edges = boundary_edges(o.polygons);
   m.closed = m.boundary_edges == 0;
   return m;
 }

@@ -833,13 +833,7 @@ std::vector<Mesh> mesh_components(const Mesh& mesh) {
     m.polygon_of.push_back(pmap[c].try_emplace(poly, int(pmap[c].size())).first->second);
   }
   for (Mesh& m : out) {
-    std::map<std::pair<int, int>, int> edges;
-    for (const auto& t : m.triangles)
-      for (int k = 0; k < 3; ++k) {
-        int a = t[size_t(k)], b = t[size_t((k + 1) % 3)];
-        edges[{std::min(a, b), std::max(a, b)}]++;
-      }
-    for (const auto& [e, count] : edges) m.boundary_edges += count == 1;
+    m.boundary_edges = boundary_edges(m.triangles);
     m.closed = m.boundary_edges == 0;
   }
   return out;

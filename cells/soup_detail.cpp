@@ -163,13 +163,7 @@ double add_detail_objects(CellComplex& out, const std::vector<SoupTriangle>& det
     m.path = source + ": detail in cell " + std::to_string(c);
     m.materials = out.materials;
     // Every piece is seen from both sides: a soup's polygons are (soup_bsp.h).
-    std::unordered_map<uint64_t, int> edges;
-    for (const auto& tr : m.triangles)
-      for (int k = 0; k < 3; ++k) {
-        const uint32_t a = uint32_t(tr[size_t(k)]), b = uint32_t(tr[size_t((k + 1) % 3)]);
-        edges[uint64_t(std::min(a, b)) << 32 | std::max(a, b)]++;
-      }
-    for (const auto& [e, count] : edges) m.boundary_edges += count == 1;
+    m.boundary_edges = boundary_edges(m.triangles);
     m.closed = false;
     smooth_corner_normals(m);
     Object o;

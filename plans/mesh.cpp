@@ -24,6 +24,7 @@
 #include <sstream>
 #include <vector>
 #include <map>
+#include <unordered_map>
 #include <stdexcept>
 
 namespace avenues {
@@ -595,13 +596,7 @@ Mesh mesh_of_polygons(std::string path, std::vector<Vec3> vertices, std::vector<
   }
   smooth_corner_normals(m);
   // Closed: every polygon edge is shared by exactly two polygons.
-  std::map<std::pair<int, int>, int> edges;
-  for (const auto& p : polygons)
-    for (size_t k = 0; k < p.size() && p.size() >= 3; ++k) {
-      const int a = p[k], b = p[(k + 1) % p.size()];
-      edges[{std::min(a, b), std::max(a, b)}]++;
-    }
-  for (auto& [e, count] : edges) m.boundary_edges += count == 1;
+  m.boundary_edges = boundary_edges(polygons);
   m.closed = m.boundary_edges == 0;
   return m;
 }
@@ -672,6 +667,26 @@ Mesh place(const Mesh& mesh, const Object& o, double floor_z) {
   }
   return m;
 }
+
+namespace {
+template <class Rings>
+int count_boundary_edges(const Rings& rings) {
+  std::unordered_map<uint64_t, int> uses;  // by the edge's two vertices, the lower first
+  for (const auto& r : rings) {
+    if (r.size() < 3) continue;
+    for (size_t k = 0; k < r.size(); ++k) {
+      const uint32_t a = uint32_t(r[k]), b = uint32_t(r[(k + 1) % r.size()]);
+      ++uses[uint64_t(std::min(a, b)) << 32 | std::max(a, b)];
+    }
+  }
+  int once = 0;
+  for (const auto& [edge, count] : uses) once += count == 1;
+  return once;
+}
+}  // namespace
+
+int boundary_edges(const std::vector<std::vector<int>>& rings) { return count_boundary_edges(rings); }
+int boundary_edges(const std::vector<std::array<int, 3>>& triangles) { return count_boundary_edges(triangles); }
 
 bool is_off_keyword(std::string_view w) {
   // Written out rather than as a std::regex, whose matcher recurses once per character.

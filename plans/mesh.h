@@ -46,6 +46,11 @@ struct Mesh {
 /// `crease_deg` of the corner's own polygon's, summed and made unit.
 void smooth_corner_normals(Mesh& m, double crease_deg = 45);
 
+/// How many edges of `rings` (faces as rings of vertex indices; a ring of fewer than three
+/// corners has none) one ring alone uses: 0 for a closed surface (Mesh::boundary_edges).
+int boundary_edges(const std::vector<std::vector<int>>& rings);
+int boundary_edges(const std::vector<std::array<int, 3>>& triangles);
+
 /// A mesh of polygons (vertex indices, counter-clockwise seen from outside), as every
 /// reader makes it: a vertex lying on another polygon's edge (a T-junction) is put into that
 /// edge too, so that polygons meet vertex to vertex and their shared edges are one line on
