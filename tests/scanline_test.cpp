@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <random>
+#include <set>
 
 #include "cells/build_cells.h"
 #include "render/halftone.h"
@@ -446,6 +447,84 @@ TEST(Scanline, PolygonsSmallerThanASampleColourTheSamplesTheyHoldAndNoOthers) {
   EXPECT_EQ(right, on_raster);
   // Exactly the polygons that hold a sample's centre on the raster were put on it.
   EXPECT_EQ(long(scene.polygons.size()), on_raster);
+}
+
+TEST(Scanline, ObjectsAreCulledByTheSidesOfTheirAvenuesClipRegionNotOfItsMask) {
+  // A mask with a notch a rounding deep, as the masks of Mini_Project's corner view have
+  // (reflex turns between corners 1e-8 apart): the side into the notch points along -x,
+  // and taken as a side of the mask it would cut away the upper half. Polygons inside the
+  // mask must be kept; those beyond one of its sides (inside its box) must go before they
+  // are projected.
+  const Camera cam = Camera::look_at({0, -10, 0}, {0, 0, 0}, 100, 1280, 720);
+  // A square 54 samples across, turned by 30 degrees so that points beyond its sides lie in
+  // its box; the notch on its right side.
+  std::vector<Vec2> mask;
+  for (Vec2 p : std::vector<Vec2>{{0, 0}, {0.1, 0}, {0.1, 0.05}, {0.1 - 1e-9, 0.05}, {0.1, 0.05 + 2e-9}, {0.1, 0.1}, {0, 0.1}}) {
+    const double c = std::cos(0.5235987755982988), s = std::sin(0.5235987755982988);
+    mask.push_back({c * (p.x - 0.05) - s * (p.y - 0.05), s * (p.x - 0.05) + c * (p.y - 0.05)});
+  }
+  ScreenScene scene;
+  ScreenSceneBuilder b(cam, {}, scene);
+  const int32_t clip = b.add_clip(mask, 1.0 / 64);
+  ASSERT_GE(clip, 0);
+  b.cull_outside(clip, 2);
+  const double step = scene.raster.step;  // picture-plane units per sample
+  std::vector<Vec3> vertices;
+  std::vector<std::vector<int>> polygons;
+  // A triangle about the picture-plane point c, `r` samples across, 5 m from the eye.
+  auto triangle_at = [&](Vec2 c, double r) {
+    for (int k = 0; k < 3; ++k) {
+      const double a = 2.0943951023931953 * k;
+      const Vec2 p{c.x + r * step * std::cos(a), c.y + r * step * std::sin(a)};
+      vertices.push_back(cam.eye + 5.0 * (p.x * cam.right + p.y * cam.up + cam.forward));
+    }
+    const int n = int(vertices.size());
+    polygons.push_back({n - 3, n - 2, n - 1});
+  };
+  Vec2 centre{0, 0};
+  for (Vec2 m : mask) centre = centre + (1.0 / double(mask.size())) * m;
+  triangle_at(centre, 1.5);
+  for (Vec2 m : mask) triangle_at(centre + 0.6 * (m - centre), 1.5);  // inside, towards each corner
+  const size_t inside = polygons.size();
+  // Beyond each side of some length, five samples out from its middle: wholly beyond the
+  // side grown by the two samples' margin. Those whose centre lies in the mask's box grown
+  // by the margin are for the sides to cull, not the box.
+  Vec2 lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
+  for (Vec2 m : mask) lo = {std::min(lo.x, m.x), std::min(lo.y, m.y)}, hi = {std::max(hi.x, m.x), std::max(hi.y, m.y)};
+  size_t in_box = 0;
+  for (size_t i = 0; i < mask.size(); ++i) {
+    const Vec2 p = mask[i], q = mask[(i + 1) % mask.size()], d = q - p;
+    const double len = std::hypot(d.x, d.y);
+    if (len < 10 * step) continue;
+    const Vec2 out{d.y / len, -d.x / len};  // to the right of p -> q: outside, the mask turning counter-clockwise
+    const Vec2 c = 0.5 * (p + q) + 5 * step * out;
+    triangle_at(c, 1);
+    in_box += c.x > lo.x - 2 * step && c.x < hi.x + 2 * step && c.y > lo.y - 2 * step && c.y < hi.y + 2 * step;
+  }
+  ASSERT_GE(in_box, 2u);
+  // The mask's own sides (its notch's among them) would cut away some triangle inside it.
+  size_t cut_by_the_notch = 0;
+  for (size_t k = 0; k < inside; ++k)
+    for (size_t i = 0; i < mask.size(); ++i) {
+      const Vec2 p = mask[i], d = mask[(i + 1) % mask.size()] - p;
+      bool all_right = true;  // every corner to the right of p -> p + d
+      for (int v : polygons[k]) {
+        const Vec3 c = cam.camera_from_world(vertices[size_t(v)]);
+        all_right &= cross(d, Vec2{c.x / c.z, c.y / c.z} - p) < 0;
+      }
+      cut_by_the_notch += all_right;
+    }
+  ASSERT_GT(cut_by_the_notch, 0u);
+  const Mesh mesh = mesh_from(vertices, polygons);
+  ScreenSceneBuilder::Placement where;
+  where.clip = clip;
+  PolygonSource source;
+  source.kind = PolygonSource::Kind::Object;
+  b.add_mesh(mesh, {}, where, source);
+  std::set<int> kept;
+  for (const PolygonSource& s : scene.sources) kept.insert(s.polygon);
+  for (size_t k = 0; k < inside; ++k) EXPECT_TRUE(kept.count(int(k))) << "inside triangle " << k << " was culled";
+  for (size_t k = inside; k < polygons.size(); ++k) EXPECT_FALSE(kept.count(int(k))) << "triangle " << k << " beyond a side was kept";
 }
 
 // --- implicitly defined lines ---------------------------------------------------------------
