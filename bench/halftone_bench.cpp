@@ -7,6 +7,8 @@
 // from frame to frame — in at most 4 ms (median) on 2 threads, within 3× of the peer
 // that only writes the same frame buffer once with memset. Each benchmark reports the
 // median of its repetitions and, as counters, what the scan did per frame.
+// `halftone_walk_frame` is the same frame as the walkthrough makes it: the effects
+// prepared (the lamps' shadows cast) once, the frame's storage kept between frames.
 #include <benchmark/benchmark.h>
 
 #include <cstring>
@@ -15,6 +17,7 @@
 #include <memory>
 
 #include "cells/build_cells.h"
+#include "render/effects.h"
 #include "render/halftone.h"
 #include "visibility/viewpoint.h"
 #include "visibility/visible_set.h"
@@ -60,6 +63,31 @@ void halftone_frame(benchmark::State& state, const std::string& plan, ShadingMod
   state.counters["render_us"] = stats.render_us;
 }
 
+/// The same frame as the walkthrough makes it (cmd_walk.cpp): the effects decided and the
+/// lamps' shadows cast once, before the first frame, and the frame's storage reused.
+void halftone_walk_frame(benchmark::State& state, const std::string& plan) {
+  const CellComplex& c = plan_complex(plan);
+  const Viewpoint vp = default_viewpoint(c);
+  const Camera cam = Camera::look_at(vp.eye, vp.look, vp.fov_deg, kWidth, kHeight);
+  const CellId eye_cell = c.locate(vp.eye).cell;
+  const std::vector<PlacedObject> objects = place_objects(c);
+  HalftoneOptions options;
+  options.threads = 2;
+  const SceneEffects effects = prepare_effects(c, objects, options);
+  FrameStorage storage;
+  Image frame;
+  RenderStats stats;
+  VisibleSet visible;
+  for (auto _ : state) {
+    visible = find_visible(c, cam, eye_cell);
+    render_view(c, objects, effects, cam, visible, options, frame, storage, &stats);
+    benchmark::DoNotOptimize(frame.data.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["polygons"] = double(stats.polygons);
+  state.counters["render_us"] = stats.render_us;
+}
+
 /// The peer: the same frame buffer (1920 × 1080 RGB) written once with memset.
 void frame_memset(benchmark::State& state) {
   std::vector<uint8_t> frame(size_t(kWidth) * kHeight * 3, 1);
@@ -84,4 +112,8 @@ BENCHMARK_CAPTURE(halftone_frame, curved_walls, "curved-walls.toml", ShadingMode
 BENCHMARK_CAPTURE(halftone_frame, two_storey_house, "two-storey-house.toml", ShadingModel::Flat, 1)->Apply(with_repetitions);
 BENCHMARK_CAPTURE(halftone_frame, office_corridor_smooth, "office-corridor.toml", ShadingModel::Smooth, 1)->Apply(with_repetitions);
 BENCHMARK_CAPTURE(halftone_frame, office_corridor_16_samples, "office-corridor.toml", ShadingModel::Flat, 16)->Apply(with_repetitions);
+BENCHMARK_CAPTURE(halftone_walk_frame, jones_house, "jones-house.toml")->Apply(with_repetitions);
+BENCHMARK_CAPTURE(halftone_walk_frame, office_corridor, "office-corridor.toml")->Apply(with_repetitions);
+BENCHMARK_CAPTURE(halftone_walk_frame, curved_walls, "curved-walls.toml")->Apply(with_repetitions);
+BENCHMARK_CAPTURE(halftone_walk_frame, two_storey_house, "two-storey-house.toml")->Apply(with_repetitions);
 BENCHMARK(frame_memset)->Name("Halftone/frame_memset_peer")->Apply(with_repetitions);
