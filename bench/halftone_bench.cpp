@@ -17,7 +17,7 @@
 #include <memory>
 
 #include "cells/build_cells.h"
-#include "render/effects.h"
+#include "bench/walk_frame.h"
 #include "render/halftone.h"
 #include "visibility/viewpoint.h"
 #include "visibility/visible_set.h"
@@ -36,14 +36,24 @@ const CellComplex& plan_complex(const std::string& name) {
   return *slot;
 }
 
-/// One walkthrough frame per iteration from the plan's own viewpoint: visibility, then the
-/// half-tone into the same frame buffer.
+/// A plan seen from its own viewpoint at 1920 × 1080, its objects placed.
+struct PlanView {
+  const CellComplex& c;
+  Camera cam;
+  CellId eye_cell = kNoCell;
+  std::vector<PlacedObject> objects;
+  explicit PlanView(const std::string& plan) : c(plan_complex(plan)), objects(place_objects(c)) {
+    const Viewpoint vp = default_viewpoint(c);
+    cam = Camera::look_at(vp.eye, vp.look, vp.fov_deg, kWidth, kHeight);
+    eye_cell = c.locate(vp.eye).cell;
+  }
+};
+
+/// One frame per iteration from the plan's own viewpoint, as a one-shot view makes it:
+/// visibility, then the half-tone into the same frame buffer (the effects decided, and
+/// the lamps' shadows cast, for each frame).
 void halftone_frame(benchmark::State& state, const std::string& plan, ShadingModel shading, int samples) {
-  const CellComplex& c = plan_complex(plan);
-  const Viewpoint vp = default_viewpoint(c);
-  const Camera cam = Camera::look_at(vp.eye, vp.look, vp.fov_deg, kWidth, kHeight);
-  const CellId eye_cell = c.locate(vp.eye).cell;
-  const std::vector<PlacedObject> objects = place_objects(c);
+  const PlanView v(plan);
   HalftoneOptions options;
   options.threads = 2;
   options.samples = samples;
@@ -51,39 +61,24 @@ void halftone_frame(benchmark::State& state, const std::string& plan, ShadingMod
   Image frame;
   RenderStats stats;
   for (auto _ : state) {
-    const VisibleSet visible = find_visible(c, cam, eye_cell);
-    render_view(c, objects, cam, visible, options, frame, &stats);
+    const VisibleSet visible = find_visible(v.c, v.cam, v.eye_cell);
+    render_view(v.c, v.objects, v.cam, visible, options, frame, &stats);
     benchmark::DoNotOptimize(frame.data.data());
     benchmark::ClobberMemory();
   }
-  state.counters["avenues"] = double(find_visible(c, cam, eye_cell).avenues.size());
+  state.counters["avenues"] = double(find_visible(v.c, v.cam, v.eye_cell).avenues.size());
   state.counters["polygons"] = double(stats.polygons);
   state.counters["spans"] = double(stats.spans);
   state.counters["AL_max"] = stats.active_max;
   state.counters["render_us"] = stats.render_us;
 }
 
-/// The same frame as the walkthrough makes it (cmd_walk.cpp): the effects decided and the
-/// lamps' shadows cast once, before the first frame, and the frame's storage reused.
+/// The same frame as the walkthrough makes it (walk_frame.h).
 void halftone_walk_frame(benchmark::State& state, const std::string& plan) {
-  const CellComplex& c = plan_complex(plan);
-  const Viewpoint vp = default_viewpoint(c);
-  const Camera cam = Camera::look_at(vp.eye, vp.look, vp.fov_deg, kWidth, kHeight);
-  const CellId eye_cell = c.locate(vp.eye).cell;
-  const std::vector<PlacedObject> objects = place_objects(c);
-  HalftoneOptions options;
-  options.threads = 2;
-  const SceneEffects effects = prepare_effects(c, objects, options);
-  FrameStorage storage;
-  Image frame;
+  const PlanView v(plan);
   RenderStats stats;
   VisibleSet visible;
-  for (auto _ : state) {
-    visible = find_visible(c, cam, eye_cell);
-    render_view(c, objects, effects, cam, visible, options, frame, storage, &stats);
-    benchmark::DoNotOptimize(frame.data.data());
-    benchmark::ClobberMemory();
-  }
+  bench::time_walk_frames(state, v.c, v.objects, v.cam, v.eye_cell, {}, stats, visible);
   state.counters["polygons"] = double(stats.polygons);
   state.counters["render_us"] = stats.render_us;
 }

@@ -25,6 +25,7 @@
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
+#include "bench/walk_frame.h"
 #include "cells/mesh_scene.h"
 #include "render/effects.h"
 #include "render/halftone.h"
@@ -105,20 +106,11 @@ void grazing_frame(benchmark::State& state, int width, int height) {
   const Camera cam = Camera::yaw_pitch({-1.0, -0.3, 0.6}, 45, 0, 88, width, height);
   const CellId eye_cell = c.locate(cam.eye).cell;
   const std::vector<PlacedObject> objects = place_objects(c);
-  HalftoneOptions options;
-  options.threads = 2;
-  const SceneEffects effects = prepare_effects(c, objects, options);
   TraverseParams search;
   search.merge_pieces = search.hull_pieces = true;
-  FrameStorage storage;
-  Image frame;
   RenderStats stats;
   VisibleSet visible;
-  for (auto _ : state) {
-    visible = find_visible(c, cam, eye_cell, search);
-    render_view(c, objects, effects, cam, visible, options, frame, storage, &stats);
-    benchmark::DoNotOptimize(frame.data.data());
-  }
+  bench::time_walk_frames(state, c, objects, cam, eye_cell, search, stats, visible);
   state.counters["cells_seen"] = double(visible.cells.size());
   state.counters["visibility_us"] = visible.micros;
   state.counters["polygons"] = double(stats.polygons);
