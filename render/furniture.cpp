@@ -206,9 +206,13 @@ void hide_behind(const std::vector<Occluder>& occluders, Vec3 p0, Vec3 p1, std::
 }
 
 OccluderGrid::OccluderGrid(std::vector<Occluder> occluders) : occluders_(std::move(occluders)) {
+  // An occluder reaching behind the eye has no box on the picture plane.
+  auto bounded = [](const Occluder& o) {
+    return std::isfinite(o.lo.x) && std::isfinite(o.hi.x) && std::isfinite(o.lo.y) && std::isfinite(o.hi.y);
+  };
   Vec2 lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
   for (const Occluder& o : occluders_)
-    if (std::isfinite(o.lo.x) && std::isfinite(o.hi.x) && std::isfinite(o.lo.y) && std::isfinite(o.hi.y))
+    if (bounded(o))
       lo = {std::min(lo.x, o.lo.x), std::min(lo.y, o.lo.y)}, hi = {std::max(hi.x, o.hi.x), std::max(hi.y, o.hi.y)};
   n_ = std::clamp(int(std::sqrt(double(occluders_.size()) / 4)), 1, 256);
   lo_ = lo;
@@ -219,8 +223,7 @@ OccluderGrid::OccluderGrid(std::vector<Occluder> occluders) : occluders_(std::mo
   for (size_t i = 0; i < occluders_.size(); ++i) {
     const Occluder& o = occluders_[i];
     auto& r = range[i];
-    if (!(lo.x <= hi.x) || !std::isfinite(o.lo.x) || !std::isfinite(o.hi.x) || !std::isfinite(o.lo.y) ||
-        !std::isfinite(o.hi.y)) {
+    if (!(lo.x <= hi.x) || !bounded(o)) {
       r = {1, 0, 1, 0};  // none: met everywhere
     } else {
       r = {bin(o.lo.x, lo_.x, size_.x), bin(o.hi.x, lo_.x, size_.x), bin(o.lo.y, lo_.y, size_.y), bin(o.hi.y, lo_.y, size_.y)};

@@ -331,7 +331,7 @@ bool ScreenSceneBuilder::may_show(const Box3& box) const {
     lo = {std::min(lo.x, r.x), std::min(lo.y, r.y)};
     hi = {std::max(hi.x, r.x), std::max(hi.y, r.y)};
   }
-  return !(hi.x < cull_lo_.x || lo.x > cull_hi_.x || hi.y < cull_lo_.y || lo.y > cull_hi_.y);
+  return !outside_cull_box(lo, hi);
 }
 
 bool ScreenSceneBuilder::may_cover_a_sample(Vec2 lo, Vec2 hi) const {
@@ -379,7 +379,7 @@ void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<in
   }
   if (in_front) {
     if (cull_) {
-      if (hi.x < cull_lo_.x || lo.x > cull_hi_.x || hi.y < cull_lo_.y || lo.y > cull_hi_.y) return;
+      if (outside_cull_box(lo, hi)) return;
       for (const Side& side : cull_sides_)
         if (std::all_of(on_raster.begin(), on_raster.end(),
                         [&side](Vec2 r) { return side.a * r.x + side.b * r.y + side.c < 0; }))

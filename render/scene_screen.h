@@ -194,6 +194,10 @@ class ScreenSceneBuilder {
   /// have drawn: a far piece of furniture smaller than a sample, or one off the picture,
   /// goes before it is shaded or projected.
   bool may_cover_a_sample(Vec2 lo, Vec2 hi) const;
+  /// Whether a box on the raster [lo, hi] (in samples) lies wholly outside the cull region's box.
+  bool outside_cull_box(Vec2 lo, Vec2 hi) const {
+    return hi.x < cull_lo_.x || lo.x > cull_hi_.x || hi.y < cull_lo_.y || lo.y > cull_hi_.y;
+  }
 
   Camera camera_;
   SceneOptions options_;
