@@ -62,7 +62,8 @@ double floor_of(const CellComplex& complex, const Object& o);
 CellId pinned_cell(const CellComplex& complex, const Object& o);
 
 /// Loads every object of the complex (plans/mesh.h, each file read once), places it on
-/// its storey, and finds the cell holding the centroid of its vertices. Its paint is its
+/// its storey, and finds the cell holding the centroid of its vertices (an object cut to a
+/// cell already keeps that one, pinned_cell). Its paint is its
 /// own material (Object::material) where it has one, else its mesh's (paint_of_mesh). Throws
 /// std::runtime_error naming the mesh file when one cannot be read; what reading a mesh let
 /// pass (an OBJ's missing MTL library or image, load_object_mesh) goes to `warnings`
