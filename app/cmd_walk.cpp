@@ -483,7 +483,7 @@ class Session {
       say(std::string("the furniture stays in full detail: ") + e.what());
       return;
     }
-    for (size_t i = 0; i < objects_.size() && i < levels.size(); ++i) objects_[i].coarser = std::move(levels[i]);
+    for (size_t i = 0; i < objects_.size() && i < levels.size(); ++i) set_coarser(objects_[i], std::move(levels[i]));
   }
   std::optional<LineScene> scene_;
   bool lines_ = false, progressive_ = false, hud_on_ = true, help_on_ = false;

@@ -50,6 +50,9 @@ struct HalftoneOptions {
   /// whose tolerance moves no point of it on the picture by more than this many samples
   /// (SceneOptions::detail_samples); 0: always in full. docs/ACCURACY.md, §5.
   double detail_samples = 0;
+  /// SceneOptions::drop_hidden: what lies wholly behind polygons already drawn is not put
+  /// on the raster where depth alone decides (the same picture; false: the reference).
+  bool drop_hidden = true;
 };
 
 /// What a render did and how long it took.

@@ -37,6 +37,28 @@ MeshPaint paint_of_mesh(const Mesh& mesh) {
   return paint;
 }
 
+PolygonRuns polygon_runs(const Mesh& m) {
+  constexpr size_t kRun = 16;
+  PolygonRuns runs;
+  const size_t n = std::min(m.triangles.size(), m.polygon_of.size());
+  for (size_t t = 0; t < n; ++t) {
+    const bool fresh = runs.first.empty() ||
+                       (t - runs.first.back() >= kRun && m.polygon_of[t] != m.polygon_of[t - 1]);
+    if (fresh) {
+      runs.first.push_back(uint32_t(t));
+      runs.boxes.emplace_back();
+    }
+    for (int v : m.triangles[t]) runs.boxes.back().add(m.vertices[size_t(v)]);
+  }
+  return runs;
+}
+
+void set_coarser(PlacedObject& o, std::vector<MeshLevel> levels) {
+  o.coarser = std::move(levels);
+  o.coarser_runs.clear();
+  for (const MeshLevel& level : o.coarser) o.coarser_runs.push_back(polygon_runs(level.mesh));
+}
+
 double floor_of(const CellComplex& complex, const Object& o) {
   return o.storey >= 0 && size_t(o.storey) < complex.storeys.size() ? complex.storeys[size_t(o.storey)].elevation : 0;
 }
@@ -105,11 +127,12 @@ std::vector<PlacedObject> place_objects(const CellComplex& complex, std::vector<
     if (o.material >= 0 && size_t(o.material) < complex.materials.size())
       p.paint.materials.push_back(complex.materials[size_t(o.material)]);
     else p.paint = paint_of_mesh(p.mesh);
+    p.runs = polygon_runs(p.mesh);
     out.push_back(std::move(p));
   }
   if (coarser) {  // from the models just read, not read again
     std::vector<std::vector<MeshLevel>> levels = placed_levels(complex, loaded);
-    for (size_t i = 0; i < out.size(); ++i) out[i].coarser = std::move(levels[i]);
+    for (size_t i = 0; i < out.size(); ++i) set_coarser(out[i], std::move(levels[i]));
   }
   if (models_read) *models_read = std::move(loaded);
   return out;

@@ -26,6 +26,18 @@ struct MeshPaint {
 /// default material) when the mesh has no materials of its own.
 MeshPaint paint_of_mesh(const Mesh& mesh);
 
+/// A mesh's triangles in runs of whole polygons (about 64 triangles each, in their order)
+/// and each run's box, so that a view passes over a run that cannot show (outside the
+/// avenue's region, under every sample, behind what is drawn) without looking at its
+/// polygons (ScreenSceneBuilder::add_mesh). A soup's detail in one cell is thousands of
+/// polygons, a steel member's in a row.
+struct PolygonRuns {
+  std::vector<uint32_t> first;  ///< per run: its first triangle; a run ends where the next begins
+  std::vector<Box3> boxes;      ///< per run: of its triangles' vertices
+};
+/// The runs of m's triangles: a run ends at the first polygon's end after 64 triangles.
+PolygonRuns polygon_runs(const Mesh& m);
+
 /// A plan object loaded, placed, and assigned to the cell holding its centroid.
 struct PlacedObject {
   std::string name;
@@ -38,7 +50,13 @@ struct PlacedObject {
   /// projects under SceneOptions::detail_samples (scene_view.cpp). Triangles keep their
   /// polygon numbers, so `paint` serves them too.
   std::vector<MeshLevel> coarser;
+  /// polygon_runs of `mesh`, and of each coarser version (set_coarser keeps them together).
+  PolygonRuns runs;
+  std::vector<PolygonRuns> coarser_runs;
 };
+
+/// Gives `o` its coarser versions, each with its polygon runs.
+void set_coarser(PlacedObject& o, std::vector<MeshLevel> levels);
 
 /// The tolerances of an object's coarser versions, as fractions of its model's bounding
 /// box diagonal: 1/1000, 1/250, 1/60 (a 1 m chair: 1, 4 and 17 mm).

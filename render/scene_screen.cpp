@@ -2,6 +2,7 @@
 #include "render/scene_screen.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -165,9 +166,7 @@ bool ScreenSceneBuilder::add(const std::vector<Vec3>& points, Vec3 n, double d, 
     out_.keep_outline(std::move(poly.outline));
     return false;
   }
-  // 1/Z on the raster: n·(d_xy·Z) + d = 0 with d_xy = (x, y, 1), x = x0 + step·u, y = y0 − step·v.
-  const RasterMap& m = out_.raster;
-  poly.depth = {-n.x * m.step / d, n.y * m.step / d, -(n.x * m.x0 + n.y * m.y0 + n.z) / d};
+  poly.depth = raster_plane(n, d);  // 1/Z on the raster
   poly.clip = where.clip;
   poly.group = where.group;
   poly.rank = where.rank;
@@ -175,7 +174,54 @@ bool ScreenSceneBuilder::add(const std::vector<Vec3>& points, Vec3 n, double d, 
   out_.polygons.push_back(std::move(poly));
   out_.shades.push_back(shade);
   out_.sources.push_back(source);
+  if (drop_hidden_) remember_drawn();
   return true;
+}
+
+void ScreenSceneBuilder::drop_hidden() {
+  if (drop_hidden_) return;
+  drop_hidden_ = true;
+  out_.drawn.reset(out_.raster.width, out_.raster.height, options_.per_side);
+}
+
+void ScreenSceneBuilder::remember_drawn() {
+  const ScreenPolygon& poly = out_.polygons.back();
+
+  // A plane seen nearly edge-on, whose 1/Z the scan's arithmetic does not hold to 1e-8, is
+  // no occluder.
+  const RasterPlane& z = poly.depth;
+  double least = HUGE_VAL, size = 0;
+  for (const FixedPoint& p : poly.outline) {
+    const double u = double(p.x) / kSubpixelOne, v = double(p.y) / kSubpixelOne;
+    least = std::min(least, z.at(u, v));
+    size = std::max(size, std::fabs(z.a * u) + std::fabs(z.b * v) + std::fabs(z.c));
+  }
+  if (!(least > 0) || size > 1e8 * least) return;
+  const std::vector<FixedPoint>* clip =
+      poly.clip >= 0 && size_t(poly.clip) < out_.clips.size() ? &out_.clips[size_t(poly.clip)].outline : nullptr;
+  out_.drawn.cover(poly.outline, clip, clip ? poly.clip : -1, z);
+}
+
+RasterPlane ScreenSceneBuilder::raster_plane(Vec3 n, double d) const {
+  // n·(d_xy·Z) + d = 0 with d_xy = (x, y, 1), x = x0 + step·u, y = y0 − step·v.
+  const RasterMap& m = out_.raster;
+  return {-n.x * m.step / d, n.y * m.step / d, -(n.x * m.x0 + n.y * m.y0 + n.z) / d};
+}
+
+bool ScreenSceneBuilder::hidden(const std::vector<Vec2>& corners, Vec3 n, double d, Vec2 lo, Vec2 hi) const {
+  if (!drop_hidden_ || !(std::fabs(d) > 0)) return false;
+  // The largest 1/Z the scan can give the polygon: the largest at a corner, plus the
+  // plane's slope (1/Z per sample) over the 1/128 of a sample the rounded outline may reach
+  // beyond the corners. Not for a plane whose 1/Z the scan's arithmetic does not hold to 1e-8.
+  const RasterPlane z = raster_plane(n, d);
+  double most = -HUGE_VAL, least = HUGE_VAL, size = 0;
+  for (const Vec2& r : corners) {
+    const double v = z.at(r.x, r.y);
+    most = std::max(most, v), least = std::min(least, v);
+    size = std::max(size, std::fabs(z.a * r.x) + std::fabs(z.b * r.y) + std::fabs(z.c));
+  }
+  if (!(least > 0) || size > 1e8 * least) return false;
+  return out_.drawn.hides(lo, hi, most + (std::fabs(z.a) + std::fabs(z.b)) / 128);
 }
 
 bool ScreenSceneBuilder::project(const std::vector<Vec3>& given, ScreenPolygon& poly) {
@@ -288,6 +334,10 @@ bool ScreenSceneBuilder::add_face(const std::vector<Vec3>& polygon, const Plane&
   // The face's plane in camera space: n·P + (n·eye + d) = 0.
   const Vec3 n = camera_dir(plane.n);
   const double d = plane.eval(camera_.eye);
+  if (drop_hidden_) {
+    Vec2 lo, hi;
+    if (on_raster(cam, polygon_raster_, lo, hi) && hidden(polygon_raster_, n, d, lo, hi)) return false;
+  }
   const bool smooth = options_.shading.model == ShadingModel::Smooth;  // Auto: a plane is flat
   if (lit()) {
     if (!(std::fabs(d) > 0)) return false;
@@ -321,17 +371,36 @@ void ScreenSceneBuilder::cull_outside(int32_t clip, double margin) {
 }
 
 bool ScreenSceneBuilder::may_show(const Box3& box) const {
-  if (!cull_) return true;
+  if (!(box.lo.x <= box.hi.x && box.lo.y <= box.hi.y && box.lo.z <= box.hi.z)) return true;
+  std::array<Vec2, 8> corners;
   Vec2 lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
+  double nearest = HUGE_VAL;
   for (int k = 0; k < 8; ++k) {
     const Vec3 w{k & 1 ? box.hi.x : box.lo.x, k & 2 ? box.hi.y : box.lo.y, k & 4 ? box.hi.z : box.lo.z};
     const Vec3 c = camera_.camera_from_world(w);
     if (!(c.z >= camera_.near)) return true;  // reaches the near plane: cannot tell here
     const Vec2 r = out_.raster.raster_from_image({c.x / c.z, c.y / c.z});
+    corners[size_t(k)] = r;
     lo = {std::min(lo.x, r.x), std::min(lo.y, r.y)};
     hi = {std::max(hi.x, r.x), std::max(hi.y, r.y)};
+    nearest = std::min(nearest, c.z);
   }
-  return !outside_cull_box(lo, hi);
+  // What add_mesh_polygon would find of each polygon inside, found once for all of them.
+  if (!may_cover_a_sample(lo, hi)) return false;
+  if (cull_) {
+    if (outside_cull_box(lo, hi)) return false;
+    for (const Side& side : cull_sides_)
+      if (std::all_of(corners.begin(), corners.end(),
+                      [&side](Vec2 r) { return side.a * r.x + side.b * r.y + side.c < 0; }))
+        return false;
+  }
+  // Behind what is drawn: no point inside is nearer than 1/nearest. A polygon's rounded
+  // outline may reach 1/128 of a sample past its corners, where its plane's 1/Z may exceed
+  // that by its slope; 1e-3 of 1/Z covers every plane turned more than about 1/4 degree
+  // from edge-on (a sample is 1/700 of the window's width; docs/ACCURACY.md). A plane
+  // nearer edge-on than that, lying within 1e-3 of the depth of what is drawn in front of
+  // it, may lose a sample that rounding alone would have shown through.
+  return !(drop_hidden_ && out_.drawn.hides(lo, hi, (1 + 1e-3) / nearest));
 }
 
 bool ScreenSceneBuilder::may_cover_a_sample(Vec2 lo, Vec2 hi) const {
@@ -347,6 +416,20 @@ bool ScreenSceneBuilder::may_cover_a_sample(Vec2 lo, Vec2 hi) const {
   return holds_centre(lo.x, hi.x, m.width) && holds_centre(lo.y, hi.y, m.height);
 }
 
+bool ScreenSceneBuilder::on_raster(const std::vector<Vec3>& points, std::vector<Vec2>& corners, Vec2& lo,
+                                   Vec2& hi) const {
+  corners.clear();
+  lo = {HUGE_VAL, HUGE_VAL}, hi = {-HUGE_VAL, -HUGE_VAL};
+  for (const Vec3& c : points) {
+    if (!(c.z >= camera_.near)) return false;
+    const Vec2 r = out_.raster.raster_from_image({c.x / c.z, c.y / c.z});
+    corners.push_back(r);
+    lo = {std::min(lo.x, r.x), std::min(lo.y, r.y)};
+    hi = {std::max(hi.x, r.x), std::max(hi.y, r.y)};
+  }
+  return true;
+}
+
 void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<int>& corners,
                                           const std::vector<Vec3>& corner_normals, const Material& material,
                                           Placement where, const PolygonSource& source) {
@@ -356,32 +439,21 @@ void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<in
   for (size_t k = 0; k < corners.size(); ++k) {
     const Vec3 p = mesh.vertices[size_t(corners[k])], q = mesh.vertices[size_t(corners[(k + 1) % corners.size()])];
     n = n + cross(p, q);  // Newell's normal: outwards for counter-clockwise corners
-    cam.push_back(mesh_cam_[size_t(corners[k])]);
+    cam.push_back(cam_of(mesh, corners[k]));
     centroid = centroid + cam.back();
   }
   const double area = length(n);
   if (!(area > 0)) return;
   // Wholly beyond the near plane, its corners on the raster tell what cannot show: a
   // polygon outside the region it will be clipped to, or one that holds no sample's centre.
-  std::vector<Vec2>& on_raster = polygon_raster_;
-  on_raster.clear();
-  Vec2 lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
-  bool in_front = true;
-  for (const Vec3& c : cam) {
-    if (!(c.z >= camera_.near)) {
-      in_front = false;
-      break;
-    }
-    const Vec2 r = out_.raster.raster_from_image({c.x / c.z, c.y / c.z});
-    on_raster.push_back(r);
-    lo = {std::min(lo.x, r.x), std::min(lo.y, r.y)};
-    hi = {std::max(hi.x, r.x), std::max(hi.y, r.y)};
-  }
+  std::vector<Vec2>& raster = polygon_raster_;
+  Vec2 lo, hi;
+  const bool in_front = on_raster(cam, raster, lo, hi);
   if (in_front) {
     if (cull_) {
       if (outside_cull_box(lo, hi)) return;
       for (const Side& side : cull_sides_)
-        if (std::all_of(on_raster.begin(), on_raster.end(),
+        if (std::all_of(raster.begin(), raster.end(),
                         [&side](Vec2 r) { return side.a * r.x + side.b * r.y + side.c < 0; }))
           return;
     }
@@ -389,15 +461,19 @@ void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<in
   }
   centroid = (1.0 / double(cam.size())) * centroid;
   const Vec3 nc = camera_dir(n);
+  const double d = -dot(nc, centroid);
+  // Drawn on its own plane (flat, or smooth where it is planar: below), a polygon wholly
+  // behind what is drawn already goes too.
+  auto behind = [&] { return in_front && hidden(raster, nc, d, lo, hi); };
   // A piece of a polygon cut apart is lit from the whole polygon's centroid (Mesh::polygon_light).
   const Vec3 light_from = source.polygon >= 0 && size_t(source.polygon) < mesh.polygon_light.size()
                               ? camera_.camera_from_world(mesh.polygon_light[size_t(source.polygon)])
                               : centroid;
-  const double d = -dot(nc, centroid);
   // Crow 1981: a closed surface seen from inside is hidden, so a polygon facing away goes.
   if (options_.cull_back_faces && mesh.closed && !(d > 0)) return;
   const bool lit_here = lit() && source.kind == PolygonSource::Kind::Object && std::fabs(d) > 0;
   if (options_.shading.model == ShadingModel::Flat) {
+    if (behind()) return;
     if (lit_here) {
       const size_t pieces = out_.pieces.size();
       add_lit(cam, nc, d, lit_planar_shade(material, nc, d, light_from, false, source), where, source, pieces);
@@ -415,6 +491,7 @@ void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<in
   // polygon's own (a box's corners keep their faces' normals: plans/mesh.h).
   if (options_.shading.model == ShadingModel::Auto && min_cos < kCurvedCos) planar = true;
   if (planar) {
+    if (behind()) return;
     const bool smooth = options_.shading.model == ShadingModel::Smooth;
     if (lit_here) {
       const size_t pieces = out_.pieces.size();
@@ -455,7 +532,7 @@ void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<in
 }
 
 void ScreenSceneBuilder::add_mesh(const Mesh& mesh, const MeshPaint& paint, Placement where, PolygonSource source,
-                                  bool polygons) {
+                                  bool polygons, const PolygonRuns* runs) {
   const size_t n = mesh.triangles.size();
   // Meshes made here and there all carry corner normals; one that does not gets them now.
   Mesh with_normals;
@@ -466,36 +543,48 @@ void ScreenSceneBuilder::add_mesh(const Mesh& mesh, const MeshPaint& paint, Plac
     m = &with_normals;
   }
   const std::vector<Vec3>& cn = m->corner_normals;
+  // Vertices go to camera space when a polygon looked at first needs them (cam_of).
   mesh_cam_.resize(mesh.vertices.size());
-  for (size_t v = 0; v < mesh.vertices.size(); ++v) mesh_cam_[v] = camera_.camera_from_world(mesh.vertices[v]);
+  mesh_cam_mark_.resize(mesh.vertices.size(), 0);
+  if (++mesh_mark_ == 0) {
+    std::fill(mesh_cam_mark_.begin(), mesh_cam_mark_.end(), 0);
+    mesh_mark_ = 1;
+  }
+  const bool by_runs = runs && !runs->first.empty() && runs->first.size() == runs->boxes.size() &&
+                       runs->first[0] == 0 && runs->first.back() < n;
+  const size_t run_count = by_runs ? runs->first.size() : 1;
   std::vector<int> corners;
   std::vector<Vec3> normals;
-  for (size_t t = 0; t < n;) {
-    const int polygon = mesh.polygon_of[t];
-    size_t end = t + 1;
-    while (polygons && end < n && mesh.polygon_of[end] == polygon) ++end;
-    source.polygon = polygon;
-    const Material& material = paint.of_polygon(polygon);
-    // The input polygon again, from its fan (plans/mesh.h triangulates a polygon a, b, c,
-    // d, ... as abc, acd, ...); a polygon that was not a fan goes triangle by triangle.
-    corners.assign(mesh.triangles[t].begin(), mesh.triangles[t].end());
-    normals.assign(cn.begin() + std::ptrdiff_t(3 * t), cn.begin() + std::ptrdiff_t(3 * t + 3));
-    bool fan = true;
-    for (size_t k = t + 1; k < end && fan; ++k) {
-      fan = mesh.triangles[k][0] == corners[0] && mesh.triangles[k][1] == corners.back();
-      corners.push_back(mesh.triangles[k][2]);
-      normals.push_back(cn[3 * k + 2]);
-    }
-    if (fan) {
-      add_mesh_polygon(mesh, corners, normals, material, where, source);
-    } else {
-      for (size_t k = t; k < end; ++k) {
-        triangle_corners_.assign(mesh.triangles[k].begin(), mesh.triangles[k].end());
-        triangle_normals_.assign(cn.begin() + std::ptrdiff_t(3 * k), cn.begin() + std::ptrdiff_t(3 * k + 3));
-        add_mesh_polygon(mesh, triangle_corners_, triangle_normals_, material, where, source);
+  for (size_t r = 0; r < run_count; ++r) {
+    if (by_runs && !may_show(runs->boxes[r])) continue;
+    const size_t t0 = by_runs ? runs->first[r] : 0, t1 = by_runs && r + 1 < run_count ? runs->first[r + 1] : n;
+    for (size_t t = t0; t < t1;) {
+      const int polygon = mesh.polygon_of[t];
+      size_t end = t + 1;
+      while (polygons && end < t1 && mesh.polygon_of[end] == polygon) ++end;
+      source.polygon = polygon;
+      const Material& material = paint.of_polygon(polygon);
+      // The input polygon again, from its fan (plans/mesh.h triangulates a polygon a, b, c,
+      // d, ... as abc, acd, ...); a polygon that was not a fan goes triangle by triangle.
+      corners.assign(mesh.triangles[t].begin(), mesh.triangles[t].end());
+      normals.assign(cn.begin() + std::ptrdiff_t(3 * t), cn.begin() + std::ptrdiff_t(3 * t + 3));
+      bool fan = true;
+      for (size_t k = t + 1; k < end && fan; ++k) {
+        fan = mesh.triangles[k][0] == corners[0] && mesh.triangles[k][1] == corners.back();
+        corners.push_back(mesh.triangles[k][2]);
+        normals.push_back(cn[3 * k + 2]);
       }
+      if (fan) {
+        add_mesh_polygon(mesh, corners, normals, material, where, source);
+      } else {
+        for (size_t k = t; k < end; ++k) {
+          triangle_corners_.assign(mesh.triangles[k].begin(), mesh.triangles[k].end());
+          triangle_normals_.assign(cn.begin() + std::ptrdiff_t(3 * k), cn.begin() + std::ptrdiff_t(3 * k + 3));
+          add_mesh_polygon(mesh, triangle_corners_, triangle_normals_, material, where, source);
+        }
+      }
+      t = end;
     }
-    t = end;
   }
 }
 
@@ -503,6 +592,7 @@ ScreenScene screen_scene_of_meshes(const std::vector<Mesh>& meshes, const std::v
                                    const Camera& camera, const SceneOptions& options) {
   ScreenScene out;
   ScreenSceneBuilder b(camera, options, out);
+  if (options.drop_hidden) b.drop_hidden();  // one group of objects: depth decides everywhere
   static const MeshPaint kDefault;
   for (size_t i = 0; i < meshes.size(); ++i) {
     PolygonSource source;

@@ -23,6 +23,7 @@
 
 #include "cells/cell_complex.h"
 #include "render/lighting.h"
+#include "render/occlusion_buffer.h"
 #include "render/raster_map.h"
 #include "render/scanline.h"
 #include "render/scene_objects.h"
@@ -58,6 +59,9 @@ struct ScreenScene {
   /// Search for implicitly defined lines where objects' polygons change depth order (false:
   /// the scene has no interpenetrating polygons, effects.h; the scan is the same without).
   bool implicit_lines = true;
+  /// What is drawn so far, for a scene resolved by depth alone (ScreenSceneBuilder::
+  /// drop_hidden); kept between pictures for its storage.
+  OcclusionBuffer drawn;
   /// Outlines the last picture used, emptied, for the next one's polygons (clear()).
   std::vector<std::vector<FixedPoint>> spare_outlines;
 
@@ -91,6 +95,10 @@ struct SceneOptions {
   /// > 0: objects' coarser versions where their tolerance projects under this many samples
   /// (scene_view.cpp); 0: objects in full.
   double detail_samples = 0;
+  /// Where depth alone decides (a conservative visible set, meshes alone), polygons wholly
+  /// behind what is already drawn are not put on the raster (ScreenSceneBuilder::
+  /// drop_hidden): the same picture. False: every polygon, the reference tests compare with.
+  bool drop_hidden = true;
 };
 
 /// Adds polygons to a ScreenScene (steps 1–5 above).
@@ -120,7 +128,10 @@ class ScreenSceneBuilder {
   /// `polygons` false: every triangle on its own (a coarser version, whose triangles of one
   /// input polygon no longer lie in one plane), else the runs of triangles of one polygon
   /// drawn as the polygon where they form its fan.
-  void add_mesh(const Mesh& mesh, const MeshPaint& paint, Placement where, PolygonSource source, bool polygons = true);
+  /// `runs`, when given (polygon_runs of `mesh`): a run whose box cannot show (may_show) is
+  /// passed over whole, and only the vertices of runs looked at go to camera space.
+  void add_mesh(const Mesh& mesh, const MeshPaint& paint, Placement where, PolygonSource source, bool polygons = true,
+                const PolygonRuns* runs = nullptr);
   /// From now on, mesh polygons wholly in front of the near plane and wholly outside clip
   /// region `clip` (add_clip) grown by `margin` samples are not added: they would be
   /// clipped to it, so they could not show. Until no_cull(). The region's box alone lets
@@ -128,7 +139,15 @@ class ScreenSceneBuilder {
   /// (exact integer directions), a polygon goes.
   void cull_outside(int32_t clip, double margin);
   void no_cull() { cull_ = false; }
-  /// Whether a world box could show inside the cull box (true without one).
+  /// From now on the scene is resolved by depth alone (one group, every polygon an
+  /// Object): a polygon added that covers whole tiles of the raster is remembered
+  /// (ScreenScene::drawn), and a planar polygon wholly behind what is already drawn is not added.
+  /// The picture is the same; what the scan would never show costs nothing.
+  void drop_hidden();
+  /// Whether something inside a world box could show: false if, every corner beyond the
+  /// near plane, its box on the raster holds no sample's centre, or lies outside the cull
+  /// region's box or beyond one of its sides (cull_outside), or behind what is drawn
+  /// (drop_hidden; with a margin of 1e-3 in 1/Z, see scene_screen.cpp).
   bool may_show(const Box3& box) const;
 
  private:
@@ -185,7 +204,7 @@ class ScreenSceneBuilder {
                const PolygonSource& source, size_t pieces_before);
   Vec3 camera_dir(Vec3 v) const { return {dot(v, camera_.right), dot(v, camera_.up), dot(v, camera_.forward)}; }
   /// One input polygon of a mesh: its corners and, per corner, the normal for smooth shading.
-  /// Its corners' camera-space points are mesh_cam_'s (add_mesh puts them there).
+  /// Its corners' camera-space points are mesh_cam_'s (cam_of).
   void add_mesh_polygon(const Mesh& mesh, const std::vector<int>& corners, const std::vector<Vec3>& normals,
                         const Material& material, Placement where, const PolygonSource& source);
   /// Whether a polygon whose box on the raster (in samples; every corner beyond the near
@@ -194,6 +213,17 @@ class ScreenSceneBuilder {
   /// have drawn: a far piece of furniture smaller than a sample, or one off the picture,
   /// goes before it is shaded or projected.
   bool may_cover_a_sample(Vec2 lo, Vec2 hi) const;
+  /// 1/Z on the raster [1/m] of the camera-space plane n·P + d = 0 (d != 0).
+  RasterPlane raster_plane(Vec3 n, double d) const;
+  /// A camera-space polygon's corners on the raster [samples] and their box; false (and
+  /// the corners unfinished) if some corner lies before the near plane.
+  bool on_raster(const std::vector<Vec3>& points, std::vector<Vec2>& corners, Vec2& lo, Vec2& hi) const;
+  /// Whether a polygon drawn on the camera-space plane n·P + d = 0, with these corners on
+  /// the raster (every one beyond the near plane) and their box [lo, hi], lies behind what
+  /// is drawn wherever it could colour a sample (drop_hidden; false without).
+  bool hidden(const std::vector<Vec2>& corners, Vec3 n, double d, Vec2 lo, Vec2 hi) const;
+  /// The polygon just added (the scene's last): remembered where it covers whole pixels.
+  void remember_drawn();
   /// Whether a box on the raster [lo, hi] (in samples) lies wholly outside the cull region's box.
   bool outside_cull_box(Vec2 lo, Vec2 hi) const {
     return hi.x < cull_lo_.x || lo.x > cull_hi_.x || hi.y < cull_lo_.y || lo.y > cull_hi_.y;
@@ -204,6 +234,7 @@ class ScreenSceneBuilder {
   ScreenScene& out_;
   double guard_ = 0;  ///< [samples] the guard band's width around the window
   bool cull_ = false;
+  bool drop_hidden_ = false;
   Vec2 cull_lo_, cull_hi_;  ///< [samples] the cull region's box on the raster, grown by its margin
   /// The cull region's sides as half-planes a·u + b·v + c >= 0 on the raster (a, b a unit
   /// normal pointing in; c taking in the margin).
@@ -214,6 +245,16 @@ class ScreenSceneBuilder {
   std::vector<Vec3> near_cut_, plane_cut_;
   std::vector<Vec3> face_cam_;       ///< add_face: the face in camera space (kept: a view adds thousands)
   std::vector<Vec3> mesh_cam_;       ///< add_mesh: the mesh's vertices in camera space, each transformed once
+  std::vector<uint32_t> mesh_cam_mark_;  ///< per vertex: mesh_mark_ when mesh_cam_ holds it for this mesh
+  uint32_t mesh_mark_ = 0;
+  /// Vertex v of the mesh add_mesh is adding, in camera space.
+  const Vec3& cam_of(const Mesh& mesh, int v) {
+    if (mesh_cam_mark_[size_t(v)] != mesh_mark_) {
+      mesh_cam_[size_t(v)] = camera_.camera_from_world(mesh.vertices[size_t(v)]);
+      mesh_cam_mark_[size_t(v)] = mesh_mark_;
+    }
+    return mesh_cam_[size_t(v)];
+  }
   std::vector<Vec3> polygon_cam_;    ///< add_mesh_polygon: the polygon's corners in camera space
   std::vector<Vec2> polygon_raster_;  ///< and on the raster [samples]
   std::vector<int> triangle_corners_;       ///< add_mesh: one triangle of a polygon that is not a fan

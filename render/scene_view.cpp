@@ -46,21 +46,21 @@ constexpr double kMaskGrowth = 1.0 / 64;
 /// Z is bounded below by the nearest corner of the object's box and |x|, |y| by the
 /// raster's extent (what lies outside is not drawn). An object reaching the near plane, or
 /// no `samples`, is drawn in full.
-const Mesh* detail_of(const PlacedObject& object, const Camera& camera, const RasterMap& raster, double samples) {
-  if (!(samples > 0) || object.coarser.empty()) return &object.mesh;
+int detail_of(const PlacedObject& object, const Camera& camera, const RasterMap& raster, double samples) {
+  if (!(samples > 0) || object.coarser.empty()) return -1;
   double z = HUGE_VAL;
   for (int corner = 0; corner < 8; ++corner) {
     const Box3& b = object.bounds;
     const Vec3 p{corner & 1 ? b.hi.x : b.lo.x, corner & 2 ? b.hi.y : b.lo.y, corner & 4 ? b.hi.z : b.lo.z};
     z = std::min(z, camera.camera_from_world(p).z);
   }
-  if (!(z > camera.near)) return &object.mesh;
+  if (!(z > camera.near)) return -1;
   const double reach = std::max({std::fabs(raster.x0), std::fabs(raster.x0 + raster.width * raster.step),
                                  std::fabs(raster.y0), std::fabs(raster.y0 - raster.height * raster.step)});
   const double per_metre = std::sqrt(2.0) * (1 + reach) / (z * raster.step);  // [samples / m]
-  const Mesh* best = &object.mesh;
-  for (const MeshLevel& level : object.coarser)
-    if (level.tolerance * per_metre <= samples) best = &level.mesh;
+  int best = -1;
+  for (size_t k = 0; k < object.coarser.size(); ++k)
+    if (object.coarser[k].tolerance * per_metre <= samples) best = int(k);
   return best;
 }
 
@@ -142,6 +142,8 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
     if (objects[i].cell != kNoCell) objects_in[objects[i].cell].push_back(i);
   // An eye on its cell's boundary has several roots whose masks meet along lines: grow
   // them as deeper masks are grown, so that no sample on a meeting line falls between.
+  // Resolved by depth alone, what lies behind polygons already drawn need not be drawn.
+  if (visible.conservative && options.drop_hidden) b.drop_hidden();
   size_t roots = 0;
   for (const Avenue& a : visible.avenues) roots += a.parent < 0;
   for (size_t i = 0; i < visible.avenues.size(); ++i) {
@@ -194,8 +196,12 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
     for (size_t o : in->second) {
       if (!b.may_show(objects[o].bounds)) continue;  // a cell seen through many avenues: not through this one
       source.mesh = int(o);
-      const Mesh* mesh = detail_of(objects[o], camera, out.raster, options.detail_samples);
-      b.add_mesh(*mesh, objects[o].paint, where, source, mesh == &objects[o].mesh);
+      const PlacedObject& object = objects[o];
+      const int level = detail_of(object, camera, out.raster, options.detail_samples);
+      const Mesh& mesh = level < 0 ? object.mesh : object.coarser[size_t(level)].mesh;
+      const std::vector<PolygonRuns>& runs = object.coarser_runs;
+      const PolygonRuns* of_mesh = level < 0 ? &object.runs : size_t(level) < runs.size() ? &runs[size_t(level)] : nullptr;
+      b.add_mesh(mesh, object.paint, where, source, level < 0, of_mesh);
     }
     b.no_cull();
   }

@@ -43,6 +43,9 @@ struct HullTally {
   long merged_avenues = 0, hull_avenues = 0, merged_cells = 0, hull_cells = 0;
   int pictures = 0;
   long pixels = 0, pixels_differ = 0;  ///< of the pictures compared
+  /// Polygons the hull search's pictures put on the raster with what is hidden dropped
+  /// (HalftoneOptions::drop_hidden), and without.
+  long polygons_dropping = 0, polygons_all = 0;
 };
 
 /// The hull search from `cam` in kernel k against `merged` (the merged search from the same
@@ -114,6 +117,16 @@ inline void expect_hull_holds_merged(const CellComplex& c, const Camera& cam, Ce
   t.pixels_differ += d.differ, t.pixels += d.pixels;
   EXPECT_EQ(d.off_edges, 0) << "the half-tones differ in " << d.off_edges << " pixels away from every edge";
   EXPECT_LE(d.differ, d.pixels / 200) << "the half-tones differ in " << d.differ << " pixels";
+  // Dropping what lies behind polygons already drawn changes no byte of the picture.
+  RenderStats dropping, all;
+  Image every;
+  HalftoneOptions reference = o;
+  reference.drop_hidden = false;
+  render_view(c, *objects, cam, hull, o, by_depth, &dropping);
+  render_view(c, *objects, cam, hull, reference, every, &all);
+  EXPECT_TRUE(by_depth.data == every.data) << "dropping hidden polygons changed the picture";
+  EXPECT_LE(dropping.polygons, all.polygons);
+  t.polygons_dropping += dropping.polygons, t.polygons_all += all.polygons;
 }
 
 }  // namespace avenues::testing

@@ -179,7 +179,7 @@ TEST(SoupDetail, ThePicturesAreTheWholeSoupsAndTheSearchMissesNoCell) {
   std::mt19937 rng(16);
   std::uniform_real_distribution<double> x(-1.5, 2.0 * k + 0.5), z(0.1, 2.5), yaw(0, 360), pitch(-50, 30);
   int views = 0;
-  long pixels = 0, differ = 0;
+  long pixels = 0, differ = 0, polygons_dropping = 0, polygons_all = 0;
   while (views < 12) {
     const Vec3 eye{x(rng), x(rng), z(rng)};
     const Location in_whole = whole.locate(eye), in_split = split.locate(eye);
@@ -204,7 +204,19 @@ TEST(SoupDetail, ThePicturesAreTheWholeSoupsAndTheSearchMissesNoCell) {
       const VisibleSet vs = find_visible(split, cam, in_split.cell, p);
       EXPECT_EQ(avenues::testing::check_visible_set(split, cam, vs, 4).missing, 0);
       Image pic;
-      render_view(split, detail, cam, vs, o, pic);
+      RenderStats dropping;
+      render_view(split, detail, cam, vs, o, pic, &dropping);
+      if (hull) {
+        // Resolved by depth alone, dropping what lies behind polygons already drawn
+        // changes no byte of the picture.
+        HalftoneOptions every = o;
+        every.drop_hidden = false;
+        Image reference;
+        RenderStats all;
+        render_view(split, detail, cam, vs, every, reference, &all);
+        EXPECT_TRUE(pic.data == reference.data) << "dropping hidden polygons changed the picture";
+        polygons_dropping += dropping.polygons, polygons_all += all.polygons;
+      }
       const avenues::testing::PictureDifference d = avenues::testing::compare_off_edges(truth, pic);
       EXPECT_EQ(d.off_edges, 0) << "the pictures differ in " << d.off_edges << " pixels away from every edge";
       EXPECT_LE(d.differ, d.pixels / 200) << "the pictures differ in " << d.differ << " pixels";
@@ -212,6 +224,9 @@ TEST(SoupDetail, ThePicturesAreTheWholeSoupsAndTheSearchMissesNoCell) {
     }
   }
   RecordProperty("pixels_differ", std::to_string(differ) + " of " + std::to_string(pixels));
+  // Bars behind the boxes' walls and behind each other: many are dropped.
+  EXPECT_LT(polygons_dropping, polygons_all);
+  RecordProperty("polygons", std::to_string(polygons_dropping) + " of " + std::to_string(polygons_all));
 }
 
 // Each piece of a detail polygon is lit from the whole polygon's centroid: a bar lying
