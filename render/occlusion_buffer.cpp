@@ -22,21 +22,17 @@ class RowWalker {
  public:
   explicit RowWalker(const OcclusionBuffer::Chains& chains) : c_(chains) {}
   /// The interval [l, r] of the line at height y, no higher than the last asked for; false
-  /// if the line misses the outline.
+  /// unless the line passes strictly between the outline's highest and lowest corners (by
+  /// 1e-6 of a sample), where every point strictly between l and r is strictly inside.
   bool at(double y, double& l, double& r) {
-    if (!(y >= c_.top && y <= c_.bottom)) return false;
+    if (!(y > c_.top + kInside && y < c_.bottom - kInside)) return false;
     l = HUGE_VAL, r = -HUGE_VAL;
     for (int k = 0; k < 2; ++k) {
       const std::vector<Vec2>& c = c_.side[k];
       size_t& i = next_[k];
       while (i + 2 < c.size() && c[i + 1].y < y) ++i;
-      const Vec2 p = c[i], q = c[std::min(i + 1, c.size() - 1)];
-      if (q.y == p.y) {
-        l = std::min({l, p.x, q.x}), r = std::max({r, p.x, q.x});
-      } else {
-        const double x = p.x + (y - p.y) * (q.x - p.x) / (q.y - p.y);
-        l = std::min(l, x), r = std::max(r, x);
-      }
+      const double x = c[i].x + (y - c[i].y) * c_.slope[k][i];  // a side under y: not level
+      l = std::min(l, x), r = std::max(r, x);
     }
     return l <= r;
   }
@@ -68,6 +64,7 @@ void OcclusionBuffer::reset(int width, int height, int per_side) {
     const size_t tiles = size_t(tiles_across) * size_t(tiles_down);
     cells_.assign(tiles * kCells, 0.0f);
     least_.assign(tiles, 0.0f);
+    unsettled_.assign(tiles, 0);
     floor_.assign(tiles, 0.0f);
     stamp_.assign(tiles, 0);
     cell_stamp_.assign(tiles, 0);
@@ -97,12 +94,20 @@ void OcclusionBuffer::Chains::build(const std::vector<FixedPoint>& outline) {
     side[1].push_back(point(i));
     if (i == last) break;
   }
+  for (int k = 0; k < 2; ++k) {
+    slope[k].clear();
+    for (size_t i = 0; i + 1 < side[k].size(); ++i) {
+      const Vec2 p = side[k][i], q = side[k][i + 1];
+      slope[k].push_back(q.y != p.y ? (q.x - p.x) / (q.y - p.y) : 0);
+    }
+  }
   top = point(first).y, bottom = point(last).y;
 }
 
 void OcclusionBuffer::touch(size_t t) {
   if (stamp_[t] == generation_) return;
   least_[t] = 0;
+  unsettled_[t] = 0;
   floor_[t] = 0;
   stamp_[t] = generation_;
 }
@@ -114,7 +119,8 @@ void OcclusionBuffer::touch_cells(size_t t) {
   cell_stamp_[t] = generation_;
 }
 
-void OcclusionBuffer::settle(size_t t) {
+float OcclusionBuffer::least(size_t t) const {
+  if (!unsettled_[t]) return least_[t];
   const int tx = int(t % size_t(tiles_across_)), ty = int(t / size_t(tiles_across_));
   const int cols = std::min(kTile, across_ - tx * kTile), rows = std::min(kTile, down_ - ty * kTile);
   const float* c = &cells_[t * kCells];
@@ -122,6 +128,8 @@ void OcclusionBuffer::settle(size_t t) {
   for (int r = 0; r < rows; ++r)
     for (int k = 0; k < cols; ++k) least = std::min(least, c[r * kTile + k]);
   least_[t] = least;
+  unsettled_[t] = 0;
+  return least;
 }
 
 bool OcclusionBuffer::inside_run(double l, double r, int& first, int& last) const {
@@ -189,13 +197,17 @@ void OcclusionBuffer::cover(const std::vector<FixedPoint>& outline, const std::v
     const size_t row_of_tiles = size_t(ty) * size_t(tiles_across_);
     const int tile_rows = std::min(kTile, down_ - ty * kTile);
     const int ra = std::max(r0, ty * kTile), rb = std::min(r1, ty * kTile + tile_rows - 1);
-    // Each row's cells are those whose centres, grown by kInside, lie inside the outline
-    // and the region on the lines just above and below them (both convex: the corners of
-    // the centres' rectangle inside).
+    // Each row's cells are those whose centres lie strictly inside the outline and the
+    // region on the lines through its first and last rows of centres (both convex: the
+    // corners of the centres' rectangle strictly inside).
     for (int r = ra; r <= rb; ++r) {
       Row& row = rows[size_t(r - ty * kTile)];
-      row.top = interval(r * s + 0.5 - kInside, row.lt, row.rt);
-      row.bottom = interval(r * s + s - 0.5 + kInside, row.lb, row.rb);
+      row.top = interval(r * s + 0.5, row.lt, row.rt);
+      if (s == 1) {  // one row of centres: one line
+        row.bottom = row.top, row.lb = row.lt, row.rb = row.rt;
+      } else {
+        row.bottom = interval(r * s + s - 0.5, row.lb, row.rb);
+      }
     }
     // Tiles the polygon covers whole take a floor, 1 value for 64 cells.
     int ta = 1, tb = 0, first, last;
@@ -216,7 +228,6 @@ void OcclusionBuffer::cover(const std::vector<FixedPoint>& outline, const std::v
       floor_[t] = std::max(floor_[t], float(v * kBelow));
     }
     // The cells of the rest, row by row.
-    int touched0 = across_, touched1 = -1;
     for (int r = ra; r <= rb; ++r) {
       const Row& row = rows[size_t(r - ty * kTile)];
       if (!row.top || !row.bottom ||
@@ -236,12 +247,8 @@ void OcclusionBuffer::cover(const std::vector<FixedPoint>& outline, const std::v
         touch_cells(t);
         float& cell = cells_[t * kCells + size_t((r % kTile) * kTile + c % kTile)];
         cell = std::max(cell, float(v * kBelow));
-        touched0 = std::min(touched0, tx), touched1 = std::max(touched1, tx);
+        unsettled_[t] = 1;
       }
-    }
-    for (int tx = touched0; tx <= touched1; ++tx) {
-      const size_t t = row_of_tiles + size_t(tx);
-      if (cell_stamp_[t] == generation_) settle(t);
     }
   }
 }
@@ -276,7 +283,7 @@ bool OcclusionBuffer::hides(Vec2 lo, Vec2 hi, double inv_z) const {
       const bool whole = k0 == 0 && k1 == std::min(kTile, across_ - tx * kTile) - 1 && q0 == 0 &&
                          q1 == std::min(kTile, down_ - ty * kTile) - 1;
       if (cell_stamp_[t] != generation_) return false;  // its cells hold nothing beyond the floor
-      if (whole ? !(double(least_[t]) > need) : !cells_above(t, k0, k1, q0, q1, need)) return false;
+      if (whole ? !(double(least(t)) > need) : !cells_above(t, k0, k1, q0, q1, need)) return false;
     }
   }
   return true;

@@ -60,6 +60,7 @@ class OcclusionBuffer {
   /// A convex outline's two chains of sides from its highest corner to its lowest [samples].
   struct Chains {
     std::vector<Vec2> side[2];
+    std::vector<double> slope[2];  ///< per side: dx/dy of each of its sides (0 where level)
     double top = 0, bottom = 0;
     void build(const std::vector<FixedPoint>& outline);
   };
@@ -76,8 +77,8 @@ class OcclusionBuffer {
   void touch(size_t t);
   /// The same, and its cells (cleared if they were last written before this reset).
   void touch_cells(size_t t);
-  /// Sets tile t's least from its cells.
-  void settle(size_t t);
+  /// Tile t's least over its cells, found again if cells were written since.
+  float least(size_t t) const;
   /// The cells [first, last] of a row whose sample centres, grown by 1e-6, lie inside the
   /// interval (l, r) [samples]; false if none.
   bool inside_run(double l, double r, int& first, int& last) const;
@@ -89,7 +90,8 @@ class OcclusionBuffer {
   int tiles_across_ = 0, tiles_down_ = 0;
   uint32_t generation_ = 0;
   std::vector<float> cells_;          ///< tile by tile, kTile × kTile cells each, row by row within
-  std::vector<float> least_;          ///< per tile: the least of its cells (current tiles only)
+  mutable std::vector<float> least_;     ///< per tile: the least of its cells (least(), current tiles only)
+  mutable std::vector<uint8_t> unsettled_;  ///< per tile: cells written since least_ was found
   std::vector<float> floor_;          ///< per tile: a value every cell of it reaches (a polygon covering it whole)
   std::vector<uint32_t> stamp_;       ///< per tile: the generation it was last touched in
   std::vector<uint32_t> cell_stamp_;  ///< per tile: the generation its cells were last written in

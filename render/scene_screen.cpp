@@ -12,6 +12,11 @@ namespace avenues {
 
 namespace {
 
+/// drop_hidden: how many polygons are tested before the picture judges whether remembering
+/// what is drawn pays, and the share of them (one in kPaysFrom) it must have dropped.
+constexpr long kJudgedAfter = 500;
+constexpr long kPaysFrom = 8;
+
 bool before(Vec3 a, Vec3 b) { return a.x != b.x ? a.x < b.x : a.y != b.y ? a.y < b.y : a.z < b.z; }
 bool before(Vec2 a, Vec2 b) { return a.x != b.x ? a.x < b.x : a.y < b.y; }
 
@@ -186,6 +191,13 @@ void ScreenSceneBuilder::drop_hidden() {
 
 void ScreenSceneBuilder::remember_drawn() {
   const ScreenPolygon& poly = out_.polygons.back();
+  // Remembering what is drawn pays where much is hidden (a steel frame seen down a bay),
+  // not where little is (a furnished room): once kJudgedAfter polygons have been tested,
+  // a picture that dropped under one in kPaysFrom of them stops remembering and testing.
+  if (tested_ >= kJudgedAfter && dropped_ * kPaysFrom < tested_) {
+    drop_hidden_ = false;
+    return;
+  }
 
   // A plane seen nearly edge-on, whose 1/Z the scan's arithmetic does not hold to 1e-8, is
   // no occluder.
@@ -208,7 +220,7 @@ RasterPlane ScreenSceneBuilder::raster_plane(Vec3 n, double d) const {
   return {-n.x * m.step / d, n.y * m.step / d, -(n.x * m.x0 + n.y * m.y0 + n.z) / d};
 }
 
-bool ScreenSceneBuilder::hidden(const std::vector<Vec2>& corners, Vec3 n, double d, Vec2 lo, Vec2 hi) const {
+bool ScreenSceneBuilder::hidden(const std::vector<Vec2>& corners, Vec3 n, double d, Vec2 lo, Vec2 hi) {
   if (!drop_hidden_ || !(std::fabs(d) > 0)) return false;
   // The largest 1/Z the scan can give the polygon: the largest at a corner, plus the
   // plane's slope (1/Z per sample) over the 1/128 of a sample the rounded outline may reach
@@ -221,7 +233,10 @@ bool ScreenSceneBuilder::hidden(const std::vector<Vec2>& corners, Vec3 n, double
     size = std::max(size, std::fabs(z.a * r.x) + std::fabs(z.b * r.y) + std::fabs(z.c));
   }
   if (!(least > 0) || size > 1e8 * least) return false;
-  return out_.drawn.hides(lo, hi, most + (std::fabs(z.a) + std::fabs(z.b)) / 128);
+  ++tested_;
+  const bool behind = out_.drawn.hides(lo, hi, most + (std::fabs(z.a) + std::fabs(z.b)) / 128);
+  dropped_ += behind;
+  return behind;
 }
 
 bool ScreenSceneBuilder::project(const std::vector<Vec3>& given, ScreenPolygon& poly) {

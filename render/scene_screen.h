@@ -142,7 +142,8 @@ class ScreenSceneBuilder {
   /// From now on the scene is resolved by depth alone (one group, every polygon an
   /// Object): a polygon added that covers whole tiles of the raster is remembered
   /// (ScreenScene::drawn), and a planar polygon wholly behind what is already drawn is not added.
-  /// The picture is the same; what the scan would never show costs nothing.
+  /// The picture is the same; what the scan would never show costs nothing. A picture
+  /// where little is hidden (under one polygon in 8 of the first 500 tested) stops.
   void drop_hidden();
   /// Whether something inside a world box could show: false if, every corner beyond the
   /// near plane, its box on the raster holds no sample's centre, or lies outside the cull
@@ -221,7 +222,7 @@ class ScreenSceneBuilder {
   /// Whether a polygon drawn on the camera-space plane n·P + d = 0, with these corners on
   /// the raster (every one beyond the near plane) and their box [lo, hi], lies behind what
   /// is drawn wherever it could colour a sample (drop_hidden; false without).
-  bool hidden(const std::vector<Vec2>& corners, Vec3 n, double d, Vec2 lo, Vec2 hi) const;
+  bool hidden(const std::vector<Vec2>& corners, Vec3 n, double d, Vec2 lo, Vec2 hi);
   /// The polygon just added (the scene's last): remembered where it covers whole pixels.
   void remember_drawn();
   /// Whether a box on the raster [lo, hi] (in samples) lies wholly outside the cull region's box.
@@ -235,6 +236,7 @@ class ScreenSceneBuilder {
   double guard_ = 0;  ///< [samples] the guard band's width around the window
   bool cull_ = false;
   bool drop_hidden_ = false;
+  long tested_ = 0, dropped_ = 0;  ///< drop_hidden: polygons tested against what is drawn, and dropped
   Vec2 cull_lo_, cull_hi_;  ///< [samples] the cull region's box on the raster, grown by its margin
   /// The cull region's sides as half-planes a·u + b·v + c >= 0 on the raster (a, b a unit
   /// normal pointing in; c taking in the margin).
