@@ -140,10 +140,10 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
   std::map<CellId, std::vector<size_t>> objects_in;
   for (size_t i = 0; i < objects.size(); ++i)
     if (objects[i].cell != kNoCell) objects_in[objects[i].cell].push_back(i);
-  // An eye on its cell's boundary has several roots whose masks meet along lines: grow
-  // them as deeper masks are grown, so that no sample on a meeting line falls between.
   // Resolved by depth alone, what lies behind polygons already drawn need not be drawn.
   if (visible.conservative && options.drop_hidden) b.drop_hidden();
+  // An eye on its cell's boundary has several roots whose masks meet along lines: grow
+  // them as deeper masks are grown, so that no sample on a meeting line falls between.
   size_t roots = 0;
   for (const Avenue& a : visible.avenues) roots += a.parent < 0;
   for (size_t i = 0; i < visible.avenues.size(); ++i) {
