@@ -189,7 +189,7 @@ void OcclusionBuffer::cover(const std::vector<FixedPoint>& outline, const std::v
     return depth.at(depth.a >= 0 ? left : right, depth.b >= 0 ? top : bottom);
   };
   struct Row {
-    bool top = false, bottom = false;  // the lines above and below the row's centres meet it
+    bool top = false, bottom = false;  // the lines through its first and last centres meet it
     double lt = 0, rt = 0, lb = 0, rb = 0;
   };
   std::array<Row, kTile> rows;
@@ -234,14 +234,13 @@ void OcclusionBuffer::cover(const std::vector<FixedPoint>& outline, const std::v
           !inside_run(std::max(row.lt, row.lb), std::min(row.rt, row.rb), first, last))
         continue;
       const double top = r * s + 0.5, bottom = r * s + s - 0.5;
-      const double y = depth.b >= 0 ? top : bottom;
       for (int c = first; c <= last; ++c) {
         const int tx = c / kTile;
         if (tx >= ta && tx <= tb) {  // a whole tile: jump past the run of them
           c = std::min(last, (tb + 1) * kTile - 1);
           continue;
         }
-        const double v = depth.at(depth.a >= 0 ? c * s + 0.5 : c * s + s - 0.5, y);
+        const double v = least_over(c * s + 0.5, c * s + s - 0.5, top, bottom);
         if (!(v > 0)) continue;
         const size_t t = row_of_tiles + size_t(tx);
         touch_cells(t);

@@ -34,7 +34,6 @@
 //     edge-on) are neither occluders nor culled (the caller's check).
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <vector>
 

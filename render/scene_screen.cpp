@@ -17,6 +17,22 @@ namespace {
 constexpr long kJudgedAfter = 500;
 constexpr long kPaysFrom = 8;
 
+/// The least and largest of 1/Z on the raster `z` at points (each with .x, .y [samples]),
+/// and whether the scan's arithmetic holds 1/Z there to 1e-8: false for a plane seen nearly
+/// edge-on (its terms far larger than their sum) or not wholly in front. drop_hidden trusts
+/// no other plane, as an occluder or as hidden.
+template <class Points>
+bool trusted_range(const RasterPlane& z, const Points& points, double& least, double& most) {
+  double size = 0;
+  least = HUGE_VAL, most = -HUGE_VAL;
+  for (const auto& p : points) {
+    const double v = z.at(p.x, p.y);
+    least = std::min(least, v), most = std::max(most, v);
+    size = std::max(size, std::fabs(z.a * p.x) + std::fabs(z.b * p.y) + std::fabs(z.c));
+  }
+  return least > 0 && !(size > 1e8 * least);
+}
+
 bool before(Vec3 a, Vec3 b) { return a.x != b.x ? a.x < b.x : a.y != b.y ? a.y < b.y : a.z < b.z; }
 bool before(Vec2 a, Vec2 b) { return a.x != b.x ? a.x < b.x : a.y < b.y; }
 
@@ -199,19 +215,15 @@ void ScreenSceneBuilder::remember_drawn() {
     return;
   }
 
-  // A plane seen nearly edge-on, whose 1/Z the scan's arithmetic does not hold to 1e-8, is
-  // no occluder.
-  const RasterPlane& z = poly.depth;
-  double least = HUGE_VAL, size = 0;
-  for (const FixedPoint& p : poly.outline) {
-    const double u = double(p.x) / kSubpixelOne, v = double(p.y) / kSubpixelOne;
-    least = std::min(least, z.at(u, v));
-    size = std::max(size, std::fabs(z.a * u) + std::fabs(z.b * v) + std::fabs(z.c));
-  }
-  if (!(least > 0) || size > 1e8 * least) return;
+  // Its corners [samples]; only a plane the scan's arithmetic holds is an occluder.
+  corners_.clear();
+  for (const FixedPoint& p : poly.outline)
+    corners_.push_back({double(p.x) / kSubpixelOne, double(p.y) / kSubpixelOne});
+  double least, most;
+  if (!trusted_range(poly.depth, corners_, least, most)) return;
   const std::vector<FixedPoint>* clip =
       poly.clip >= 0 && size_t(poly.clip) < out_.clips.size() ? &out_.clips[size_t(poly.clip)].outline : nullptr;
-  out_.drawn.cover(poly.outline, clip, clip ? poly.clip : -1, z);
+  out_.drawn.cover(poly.outline, clip, clip ? poly.clip : -1, poly.depth);
 }
 
 RasterPlane ScreenSceneBuilder::raster_plane(Vec3 n, double d) const {
@@ -224,15 +236,10 @@ bool ScreenSceneBuilder::hidden(const std::vector<Vec2>& corners, Vec3 n, double
   if (!drop_hidden_ || !(std::fabs(d) > 0)) return false;
   // The largest 1/Z the scan can give the polygon: the largest at a corner, plus the
   // plane's slope (1/Z per sample) over the 1/128 of a sample the rounded outline may reach
-  // beyond the corners. Not for a plane whose 1/Z the scan's arithmetic does not hold to 1e-8.
+  // beyond the corners. Only for a plane the scan's arithmetic holds.
   const RasterPlane z = raster_plane(n, d);
-  double most = -HUGE_VAL, least = HUGE_VAL, size = 0;
-  for (const Vec2& r : corners) {
-    const double v = z.at(r.x, r.y);
-    most = std::max(most, v), least = std::min(least, v);
-    size = std::max(size, std::fabs(z.a * r.x) + std::fabs(z.b * r.y) + std::fabs(z.c));
-  }
-  if (!(least > 0) || size > 1e8 * least) return false;
+  double least, most;
+  if (!trusted_range(z, corners, least, most)) return false;
   ++tested_;
   const bool behind = out_.drawn.hides(lo, hi, most + (std::fabs(z.a) + std::fabs(z.b)) / 128);
   dropped_ += behind;
@@ -385,6 +392,15 @@ void ScreenSceneBuilder::cull_outside(int32_t clip, double margin) {
   }
 }
 
+bool ScreenSceneBuilder::outside_cull_region(std::span<const Vec2> points, Vec2 lo, Vec2 hi) const {
+  if (!cull_) return false;
+  if (hi.x < cull_lo_.x || lo.x > cull_hi_.x || hi.y < cull_lo_.y || lo.y > cull_hi_.y) return true;
+  for (const Side& side : cull_sides_)
+    if (std::all_of(points.begin(), points.end(), [&side](Vec2 r) { return side.a * r.x + side.b * r.y + side.c < 0; }))
+      return true;
+  return false;
+}
+
 bool ScreenSceneBuilder::may_show(const Box3& box) const {
   if (!(box.lo.x <= box.hi.x && box.lo.y <= box.hi.y && box.lo.z <= box.hi.z)) return true;
   std::array<Vec2, 8> corners;
@@ -401,14 +417,7 @@ bool ScreenSceneBuilder::may_show(const Box3& box) const {
     nearest = std::min(nearest, c.z);
   }
   // What add_mesh_polygon would find of each polygon inside, found once for all of them.
-  if (!may_cover_a_sample(lo, hi)) return false;
-  if (cull_) {
-    if (outside_cull_box(lo, hi)) return false;
-    for (const Side& side : cull_sides_)
-      if (std::all_of(corners.begin(), corners.end(),
-                      [&side](Vec2 r) { return side.a * r.x + side.b * r.y + side.c < 0; }))
-        return false;
-  }
+  if (!may_cover_a_sample(lo, hi) || outside_cull_region(corners, lo, hi)) return false;
   // Behind what is drawn: no point inside is nearer than 1/nearest. A polygon's rounded
   // outline may reach 1/128 of a sample past its corners, where its plane's 1/Z may exceed
   // that by its slope; 1e-3 of 1/Z covers every plane turned more than about 1/4 degree
@@ -464,16 +473,7 @@ void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<in
   std::vector<Vec2>& raster = polygon_raster_;
   Vec2 lo, hi;
   const bool in_front = on_raster(cam, raster, lo, hi);
-  if (in_front) {
-    if (cull_) {
-      if (outside_cull_box(lo, hi)) return;
-      for (const Side& side : cull_sides_)
-        if (std::all_of(raster.begin(), raster.end(),
-                        [&side](Vec2 r) { return side.a * r.x + side.b * r.y + side.c < 0; }))
-          return;
-    }
-    if (!may_cover_a_sample(lo, hi)) return;
-  }
+  if (in_front && (outside_cull_region(raster, lo, hi) || !may_cover_a_sample(lo, hi))) return;
   centroid = (1.0 / double(cam.size())) * centroid;
   const Vec3 nc = camera_dir(n);
   const double d = -dot(nc, centroid);

@@ -19,6 +19,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "cells/cell_complex.h"
@@ -225,10 +226,10 @@ class ScreenSceneBuilder {
   bool hidden(const std::vector<Vec2>& corners, Vec3 n, double d, Vec2 lo, Vec2 hi);
   /// The polygon just added (the scene's last): remembered where it covers whole pixels.
   void remember_drawn();
-  /// Whether a box on the raster [lo, hi] (in samples) lies wholly outside the cull region's box.
-  bool outside_cull_box(Vec2 lo, Vec2 hi) const {
-    return hi.x < cull_lo_.x || lo.x > cull_hi_.x || hi.y < cull_lo_.y || lo.y > cull_hi_.y;
-  }
+  /// Whether points on the raster [samples] whose box is [lo, hi] lie wholly outside the
+  /// cull region (cull_outside): outside its box, or all beyond one of its sides. False
+  /// without one.
+  bool outside_cull_region(std::span<const Vec2> points, Vec2 lo, Vec2 hi) const;
 
   Camera camera_;
   SceneOptions options_;
@@ -259,6 +260,7 @@ class ScreenSceneBuilder {
   }
   std::vector<Vec3> polygon_cam_;    ///< add_mesh_polygon: the polygon's corners in camera space
   std::vector<Vec2> polygon_raster_;  ///< and on the raster [samples]
+  std::vector<Vec2> corners_;         ///< remember_drawn: the outline's corners [samples]
   std::vector<int> triangle_corners_;       ///< add_mesh: one triangle of a polygon that is not a fan
   std::vector<Vec3> triangle_normals_;      ///< and its corners' normals
   std::vector<FixedPoint> clip_points_;  ///< add_clip: the grown corners
