@@ -457,23 +457,34 @@ bool ScreenSceneBuilder::on_raster(const std::vector<Vec3>& points, std::vector<
 void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<int>& corners,
                                           const std::vector<Vec3>& corner_normals, const Material& material,
                                           Placement where, const PolygonSource& source) {
+  // Wholly beyond the near plane, its corners on the raster tell what cannot show: a
+  // polygon outside the region it will be clipped to, or one that holds no sample's centre.
+  // Told first, from the corners' raster points alone: a far view of a steel frame drops
+  // most of its triangles here.
+  std::vector<Vec2>& raster = polygon_raster_;
+  raster.clear();
+  Vec2 lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
+  bool in_front = true;
+  for (int v : corners) {
+    project_vertex(mesh, v);
+    const Vec2 r = mesh_raster_[size_t(v)];
+    in_front &= !std::isnan(r.x);
+    raster.push_back(r);
+    lo = {std::min(lo.x, r.x), std::min(lo.y, r.y)};
+    hi = {std::max(hi.x, r.x), std::max(hi.y, r.y)};
+  }
+  if (in_front && (outside_cull_region(raster, lo, hi) || !may_cover_a_sample(lo, hi))) return;
   std::vector<Vec3>& cam = polygon_cam_;
   cam.clear();
   Vec3 n{0, 0, 0}, centroid{0, 0, 0};
   for (size_t k = 0; k < corners.size(); ++k) {
     const Vec3 p = mesh.vertices[size_t(corners[k])], q = mesh.vertices[size_t(corners[(k + 1) % corners.size()])];
     n = n + cross(p, q);  // Newell's normal: outwards for counter-clockwise corners
-    cam.push_back(cam_of(mesh, corners[k]));
+    cam.push_back(mesh_cam_[size_t(corners[k])]);
     centroid = centroid + cam.back();
   }
   const double area = length(n);
   if (!(area > 0)) return;
-  // Wholly beyond the near plane, its corners on the raster tell what cannot show: a
-  // polygon outside the region it will be clipped to, or one that holds no sample's centre.
-  std::vector<Vec2>& raster = polygon_raster_;
-  Vec2 lo, hi;
-  const bool in_front = on_raster(cam, raster, lo, hi);
-  if (in_front && (outside_cull_region(raster, lo, hi) || !may_cover_a_sample(lo, hi))) return;
   centroid = (1.0 / double(cam.size())) * centroid;
   const Vec3 nc = camera_dir(n);
   const double d = -dot(nc, centroid);
@@ -558,8 +569,9 @@ void ScreenSceneBuilder::add_mesh(const Mesh& mesh, const MeshPaint& paint, Plac
     m = &with_normals;
   }
   const std::vector<Vec3>& cn = m->corner_normals;
-  // Vertices go to camera space when a polygon looked at first needs them (cam_of).
+  // Vertices go to camera space and the raster when a polygon looked at first needs them (project_vertex).
   mesh_cam_.resize(mesh.vertices.size());
+  mesh_raster_.resize(mesh.vertices.size());
   mesh_cam_mark_.resize(mesh.vertices.size(), 0);
   if (++mesh_mark_ == 0) {
     std::fill(mesh_cam_mark_.begin(), mesh_cam_mark_.end(), 0);

@@ -206,7 +206,7 @@ class ScreenSceneBuilder {
                const PolygonSource& source, size_t pieces_before);
   Vec3 camera_dir(Vec3 v) const { return {dot(v, camera_.right), dot(v, camera_.up), dot(v, camera_.forward)}; }
   /// One input polygon of a mesh: its corners and, per corner, the normal for smooth shading.
-  /// Its corners' camera-space points are mesh_cam_'s (cam_of).
+  /// Its corners' camera-space and raster points are mesh_cam_'s and mesh_raster_'s (project_vertex).
   void add_mesh_polygon(const Mesh& mesh, const std::vector<int>& corners, const std::vector<Vec3>& normals,
                         const Material& material, Placement where, const PolygonSource& source);
   /// Whether a polygon whose box on the raster (in samples; every corner beyond the near
@@ -248,15 +248,19 @@ class ScreenSceneBuilder {
   std::vector<Vec3> near_cut_, plane_cut_;
   std::vector<Vec3> face_cam_;       ///< add_face: the face in camera space (kept: a view adds thousands)
   std::vector<Vec3> mesh_cam_;       ///< add_mesh: the mesh's vertices in camera space, each transformed once
-  std::vector<uint32_t> mesh_cam_mark_;  ///< per vertex: mesh_mark_ when mesh_cam_ holds it for this mesh
+  std::vector<Vec2> mesh_raster_;    ///< and on the raster [samples] (NaN: before the near plane)
+  std::vector<uint32_t> mesh_cam_mark_;  ///< per vertex: mesh_mark_ when mesh_cam_ and mesh_raster_ hold it for this mesh
   uint32_t mesh_mark_ = 0;
-  /// Vertex v of the mesh add_mesh is adding, in camera space.
-  const Vec3& cam_of(const Mesh& mesh, int v) {
-    if (mesh_cam_mark_[size_t(v)] != mesh_mark_) {
-      mesh_cam_[size_t(v)] = camera_.camera_from_world(mesh.vertices[size_t(v)]);
-      mesh_cam_mark_[size_t(v)] = mesh_mark_;
-    }
-    return mesh_cam_[size_t(v)];
+  /// Vertex v of the mesh add_mesh is adding, in camera space and on the raster (as
+  /// on_raster puts it there), each found once per mesh: a vertex is shared by about six
+  /// triangles, most of which a far view drops on their corners' raster points alone.
+  void project_vertex(const Mesh& mesh, int v) {
+    if (mesh_cam_mark_[size_t(v)] == mesh_mark_) return;
+    const Vec3 c = camera_.camera_from_world(mesh.vertices[size_t(v)]);
+    mesh_cam_[size_t(v)] = c;
+    mesh_raster_[size_t(v)] = c.z >= camera_.near ? out_.raster.raster_from_image({c.x / c.z, c.y / c.z})
+                                                  : Vec2{std::nan(""), std::nan("")};
+    mesh_cam_mark_[size_t(v)] = mesh_mark_;
   }
   std::vector<Vec3> polygon_cam_;    ///< add_mesh_polygon: the polygon's corners in camera space
   std::vector<Vec2> polygon_raster_;  ///< and on the raster [samples]
