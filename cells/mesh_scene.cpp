@@ -1054,13 +1054,17 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     ScopedStageTimer t(out.timings, "detail");
     const std::string source = meshes.size() == 1 && !meshes[0].path.empty() ? meshes[0].path : "the meshes";
     add_detail_objects(out, detail, detail_polygon, source);
+    std::vector<CellId> holding;
+    for (const Object& o : out.objects) holding.push_back(o.cell);
+    std::sort(holding.begin(), holding.end());
+    const size_t cells_holding = size_t(std::unique(holding.begin(), holding.end()) - holding.begin());
     std::ostringstream said;
     said << source << ": " << split.structural + split.detail_triangles << " triangles with area"
          << (cluttered ? " whose planes cut space into more than " + std::to_string(params.leaf_budget) + " pieces"
                        : std::string(", more than a decomposition takes in seconds"))
          << ": its largest polygons (from "
          << split.smallest_structural << " m², " << split.structural << " triangles) cut space into cells, and the other "
-         << split.detail_triangles << " triangles are detail, drawn in the " << out.objects.size()
+         << split.detail_triangles << " triangles are detail, drawn in the " << cells_holding
          << " cells they cross; the search sees through detail, the pictures show it";
     out.warnings.push_back(said.str());
   }

@@ -52,6 +52,78 @@ struct DetailMesh {
   }
 };
 
+/// A piece of a detail polygon cut to a cell, before it joins its cluster's mesh.
+struct DetailPiece {
+  std::vector<Vec3> corners;
+  int64_t polygon = 0;  ///< the input polygon it is a piece of
+  MaterialId material = -1;
+  Vec3 light;           ///< where the whole input polygon is lit from
+};
+
+/// Triangles a cluster of one cell's detail holds at most (unless one input polygon alone
+/// has more): a few of the renderer's runs of polygons (render/scene_objects.h).
+constexpr size_t kClusterTriangles = 256;
+
+/// One cell's pieces in compact clusters, each input polygon's pieces in one: the
+/// polygons, by the centre of their pieces' corners, halved at the median across the
+/// longest side of their box until a half holds at most kClusterTriangles triangles. A
+/// cell's detail is thousands of triangles across the whole cell; as one object, its box
+/// is the cell's and its nearest point near, so neither culling by box nor a coarser
+/// version far away ever applies. In order of first appearance, so the same soup gives
+/// the same clusters.
+void cluster_pieces(const std::vector<DetailPiece>& pieces, std::vector<std::vector<const DetailPiece*>>& out) {
+  struct Group {
+    Vec3 centre{0, 0, 0};
+    size_t triangles = 0;
+    std::vector<const DetailPiece*> pieces;
+  };
+  std::vector<Group> groups;
+  std::unordered_map<int64_t, size_t> group_of;
+  size_t total = 0;
+  for (const DetailPiece& p : pieces) {
+    const auto [it, added] = group_of.try_emplace(p.polygon, groups.size());
+    if (added) groups.emplace_back();
+    Group& g = groups[it->second];
+    for (Vec3 v : p.corners) g.centre = g.centre + v;
+    g.triangles += p.corners.size() - 2;
+    total += p.corners.size() - 2;
+    g.pieces.push_back(&p);
+  }
+  for (Group& g : groups) {
+    size_t corners = 0;
+    for (const DetailPiece* p : g.pieces) corners += p->corners.size();
+    g.centre = (1.0 / double(corners)) * g.centre;
+  }
+  std::vector<size_t> order(groups.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  // [lo, hi) of order, holding `triangles`.
+  auto split = [&](auto&& self, size_t lo, size_t hi, size_t triangles) -> void {
+    if (triangles <= kClusterTriangles || hi - lo < 2) {
+      std::sort(order.begin() + std::ptrdiff_t(lo), order.begin() + std::ptrdiff_t(hi));  // first appearance
+      out.emplace_back();
+      for (size_t i = lo; i < hi; ++i)
+        out.back().insert(out.back().end(), groups[order[i]].pieces.begin(), groups[order[i]].pieces.end());
+      return;
+    }
+    Box3 box;
+    for (size_t i = lo; i < hi; ++i) box.add(groups[order[i]].centre);
+    const Vec3 size = box.hi - box.lo;
+    const int axis = size.x >= size.y && size.x >= size.z ? 0 : size.y >= size.z ? 1 : 2;
+    auto along = [axis](const Group& g) { return axis == 0 ? g.centre.x : axis == 1 ? g.centre.y : g.centre.z; };
+    const size_t mid = lo + (hi - lo) / 2;
+    std::nth_element(order.begin() + std::ptrdiff_t(lo), order.begin() + std::ptrdiff_t(mid),
+                     order.begin() + std::ptrdiff_t(hi), [&](size_t a, size_t b) {
+                       const double ca = along(groups[a]), cb = along(groups[b]);
+                       return ca < cb || (ca == cb && a < b);
+                     });
+    size_t left = 0;
+    for (size_t i = lo; i < mid; ++i) left += groups[order[i]].triangles;
+    self(self, lo, mid, left);
+    self(self, mid, hi, triangles - left);
+  };
+  split(split, 0, order.size(), total);
+}
+
 }  // namespace
 
 SoupSplit split_detail(const std::vector<SoupTriangle>& soup, const std::vector<int64_t>& polygon, size_t above,
@@ -119,7 +191,7 @@ double add_detail_objects(CellComplex& out, const std::vector<SoupTriangle>& det
     sum = sum + (a / 3) * (tri.p[0] + tri.p[1] + tri.p[2]);
     area += a;
   }
-  std::vector<std::unique_ptr<DetailMesh>> of(out.cells.size());
+  std::vector<std::vector<DetailPiece>> of(out.cells.size());
   std::vector<CellId> candidates;
   std::vector<Vec3> piece;
   double covered = 0;
@@ -150,27 +222,46 @@ double add_detail_objects(CellComplex& out, const std::vector<SoupTriangle>& det
         const std::vector<CellId> holding = out.cells_holding((1.0 / double(piece.size())) * g, tol);
         if (!holding.empty() && holding.front() != c) continue;
       }
-      auto& m = of[size_t(c)];
-      if (!m) m = std::make_unique<DetailMesh>();
       const auto& [sum, area] = moments.at(polygon[t]);
-      m->add(piece, polygon[t], tri.material, (1 / area) * sum);
+      of[size_t(c)].push_back({piece, polygon[t], tri.material, (1 / area) * sum});
       covered += a;
     }
   }
+  std::vector<std::vector<const DetailPiece*>> clusters;
   for (size_t c = 0; c < of.size(); ++c) {
-    if (!of[c] || of[c]->mesh.triangles.empty()) continue;
-    Mesh& m = of[c]->mesh;
-    m.path = source + ": detail in cell " + std::to_string(c);
-    m.materials = out.materials;
-    // Every piece is seen from both sides: a soup's polygons are (soup_bsp.h).
-    m.boundary_edges = boundary_edges(m.triangles);
-    m.closed = false;
-    smooth_corner_normals(m);
-    Object o;
-    o.name = "detail in cell " + std::to_string(c);
-    o.cell = int32_t(c);
-    o.model = std::make_shared<const Mesh>(std::move(m));
-    out.objects.push_back(std::move(o));
+    if (of[c].empty()) continue;
+    clusters.clear();
+    cluster_pieces(of[c], clusters);
+    for (size_t k = 0; k < clusters.size(); ++k) {
+      DetailMesh d;
+      for (const DetailPiece* p : clusters[k]) d.add(p->corners, p->polygon, p->material, p->light);
+      if (d.mesh.triangles.empty()) continue;
+      Mesh& m = d.mesh;
+      const std::string name =
+          "detail in cell " + std::to_string(c) + (clusters.size() > 1 ? ", part " + std::to_string(k + 1) : "");
+      m.path = source + ": " + name;
+      // The materials its triangles use, in the complex's order (a cluster uses a few of
+      // a model's many).
+      std::vector<MaterialId> used;
+      for (MaterialId id : m.material_of)
+        if (id >= 0 && size_t(id) < out.materials.size()) used.push_back(id);
+      std::sort(used.begin(), used.end());
+      used.erase(std::unique(used.begin(), used.end()), used.end());
+      for (MaterialId& id : m.material_of) {
+        const auto at = std::lower_bound(used.begin(), used.end(), id);
+        id = at != used.end() && *at == id ? MaterialId(at - used.begin()) : -1;
+      }
+      for (MaterialId id : used) m.materials.push_back(out.materials[size_t(id)]);
+      // Every piece is seen from both sides: a soup's polygons are (soup_bsp.h).
+      m.boundary_edges = boundary_edges(m.triangles);
+      m.closed = false;
+      smooth_corner_normals(m);
+      Object o;
+      o.name = name;
+      o.cell = int32_t(c);
+      o.model = std::make_shared<const Mesh>(std::move(m));
+      out.objects.push_back(std::move(o));
+    }
   }
   return covered;
 }

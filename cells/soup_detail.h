@@ -11,8 +11,9 @@
 // planes cut space into more pieces than that (cells/mesh_scene.h: MeshSceneParams), its
 // largest polygons (the slabs, walls and broad plates that hide most) cut space, up to a
 // budget of triangles, and every other polygon is detail. Each detail polygon is cut to
-// the convex cells it crosses and drawn there as part of that cell's one detail object,
-// by depth, as furniture is (render/scene_view.cpp, render/furniture.h). The search sees
+// the convex cells it crosses and drawn there as part of one of that cell's detail
+// objects (compact clusters of a few hundred triangles, each with its own box and its own
+// coarser versions), by depth, as furniture is (render/scene_view.cpp, render/furniture.h). The search sees
 // through detail (its visible set is conservative there: a cell behind a member is still
 // found), and the picture is exact.
 #pragma once
@@ -43,11 +44,13 @@ SoupSplit split_detail(const std::vector<SoupTriangle>& soup, const std::vector<
                        size_t budget);
 
 /// Cuts each detail triangle to every cell of `out` it crosses (in double: the pieces are
-/// drawn, not part of the complex's exact geometry) and appends one Object per cell that
-/// holds pieces: its model the pieces in world coordinates, welded by position, one
-/// polygon per input polygon (`polygon`) so that a polygon's own diagonals are no edges;
-/// Object::cell that cell; named "detail in cell N", its model's path "`source`: detail in
-/// cell N". Each triangle's material indexes out.materials, which each model copies.
+/// drawn, not part of the complex's exact geometry) and appends, for each cell that holds
+/// pieces, one Object per compact cluster of them (at most a few hundred triangles, an
+/// input polygon's pieces in one cluster): its model the pieces in world coordinates,
+/// welded by position, one polygon per input polygon (`polygon`) so that a polygon's own
+/// diagonals are no edges; Object::cell that cell; named "detail in cell N" (or "detail in
+/// cell N, part K" where the cell has several), its model's path "`source`: " and that
+/// name. Each model carries the materials of out.materials its triangles use.
 /// Uses out's spatial index (CellComplex::index). Returns the area [m²] the pieces cover.
 double add_detail_objects(CellComplex& out, const std::vector<SoupTriangle>& detail,
                           const std::vector<int64_t>& polygon, const std::string& source);

@@ -7,7 +7,9 @@
 // edge error.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <map>
 #include <random>
 #include <set>
 #include <string>
@@ -146,13 +148,11 @@ TEST(SoupDetail, DetailIsCutToTheCellsItCrossesAndKeepsEveryBitOfItsArea) {
   // The bars' area: every polygon but the boxes' 5 k² unit squares.
   double bars = area_of(meshes[0]) - 5.0 * k * k;
   double pieces = 0;
-  std::vector<bool> seen(split.cells.size(), false);
   for (const Object& o : split.objects) {
     ASSERT_GE(o.cell, 0);
     ASSERT_LT(size_t(o.cell), split.cells.size());
-    EXPECT_FALSE(seen[size_t(o.cell)]) << "one detail object per cell";
-    seen[size_t(o.cell)] = true;
     ASSERT_TRUE(o.model);
+    EXPECT_LE(o.model->triangles.size(), 256u) << o.name << ": clusters are compact";
     EXPECT_FALSE(o.model->closed);
     pieces += area_of(*o.model);
     for (Vec3 p : o.model->vertices) EXPECT_TRUE(split.cells[size_t(o.cell)].contains(p, 1e-9)) << o.name;
@@ -164,6 +164,64 @@ TEST(SoupDetail, DetailIsCutToTheCellsItCrossesAndKeepsEveryBitOfItsArea) {
   for (size_t i = 0; i < again.objects.size(); ++i) {
     EXPECT_EQ(again.objects[i].cell, split.objects[i].cell);
     ASSERT_TRUE(again.objects[i].model);
+    EXPECT_EQ(again.objects[i].model->triangles.size(), split.objects[i].model->triangles.size());
+  }
+}
+
+// A cell holding much detail holds it in compact clusters, each an object with its own
+// box: at most 256 triangles each, every input polygon's pieces in one, all of the area
+// kept, each cluster spanning part of the cloud, the same clusters every time.
+TEST(SoupDetail, ACellsDetailComesInCompactClusters) {
+  // A floor 12 m square (the only polygon that cuts space) and 900 small tilted squares
+  // (bolts, plates) scattered over 10 × 10 × 3 m above it, one input polygon each.
+  std::vector<Vec3> v{{-1, -1, 0}, {11, -1, 0}, {11, 11, 0}, {-1, 11, 0}};
+  std::vector<std::vector<int>> polygons{{0, 1, 2, 3}};
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> at(0, 10), up(0.5, 3), turn(0, 6.283);
+  for (int i = 0; i < 900; ++i) {
+    const Vec3 c{at(rng), at(rng), up(rng)};
+    const double a = turn(rng), b = 0.3 * turn(rng);
+    const Vec3 e1{0.05 * std::cos(a), 0.05 * std::sin(a), 0}, e2{-0.05 * std::sin(a) * std::cos(b), 0.05 * std::cos(a) * std::cos(b), 0.05 * std::sin(b)};
+    const int n = int(v.size());
+    v.insert(v.end(), {c - e1 - e2, c + e1 - e2, c + e1 + e2, c - e1 + e2});
+    polygons.push_back({n, n + 1, n + 2, n + 3});
+  }
+  const std::vector<Mesh> meshes{mesh_from(v, polygons)};
+  MeshSceneParams params;
+  params.detail_above = 0;
+  params.structural_triangles = 2;
+  const CellComplex split = build_mesh_scene(meshes, params);
+  ASSERT_FALSE(split.objects.empty());
+  double area = 0, cloud_side = 0;
+  Box3 cloud;
+  for (size_t i = 1; i < polygons.size(); ++i)
+    for (int k : polygons[i]) cloud.add(v[size_t(k)]);
+  cloud_side = std::max({cloud.hi.x - cloud.lo.x, cloud.hi.y - cloud.lo.y, cloud.hi.z - cloud.lo.z});
+  std::map<CellId, int> clusters_in;
+  std::map<std::pair<CellId, std::array<double, 3>>, std::string> cluster_of;  // (cell, polygon's light point): the object
+  for (const Object& o : split.objects) {
+    ASSERT_TRUE(o.model);
+    const Mesh& m = *o.model;
+    EXPECT_LE(m.triangles.size(), 256u) << o.name;
+    ++clusters_in[o.cell];
+    area += area_of(m);
+    Box3 box;
+    for (Vec3 p : m.vertices) box.add(p);
+    EXPECT_LE(std::max({box.hi.x - box.lo.x, box.hi.y - box.lo.y, box.hi.z - box.lo.z}), 0.75 * cloud_side) << o.name;
+    for (Vec3 l : m.polygon_light) {
+      const auto [it, added] = cluster_of.try_emplace({o.cell, {l.x, l.y, l.z}}, o.name);
+      EXPECT_TRUE(added || it->second == o.name) << "an input polygon's pieces in one cell are split between "
+                                                 << it->second << " and " << o.name;
+    }
+  }
+  int most = 0;
+  for (const auto& [cell, n] : clusters_in) most = std::max(most, n);
+  EXPECT_GE(most, 4) << "900 squares (1,800 triangles) in few cells come in several clusters";
+  EXPECT_NEAR(area, 900 * 0.01, 1e-9 * 9) << "every square's area is kept";
+  const CellComplex again = build_mesh_scene(meshes, params);
+  ASSERT_EQ(again.objects.size(), split.objects.size());
+  for (size_t i = 0; i < again.objects.size(); ++i) {
+    EXPECT_EQ(again.objects[i].name, split.objects[i].name);
     EXPECT_EQ(again.objects[i].model->triangles.size(), split.objects[i].model->triangles.size());
   }
 }
