@@ -369,6 +369,20 @@ struct FrameStorage::Parts {
   std::vector<PolygonLook> looks;
   tbb::enumerable_thread_specific<BandPainter> painters;
   uint64_t pictures = 0;  ///< pictures scanned with these parts
+  /// Each cell's objects, made for the complex and the objects named beside it.
+  ObjectsByCell by_cell;
+  const CellComplex* by_cell_complex = nullptr;
+  const std::vector<PlacedObject>* by_cell_objects = nullptr;
+  size_t by_cell_count = 0, by_cell_cells = 0;
+  const ObjectsByCell& objects_by_cell_of(const CellComplex& complex, const std::vector<PlacedObject>& objects) {
+    if (by_cell_complex != &complex || by_cell_objects != &objects || by_cell_count != objects.size() ||
+        by_cell_cells != complex.cells.size()) {
+      by_cell = objects_by_cell(complex.cells.size(), objects);
+      by_cell_complex = &complex, by_cell_objects = &objects;
+      by_cell_count = objects.size(), by_cell_cells = complex.cells.size();
+    }
+    return by_cell;
+  }
 };
 
 FrameStorage::FrameStorage() : parts_(std::make_unique<Parts>()) {}
@@ -464,6 +478,7 @@ void render_view(const CellComplex& complex, const std::vector<PlacedObject>& ob
     so.shadows = &effects.shadows;
   }
   FrameStorage::Parts& parts = storage.parts();
+  so.objects_by_cell = &parts.objects_by_cell_of(complex, objects);
   screen_scene_of_view(complex, objects, camera, visible, so, parts.scene);
   parts.scene.implicit_lines = plan.implicit_lines.on;
   scan_scene(parts.scene, options, out, stats, nullptr, parts);

@@ -99,7 +99,9 @@ void render_view(const CellComplex& complex, const std::vector<PlacedObject>& ob
 /// furniture polygons in a big Sweet Home house), beyond the size glibc maps afresh for
 /// each allocation: a walkthrough keeps one storage and renders every frame into it, so a
 /// frame neither maps nor faults in the memory the frame before it had. One picture at a
-/// time.
+/// time. It also keeps each cell's objects (ObjectsByCell), made again only when it is
+/// handed another complex or vector of objects, or one of another size: a vector's
+/// objects must keep their cells from picture to picture, as placed objects do.
 class FrameStorage {
  public:
   FrameStorage();

@@ -100,6 +100,20 @@ CellId pinned_cell(const CellComplex& complex, const Object& o) {
   return o.cell >= 0 && size_t(o.cell) < complex.cells.size() ? o.cell : kNoCell;
 }
 
+ObjectsByCell objects_by_cell(size_t cells, const std::vector<PlacedObject>& objects) {
+  ObjectsByCell by;
+  by.from.assign(cells + 2, 0);
+  auto counted = [cells](CellId c) { return c != kNoCell && c >= 0 && size_t(c) < cells; };
+  for (const PlacedObject& o : objects)
+    if (counted(o.cell)) ++by.from[size_t(o.cell) + 2];
+  for (size_t c = 2; c < by.from.size(); ++c) by.from[c] += by.from[c - 1];
+  by.index.resize(by.from.back());
+  for (size_t i = 0; i < objects.size(); ++i)
+    if (counted(objects[i].cell)) by.index[by.from[size_t(objects[i].cell) + 1]++] = uint32_t(i);
+  by.from.pop_back();  // from[c] is now cell c's first, from[cells] the end
+  return by;
+}
+
 std::vector<std::vector<MeshLevel>> coarser_versions(const CellComplex& complex, const ObjectModels& models) {
   return placed_levels(complex, models);
 }

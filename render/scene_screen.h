@@ -93,6 +93,9 @@ struct SceneOptions {
   /// the far side of the plane, seen along the camera's forward, is drawn; polygons are cut
   /// there in 3D before the near plane.
   std::optional<Plane> cut;
+  /// Each cell's objects, made once for many pictures of the same objects (must match the
+  /// objects given); null: made for this picture.
+  const ObjectsByCell* objects_by_cell = nullptr;
   /// > 0: objects' coarser versions where their tolerance projects under this many samples
   /// (scene_view.cpp); 0: objects in full.
   double detail_samples = 0;

@@ -136,15 +136,9 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
     for (Vec2 m : a.mask) scaled.push_back(distant.scale * m);
     return scaled;
   };
-  // Each cell's objects, in their order: objects_in[from[c] .. from[c + 1]) (a counting
-  // sort; a soup's detail is an object in each of thousands of cells, every frame).
-  std::vector<uint32_t> from(complex.cells.size() + 2, 0), objects_in(objects.size());
-  for (const PlacedObject& o : objects)
-    if (o.cell != kNoCell && size_t(o.cell) < complex.cells.size()) ++from[size_t(o.cell) + 2];
-  for (size_t c = 2; c < from.size(); ++c) from[c] += from[c - 1];
-  for (size_t i = 0; i < objects.size(); ++i)
-    if (objects[i].cell != kNoCell && size_t(objects[i].cell) < complex.cells.size())
-      objects_in[from[size_t(objects[i].cell) + 1]++] = uint32_t(i);
+  std::optional<ObjectsByCell> made;
+  if (!options.objects_by_cell) made = objects_by_cell(complex.cells.size(), objects);
+  const ObjectsByCell& by_cell = options.objects_by_cell ? *options.objects_by_cell : *made;
   // Resolved by depth alone, what lies behind polygons already drawn need not be drawn.
   if (visible.conservative && options.drop_hidden) b.drop_hidden();
   // An eye on its cell's boundary has several roots whose masks meet along lines: grow
@@ -190,16 +184,15 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
                      one_material ? whole : shade_point(complex, piece));
       }
     }
-    const uint32_t first = from[size_t(avenue.cell)], last = from[size_t(avenue.cell) + 1];
-    if (first == last) continue;
+    const std::span<const uint32_t> in_cell = by_cell.of(avenue.cell);
+    if (in_cell.empty()) continue;
     where.role = PolygonRole::Object;
     source.kind = PolygonSource::Kind::Object;
     source.face = -1;
     // The avenue's clip region, a little grown (two samples): what lies wholly outside it
     // cannot show through this avenue.
     b.cull_outside(clip, 2);
-    for (uint32_t k = first; k < last; ++k) {
-      const size_t o = objects_in[k];
+    for (const uint32_t o : in_cell) {
       if (!b.may_show(objects[o].bounds)) continue;  // a cell seen through many avenues: not through this one
       source.mesh = int(o);
       const PlacedObject& object = objects[o];
