@@ -61,16 +61,18 @@ struct DetailPiece {
 };
 
 /// Triangles a cluster of one cell's detail holds at most (unless one input polygon alone
-/// has more): a few of the renderer's runs of polygons (render/scene_objects.h).
+/// has more): a few of the renderer's runs of polygons (render/scene_objects.h), and under
+/// the 500 a model needs for coarser versions. Clusters of 1,024 kept coarser versions for
+/// the larger ones, and cost three times the CPU to open with no faster frames; clusters
+/// of 96 cost more per object than they culled (docs/PERFORMANCE.md).
 constexpr size_t kClusterTriangles = 256;
 
 /// One cell's pieces in compact clusters, each input polygon's pieces in one: the
 /// polygons, by the centre of their pieces' corners, halved at the median across the
 /// longest side of their box until a half holds at most kClusterTriangles triangles. A
 /// cell's detail is thousands of triangles across the whole cell; as one object, its box
-/// is the cell's and its nearest point near, so neither culling by box nor a coarser
-/// version far away ever applies. In order of first appearance, so the same soup gives
-/// the same clusters.
+/// is the cell's, and culling by box never applies. In order of first appearance, so the
+/// same soup gives the same clusters.
 void cluster_pieces(const std::vector<DetailPiece>& pieces, std::vector<std::vector<const DetailPiece*>>& out) {
   struct Group {
     Vec3 centre{0, 0, 0};

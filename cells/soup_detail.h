@@ -12,10 +12,10 @@
 // largest polygons (the slabs, walls and broad plates that hide most) cut space, up to a
 // budget of triangles, and every other polygon is detail. Each detail polygon is cut to
 // the convex cells it crosses and drawn there as part of one of that cell's detail
-// objects (compact clusters of a few hundred triangles, each with its own box and its own
-// coarser versions), by depth, as furniture is (render/scene_view.cpp, render/furniture.h). The search sees
-// through detail (its visible set is conservative there: a cell behind a member is still
-// found), and the picture is exact.
+// objects (compact clusters of a few hundred triangles, each with its own box), by depth,
+// as furniture is (render/scene_view.cpp, render/furniture.h). The search sees through
+// detail (its visible set is conservative there: a cell behind a member is still found),
+// and the picture is exact.
 #pragma once
 
 #include <cstddef>
