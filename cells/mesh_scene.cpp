@@ -1005,13 +1005,14 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     }
   };
   partition();
+  auto what_cuts = [&]() -> const std::vector<SoupTriangle>& { return split.detail_triangles > 0 ? structural : soup; };
   // A cluttered soup (its planes cut space into more than params.leaf_budget leaves) is
   // split as a large one is, by a quarter of the triangles that cut space at each try.
   SoupBspStats stats;
   bool cluttered = false;
   for (;;) {
     try {
-      stats = decompose_soup(split.detail_triangles > 0 ? structural : soup, out.far_box, out, params.leaf_budget);
+      stats = decompose_soup(what_cuts(), out.far_box, out, params.leaf_budget);
       break;
     } catch (const SoupTooCluttered&) {
       if (!out.timings.empty()) out.timings.back().stage = "decompose, abandoned";
@@ -1020,7 +1021,6 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
       partition();
     }
   }
-  const std::vector<SoupTriangle>& cut = split.detail_triangles > 0 ? structural : soup;
   for (size_t t : stats.degenerate) dropped[mesh_of[cut_of.empty() ? t : cut_of[t]]]++;
   for (const auto& [mesh, count] : dropped)
     out.warnings.push_back((meshes[mesh].path.empty() ? std::string("mesh") : meshes[mesh].path) + ": " +
@@ -1049,7 +1049,7 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     }
   }
   out.index();  // before the lines: add_real_lines takes its candidate cells from it
-  view_inside_largest_region(out, box, cut);
+  view_inside_largest_region(out, box, what_cuts());
   if (!detail.empty()) {
     ScopedStageTimer t(out.timings, "detail");
     const std::string source = meshes.size() == 1 && !meshes[0].path.empty() ? meshes[0].path : "the meshes";
