@@ -103,7 +103,7 @@ CellId pinned_cell(const CellComplex& complex, const Object& o) {
 ObjectsByCell objects_by_cell(size_t cells, const std::vector<PlacedObject>& objects) {
   ObjectsByCell by;
   by.from.assign(cells + 2, 0);
-  auto counted = [cells](CellId c) { return c != kNoCell && c >= 0 && size_t(c) < cells; };
+  auto counted = [cells](CellId c) { return c >= 0 && size_t(c) < cells; };  // kNoCell is -1
   for (const PlacedObject& o : objects)
     if (counted(o.cell)) ++by.from[size_t(o.cell) + 2];
   for (size_t c = 2; c < by.from.size(); ++c) by.from[c] += by.from[c - 1];

@@ -27,7 +27,7 @@ struct MeshPaint {
 /// default material) when the mesh has no materials of its own.
 MeshPaint paint_of_mesh(const Mesh& mesh);
 
-/// A mesh's triangles in runs of whole polygons (about 64 triangles each, in their order)
+/// A mesh's triangles in runs of whole polygons (about 16 triangles each, in their order)
 /// and each run's box, so that a view passes over a run that cannot show (outside the
 /// avenue's region, under every sample, behind what is drawn) without looking at its
 /// polygons (ScreenSceneBuilder::add_mesh). A soup's detail in one cell is thousands of
@@ -36,7 +36,7 @@ struct PolygonRuns {
   std::vector<uint32_t> first;  ///< per run: its first triangle; a run ends where the next begins
   std::vector<Box3> boxes;      ///< per run: of its triangles' vertices
 };
-/// The runs of m's triangles: a run ends at the first polygon's end after 64 triangles.
+/// The runs of m's triangles: a run ends at the first polygon's end after 16 triangles.
 PolygonRuns polygon_runs(const Mesh& m);
 
 /// A plan object loaded, placed, and assigned to the cell holding its centroid.
