@@ -6,6 +6,7 @@
 #include <cstring>
 #include <iostream>
 #include <new>
+#include <sstream>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -84,6 +85,14 @@ std::string lower(std::string s) {
   return s;
 }
 
+/// The bytes of a file ("" when it cannot be read).
+std::string whole_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 }  // namespace
 
 void print_warnings(const std::string& path, const std::vector<std::string>& warnings) {
@@ -118,6 +127,19 @@ PlanSpec parse_plan_spec(const std::string& plan) {
   if ((spec.format == FileFormat::Toml || spec.format == FileFormat::Unknown || container) &&
       format_of_extension(spec.file) == FileFormat::Unknown && assimp_reads_extension(ext))
     spec.format = FileFormat::Model;
+  // A mesh told by the look of its text (OBJ's "v" lines, an OFF header) under an extension
+  // Assimp reads (NFF's text is OBJ-like): the extension decides, as it does for Assimp.
+  if (is_mesh_format(spec.format) && format_of_extension(spec.file) == FileFormat::Unknown &&
+      assimp_reads_extension(ext))
+    spec.format = FileFormat::Model;
+  // Binary, with no signature of Avenues' own and a name that says nothing: a model Assimp
+  // knows by its content (3DS's chunks, LightWave's "FORM", a binary DirectX "xof ").
+  // The same for a zip archive that is no Sweet Home home (a 3MF model).
+  const bool foreign_zip = spec.format == FileFormat::SweetHome && format_of_extension(spec.file) != FileFormat::SweetHome;
+  if (spec.format == FileFormat::Unknown || foreign_zip) {
+    spec.content_reader = assimp_importer_by_content(spec.file);
+    if (!spec.content_reader.empty()) spec.format = FileFormat::Model;
+  }
   return spec;
 }
 
@@ -132,12 +154,23 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
   if (fs::is_directory(p, ec)) throw std::runtime_error(spec.file + ": is a directory, not a plan");
   if (!fs::is_regular_file(p, ec)) throw std::runtime_error(spec.file + ": not a regular file (a device or FIFO?), not a plan");
   out.format = spec.format;
+  // Text under an extension no reader has, which is not TOML either (a VRML model, a
+  // README): its error says so before TOML's.
+  bool foreign_text = false;
   if ((spec.format == FileFormat::Toml || spec.format == FileFormat::Unknown) && lower(p.extension().string()) != ".toml") {
     // No telling signature: a few lines of content tell floor-plan annotations.
     std::ifstream in(spec.file, std::ios::binary);
     std::string head(4096, '\0');
     head.resize(size_t(in.read(head.data(), std::streamsize(head.size())).gcount()));
     if (looks_like_floorplan_vectors(head)) spec.format = FileFormat::FloorplanVectors;
+    // Text that is not TOML, under a name that says nothing: a model Assimp knows by its
+    // first keywords ("AC3Db", "*3DSMAX_ASCIIEXPORT", "xof 0302txt"). TOML text stays a
+    // plan, whatever else it might pass for, and text neither knows keeps TOML's message.
+    else if (spec.format == FileFormat::Toml && !parses_as_toml(whole_file(spec.file))) {
+      spec.content_reader = assimp_importer_by_content(spec.file);
+      if (!spec.content_reader.empty()) spec.format = FileFormat::Model;
+      else if (!p.extension().empty()) foreign_text = true;
+    }
     out.format = spec.format;
   }
 
@@ -201,14 +234,34 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
       case FileFormat::Obj:
       case FileFormat::Ply:
       case FileFormat::Stl: {
-        // The mesh readers go by the extension: a mesh under another name is named as one.
-        if (format_of_extension(spec.file) != spec.format)
+        // The mesh readers go by the extension; under a name that says nothing, Assimp
+        // reads the mesh by its content. Under another format's name, it is named as one.
+        if (format_of_extension(spec.file) != spec.format &&
+            (format_of_extension(spec.file) != FileFormat::Unknown ||
+             assimp_reads_extension(lower(p.extension().string()))))
           throw std::runtime_error(spec.file + " is " + format_name(spec.format) +
                                    " under another extension: name it as one to read it as a scene");
         read_mesh(spec.file, import.mesh_axes());
         break;
       }
-      case FileFormat::Model: read_mesh(spec.file, import.mesh_axes()); break;
+      case FileFormat::Model:
+        if (spec.content_reader.empty()) {
+          read_mesh(spec.file, import.mesh_axes());
+          break;
+        }
+        try {
+          read_mesh(spec.file, import.mesh_axes());
+        } catch (const std::bad_alloc&) {
+          throw;
+        } catch (const std::exception& e) {
+          const std::string named = p.extension().empty()
+                                        ? std::string("its name has no extension")
+                                        : "its extension '" + p.extension().string() + "' names no format Avenues reads";
+          throw std::runtime_error(spec.file + " is not a plan Avenues can read: " + named + ", and Assimp's " +
+                                   spec.content_reader + " took it by its content but could not read it (" +
+                                   e.what() + ")");
+        }
+        break;
       case FileFormat::Ifc: {
         try {
           build(read_ifc_building(spec.file, &out.stages));  // its reader times its own stages
@@ -255,7 +308,17 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
                                      "knows by its content or extension (docs/PLAN_FORMAT.md lists them)");
           throw std::runtime_error(spec.file + " is " + format_name(spec.format) + ", which Avenues cannot read yet");
         }
-        decompose(reader(spec.file), "read plan");
+        if (!foreign_text) {
+          decompose(reader(spec.file), "read plan");
+          break;
+        }
+        try {
+          decompose(reader(spec.file), "read plan");
+        } catch (const PlanError& e) {
+          throw std::runtime_error(spec.file + " is not a plan Avenues can read: its extension '" +
+                                   p.extension().string() + "' names no format Avenues reads (docs/PLAN_FORMAT.md " +
+                                   "lists them), and read as a TOML plan it fails: " + e.what());
+        }
         break;
       }
     }

@@ -50,6 +50,10 @@ struct PlanSpec {
   std::string file;
   std::string map;   ///< "MAP01" of "doom2.wad:MAP01"; "" for the first map
   FileFormat format = FileFormat::Toml;
+  /// A Model told by its content alone: the Assimp importer that knows it ("" otherwise).
+  /// Such a guess can be wrong (some importers look only for a keyword in the first lines),
+  /// so what it cannot read is reported as a file Avenues does not know, with its reason.
+  std::string content_reader;
 };
 PlanSpec parse_plan_spec(const std::string& plan);
 

@@ -2,6 +2,7 @@
 // includes Assimp.
 #include "plans/assimp_reader.h"
 
+#include <assimp/BaseImporter.h>
 #include <assimp/Importer.hpp>
 #include <assimp/commonMetaData.h>
 #include <assimp/config.h>
@@ -10,8 +11,12 @@
 
 #include <chrono>
 #include <cmath>
+#include <cctype>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 
 #include "core/stage_timer.h"
@@ -145,12 +150,48 @@ void collect(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent
     if (node.mChildren[c]) collect(scene, *node.mChildren[c], world, self, axes, metres, out, dropped, depth + 1);
 }
 
+/// A binary glTF (its "glTF" magic and version 2) under a name Assimp does not take for one:
+/// Assimp's glTF reader goes by the extension alone. `bytes`, when given, gets the file.
+bool binary_gltf_by_content_only(const std::string& path, std::string* bytes = nullptr) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  if (ext == ".glb" || ext == ".gltf") return false;
+  std::ifstream in(path, std::ios::binary);
+  char head[8] = {};
+  if (!in.read(head, sizeof head) || std::memcmp(head, "glTF", 4) != 0 || head[4] != 2 || head[5] || head[6] || head[7])
+    return false;
+  if (bytes) {
+    in.seekg(0);
+    bytes->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  return true;
+}
+
 }  // namespace
 
 bool assimp_reads_extension(const std::string& ext) {
   if (ext.size() < 2 || ext[0] != '.') return false;
   const Assimp::Importer importer;
   return importer.IsExtensionSupported(ext.c_str());
+}
+
+std::string assimp_importer_by_content(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return "";
+  if (binary_gltf_by_content_only(path)) return "glTF 2 (binary)";
+  const Assimp::Importer importer;
+  for (size_t i = 0; i < importer.GetImporterCount(); ++i) {
+    const Assimp::BaseImporter* reader = importer.GetImporter(i);
+    try {
+      if (reader && reader->CanRead(path, importer.GetIOHandler(), true)) {
+        std::string name = reader->GetInfo() && reader->GetInfo()->mName ? reader->GetInfo()->mName : "importer";
+        if (const size_t web = name.find(" (http"); web != std::string::npos) name.erase(web);  // its home page
+        return name;
+      }
+    } catch (const std::exception&) {  // a reader that throws on what it cannot read does not know it
+    }
+  }
+  return "";
 }
 
 ImportedScene import_scene(const std::string& path, const ImportOptions& options) {
@@ -165,8 +206,13 @@ ImportedScene import_scene(const std::string& path, const ImportOptions& options
   const auto t0 = std::chrono::steady_clock::now();
   const aiScene* scene = nullptr;
   try {
-    scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
-                                        aiProcess_ValidateDataStructure);
+    constexpr unsigned kSteps =
+        aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
+    std::string bytes;
+    if (binary_gltf_by_content_only(path, &bytes))  // whole in one file: read from memory, told it is GLB
+      scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), kSteps, "glb");
+    else
+      scene = importer.ReadFile(path, kSteps);
   } catch (const std::exception& e) {  // Assimp catches its own; anything else is a reading failure too
     throw std::runtime_error("cannot read model " + path + ": " + e.what());
   }
@@ -174,6 +220,9 @@ ImportedScene import_scene(const std::string& path, const ImportOptions& options
   if (!scene) {
     std::string why = importer.GetErrorString();
     if (why.empty()) why = "Assimp gives no reason";
+    // Points and lines are dropped as they are read (AI_CONFIG_PP_SBP_REMOVE): a file of
+    // nothing else is left with no mesh, which Assimp words for itself.
+    if (why == "No meshes remaining") why = "it holds no surfaces, only points or lines (Avenues needs polygons)";
     throw std::runtime_error("cannot read model " + path + ": " + why);
   }
   if (!scene->mRootNode) throw std::runtime_error("cannot read model " + path + ": it has no nodes");
@@ -234,7 +283,7 @@ Mesh mesh_of_scene(const ImportedScene& scene) {
       coloured = coloured || known;
     }
   }
-  if (polygons.empty()) throw std::runtime_error("mesh " + scene.path + " has no faces (no triangles in any node)");
+  if (polygons.empty()) throw std::runtime_error("mesh " + scene.path + " has no faces (no triangles in any node: it holds no surfaces)");
   Mesh mesh = mesh_of_polygons(scene.path, std::move(vertices), std::move(polygons));
   if (coloured) {
     for (const ImportedMaterial& im : scene.materials) {

@@ -57,6 +57,12 @@ struct ImportOptions {
 /// Whether Assimp has an importer for this extension (".gltf", with the dot).
 bool assimp_reads_extension(const std::string& ext);
 
+/// Whether one of Assimp's importers knows the file by its content (a magic number, or the
+/// keywords its format begins with), whatever its name: for a model whose name has no
+/// extension or one that says nothing (3DS's "MM" chunk, "AC3D", "*3DSMAX_ASCIIEXPORT", "xof ").
+/// Returns the importer's name ("Discreet 3DS Importer"), or "" when none knows it.
+std::string assimp_importer_by_content(const std::string& path);
+
 /// Reads a model file. Throws std::runtime_error naming the file and Assimp's reason when
 /// Assimp cannot read it (an unknown IFC entity, a broken glTF buffer, an empty file).
 ImportedScene import_scene(const std::string& path, const ImportOptions& options = {});

@@ -433,8 +433,11 @@ Mesh load_mesh(const std::string& path, const MeshAxes& axes, std::vector<std::s
   std::string ext = fs::path(path).extension().string();
   for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
   if (ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl") {
-    if (!assimp_reads_extension(ext))
-      throw std::runtime_error("cannot read mesh " + path + ": '" + ext + "' is not a mesh format Avenues reads");
+    // A name that says nothing (no extension, or one no reader has): the content may.
+    if (!assimp_reads_extension(ext) && assimp_importer_by_content(path).empty())
+      throw std::runtime_error("cannot read mesh " + path + ": " +
+                               (ext.empty() ? std::string("its name has no extension") : "'" + ext + "' is not a mesh format Avenues reads") +
+                               ", and no reader knows its content");
     return load_assimp_mesh(path, axes, warnings);
   }
   if (ext == ".ply") check_ply(path);

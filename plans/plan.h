@@ -202,6 +202,9 @@ struct Plan {
 Plan read_plan(const std::string& path);
 /// Same, from text (for tests and fuzzing); `name` stands for the file in messages.
 Plan parse_plan(const std::string& text, const std::string& name);
+/// Whether `text` is TOML at all (any document, not only a plan): what tells a plan given
+/// under a name that says nothing from other text.
+bool parses_as_toml(const std::string& text);
 
 /// Finds a pair of segments of the polyline `pts` (closed: last point joins the first)
 /// that meet although they should not: non-neighbours that touch or cross, or

@@ -939,6 +939,19 @@ Plan parse_plan(const std::string& text, const std::string& name) {
   return Reader(name).read(root);
 }
 
+bool parses_as_toml(const std::string& text) {
+#if TOML_EXCEPTIONS
+  try {
+    (void)toml::parse(text);
+    return true;
+  } catch (const toml::parse_error&) {
+    return false;
+  }
+#else
+  return bool(toml::parse(text));
+#endif
+}
+
 Plan read_plan(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))

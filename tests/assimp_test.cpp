@@ -274,6 +274,56 @@ TEST(AssimpModels, ZippedAndGzippedModelsOpenByTheirExtension) {
   fs::remove_all(dir);
 }
 
+// A model whose name says no format is told by its content, as Assimp's own tools tell it:
+// Assimp's "formatDetection" files (3DS's chunks, AC3D's and ASE's first keywords, a
+// DirectX "xof " header, HMP, LightWave's IFF, STL and OFF), a binary glTF and a 3MF
+// archive under no extension. Text that is TOML stays a plan; text that is neither, under
+// an extension no reader has, is said to be so; a guess Assimp cannot read is reported
+// as a file Avenues does not know, with Assimp's reason.
+TEST_F(AssimpFiles, ModelsWhoseNamesSayNothingAreToldByTheirContent) {
+  if (!fs::exists(kModels / "3DS/testFormatDetection")) GTEST_SKIP() << "assimp-testmodels not installed (.ci/install-deps)";
+  std::vector<std::string> files;
+  for (const char* name : {"3DS/testFormatDetection", "AC/TestFormatDetection", "ASE/TestFormatDetection",
+                           "X/TestFormatDetection", "HMP/formatDetection", "LWO/LWO2/formatDetection",
+                           "STL/formatDetection", "OFF/formatDetection"})
+    files.push_back((kModels / name).string());
+  using avenues::testing::Outcome;
+  using avenues::testing::slurp;
+  files.push_back(write("box-glb", slurp((kModels / "glTF2/BoxTextured-glTF-Binary/BoxTextured.glb").string())));
+  files.push_back(write("box-3mf", slurp((kModels / "3MF/box.3mf").string())));
+  for (const std::string& f : files) {
+    SCOPED_TRACE(f);
+    const app::LoadedPlan loaded = app::load_plan_source(f, app::ImportOptions{});
+    EXPECT_EQ(cells_are_valid(loaded.complex), "");
+    EXPECT_GT(loaded.complex.cells.size(), 1u);
+    EXPECT_FALSE(loaded.complex.portals.empty());  // free space cut by the model, not the far box alone
+  }
+  EXPECT_EQ(app::parse_plan_spec(files[0]).format, FileFormat::Model);
+  EXPECT_EQ(app::parse_plan_spec(files[8]).format, FileFormat::Model);
+
+  // A plan under no extension is still a plan.
+  const std::string plan = write("house", slurp(std::string(AVENUES_SOURCE_DIR) + "/plans/jones-house.toml"));
+  EXPECT_EQ(app::load_plan_source(plan, app::ImportOptions{}).format, FileFormat::Toml);
+  // Text of a format no reader has (VRML): its extension named, and TOML's reason.
+  Outcome r = run({"cells", write("model.wrl", "#VRML V2.0 utf8\nShape { geometry Box { } }\n")});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output().find("model.wrl is not a plan Avenues can read: its extension '.wrl' names no format"),
+            std::string::npos) << r.output();
+  EXPECT_NE(r.output().find("TOML"), std::string::npos) << r.output();
+  // Blender's VRML export says "Blender" in its first lines, which Assimp's Blender reader
+  // takes for its own: the guess and its failure are both said.
+  if (fs::exists(kModels / "WRL/Wuson.wrl")) {
+    r = run({"cells", (kModels / "WRL/Wuson.wrl").string()});
+    EXPECT_EQ(r.status, 2);
+    for (const char* said : {"Wuson.wrl is not a plan Avenues can read", "'.wrl'", "Blender", "by its content"})
+      EXPECT_NE(r.output().find(said), std::string::npos) << said << " in " << r.output();
+  }
+  // Files of only points and lines: Assimp's own words for them are put plainly.
+  r = run({"cells", (kModels / "AC/openLine.ac").string()});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output().find("openLine.ac: it holds no surfaces, only points or lines"), std::string::npos) << r.output();
+}
+
 TEST(AssimpModels, TruncatedAndEmptyFilesNameTheFile) {
   if (!fs::exists(kModels / "invalid")) GTEST_SKIP() << "assimp-testmodels not installed (.ci/install-deps)";
   for (const auto& e : fs::directory_iterator(kModels / "invalid")) {
