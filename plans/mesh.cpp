@@ -74,55 +74,107 @@ bool coordinate(const std::string& t) {
 }
 const std::string kCoordinateRule = "is not a coordinate (a finite number of magnitude at most 1e30)";
 
-/// An OBJ file's vertices and faces, checked by the rule above: every "v" line has three
-/// (or four) coordinates, every face index (1-based, or negative: counted back from the
-/// last vertex so far) names a vertex.
-void check_obj(const std::string& bytes, const std::string& name) {
-  auto bad = [&](int line, const std::string& what) {
-    throw std::runtime_error("cannot read mesh " + name + ": line " + std::to_string(line) + ": " + what);
-  };
+/// An OBJ file's vertices and faces, checked by the rule above, and made readable the way
+/// OBJ's own tools are lenient: a vertex that is no coordinate (every "v" line has three, or
+/// four), or a face or line corner that names no vertex (1-based, or negative: counted back
+/// from the last vertex so far), costs its element, not the file. A bad vertex's line
+/// becomes a copy of a good vertex (so that the numbering stays, and the extent too) and
+/// every face using it goes; a bad face's line goes. Returns the text to read; `dropped`
+/// gets one line per element dropped ("line 11: '3.1+e2' is not a coordinate ...").
+std::string readable_obj(const std::string& bytes, std::vector<std::string>& dropped) {
   // Positive indices may name vertices listed later; negative ones count back from here.
-  long long total = 0;
+  // A first pass finds every vertex and which are bad, since a face may name one listed later.
+  std::vector<uint8_t> bad_vertex(1, 0);  // 1-based
+  std::string stand_in;                   // the first good vertex's line
   {
     std::istringstream count(bytes);
     std::string l;
     while (std::getline(count, l)) {
-      std::istringstream ls(l);
-      std::string key;
-      total += (ls >> key) && key == "v";
+      std::istringstream ls(l.substr(0, l.find('#')));
+      std::string key, t;
+      if (!(ls >> key) || key != "v") continue;
+      int n = 0;
+      while (n < 3 && ls >> t && coordinate(t)) ++n;
+      bad_vertex.push_back(n < 3);
+      if (n == 3 && stand_in.empty()) stand_in = l.substr(0, l.find('#'));
     }
   }
+  const long long total = (long long)bad_vertex.size() - 1;
+  if (stand_in.empty()) stand_in = "v 0 0 0";
+  std::ostringstream out;
   std::istringstream in(bytes);
   std::string line;
   int lineno = 0;
   long long vertices = 0;
   while (std::getline(in, line)) {
     ++lineno;
-    const size_t hash = line.find('#');
-    if (hash != std::string::npos) line.erase(hash);
-    std::istringstream ls(line);
+    std::string body = line;
+    const size_t hash = body.find('#');
+    if (hash != std::string::npos) body.erase(hash);
+    std::istringstream ls(body);
     std::string key;
-    if (!(ls >> key)) continue;
-    if (key == "v") {
+    std::string why;
+    if (!(ls >> key)) {
+    } else if (key == "v") {
       std::string t;
       int n = 0;
-      while (n < 3 && ls >> t) {
-        if (!coordinate(t)) bad(lineno, "'" + t + "' " + kCoordinateRule);
+      while (n < 3 && why.empty() && ls >> t) {
+        if (!coordinate(t)) why = "'" + t + "' " + kCoordinateRule;
         ++n;
       }
-      if (n < 3) bad(lineno, "a vertex needs three coordinates");
+      if (why.empty() && n < 3) why = "a vertex needs three coordinates";
       ++vertices;
+      if (!why.empty()) {
+        dropped.push_back("line " + std::to_string(lineno) + ": " + why + ": the vertex is dropped, with its faces");
+        out << stand_in << '\n';
+        continue;
+      }
     } else if (key == "f" || key == "l") {
       std::string t;
-      while (ls >> t) {
+      while (why.empty() && ls >> t) {
         long long v = 0;
         const std::string index = t.substr(0, t.find('/'));
         if (!whole_integer(index, v) || v == 0 || v > total || v < -vertices)
-          bad(lineno, "face corner '" + t + "' names no vertex (the file has " + std::to_string(total) + ", " +
-                          std::to_string(vertices) + " of them before this line)");
+          why = "face corner '" + t + "' names no vertex (the file has " + std::to_string(total) + ", " +
+                std::to_string(vertices) + " of them before this line)";
+        else if (bad_vertex[size_t(v > 0 ? v : vertices + 1 + v)])
+          why = "face corner '" + t + "' names a vertex that is dropped";
+      }
+      if (!why.empty()) {
+        dropped.push_back("line " + std::to_string(lineno) + ": " + why + ": the " +
+                          (key == "f" ? "face" : "line") + " is dropped");
+        out << '\n';
+        continue;
       }
     }
+    out << line << '\n';
   }
+  return dropped.empty() ? bytes : out.str();
+}
+
+/// An OBJ's text as bytes: UTF-16 (a byte-order mark, as some Windows tools write it) and a
+/// UTF-8 byte-order mark are read as the ASCII they hold; a NUL anywhere else is no OBJ.
+std::string obj_text(const std::string& bytes, const std::string& name) {
+  auto bad = [&](const std::string& what) { throw std::runtime_error("cannot read mesh " + name + ": " + what); };
+  if (bytes.size() >= 2 && (bytes.compare(0, 2, "\xFF\xFE") == 0 || bytes.compare(0, 2, "\xFE\xFF") == 0)) {
+    const bool little = bytes[0] == '\xFF';
+    if (bytes.size() % 2) bad("UTF-16 text of an odd number of bytes");
+    std::string ascii;
+    ascii.reserve(bytes.size() / 2);
+    for (size_t i = 2; i < bytes.size(); i += 2) {
+      const unsigned lo = static_cast<unsigned char>(bytes[i + (little ? 0 : 1)]);
+      const unsigned hi = static_cast<unsigned char>(bytes[i + (little ? 1 : 0)]);
+      const unsigned unit = hi << 8 | lo;
+      if (unit == 0 || unit > 0x7F)
+        bad("UTF-16 text with a character that is not ASCII at byte " + std::to_string(i) +
+            " (OBJ's keywords and numbers are ASCII)");
+      ascii.push_back(char(unit));
+    }
+    return ascii;
+  }
+  std::string text = bytes.compare(0, 3, "\xEF\xBB\xBF") == 0 ? bytes.substr(3) : bytes;
+  if (text.find('\0') != std::string::npos) bad("an OBJ file holds no NUL bytes");
+  return text;
 }
 
 /// A PLY header's element counts, checked against the file's size before OpenMesh
@@ -463,16 +515,26 @@ Mesh load_mesh(const std::string& path, const MeshAxes& axes, std::vector<std::s
 Mesh read_mesh_bytes(const std::string& bytes, const std::string& ext, const std::string& name,
                      std::vector<std::string>* warnings, std::vector<std::string>* material_libraries) {
   if (ext != ".obj") throw std::runtime_error("cannot read mesh " + name + ": only OBJ models are read from memory");
-  for (char ch : bytes)
-    if (ch == '\0') throw std::runtime_error("cannot read mesh " + name + ": an OBJ file holds no NUL bytes");
-  check_obj(bytes, name);
+  std::vector<std::string> dropped;
+  const std::string text = readable_obj(obj_text(bytes, name), dropped);
   PolyMesh pm;
   OpenMesh::IO::Options opt;
   const QuietOpenMesh quiet;
-  std::istringstream in(bytes);
+  std::istringstream in(text);
   if (!OpenMesh::IO::read_mesh(pm, in, ext, opt)) throw std::runtime_error("cannot read mesh " + name + ": not an OBJ mesh");
+  if (pm.n_faces() == 0 && !dropped.empty())  // what was dropped is why nothing is left
+    throw std::runtime_error("cannot read mesh " + name + ": no face is left: " + dropped.front() +
+                             (dropped.size() > 1 ? " (and " + std::to_string(dropped.size() - 1) + " more)" : ""));
   Mesh m = mesh_of_openmesh(pm, name);
-  ObjMaterialUse use = obj_material_use(bytes);
+  if (!dropped.empty() && warnings) {
+    constexpr size_t kListed = 3;
+    std::string said = "mesh " + name + ": " + std::to_string(dropped.size()) +
+                       " element(s) that cannot be used were dropped; ";
+    for (size_t i = 0; i < dropped.size() && i < kListed; ++i) said += (i ? "; " : "") + dropped[i];
+    if (dropped.size() > kListed) said += "; ...";
+    warnings->push_back(said);
+  }
+  ObjMaterialUse use = obj_material_use(text);
   const std::string why = name_obj_materials(m, use, pm.n_faces());
   if (!why.empty() && warnings) warnings->push_back("mesh " + name + ": " + why);
   if (material_libraries) *material_libraries = std::move(use.libraries);

@@ -64,8 +64,14 @@ Mesh mesh_of_polygons(std::string path, std::vector<Vec3> vertices, std::vector<
 /// Reads a mesh as z-up metres; the format follows the extension: OBJ, OFF, PLY and STL
 /// through OpenMesh, turned and scaled as `axes` says (default z up, metres); every other
 /// format Assimp reads (glTF 2, COLLADA, FBX, 3DS, ...) through plans/assimp_reader.h, in
-/// the up axis and unit the file declares (`axes` where it declares none). Throws
+/// the up axis and unit the file declares (`axes` where it declares none), and so is a
+/// file whose name says no format when an Assimp importer knows its content. Throws
 /// std::runtime_error naming the file for a missing, unreadable or empty mesh.
+///
+/// An OBJ is read as leniently as its own tools read it: a vertex that is no coordinate, or
+/// a face naming no vertex, is dropped (with the faces using that vertex) and said in
+/// `warnings`, naming its line; only a file left with no face is refused. UTF-16 text (with
+/// its byte-order mark) is read as the ASCII it holds.
 ///
 /// An OBJ's `usemtl` groups become its materials (Mesh::materials), coloured by the MTL
 /// libraries its `mtllib` lines name, found beside it, and their `map_Kd` images, beside

@@ -76,7 +76,7 @@ ObjMaterialUse obj_material_use(std::string_view obj) {
       if (!rest.empty()) use.libraries.emplace_back(rest);
     } else if (key == "f") {
       // OpenMesh keeps a face of three corners or more, no vertex named twice; corners
-      // counted back (negative) are taken from the vertices so far, as check_obj does.
+      // counted back (negative) are taken from the vertices so far, as readable_obj does.
       corners.clear();
       bool readable = true;
       for (std::string_view w : words_of(rest)) {

@@ -47,7 +47,7 @@ struct ObjMaterialUse {
 
 /// Reads the `mtllib` and `usemtl` statements and the faces of an OBJ text (comments from
 /// '#' on ignored). Never throws: what is not a face or a material statement is skipped
-/// (check_obj in mesh.cpp has already checked the geometry).
+/// (readable_obj in mesh.cpp has already checked the geometry and dropped what it cannot use).
 ObjMaterialUse obj_material_use(std::string_view obj);
 
 /// Gives a mesh read from an OBJ (polygon i its i-th face OpenMesh kept, `faces_read` of

@@ -308,8 +308,10 @@ TEST_F(Hostile, PlansOfOtherFormatsSaySoAndMisnamedPlansAreRead) {
   EXPECT_TRUE(has(r.output(), "\"cells\"")) << r.output();
 }
 
-// Items 13 and 14: a broken mesh names the file and what is wrong with it; OBJ and STL go by
-// the OFF reader's rule (a bad vertex or face refuses the file, naming the line or triangle).
+// Items 13 and 14: a broken mesh names the file and what is wrong with it; STL goes by the
+// OFF reader's rule (a bad vertex or face refuses the file, naming the line or triangle). An
+// OBJ drops what it cannot use, as its own tools do; one left with no face is refused, naming
+// the line that cost it its last.
 TEST_F(Hostile, BrokenMeshesNameTheFileAndTheFault) {
   std::string noise;
   for (int i = 0; i < 3000; ++i) noise += char((i * 7919 + 13) % 256);

@@ -40,6 +40,50 @@ TEST(ObjMaterials, EachFaceTakesTheUsemtlInForceWhereItStands) {
   EXPECT_FALSE(obj_material_use("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").uses_materials);
 }
 
+// Lenient as OBJ's own tools are: a vertex that is no coordinate costs the faces using it,
+// a face naming no vertex costs itself, each said with its line; the materials of the faces
+// left still go onto the right faces; text in UTF-16 reads as the same cube.
+TEST(ObjReader, WhatCannotBeUsedIsDroppedAndSaidWithItsLine) {
+  // Vertex 9, listed last (line 21), is bad: "3.1+e2"; one extra face uses it, another
+  // names vertex 12, which there is none of.
+  const std::string obj = cube_obj("f 1 2 9\nf 1 2 12\n") + "v 0 0 3.1+e2\n";
+  std::vector<std::string> warnings;
+  const Mesh m = read_mesh_bytes(obj, ".obj", "cube.obj", &warnings);
+  EXPECT_EQ(m.triangles.size(), 12u);  // the cube's six quads, no more
+  ASSERT_EQ(warnings.size(), 1u);
+  for (const char* said : {"cube.obj", "3 element(s)", "line 21: '3.1+e2' is not a coordinate", "vertex is dropped",
+                           "line 16: face corner '9' names a vertex that is dropped",
+                           "line 17: face corner '12' names no vertex"})
+    EXPECT_NE(warnings[0].find(said), std::string::npos) << said << " in " << warnings[0];
+  // The dropped faces' lines are gone from what the materials are counted on too.
+  ASSERT_EQ(m.material_of.size(), m.triangles.size());
+  const MaterialId want[6] = {0, 1, 1, 1, 2, 2};
+  for (size_t t = 0; t < m.triangles.size(); ++t) EXPECT_EQ(m.material_of[t], want[m.polygon_of[t]]) << t;
+  // The stand-in for the bad vertex is a good one: the extent is the cube's.
+  for (const Vec3& v : m.vertices) EXPECT_TRUE(v.z >= 0 && v.z <= 1) << v.z;
+
+  // Nothing left: refused, naming the line that cost the last face.
+  try {
+    (void)read_mesh_bytes("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n", ".obj", "bad.obj");
+    ADD_FAILURE() << "read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.obj: no face is left: line 4: face corner '7'"), std::string::npos)
+        << e.what();
+  }
+
+  // UTF-16, either byte order, with its mark: the same cube. A character beyond ASCII is named.
+  const std::string ascii = cube_obj();
+  for (const bool little : {true, false}) {
+    std::string wide = little ? "\xFF\xFE" : "\xFE\xFF";
+    for (char ch : ascii) wide += little ? std::string{ch, '\0'} : std::string{'\0', ch};
+    const Mesh w = read_mesh_bytes(wide, ".obj", "wide.obj");
+    EXPECT_EQ(w.triangles, read_mesh_bytes(ascii, ".obj", "cube.obj").triangles);
+    EXPECT_EQ(w.vertices.size(), 8u);
+  }
+  EXPECT_THROW((void)read_mesh_bytes(std::string("\xFF\xFEv\0 \0\xE9\0", 8), ".obj", "e.obj"), std::runtime_error);
+  EXPECT_EQ(read_mesh_bytes("\xEF\xBB\xBF" + ascii, ".obj", "bom.obj").triangles.size(), 12u);
+}
+
 TEST(ObjMaterials, NamesGoOntoTheMeshOnlyWhenTheFacesAgree) {
   const std::string obj = cube_obj();
   Mesh m = read_mesh_bytes(obj, ".obj", "cube.obj");
