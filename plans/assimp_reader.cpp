@@ -9,7 +9,11 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
 #include <chrono>
+#include <optional>
+#include <vector>
+#include <string_view>
 #include <cmath>
 #include <cctype>
 #include <cstdint>
@@ -19,7 +23,9 @@
 #include <iterator>
 #include <stdexcept>
 
+#include "core/srgb.h"
 #include "core/stage_timer.h"
+#include "plans/image_colour.h"
 
 namespace avenues {
 
@@ -108,6 +114,69 @@ std::array<double, 3> diffuse_of(const aiScene& scene, unsigned material, bool& 
   return {0.8, 0.8, 0.8};
 }
 
+/// The mean colour (linear) of a material's diffuse or base colour texture, as a Sweet Home
+/// texture or an OBJ's map_Kd gives one: Avenues paints each surface one colour. The image
+/// is embedded ("*0", or an FBX's own name for it) or a file beside the model (its path as
+/// written, with '/' for '\\', or its name alone). std::nullopt when the material has no
+/// texture; `problem` says why one that it has gives no colour.
+std::optional<std::array<double, 3>> texture_colour(const aiScene& scene, const aiMaterial& m,
+                                                    const std::string& model, std::string& problem) {
+  aiString where;
+  if (m.GetTexture(aiTextureType_BASE_COLOR, 0, &where) != AI_SUCCESS &&
+      m.GetTexture(aiTextureType_DIFFUSE, 0, &where) != AI_SUCCESS)
+    return std::nullopt;
+  const std::string name = where.C_Str();
+  if (name.empty()) return std::nullopt;
+  try {
+    if (const aiTexture* t = scene.GetEmbeddedTexture(name.c_str())) {
+      if (!t->pcData) throw std::runtime_error("the embedded image has no data");
+      if (t->mHeight == 0)  // compressed: mWidth bytes of a PNG, a JPEG, ...
+        return mean_image_colour(std::string_view(reinterpret_cast<const char*>(t->pcData), t->mWidth),
+                                 model + ": embedded image " + name);
+      // Raw BGRA texels: sRGB made linear, weighted by alpha, as mean_image_colour does.
+      const uint64_t n = uint64_t(t->mWidth) * t->mHeight;
+      if (n == 0 || n > uint64_t(kMaxImagePixels)) throw std::runtime_error("the embedded image's size is out of range");
+      std::array<double, 3> sum{};
+      double weight = 0;
+      for (uint64_t i = 0; i < n; ++i) {
+        const aiTexel& x = t->pcData[i];
+        const double a = x.a / 255.0;
+        sum[0] += a * linear_from_srgb(x.r / 255.0);
+        sum[1] += a * linear_from_srgb(x.g / 255.0);
+        sum[2] += a * linear_from_srgb(x.b / 255.0);
+        weight += a;
+      }
+      if (!(weight > 0)) throw std::runtime_error("the embedded image is wholly transparent");
+      return std::array<double, 3>{sum[0] / weight, sum[1] / weight, sum[2] / weight};
+    }
+    namespace fs = std::filesystem;
+    std::string slashed = name;
+    std::replace(slashed.begin(), slashed.end(), '\\', '/');
+    const fs::path dir = fs::path(model).parent_path();
+    // Names written on one system are looked for on another: also in any case (a DOS-era
+    // 3DS's "IMAGE1.JPG" beside it as IMAGE1.jpg).
+    auto lower = [](std::string t) {
+      for (char& ch : t) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+      return t;
+    };
+    std::vector<fs::path> candidates{dir / slashed, dir / fs::path(slashed).filename()};
+    std::error_code ec;
+    for (fs::directory_iterator it(dir.empty() ? fs::path(".") : dir, ec), end; !ec && it != end; it.increment(ec))
+      if (lower(it->path().filename().string()) == lower(fs::path(slashed).filename().string()))
+        candidates.push_back(it->path());
+    for (const fs::path& candidate : candidates) {
+      if (!fs::is_regular_file(candidate, ec)) continue;
+      std::ifstream in(candidate, std::ios::binary);
+      const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      return mean_image_colour(bytes, candidate.string());
+    }
+    problem = "its image " + name + " is not at hand";
+  } catch (const std::runtime_error& e) {
+    problem = e.what();
+  }
+  return std::nullopt;
+}
+
 void collect(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent_world, int parent,
              const OutputAxes& axes, double metres, ImportedScene& out, int& dropped, int depth) {
   if (depth > 256) throw std::runtime_error("the node hierarchy is deeper than 256 (a cycle?)");
@@ -122,8 +191,11 @@ void collect(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent
     for (unsigned k = 0; k < node.mNumMeshes; ++k) {
       if (node.mMeshes[k] >= scene.mNumMeshes) continue;
       const aiMesh& mesh = *scene.mMeshes[node.mMeshes[k]];
-      if (!n.coloured) n.colour = diffuse_of(scene, mesh.mMaterialIndex, n.coloured);
-      const int material = mesh.mMaterialIndex < scene.mNumMaterials ? int(mesh.mMaterialIndex) : -1;
+      const int material = mesh.mMaterialIndex < out.materials.size() ? int(mesh.mMaterialIndex) : -1;
+      if (!n.coloured && material >= 0) {
+        n.colour = out.materials[size_t(material)].colour;
+        n.coloured = out.materials[size_t(material)].coloured;
+      }
       const int base = int(n.vertices.size());
       std::vector<bool> finite(mesh.mNumVertices);
       for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
@@ -230,13 +302,32 @@ ImportedScene import_scene(const std::string& path, const ImportOptions& options
   if (scene->mMetaData) scene->mMetaData->Get(AI_METADATA_SOURCE_FORMAT, format);
   out.format = format.C_Str();
 
+  // glTF's base colour multiplies its texture; the other formats' diffuse colour stands
+  // beside a texture that replaces it, as an OBJ's Kd beside its map_Kd.
+  const bool factor_times_texture = out.format.find("glTF") != std::string::npos;
+  std::vector<std::string> untextured;  // materials whose texture gave no colour, and why
   for (unsigned m = 0; m < scene->mNumMaterials; ++m) {
     ImportedMaterial im;
     im.colour = diffuse_of(*scene, m, im.coloured);
     aiString name;
     if (scene->mMaterials[m] && scene->mMaterials[m]->Get(AI_MATKEY_NAME, name) == AI_SUCCESS) im.name = name.C_Str();
     if (im.name.empty()) im.name = "material " + std::to_string(m + 1);
+    if (scene->mMaterials[m]) {
+      std::string problem;
+      if (const auto tex = texture_colour(*scene, *scene->mMaterials[m], path, problem)) {
+        for (size_t c = 0; c < 3; ++c) im.colour[c] = factor_times_texture && im.coloured ? im.colour[c] * (*tex)[c] : (*tex)[c];
+        im.coloured = true;
+      } else if (!problem.empty()) {
+        untextured.push_back("'" + im.name + "' (" + problem + ")");
+      }
+    }
     out.materials.push_back(std::move(im));
+  }
+  if (!untextured.empty()) {
+    std::string said = std::to_string(untextured.size()) + " material(s) keep their colour without their texture: ";
+    for (size_t i = 0; i < untextured.size() && i < 3; ++i) said += (i ? ", " : "") + untextured[i];
+    if (untextured.size() > 3) said += ", ...";
+    out.warnings.push_back(said);
   }
   OutputAxes axes = output_axes(*scene, out.format);
   const std::string named = out.format.empty() ? "the format" : out.format;

@@ -3,11 +3,17 @@
 
 #include <jpeglib.h>
 #include <png.h>
+#include <stb_image.h>
 
 #include <csetjmp>
 #include <cstdio>
+#include <climits>
+#include <cstdint>
 #include <cstring>
+#include <memory>
+#include <optional>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "core/srgb.h"
@@ -116,12 +122,39 @@ std::array<double, 3> mean_jpeg(std::string_view bytes, const std::string& name)
   return mean_of(s, name);
 }
 
+/// Any other format stb_image reads (TGA, which older models' textures often are: a
+/// COLLADA duck's, a 3DS's; BMP, GIF, PSD, PNM): its size checked before it is decoded.
+std::optional<std::array<double, 3>> mean_other(std::string_view bytes, const std::string& name) {
+  if (bytes.size() > size_t(INT32_MAX)) return std::nullopt;
+  const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+  const int length = int(bytes.size());
+  int w = 0, h = 0, channels = 0;
+  if (!stbi_info_from_memory(data, length, &w, &h, &channels)) return std::nullopt;
+  if (w <= 0 || h <= 0 || (long long)w * h > kMaxImagePixels)
+    throw std::runtime_error(name + ": an image of " + std::to_string(w) + " x " + std::to_string(h) +
+                             " pixels, more than Avenues reads");
+  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_memory(data, length, &w, &h, &channels, 4),
+                                                    stbi_image_free);
+  if (!pixels) {
+    const char* why = stbi_failure_reason();
+    throw std::runtime_error(name + ": not a readable image (" + (why ? why : "stb_image gives no reason") + ")");
+  }
+  Sums s;
+  const long long n = (long long)w * h;
+  for (long long i = 0; i < n; ++i) {
+    const unsigned char* px = pixels.get() + 4 * i;
+    s.add(px, px[3] / 255.0);
+  }
+  return mean_of(s, name);
+}
+
 }  // namespace
 
 std::array<double, 3> mean_image_colour(std::string_view bytes, const std::string& name) {
   if (bytes.size() >= 8 && std::memcmp(bytes.data(), "\x89PNG\r\n\x1a\n", 8) == 0) return mean_png(bytes, name);
   if (bytes.size() >= 3 && std::memcmp(bytes.data(), "\xFF\xD8\xFF", 3) == 0) return mean_jpeg(bytes, name);
-  throw std::runtime_error(name + ": not a PNG or JPEG image (Avenues reads only those)");
+  if (const std::optional<std::array<double, 3>> other = mean_other(bytes, name)) return *other;
+  throw std::runtime_error(name + ": not an image Avenues reads (PNG, JPEG, TGA, BMP, GIF, PSD or PNM)");
 }
 
 }  // namespace avenues

@@ -1,7 +1,9 @@
 // Avenues — the mean colour of an image (a Sweet Home texture), in linear light.
 //
 // Avenues paints each surface one colour: a textured surface takes its image's mean.
-// The image is told by its content (PNG by libpng, JPEG by libjpeg), decoded from memory,
+// The image is told by its content (PNG by libpng, JPEG by libjpeg, and what else
+// stb_image reads: TGA, which older models' textures often are, BMP, GIF, PSD, PNM),
+// decoded from memory,
 // every pixel's sRGB components made linear (core/srgb.h) before they are averaged, each
 // weighted by its alpha (a transparent pixel shows no colour).
 #pragma once
@@ -17,7 +19,7 @@ namespace avenues {
 constexpr long long kMaxImagePixels = 1LL << 25;
 
 /// The image's mean colour in linear RGB, each [0, 1]. Throws std::runtime_error naming
-/// `name` when the bytes are not a PNG or JPEG image it can decode, when the image is
+/// `name` when the bytes are not an image of those formats it can decode, when the image is
 /// larger than kMaxImagePixels, or wholly transparent.
 std::array<double, 3> mean_image_colour(std::string_view bytes, const std::string& name);
 

@@ -20,6 +20,7 @@
 #include "plans/assimp_reader.h"
 #include "plans/formats/ifc_building.h"
 #include "plans/formats/ifc_step.h"
+#include "plans/image_colour.h"
 #include "plans/mesh.h"
 #include "plans/plan_writer.h"
 #include "ray_oracle.h"
@@ -322,6 +323,59 @@ TEST_F(AssimpFiles, ModelsWhoseNamesSayNothingAreToldByTheirContent) {
   r = run({"cells", (kModels / "AC/openLine.ac").string()});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output().find("openLine.ac: it holds no surfaces, only points or lines"), std::string::npos) << r.output();
+}
+
+// A textured material takes its image's mean colour, as an OBJ's map_Kd does: images beside
+// the model, found in any case (a DOS-era 3DS names "IMAGE1.JPG" for IMAGE1.jpg), TGA read
+// by stb_image (a COLLADA duck's), glTF's base colour factor times its texture; an image not
+// at hand leaves the material's colour, said once per model.
+TEST_F(AssimpFiles, TexturedMaterialsTakeTheirImagesMeanColour) {
+  if (!fs::exists(kModels / "Collada/duck.dae")) GTEST_SKIP() << "assimp-testmodels not installed (.ci/install-deps)";
+  using avenues::testing::slurp;
+  // TGA, uncompressed and run-length encoded: 2 x 1, red and blue, mean (0.5, 0, 0.5) in linear light.
+  const std::string header_raw("\0\0\x02\0\0\0\0\0\0\0\0\0\x02\0\x01\0\x18\0", 18);
+  const std::string red_blue = header_raw + std::string("\0\0\xFF\xFF\0\0", 6);  // BGR, BGR
+  std::string rle_header = header_raw;
+  rle_header[2] = '\x0A';
+  const std::string rle = rle_header + std::string("\x01\0\0\xFF\xFF\0\0", 7);  // a raw packet of two
+  for (const std::string& tga : {red_blue, rle}) {
+    const std::array<double, 3> mean = mean_image_colour(tga, "red-blue.tga");
+    EXPECT_NEAR(mean[0], 0.5, 1e-12);
+    EXPECT_NEAR(mean[1], 0, 1e-12);
+    EXPECT_NEAR(mean[2], 0.5, 1e-12);
+  }
+  EXPECT_THROW((void)mean_image_colour("no image at all", "text.tga"), std::runtime_error);
+
+  std::vector<std::string> warnings;
+  const Mesh duck = load_mesh((kModels / "Collada/duck.dae").string(), {}, &warnings);
+  EXPECT_TRUE(warnings.empty()) << warnings.front();
+  ASSERT_EQ(duck.materials.size(), 1u);
+  const std::array<double, 3> texture = mean_image_colour(slurp((kModels / "Collada/duckCM.tga").string()), "duck");
+  EXPECT_EQ(duck.materials[0].colour, texture);
+  EXPECT_GT(duck.materials[0].colour[1], 2 * duck.materials[0].colour[2]);  // yellow
+
+  warnings.clear();
+  const Mesh rock = load_mesh((kModels / "3DS/test1.3ds").string(), {}, &warnings);
+  for (const std::string& w : warnings) EXPECT_EQ(w.find("texture"), std::string::npos) << w;
+
+  // glTF: the base colour factor times the texture's mean (BoxTextured's factor is white).
+  warnings.clear();
+  const Mesh box = load_mesh((kModels / "glTF2/BoxTextured-glTF/BoxTextured.gltf").string(), {}, &warnings);
+  EXPECT_TRUE(warnings.empty()) << warnings.front();
+  ASSERT_FALSE(box.material_of.empty());
+  const Material& boxes = box.materials[size_t(box.material_of[0])];  // (Assimp adds a default material too)
+  const std::array<double, 3> logo =
+      mean_image_colour(slurp((kModels / "glTF2/BoxTextured-glTF/CesiumLogoFlat.png").string()), "logo");
+  for (size_t c = 0; c < 3; ++c) EXPECT_NEAR(boxes.colour[c], logo[c], 1e-6);
+
+  // The image gone: the material's own colour, and one warning naming the image.
+  const std::string dir =
+      fs::path(write("duck/duck.dae", slurp((kModels / "Collada/duck.dae").string()))).parent_path().string();
+  warnings.clear();
+  const Mesh bare = load_mesh(dir + "/duck.dae", {}, &warnings);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("'blinn3' (its image ./duckCM.tga is not at hand)"), std::string::npos) << warnings[0];
+  EXPECT_NE(bare.materials[0].colour, texture);
 }
 
 TEST(AssimpModels, TruncatedAndEmptyFilesNameTheFile) {
