@@ -36,7 +36,7 @@
 //                      Kd (sRGB-encoded, made linear); a name no library defines takes
 //                      Java 3D's built-in material of that name (plans/java3d_materials.h),
 //                      and one neither defines keeps the default grey. A texture is its
-//                      image's mean colour (PNG or JPEG, plans/image_colour.h). Light
+//                      image's mean colour (PNG, JPEG, TGA, ...: plans/image_colour.h). Light
 //                      pieces' sources become point lights (PLAN_FORMAT.md).
 // Sweet Home lengths are centimetres with y pointing down the screen; a point (x, y)
 // becomes (x/100, −y/100) m, which keeps counter-clockwise polygons counter-clockwise
