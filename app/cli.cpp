@@ -149,7 +149,7 @@ int run_cli(int argc, char** argv) {
   CLI::App* drawing = app.add_subcommand("drawing", "an architect's drawing: plan, section, elevation or axonometric");
   drawing->add_option("PLAN", drawing_opt.plan, "the plan, in any format the other subcommands read")->required();
   add_import_options(drawing, drawing_opt.import, false);
-  auto* kind_plan = drawing->add_option("--plan", drawing_opt.storey, "a plan of this storey (name or index), cut at --cut-height")
+  auto* kind_plan = drawing->add_option("--plan", drawing_opt.storey, "a plan of this storey (name or index; 0 for a mesh scene, which has none), cut at --cut-height")
                         ->type_name("STOREY");
   auto* kind_section = drawing->add_option("--section", drawing_opt.section, "a vertical cut along the line, looking to its left")
                            ->type_name("X1,Y1,X2,Y2");

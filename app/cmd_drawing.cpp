@@ -70,6 +70,12 @@ double parse_scale(const std::string& s) {
 }
 
 StoreyId find_storey(const CellComplex& c, const std::string& s) {
+  // A scene of meshes has no storeys: its plan is the whole model's, cut above its lowest point.
+  if (c.storeys.empty()) {
+    if (s == "0") return -1;
+    throw std::runtime_error("--plan: no storey '" + s + "': " + c.plan_name +
+                             " has no storeys (a mesh scene); --plan 0 cuts the whole model --cut-height above its lowest point");
+  }
   for (size_t i = 0; i < c.storeys.size(); ++i)
     if (c.storeys[i].name == s) return StoreyId(i);
   try {

@@ -85,7 +85,7 @@ Camera fitted_camera(Vec3 forward, const Box3& box, Vec3 on_plane, double px_per
 ArchitecturalView plan_view(const CellComplex& c, StoreyId st, double cut_height, double px_per_m) {
   const Box3 b = building_bounds(c);
   const Vec3 mid = 0.5 * (b.lo + b.hi);
-  const double z = c.storeys[size_t(st)].elevation + cut_height;
+  const double z = (st >= 0 ? c.storeys[size_t(st)].elevation : b.lo.z) + cut_height;
   ArchitecturalView s;
   s.kind = "plan";
   s.camera = fitted_camera({0, 0, -1}, b, {mid.x, mid.y, z}, px_per_m);

@@ -45,7 +45,9 @@ struct ArchitecturalView {
 
 /// The building: every cell inside it (not outside, not sky) and every solid it names.
 Box3 building_bounds(const CellComplex& complex);
-/// Storey `storey` cut `cut_height` [m] above its floor, looking down (north up), labelled.
+/// Storey `storey` cut `cut_height` [m] above its floor, looking down (north up), labelled;
+/// storey -1: the whole building (a scene of meshes, which has no storeys) cut that far above
+/// its lowest point, unlabelled.
 /// Every constructor takes the raster's resolution px_per_m [px per metre of the building]
 /// and throws std::runtime_error when the picture would be over 32768 px across.
 ArchitecturalView plan_view(const CellComplex& complex, StoreyId storey, double cut_height, double px_per_m);

@@ -209,6 +209,31 @@ TEST_F(ArchitecturalDrawing, ParallelRaysThroughTheStatedFrameFindNoCellMissing)
     }
 }
 
+// A scene of meshes has no storeys: its plan (--plan 0) is the whole model cut --cut-height
+// above its lowest point, and the parallel rays through its frame find no cell missing; a
+// storey named is refused, saying why.
+TEST_F(ArchitecturalDrawing, AMeshScenesPlanIsTheWholeModelCutAboveItsLowestPoint) {
+  const std::string scene = avenues::testing::outside_path("meshes/CornellBox-Original.obj");
+  const CellComplex c = app::load_plan_source(scene).complex;
+  ASSERT_TRUE(c.storeys.empty());
+  const Outcome r = run({"drawing", scene, "--plan", "0", "--cut-height", "0.5", "-o", path("p.svg"), "--stats-json",
+                         path("p.json")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = stats("p.json");
+  auto vec = [&](const char* k) { return Vec3{j["frame"][k][0], j["frame"][k][1], j["frame"][k][2]}; };
+  EXPECT_NEAR(vec("origin").z, building_bounds(c).lo.z + 0.5, 1e-9);
+  avenues::testing::ParallelFrame f{vec("origin"), vec("right"), vec("up"), vec("direction"), 0, 0};
+  f.nx = int(std::ceil(length(f.right) * 20)), f.ny = int(std::ceil(length(f.up) * 20));
+  const auto res = avenues::testing::check_parallel_rays(c, f, j["visible"].get<std::vector<CellId>>());
+  EXPECT_GT(res.rays, 100);
+  EXPECT_EQ(res.missing, 0);
+  EXPECT_GT(j["cells_cut"].get<int>(), 0);
+  const Outcome bad = run({"drawing", scene, "--plan", "ground", "-o", path("q.svg")});
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("has no storeys (a mesh scene); --plan 0 cuts the whole model"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(path("q.svg")));
+}
+
 // Jones's house in section along x = 4, looking east through both doors of the living
 // room's east wall: the outer sheets (y = 0 and y = 6), floor and ceiling are cut, and
 // the kitchen and the dining room are seen beyond. Along the wall itself (x = 5) the
