@@ -895,6 +895,17 @@ namespace {
 /// corner of the margin (free, whatever the scene is), looking at the middle of the
 /// scene, wide enough to take in the sphere around it.
 void frame_scene(CellComplex& out, const Box3& box, double m) {
+  // Avenues works at the scale of buildings: a near plane of 1 cm, this margin of metres.
+  // A scene a few centimetres across is most often one whose unit was lost on the way (a
+  // model in millimetres read as metres); the user is told, not second-guessed.
+  if (const double across = std::max({box.hi.x - box.lo.x, box.hi.y - box.lo.y, box.hi.z - box.lo.z}); across < 0.1) {
+    char size[64];
+    std::snprintf(size, sizeof size, "%.3g cm", 100 * across);
+    out.warnings.push_back(std::string("the scene is only ") + size +
+                           " across: Avenues works at the scale of buildings (its pictures' near plane is 1 cm "
+                           "away), so views from inside it show little; if its unit was lost, give --unit where "
+                           "its format declares none");
+  }
   out.far_box.lo = box.lo - Vec3{m, m, m};
   out.far_box.hi = box.hi + Vec3{m, m, m};
   const Vec3 middle = 0.5 * (box.lo + box.hi);

@@ -16,6 +16,7 @@
 #include "cells/mesh_scene.h"
 #include "cells/solid_insides.h"
 #include "cells/soup_bsp.h"
+#include "plans/mesh.h"
 #include "soup_checks.h"
 #include "tests/test_meshes.h"
 
@@ -405,6 +406,49 @@ TEST(SoupBsp, EveryMeshFromOutsideKeepsAllItsFacesAndAgreesWithRayCasting) {
                 c.portals.size(), c.warnings.size());
     EXPECT_EQ(visible_triangles_missing_from_export(c, meshes), 0);
     expect_soup_views_agree_with_rays(c, s.views, 1992, 96, 64, 8);
+  }
+}
+
+/// Scenes of Assimp's test models, each read as its format's own tools read it (COLLADA,
+/// FBX, 3DS, glTF, Blender, DirectX, ASE): a house of walls and a foundation (regr01), a
+/// spider of thin legs, a rock, a textured room (test1.3ds), spheres, cubes that touch and
+/// a concave polygon. Each: cells valid, no face someone could see missing from the export
+/// (counted), and views from random cells agreeing with rays.
+TEST(SoupBsp, AssimpsTestModelsKeepTheirFacesAndAgreeWithRayCasting) {
+  const std::filesystem::path models = "/usr/share/assimp/models";
+  if (!std::filesystem::exists(models / "Collada/duck.dae"))
+    GTEST_SKIP() << "assimp-testmodels not installed (.ci/install-deps)";
+  const char* const names[] = {"Collada/regr01.dae",       "FBX/spider.fbx",          "3DS/fels.3ds",
+                               "3DS/test1.3ds",            "Collada/sphere.dae",      "ASE/ThreeCubesGreen.ASE",
+                               "3DS/cubes_with_alpha.3DS", "Collada/ConcavePolygon.dae", "glTF2/BoxTextured-glTF/BoxTextured.gltf",
+                               "BLEND/box.blend",          "X/test.x",                "Collada/duck.dae"};
+  unsigned seed = 2026;
+  for (const char* name : names) {
+    SCOPED_TRACE(name);
+    std::vector<Mesh> meshes{load_mesh((models / name).string())};
+    Box3 box;
+    for (Vec3 v : meshes[0].vertices) box.add(v);
+    const double across = std::max({box.hi.x - box.lo.x, box.hi.y - box.lo.y, box.hi.z - box.lo.z});
+    // Two are a centimetre or two across (regr01's house by its COLLADA unit, the sphere),
+    // which the scene says in a warning. At that size the pictures' 1 cm near plane cuts
+    // most of every view, and the hull search's masks were found to leave the merged
+    // search's by up to 1e-3 (noted on issue 16): they are checked here made 100 times
+    // larger, at the scale of a model Avenues is for.
+    if (across < 0.1) {
+      const CellComplex tiny = build_mesh_scene(meshes);
+      ASSERT_EQ(cells_are_valid(tiny), "");
+      EXPECT_EQ(visible_triangles_missing_from_export(tiny, meshes), 0);
+      ASSERT_FALSE(tiny.warnings.empty());
+      EXPECT_NE(tiny.warnings.front().find("across: Avenues works at the scale of buildings"), std::string::npos)
+          << tiny.warnings.front();
+      for (Vec3& v : meshes[0].vertices) v = 100.0 * v;
+    }
+    const CellComplex c = build_mesh_scene(meshes);
+    ASSERT_EQ(cells_are_valid(c), "");
+    std::printf("  %s: %zu triangles, %zu cells, %zu portals, %zu warnings\n", name, meshes[0].triangles.size(),
+                c.cells.size(), c.portals.size(), c.warnings.size());
+    EXPECT_EQ(visible_triangles_missing_from_export(c, meshes), 0);
+    expect_soup_views_agree_with_rays(c, 3, seed++, 96, 64, 8);
   }
 }
 
