@@ -152,6 +152,21 @@ std::string readable_obj(const std::string& bytes, std::vector<std::string>& dro
   return dropped.empty() ? bytes : out.str();
 }
 
+/// The warning for elements a lenient reader dropped: how many, and the first few.
+std::string said_dropped(const std::string& name, const std::vector<std::string>& dropped) {
+  constexpr size_t kListed = 3;
+  std::string said = "mesh " + name + ": " + std::to_string(dropped.size()) + " element(s) that cannot be used were dropped; ";
+  for (size_t i = 0; i < dropped.size() && i < kListed; ++i) said += (i ? "; " : "") + dropped[i];
+  if (dropped.size() > kListed) said += "; ...";
+  return said;
+}
+
+/// A file whose every face was dropped: refused, naming what cost it the first.
+[[noreturn]] void throw_no_face_left(const std::string& name, const std::vector<std::string>& dropped) {
+  throw std::runtime_error("cannot read mesh " + name + ": no face is left: " + dropped.front() +
+                           (dropped.size() > 1 ? " (and " + std::to_string(dropped.size() - 1) + " more)" : ""));
+}
+
 /// An OBJ's text as bytes: UTF-16 (a byte-order mark, as some Windows tools write it) and a
 /// UTF-8 byte-order mark are read as the ASCII they hold; a NUL anywhere else is no OBJ.
 std::string obj_text(const std::string& bytes, const std::string& name) {
@@ -242,28 +257,42 @@ void check_ply(const std::string& path) {
         " points and no faces (a point cloud): Avenues needs surfaces, polygons joining the points");
 }
 
-/// A binary STL's triangle count against the file's size, and every vertex by the rule
-/// above; an ASCII STL's vertex lines likewise.
-void check_stl(const std::string& path) {
+/// A binary STL's triangle count against the file's size (a file cut short is refused),
+/// and every vertex by the rule above; an ASCII STL's vertex lines likewise. An STL is a
+/// list of separate triangles, so one with a vertex that is no coordinate is dropped, as
+/// its tools drop it, and said in `dropped` ("triangle 7: ..."). Returns the bytes to read
+/// when something was dropped ("" when the file reads as it is).
+std::string readable_stl(const std::string& path, std::vector<std::string>& dropped) {
   auto bad = [&](const std::string& what) { throw std::runtime_error("cannot read mesh " + path + ": " + what); };
   std::ifstream in(path, std::ios::binary);
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const bool ascii = bytes.compare(0, 5, "solid") == 0 && bytes.find("facet") != std::string::npos &&
                      bytes.find('\0') == std::string::npos;
   if (ascii) {
+    // A facet's lines are held until its "endfacet": kept, or dropped whole.
     std::istringstream lines(bytes);
-    std::string line;
-    int lineno = 0;
+    std::string line, facet, kept, why;
+    int lineno = 0, facets = 0;
+    bool in_facet = false;
     while (std::getline(lines, line)) {
       ++lineno;
       std::istringstream ls(line);
       std::string key, t;
       ls >> key;
-      if (key != "vertex") continue;
-      for (int k = 0; k < 3; ++k)
-        if (!(ls >> t) || !coordinate(t)) bad("line " + std::to_string(lineno) + ": '" + t + "' " + kCoordinateRule);
+      if (key == "facet") in_facet = true, ++facets, facet.clear(), why.clear();
+      if (key == "vertex")
+        for (int k = 0; k < 3 && why.empty(); ++k)
+          if (!(ls >> t) || !coordinate(t)) why = "line " + std::to_string(lineno) + ": '" + t + "' " + kCoordinateRule;
+      (in_facet ? facet : kept) += line + '\n';
+      if (key == "endfacet" && in_facet) {
+        in_facet = false;
+        if (why.empty()) kept += facet;
+        else dropped.push_back("facet " + std::to_string(facets) + ", " + why + ": the triangle is dropped");
+        facet.clear();
+      }
     }
-    return;
+    kept += facet;  // an unfinished facet: OpenMesh's to judge
+    return dropped.empty() ? std::string() : kept;
   }
   if (bytes.size() < 84) bad("a binary STL file needs 84 bytes of header, this has " + std::to_string(bytes.size()));
   uint32_t n = 0;
@@ -272,13 +301,26 @@ void check_stl(const std::string& path) {
   if (n > room)
     bad("its header announces " + std::to_string(n) + " triangles, its " + std::to_string(bytes.size()) +
         " bytes hold " + std::to_string(room));
-  for (uint32_t t = 0; t < n; ++t)
-    for (int k = 0; k < 9; ++k) {
+  std::string kept = bytes.substr(0, 84);
+  uint32_t left = 0;
+  for (uint32_t t = 0; t < n; ++t) {
+    bool good = true;
+    for (int k = 0; k < 9 && good; ++k) {
       float v = 0;
       std::memcpy(&v, bytes.data() + 84 + 50 * size_t(t) + 12 + 4 * size_t(k), 4);
-      if (!std::isfinite(v) || std::abs(v) > kMaxCoordinate)
-        bad("triangle " + std::to_string(t + 1) + " has a vertex that " + kCoordinateRule);
+      good = std::isfinite(v) && std::abs(v) <= kMaxCoordinate;
     }
+    if (!good) {
+      dropped.push_back("triangle " + std::to_string(t + 1) + " has a vertex that " + kCoordinateRule +
+                        ": the triangle is dropped");
+      continue;
+    }
+    kept.append(bytes, 84 + 50 * size_t(t), 50);
+    ++left;
+  }
+  if (dropped.empty()) return std::string();
+  for (int k = 0; k < 4; ++k) kept[80 + size_t(k)] = char((left >> (8 * k)) & 0xFF);
+  return kept;
 }
 
 /// OpenMesh's ASCII OFF reader trusts its input: a negative face size ("-1 1 1"), a
@@ -493,7 +535,8 @@ Mesh load_mesh(const std::string& path, const MeshAxes& axes, std::vector<std::s
     return load_assimp_mesh(path, axes, warnings);
   }
   if (ext == ".ply") check_ply(path);
-  if (ext == ".stl") check_stl(path);
+  std::vector<std::string> stl_dropped;
+  const std::string stl = ext == ".stl" ? readable_stl(path, stl_dropped) : std::string();
   const auto oriented = [&axes](Mesh m) {
     if (axes.up.value_or('z') != 'z' || axes.metres_per_unit.value_or(1) != 1)
       orient_z_up(m, axes.up.value_or('z'), axes.metres_per_unit.value_or(1));
@@ -504,12 +547,18 @@ Mesh load_mesh(const std::string& path, const MeshAxes& axes, std::vector<std::s
   PolyMesh pm;
   OpenMesh::IO::Options opt;
   const QuietOpenMesh quiet;
-  std::istringstream off_stream(off_text);
-  const bool read = off_text.empty() ? OpenMesh::IO::read_mesh(pm, path, opt)
-                                     : OpenMesh::IO::read_mesh(pm, off_stream, ".off", opt);
+  // Checked text, or an STL with its bad triangles taken out, is read from memory.
+  const std::string& cleaned = !off_text.empty() ? off_text : stl;
+  std::istringstream cleaned_stream(cleaned);
+  if (!stl.empty() && stl.compare(0, 5, "solid") != 0) opt += OpenMesh::IO::Options::Binary;
+  const bool read = cleaned.empty() ? OpenMesh::IO::read_mesh(pm, path, opt)
+                                    : OpenMesh::IO::read_mesh(pm, cleaned_stream, ext, opt);
   if (!read)
     throw std::runtime_error("cannot read mesh " + path + ": not a mesh OpenMesh can read (OBJ, OFF, PLY, STL)");
-  return oriented(mesh_of_openmesh(pm, path));
+  if (pm.n_faces() == 0 && !stl_dropped.empty()) throw_no_face_left(path, stl_dropped);
+  Mesh m = oriented(mesh_of_openmesh(pm, path));
+  if (!stl_dropped.empty() && warnings) warnings->push_back(said_dropped(path, stl_dropped));
+  return m;
 }
 
 Mesh read_mesh_bytes(const std::string& bytes, const std::string& ext, const std::string& name,
@@ -522,18 +571,9 @@ Mesh read_mesh_bytes(const std::string& bytes, const std::string& ext, const std
   const QuietOpenMesh quiet;
   std::istringstream in(text);
   if (!OpenMesh::IO::read_mesh(pm, in, ext, opt)) throw std::runtime_error("cannot read mesh " + name + ": not an OBJ mesh");
-  if (pm.n_faces() == 0 && !dropped.empty())  // what was dropped is why nothing is left
-    throw std::runtime_error("cannot read mesh " + name + ": no face is left: " + dropped.front() +
-                             (dropped.size() > 1 ? " (and " + std::to_string(dropped.size() - 1) + " more)" : ""));
+  if (pm.n_faces() == 0 && !dropped.empty()) throw_no_face_left(name, dropped);
   Mesh m = mesh_of_openmesh(pm, name);
-  if (!dropped.empty() && warnings) {
-    constexpr size_t kListed = 3;
-    std::string said = "mesh " + name + ": " + std::to_string(dropped.size()) +
-                       " element(s) that cannot be used were dropped; ";
-    for (size_t i = 0; i < dropped.size() && i < kListed; ++i) said += (i ? "; " : "") + dropped[i];
-    if (dropped.size() > kListed) said += "; ...";
-    warnings->push_back(said);
-  }
+  if (!dropped.empty() && warnings) warnings->push_back(said_dropped(name, dropped));
   ObjMaterialUse use = obj_material_use(text);
   const std::string why = name_obj_materials(m, use, pm.n_faces());
   if (!why.empty() && warnings) warnings->push_back("mesh " + name + ": " + why);

@@ -11,6 +11,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
+#include <cmath>
+#include <limits>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -26,6 +29,7 @@
 #include "core/atomic_file.h"
 #include "core/subprocess.h"
 #include "plans/formats/file_format.h"
+#include "plans/mesh.h"
 #include "plans/formats/sweet_home.h"
 #include "tests/avenues_run.h"
 #include "tests/test_files.h"
@@ -308,10 +312,10 @@ TEST_F(Hostile, PlansOfOtherFormatsSaySoAndMisnamedPlansAreRead) {
   EXPECT_TRUE(has(r.output(), "\"cells\"")) << r.output();
 }
 
-// Items 13 and 14: a broken mesh names the file and what is wrong with it; STL goes by the
-// OFF reader's rule (a bad vertex or face refuses the file, naming the line or triangle). An
-// OBJ drops what it cannot use, as its own tools do; one left with no face is refused, naming
-// the line that cost it its last.
+// Items 13 and 14: a broken mesh names the file and what is wrong with it. OFF and PLY refuse
+// a bad vertex or face, naming the line; an STL cut short is refused. An OBJ or STL drops
+// the elements it cannot use, as their own tools do (next test); one left with no face is
+// refused, naming the line or triangle that cost it its last.
 TEST_F(Hostile, BrokenMeshesNameTheFileAndTheFault) {
   std::string noise;
   for (int i = 0; i < 3000; ++i) noise += char((i * 7919 + 13) % 256);
@@ -354,6 +358,50 @@ TEST_F(Hostile, BrokenMeshesNameTheFileAndTheFault) {
     EXPECT_EQ(r.status, 2) << c.file << "\n" << r.output();
     for (const char* s : c.says) EXPECT_TRUE(has(r.output(), s)) << c.file << ": no '" << s << "' in\n" << r.output();
     EXPECT_FALSE(has(r.output(), "out of memory")) << r.output();
+  }
+}
+
+// A mesh's unusable elements cost themselves, not the file: an STL's triangle with a vertex
+// that is no coordinate (binary or ASCII), an OBJ's vertex and the faces using it. Each is
+// said in one warning naming the triangle or line; the rest is read.
+TEST_F(Hostile, AMeshsUnusableElementsCostThemselvesNotTheFile) {
+  auto triangle = [](std::array<float, 9> v) {
+    std::string t(50, '\0');
+    std::memcpy(t.data() + 12, v.data(), 36);
+    return t;
+  };
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::string binary(80, ' ');
+  binary += std::string("\x03\0\0\0", 4);
+  binary += triangle({0, 0, 0, 1, 0, 0, 0, 1, 0}) + triangle({0, 0, 0, nan, 0, 0, 0, 1, 0}) +
+            triangle({0, 0, 0, 0, 1, 0, 0, 0, 1});
+  write("two-of-three.stl", binary);
+  const std::string facet = "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n";
+  std::string ascii = "solid s\n" + facet + facet + "endsolid s\n";
+  ascii.replace(ascii.find("vertex 1 0 0", ascii.find("vertex 1 0 0") + 1), 12, "vertex 1e40 0 0");
+  write("one-of-two.stl", ascii);
+  write("holed.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 inf\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 1 3 5\n");
+  const struct {
+    const char* file;
+    size_t triangles;
+    const char* says;
+  } cases[] = {
+      {"two-of-three.stl", 2, "triangle 2 has a vertex that is not a coordinate"},
+      {"one-of-two.stl", 1, "facet 2, line 12: '1e40' is not a coordinate"},
+      {"holed.obj", 2, "line 4: 'inf' is not a coordinate"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.file);
+    std::vector<std::string> warnings;
+    const avenues::Mesh m = avenues::load_mesh(path(c.file).string(), {}, &warnings);
+    EXPECT_EQ(m.triangles.size(), c.triangles);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_TRUE(has(warnings[0], c.says)) << warnings[0];
+    EXPECT_TRUE(has(warnings[0], c.file)) << warnings[0];
+    for (const avenues::Vec3& v : m.vertices) EXPECT_TRUE(std::isfinite(v.x) && std::abs(v.x) <= 1) << v.x;
+    const Outcome r = run({"cells", c.file});
+    EXPECT_EQ(r.status, 0) << r.output();
+    EXPECT_TRUE(has(r.err, c.says)) << r.err;
   }
 }
 
