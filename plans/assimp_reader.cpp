@@ -153,17 +153,31 @@ std::optional<std::array<double, 3>> texture_colour(const aiScene& scene, const 
     std::string slashed = name;
     std::replace(slashed.begin(), slashed.end(), '\\', '/');
     const fs::path dir = fs::path(model).parent_path();
-    // Names written on one system are looked for on another: also in any case (a DOS-era
-    // 3DS's "IMAGE1.JPG" beside it as IMAGE1.jpg).
-    auto lower = [](std::string t) {
-      for (char& ch : t) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-      return t;
-    };
-    std::vector<fs::path> candidates{dir / slashed, dir / fs::path(slashed).filename()};
+    // Names written on one system are looked for on another: also in any case, folder by
+    // folder (a DOS-era 3DS's "IMAGE1.JPG" beside it as IMAGE1.jpg; "../LWo2/x.jpg").
     std::error_code ec;
-    for (fs::directory_iterator it(dir.empty() ? fs::path(".") : dir, ec), end; !ec && it != end; it.increment(ec))
-      if (lower(it->path().filename().string()) == lower(fs::path(slashed).filename().string()))
-        candidates.push_back(it->path());
+    auto in_any_case = [&ec](const fs::path& from, const fs::path& relative) {
+      auto lower = [](std::string t) {
+        for (char& ch : t) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+        return t;
+      };
+      fs::path at = from.empty() ? fs::path(".") : from;
+      for (const fs::path& part : relative) {
+        fs::path next = at / part;
+        if (!fs::exists(next, ec) && part != "." && part != "..")
+          for (fs::directory_iterator it(at, ec), end; !ec && it != end; it.increment(ec))
+            if (lower(it->path().filename().string()) == lower(part.string())) {
+              next = it->path();
+              break;
+            }
+        at = next;
+      }
+      return at;
+    };
+    const fs::path written(slashed);
+    std::vector<fs::path> candidates{dir / written, dir / written.filename()};
+    if (written.is_relative()) candidates.push_back(in_any_case(dir, written));
+    candidates.push_back(in_any_case(dir, written.filename()));
     for (const fs::path& candidate : candidates) {
       if (!fs::is_regular_file(candidate, ec)) continue;
       std::ifstream in(candidate, std::ios::binary);
