@@ -9,17 +9,25 @@
 namespace avenues {
 namespace {
 
+/// As operator new does: while the allocation fails, the new-handler (the executables'
+/// gives back the room they hold for unwinding, app/allocator.cpp) and once more; no handler: bad_alloc.
+template <class Try>
+void* as_operator_new(Try attempt) {
+  for (void* p = attempt();; p = attempt()) {
+    if (p) return p;
+    const std::new_handler handler = std::get_new_handler();
+    if (!handler) throw std::bad_alloc();
+    handler();
+  }
+}
+
 void* allocate(size_t n) {
-  void* p = std::malloc(n);
-  if (!p) throw std::bad_alloc();
-  return p;
+  return as_operator_new([n] { return std::malloc(n); });
 }
 
 void* reallocate(void* old, size_t, size_t n) {
   // On failure the old block stays valid (and owned by its number), as realloc leaves it.
-  void* p = std::realloc(old, n);
-  if (!p) throw std::bad_alloc();
-  return p;
+  return as_operator_new([old, n] { return std::realloc(old, n); });
 }
 
 void release(void* p, size_t) { std::free(p); }
