@@ -326,19 +326,19 @@ std::string readable_stl(const std::string& path, std::vector<std::string>& drop
 /// OpenMesh's ASCII OFF reader trusts its input: a negative face size ("-1 1 1"), a
 /// token like "2-1", a file cut short or a stray control byte (all found by fuzzing,
 /// tests/fuzz/regressions/mesh/) make it allocate until memory runs out. So an ASCII
-/// OFF file is checked here first, strictly — the header, then every vertex line (three
-/// or more numbers) and every face line (a count, that many vertex indices, optional
-/// colour numbers), one per line as every OFF writer puts them — and the reading is
-/// left to OpenMesh. OpenMesh's reader also loses every face after a comment or a blank
-/// line, so the checked lines, without comments and blank lines, are what it is given:
-/// the returned text (empty for a binary OFF file, which OpenMesh reads from the file).
-std::string check_off(const std::string& path) {
+/// OFF file is checked here first — the header and the counts strictly, then every vertex
+/// line (three or more numbers) and every face line (a count, that many vertex indices,
+/// optional colour numbers), one per line as every OFF writer puts them; a vertex or face
+/// line that fails costs its element (`dropped`), as in an OBJ — and the reading is left
+/// to OpenMesh. OpenMesh's reader also loses every face after a comment or a blank line,
+/// so the checked lines, without comments and blank lines, are what it is given: the
+/// returned text (empty for a binary OFF file, which OpenMesh reads from the file).
+std::string check_off(const std::string& path, std::vector<std::string>& dropped) {
   auto bad = [&](const std::string& what) { throw std::runtime_error("cannot read mesh " + path + ": " + what); };
   std::ifstream in(path, std::ios::binary);
   std::string line;
   int lineno = 0;
   std::vector<std::string> tok;
-  std::string clean;
   auto next_line = [&]() {
     while (std::getline(in, line)) {
       ++lineno;
@@ -349,13 +349,14 @@ std::string check_off(const std::string& path) {
       if (hash != std::string::npos) line.erase(hash);
       std::istringstream ls(line);
       tok.assign(std::istream_iterator<std::string>(ls), std::istream_iterator<std::string>());
-      if (!tok.empty()) {
-        for (const std::string& t : tok) clean += t + ' ';
-        clean.back() = '\n';
-        return true;
-      }
+      if (!tok.empty()) return true;
     }
     return false;
+  };
+  auto joined = [&](size_t n) {  // the first n tokens as one line
+    std::string l;
+    for (size_t j = 0; j < n && j < tok.size(); ++j) l += tok[j] + (j + 1 == n ? "\n" : " ");
+    return l;
   };
   auto at = [&]() { return "line " + std::to_string(lineno) + ": "; };
   if (!next_line()) return {};  // empty: OpenMesh refuses it
@@ -373,37 +374,61 @@ std::string check_off(const std::string& path) {
   if (counts.size() < 2 || !whole_integer(counts[0], nv) || !whole_integer(counts[1], nf) || nv < 0 || nf < 0 ||
       nv > kMax || nf > kMax)
     bad(at() + "the vertex and face counts are not two whole numbers");
-  // OpenMesh reads the header again: give it the counts alone, in the usual form.
-  clean = header + "\n" + std::to_string(nv) + " " + std::to_string(nf) + " 0\n";
+  // The file's structure (its counts, and a line for each vertex and face) is checked
+  // strictly: a file cut short or out of step is refused. A vertex or a face that cannot
+  // be used costs itself, as in OBJ: a bad vertex's line becomes a copy of a good one (the
+  // numbering kept) and the faces using it go, with a line in `dropped`.
+  std::vector<std::string> vertex_lines;
+  std::vector<uint8_t> bad_vertex(size_t(nv), 0);
+  std::string stand_in;
   for (long long i = 0; i < nv; ++i) {
     if (!next_line()) bad("it ends after " + std::to_string(i) + " of its " + std::to_string(nv) + " vertices");
-    if (tok.size() < 3) bad(at() + "a vertex needs three coordinates");
-    for (const std::string& t : tok)
-      if (!whole_number(t)) bad(at() + "'" + t + "' is not a number");
-    for (size_t k = 0; k < 3; ++k)
-      if (!coordinate(tok[k])) bad(at() + "'" + tok[k] + "' " + kCoordinateRule);
+    std::string why;
+    if (tok.size() < 3) why = "a vertex needs three coordinates";
+    for (size_t k = 0; k < tok.size() && why.empty(); ++k)
+      if (!whole_number(tok[k])) why = "'" + tok[k] + "' is not a number";
+    for (size_t k = 0; k < 3 && why.empty(); ++k)
+      if (!coordinate(tok[k])) why = "'" + tok[k] + "' " + kCoordinateRule;
+    if (!why.empty()) {
+      bad_vertex[size_t(i)] = 1;
+      dropped.push_back(at() + why + ": the vertex is dropped, with its faces");
+      vertex_lines.emplace_back();
+      continue;
+    }
+    vertex_lines.push_back(joined(tok.size()));
+    if (stand_in.empty()) stand_in = vertex_lines.back();
   }
+  if (stand_in.empty()) stand_in = "0 0 0\n";
+  std::string faces;
+  long long kept = 0;
   for (long long f = 0; f < nf; ++f) {
     if (!next_line()) bad("it ends after " + std::to_string(f) + " of its " + std::to_string(nf) + " faces");
     long long k = 0;
-    if (!whole_integer(tok[0], k) || k < 1 || k > 1'000'000) bad(at() + "a face needs a vertex count");
-    if (tok.size() < size_t(k) + 1) bad(at() + "the face lists fewer than its " + std::to_string(k) + " vertices");
-    for (size_t j = 1; j <= size_t(k); ++j) {
+    std::string why;
+    if (!whole_integer(tok[0], k) || k < 1 || k > 1'000'000) why = "a face needs a vertex count";
+    else if (tok.size() < size_t(k) + 1) why = "the face lists fewer than its " + std::to_string(k) + " vertices";
+    for (size_t j = 1; why.empty() && j <= size_t(k); ++j) {
       long long v = -1;
       if (!whole_integer(tok[j], v) || v < 0 || v >= nv)
-        bad(at() + "'" + tok[j] + "' is not a vertex number from 0 to " + std::to_string(nv - 1));
+        why = "'" + tok[j] + "' is not a vertex number from 0 to " + std::to_string(nv - 1);
+      else if (bad_vertex[size_t(v)])
+        why = "vertex " + tok[j] + " is dropped";
     }
-    for (size_t j = size_t(k) + 1; j < tok.size(); ++j)
-      if (!whole_number(tok[j])) bad(at() + "'" + tok[j] + "' is not a colour number");
+    for (size_t j = size_t(k) + 1; why.empty() && j < tok.size(); ++j)
+      if (!whole_number(tok[j])) why = "'" + tok[j] + "' is not a colour number";
+    if (!why.empty()) {
+      dropped.push_back(at() + why + ": the face is dropped");
+      continue;
+    }
     // OpenMesh takes a face's colour numbers for more faces: Avenues does not use face
     // colours, so the face goes on with its count and vertices alone.
-    if (tok.size() > size_t(k) + 1) {
-      size_t line_start = clean.find_last_of('\n', clean.size() - 2);
-      clean.resize(line_start == std::string::npos ? 0 : line_start + 1);
-      for (size_t j = 0; j <= size_t(k); ++j) clean += tok[j] + (j == size_t(k) ? '\n' : ' ');
-    }
+    faces += joined(size_t(k) + 1);
+    ++kept;
   }
-  return clean;
+  // OpenMesh reads the header again: give it the counts alone, in the usual form.
+  std::string clean = header + "\n" + std::to_string(nv) + " " + std::to_string(kept) + " 0\n";
+  for (const std::string& v : vertex_lines) clean += v.empty() ? stand_in : v;
+  return clean + faces;
 }
 
 }  // namespace
@@ -445,7 +470,7 @@ void smooth_corner_normals(Mesh& m, double crease_deg) {
 }
 
 namespace {
-Mesh mesh_of_openmesh(const PolyMesh& pm, const std::string& path);
+Mesh mesh_of_openmesh(const PolyMesh& pm, const std::string& path, std::vector<std::string>* dropped = nullptr);
 
 }  // namespace
 
@@ -543,7 +568,8 @@ Mesh load_mesh(const std::string& path, const MeshAxes& axes, std::vector<std::s
     return m;
   };
   if (ext == ".obj") return oriented(load_obj(path, warnings));
-  const std::string off_text = ext == ".off" ? check_off(path) : std::string();
+  std::vector<std::string> off_dropped;
+  const std::string off_text = ext == ".off" ? check_off(path, off_dropped) : std::string();
   PolyMesh pm;
   OpenMesh::IO::Options opt;
   const QuietOpenMesh quiet;
@@ -555,9 +581,10 @@ Mesh load_mesh(const std::string& path, const MeshAxes& axes, std::vector<std::s
                                     : OpenMesh::IO::read_mesh(pm, cleaned_stream, ext, opt);
   if (!read)
     throw std::runtime_error("cannot read mesh " + path + ": not a mesh OpenMesh can read (OBJ, OFF, PLY, STL)");
-  if (pm.n_faces() == 0 && !stl_dropped.empty()) throw_no_face_left(path, stl_dropped);
-  Mesh m = oriented(mesh_of_openmesh(pm, path));
-  if (!stl_dropped.empty() && warnings) warnings->push_back(said_dropped(path, stl_dropped));
+  std::vector<std::string>& dropped = ext == ".off" ? off_dropped : stl_dropped;
+  if (pm.n_faces() == 0 && !dropped.empty()) throw_no_face_left(path, dropped);
+  Mesh m = oriented(mesh_of_openmesh(pm, path, &dropped));
+  if (!dropped.empty() && warnings) warnings->push_back(said_dropped(path, dropped));
   return m;
 }
 
@@ -583,21 +610,32 @@ Mesh read_mesh_bytes(const std::string& bytes, const std::string& ext, const std
 
 namespace {
 
-Mesh mesh_of_openmesh(const PolyMesh& pm, const std::string& path) {
+Mesh mesh_of_openmesh(const PolyMesh& pm, const std::string& path, std::vector<std::string>* dropped) {
   if (pm.n_faces() == 0) throw std::runtime_error("mesh " + path + " has no faces");
+  // A vertex that is not a finite number (a binary PLY's NaN, which no check in front of
+  // OpenMesh reads) costs the faces using it, said in `dropped`; without `dropped` it
+  // refuses the mesh. It keeps its number, as a copy of a finite vertex.
   std::vector<Vec3> vertices;
+  std::vector<uint8_t> finite;
   for (auto v : pm.vertices()) {
     auto p = pm.point(v);
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-      throw std::runtime_error("mesh " + path + " has a vertex that is not a finite number");
-    vertices.push_back({p[0], p[1], p[2]});
+    finite.push_back(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]));
+    if (!finite.back() && !dropped) throw std::runtime_error("mesh " + path + " has a vertex that is not a finite number");
+    if (!finite.back()) dropped->push_back("vertex " + std::to_string(v.idx()) + " is not a finite number: it is dropped, with its faces");
+    vertices.push_back(finite.back() ? Vec3{p[0], p[1], p[2]} : Vec3{});
   }
+  if (const auto good = std::find(finite.begin(), finite.end(), 1); good != finite.end())
+    for (size_t i = 0; i < vertices.size(); ++i)
+      if (!finite[i]) vertices[i] = vertices[size_t(good - finite.begin())];
   // OpenMesh keeps polygons; convex ones are the rule.
   std::vector<std::vector<int>> polygons;
   for (auto f : pm.faces()) {
     polygons.emplace_back();
     for (auto v : pm.fv_range(f)) polygons.back().push_back(v.idx());
+    if (std::any_of(polygons.back().begin(), polygons.back().end(), [&](int i) { return !finite[size_t(i)]; }))
+      polygons.pop_back();
   }
+  if (polygons.empty() && dropped) throw_no_face_left(path, *dropped);
   return mesh_of_polygons(path, std::move(vertices), std::move(polygons));
 }
 

@@ -72,7 +72,9 @@ Mesh mesh_of_polygons(std::string path, std::vector<Vec3> vertices, std::vector<
 /// a face naming no vertex, is dropped (with the faces using that vertex) and said in
 /// `warnings`, naming its line; only a file left with no face is refused. UTF-16 text (with
 /// its byte-order mark) is read as the ASCII it holds. An STL's triangle with a vertex that
-/// is no coordinate is dropped likewise; OFF and PLY refuse such a file.
+/// is no coordinate is dropped likewise, as are an OFF's unusable vertex and face lines and
+/// a PLY's vertex that is not a finite number (with its faces); a file whose structure is
+/// broken (cut short, counts out of step) is refused.
 ///
 /// An OBJ's `usemtl` groups become its materials (Mesh::materials), coloured by the MTL
 /// libraries its `mtllib` lines name, found beside it, and their `map_Kd` images, beside

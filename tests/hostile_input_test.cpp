@@ -381,6 +381,17 @@ TEST_F(Hostile, AMeshsUnusableElementsCostThemselvesNotTheFile) {
   ascii.replace(ascii.find("vertex 1 0 0", ascii.find("vertex 1 0 0") + 1), 12, "vertex 1e40 0 0");
   write("one-of-two.stl", ascii);
   write("holed.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 inf\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 1 3 5\n");
+  write("holed.off", "OFF\n5 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1e300\n0 0 1\n3 0 1 2\n3 0 1 3\n3 0 2 4\n3 0 1 9\n");
+  // A binary PLY with a NaN vertex: no check reads its numbers before OpenMesh does.
+  std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n";
+  for (const std::array<float, 3>& v : {std::array<float, 3>{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, nan}})
+    ply.append(reinterpret_cast<const char*>(v.data()), 12);
+  for (const std::array<int32_t, 3>& f : {std::array<int32_t, 3>{0, 1, 2}, {0, 1, 3}}) {
+    ply += '\x03';
+    ply.append(reinterpret_cast<const char*>(f.data()), 12);
+  }
+  write("holed.ply", ply);
   const struct {
     const char* file;
     size_t triangles;
@@ -389,6 +400,8 @@ TEST_F(Hostile, AMeshsUnusableElementsCostThemselvesNotTheFile) {
       {"two-of-three.stl", 2, "triangle 2 has a vertex that is not a coordinate"},
       {"one-of-two.stl", 1, "facet 2, line 12: '1e40' is not a coordinate"},
       {"holed.obj", 2, "line 4: 'inf' is not a coordinate"},
+      {"holed.off", 2, "line 6: '1e300' is not a coordinate"},
+      {"holed.ply", 1, "vertex 3 is not a finite number"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.file);
