@@ -121,22 +121,19 @@ PlanSpec parse_plan_spec(const std::string& plan) {
   // Models other readers know only by extension: glTF is JSON, which would pass for text;
   // a 3MF model is a zip archive, as a Sweet Home home is; a Blender file saved compressed
   // is gzip. Where the content says only that much, an extension Assimp reads decides.
+  // So does a mesh told only by the look of its text (OBJ's "v" lines, an OFF header):
+  // NFF's text is OBJ-like, and Assimp goes by the extension too.
   const std::string ext = lower(fs::path(spec.file).extension().string());
-  const bool container = spec.format == FileFormat::Gzip || (spec.format == FileFormat::SweetHome &&
-                                                             format_of_extension(spec.file) != FileFormat::SweetHome);
-  if ((spec.format == FileFormat::Toml || spec.format == FileFormat::Unknown || container) &&
+  const bool foreign_zip = spec.format == FileFormat::SweetHome && format_of_extension(spec.file) != FileFormat::SweetHome;
+  const bool container = spec.format == FileFormat::Gzip || foreign_zip;
+  if ((spec.format == FileFormat::Toml || spec.format == FileFormat::Unknown || container ||
+       is_mesh_format(spec.format)) &&
       format_of_extension(spec.file) == FileFormat::Unknown && assimp_reads_extension(ext))
-    spec.format = FileFormat::Model;
-  // A mesh told by the look of its text (OBJ's "v" lines, an OFF header) under an extension
-  // Assimp reads (NFF's text is OBJ-like): the extension decides, as it does for Assimp.
-  if (is_mesh_format(spec.format) && format_of_extension(spec.file) == FileFormat::Unknown &&
-      assimp_reads_extension(ext))
     spec.format = FileFormat::Model;
   // Binary, with no signature of Avenues' own and a name that says nothing: a model Assimp
   // knows by its content (3DS's chunks, LightWave's "FORM", a binary DirectX "xof ").
   // The same for a zip archive that is no Sweet Home home (a 3MF model).
-  const bool foreign_zip = spec.format == FileFormat::SweetHome && format_of_extension(spec.file) != FileFormat::SweetHome;
-  if (spec.format == FileFormat::Unknown || foreign_zip) {
+  if (spec.format == FileFormat::Unknown || (foreign_zip && spec.format == FileFormat::SweetHome)) {
     spec.content_reader = assimp_importer_by_content(spec.file);
     if (!spec.content_reader.empty()) spec.format = FileFormat::Model;
   }
@@ -157,6 +154,11 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
   // Text under an extension no reader has, which is not TOML either (a VRML model, a
   // README): its error says so before TOML's.
   bool foreign_text = false;
+  // What the file's name says, for an error about a file Avenues does not know.
+  auto what_the_name_says = [&p] {
+    return p.extension().empty() ? std::string("its name has no extension")
+                                 : "its extension '" + p.extension().string() + "' names no format Avenues reads";
+  };
   if ((spec.format == FileFormat::Toml || spec.format == FileFormat::Unknown) && lower(p.extension().string()) != ".toml") {
     // No telling signature: a few lines of content tell floor-plan annotations.
     std::ifstream in(spec.file, std::ios::binary);
@@ -235,31 +237,24 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
       case FileFormat::Ply:
       case FileFormat::Stl: {
         // The mesh readers go by the extension; under a name that says nothing, Assimp
-        // reads the mesh by its content. Under another format's name, it is named as one.
-        if (format_of_extension(spec.file) != spec.format &&
-            (format_of_extension(spec.file) != FileFormat::Unknown ||
-             assimp_reads_extension(lower(p.extension().string()))))
+        // reads the mesh by its content (parse_plan_spec gave a name Assimp reads to Assimp).
+        // Under another format's name, it is named as one.
+        if (format_of_extension(spec.file) != spec.format && format_of_extension(spec.file) != FileFormat::Unknown)
           throw std::runtime_error(spec.file + " is " + format_name(spec.format) +
                                    " under another extension: name it as one to read it as a scene");
         read_mesh(spec.file, import.mesh_axes());
         break;
       }
       case FileFormat::Model:
-        if (spec.content_reader.empty()) {
-          read_mesh(spec.file, import.mesh_axes());
-          break;
-        }
         try {
           read_mesh(spec.file, import.mesh_axes());
         } catch (const std::bad_alloc&) {
           throw;
         } catch (const std::exception& e) {
-          const std::string named = p.extension().empty()
-                                        ? std::string("its name has no extension")
-                                        : "its extension '" + p.extension().string() + "' names no format Avenues reads";
-          throw std::runtime_error(spec.file + " is not a plan Avenues can read: " + named + ", and Assimp's " +
-                                   spec.content_reader + " took it by its content but could not read it (" +
-                                   e.what() + ")");
+          if (spec.content_reader.empty()) throw;
+          throw std::runtime_error(spec.file + " is not a plan Avenues can read: " + what_the_name_says() +
+                                   ", and Assimp's " + spec.content_reader +
+                                   " took it by its content but could not read it (" + e.what() + ")");
         }
         break;
       case FileFormat::Ifc: {
@@ -308,16 +303,12 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
                                      "knows by its content or extension (docs/PLAN_FORMAT.md lists them)");
           throw std::runtime_error(spec.file + " is " + format_name(spec.format) + ", which Avenues cannot read yet");
         }
-        if (!foreign_text) {
-          decompose(reader(spec.file), "read plan");
-          break;
-        }
         try {
           decompose(reader(spec.file), "read plan");
         } catch (const PlanError& e) {
-          throw std::runtime_error(spec.file + " is not a plan Avenues can read: its extension '" +
-                                   p.extension().string() + "' names no format Avenues reads (docs/PLAN_FORMAT.md " +
-                                   "lists them), and read as a TOML plan it fails: " + e.what());
+          if (!foreign_text) throw;
+          throw std::runtime_error(spec.file + " is not a plan Avenues can read: " + what_the_name_says() +
+                                   " (docs/PLAN_FORMAT.md lists them), and read as a TOML plan it fails: " + e.what());
         }
         break;
       }
