@@ -10,22 +10,22 @@
 #include <assimp/scene.h>
 
 #include <algorithm>
-#include <chrono>
-#include <optional>
-#include <vector>
-#include <string_view>
-#include <cmath>
 #include <cctype>
+#include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <stdexcept>
+#include <string_view>
+#include <vector>
 
-#include "core/srgb.h"
 #include "core/stage_timer.h"
 #include "plans/image_colour.h"
+#include "plans/obj_materials.h"
 
 namespace avenues {
 
@@ -116,8 +116,8 @@ std::array<double, 3> diffuse_of(const aiScene& scene, unsigned material, bool& 
 
 /// The mean colour (linear) of a material's diffuse or base colour texture, as a Sweet Home
 /// texture or an OBJ's map_Kd gives one: Avenues paints each surface one colour. The image
-/// is embedded ("*0", or an FBX's own name for it) or a file beside the model (its path as
-/// written, with '/' for '\\', or its name alone). std::nullopt when the material has no
+/// is embedded ("*0", or an FBX's own name for it) or a file beside the model, found as an
+/// OBJ's map_Kd is (paths_beside), and in any case. std::nullopt when the material has no
 /// texture; `problem` says why one that it has gives no colour.
 std::optional<std::array<double, 3>> texture_colour(const aiScene& scene, const aiMaterial& m,
                                                     const std::string& model, std::string& problem) {
@@ -133,28 +133,26 @@ std::optional<std::array<double, 3>> texture_colour(const aiScene& scene, const 
       if (t->mHeight == 0)  // compressed: mWidth bytes of a PNG, a JPEG, ...
         return mean_image_colour(std::string_view(reinterpret_cast<const char*>(t->pcData), t->mWidth),
                                  model + ": embedded image " + name);
-      // Raw BGRA texels: sRGB made linear, weighted by alpha, as mean_image_colour does.
+      // Raw BGRA texels, in RGBA order for mean_pixels_colour.
       const uint64_t n = uint64_t(t->mWidth) * t->mHeight;
       if (n == 0 || n > uint64_t(kMaxImagePixels)) throw std::runtime_error("the embedded image's size is out of range");
-      std::array<double, 3> sum{};
-      double weight = 0;
+      std::vector<unsigned char> rgba;
+      rgba.reserve(4 * n);
       for (uint64_t i = 0; i < n; ++i) {
         const aiTexel& x = t->pcData[i];
-        const double a = x.a / 255.0;
-        sum[0] += a * linear_from_srgb(x.r / 255.0);
-        sum[1] += a * linear_from_srgb(x.g / 255.0);
-        sum[2] += a * linear_from_srgb(x.b / 255.0);
-        weight += a;
+        rgba.insert(rgba.end(), {x.r, x.g, x.b, x.a});
       }
-      if (!(weight > 0)) throw std::runtime_error("the embedded image is wholly transparent");
-      return std::array<double, 3>{sum[0] / weight, sum[1] / weight, sum[2] / weight};
+      return mean_pixels_colour(rgba, model + ": embedded image " + name);
     }
     namespace fs = std::filesystem;
+    // Beside the model as an OBJ's map_Kd is (as written, with '/' for '\\', its name alone)...
+    std::vector<fs::path> candidates;
+    for (const std::string& beside : paths_beside(model, name)) candidates.emplace_back(beside);
     std::string slashed = name;
     std::replace(slashed.begin(), slashed.end(), '\\', '/');
     const fs::path dir = fs::path(model).parent_path();
-    // Names written on one system are looked for on another: also in any case, folder by
-    // folder (a DOS-era 3DS's "IMAGE1.JPG" beside it as IMAGE1.jpg; "../LWo2/x.jpg").
+    // ...and, names written on one system being looked for on another, in any case, folder
+    // by folder (a DOS-era 3DS's "IMAGE1.JPG" beside it as IMAGE1.jpg; "../LWo2/x.jpg").
     std::error_code ec;
     auto in_any_case = [&ec](const fs::path& from, const fs::path& relative) {
       auto lower = [](std::string t) {
@@ -175,7 +173,6 @@ std::optional<std::array<double, 3>> texture_colour(const aiScene& scene, const 
       return at;
     };
     const fs::path written(slashed);
-    std::vector<fs::path> candidates{dir / written, dir / written.filename()};
     if (written.is_relative()) candidates.push_back(in_any_case(dir, written));
     candidates.push_back(in_any_case(dir, written.filename()));
     for (const fs::path& candidate : candidates) {

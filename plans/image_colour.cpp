@@ -139,16 +139,16 @@ std::optional<std::array<double, 3>> mean_other(std::string_view bytes, const st
     const char* why = stbi_failure_reason();
     throw std::runtime_error(name + ": not a readable image (" + (why ? why : "stb_image gives no reason") + ")");
   }
-  Sums s;
-  const long long n = (long long)w * h;
-  for (long long i = 0; i < n; ++i) {
-    const unsigned char* px = pixels.get() + 4 * i;
-    s.add(px, px[3] / 255.0);
-  }
-  return mean_of(s, name);
+  return mean_pixels_colour({pixels.get(), 4 * size_t(w) * size_t(h)}, name);
 }
 
 }  // namespace
+
+std::array<double, 3> mean_pixels_colour(std::span<const unsigned char> rgba, const std::string& name) {
+  Sums s;
+  for (size_t i = 0; i + 4 <= rgba.size(); i += 4) s.add(&rgba[i], rgba[i + 3] / 255.0);
+  return mean_of(s, name);
+}
 
 std::array<double, 3> mean_image_colour(std::string_view bytes, const std::string& name) {
   if (bytes.size() >= 8 && std::memcmp(bytes.data(), "\x89PNG\r\n\x1a\n", 8) == 0) return mean_png(bytes, name);

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <array>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -22,5 +23,9 @@ constexpr long long kMaxImagePixels = 1LL << 25;
 /// `name` when the bytes are not an image of those formats it can decode, when the image is
 /// larger than kMaxImagePixels, or wholly transparent.
 std::array<double, 3> mean_image_colour(std::string_view bytes, const std::string& name);
+
+/// The same for pixels already decoded: `rgba` holds 4 bytes a pixel (sRGB, alpha). Throws
+/// std::runtime_error naming `name` when they are wholly transparent (or there are none).
+std::array<double, 3> mean_pixels_colour(std::span<const unsigned char> rgba, const std::string& name);
 
 }  // namespace avenues
