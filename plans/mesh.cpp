@@ -112,10 +112,9 @@ std::string readable_obj(const std::string& bytes, std::vector<std::string>& dro
     const size_t hash = body.find('#');
     if (hash != std::string::npos) body.erase(hash);
     std::istringstream ls(body);
-    std::string key;
-    std::string why;
-    if (!(ls >> key)) {
-    } else if (key == "v") {
+    std::string key, why;
+    ls >> key;  // stays empty on a blank line
+    if (key == "v") {
       std::string t;
       int n = 0;
       while (n < 3 && why.empty() && ls >> t) {
