@@ -292,7 +292,13 @@ ImportedScene import_scene(const std::string& path, const ImportOptions& options
     constexpr unsigned kSteps =
         aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
     std::string bytes;
-    if (binary_gltf_by_content_only(path, &bytes))  // whole in one file: read from memory, told it is GLB
+    if (!options.contents.empty()) {  // Assimp tells the format by the hint: the extension without its dot
+      std::string hint = std::filesystem::path(path).extension().string();
+      if (!hint.empty()) hint.erase(0, 1);
+      for (char& c : hint) c = char(std::tolower(static_cast<unsigned char>(c)));
+      scene = importer.ReadFileFromMemory(options.contents.data(), options.contents.size(), kSteps, hint.c_str());
+    }
+    else if (binary_gltf_by_content_only(path, &bytes))  // whole in one file: read from memory, told it is GLB
       scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), kSteps, "glb");
     else
       scene = importer.ReadFile(path, kSteps);

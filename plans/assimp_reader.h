@@ -15,6 +15,7 @@
 
 #include <array>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "plans/mesh.h"
@@ -52,6 +53,9 @@ struct ImportedScene {
 struct ImportOptions {
   MeshAxes axes;            ///< for formats that declare no up axis or unit
   bool ifc_spaces = false;  ///< IFC: keep IfcSpace volumes (Assimp skips them by default)
+  /// When not empty: the file's bytes as they are to be read, from memory (the IFC reader's
+  /// rewritten STEP text); the path still names the file, and its extension the format.
+  std::string_view contents;
 };
 
 /// Whether Assimp has an importer for this extension (".gltf", with the dot).

@@ -18,6 +18,7 @@
 #include "app/plan_source.h"
 #include "cells/mesh_scene.h"
 #include "plans/assimp_reader.h"
+#include "plans/formats/ifc4_for_assimp.h"
 #include "plans/formats/ifc_building.h"
 #include "plans/formats/ifc_step.h"
 #include "plans/image_colour.h"
@@ -422,6 +423,13 @@ const IfcModel& ifc_model(const std::string& path) {
 
 std::string duplex() { return (kIfc / "duplex.ifc").string(); }
 
+/// A room of IFC4's Reference View, every element a tessellated face set: a wall with a
+/// window's hole (an IfcPolygonalFaceSet with IfcIndexedPolygonalFaceWithVoids, in brick red
+/// by an IfcStyledItem naming its IfcSurfaceStyle directly), a wall placed by an
+/// IfcMappedItem, two turned by their placement, one of three boxes with a door's hole (an
+/// open set), a door, a window, and the room's IfcSpace; lengths in millimetres.
+std::string tessellated_house() { return std::string(AVENUES_SOURCE_DIR) + "/tests/fuzz/corpus/ifc/tessellated-house.ifc"; }
+
 }  // namespace
 
 TEST(Ifc, DuplexHasItsFourStoreysAndNamedSpacesAsRooms) {
@@ -502,7 +510,7 @@ TEST(Ifc, StairsCutStairwellsThatAWalkerClimbs) {
 TEST(Ifc, ViewsOfEachModelAgreeWithRayCasting) {
   const std::vector<std::string> models = {duplex(), (kIfc / "Office_A_20110811.ifc").string(),
                                            (kIfc / "IfcOpenHouse_IFC4.ifc").string(),
-                                           (kModels / "IFC/AC14-FZK-Haus.ifc").string()};
+                                           (kModels / "IFC/AC14-FZK-Haus.ifc").string(), tessellated_house()};
   for (const std::string& path : models) {
     if (!fs::exists(path)) continue;
     SCOPED_TRACE(path);
@@ -559,6 +567,7 @@ TEST(Ifc, WhatCannotBeReadIsAPlanErrorNamingTheFile) {
 namespace {
 
 std::string l_walled_room() { return std::string(AVENUES_SOURCE_DIR) + "/tests/fuzz/corpus/ifc/l-walled-room.ifc"; }
+
 
 /// IFC element labels ("IfcWall 'x'") of the plan's walls and of its objects.
 std::set<std::string> labels_of_walls(const Plan& p) {
@@ -689,6 +698,147 @@ TEST(Ifc, SlabsAndCoveringsAreFloorsCeilingsOrObjects) {
   EXPECT_GE(floors, 18) << "of 21 spaces, each over a finish floor";
   EXPECT_GE(ceilings, 15) << "under a gypsum board ceiling or the slab above";
   EXPECT_GE(slab_objects, 1) << "the roof slab, no room's floor, is drawn as an object";
+}
+
+TEST(Ifc, Ifc4TessellatedModelsStandAsTheirFacesSay) {
+  // Assimp 5.2 crashes on IFC4's face sets and fails on styles named directly: the file is
+  // read as IFC2X3 would write it (ifc4_for_assimp.h).
+  const IfcModel& m = ifc_model(tessellated_house());
+  EXPECT_EQ(cells_are_valid(m.cells), "");
+  std::map<std::string, const Wall*> walls;
+  for (const Wall& w : m.plan.walls) walls[w.name] = &w;
+  ASSERT_EQ(walls.size(), 4u) << "South, North, West, East";
+  auto centre_x = [](const Wall& w) { return (w.centre.front().x + w.centre.back().x) / 2; };
+  auto centre_y = [](const Wall& w) { return (w.centre.front().y + w.centre.back().y) / 2; };
+  EXPECT_NEAR(centre_y(*walls.at("South")), 0.1, 1e-6);
+  EXPECT_NEAR(centre_y(*walls.at("North")), 3.9, 1e-6) << "mapped 3.8 m north";
+  EXPECT_NEAR(centre_x(*walls.at("West")), 0.1, 1e-6) << "its placement turns it along y";
+  EXPECT_NEAR(centre_x(*walls.at("East")), 5.9, 1e-6);
+  for (const auto& [name, w] : walls) EXPECT_NEAR(w->thickness, 0.2, 1e-6) << name;
+  ASSERT_EQ(walls.at("South")->openings.size(), 1u);
+  const Opening& window = walls.at("South")->openings[0];
+  EXPECT_EQ(window.kind, OpeningKind::Window);
+  EXPECT_NEAR(window.sill, 0.9, 1e-6);
+  EXPECT_NEAR(window.head, 2.1, 1e-6);
+  EXPECT_NEAR(window.width, 1.0, 1e-6);
+  ASSERT_EQ(walls.at("East")->openings.size(), 1u) << "the door of the open set";
+  EXPECT_EQ(walls.at("East")->openings[0].kind, OpeningKind::Door);
+  EXPECT_NEAR(walls.at("East")->openings[0].width, 0.9, 1e-6);
+  ASSERT_GE(walls.at("South")->material, 0);
+  const auto brick = m.plan.materials[size_t(walls.at("South")->material)].colour;
+  EXPECT_NEAR(brick[0], 0.8, 1e-6);
+  EXPECT_NEAR(brick[1], 0.3, 1e-6);
+  EXPECT_NEAR(brick[2], 0.2, 1e-6);
+  ASSERT_EQ(m.plan.rooms.size(), 1u);
+  EXPECT_EQ(m.plan.rooms[0].name, "Living room") << "its LongName";
+
+  // What cannot be used is dropped, said with its record and line, and the rest still read:
+  // the east wall's set names a point its list lacks, the north wall's points are no numbers.
+  std::string text = avenues::testing::slurp(tessellated_house());
+  const size_t east = text.find("$,.F.,((1,4,3)");
+  ASSERT_NE(east, std::string::npos);
+  text.replace(east, 14, "$,.F.,((1,4,99)");
+  const size_t north = text.find("#58=IFCCARTESIANPOINTLIST3D(((0.0,");
+  ASSERT_NE(north, std::string::npos);
+  text.replace(north, 34, "#58=IFCCARTESIANPOINTLIST3D(((zero,");
+  const fs::path dir = fs::temp_directory_path() / ("avenues-ifc4-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string broken = (dir / "broken.ifc").string();
+  std::ofstream(broken, std::ios::binary) << text;
+  const Plan p = read_ifc_building(broken);
+  std::string said;
+  for (const std::string& w : p.warnings) said += w + "\n";
+  EXPECT_NE(said.find(broken + ": line 91, #84 (IfcTriangulatedFaceSet): 1 of its 36 faces cannot be used"),
+            std::string::npos)
+      << said;
+  EXPECT_NE(said.find(broken + ": line 66, #59 (IfcTriangulatedFaceSet): its point list #58 is not a list of three "
+                               "numbers each: its faces are dropped"),
+            std::string::npos)
+      << said;
+  std::set<std::string> kept;
+  for (const Wall& w : p.walls) kept.insert(w.name);
+  EXPECT_EQ(kept, (std::set<std::string>{"South", "West", "East"}));
+  EXPECT_NE(said.find("IfcWall 'North'"), std::string::npos) << "the wall left with no faces is dropped, by name\n" << said;
+  fs::remove_all(dir);
+}
+
+TEST(IfcStep, Ifc4FaceSetsAndStylesAreRewrittenAsIfc2x3WritesThem) {
+  const std::string head = "ISO-10303-21;\nHEADER;\nFILE_SCHEMA(('IFC4'));\nENDSEC;\nDATA;\n";
+  EXPECT_FALSE(ifc4_for_assimp(head + "#1=IFCCARTESIANPOINT((0.,0.,0.));\nENDSEC;\nEND-ISO-10303-21;\n"))
+      << "nothing to rewrite: Assimp reads the file itself";
+  // A closed tetrahedron whose faces reach its points through PnIndex.
+  const std::string tetra = head +
+                            "#1=IFCCARTESIANPOINTLIST3D(((9.,9.,9.),(0.,0.,0.),(1.E3,0.,0.),(0.,1000.,0.),(0.,0.,1000.)));\n"
+                            "#2=IFCTRIANGULATEDFACESET(#1,$,.T.,((1,3,2),(1,2,4),(1,4,3),(2,3,4)),(2,3,4,5));\n"
+                            "ENDSEC;\nEND-ISO-10303-21;\n";
+  const auto t = ifc4_for_assimp(tetra);
+  ASSERT_TRUE(t);
+  EXPECT_EQ(t->face_sets, 1u);
+  EXPECT_TRUE(t->warnings.empty());
+  EXPECT_NE(t->text.find("#2=IFCFACETEDBREP(#"), std::string::npos) << t->text;
+  EXPECT_NE(t->text.find("=IFCCLOSEDSHELL((#"), std::string::npos);
+  EXPECT_NE(t->text.find("=IFCCARTESIANPOINT((1.E3,0.,0.))"), std::string::npos) << "copied as written";
+  EXPECT_EQ(t->text.find("IFCCARTESIANPOINT((9.,9.,9.))"), std::string::npos) << "a point no face names is not made";
+  EXPECT_EQ(ifc4_for_assimp(t->text), std::nullopt) << "what it writes is IFC2X3's";
+  EXPECT_TRUE(step_data_problem(t->text) == std::nullopt) << "every new reference has its record";
+  auto count = [](const std::string& s, const std::string& what) {
+    size_t n = 0;
+    for (size_t at = s.find(what); at != std::string::npos; at = s.find(what, at + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(count(t->text, "=IFCPOLYLOOP("), 4u);
+  EXPECT_EQ(count(t->text, "=IFCCARTESIANPOINT("), 4u);
+
+  // A polygonal set: a square with a square hole, a face naming a point the list lacks, a
+  // face of two points; and a style named directly by its styled item.
+  const std::string square = head +
+                             "#1=IFCCARTESIANPOINTLIST3D(((0.,0.,0.),(4.,0.,0.),(4.,4.,0.),(0.,4.,0.),(1.,1.,0.),(1.,2.,0.),"
+                             "(2.,2.,0.),(2.,1.,0.)));\n"
+                             "#2=IFCINDEXEDPOLYGONALFACEWITHVOIDS((1,2,3,4),((5,6,7,8)));\n"
+                             "#3=IFCINDEXEDPOLYGONALFACE((1,2,9));\n#4=IFCINDEXEDPOLYGONALFACE((1,2,2,1));\n"
+                             "#5=IFCPOLYGONALFACESET(#1,.T.,(#2,#3,#4),$);\n"
+                             "#6=IFCCOLOURRGB($,1.,0.,0.);\n#7=IFCSURFACESTYLESHADING(#6);\n"
+                             "#8=IFCSURFACESTYLE('Red',.BOTH.,(#7));\n#9=IFCSTYLEDITEM(#5,(#8),'paint');\n"
+                             "ENDSEC;\nEND-ISO-10303-21;\n";
+  const auto q = ifc4_for_assimp(square);
+  ASSERT_TRUE(q);
+  EXPECT_EQ(q->styles, 1u);
+  EXPECT_NE(q->text.find("#5=IFCSHELLBASEDSURFACEMODEL((#"), std::string::npos) << "no longer closed: " << q->text;
+  EXPECT_NE(q->text.find("=IFCOPENSHELL((#"), std::string::npos);
+  EXPECT_EQ(count(q->text, "=IFCFACEBOUND(#"), 1u) << "the hole";
+  EXPECT_EQ(count(q->text, "=IFCFACE((#"), 1u);
+  ASSERT_EQ(q->warnings.size(), 1u);
+  EXPECT_EQ(q->warnings[0], "line 10, #5 (IfcPolygonalFaceSet): 2 of its 3 faces cannot be used (not a list of "
+                            "indices, a point its list does not have, or fewer than three points): dropped");
+  const size_t styled = q->text.find("#9=IFCSTYLEDITEM(#5,(#");
+  ASSERT_NE(styled, std::string::npos) << q->text;
+  EXPECT_NE(q->text.find("=IFCPRESENTATIONSTYLEASSIGNMENT((#8))"), std::string::npos);
+  EXPECT_NE(q->text.find("),'paint');", styled), std::string::npos);
+  EXPECT_TRUE(step_data_problem(q->text) == std::nullopt);
+
+  // Points that are no numbers: the set is an empty bounding box, which Assimp passes over.
+  const auto z = ifc4_for_assimp(head + "#1=IFCCARTESIANPOINTLIST3D(((0.,0.,0.),(1.,0.,0.),(nan,1.,0.)));\n"
+                                        "#2=IFCTRIANGULATEDFACESET(#1,$,.T.,((1,2,3)),$);\nENDSEC;\n");
+  ASSERT_TRUE(z);
+  EXPECT_NE(z->text.find("#2=IFCBOUNDINGBOX(#"), std::string::npos) << z->text;
+  EXPECT_TRUE(step_data_problem(z->text) == std::nullopt);
+  ASSERT_EQ(z->warnings.size(), 1u);
+  EXPECT_NE(z->warnings[0].find("#2 (IfcTriangulatedFaceSet): its point list #1 is not a list of three numbers"),
+            std::string::npos)
+      << z->warnings[0];
+}
+
+TEST(IfcStep, ListsAndReferencesAreReadAsWritten) {
+  EXPECT_EQ(step_list(" ((1,2,3), (4,5,6)) "), (std::vector<std::string_view>{"(1,2,3)", "(4,5,6)"}));
+  EXPECT_EQ(step_list("('a,b)',#3)"), (std::vector<std::string_view>{"'a,b)'", "#3"}));
+  EXPECT_EQ(step_list("()"), std::vector<std::string_view>{});
+  EXPECT_EQ(step_list("(1,,2)"), std::nullopt);
+  EXPECT_EQ(step_list("(1,2"), std::nullopt);
+  EXPECT_EQ(step_list("(1))("), std::nullopt);
+  EXPECT_EQ(step_list("$"), std::nullopt);
+  EXPECT_EQ(step_reference(" #42 "), 42u);
+  EXPECT_EQ(step_reference("#"), std::nullopt);
+  EXPECT_EQ(step_reference("#4a"), std::nullopt);
 }
 
 TEST(IfcStep, NamesAndLongNamesAreReadFromTheRecords) {

@@ -22,6 +22,7 @@
 #include "core/number_format.h"
 #include "plans/assimp_reader.h"
 #include "plans/formats/ifc_step.h"
+#include "plans/formats/ifc4_for_assimp.h"
 #include "plans/mesh.h"
 
 namespace avenues {
@@ -371,6 +372,7 @@ class Builder {
     read_in_child_first();
     ImportOptions options;
     options.ifc_spaces = true;
+    options.contents = for_assimp_;
     ImportedScene scene;
     try {
       scene = import_scene(path_, options);
@@ -429,6 +431,11 @@ class Builder {
       throw PlanError({path_, line, 0, ""}, "not a well-formed STEP file: " + p->what);
     }
     names_ = ifc_root_names(text);
+    // IFC4's face sets and styles, which Assimp 5.2 cannot read, as IFC2X3 writes them.
+    if (std::optional<Ifc4Rewrite> r = ifc4_for_assimp(text)) {
+      for (const std::string& w : r->warnings) plan_.warnings.push_back(path_ + ": " + w);
+      for_assimp_ = std::move(r->text);
+    }
   }
 
   /// Assimp 5.2's STEP reader crashes on some malformed files the STEP check lets through
@@ -448,6 +455,7 @@ class Builder {
       try {
         ImportOptions options;
         options.ifc_spaces = true;
+        options.contents = for_assimp_;
         (void)import_scene(path_, options);
       } catch (...) {
         code = kChildFailed;
@@ -997,6 +1005,7 @@ class Builder {
   std::vector<double> room_area_;          ///< per Plan room [m²]
   std::vector<std::string> dropped_;
   std::map<std::string, IfcRootNames> names_;  ///< GlobalId -> the file's own names (spaces kept)
+  std::string for_assimp_;  ///< the STEP text Assimp reads instead of the file, where it differs (ifc4_for_assimp.h)
   std::map<std::array<int, 3>, MaterialId> materials_;
 };
 

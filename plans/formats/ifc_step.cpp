@@ -276,6 +276,83 @@ std::optional<StepProblem> step_data_problem(std::string_view text) {
   return std::nullopt;
 }
 
+void for_each_step_record(std::string_view text, const std::function<void(const StepRecord&)>& f) {
+  // Records end at a ';' outside strings and comments.
+  size_t start = 0;
+  for (size_t i = 0; i < text.size();) {
+    if (const size_t past = skip_string_or_comment(text, i); past != i) {
+      i = past;
+      continue;
+    }
+    if (text[i] != ';') {
+      ++i;
+      continue;
+    }
+    std::string_view piece = text.substr(start, i - start);
+    size_t from = 0;
+    skip_space(piece, from);
+    const size_t offset = start + from;
+    piece.remove_prefix(from);
+    start = ++i;
+    std::optional<Record> r = record_of(piece);
+    if (!r) continue;
+    StepRecord out;
+    size_t k = 1;
+    while (k < piece.size() && std::isdigit(static_cast<unsigned char>(piece[k])) && k < 19)
+      out.id = out.id * 10 + unsigned(piece[k++] - '0');
+    out.offset = offset;
+    out.size = piece.size();
+    out.keyword = std::move(r->keyword);
+    out.attributes = std::move(r->attributes);
+    f(out);
+  }
+}
+
+std::optional<std::vector<std::string_view>> step_list(std::string_view a) {
+  auto trim = [](std::string_view v) {
+    while (!v.empty() && std::isspace(static_cast<unsigned char>(v.front()))) v.remove_prefix(1);
+    while (!v.empty() && std::isspace(static_cast<unsigned char>(v.back()))) v.remove_suffix(1);
+    return v;
+  };
+  a = trim(a);
+  if (a.size() < 2 || a.front() != '(' || a.back() != ')') return std::nullopt;
+  std::vector<std::string_view> items;
+  int depth = 0;
+  size_t from = 1;
+  for (size_t i = 1; i + 1 < a.size();) {
+    if (const size_t past = skip_string_or_comment(a, i); past != i) {
+      i = past;
+      continue;
+    }
+    const char c = a[i];
+    if (c == '(') ++depth;
+    if (c == ')' && --depth < 0) return std::nullopt;  // the first '(' closed before the end
+    if (c == ',' && depth == 0) {
+      items.push_back(trim(a.substr(from, i - from)));
+      from = i + 1;
+    }
+    ++i;
+  }
+  if (depth != 0) return std::nullopt;
+  const std::string_view last = trim(a.substr(from, a.size() - 1 - from));
+  if (!last.empty() || !items.empty()) items.push_back(last);
+  for (std::string_view item : items)
+    if (item.empty()) return std::nullopt;  // "(a,,b)"
+  return items;
+}
+
+std::optional<unsigned long long> step_reference(std::string_view a) {
+  while (!a.empty() && std::isspace(static_cast<unsigned char>(a.front()))) a.remove_prefix(1);
+  while (!a.empty() && std::isspace(static_cast<unsigned char>(a.back()))) a.remove_suffix(1);
+  if (a.size() < 2 || a.size() > 19 || a[0] != '#') return std::nullopt;
+  unsigned long long n = 0;
+  for (size_t k = 1; k < a.size(); ++k) {
+    if (!std::isdigit(static_cast<unsigned char>(a[k]))) return std::nullopt;
+    n = n * 10 + unsigned(a[k] - '0');
+  }
+  return n;
+}
+
 std::map<std::string, IfcRootNames> ifc_root_names(std::string_view text) {
   std::map<std::string, IfcRootNames> out;
   auto decoded = [](const std::vector<std::string_view>& attrs, size_t k) -> std::optional<std::string> {
@@ -287,31 +364,16 @@ std::map<std::string, IfcRootNames> ifc_root_names(std::string_view text) {
     if (!ok) return std::nullopt;
     return s;
   };
-  // Records end at a ';' outside strings and comments.
-  size_t start = 0;
-  for (size_t i = 0; i < text.size();) {
-    if (const size_t past = skip_string_or_comment(text, i); past != i) {
-      i = past;
-      continue;
-    }
-    const char c = text[i];
-    if (c != ';') {
-      ++i;
-      continue;
-    }
-    const std::string_view piece = text.substr(start, i - start);
-    start = ++i;
-    const std::optional<Record> r = record_of(piece);
-    if (!r) continue;
-    const std::optional<std::string> guid = decoded(r->attributes, 0);
-    if (!guid || guid->size() != kGlobalIdLength) continue;  // not an IfcRoot
+  for_each_step_record(text, [&](const StepRecord& r) {
+    const std::optional<std::string> guid = decoded(r.attributes, 0);
+    if (!guid || guid->size() != kGlobalIdLength) return;  // not an IfcRoot
     IfcRootNames names;
-    names.name = decoded(r->attributes, kNameAttribute).value_or("");
-    if (r->keyword == "IFCSPACE" || r->keyword == "IFCBUILDINGSTOREY" || r->keyword == "IFCBUILDING" ||
-        r->keyword == "IFCSITE")
-      names.long_name = decoded(r->attributes, kLongNameAttribute).value_or("");
+    names.name = decoded(r.attributes, kNameAttribute).value_or("");
+    if (r.keyword == "IFCSPACE" || r.keyword == "IFCBUILDINGSTOREY" || r.keyword == "IFCBUILDING" ||
+        r.keyword == "IFCSITE")
+      names.long_name = decoded(r.attributes, kLongNameAttribute).value_or("");
     if (!names.name.empty() || !names.long_name.empty()) out[*guid] = std::move(names);
-  }
+  });
   return out;
 }
 

@@ -11,10 +11,12 @@
 // Strict and small: a record it cannot read is skipped, never half-read.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace avenues {
 
@@ -38,6 +40,25 @@ struct StepProblem {
   std::string what;
 };
 std::optional<StepProblem> step_data_problem(std::string_view step_text);
+
+/// One instance record of a STEP file, "#id=KEYWORD(attribute,...);".
+struct StepRecord {
+  unsigned long long id = 0;
+  size_t offset = 0, size = 0;               ///< the record in the text, from its '#' to before its ';'
+  std::string keyword;                       ///< upper case
+  std::vector<std::string_view> attributes;  ///< top level, as written (views into the text)
+};
+
+/// Calls f for every instance record of the text, in order. Complex instances
+/// ("#id=(A(...)B(...));"), header lines and records it cannot read are passed over.
+void for_each_step_record(std::string_view step_text, const std::function<void(const StepRecord&)>& f);
+
+/// The items of a STEP aggregate attribute "(a,b,(c,d))", as written, white space around
+/// them trimmed; nullopt when the attribute is not one aggregate.
+std::optional<std::vector<std::string_view>> step_list(std::string_view attribute);
+
+/// The id of a reference attribute "#12"; nullopt for anything else.
+std::optional<unsigned long long> step_reference(std::string_view attribute);
 
 /// A STEP string's body (between its quotes, quotes still doubled) decoded to UTF-8;
 /// `ok` is set false (and the result is not to be used) for a malformed escape.

@@ -1,0 +1,319 @@
+// Avenues — IFC4 face sets and styles as IFC2X3 writes them (see ifc4_for_assimp.h).
+#include "plans/formats/ifc4_for_assimp.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "plans/formats/ifc_step.h"
+
+namespace avenues {
+namespace {
+
+// IfcTriangulatedFaceSet(Coordinates, Normals, Closed, CoordIndex, PnIndex);
+// IfcPolygonalFaceSet(Coordinates, Closed, Faces, PnIndex), IFC4 ADD2 alike.
+struct Layout {
+  size_t closed, faces, pn_index;
+};
+constexpr Layout kTriangulated{2, 3, 4}, kPolygonal{1, 2, 3};
+
+/// How many warnings name their sets; the rest are counted.
+constexpr size_t kWarningsListed = 10;
+
+std::string reference(unsigned long long id) {
+  std::string s(1, '#');
+  s += std::to_string(id);
+  return s;
+}
+
+std::string_view trimmed(std::string_view v) {
+  while (!v.empty() && (v.front() == ' ' || v.front() == '\t' || v.front() == '\r' || v.front() == '\n')) v.remove_prefix(1);
+  while (!v.empty() && (v.back() == ' ' || v.back() == '\t' || v.back() == '\r' || v.back() == '\n')) v.remove_suffix(1);
+  return v;
+}
+
+/// "head#1,#2,#3))": a record's body listing references.
+std::string listing(const char* head, const std::vector<unsigned long long>& ids, const char* tail) {
+  std::string s = head;
+  for (size_t j = 0; j < ids.size(); ++j) {
+    if (j) s += ',';
+    s += reference(ids[j]);
+  }
+  return s + tail;
+}
+
+/// A STEP integer ("12"), else nullopt.
+std::optional<long long> integer(std::string_view a) {
+  if (a.empty() || a.size() > 18) return std::nullopt;
+  long long n = 0;
+  for (char c : a) {
+    if (c < '0' || c > '9') return std::nullopt;
+    n = n * 10 + (c - '0');
+  }
+  return n;
+}
+
+/// Whether an item is three finite STEP reals "(x,y,z)".
+bool is_point(std::string_view item) {
+  const auto xyz = step_list(item);
+  if (!xyz || xyz->size() != 3) return false;
+  for (std::string_view v : *xyz) {
+    const std::string s(v);
+    char* end = nullptr;
+    const double d = std::strtod(s.c_str(), &end);
+    if (end != s.c_str() + s.size() || !std::isfinite(d)) return false;
+  }
+  return true;
+}
+
+/// A list of STEP integers, else nullopt.
+std::optional<std::vector<long long>> integers(std::string_view a) {
+  const auto items = step_list(a);
+  if (!items) return std::nullopt;
+  std::vector<long long> out;
+  out.reserve(items->size());
+  for (std::string_view i : *items) {
+    const auto n = integer(i);
+    if (!n) return std::nullopt;
+    out.push_back(*n);
+  }
+  return out;
+}
+
+class Rewriter {
+ public:
+  explicit Rewriter(std::string_view text) : text_(text) {}
+
+  std::optional<Ifc4Rewrite> run() {
+    std::vector<StepRecord> sets, styled;  // in the text's order, each
+    std::unordered_set<unsigned long long> styles;  // IfcPresentationStyle records
+    for_each_step_record(text_, [&](const StepRecord& r) {
+      max_id_ = std::max(max_id_, r.id);
+      if (r.keyword == "IFCTRIANGULATEDFACESET" || r.keyword == "IFCPOLYGONALFACESET") sets.push_back(r);
+      else if (r.keyword == "IFCCARTESIANPOINTLIST3D" && !r.attributes.empty()) point_lists_[r.id] = r.attributes[0];
+      else if (r.keyword == "IFCINDEXEDPOLYGONALFACE" || r.keyword == "IFCINDEXEDPOLYGONALFACEWITHVOIDS")
+        indexed_faces_[r.id] = r.attributes;
+      else if (r.keyword == "IFCSTYLEDITEM") styled.push_back(r);
+      else if (r.keyword == "IFCSURFACESTYLE" || r.keyword == "IFCCURVESTYLE" || r.keyword == "IFCFILLAREASTYLE" ||
+               r.keyword == "IFCTEXTSTYLE")
+        styles.insert(r.id);
+    });
+    next_id_ = max_id_;
+    Ifc4Rewrite out;
+    std::vector<std::pair<const StepRecord*, std::string>> changed;  // in the text's order, once sorted
+    for (const StepRecord& r : sets) changed.push_back({&r, rewritten(r)});
+    out.face_sets = sets.size();
+    for (const StepRecord& r : styled) {
+      std::optional<std::string> s = assigned(r, styles);
+      if (!s) continue;
+      changed.push_back({&r, std::move(*s)});
+      ++out.styles;
+    }
+    if (changed.empty()) return std::nullopt;
+    std::sort(changed.begin(), changed.end(), [](const auto& a, const auto& b) { return a.first->offset < b.first->offset; });
+    out.text.reserve(text_.size() + text_.size() / 2);
+    size_t copied = 0;
+    for (const auto& [r, replacement] : changed) {
+      out.text.append(text_.substr(copied, r->offset - copied));
+      out.text += replacement;
+      copied = r->offset + r->size;
+    }
+    out.text.append(text_.substr(copied));
+    out.warnings = std::move(warnings_);
+    if (unlisted_ > 0) out.warnings.push_back(std::to_string(unlisted_) + " more tessellated face sets lost faces");
+    return out;
+  }
+
+ private:
+  /// The record "#id=..." that stands for face set r, and the new records it refers to,
+  /// each ended by ";\n" but the last (the text's own ';' ends it).
+  std::string rewritten(const StepRecord& r) {
+    const bool triangulated = r.keyword == "IFCTRIANGULATEDFACESET";
+    const Layout at = triangulated ? kTriangulated : kPolygonal;
+    const char* type = triangulated ? "IfcTriangulatedFaceSet" : "IfcPolygonalFaceSet";
+    records_.clear();
+    auto give_up = [&](const std::string& why) {
+      warn(r, type, why + ": its faces are dropped");
+      const unsigned long long corner = add("IFCCARTESIANPOINT((0.,0.,0.))");
+      return finish(r.id, listing("IFCBOUNDINGBOX(", {corner}, ",0.,0.,0.)"));
+    };
+    const std::vector<std::string_view>& a = r.attributes;
+    if (a.size() <= at.faces) return give_up("it has only " + std::to_string(a.size()) + " attributes");
+    const auto list = step_reference(a[0]);
+    const auto found = list ? point_lists_.find(*list) : point_lists_.end();
+    if (found == point_lists_.end()) return give_up("its Coordinates are no IfcCartesianPointList3D");
+    const std::vector<std::string_view>* points = points_of(*list, found->second);
+    if (!points) return give_up("its point list " + reference(*list) + " is not a list of three numbers each");
+    std::optional<std::vector<long long>> pn;
+    if (a.size() > at.pn_index && trimmed(a[at.pn_index]) != "$") {
+      pn = integers(a[at.pn_index]);
+      if (!pn) return give_up("its PnIndex is not a list of integers");
+    }
+    // The faces' loops, as 1-based indices of the faces' own numbering.
+    std::vector<std::vector<std::vector<long long>>> faces;
+    size_t unreadable = 0;
+    if (triangulated) {
+      const auto tris = step_list(a[at.faces]);
+      if (!tris) return give_up("its CoordIndex is not a list");
+      for (std::string_view t : *tris) {
+        auto loop = integers(t);
+        if (!loop) ++unreadable;
+        else faces.push_back({std::move(*loop)});
+      }
+    } else {
+      const auto refs = step_list(a[at.faces]);
+      if (!refs) return give_up("its Faces are not a list");
+      for (std::string_view f : *refs) {
+        const auto id = step_reference(f);
+        const auto face = id ? indexed_faces_.find(*id) : indexed_faces_.end();
+        std::optional<std::vector<long long>> outer;
+        if (face != indexed_faces_.end() && !face->second.empty()) outer = integers(face->second[0]);
+        if (!outer) {
+          ++unreadable;
+          continue;
+        }
+        std::vector<std::vector<long long>> loops{std::move(*outer)};
+        if (face->second.size() > 1) {  // IfcIndexedPolygonalFaceWithVoids: its inner loops
+          const auto inner = step_list(face->second[1]);
+          for (size_t k = 0; inner && k < inner->size(); ++k)
+            if (auto loop = integers((*inner)[k])) loops.push_back(std::move(*loop));
+        }
+        faces.push_back(std::move(loops));
+      }
+    }
+    // Indices into the point list; a loop with fewer than three distinct points bounds nothing.
+    std::unordered_map<size_t, unsigned long long> point_id;
+    std::vector<unsigned long long> face_ids;
+    size_t dropped = 0;
+    for (const auto& loops : faces) {
+      std::vector<unsigned long long> bounds;
+      bool outer_ok = true;
+      for (size_t k = 0; k < loops.size() && outer_ok; ++k) {
+        std::vector<size_t> idx;
+        bool ok = true;
+        for (long long i : loops[k]) {
+          if (pn) i = i >= 1 && size_t(i) <= pn->size() ? (*pn)[size_t(i - 1)] : 0;
+          if (i < 1 || size_t(i) > points->size()) {
+            ok = false;
+            break;
+          }
+          if (idx.empty() || idx.back() != size_t(i - 1)) idx.push_back(size_t(i - 1));
+        }
+        while (idx.size() > 1 && idx.front() == idx.back()) idx.pop_back();
+        std::vector<size_t> distinct = idx;
+        std::sort(distinct.begin(), distinct.end());
+        ok = ok && std::unique(distinct.begin(), distinct.end()) - distinct.begin() >= 3;
+        if (!ok) {
+          outer_ok = k > 0;  // an inner loop that bounds nothing is left out; an outer one costs its face
+          continue;
+        }
+        std::vector<unsigned long long> corners;
+        for (size_t i : idx) {
+          auto [it, fresh] = point_id.try_emplace(i, 0);
+          if (fresh) it->second = add("IFCCARTESIANPOINT(" + std::string((*points)[i]) + ")");
+          corners.push_back(it->second);
+        }
+        const unsigned long long l = add(listing("IFCPOLYLOOP((", corners, "))"));
+        bounds.push_back(add(listing(k == 0 ? "IFCFACEOUTERBOUND(" : "IFCFACEBOUND(", {l}, ",.T.)")));
+      }
+      if (!outer_ok) {
+        ++dropped;
+        continue;
+      }
+      face_ids.push_back(add(listing("IFCFACE((", bounds, "))")));
+    }
+    if (unreadable + dropped > 0)
+      warn(r, type, std::to_string(unreadable + dropped) + " of its " + std::to_string(unreadable + faces.size()) +
+                        " faces cannot be used (not a list of indices, a point its list does not have, or fewer "
+                        "than three points): dropped");
+    if (face_ids.empty()) {
+      records_.clear();
+      return give_up("no face is left");
+    }
+    const bool closed = trimmed(a[at.closed]) == ".T." && unreadable + dropped == 0;
+    const unsigned long long s = add(listing(closed ? "IFCCLOSEDSHELL((" : "IFCOPENSHELL((", face_ids, "))"));
+    return finish(r.id, closed ? listing("IFCFACETEDBREP(", {s}, ")") : listing("IFCSHELLBASEDSURFACEMODEL((", {s}, "))"));
+  }
+
+  /// IfcStyledItem(Item, Styles, Name) with each style it names directly (IFC4) wrapped in a
+  /// new IfcPresentationStyleAssignment; nullopt when it names none directly.
+  std::optional<std::string> assigned(const StepRecord& r, const std::unordered_set<unsigned long long>& styles) {
+    if (r.attributes.size() != 3) return std::nullopt;
+    const auto items = step_list(r.attributes[1]);
+    if (!items) return std::nullopt;
+    records_.clear();
+    std::vector<unsigned long long> ids;
+    for (std::string_view item : *items) {
+      const auto id = step_reference(item);
+      if (!id) return std::nullopt;  // not a list of references: left for Assimp to judge
+      ids.push_back(styles.count(*id) ? add(listing("IFCPRESENTATIONSTYLEASSIGNMENT((", {*id}, "))")) : *id);
+    }
+    if (records_.empty()) return std::nullopt;
+    std::string body = "IFCSTYLEDITEM(";
+    body += r.attributes[0];
+    body += listing(",(", ids, "),");
+    body += r.attributes[2];
+    return finish(r.id, body + ")");
+  }
+
+  /// A new record with the next free id; returns the id.
+  unsigned long long add(const std::string& body) {
+    std::string rec = reference(++next_id_);
+    rec += '=';
+    rec += body;
+    records_.push_back(std::move(rec));
+    return next_id_;
+  }
+
+  /// The face set's own record, then the new ones.
+  std::string finish(unsigned long long id, const std::string& body) {
+    std::string s = reference(id);
+    s += '=';
+    s += body;
+    for (const std::string& rec : records_) {
+      s += ";\n";
+      s += rec;
+    }
+    return s;
+  }
+
+  /// The points of list `id` (each "(x,y,z)" as written), read once; nullptr when it is not a list of points.
+  const std::vector<std::string_view>* points_of(unsigned long long id, std::string_view coords) {
+    auto [it, fresh] = points_.try_emplace(id);
+    if (fresh) {
+      auto items = step_list(coords);
+      bool ok = items.has_value();
+      for (size_t k = 0; ok && k < items->size(); ++k) ok = is_point((*items)[k]);
+      it->second = ok ? std::move(items) : std::nullopt;
+    }
+    return it->second ? &*it->second : nullptr;
+  }
+
+  void warn(const StepRecord& r, const char* type, const std::string& what) {
+    if (warnings_.size() >= kWarningsListed) {
+      ++unlisted_;
+      return;
+    }
+    const size_t line = 1 + size_t(std::count(text_.begin(), text_.begin() + std::ptrdiff_t(r.offset), '\n'));
+    warnings_.push_back("line " + std::to_string(line) + ", " + reference(r.id) + " (" + type + "): " + what);
+  }
+
+  std::string_view text_;
+  unsigned long long max_id_ = 0, next_id_ = 0;
+  std::unordered_map<unsigned long long, std::string_view> point_lists_;  ///< id -> its CoordList attribute
+  std::unordered_map<unsigned long long, std::vector<std::string_view>> indexed_faces_;
+  std::unordered_map<unsigned long long, std::optional<std::vector<std::string_view>>> points_;
+  std::vector<std::string> records_;  ///< the new records of the set being rewritten
+  std::vector<std::string> warnings_;
+  size_t unlisted_ = 0;
+};
+
+}  // namespace
+
+std::optional<Ifc4Rewrite> ifc4_for_assimp(std::string_view step_text) {
+  return Rewriter(step_text).run();
+}
+
+}  // namespace avenues

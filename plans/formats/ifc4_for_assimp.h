@@ -1,0 +1,49 @@
+// Avenues — the IFC4 records Assimp 5.2 cannot read, handed to it as IFC2X3 writes them.
+//
+// Assimp 5.2's IFC reader knows only IFC2X3's entities. Two things every IFC4 exporter
+// writes break it, so they are rewritten in the text it reads; the rest of the text is left
+// as it is, and Assimp reads placements, mapped items, units, openings and styles as before.
+//
+// Styles. IFC4 lets an IfcStyledItem name its IfcSurfaceStyle directly, where IFC2X3 wraps
+// it in an IfcPresentationStyleAssignment (deprecated in IFC4): Assimp fails on the whole
+// file with "std::bad_cast". Each such style gets its assignment, a new record.
+//
+// Tessellated geometry. IFC4 added face sets over indexed points: IfcTriangulatedFaceSet and IfcPolygonalFaceSet,
+// their corners in an IfcCartesianPointList3D. The Reference View (the view Revit, ArchiCAD
+// and BlenderBIM offer for IFC4 exchange) has no other body geometry, so every wall, slab,
+// door and space of such a file is one. Assimp crashes on a product whose representation
+// holds one.
+//
+// So each face set record is rewritten, under its own id (the representations, mapped items
+// and styles that name it still do), as what IFC2X3 writes for the same faces: an
+// IfcFacetedBrep of an IfcClosedShell where the set says it is Closed, else an
+// IfcShellBasedSurfaceModel of an IfcOpenShell. Each face becomes an IfcFace bounded by
+// IfcPolyLoops over new IfcCartesianPoints, their coordinates copied as the file writes
+// them; the inner loops of an IfcIndexedPolygonalFaceWithVoids are its inner bounds. PnIndex
+// (IFC4 ADD2) maps the faces' indices into the point list.
+//
+// Lenient as IFC viewers are: a face naming a point the list does not have, or fewer than
+// three distinct points, is dropped (its set is then no longer closed: an open shell); a
+// set whose points cannot be read, or with no face left, becomes an empty bounding box,
+// which Assimp passes over. Each is said once per set, naming its record and line.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace avenues {
+
+struct Ifc4Rewrite {
+  std::string text;                   ///< the STEP text as Assimp is to read it
+  size_t face_sets = 0;               ///< tessellated face sets rewritten
+  size_t styles = 0;                  ///< styles given an IfcPresentationStyleAssignment
+  std::vector<std::string> warnings;  ///< what was dropped, per set ("line 40, #31 (IfcTriangulatedFaceSet): ...")
+};
+
+/// The text with its face sets and styles as IFC2X3 writes them; nullopt when it has
+/// neither (then Assimp reads the file as it is).
+std::optional<Ifc4Rewrite> ifc4_for_assimp(std::string_view step_text);
+
+}  // namespace avenues
