@@ -427,7 +427,8 @@ std::string duplex() { return (kIfc / "duplex.ifc").string(); }
 /// window's hole (an IfcPolygonalFaceSet with IfcIndexedPolygonalFaceWithVoids, in brick red
 /// by an IfcStyledItem naming its IfcSurfaceStyle directly), a wall placed by an
 /// IfcMappedItem, two turned by their placement, one of three boxes with a door's hole (an
-/// open set), a door, a window, and the room's IfcSpace; lengths in millimetres.
+/// open set), a door, a window, and the room's IfcSpace; lengths in millimetres. The north
+/// wall and the floor slab have no OwnerHistory, as IfcOpenShell writes them.
 std::string tessellated_house() { return std::string(AVENUES_SOURCE_DIR) + "/tests/fuzz/corpus/ifc/tessellated-house.ifc"; }
 
 }  // namespace
@@ -815,6 +816,15 @@ TEST(IfcStep, Ifc4FaceSetsAndStylesAreRewrittenAsIfc2x3WritesThem) {
   EXPECT_NE(q->text.find("=IFCPRESENTATIONSTYLEASSIGNMENT((#8))"), std::string::npos);
   EXPECT_NE(q->text.find("),'paint');", styled), std::string::npos);
   EXPECT_TRUE(step_data_problem(q->text) == std::nullopt);
+
+  // An IfcRoot with no OwnerHistory (optional in IFC4) is given one.
+  const auto o = ifc4_for_assimp(head + "#7=IFCWALL('2BTBFw6f90Nfh9rP1dlXrr', $ ,'w',$,$,$,$,$,.STANDARD.);\n"
+                                        "#8=IFCCARTESIANPOINT((0.,0.,0.));\nENDSEC;\n");
+  ASSERT_TRUE(o);
+  EXPECT_EQ(o->owners, 1u);
+  EXPECT_NE(o->text.find("#7=IFCWALL('2BTBFw6f90Nfh9rP1dlXrr',#13,'w',$,$,$,$,$,.STANDARD.);"), std::string::npos) << o->text;
+  EXPECT_NE(o->text.find("=IFCOWNERHISTORY(#"), std::string::npos);
+  EXPECT_TRUE(step_data_problem(o->text) == std::nullopt);
 
   // Points that are no numbers: the set is an empty bounding box, which Assimp passes over.
   const auto z = ifc4_for_assimp(head + "#1=IFCCARTESIANPOINTLIST3D(((0.,0.,0.),(1.,0.,0.),(nan,1.,0.)));\n"

@@ -2,6 +2,7 @@
 #include "plans/formats/ifc4_for_assimp.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <unordered_map>
@@ -42,6 +43,17 @@ std::string listing(const char* head, const std::vector<unsigned long long>& ids
     s += reference(ids[j]);
   }
   return s + tail;
+}
+
+/// Whether an attribute is an IfcRoot's GlobalId: 128 bits in 22 characters of IFC's base 64,
+/// the first holding the top 2 bits ('0' to '3'). A property's or quantity's Name, also first
+/// and followed by an optional Description, is not one ('WarrantyGuarantorLabor').
+bool is_global_id(std::string_view a) {
+  a = trimmed(a);
+  if (a.size() != 24 || a.front() != '\'' || a.back() != '\'' || a[1] < '0' || a[1] > '3') return false;
+  for (char c : a.substr(1, 22))
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '$') return false;
+  return true;
 }
 
 /// A STEP integer ("12"), else nullopt.
@@ -87,11 +99,13 @@ class Rewriter {
   explicit Rewriter(std::string_view text) : text_(text) {}
 
   std::optional<Ifc4Rewrite> run() {
-    std::vector<StepRecord> sets, styled;  // in the text's order, each
+    std::vector<StepRecord> sets, styled, ownerless;  // in the text's order, each
     std::unordered_set<unsigned long long> styles;  // IfcPresentationStyle records
     for_each_step_record(text_, [&](const StepRecord& r) {
       max_id_ = std::max(max_id_, r.id);
-      if (r.keyword == "IFCTRIANGULATEDFACESET" || r.keyword == "IFCPOLYGONALFACESET") sets.push_back(r);
+      if (r.attributes.size() >= 2 && is_global_id(r.attributes[0]) && trimmed(r.attributes[1]) == "$")
+        ownerless.push_back(r);
+      else if (r.keyword == "IFCTRIANGULATEDFACESET" || r.keyword == "IFCPOLYGONALFACESET") sets.push_back(r);
       else if (r.keyword == "IFCCARTESIANPOINTLIST3D" && !r.attributes.empty()) point_lists_[r.id] = r.attributes[0];
       else if (r.keyword == "IFCINDEXEDPOLYGONALFACE" || r.keyword == "IFCINDEXEDPOLYGONALFACEWITHVOIDS")
         indexed_faces_[r.id] = r.attributes;
@@ -110,6 +124,26 @@ class Rewriter {
       if (!s) continue;
       changed.push_back({&r, std::move(*s)});
       ++out.styles;
+    }
+    // One owner history for every IfcRoot without one, its records after the first's.
+    records_.clear();
+    if (!ownerless.empty()) {
+      const unsigned long long person = add("IFCPERSON($,$,'',$,$,$,$,$)");
+      const unsigned long long org = add("IFCORGANIZATION($,'',$,$,$)");
+      const unsigned long long user = add(listing("IFCPERSONANDORGANIZATION(", {person, org}, ",$)"));
+      const unsigned long long app = add(listing("IFCAPPLICATION(", {org}, ",'','','')"));
+      owner_ = add(listing("IFCOWNERHISTORY(", {user, app}, ",$,.NOCHANGE.,$,$,$,0)"));
+    }
+    for (const StepRecord& r : ownerless) {
+      std::string body = r.keyword + "(" + std::string(r.attributes[0]);
+      body += listing(",", {owner_}, "");
+      for (size_t k = 2; k < r.attributes.size(); ++k) {
+        body += ',';
+        body += r.attributes[k];
+      }
+      changed.push_back({&r, finish(r.id, body + ")")});
+      records_.clear();
+      ++out.owners;
     }
     if (changed.empty()) return std::nullopt;
     std::sort(changed.begin(), changed.end(), [](const auto& a, const auto& b) { return a.first->offset < b.first->offset; });
@@ -301,7 +335,7 @@ class Rewriter {
   }
 
   std::string_view text_;
-  unsigned long long max_id_ = 0, next_id_ = 0;
+  unsigned long long max_id_ = 0, next_id_ = 0, owner_ = 0;
   std::unordered_map<unsigned long long, std::string_view> point_lists_;  ///< id -> its CoordList attribute
   std::unordered_map<unsigned long long, std::vector<std::string_view>> indexed_faces_;
   std::unordered_map<unsigned long long, std::optional<std::vector<std::string_view>>> points_;

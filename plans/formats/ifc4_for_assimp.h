@@ -1,8 +1,13 @@
 // Avenues — the IFC4 records Assimp 5.2 cannot read, handed to it as IFC2X3 writes them.
 //
-// Assimp 5.2's IFC reader knows only IFC2X3's entities. Two things every IFC4 exporter
-// writes break it, so they are rewritten in the text it reads; the rest of the text is left
-// as it is, and Assimp reads placements, mapped items, units, openings and styles as before.
+// Assimp 5.2's IFC reader knows only IFC2X3's entities. Three things IFC4 exporters write
+// break it, so they are rewritten in the text it reads; the rest of the text is left as it
+// is, and Assimp reads placements, mapped items, units, openings and styles as before.
+//
+// Owner histories. IFC4 made an IfcRoot's OwnerHistory optional, and files written by
+// IfcOpenShell (BlenderBIM) often leave it out ($): Assimp refuses the whole file ("expected
+// argument 1 to IfcRoot to be a `IfcOwnerHistory`"). One IfcOwnerHistory, of no one in
+// particular, is added for every IfcRoot record that has none.
 //
 // Styles. IFC4 lets an IfcStyledItem name its IfcSurfaceStyle directly, where IFC2X3 wraps
 // it in an IfcPresentationStyleAssignment (deprecated in IFC4): Assimp fails on the whole
@@ -39,11 +44,12 @@ struct Ifc4Rewrite {
   std::string text;                   ///< the STEP text as Assimp is to read it
   size_t face_sets = 0;               ///< tessellated face sets rewritten
   size_t styles = 0;                  ///< styles given an IfcPresentationStyleAssignment
+  size_t owners = 0;                  ///< IfcRoot records given the owner history they lacked
   std::vector<std::string> warnings;  ///< what was dropped, per set ("line 40, #31 (IfcTriangulatedFaceSet): ...")
 };
 
-/// The text with its face sets and styles as IFC2X3 writes them; nullopt when it has
-/// neither (then Assimp reads the file as it is).
+/// The text with its owner histories, face sets and styles as IFC2X3 writes them; nullopt
+/// when it has nothing to rewrite (then Assimp reads the file as it is).
 std::optional<Ifc4Rewrite> ifc4_for_assimp(std::string_view step_text);
 
 }  // namespace avenues
