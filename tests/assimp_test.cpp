@@ -428,7 +428,8 @@ std::string duplex() { return (kIfc / "duplex.ifc").string(); }
 /// by an IfcStyledItem naming its IfcSurfaceStyle directly), a wall placed by an
 /// IfcMappedItem, two turned by their placement, one of three boxes with a door's hole (an
 /// open set), a door, a window, and the room's IfcSpace; lengths in millimetres. The north
-/// wall and the floor slab have no OwnerHistory, as IfcOpenShell writes them.
+/// wall and the floor slab have no OwnerHistory, as IfcOpenShell writes them. A round
+/// column is extruded from a profile bounded by an IfcIndexedPolyCurve of two arcs.
 std::string tessellated_house() { return std::string(AVENUES_SOURCE_DIR) + "/tests/fuzz/corpus/ifc/tessellated-house.ifc"; }
 
 }  // namespace
@@ -708,7 +709,17 @@ TEST(Ifc, Ifc4TessellatedModelsStandAsTheirFacesSay) {
   EXPECT_EQ(cells_are_valid(m.cells), "");
   std::map<std::string, const Wall*> walls;
   for (const Wall& w : m.plan.walls) walls[w.name] = &w;
-  ASSERT_EQ(walls.size(), 4u) << "South, North, West, East";
+  ASSERT_EQ(walls.size(), 5u) << "South, North, West, East, the round column";
+  // The column's section: round, its corners on the 300 mm circle, its area within 1 % (the
+  // arcs become sides at most 5° across; Assimp's extrusion and the section keep fewer).
+  const Wall& column = *walls.at("Round column");
+  ASSERT_GE(column.footprint.size(), 30u);
+  double area = 0;
+  for (size_t k = 0; k < column.footprint.size(); ++k)
+    area += cross(column.footprint[k], column.footprint[(k + 1) % column.footprint.size()]) / 2;
+  EXPECT_NEAR(area, std::numbers::pi * 0.15 * 0.15, 0.01 * std::numbers::pi * 0.15 * 0.15);
+  for (Vec2 p : column.footprint) EXPECT_NEAR(length(p - Vec2{3, 2}), 0.15, 1e-5);
+  walls.erase("Round column");
   auto centre_x = [](const Wall& w) { return (w.centre.front().x + w.centre.back().x) / 2; };
   auto centre_y = [](const Wall& w) { return (w.centre.front().y + w.centre.back().y) / 2; };
   EXPECT_NEAR(centre_y(*walls.at("South")), 0.1, 1e-6);
@@ -758,12 +769,12 @@ TEST(Ifc, Ifc4TessellatedModelsStandAsTheirFacesSay) {
       << said;
   std::set<std::string> kept;
   for (const Wall& w : p.walls) kept.insert(w.name);
-  EXPECT_EQ(kept, (std::set<std::string>{"South", "West", "East"}));
+  EXPECT_EQ(kept, (std::set<std::string>{"South", "West", "East", "Round column"}));
   EXPECT_NE(said.find("IfcWall 'North'"), std::string::npos) << "the wall left with no faces is dropped, by name\n" << said;
   fs::remove_all(dir);
 }
 
-TEST(IfcStep, Ifc4FaceSetsAndStylesAreRewrittenAsIfc2x3WritesThem) {
+TEST(IfcStep, Ifc4RecordsAssimpCannotReadAreRewrittenAsIfc2x3WritesThem) {
   const std::string head = "ISO-10303-21;\nHEADER;\nFILE_SCHEMA(('IFC4'));\nENDSEC;\nDATA;\n";
   EXPECT_FALSE(ifc4_for_assimp(head + "#1=IFCCARTESIANPOINT((0.,0.,0.));\nENDSEC;\nEND-ISO-10303-21;\n"))
       << "nothing to rewrite: Assimp reads the file itself";
@@ -816,6 +827,25 @@ TEST(IfcStep, Ifc4FaceSetsAndStylesAreRewrittenAsIfc2x3WritesThem) {
   EXPECT_NE(q->text.find("=IFCPRESENTATIONSTYLEASSIGNMENT((#8))"), std::string::npos);
   EXPECT_NE(q->text.find("),'paint');", styled), std::string::npos);
   EXPECT_TRUE(step_data_problem(q->text) == std::nullopt);
+
+  // An indexed curve: a straight piece, then a half circle about (1, 1) through (2, 1).
+  const auto c = ifc4_for_assimp(head + "#1=IFCCARTESIANPOINTLIST2D(((0.,0.),(1.,0.),(2.,1.),(1.,2.)));\n"
+                                        "#2=IFCINDEXEDPOLYCURVE(#1,(IFCLINEINDEX((1,2)),IFCARCINDEX((2,3,4))),.F.);\n"
+                                        "#3=IFCINDEXEDPOLYCURVE(#1,$,.F.);\nENDSEC;\n");
+  ASSERT_TRUE(c);
+  EXPECT_EQ(c->curves, 2u);
+  EXPECT_TRUE(step_data_problem(c->text) == std::nullopt);
+  EXPECT_NE(c->text.find("#2=IFCPOLYLINE((#"), std::string::npos) << c->text;
+  EXPECT_NE(c->text.find("#3=IFCPOLYLINE((#"), std::string::npos) << c->text;
+  int on_circle = 0;
+  for_each_step_record(c->text, [&](const StepRecord& r) {
+    if (r.keyword != "IFCCARTESIANPOINT" || r.id > 41) return;  // #2's points come first: #4 to #41
+    const auto xy = step_list(r.attributes[0]);
+    ASSERT_TRUE(xy && xy->size() == 2);
+    const Vec2 p{std::stod(std::string((*xy)[0])), std::stod(std::string((*xy)[1]))};
+    if (p.x >= 1) on_circle += std::fabs(length(p - Vec2{1, 1}) - 1) < 1e-12;
+  });
+  EXPECT_EQ(on_circle, 37) << "its ends, and 35 points 5° apart";
 
   // An IfcRoot with no OwnerHistory (optional in IFC4) is given one.
   const auto o = ifc4_for_assimp(head + "#7=IFCWALL('2BTBFw6f90Nfh9rP1dlXrr', $ ,'w',$,$,$,$,$,.STANDARD.);\n"

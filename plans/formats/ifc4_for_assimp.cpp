@@ -2,8 +2,10 @@
 #include "plans/formats/ifc4_for_assimp.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <unordered_map>
 #include <unordered_set>
@@ -67,17 +69,77 @@ std::optional<long long> integer(std::string_view a) {
   return n;
 }
 
-/// Whether an item is three finite STEP reals "(x,y,z)".
-bool is_point(std::string_view item) {
+/// The coordinates of a point "(x,y)" or "(x,y,z)" of finite STEP reals; nullopt otherwise.
+std::optional<std::vector<double>> coordinates(std::string_view item) {
   const auto xyz = step_list(item);
-  if (!xyz || xyz->size() != 3) return false;
+  if (!xyz || xyz->size() < 2 || xyz->size() > 3) return std::nullopt;
+  std::vector<double> out;
   for (std::string_view v : *xyz) {
     const std::string s(v);
     char* end = nullptr;
     const double d = std::strtod(s.c_str(), &end);
-    if (end != s.c_str() + s.size() || !std::isfinite(d)) return false;
+    if (end != s.c_str() + s.size() || !std::isfinite(d)) return std::nullopt;
+    out.push_back(d);
   }
-  return true;
+  return out;
+}
+
+/// A STEP real: the shortest decimal that reads back as d, with its decimal point.
+std::string step_real(double d) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17G", d);
+  std::string s = buf;
+  const size_t e = s.find('E');
+  if (s.find('.') == std::string::npos) s.insert(e == std::string::npos ? s.size() : e, ".");
+  return s;
+}
+
+/// [rad] The widest turn an arc of an IfcIndexedPolyCurve makes between two points of the
+/// polyline that stands for it: 5°, within a thousandth of its radius (a millimetre on a
+/// metre's curve, as a plan's arcs).
+constexpr double kArcStep = 5.0 * 3.14159265358979323846 / 180;
+
+/// The points strictly inside the circular arc from a through m to b (2 or 3 coordinates
+/// each), at most kArcStep apart in angle; none where the three are collinear.
+std::vector<std::vector<double>> arc_between(const std::vector<double>& a, const std::vector<double>& m,
+                                             const std::vector<double>& b) {
+  const size_t n = a.size();
+  auto sub = [&](const std::vector<double>& p, const std::vector<double>& q) {
+    std::array<double, 3> r{0, 0, 0};
+    for (size_t k = 0; k < n; ++k) r[k] = p[k] - q[k];
+    return r;
+  };
+  auto dot = [](const std::array<double, 3>& p, const std::array<double, 3>& q) { return p[0] * q[0] + p[1] * q[1] + p[2] * q[2]; };
+  auto cross = [](const std::array<double, 3>& p, const std::array<double, 3>& q) {
+    return std::array<double, 3>{p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2], p[0] * q[1] - p[1] * q[0]};
+  };
+  // The circle through a, m, b: its centre c = a + (|u|²(v×w)... in the plane of u = m − a, v = b − a.
+  const std::array<double, 3> u = sub(m, a), v = sub(b, a), w = cross(u, v);
+  const double ww = dot(w, w);
+  if (!(ww > 1e-18 * dot(u, u) * dot(v, v))) return {};  // collinear: a straight piece
+  const std::array<double, 3> t1 = cross(w, u), t2 = cross(v, w);
+  std::array<double, 3> c{};
+  for (size_t k = 0; k < 3; ++k) c[k] = (dot(v, v) * t1[k] + dot(u, u) * t2[k]) / (2 * ww);
+  // From a (at angle 0) towards m, about the normal w: the sweep to b, the way through m.
+  const std::array<double, 3> ra{-c[0], -c[1], -c[2]};  // a − (a + c)
+  const double r = std::sqrt(dot(ra, ra));
+  const std::array<double, 3> nrm{w[0] / std::sqrt(ww), w[1] / std::sqrt(ww), w[2] / std::sqrt(ww)};
+  const std::array<double, 3> e1{ra[0] / r, ra[1] / r, ra[2] / r}, e2 = cross(nrm, e1);
+  auto angle_of = [&](const std::array<double, 3>& p) {  // p relative to a
+    const std::array<double, 3> q{p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+    double t = std::atan2(dot(q, e2), dot(q, e1));
+    return t < 0 ? t + 2 * 3.14159265358979323846 : t;
+  };
+  const double sweep = angle_of(v);
+  const int steps = std::max(1, int(std::ceil(sweep / kArcStep)));
+  std::vector<std::vector<double>> out;
+  for (int k = 1; k < steps; ++k) {
+    const double t = sweep * k / steps;
+    std::vector<double> p(n);
+    for (size_t j = 0; j < n; ++j) p[j] = a[j] + c[j] + r * (std::cos(t) * e1[j] + std::sin(t) * e2[j]);
+    out.push_back(std::move(p));
+  }
+  return out;
 }
 
 /// A list of STEP integers, else nullopt.
@@ -99,14 +161,17 @@ class Rewriter {
   explicit Rewriter(std::string_view text) : text_(text) {}
 
   std::optional<Ifc4Rewrite> run() {
-    std::vector<StepRecord> sets, styled, ownerless;  // in the text's order, each
+    std::vector<StepRecord> sets, styled, ownerless, curves;  // in the text's order, each
     std::unordered_set<unsigned long long> styles;  // IfcPresentationStyle records
     for_each_step_record(text_, [&](const StepRecord& r) {
       max_id_ = std::max(max_id_, r.id);
       if (r.attributes.size() >= 2 && is_global_id(r.attributes[0]) && trimmed(r.attributes[1]) == "$")
         ownerless.push_back(r);
       else if (r.keyword == "IFCTRIANGULATEDFACESET" || r.keyword == "IFCPOLYGONALFACESET") sets.push_back(r);
-      else if (r.keyword == "IFCCARTESIANPOINTLIST3D" && !r.attributes.empty()) point_lists_[r.id] = r.attributes[0];
+      else if ((r.keyword == "IFCCARTESIANPOINTLIST3D" || r.keyword == "IFCCARTESIANPOINTLIST2D") && !r.attributes.empty()) {
+        point_lists_[r.id] = r.attributes[0];
+        point_dimension_[r.id] = r.keyword == "IFCCARTESIANPOINTLIST2D" ? 2 : 3;
+      } else if (r.keyword == "IFCINDEXEDPOLYCURVE") curves.push_back(r);
       else if (r.keyword == "IFCINDEXEDPOLYGONALFACE" || r.keyword == "IFCINDEXEDPOLYGONALFACEWITHVOIDS")
         indexed_faces_[r.id] = r.attributes;
       else if (r.keyword == "IFCSTYLEDITEM") styled.push_back(r);
@@ -119,6 +184,8 @@ class Rewriter {
     std::vector<std::pair<const StepRecord*, std::string>> changed;  // in the text's order, once sorted
     for (const StepRecord& r : sets) changed.push_back({&r, rewritten(r)});
     out.face_sets = sets.size();
+    for (const StepRecord& r : curves) changed.push_back({&r, polyline(r)});
+    out.curves = curves.size();
     for (const StepRecord& r : styled) {
       std::optional<std::string> s = assigned(r, styles);
       if (!s) continue;
@@ -313,16 +380,100 @@ class Rewriter {
     return s;
   }
 
-  /// The points of list `id` (each "(x,y,z)" as written), read once; nullptr when it is not a list of points.
-  const std::vector<std::string_view>* points_of(unsigned long long id, std::string_view coords) {
+  /// The points of list `id` (each "(x,y,z)", or "(x,y)" in a 2D list, as written), read
+  /// once; nullptr when it is not a list of points of `dimension` coordinates.
+  const std::vector<std::string_view>* points_of(unsigned long long id, std::string_view coords, size_t dimension = 3) {
     auto [it, fresh] = points_.try_emplace(id);
     if (fresh) {
       auto items = step_list(coords);
       bool ok = items.has_value();
-      for (size_t k = 0; ok && k < items->size(); ++k) ok = is_point((*items)[k]);
+      for (size_t k = 0; ok && k < items->size(); ++k) {
+        const auto xyz = coordinates((*items)[k]);
+        ok = xyz && xyz->size() == dimension;
+      }
       it->second = ok ? std::move(items) : std::nullopt;
     }
     return it->second ? &*it->second : nullptr;
+  }
+
+  /// IfcIndexedPolyCurve(Points, Segments, SelfIntersect) as an IfcPolyline: its points in
+  /// order (Segments $), or segment by segment, IfcLineIndex's points as they are and each
+  /// IfcArcIndex (start, a point on it, end) as points along the circle (arc_between).
+  /// Unusable: an empty IfcPolyline's stand-in, said (the profile it bounds is then empty).
+  std::string polyline(const StepRecord& r) {
+    records_.clear();
+    const char* type = "IfcIndexedPolyCurve";
+    std::vector<unsigned long long> corners;
+    auto made = [&]() { return finish(r.id, listing("IFCPOLYLINE((", corners, "))")); };
+    auto give_up = [&](const std::string& why) {
+      warn(r, type, why + ": the curve is left out");
+      records_.clear();
+      corners.clear();
+      for (int k = 0; k < 2; ++k) corners.push_back(add("IFCCARTESIANPOINT((0.,0.))"));
+      return made();
+    };
+    const std::vector<std::string_view>& a = r.attributes;
+    if (a.empty()) return give_up("it has no Points");
+    const auto list = step_reference(a[0]);
+    const auto found = list ? point_lists_.find(*list) : point_lists_.end();
+    if (found == point_lists_.end()) return give_up("its Points are no IfcCartesianPointList2D or 3D");
+    const std::vector<std::string_view>* points = points_of(*list, found->second, point_dimension_[*list]);
+    if (!points || points->empty()) return give_up("its point list " + reference(*list) + " is not a list of points");
+    std::vector<size_t> order;  // indices into the list; arcs' own points as ~index into `computed`
+    std::vector<std::vector<double>> computed;
+    auto push = [&](size_t i) {
+      if (order.empty() || order.back() != i) order.push_back(i);
+    };
+    auto in_range = [&](long long i) { return i >= 1 && size_t(i) <= points->size(); };
+    if (a.size() < 2 || trimmed(a[1]) == "$") {
+      for (size_t i = 0; i < points->size(); ++i) push(i);
+    } else {
+      const auto segments = step_list(a[1]);
+      if (!segments) return give_up("its Segments are not a list");
+      for (std::string_view seg : *segments) {
+        const bool arc = seg.starts_with("IFCARCINDEX");
+        if (!arc && !seg.starts_with("IFCLINEINDEX")) return give_up("a segment is neither IfcLineIndex nor IfcArcIndex");
+        // A typed value: IFCLINEINDEX((1,2,3)), its one argument the list.
+        const auto typed = step_list(seg.substr(std::min(seg.find('('), seg.size())));
+        const auto idx = typed && typed->size() == 1 ? integers((*typed)[0]) : std::nullopt;
+        if (!idx || idx->size() < 2 || (arc && idx->size() != 3) || !std::all_of(idx->begin(), idx->end(), in_range))
+          return give_up("a segment names a point its list does not have");
+        if (!arc) {
+          for (long long i : *idx) push(size_t(i - 1));
+          continue;
+        }
+        const auto p0 = coordinates((*points)[size_t((*idx)[0] - 1)]), p1 = coordinates((*points)[size_t((*idx)[1] - 1)]),
+                   p2 = coordinates((*points)[size_t((*idx)[2] - 1)]);
+        push(size_t((*idx)[0] - 1));
+        if (arc_points_ > kMostArcPoints) {  // a file of millions of arcs: the rest straight, said once
+          if (!arcs_cut_) warn(r, type, "more arcs than Avenues makes points for (" + std::to_string(kMostArcPoints) +
+                                            "): this and later arcs are straight");
+          arcs_cut_ = true;
+        } else {
+          arc_points_ += 72;
+        }
+        for (std::vector<double>& p : arcs_cut_ ? std::vector<std::vector<double>>{} : arc_between(*p0, *p1, *p2)) {
+          computed.push_back(std::move(p));
+          order.push_back(~(computed.size() - 1));
+        }
+        push(size_t((*idx)[2] - 1));
+      }
+    }
+    if (order.size() < 2) return give_up("it has fewer than two points");
+    std::unordered_map<size_t, unsigned long long> point_id;
+    for (size_t i : order) {
+      if (i > points->size()) {  // an arc's own point
+        const std::vector<double>& p = computed[~i];
+        std::string xyz = "IFCCARTESIANPOINT((";
+        for (size_t k = 0; k < p.size(); ++k) xyz += (k ? "," : "") + step_real(p[k]);
+        corners.push_back(add(xyz + "))"));
+        continue;
+      }
+      auto [it, fresh] = point_id.try_emplace(i, 0);
+      if (fresh) it->second = add("IFCCARTESIANPOINT(" + std::string((*points)[i]) + ")");
+      corners.push_back(it->second);
+    }
+    return made();
   }
 
   void warn(const StepRecord& r, const char* type, const std::string& what) {
@@ -334,9 +485,16 @@ class Rewriter {
     warnings_.push_back("line " + std::to_string(line) + ", " + reference(r.id) + " (" + type + "): " + what);
   }
 
+  /// Arcs' points made for the whole file, at most (72 for each arc): far beyond any
+  /// building's curves, short of what a file of nothing but arcs could make memory hold.
+  static constexpr size_t kMostArcPoints = 4'000'000;
+  size_t arc_points_ = 0;
+  bool arcs_cut_ = false;
+
   std::string_view text_;
   unsigned long long max_id_ = 0, next_id_ = 0, owner_ = 0;
   std::unordered_map<unsigned long long, std::string_view> point_lists_;  ///< id -> its CoordList attribute
+  std::unordered_map<unsigned long long, size_t> point_dimension_;       ///< id -> 2 or 3
   std::unordered_map<unsigned long long, std::vector<std::string_view>> indexed_faces_;
   std::unordered_map<unsigned long long, std::optional<std::vector<std::string_view>>> points_;
   std::vector<std::string> records_;  ///< the new records of the set being rewritten

@@ -1,6 +1,6 @@
 // Avenues — the IFC4 records Assimp 5.2 cannot read, handed to it as IFC2X3 writes them.
 //
-// Assimp 5.2's IFC reader knows only IFC2X3's entities. Three things IFC4 exporters write
+// Assimp 5.2's IFC reader knows only IFC2X3's entities. Four things IFC4 exporters write
 // break it, so they are rewritten in the text it reads; the rest of the text is left as it
 // is, and Assimp reads placements, mapped items, units, openings and styles as before.
 //
@@ -12,6 +12,12 @@
 // Styles. IFC4 lets an IfcStyledItem name its IfcSurfaceStyle directly, where IFC2X3 wraps
 // it in an IfcPresentationStyleAssignment (deprecated in IFC4): Assimp fails on the whole
 // file with "std::bad_cast". Each such style gets its assignment, a new record.
+//
+// Indexed curves. ArchiCAD and BlenderBIM bound the profiles of their extrusions (a wall's
+// footprint, a slab's outline) by IFC4's IfcIndexedPolyCurve over an IfcCartesianPointList2D;
+// Assimp crashes on it. Each becomes an IfcPolyline of new IfcCartesianPoints (copied as
+// written): its straight segments (IfcLineIndex) as they are, its arcs (IfcArcIndex: start, a
+// point on the arc, end) as points along the circle at most 5° apart.
 //
 // Tessellated geometry. IFC4 added face sets over indexed points: IfcTriangulatedFaceSet and IfcPolygonalFaceSet,
 // their corners in an IfcCartesianPointList3D. The Reference View (the view Revit, ArchiCAD
@@ -45,6 +51,7 @@ struct Ifc4Rewrite {
   size_t face_sets = 0;               ///< tessellated face sets rewritten
   size_t styles = 0;                  ///< styles given an IfcPresentationStyleAssignment
   size_t owners = 0;                  ///< IfcRoot records given the owner history they lacked
+  size_t curves = 0;                  ///< IfcIndexedPolyCurves rewritten as IfcPolylines
   std::vector<std::string> warnings;  ///< what was dropped, per set ("line 40, #31 (IfcTriangulatedFaceSet): ...")
 };
 
