@@ -735,6 +735,7 @@ TEST(Ifc, Ifc4TessellatedModelsStandAsTheirFacesSay) {
   EXPECT_NEAR(window.width, 1.0, 1e-6);
   ASSERT_EQ(walls.at("East")->openings.size(), 1u) << "the door of the open set";
   EXPECT_EQ(walls.at("East")->openings[0].kind, OpeningKind::Door);
+  EXPECT_EQ(walls.at("East")->openings[0].name, "Front door");
   EXPECT_NEAR(walls.at("East")->openings[0].width, 0.9, 1e-6);
   ASSERT_GE(walls.at("South")->material, 0);
   const auto brick = m.plan.materials[size_t(walls.at("South")->material)].colour;
@@ -745,7 +746,8 @@ TEST(Ifc, Ifc4TessellatedModelsStandAsTheirFacesSay) {
   EXPECT_EQ(m.plan.rooms[0].name, "Living room") << "its LongName";
 
   // What cannot be used is dropped, said with its record and line, and the rest still read:
-  // the east wall's set names a point its list lacks, the north wall's points are no numbers.
+  // the east wall's set names a point its list lacks, the north wall's points are no numbers,
+  // the column is tapered (IFC4's IfcExtrudedAreaSolidTapered).
   std::string text = avenues::testing::slurp(tessellated_house());
   const size_t east = text.find("$,.F.,((1,4,3)");
   ASSERT_NE(east, std::string::npos);
@@ -753,6 +755,10 @@ TEST(Ifc, Ifc4TessellatedModelsStandAsTheirFacesSay) {
   const size_t north = text.find("#58=IFCCARTESIANPOINTLIST3D(((0.0,");
   ASSERT_NE(north, std::string::npos);
   text.replace(north, 34, "#58=IFCCARTESIANPOINTLIST3D(((zero,");
+  const std::string extrusion = "#113=IFCEXTRUDEDAREASOLID(#110,#112,#4,2700.);";
+  const size_t tapered = text.find(extrusion);
+  ASSERT_NE(tapered, std::string::npos);
+  text.replace(tapered, extrusion.size(), "#113=IFCEXTRUDEDAREASOLIDTAPERED(#110,#112,#4,2700.,#110);");
   const fs::path dir = fs::temp_directory_path() / ("avenues-ifc4-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const std::string broken = (dir / "broken.ifc").string();
@@ -765,6 +771,10 @@ TEST(Ifc, Ifc4TessellatedModelsStandAsTheirFacesSay) {
       << said;
   EXPECT_NE(said.find(broken + ": line 66, #59 (IfcTriangulatedFaceSet): its point list #58 is not a list of three "
                                "numbers each: its faces are dropped"),
+            std::string::npos)
+      << said;
+  EXPECT_NE(said.find(broken + ": line 119, #113 (IfcExtrudedAreaSolidTapered): read as an IfcExtrudedAreaSolid, "
+                               "without its taper (the end profile)"),
             std::string::npos)
       << said;
   std::set<std::string> kept;
@@ -846,6 +856,14 @@ TEST(IfcStep, Ifc4RecordsAssimpCannotReadAreRewrittenAsIfc2x3WritesThem) {
     if (p.x >= 1) on_circle += std::fabs(length(p - Vec2{1, 1}) - 1) < 1e-12;
   });
   EXPECT_EQ(on_circle, 37) << "its ends, and 35 points 5° apart";
+
+  // NURBS boundaries IFC2X3 has no form for: left out, said.
+  const auto n = ifc4_for_assimp(head + "#1=IFCCLOSEDSHELL((#3));\n#2=IFCADVANCEDBREP(#1);\n#3=IFCADVANCEDFACE((),#4,.T.);\nENDSEC;\n");
+  ASSERT_TRUE(n);
+  EXPECT_EQ(n->solids, 1u);
+  EXPECT_NE(n->text.find("#2=IFCBOUNDINGBOX(#"), std::string::npos) << n->text;
+  ASSERT_EQ(n->warnings.size(), 1u);
+  EXPECT_EQ(n->warnings[0], "line 7, #2 (IfcAdvancedBrep): IFC2X3, which Assimp reads, has no form for it: its geometry is left out");
 
   // An IfcRoot with no OwnerHistory (optional in IFC4) is given one.
   const auto o = ifc4_for_assimp(head + "#7=IFCWALL('2BTBFw6f90Nfh9rP1dlXrr', $ ,'w',$,$,$,$,$,.STANDARD.);\n"

@@ -22,6 +22,24 @@ struct Layout {
 };
 constexpr Layout kTriangulated{2, 3, 4}, kPolygonal{1, 2, 3};
 
+/// IFC4 solids that are IFC2X3 solids with more said: read as those, the rest left out.
+struct Narrowing {
+  const char* from;
+  const char* to;
+  size_t keep;       ///< attributes the IFC2X3 entity has (the first ones)
+  const char* lost;  ///< what is left out
+};
+constexpr Narrowing kNarrowings[] = {
+    {"IFCEXTRUDEDAREASOLIDTAPERED", "IFCEXTRUDEDAREASOLID", 4, "its taper (the end profile)"},
+    {"IFCREVOLVEDAREASOLIDTAPERED", "IFCREVOLVEDAREASOLID", 4, "its taper (the end profile)"},
+    {"IFCSWEPTDISKSOLIDPOLYGONAL", "IFCSWEPTDISKSOLID", 5, "its fillets"},
+};
+
+/// IFC4 geometry IFC2X3 has no form for (NURBS boundaries, sweeps along a fixed reference,
+/// curved surfaces as items): left out, said.
+constexpr const char* kUnreadable[] = {"IFCADVANCEDBREP", "IFCADVANCEDBREPWITHVOIDS", "IFCFIXEDREFERENCESWEPTAREASOLID",
+                                      "IFCCYLINDRICALSURFACE", "IFCSPHERICALSURFACE", "IFCTOROIDALSURFACE"};
+
 /// How many warnings name their sets; the rest are counted.
 constexpr size_t kWarningsListed = 10;
 
@@ -156,12 +174,28 @@ std::optional<std::vector<long long>> integers(std::string_view a) {
   return out;
 }
 
+/// "IfcExtrudedAreaSolid" of "IFCEXTRUDEDAREASOLID", for messages: IFC's own spelling of the
+/// entities named here.
+std::string title_case(std::string_view keyword) {
+  static const std::pair<const char*, const char*> kNames[] = {
+      {"IFCEXTRUDEDAREASOLIDTAPERED", "IfcExtrudedAreaSolidTapered"}, {"IFCEXTRUDEDAREASOLID", "IfcExtrudedAreaSolid"},
+      {"IFCREVOLVEDAREASOLIDTAPERED", "IfcRevolvedAreaSolidTapered"}, {"IFCREVOLVEDAREASOLID", "IfcRevolvedAreaSolid"},
+      {"IFCSWEPTDISKSOLIDPOLYGONAL", "IfcSweptDiskSolidPolygonal"},   {"IFCSWEPTDISKSOLID", "IfcSweptDiskSolid"},
+      {"IFCADVANCEDBREP", "IfcAdvancedBrep"},                         {"IFCADVANCEDBREPWITHVOIDS", "IfcAdvancedBrepWithVoids"},
+      {"IFCFIXEDREFERENCESWEPTAREASOLID", "IfcFixedReferenceSweptAreaSolid"},
+      {"IFCCYLINDRICALSURFACE", "IfcCylindricalSurface"},             {"IFCSPHERICALSURFACE", "IfcSphericalSurface"},
+      {"IFCTOROIDALSURFACE", "IfcToroidalSurface"}};
+  for (const auto& [upper, name] : kNames)
+    if (keyword == upper) return name;
+  return std::string(keyword);
+}
+
 class Rewriter {
  public:
   explicit Rewriter(std::string_view text) : text_(text) {}
 
   std::optional<Ifc4Rewrite> run() {
-    std::vector<StepRecord> sets, styled, ownerless, curves;  // in the text's order, each
+    std::vector<StepRecord> sets, styled, ownerless, curves, other;  // in the text's order, each
     std::unordered_set<unsigned long long> styles;  // IfcPresentationStyle records
     for_each_step_record(text_, [&](const StepRecord& r) {
       max_id_ = std::max(max_id_, r.id);
@@ -172,6 +206,9 @@ class Rewriter {
         point_lists_[r.id] = r.attributes[0];
         point_dimension_[r.id] = r.keyword == "IFCCARTESIANPOINTLIST2D" ? 2 : 3;
       } else if (r.keyword == "IFCINDEXEDPOLYCURVE") curves.push_back(r);
+      else if (std::any_of(std::begin(kNarrowings), std::end(kNarrowings), [&](const Narrowing& n) { return r.keyword == n.from; }) ||
+               std::any_of(std::begin(kUnreadable), std::end(kUnreadable), [&](const char* k) { return r.keyword == k; }))
+        other.push_back(r);
       else if (r.keyword == "IFCINDEXEDPOLYGONALFACE" || r.keyword == "IFCINDEXEDPOLYGONALFACEWITHVOIDS")
         indexed_faces_[r.id] = r.attributes;
       else if (r.keyword == "IFCSTYLEDITEM") styled.push_back(r);
@@ -186,6 +223,10 @@ class Rewriter {
     out.face_sets = sets.size();
     for (const StepRecord& r : curves) changed.push_back({&r, polyline(r)});
     out.curves = curves.size();
+    for (const StepRecord& r : other) {
+      changed.push_back({&r, narrowed(r)});
+      ++out.solids;
+    }
     for (const StepRecord& r : styled) {
       std::optional<std::string> s = assigned(r, styles);
       if (!s) continue;
@@ -223,7 +264,7 @@ class Rewriter {
     }
     out.text.append(text_.substr(copied));
     out.warnings = std::move(warnings_);
-    if (unlisted_ > 0) out.warnings.push_back(std::to_string(unlisted_) + " more tessellated face sets lost faces");
+    if (unlisted_ > 0) out.warnings.push_back(std::to_string(unlisted_) + " more IFC4 records lost some of their geometry");
     return out;
   }
 
@@ -357,6 +398,25 @@ class Rewriter {
     body += listing(",(", ids, "),");
     body += r.attributes[2];
     return finish(r.id, body + ")");
+  }
+
+  /// A solid of kNarrowings as its IFC2X3 kind, or one of kUnreadable as an empty bounding box.
+  std::string narrowed(const StepRecord& r) {
+    records_.clear();
+    const std::string type = title_case(r.keyword);
+    for (const Narrowing& n : kNarrowings) {
+      if (r.keyword != n.from || r.attributes.size() < n.keep) continue;
+      warn(r, type.c_str(), std::string("read as an ") + title_case(n.to) + ", without " + n.lost);
+      std::string body = n.to;
+      for (size_t k = 0; k < n.keep; ++k) {
+        body += k ? ',' : '(';
+        body += r.attributes[k];
+      }
+      return finish(r.id, body + ")");
+    }
+    warn(r, type.c_str(), "IFC2X3, which Assimp reads, has no form for it: its geometry is left out");
+    const unsigned long long corner = add("IFCCARTESIANPOINT((0.,0.,0.))");
+    return finish(r.id, listing("IFCBOUNDINGBOX(", {corner}, ",0.,0.,0.)"));
   }
 
   /// A new record with the next free id; returns the id.

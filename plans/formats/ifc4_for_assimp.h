@@ -1,8 +1,9 @@
 // Avenues — the IFC4 records Assimp 5.2 cannot read, handed to it as IFC2X3 writes them.
 //
-// Assimp 5.2's IFC reader knows only IFC2X3's entities. Four things IFC4 exporters write
-// break it, so they are rewritten in the text it reads; the rest of the text is left as it
-// is, and Assimp reads placements, mapped items, units, openings and styles as before.
+// Assimp 5.2's IFC reader knows only IFC2X3's entities: it crashes on an entity it does not
+// know, or refuses the whole file. What IFC4 exporters write that breaks it is rewritten in
+// the text it reads, as IFC2X3 says the same; the rest of the text is left as it is, and
+// Assimp reads placements, mapped items, units, openings and styles as before.
 //
 // Owner histories. IFC4 made an IfcRoot's OwnerHistory optional, and files written by
 // IfcOpenShell (BlenderBIM) often leave it out ($): Assimp refuses the whole file ("expected
@@ -18,6 +19,11 @@
 // Assimp crashes on it. Each becomes an IfcPolyline of new IfcCartesianPoints (copied as
 // written): its straight segments (IfcLineIndex) as they are, its arcs (IfcArcIndex: start, a
 // point on the arc, end) as points along the circle at most 5° apart.
+//
+// New solids. An IfcExtrudedAreaSolidTapered or IfcRevolvedAreaSolidTapered is read as the
+// untapered solid, an IfcSweptDiskSolidPolygonal as an IfcSweptDiskSolid without its fillets
+// (each said). What IFC2X3 has no form for (IfcAdvancedBrep's NURBS faces, a fixed-reference
+// sweep, curved surfaces as items) is left out: an empty bounding box, said.
 //
 // Tessellated geometry. IFC4 added face sets over indexed points: IfcTriangulatedFaceSet and IfcPolygonalFaceSet,
 // their corners in an IfcCartesianPointList3D. The Reference View (the view Revit, ArchiCAD
@@ -52,6 +58,7 @@ struct Ifc4Rewrite {
   size_t styles = 0;                  ///< styles given an IfcPresentationStyleAssignment
   size_t owners = 0;                  ///< IfcRoot records given the owner history they lacked
   size_t curves = 0;                  ///< IfcIndexedPolyCurves rewritten as IfcPolylines
+  size_t solids = 0;                  ///< IFC4 solids read as IFC2X3's, or left out
   std::vector<std::string> warnings;  ///< what was dropped, per set ("line 40, #31 (IfcTriangulatedFaceSet): ...")
 };
 
