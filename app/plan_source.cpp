@@ -190,12 +190,13 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
     build(parsed);
   };
   // A mesh as a whole scene: OpenMesh or Assimp by its format, turned to z-up metres.
-  auto read_mesh = [&](const std::string& file, const MeshAxes& axes) {
+  // `read`: the mesh, when the file's reader has it already (an IFC model without walls).
+  auto read_mesh = [&](const std::string& file, const MeshAxes& axes, const Mesh* read = nullptr) {
     if (!import.save_plan.empty())  // told before the work, and nothing written
       throw std::runtime_error(file + " is read as a mesh scene, which has no plan: --save-plan " +
                                import.save_plan + " cannot be written");
     std::vector<std::string> said;  // its materials' missing files
-    Mesh mesh = load_mesh(file, axes, &said);  // names the file when unreadable
+    const Mesh mesh = read ? *read : load_mesh(file, axes, &said);  // names the file when unreadable
     out.stages.push_back({"read mesh", seconds_since(t0)});
     // A large soup takes a while (issue 16: minutes for the curved and the structural
     // models of a few hundred thousand triangles): say so before, not after.
@@ -263,7 +264,7 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
         } catch (const IfcWithoutWalls& e) {  // thrown by the reader only
           // A structural model, a piece of equipment: its elements' faces are the scene.
           std::cerr << e.what() << ": read as a mesh scene, every element's faces\n";
-          read_mesh(spec.file, import.mesh_axes());
+          read_mesh(spec.file, import.mesh_axes(), e.faces.get());
         }
         break;
       }

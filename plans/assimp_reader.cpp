@@ -312,6 +312,9 @@ ImportedScene import_scene(const std::string& path, const ImportOptions& options
     // Points and lines are dropped as they are read (AI_CONFIG_PP_SBP_REMOVE): a file of
     // nothing else is left with no mesh, which Assimp words for itself.
     if (why == "No meshes remaining") why = "it holds no surfaces, only points or lines (Avenues needs polygons)";
+    // An IFC model whose only geometry Assimp cannot make (CSG primitives, NURBS faces).
+    if (why.find("mNumMeshes is 0") != std::string::npos)
+      why = "Assimp makes no surface of it (" + why + ")";
     throw std::runtime_error("cannot read model " + path + ": " + why);
   }
   if (!scene->mRootNode) throw std::runtime_error("cannot read model " + path + ": it has no nodes");

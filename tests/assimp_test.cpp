@@ -429,7 +429,10 @@ std::string duplex() { return (kIfc / "duplex.ifc").string(); }
 /// IfcMappedItem, two turned by their placement, one of three boxes with a door's hole (an
 /// open set), a door, a window, and the room's IfcSpace; lengths in millimetres. The north
 /// wall and the floor slab have no OwnerHistory, as IfcOpenShell writes them. A round
-/// column is extruded from a profile bounded by an IfcIndexedPolyCurve of two arcs.
+/// column (an IfcColumnStandardCase) is extruded from a profile bounded by an
+/// IfcIndexedPolyCurve of two arcs; a basin (IfcSanitaryTerminal) is a profile and an
+/// extrusion with no Position; a handrail is a swept disk with no StartParam or EndParam;
+/// the units hold an IfcConversionBasedUnitWithOffset (degrees Fahrenheit).
 std::string tessellated_house() { return std::string(AVENUES_SOURCE_DIR) + "/tests/fuzz/corpus/ifc/tessellated-house.ifc"; }
 
 }  // namespace
@@ -744,6 +747,23 @@ TEST(Ifc, Ifc4TessellatedModelsStandAsTheirFacesSay) {
   EXPECT_NEAR(brick[2], 0.2, 1e-6);
   ASSERT_EQ(m.plan.rooms.size(), 1u);
   EXPECT_EQ(m.plan.rooms[0].name, "Living room") << "its LongName";
+  // IFC4's sanitary terminal is IFC2X3's flow terminal; its extrusion stands where placed.
+  std::map<std::string, Box3> objects;
+  for (const Object& o : m.plan.objects) {
+    ASSERT_TRUE(o.model) << o.where.element;
+    Box3 b;
+    for (Vec3 v : o.model->vertices) b.add(v);
+    objects[o.where.element] = b;
+  }
+  ASSERT_EQ(objects.count("IfcFlowTerminal 'Basin'"), 1u) << "objects: " << objects.size();
+  const Box3 basin = objects.at("IfcFlowTerminal 'Basin'");
+  EXPECT_NEAR(basin.hi.x - basin.lo.x, 0.4, 1e-4);
+  EXPECT_NEAR(basin.hi.y - basin.lo.y, 0.3, 1e-4);
+  EXPECT_NEAR((basin.lo.x + basin.hi.x) / 2, 5.5, 1e-4);
+  EXPECT_NEAR(basin.hi.z - basin.lo.z, 0.15, 1e-4);
+  ASSERT_EQ(objects.count("IfcRailing 'Handrail'"), 1u);
+  const Box3 rail = objects.at("IfcRailing 'Handrail'");
+  EXPECT_NEAR(rail.hi.x - rail.lo.x, 2.0, 0.05) << "its whole polyline";
 
   // What cannot be used is dropped, said with its record and line, and the rest still read:
   // the east wall's set names a point its list lacks, the north wall's points are no numbers,
@@ -857,13 +877,16 @@ TEST(IfcStep, Ifc4RecordsAssimpCannotReadAreRewrittenAsIfc2x3WritesThem) {
   });
   EXPECT_EQ(on_circle, 37) << "its ends, and 35 points 5° apart";
 
-  // NURBS boundaries IFC2X3 has no form for: left out, said.
+  // NURBS boundaries IFC2X3 has no form for: left out, said; an advanced face (an IfcFaceSurface
+  // bounded by curves) is read as a face surface, whose edge loops Assimp passes over.
   const auto n = ifc4_for_assimp(head + "#1=IFCCLOSEDSHELL((#3));\n#2=IFCADVANCEDBREP(#1);\n#3=IFCADVANCEDFACE((),#4,.T.);\nENDSEC;\n");
   ASSERT_TRUE(n);
-  EXPECT_EQ(n->solids, 1u);
+  EXPECT_EQ(n->solids, 2u);
   EXPECT_NE(n->text.find("#2=IFCBOUNDINGBOX(#"), std::string::npos) << n->text;
-  ASSERT_EQ(n->warnings.size(), 1u);
+  EXPECT_NE(n->text.find("#3=IFCFACESURFACE((),#4,.T.)"), std::string::npos) << n->text;
+  ASSERT_EQ(n->warnings.size(), 2u);
   EXPECT_EQ(n->warnings[0], "line 7, #2 (IfcAdvancedBrep): IFC2X3, which Assimp reads, has no form for it: its geometry is left out");
+  EXPECT_EQ(n->warnings[1], "line 8, #3 (IfcAdvancedFace): read as an IfcFaceSurface: its edge loops (curves, not polygons) are left out");
 
   // An IfcRoot with no OwnerHistory (optional in IFC4) is given one.
   const auto o = ifc4_for_assimp(head + "#7=IFCWALL('2BTBFw6f90Nfh9rP1dlXrr', $ ,'w',$,$,$,$,$,.STANDARD.);\n"

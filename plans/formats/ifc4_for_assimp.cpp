@@ -40,6 +40,66 @@ constexpr Narrowing kNarrowings[] = {
 constexpr const char* kUnreadable[] = {"IFCADVANCEDBREP", "IFCADVANCEDBREPWITHVOIDS", "IFCFIXEDREFERENCESWEPTAREASOLID",
                                       "IFCCYLINDRICALSURFACE", "IFCSPHERICALSURFACE", "IFCTOROIDALSURFACE"};
 
+/// IFC4's kinds of product that IFC2X3 knows under a more general name (its supertype, or a
+/// proxy): read as that, every attribute kept (IFC2X3's reader reads what it knows of them).
+/// "StandardCase" and "ElementedCase" say how the geometry was made; the distribution
+/// elements IFC4 split by function are IFC2X3's flow terminals, segments, fittings, ...
+constexpr std::pair<const char*, const char*> kRenamed[] = {
+    {"IFCBEAMSTANDARDCASE", "IFCBEAM"}, {"IFCCOLUMNSTANDARDCASE", "IFCCOLUMN"}, {"IFCDOORSTANDARDCASE", "IFCDOOR"},
+    {"IFCMEMBERSTANDARDCASE", "IFCMEMBER"}, {"IFCOPENINGSTANDARDCASE", "IFCOPENINGELEMENT"},
+    {"IFCPLATESTANDARDCASE", "IFCPLATE"}, {"IFCSLABSTANDARDCASE", "IFCSLAB"}, {"IFCSLABELEMENTEDCASE", "IFCSLAB"},
+    {"IFCWALLELEMENTEDCASE", "IFCWALL"}, {"IFCWINDOWSTANDARDCASE", "IFCWINDOW"},
+    {"IFCFURNITURE", "IFCFURNISHINGELEMENT"}, {"IFCSYSTEMFURNITUREELEMENT", "IFCFURNISHINGELEMENT"},
+    {"IFCCHIMNEY", "IFCBUILDINGELEMENTPROXY"}, {"IFCSHADINGDEVICE", "IFCBUILDINGELEMENTPROXY"},
+    {"IFCCIVILELEMENT", "IFCBUILDINGELEMENTPROXY"}, {"IFCGEOGRAPHICELEMENT", "IFCBUILDINGELEMENTPROXY"},
+    {"IFCVIBRATIONISOLATOR", "IFCDISCRETEACCESSORY"},
+    {"IFCAIRTERMINAL", "IFCFLOWTERMINAL"}, {"IFCAUDIOVISUALAPPLIANCE", "IFCFLOWTERMINAL"},
+    {"IFCCOMMUNICATIONSAPPLIANCE", "IFCFLOWTERMINAL"}, {"IFCELECTRICAPPLIANCE", "IFCFLOWTERMINAL"},
+    {"IFCFIRESUPPRESSIONTERMINAL", "IFCFLOWTERMINAL"}, {"IFCLAMP", "IFCFLOWTERMINAL"},
+    {"IFCLIGHTFIXTURE", "IFCFLOWTERMINAL"}, {"IFCMEDICALDEVICE", "IFCFLOWTERMINAL"}, {"IFCOUTLET", "IFCFLOWTERMINAL"},
+    {"IFCSANITARYTERMINAL", "IFCFLOWTERMINAL"}, {"IFCSPACEHEATER", "IFCFLOWTERMINAL"},
+    {"IFCSTACKTERMINAL", "IFCFLOWTERMINAL"}, {"IFCWASTETERMINAL", "IFCFLOWTERMINAL"},
+    {"IFCCABLECARRIERSEGMENT", "IFCFLOWSEGMENT"}, {"IFCCABLESEGMENT", "IFCFLOWSEGMENT"},
+    {"IFCDUCTSEGMENT", "IFCFLOWSEGMENT"}, {"IFCPIPESEGMENT", "IFCFLOWSEGMENT"},
+    {"IFCCABLECARRIERFITTING", "IFCFLOWFITTING"}, {"IFCCABLEFITTING", "IFCFLOWFITTING"},
+    {"IFCDUCTFITTING", "IFCFLOWFITTING"}, {"IFCJUNCTIONBOX", "IFCFLOWFITTING"}, {"IFCPIPEFITTING", "IFCFLOWFITTING"},
+    {"IFCAIRTERMINALBOX", "IFCFLOWCONTROLLER"}, {"IFCDAMPER", "IFCFLOWCONTROLLER"},
+    {"IFCELECTRICDISTRIBUTIONBOARD", "IFCFLOWCONTROLLER"}, {"IFCELECTRICTIMECONTROL", "IFCFLOWCONTROLLER"},
+    {"IFCFLOWMETER", "IFCFLOWCONTROLLER"}, {"IFCPROTECTIVEDEVICE", "IFCFLOWCONTROLLER"},
+    {"IFCSWITCHINGDEVICE", "IFCFLOWCONTROLLER"}, {"IFCVALVE", "IFCFLOWCONTROLLER"},
+    {"IFCCOMPRESSOR", "IFCFLOWMOVINGDEVICE"}, {"IFCFAN", "IFCFLOWMOVINGDEVICE"}, {"IFCPUMP", "IFCFLOWMOVINGDEVICE"},
+    {"IFCELECTRICFLOWSTORAGEDEVICE", "IFCFLOWSTORAGEDEVICE"}, {"IFCTANK", "IFCFLOWSTORAGEDEVICE"},
+    {"IFCDUCTSILENCER", "IFCFLOWTREATMENTDEVICE"}, {"IFCFILTER", "IFCFLOWTREATMENTDEVICE"},
+    {"IFCINTERCEPTOR", "IFCFLOWTREATMENTDEVICE"},
+    {"IFCAIRTOAIRHEATRECOVERY", "IFCENERGYCONVERSIONDEVICE"}, {"IFCBOILER", "IFCENERGYCONVERSIONDEVICE"},
+    {"IFCBURNER", "IFCENERGYCONVERSIONDEVICE"}, {"IFCCHILLER", "IFCENERGYCONVERSIONDEVICE"},
+    {"IFCCOIL", "IFCENERGYCONVERSIONDEVICE"}, {"IFCCONDENSER", "IFCENERGYCONVERSIONDEVICE"},
+    {"IFCCOOLEDBEAM", "IFCENERGYCONVERSIONDEVICE"}, {"IFCCOOLINGTOWER", "IFCENERGYCONVERSIONDEVICE"},
+    {"IFCELECTRICGENERATOR", "IFCENERGYCONVERSIONDEVICE"}, {"IFCELECTRICMOTOR", "IFCENERGYCONVERSIONDEVICE"},
+    {"IFCENGINE", "IFCENERGYCONVERSIONDEVICE"}, {"IFCEVAPORATIVECOOLER", "IFCENERGYCONVERSIONDEVICE"},
+    {"IFCEVAPORATOR", "IFCENERGYCONVERSIONDEVICE"}, {"IFCHEATEXCHANGER", "IFCENERGYCONVERSIONDEVICE"},
+    {"IFCHUMIDIFIER", "IFCENERGYCONVERSIONDEVICE"}, {"IFCMOTORCONNECTION", "IFCENERGYCONVERSIONDEVICE"},
+    {"IFCSOLARDEVICE", "IFCENERGYCONVERSIONDEVICE"}, {"IFCTRANSFORMER", "IFCENERGYCONVERSIONDEVICE"},
+    {"IFCTUBEBUNDLE", "IFCENERGYCONVERSIONDEVICE"}, {"IFCUNITARYEQUIPMENT", "IFCENERGYCONVERSIONDEVICE"},
+    {"IFCACTUATOR", "IFCDISTRIBUTIONCONTROLELEMENT"}, {"IFCALARM", "IFCDISTRIBUTIONCONTROLELEMENT"},
+    {"IFCCONTROLLER", "IFCDISTRIBUTIONCONTROLELEMENT"}, {"IFCFLOWINSTRUMENT", "IFCDISTRIBUTIONCONTROLELEMENT"},
+    {"IFCPROTECTIVEDEVICETRIPPINGUNIT", "IFCDISTRIBUTIONCONTROLELEMENT"}, {"IFCSENSOR", "IFCDISTRIBUTIONCONTROLELEMENT"},
+    {"IFCUNITARYCONTROLELEMENT", "IFCDISTRIBUTIONCONTROLELEMENT"},
+    // Not geometry, but a unit Assimp cannot resolve fails the whole file.
+    {"IFCCONVERSIONBASEDUNITWITHOFFSET", "IFCCONVERSIONBASEDUNIT"},
+};
+
+/// Parameterized profiles whose Position IFC4 made optional (their third attribute).
+constexpr const char* kProfiles[] = {
+    "IFCRECTANGLEPROFILEDEF", "IFCROUNDEDRECTANGLEPROFILEDEF", "IFCRECTANGLEHOLLOWPROFILEDEF", "IFCCIRCLEPROFILEDEF",
+    "IFCCIRCLEHOLLOWPROFILEDEF", "IFCELLIPSEPROFILEDEF", "IFCISHAPEPROFILEDEF", "IFCASYMMETRICISHAPEPROFILEDEF",
+    "IFCLSHAPEPROFILEDEF", "IFCTSHAPEPROFILEDEF", "IFCUSHAPEPROFILEDEF", "IFCCSHAPEPROFILEDEF", "IFCZSHAPEPROFILEDEF",
+    "IFCTRAPEZIUMPROFILEDEF"};
+
+/// Swept solids whose Position IFC4 made optional (IfcSweptAreaSolid's second attribute).
+constexpr const char* kSweptAreaSolids[] = {"IFCEXTRUDEDAREASOLID", "IFCREVOLVEDAREASOLID",
+                                            "IFCSURFACECURVESWEPTAREASOLID"};
+
 /// How many warnings name their sets; the rest are counted.
 constexpr size_t kWarningsListed = 10;
 
@@ -195,20 +255,18 @@ class Rewriter {
   explicit Rewriter(std::string_view text) : text_(text) {}
 
   std::optional<Ifc4Rewrite> run() {
-    std::vector<StepRecord> sets, styled, ownerless, curves, other;  // in the text's order, each
+    std::vector<StepRecord> sets, styled, curves, other;  // in the text's order, each
     std::unordered_set<unsigned long long> styles;  // IfcPresentationStyle records
     for_each_step_record(text_, [&](const StepRecord& r) {
       max_id_ = std::max(max_id_, r.id);
-      if (r.attributes.size() >= 2 && is_global_id(r.attributes[0]) && trimmed(r.attributes[1]) == "$")
-        ownerless.push_back(r);
-      else if (r.keyword == "IFCTRIANGULATEDFACESET" || r.keyword == "IFCPOLYGONALFACESET") sets.push_back(r);
+      if (needs_fixing(r)) other.push_back(r);
+      if (r.keyword == "IFCPOLYLINE" && !r.attributes.empty())
+        if (const auto corners = step_list(r.attributes[0])) polyline_points_[r.id] = corners->size();
+      if (r.keyword == "IFCTRIANGULATEDFACESET" || r.keyword == "IFCPOLYGONALFACESET") sets.push_back(r);
       else if ((r.keyword == "IFCCARTESIANPOINTLIST3D" || r.keyword == "IFCCARTESIANPOINTLIST2D") && !r.attributes.empty()) {
         point_lists_[r.id] = r.attributes[0];
         point_dimension_[r.id] = r.keyword == "IFCCARTESIANPOINTLIST2D" ? 2 : 3;
       } else if (r.keyword == "IFCINDEXEDPOLYCURVE") curves.push_back(r);
-      else if (std::any_of(std::begin(kNarrowings), std::end(kNarrowings), [&](const Narrowing& n) { return r.keyword == n.from; }) ||
-               std::any_of(std::begin(kUnreadable), std::end(kUnreadable), [&](const char* k) { return r.keyword == k; }))
-        other.push_back(r);
       else if (r.keyword == "IFCINDEXEDPOLYGONALFACE" || r.keyword == "IFCINDEXEDPOLYGONALFACEWITHVOIDS")
         indexed_faces_[r.id] = r.attributes;
       else if (r.keyword == "IFCSTYLEDITEM") styled.push_back(r);
@@ -223,35 +281,13 @@ class Rewriter {
     out.face_sets = sets.size();
     for (const StepRecord& r : curves) changed.push_back({&r, polyline(r)});
     out.curves = curves.size();
-    for (const StepRecord& r : other) {
-      changed.push_back({&r, narrowed(r)});
-      ++out.solids;
-    }
+    for (const StepRecord& r : other)
+      if (std::optional<std::string> f = fixed(r, out)) changed.push_back({&r, std::move(*f)});
     for (const StepRecord& r : styled) {
       std::optional<std::string> s = assigned(r, styles);
       if (!s) continue;
       changed.push_back({&r, std::move(*s)});
       ++out.styles;
-    }
-    // One owner history for every IfcRoot without one, its records after the first's.
-    records_.clear();
-    if (!ownerless.empty()) {
-      const unsigned long long person = add("IFCPERSON($,$,'',$,$,$,$,$)");
-      const unsigned long long org = add("IFCORGANIZATION($,'',$,$,$)");
-      const unsigned long long user = add(listing("IFCPERSONANDORGANIZATION(", {person, org}, ",$)"));
-      const unsigned long long app = add(listing("IFCAPPLICATION(", {org}, ",'','','')"));
-      owner_ = add(listing("IFCOWNERHISTORY(", {user, app}, ",$,.NOCHANGE.,$,$,$,0)"));
-    }
-    for (const StepRecord& r : ownerless) {
-      std::string body = r.keyword + "(" + std::string(r.attributes[0]);
-      body += listing(",", {owner_}, "");
-      for (size_t k = 2; k < r.attributes.size(); ++k) {
-        body += ',';
-        body += r.attributes[k];
-      }
-      changed.push_back({&r, finish(r.id, body + ")")});
-      records_.clear();
-      ++out.owners;
     }
     if (changed.empty()) return std::nullopt;
     std::sort(changed.begin(), changed.end(), [](const auto& a, const auto& b) { return a.first->offset < b.first->offset; });
@@ -400,23 +436,95 @@ class Rewriter {
     return finish(r.id, body + ")");
   }
 
-  /// A solid of kNarrowings as its IFC2X3 kind, or one of kUnreadable as an empty bounding box.
-  std::string narrowed(const StepRecord& r) {
+  /// Whether fixed() has something to do with r.
+  static bool needs_fixing(const StepRecord& r) {
+    auto is = [&](const char* k) { return r.keyword == k; };
+    return std::any_of(std::begin(kRenamed), std::end(kRenamed), [&](const auto& n) { return is(n.first); }) ||
+           std::any_of(std::begin(kNarrowings), std::end(kNarrowings), [&](const Narrowing& n) { return is(n.from); }) ||
+           std::any_of(std::begin(kUnreadable), std::end(kUnreadable), is) ||
+           std::any_of(std::begin(kSweptAreaSolids), std::end(kSweptAreaSolids), is) || is("IFCSWEPTDISKSOLID") ||
+           std::any_of(std::begin(kProfiles), std::end(kProfiles), is) || is("IFCADVANCEDFACE") ||
+           (r.attributes.size() >= 2 && is_global_id(r.attributes[0]) && trimmed(r.attributes[1]) == "$");
+  }
+
+  /// Record r as IFC2X3 says it, or nullopt when it is that already:
+  /// - an IFC4 kind of product (kRenamed) as the IFC2X3 kind it is one of;
+  /// - a solid of kNarrowings as its IFC2X3 kind (said), one of kUnreadable as an empty
+  ///   bounding box (said);
+  /// - an IfcRoot without an OwnerHistory given one (the same for all, made once);
+  /// - a swept area solid without a Position placed where its profile is (an identity
+  ///   placement, made once);
+  /// - an IfcSweptDiskSolid without StartParam or EndParam, along an IfcPolyline, given
+  ///   its polyline's whole range (0 to the number of its sides); along another directrix,
+  ///   left out (said).
+  std::optional<std::string> fixed(const StepRecord& r, Ifc4Rewrite& out) {
     records_.clear();
-    const std::string type = title_case(r.keyword);
+    std::string keyword = r.keyword;
+    std::vector<std::string> a(r.attributes.begin(), r.attributes.end());
+    bool changed = false;
+    for (const auto& [from, to] : kRenamed)
+      if (keyword == from) keyword = to, changed = true, ++out.products;
+    const std::string type = title_case(keyword);
     for (const Narrowing& n : kNarrowings) {
-      if (r.keyword != n.from || r.attributes.size() < n.keep) continue;
+      if (keyword != n.from || a.size() < n.keep) continue;
       warn(r, type.c_str(), std::string("read as an ") + title_case(n.to) + ", without " + n.lost);
-      std::string body = n.to;
-      for (size_t k = 0; k < n.keep; ++k) {
-        body += k ? ',' : '(';
-        body += r.attributes[k];
-      }
-      return finish(r.id, body + ")");
+      keyword = n.to, a.resize(n.keep), changed = true, ++out.solids;
     }
-    warn(r, type.c_str(), "IFC2X3, which Assimp reads, has no form for it: its geometry is left out");
-    const unsigned long long corner = add("IFCCARTESIANPOINT((0.,0.,0.))");
-    return finish(r.id, listing("IFCBOUNDINGBOX(", {corner}, ",0.,0.,0.)"));
+    auto left_out = [&](const std::string& why) {
+      warn(r, type.c_str(), why + ": its geometry is left out");
+      records_.clear();
+      ++out.solids;
+      const unsigned long long corner = add("IFCCARTESIANPOINT((0.,0.,0.))");
+      return finish(r.id, listing("IFCBOUNDINGBOX(", {corner}, ",0.,0.,0.)"));
+    };
+    if (std::any_of(std::begin(kUnreadable), std::end(kUnreadable), [&](const char* k) { return keyword == k; }))
+      return left_out("IFC2X3, which Assimp reads, has no form for it");
+    if (a.size() >= 2 && is_global_id(a[0]) && trimmed(a[1]) == "$") {
+      if (!owner_) {
+        const unsigned long long person = add("IFCPERSON($,$,'',$,$,$,$,$)");
+        const unsigned long long org = add("IFCORGANIZATION($,'',$,$,$)");
+        const unsigned long long user = add(listing("IFCPERSONANDORGANIZATION(", {person, org}, ",$)"));
+        const unsigned long long app = add(listing("IFCAPPLICATION(", {org}, ",'','','')"));
+        owner_ = add(listing("IFCOWNERHISTORY(", {user, app}, ",$,.NOCHANGE.,$,$,$,0)"));
+      }
+      a[1] = reference(owner_), changed = true, ++out.owners;
+    }
+    if (std::any_of(std::begin(kSweptAreaSolids), std::end(kSweptAreaSolids), [&](const char* k) { return keyword == k; }) &&
+        a.size() >= 2 && trimmed(a[1]) == "$") {
+      if (!placement_) {
+        const unsigned long long origin = add("IFCCARTESIANPOINT((0.,0.,0.))");
+        placement_ = add(listing("IFCAXIS2PLACEMENT3D(", {origin}, ",$,$)"));
+      }
+      a[1] = reference(placement_), changed = true;
+    }
+    if (std::any_of(std::begin(kProfiles), std::end(kProfiles), [&](const char* k) { return keyword == k; }) &&
+        a.size() >= 3 && trimmed(a[2]) == "$") {
+      if (!placement_2d_) {
+        const unsigned long long origin = add("IFCCARTESIANPOINT((0.,0.))");
+        placement_2d_ = add(listing("IFCAXIS2PLACEMENT2D(", {origin}, ",$)"));
+      }
+      a[2] = reference(placement_2d_), changed = true;
+    }
+    if (keyword == "IFCADVANCEDFACE") {  // IfcFaceSurface's attributes, bounded by edge loops Assimp passes over
+      warn(r, "IfcAdvancedFace", "read as an IfcFaceSurface: its edge loops (curves, not polygons) are left out");
+      keyword = "IFCFACESURFACE", changed = true, ++out.solids;
+    }
+    if (keyword == "IFCSWEPTDISKSOLID" && a.size() >= 5 && (trimmed(a[3]) == "$" || trimmed(a[4]) == "$")) {
+      const auto directrix = step_reference(a[0]);
+      const auto corners = directrix ? polyline_points_.find(*directrix) : polyline_points_.end();
+      if (corners == polyline_points_.end() || corners->second < 2)
+        return left_out("its sweep has no StartParam or EndParam, and its directrix is no polyline whose range is known");
+      if (trimmed(a[3]) == "$") a[3] = "0.";
+      if (trimmed(a[4]) == "$") a[4] = step_real(double(corners->second - 1));
+      changed = true;
+    }
+    if (!changed) return std::nullopt;
+    std::string body = keyword;
+    for (size_t k = 0; k < a.size(); ++k) {
+      body += k ? ',' : '(';
+      body += a[k];
+    }
+    return finish(r.id, body + ")");
   }
 
   /// A new record with the next free id; returns the id.
@@ -464,7 +572,10 @@ class Rewriter {
     records_.clear();
     const char* type = "IfcIndexedPolyCurve";
     std::vector<unsigned long long> corners;
-    auto made = [&]() { return finish(r.id, listing("IFCPOLYLINE((", corners, "))")); };
+    auto made = [&]() {
+      polyline_points_[r.id] = corners.size();
+      return finish(r.id, listing("IFCPOLYLINE((", corners, "))"));
+    };
     auto give_up = [&](const std::string& why) {
       warn(r, type, why + ": the curve is left out");
       records_.clear();
@@ -552,7 +663,9 @@ class Rewriter {
   bool arcs_cut_ = false;
 
   std::string_view text_;
-  unsigned long long max_id_ = 0, next_id_ = 0, owner_ = 0;
+  unsigned long long max_id_ = 0, next_id_ = 0;
+  unsigned long long owner_ = 0, placement_ = 0, placement_2d_ = 0;  ///< made once, for all that lack them
+  std::unordered_map<unsigned long long, size_t> polyline_points_;  ///< IfcPolyline (also rewritten ones) -> its points
   std::unordered_map<unsigned long long, std::string_view> point_lists_;  ///< id -> its CoordList attribute
   std::unordered_map<unsigned long long, size_t> point_dimension_;       ///< id -> 2 or 3
   std::unordered_map<unsigned long long, std::vector<std::string_view>> indexed_faces_;

@@ -20,10 +20,19 @@
 // written): its straight segments (IfcLineIndex) as they are, its arcs (IfcArcIndex: start, a
 // point on the arc, end) as points along the circle at most 5° apart.
 //
+// New kinds and optional attributes. IFC4's kinds of product IFC2X3 knows under a more
+// general name (IfcBeamStandardCase, IfcWallElementedCase, IfcSanitaryTerminal, IfcFurniture,
+// IfcChimney, ...) are read as that (IfcBeam, IfcWall, IfcFlowTerminal, IfcFurnishingElement,
+// a proxy): Assimp crashed on any of them. Attributes IFC4 made optional that IFC2X3 requires
+// are given: a swept solid's or profile's Position (an identity placement, made once), a
+// swept disk's StartParam and EndParam along a polyline (its whole range). A unit with an
+// offset (degrees Fahrenheit) is a conversion-based unit.
+//
 // New solids. An IfcExtrudedAreaSolidTapered or IfcRevolvedAreaSolidTapered is read as the
 // untapered solid, an IfcSweptDiskSolidPolygonal as an IfcSweptDiskSolid without its fillets
 // (each said). What IFC2X3 has no form for (IfcAdvancedBrep's NURBS faces, a fixed-reference
-// sweep, curved surfaces as items) is left out: an empty bounding box, said.
+// sweep, curved surfaces as items) is left out: an empty bounding box, said. An
+// IfcAdvancedFace is an IfcFaceSurface, whose edge loops Assimp passes over (said).
 //
 // Tessellated geometry. IFC4 added face sets over indexed points: IfcTriangulatedFaceSet and IfcPolygonalFaceSet,
 // their corners in an IfcCartesianPointList3D. The Reference View (the view Revit, ArchiCAD
@@ -59,6 +68,7 @@ struct Ifc4Rewrite {
   size_t owners = 0;                  ///< IfcRoot records given the owner history they lacked
   size_t curves = 0;                  ///< IfcIndexedPolyCurves rewritten as IfcPolylines
   size_t solids = 0;                  ///< IFC4 solids read as IFC2X3's, or left out
+  size_t products = 0;                ///< IFC4 kinds of product read as the IFC2X3 kind they are one of
   std::vector<std::string> warnings;  ///< what was dropped, per set ("line 40, #31 (IfcTriangulatedFaceSet): ...")
 };
 

@@ -393,14 +393,28 @@ class Builder {
     make_objects();
     make_view();
     if (plan_.walls.empty())
-      throw IfcWithoutWalls({path_, 0, 0, ""}, "the model has no walls or columns to walk between (" +
-                                              std::to_string(elements_.size()) + " elements, none a usable wall)");
+      throw IfcWithoutWalls({path_, 0, 0, ""},
+                            "the model has no walls or columns to walk between (" + std::to_string(elements_.size()) +
+                                " elements, none a usable wall)",
+                            std::make_shared<const Mesh>(faces_without_spaces(std::move(scene))));
     if (dropped_.size() > kWarningsListed)
       plan_.warnings.push_back(std::to_string(dropped_.size() - kWarningsListed) + " more elements dropped");
     return std::move(plan_);
   }
 
  private:
+  /// Every element's faces as one mesh (mesh_of_scene), in their colours, without the
+  /// spaces' volumes (read here for the rooms, they are no surfaces).
+  static Mesh faces_without_spaces(ImportedScene scene) {
+    std::vector<uint8_t> in_space(scene.nodes.size(), 0);
+    for (size_t i = 0; i < scene.nodes.size(); ++i) {  // parents come before their children
+      ImportedNode& n = scene.nodes[i];
+      in_space[i] = ifc_type(n.name) == "IfcSpace" || (n.parent >= 0 && in_space[size_t(n.parent)]);
+      if (in_space[i]) n.triangles.clear(), n.triangle_material.clear();
+    }
+    return mesh_of_scene(scene);
+  }
+
   /// A STEP physical file starts "ISO-10303-21;" and ends "END-ISO-10303-21;": a file cut
   /// short is an error rather than a building with its last storeys missing. The spaces'
   /// LongNames, which Assimp does not keep, are read from its text here.

@@ -20,23 +20,28 @@
 // Elements whose geometry cannot be used are dropped with one warning each.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/stage_timer.h"
+#include "plans/mesh.h"
 #include "plans/plan.h"
 
 namespace avenues {
 
 /// A model with no walls or columns to walk between (a structural model of beams and
 /// members, a single piece of equipment): not a building's plan, though its elements have
-/// faces that can be shown as a scene.
+/// faces that can be shown as a scene. `faces` holds them, as the reader read them (IFC4
+/// rewritten for Assimp, ifc4_for_assimp.h), in their colours, its spaces' volumes left out.
 class IfcWithoutWalls : public PlanError {
  public:
-  using PlanError::PlanError;
+  IfcWithoutWalls(SourceLoc where, const std::string& what, std::shared_ptr<const Mesh> faces)
+      : PlanError(std::move(where), what), faces(std::move(faces)) {}
+  std::shared_ptr<const Mesh> faces;
 };
 
-/// Reads an IFC file (STEP physical file, IFC2X3 or the part of IFC4 Assimp reads) as a
+/// Reads an IFC file (STEP physical file, IFC2X3 or IFC4) as a
 /// lenient Plan, its first view at eye height in the largest named space of the entrance
 /// storey (the storey with spaces whose floor is nearest the ground, z = 0), looking along
 /// its longest free direction. Throws PlanError naming the file for a file that is not a
