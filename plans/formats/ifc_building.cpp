@@ -392,11 +392,17 @@ class Builder {
     make_surfaces();
     make_objects();
     make_view();
-    if (plan_.walls.empty())
-      throw IfcWithoutWalls({path_, 0, 0, ""},
-                            "the model has no walls or columns to walk between (" + std::to_string(elements_.size()) +
-                                " elements, none a usable wall)",
-                            std::make_shared<const Mesh>(faces_without_spaces(std::move(scene))));
+    if (plan_.walls.empty()) {
+      const std::string what = "the model has no walls or columns to walk between (" +
+                               std::to_string(elements_.size()) + " elements, none a usable wall)";
+      std::shared_ptr<const Mesh> faces;
+      try {
+        faces = std::make_shared<const Mesh>(faces_without_spaces(std::move(scene)));
+      } catch (const std::runtime_error&) {  // mesh_of_scene: not one triangle
+        throw PlanError({path_, 0, 0, ""}, what + ", and no faces but its spaces' to show as a scene");
+      }
+      throw IfcWithoutWalls({path_, 0, 0, ""}, what, std::move(faces));
+    }
     if (dropped_.size() > kWarningsListed)
       plan_.warnings.push_back(std::to_string(dropped_.size() - kWarningsListed) + " more elements dropped");
     return std::move(plan_);
