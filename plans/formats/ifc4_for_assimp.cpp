@@ -109,12 +109,6 @@ std::string reference(unsigned long long id) {
   return s;
 }
 
-std::string_view trimmed(std::string_view v) {
-  while (!v.empty() && (v.front() == ' ' || v.front() == '\t' || v.front() == '\r' || v.front() == '\n')) v.remove_prefix(1);
-  while (!v.empty() && (v.back() == ' ' || v.back() == '\t' || v.back() == '\r' || v.back() == '\n')) v.remove_suffix(1);
-  return v;
-}
-
 /// "head#1,#2,#3))": a record's body listing references.
 std::string listing(const char* head, const std::vector<unsigned long long>& ids, const char* tail) {
   std::string s = head;
@@ -129,7 +123,7 @@ std::string listing(const char* head, const std::vector<unsigned long long>& ids
 /// the first holding the top 2 bits ('0' to '3'). A property's or quantity's Name, also first
 /// and followed by an optional Description, is not one ('WarrantyGuarantorLabor').
 bool is_global_id(std::string_view a) {
-  a = trimmed(a);
+  a = step_trimmed(a);
   if (a.size() != 24 || a.front() != '\'' || a.back() != '\'' || a[1] < '0' || a[1] > '3') return false;
   for (char c : a.substr(1, 22))
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '$') return false;
@@ -325,7 +319,7 @@ class Rewriter {
     const std::vector<std::string_view>* points = points_of(*list, found->second);
     if (!points) return give_up("its point list " + reference(*list) + " is not a list of three numbers each");
     std::optional<std::vector<long long>> pn;
-    if (a.size() > at.pn_index && trimmed(a[at.pn_index]) != "$") {
+    if (a.size() > at.pn_index && step_trimmed(a[at.pn_index]) != "$") {
       pn = integers(a[at.pn_index]);
       if (!pn) return give_up("its PnIndex is not a list of integers");
     }
@@ -410,7 +404,7 @@ class Rewriter {
       records_.clear();
       return give_up("no face is left");
     }
-    const bool closed = trimmed(a[at.closed]) == ".T." && unreadable + dropped == 0;
+    const bool closed = step_trimmed(a[at.closed]) == ".T." && unreadable + dropped == 0;
     const unsigned long long s = add(listing(closed ? "IFCCLOSEDSHELL((" : "IFCOPENSHELL((", face_ids, "))"));
     return finish(r.id, closed ? listing("IFCFACETEDBREP(", {s}, ")") : listing("IFCSHELLBASEDSURFACEMODEL((", {s}, "))"));
   }
@@ -444,7 +438,7 @@ class Rewriter {
            std::any_of(std::begin(kUnreadable), std::end(kUnreadable), is) ||
            std::any_of(std::begin(kSweptAreaSolids), std::end(kSweptAreaSolids), is) || is("IFCSWEPTDISKSOLID") ||
            std::any_of(std::begin(kProfiles), std::end(kProfiles), is) || is("IFCADVANCEDFACE") ||
-           (r.attributes.size() >= 2 && is_global_id(r.attributes[0]) && trimmed(r.attributes[1]) == "$");
+           (r.attributes.size() >= 2 && is_global_id(r.attributes[0]) && step_trimmed(r.attributes[1]) == "$");
   }
 
   /// Record r as IFC2X3 says it, or nullopt when it is that already:
@@ -479,7 +473,7 @@ class Rewriter {
     };
     if (std::any_of(std::begin(kUnreadable), std::end(kUnreadable), [&](const char* k) { return keyword == k; }))
       return left_out("IFC2X3, which Assimp reads, has no form for it");
-    if (a.size() >= 2 && is_global_id(a[0]) && trimmed(a[1]) == "$") {
+    if (a.size() >= 2 && is_global_id(a[0]) && step_trimmed(a[1]) == "$") {
       if (!owner_) {
         const unsigned long long person = add("IFCPERSON($,$,'',$,$,$,$,$)");
         const unsigned long long org = add("IFCORGANIZATION($,'',$,$,$)");
@@ -490,7 +484,7 @@ class Rewriter {
       a[1] = reference(owner_), changed = true, ++out.owners;
     }
     if (std::any_of(std::begin(kSweptAreaSolids), std::end(kSweptAreaSolids), [&](const char* k) { return keyword == k; }) &&
-        a.size() >= 2 && trimmed(a[1]) == "$") {
+        a.size() >= 2 && step_trimmed(a[1]) == "$") {
       if (!placement_) {
         const unsigned long long origin = add("IFCCARTESIANPOINT((0.,0.,0.))");
         placement_ = add(listing("IFCAXIS2PLACEMENT3D(", {origin}, ",$,$)"));
@@ -498,7 +492,7 @@ class Rewriter {
       a[1] = reference(placement_), changed = true;
     }
     if (std::any_of(std::begin(kProfiles), std::end(kProfiles), [&](const char* k) { return keyword == k; }) &&
-        a.size() >= 3 && trimmed(a[2]) == "$") {
+        a.size() >= 3 && step_trimmed(a[2]) == "$") {
       if (!placement_2d_) {
         const unsigned long long origin = add("IFCCARTESIANPOINT((0.,0.))");
         placement_2d_ = add(listing("IFCAXIS2PLACEMENT2D(", {origin}, ",$)"));
@@ -509,13 +503,13 @@ class Rewriter {
       warn(r, "IfcAdvancedFace", "read as an IfcFaceSurface: its edge loops (curves, not polygons) are left out");
       keyword = "IFCFACESURFACE", changed = true, ++out.solids;
     }
-    if (keyword == "IFCSWEPTDISKSOLID" && a.size() >= 5 && (trimmed(a[3]) == "$" || trimmed(a[4]) == "$")) {
+    if (keyword == "IFCSWEPTDISKSOLID" && a.size() >= 5 && (step_trimmed(a[3]) == "$" || step_trimmed(a[4]) == "$")) {
       const auto directrix = step_reference(a[0]);
       const auto corners = directrix ? polyline_points_.find(*directrix) : polyline_points_.end();
       if (corners == polyline_points_.end() || corners->second < 2)
         return left_out("its sweep has no StartParam or EndParam, and its directrix is no polyline whose range is known");
-      if (trimmed(a[3]) == "$") a[3] = "0.";
-      if (trimmed(a[4]) == "$") a[4] = step_real(double(corners->second - 1));
+      if (step_trimmed(a[3]) == "$") a[3] = "0.";
+      if (step_trimmed(a[4]) == "$") a[4] = step_real(double(corners->second - 1));
       changed = true;
     }
     if (!changed) return std::nullopt;
@@ -596,7 +590,7 @@ class Rewriter {
       if (order.empty() || order.back() != i) order.push_back(i);
     };
     auto in_range = [&](long long i) { return i >= 1 && size_t(i) <= points->size(); };
-    if (a.size() < 2 || trimmed(a[1]) == "$") {
+    if (a.size() < 2 || step_trimmed(a[1]) == "$") {
       for (size_t i = 0; i < points->size(); ++i) push(i);
     } else {
       const auto segments = step_list(a[1]);

@@ -132,11 +132,9 @@ std::optional<Record> record_of(std::string_view r) {
 
 /// The body of an attribute that is one string ('...'), else nullopt ($, a reference, ...).
 std::optional<std::string_view> string_body(std::string_view a) {
-  size_t b = 0, e = a.size();
-  while (b < e && std::isspace(static_cast<unsigned char>(a[b]))) ++b;
-  while (e > b && std::isspace(static_cast<unsigned char>(a[e - 1]))) --e;
-  if (e - b < 2 || a[b] != '\'' || a[e - 1] != '\'' || skip_string(a, b) != e) return std::nullopt;
-  return a.substr(b + 1, e - b - 2);
+  a = step_trimmed(a);
+  if (a.size() < 2 || a.front() != '\'' || a.back() != '\'' || skip_string(a, 0) != a.size()) return std::nullopt;
+  return a.substr(1, a.size() - 2);
 }
 
 /// "#12", built in steps (GCC 12 warns falsely of an overlap in "#" + std::to_string(n)).
@@ -308,13 +306,14 @@ void for_each_step_record(std::string_view text, const std::function<void(const 
   }
 }
 
+std::string_view step_trimmed(std::string_view v) {
+  while (!v.empty() && std::isspace(static_cast<unsigned char>(v.front()))) v.remove_prefix(1);
+  while (!v.empty() && std::isspace(static_cast<unsigned char>(v.back()))) v.remove_suffix(1);
+  return v;
+}
+
 std::optional<std::vector<std::string_view>> step_list(std::string_view a) {
-  auto trim = [](std::string_view v) {
-    while (!v.empty() && std::isspace(static_cast<unsigned char>(v.front()))) v.remove_prefix(1);
-    while (!v.empty() && std::isspace(static_cast<unsigned char>(v.back()))) v.remove_suffix(1);
-    return v;
-  };
-  a = trim(a);
+  a = step_trimmed(a);
   if (a.size() < 2 || a.front() != '(' || a.back() != ')') return std::nullopt;
   std::vector<std::string_view> items;
   int depth = 0;
@@ -328,13 +327,13 @@ std::optional<std::vector<std::string_view>> step_list(std::string_view a) {
     if (c == '(') ++depth;
     if (c == ')' && --depth < 0) return std::nullopt;  // the first '(' closed before the end
     if (c == ',' && depth == 0) {
-      items.push_back(trim(a.substr(from, i - from)));
+      items.push_back(step_trimmed(a.substr(from, i - from)));
       from = i + 1;
     }
     ++i;
   }
   if (depth != 0) return std::nullopt;
-  const std::string_view last = trim(a.substr(from, a.size() - 1 - from));
+  const std::string_view last = step_trimmed(a.substr(from, a.size() - 1 - from));
   if (!last.empty() || !items.empty()) items.push_back(last);
   for (std::string_view item : items)
     if (item.empty()) return std::nullopt;  // "(a,,b)"
@@ -342,8 +341,7 @@ std::optional<std::vector<std::string_view>> step_list(std::string_view a) {
 }
 
 std::optional<unsigned long long> step_reference(std::string_view a) {
-  while (!a.empty() && std::isspace(static_cast<unsigned char>(a.front()))) a.remove_prefix(1);
-  while (!a.empty() && std::isspace(static_cast<unsigned char>(a.back()))) a.remove_suffix(1);
+  a = step_trimmed(a);
   if (a.size() < 2 || a.size() > 19 || a[0] != '#') return std::nullopt;
   unsigned long long n = 0;
   for (size_t k = 1; k < a.size(); ++k) {

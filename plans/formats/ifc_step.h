@@ -53,6 +53,9 @@ struct StepRecord {
 /// ("#id=(A(...)B(...));"), header lines and records it cannot read are passed over.
 void for_each_step_record(std::string_view step_text, const std::function<void(const StepRecord&)>& f);
 
+/// An attribute without the white space around it (as a record's attributes are written).
+std::string_view step_trimmed(std::string_view attribute);
+
 /// The items of a STEP aggregate attribute "(a,b,(c,d))", as written, white space around
 /// them trimmed; nullopt when the attribute is not one aggregate.
 std::optional<std::vector<std::string_view>> step_list(std::string_view attribute);
