@@ -111,10 +111,24 @@ Outline make_outline(const Plan& plan) {
 
     // Does a wall end touch another wall of the storey? Then cap it square by h so
     // that L and T junctions of separate walls close (the cap stays inside the other wall).
-    auto touches_other = [&](Vec2 p) {
+    // Not where the other wall only carries on in the same line from this very point (the
+    // steps of a sloped wall, a low wall continuing a high one): their square ends meet
+    // flush, and a cap would lay this wall's height over the other's for h.
+    auto carries_on = [&](const Wall& o, Vec2 p, Vec2 away) {  // away: the direction leaving this wall at p
+      const auto& oc = o.centre;
+      if (oc.size() < 2 || !o.footprint.empty()) return false;
+      for (int e = 0; e < 2; ++e) {
+        const Vec2 q = e == 0 ? oc.front() : oc.back(), next = e == 0 ? oc[1] : oc[oc.size() - 2];
+        if (length(q - p) > 1e-9) continue;
+        const Vec2 d = unit(next - q);
+        if (std::fabs(cross(d, away)) <= 1e-9 && dot(d, away) > 0) return true;
+      }
+      return false;
+    };
+    auto touches_other = [&](Vec2 p, Vec2 away) {
       for (int oi = 0; oi < int(plan.walls.size()); ++oi) {
         const Wall& o = plan.walls[size_t(oi)];
-        if (oi == wi || o.storey != w.storey) continue;
+        if (oi == wi || o.storey != w.storey || carries_on(o, p, away)) continue;
         for (size_t k = 0; k + 1 < o.centre.size(); ++k)
           if (distance(p, o.centre[k], o.centre[k + 1]) <= o.thickness / 2 + 1e-9) return true;
       }
@@ -159,8 +173,8 @@ Outline make_outline(const Plan& plan) {
     for (size_t i = 0; i + 1 < nseg; ++i) join(i, i + 1);
     if (closed && nseg > 2) join(nseg - 1, 0);
     if (!closed && h > 0 && w.footprint.empty()) {
-      if (touches_other(c.front())) start[0] = square(0, c.front() - h * dir[0]);
-      if (touches_other(c.back())) end[nseg - 1] = square(nseg - 1, c.back() + h * dir[nseg - 1]);
+      if (touches_other(c.front(), -1.0 * dir[0])) start[0] = square(0, c.front() - h * dir[0]);
+      if (touches_other(c.back(), dir[nseg - 1])) end[nseg - 1] = square(nseg - 1, c.back() + h * dir[nseg - 1]);
     }
 
     double along = 0;  // distance along the centre line to the segment's start

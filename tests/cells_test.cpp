@@ -235,6 +235,32 @@ TEST(Cells, LowWallLeavesTheSpaceAboveItOpen) {
   EXPECT_EQ(gaps, 2);  // one on each face of the wall, from 1.0 m to the ceiling
 }
 
+TEST(Cells, LowWallsCarryingOnInOneLineMeetFlushEachAtItsOwnHeight) {
+  // A sloped wall read as steps (a Sweet Home gable) is low walls end to end. An end that
+  // touches another wall is capped by half the thickness so that L and T junctions close;
+  // capped here, each step would lay its height over its neighbour's for 10 cm.
+  Plan p = box_room();
+  Wall low = wall("low", {{1, 0.8}, {2, 0.8}}, 0.2), higher = wall("higher", {{2, 0.8}, {3, 0.8}}, 0.2);
+  low.height = 0.5;
+  higher.height = 1.0;
+  p.walls.push_back(low);
+  p.walls.push_back(higher);
+  const CellComplex c = build_cells(p);
+  EXPECT_EQ(cells_are_valid(c), "");
+  int doorways = 0;
+  for (const Cell& cell : c.cells) {
+    if (cell.kind != CellKind::Doorway) continue;
+    ++doorways;
+    double x0 = HUGE_VAL, x1 = -HUGE_VAL;
+    for (Vec2 v : cell.footprint) x0 = std::min(x0, v.x), x1 = std::max(x1, v.x);
+    const bool over_low = std::fabs(cell.z0 - 0.5) < 1e-9;
+    EXPECT_TRUE(over_low || std::fabs(cell.z0 - 1.0) < 1e-9) << cell.z0;
+    EXPECT_NEAR(x0, over_low ? 1.0 : 2.0, 1e-9) << "z0 " << cell.z0;
+    EXPECT_NEAR(x1, over_low ? 2.0 : 3.0, 1e-9) << "z0 " << cell.z0;
+  }
+  EXPECT_EQ(doorways, 2) << "one over each wall";
+}
+
 TEST(Cells, PointLocationAgreesWithBruteForce) {
   for (double thickness : {0.2, 0.0}) {
     CellComplex c = build_cells(two_rooms_one_door(thickness));
