@@ -42,51 +42,52 @@ constexpr const char* kUnreadable[] = {"IFCADVANCEDBREP", "IFCADVANCEDBREPWITHVO
 
 /// IFC4's kinds of product that IFC2X3 knows under a more general name (its supertype, or a
 /// proxy): read as that, every attribute kept (IFC2X3's reader reads what it knows of them).
+/// The IFC4 names as IFC spells them; a keyword matches in upper case.
 /// "StandardCase" and "ElementedCase" say how the geometry was made; the distribution
 /// elements IFC4 split by function are IFC2X3's flow terminals, segments, fittings, ...
 constexpr std::pair<const char*, const char*> kRenamed[] = {
-    {"IFCBEAMSTANDARDCASE", "IFCBEAM"}, {"IFCCOLUMNSTANDARDCASE", "IFCCOLUMN"}, {"IFCDOORSTANDARDCASE", "IFCDOOR"},
-    {"IFCMEMBERSTANDARDCASE", "IFCMEMBER"}, {"IFCOPENINGSTANDARDCASE", "IFCOPENINGELEMENT"},
-    {"IFCPLATESTANDARDCASE", "IFCPLATE"}, {"IFCSLABSTANDARDCASE", "IFCSLAB"}, {"IFCSLABELEMENTEDCASE", "IFCSLAB"},
-    {"IFCWALLELEMENTEDCASE", "IFCWALL"}, {"IFCWINDOWSTANDARDCASE", "IFCWINDOW"},
-    {"IFCFURNITURE", "IFCFURNISHINGELEMENT"}, {"IFCSYSTEMFURNITUREELEMENT", "IFCFURNISHINGELEMENT"},
-    {"IFCCHIMNEY", "IFCBUILDINGELEMENTPROXY"}, {"IFCSHADINGDEVICE", "IFCBUILDINGELEMENTPROXY"},
-    {"IFCCIVILELEMENT", "IFCBUILDINGELEMENTPROXY"}, {"IFCGEOGRAPHICELEMENT", "IFCBUILDINGELEMENTPROXY"},
-    {"IFCVIBRATIONISOLATOR", "IFCDISCRETEACCESSORY"},
-    {"IFCAIRTERMINAL", "IFCFLOWTERMINAL"}, {"IFCAUDIOVISUALAPPLIANCE", "IFCFLOWTERMINAL"},
-    {"IFCCOMMUNICATIONSAPPLIANCE", "IFCFLOWTERMINAL"}, {"IFCELECTRICAPPLIANCE", "IFCFLOWTERMINAL"},
-    {"IFCFIRESUPPRESSIONTERMINAL", "IFCFLOWTERMINAL"}, {"IFCLAMP", "IFCFLOWTERMINAL"},
-    {"IFCLIGHTFIXTURE", "IFCFLOWTERMINAL"}, {"IFCMEDICALDEVICE", "IFCFLOWTERMINAL"}, {"IFCOUTLET", "IFCFLOWTERMINAL"},
-    {"IFCSANITARYTERMINAL", "IFCFLOWTERMINAL"}, {"IFCSPACEHEATER", "IFCFLOWTERMINAL"},
-    {"IFCSTACKTERMINAL", "IFCFLOWTERMINAL"}, {"IFCWASTETERMINAL", "IFCFLOWTERMINAL"},
-    {"IFCCABLECARRIERSEGMENT", "IFCFLOWSEGMENT"}, {"IFCCABLESEGMENT", "IFCFLOWSEGMENT"},
-    {"IFCDUCTSEGMENT", "IFCFLOWSEGMENT"}, {"IFCPIPESEGMENT", "IFCFLOWSEGMENT"},
-    {"IFCCABLECARRIERFITTING", "IFCFLOWFITTING"}, {"IFCCABLEFITTING", "IFCFLOWFITTING"},
-    {"IFCDUCTFITTING", "IFCFLOWFITTING"}, {"IFCJUNCTIONBOX", "IFCFLOWFITTING"}, {"IFCPIPEFITTING", "IFCFLOWFITTING"},
-    {"IFCAIRTERMINALBOX", "IFCFLOWCONTROLLER"}, {"IFCDAMPER", "IFCFLOWCONTROLLER"},
-    {"IFCELECTRICDISTRIBUTIONBOARD", "IFCFLOWCONTROLLER"}, {"IFCELECTRICTIMECONTROL", "IFCFLOWCONTROLLER"},
-    {"IFCFLOWMETER", "IFCFLOWCONTROLLER"}, {"IFCPROTECTIVEDEVICE", "IFCFLOWCONTROLLER"},
-    {"IFCSWITCHINGDEVICE", "IFCFLOWCONTROLLER"}, {"IFCVALVE", "IFCFLOWCONTROLLER"},
-    {"IFCCOMPRESSOR", "IFCFLOWMOVINGDEVICE"}, {"IFCFAN", "IFCFLOWMOVINGDEVICE"}, {"IFCPUMP", "IFCFLOWMOVINGDEVICE"},
-    {"IFCELECTRICFLOWSTORAGEDEVICE", "IFCFLOWSTORAGEDEVICE"}, {"IFCTANK", "IFCFLOWSTORAGEDEVICE"},
-    {"IFCDUCTSILENCER", "IFCFLOWTREATMENTDEVICE"}, {"IFCFILTER", "IFCFLOWTREATMENTDEVICE"},
-    {"IFCINTERCEPTOR", "IFCFLOWTREATMENTDEVICE"},
-    {"IFCAIRTOAIRHEATRECOVERY", "IFCENERGYCONVERSIONDEVICE"}, {"IFCBOILER", "IFCENERGYCONVERSIONDEVICE"},
-    {"IFCBURNER", "IFCENERGYCONVERSIONDEVICE"}, {"IFCCHILLER", "IFCENERGYCONVERSIONDEVICE"},
-    {"IFCCOIL", "IFCENERGYCONVERSIONDEVICE"}, {"IFCCONDENSER", "IFCENERGYCONVERSIONDEVICE"},
-    {"IFCCOOLEDBEAM", "IFCENERGYCONVERSIONDEVICE"}, {"IFCCOOLINGTOWER", "IFCENERGYCONVERSIONDEVICE"},
-    {"IFCELECTRICGENERATOR", "IFCENERGYCONVERSIONDEVICE"}, {"IFCELECTRICMOTOR", "IFCENERGYCONVERSIONDEVICE"},
-    {"IFCENGINE", "IFCENERGYCONVERSIONDEVICE"}, {"IFCEVAPORATIVECOOLER", "IFCENERGYCONVERSIONDEVICE"},
-    {"IFCEVAPORATOR", "IFCENERGYCONVERSIONDEVICE"}, {"IFCHEATEXCHANGER", "IFCENERGYCONVERSIONDEVICE"},
-    {"IFCHUMIDIFIER", "IFCENERGYCONVERSIONDEVICE"}, {"IFCMOTORCONNECTION", "IFCENERGYCONVERSIONDEVICE"},
-    {"IFCSOLARDEVICE", "IFCENERGYCONVERSIONDEVICE"}, {"IFCTRANSFORMER", "IFCENERGYCONVERSIONDEVICE"},
-    {"IFCTUBEBUNDLE", "IFCENERGYCONVERSIONDEVICE"}, {"IFCUNITARYEQUIPMENT", "IFCENERGYCONVERSIONDEVICE"},
-    {"IFCACTUATOR", "IFCDISTRIBUTIONCONTROLELEMENT"}, {"IFCALARM", "IFCDISTRIBUTIONCONTROLELEMENT"},
-    {"IFCCONTROLLER", "IFCDISTRIBUTIONCONTROLELEMENT"}, {"IFCFLOWINSTRUMENT", "IFCDISTRIBUTIONCONTROLELEMENT"},
-    {"IFCPROTECTIVEDEVICETRIPPINGUNIT", "IFCDISTRIBUTIONCONTROLELEMENT"}, {"IFCSENSOR", "IFCDISTRIBUTIONCONTROLELEMENT"},
-    {"IFCUNITARYCONTROLELEMENT", "IFCDISTRIBUTIONCONTROLELEMENT"},
+    {"IfcBeamStandardCase", "IFCBEAM"}, {"IfcColumnStandardCase", "IFCCOLUMN"}, {"IfcDoorStandardCase", "IFCDOOR"},
+    {"IfcMemberStandardCase", "IFCMEMBER"}, {"IfcOpeningStandardCase", "IFCOPENINGELEMENT"},
+    {"IfcPlateStandardCase", "IFCPLATE"}, {"IfcSlabStandardCase", "IFCSLAB"}, {"IfcSlabElementedCase", "IFCSLAB"},
+    {"IfcWallElementedCase", "IFCWALL"}, {"IfcWindowStandardCase", "IFCWINDOW"},
+    {"IfcFurniture", "IFCFURNISHINGELEMENT"}, {"IfcSystemFurnitureElement", "IFCFURNISHINGELEMENT"},
+    {"IfcChimney", "IFCBUILDINGELEMENTPROXY"}, {"IfcShadingDevice", "IFCBUILDINGELEMENTPROXY"},
+    {"IfcCivilElement", "IFCBUILDINGELEMENTPROXY"}, {"IfcGeographicElement", "IFCBUILDINGELEMENTPROXY"},
+    {"IfcVibrationIsolator", "IFCDISCRETEACCESSORY"},
+    {"IfcAirTerminal", "IFCFLOWTERMINAL"}, {"IfcAudioVisualAppliance", "IFCFLOWTERMINAL"},
+    {"IfcCommunicationsAppliance", "IFCFLOWTERMINAL"}, {"IfcElectricAppliance", "IFCFLOWTERMINAL"},
+    {"IfcFireSuppressionTerminal", "IFCFLOWTERMINAL"}, {"IfcLamp", "IFCFLOWTERMINAL"},
+    {"IfcLightFixture", "IFCFLOWTERMINAL"}, {"IfcMedicalDevice", "IFCFLOWTERMINAL"}, {"IfcOutlet", "IFCFLOWTERMINAL"},
+    {"IfcSanitaryTerminal", "IFCFLOWTERMINAL"}, {"IfcSpaceHeater", "IFCFLOWTERMINAL"},
+    {"IfcStackTerminal", "IFCFLOWTERMINAL"}, {"IfcWasteTerminal", "IFCFLOWTERMINAL"},
+    {"IfcCableCarrierSegment", "IFCFLOWSEGMENT"}, {"IfcCableSegment", "IFCFLOWSEGMENT"},
+    {"IfcDuctSegment", "IFCFLOWSEGMENT"}, {"IfcPipeSegment", "IFCFLOWSEGMENT"},
+    {"IfcCableCarrierFitting", "IFCFLOWFITTING"}, {"IfcCableFitting", "IFCFLOWFITTING"},
+    {"IfcDuctFitting", "IFCFLOWFITTING"}, {"IfcJunctionBox", "IFCFLOWFITTING"}, {"IfcPipeFitting", "IFCFLOWFITTING"},
+    {"IfcAirTerminalBox", "IFCFLOWCONTROLLER"}, {"IfcDamper", "IFCFLOWCONTROLLER"},
+    {"IfcElectricDistributionBoard", "IFCFLOWCONTROLLER"}, {"IfcElectricTimeControl", "IFCFLOWCONTROLLER"},
+    {"IfcFlowMeter", "IFCFLOWCONTROLLER"}, {"IfcProtectiveDevice", "IFCFLOWCONTROLLER"},
+    {"IfcSwitchingDevice", "IFCFLOWCONTROLLER"}, {"IfcValve", "IFCFLOWCONTROLLER"},
+    {"IfcCompressor", "IFCFLOWMOVINGDEVICE"}, {"IfcFan", "IFCFLOWMOVINGDEVICE"}, {"IfcPump", "IFCFLOWMOVINGDEVICE"},
+    {"IfcElectricFlowStorageDevice", "IFCFLOWSTORAGEDEVICE"}, {"IfcTank", "IFCFLOWSTORAGEDEVICE"},
+    {"IfcDuctSilencer", "IFCFLOWTREATMENTDEVICE"}, {"IfcFilter", "IFCFLOWTREATMENTDEVICE"},
+    {"IfcInterceptor", "IFCFLOWTREATMENTDEVICE"},
+    {"IfcAirToAirHeatRecovery", "IFCENERGYCONVERSIONDEVICE"}, {"IfcBoiler", "IFCENERGYCONVERSIONDEVICE"},
+    {"IfcBurner", "IFCENERGYCONVERSIONDEVICE"}, {"IfcChiller", "IFCENERGYCONVERSIONDEVICE"},
+    {"IfcCoil", "IFCENERGYCONVERSIONDEVICE"}, {"IfcCondenser", "IFCENERGYCONVERSIONDEVICE"},
+    {"IfcCooledBeam", "IFCENERGYCONVERSIONDEVICE"}, {"IfcCoolingTower", "IFCENERGYCONVERSIONDEVICE"},
+    {"IfcElectricGenerator", "IFCENERGYCONVERSIONDEVICE"}, {"IfcElectricMotor", "IFCENERGYCONVERSIONDEVICE"},
+    {"IfcEngine", "IFCENERGYCONVERSIONDEVICE"}, {"IfcEvaporativeCooler", "IFCENERGYCONVERSIONDEVICE"},
+    {"IfcEvaporator", "IFCENERGYCONVERSIONDEVICE"}, {"IfcHeatExchanger", "IFCENERGYCONVERSIONDEVICE"},
+    {"IfcHumidifier", "IFCENERGYCONVERSIONDEVICE"}, {"IfcMotorConnection", "IFCENERGYCONVERSIONDEVICE"},
+    {"IfcSolarDevice", "IFCENERGYCONVERSIONDEVICE"}, {"IfcTransformer", "IFCENERGYCONVERSIONDEVICE"},
+    {"IfcTubeBundle", "IFCENERGYCONVERSIONDEVICE"}, {"IfcUnitaryEquipment", "IFCENERGYCONVERSIONDEVICE"},
+    {"IfcActuator", "IFCDISTRIBUTIONCONTROLELEMENT"}, {"IfcAlarm", "IFCDISTRIBUTIONCONTROLELEMENT"},
+    {"IfcController", "IFCDISTRIBUTIONCONTROLELEMENT"}, {"IfcFlowInstrument", "IFCDISTRIBUTIONCONTROLELEMENT"},
+    {"IfcProtectiveDeviceTrippingUnit", "IFCDISTRIBUTIONCONTROLELEMENT"}, {"IfcSensor", "IFCDISTRIBUTIONCONTROLELEMENT"},
+    {"IfcUnitaryControlElement", "IFCDISTRIBUTIONCONTROLELEMENT"},
     // Not geometry, but a unit Assimp cannot resolve fails the whole file.
-    {"IFCCONVERSIONBASEDUNITWITHOFFSET", "IFCCONVERSIONBASEDUNIT"},
+    {"IfcConversionBasedUnitWithOffset", "IFCCONVERSIONBASEDUNIT"},
 };
 
 /// Parameterized profiles whose Position IFC4 made optional (their third attribute).
@@ -226,6 +227,13 @@ std::optional<std::vector<long long>> integers(std::string_view a) {
     out.push_back(*n);
   }
   return out;
+}
+
+/// Whether an upper-case keyword is IFC's name `name` ("IFCLAMP", "IfcLamp").
+bool upper_is(std::string_view keyword, std::string_view name) {
+  return keyword.size() == name.size() &&
+         std::equal(keyword.begin(), keyword.end(), name.begin(),
+                    [](char k, char n) { return k == std::toupper(static_cast<unsigned char>(n)); });
 }
 
 /// "IfcExtrudedAreaSolid" of "IFCEXTRUDEDAREASOLID", for messages: IFC's own spelling of the
@@ -433,7 +441,7 @@ class Rewriter {
   /// Whether fixed() has something to do with r.
   static bool needs_fixing(const StepRecord& r) {
     auto is = [&](const char* k) { return r.keyword == k; };
-    return std::any_of(std::begin(kRenamed), std::end(kRenamed), [&](const auto& n) { return is(n.first); }) ||
+    return std::any_of(std::begin(kRenamed), std::end(kRenamed), [&](const auto& n) { return upper_is(r.keyword, n.first); }) ||
            std::any_of(std::begin(kNarrowings), std::end(kNarrowings), [&](const Narrowing& n) { return is(n.from); }) ||
            std::any_of(std::begin(kUnreadable), std::end(kUnreadable), is) ||
            std::any_of(std::begin(kSweptAreaSolids), std::end(kSweptAreaSolids), is) || is("IFCSWEPTDISKSOLID") ||
@@ -456,8 +464,11 @@ class Rewriter {
     std::string keyword = r.keyword;
     std::vector<std::string> a(r.attributes.begin(), r.attributes.end());
     bool changed = false;
-    for (const auto& [from, to] : kRenamed)
-      if (keyword == from) keyword = to, changed = true, ++out.products;
+    for (const auto& [from, to] : kRenamed) {
+      if (!upper_is(keyword, from)) continue;
+      if (!a.empty() && is_global_id(a[0])) out.kinds[std::string(step_trimmed(a[0]).substr(1, 22))] = from;
+      keyword = to, changed = true, ++out.products;
+    }
     const std::string type = title_case(keyword);
     for (const Narrowing& n : kNarrowings) {
       if (keyword != n.from || a.size() < n.keep) continue;

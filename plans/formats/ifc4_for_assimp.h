@@ -54,6 +54,7 @@
 // which Assimp passes over. Each is said once per set, naming its record and line.
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -69,6 +70,7 @@ struct Ifc4Rewrite {
   size_t curves = 0;                  ///< IfcIndexedPolyCurves rewritten as IfcPolylines
   size_t solids = 0;                  ///< IFC4 solids read as IFC2X3's, or left out
   size_t products = 0;                ///< IFC4 kinds of product read as the IFC2X3 kind they are one of
+  std::map<std::string, std::string> kinds;  ///< GlobalId -> the IFC4 kind of such a product ("IfcSanitaryTerminal")
   std::vector<std::string> warnings;  ///< what was dropped, per set ("line 40, #31 (IfcTriangulatedFaceSet): ...")
 };
 

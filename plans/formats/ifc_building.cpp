@@ -83,7 +83,8 @@ struct Element {
   bool coloured = false;
   Box3 box;
   bool as_object = false;  ///< a wall or surface drawn as an object (it stands on no floor, lies on none)
-  std::string label() const { return type + " '" + (name.empty() ? guid : name) + "'"; }
+  std::string kind;  ///< the file's own kind where Assimp read it as another (IFC4's "IfcSanitaryTerminal"), else empty
+  std::string label() const { return (kind.empty() ? type : kind) + " '" + (name.empty() ? guid : name) + "'"; }
 };
 
 /// Andrew's monotone chain; collinear points dropped.
@@ -455,6 +456,7 @@ class Builder {
     if (std::optional<Ifc4Rewrite> r = ifc4_for_assimp(text)) {
       for (const std::string& w : r->warnings) plan_.warnings.push_back(path_ + ": " + w);
       for_assimp_ = std::move(r->text);
+      ifc4_kinds_ = std::move(r->kinds);
     }
   }
 
@@ -527,6 +529,7 @@ class Builder {
         owner[i] = int(elements_.size());
         Element e;
         e.type = type, e.role = role, e.name = name_of(n.name, type), e.guid = ifc_guid(n.name);
+        if (const auto kind = ifc4_kinds_.find(e.guid); kind != ifc4_kinds_.end()) e.kind = kind->second;
         e.storey = storey_of[i];
         elements_.push_back(std::move(e));
       }
@@ -1026,6 +1029,7 @@ class Builder {
   std::vector<std::string> dropped_;
   std::map<std::string, IfcRootNames> names_;  ///< GlobalId -> the file's own names (spaces kept)
   std::string for_assimp_;  ///< the STEP text Assimp reads instead of the file, where it differs (ifc4_for_assimp.h)
+  std::map<std::string, std::string> ifc4_kinds_;  ///< GlobalId -> IFC4 kind, for products Assimp read as another
   std::map<std::array<int, 3>, MaterialId> materials_;
 };
 
