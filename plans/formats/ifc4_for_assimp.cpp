@@ -186,7 +186,8 @@ std::vector<std::vector<double>> arc_between(const std::vector<double>& a, const
   auto cross = [](const std::array<double, 3>& p, const std::array<double, 3>& q) {
     return std::array<double, 3>{p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2], p[0] * q[1] - p[1] * q[0]};
   };
-  // The circle through a, m, b: its centre c = a + (|u|²(v×w)... in the plane of u = m − a, v = b − a.
+  // The circle through a, m, b, in the plane of u = m − a and v = b − a (normal w = u × v):
+  // its centre is a + c, c = (|v|²·(w × u) + |u|²·(v × w)) / (2|w|²).
   const std::array<double, 3> u = sub(m, a), v = sub(b, a), w = cross(u, v);
   const double ww = dot(w, w);
   if (!(ww > 1e-18 * dot(u, u) * dot(v, v))) return {};  // collinear: a straight piece
@@ -194,7 +195,7 @@ std::vector<std::vector<double>> arc_between(const std::vector<double>& a, const
   std::array<double, 3> c{};
   for (size_t k = 0; k < 3; ++k) c[k] = (dot(v, v) * t1[k] + dot(u, u) * t2[k]) / (2 * ww);
   // From a (at angle 0) towards m, about the normal w: the sweep to b, the way through m.
-  const std::array<double, 3> ra{-c[0], -c[1], -c[2]};  // a − (a + c)
+  const std::array<double, 3> ra{-c[0], -c[1], -c[2]};  // a − (a + c): from the centre to a
   const double r = std::sqrt(dot(ra, ra));
   const std::array<double, 3> nrm{w[0] / std::sqrt(ww), w[1] / std::sqrt(ww), w[2] / std::sqrt(ww)};
   const std::array<double, 3> e1{ra[0] / r, ra[1] / r, ra[2] / r}, e2 = cross(nrm, e1);
