@@ -104,18 +104,12 @@ constexpr const char* kSweptAreaSolids[] = {"IFCEXTRUDEDAREASOLID", "IFCREVOLVED
 /// How many warnings name their sets; the rest are counted.
 constexpr size_t kWarningsListed = 10;
 
-std::string reference(unsigned long long id) {
-  std::string s(1, '#');
-  s += std::to_string(id);
-  return s;
-}
-
 /// "head#1,#2,#3))": a record's body listing references.
 std::string listing(const char* head, const std::vector<unsigned long long>& ids, const char* tail) {
   std::string s = head;
   for (size_t j = 0; j < ids.size(); ++j) {
     if (j) s += ',';
-    s += reference(ids[j]);
+    s += step_reference_text(ids[j]);
   }
   return s + tail;
 }
@@ -326,7 +320,7 @@ class Rewriter {
     const auto found = list ? point_lists_.find(*list) : point_lists_.end();
     if (found == point_lists_.end()) return give_up("its Coordinates are no IfcCartesianPointList3D");
     const std::vector<std::string_view>* points = points_of(*list, found->second);
-    if (!points) return give_up("its point list " + reference(*list) + " is not a list of three numbers each");
+    if (!points) return give_up("its point list " + step_reference_text(*list) + " is not a list of three numbers each");
     std::optional<std::vector<long long>> pn;
     if (a.size() > at.pn_index && step_trimmed(a[at.pn_index]) != "$") {
       pn = integers(a[at.pn_index]);
@@ -493,7 +487,7 @@ class Rewriter {
         const unsigned long long app = add(listing("IFCAPPLICATION(", {org}, ",'','','')"));
         owner_ = add(listing("IFCOWNERHISTORY(", {user, app}, ",$,.NOCHANGE.,$,$,$,0)"));
       }
-      a[1] = reference(owner_), changed = true, ++out.owners;
+      a[1] = step_reference_text(owner_), changed = true, ++out.owners;
     }
     if (std::any_of(std::begin(kSweptAreaSolids), std::end(kSweptAreaSolids), [&](const char* k) { return keyword == k; }) &&
         a.size() >= 2 && step_trimmed(a[1]) == "$") {
@@ -501,7 +495,7 @@ class Rewriter {
         const unsigned long long origin = add("IFCCARTESIANPOINT((0.,0.,0.))");
         placement_ = add(listing("IFCAXIS2PLACEMENT3D(", {origin}, ",$,$)"));
       }
-      a[1] = reference(placement_), changed = true;
+      a[1] = step_reference_text(placement_), changed = true;
     }
     if (std::any_of(std::begin(kProfiles), std::end(kProfiles), [&](const char* k) { return keyword == k; }) &&
         a.size() >= 3 && step_trimmed(a[2]) == "$") {
@@ -509,7 +503,7 @@ class Rewriter {
         const unsigned long long origin = add("IFCCARTESIANPOINT((0.,0.))");
         placement_2d_ = add(listing("IFCAXIS2PLACEMENT2D(", {origin}, ",$)"));
       }
-      a[2] = reference(placement_2d_), changed = true;
+      a[2] = step_reference_text(placement_2d_), changed = true;
     }
     if (keyword == "IFCADVANCEDFACE") {  // IfcFaceSurface's attributes, bounded by edge loops Assimp passes over
       warn(r, "IfcAdvancedFace", "read as an IfcFaceSurface: its edge loops (curves, not polygons) are left out");
@@ -535,7 +529,7 @@ class Rewriter {
 
   /// A new record with the next free id; returns the id.
   unsigned long long add(const std::string& body) {
-    std::string rec = reference(++next_id_);
+    std::string rec = step_reference_text(++next_id_);
     rec += '=';
     rec += body;
     records_.push_back(std::move(rec));
@@ -544,7 +538,7 @@ class Rewriter {
 
   /// The face set's own record, then the new ones.
   std::string finish(unsigned long long id, const std::string& body) {
-    std::string s = reference(id);
+    std::string s = step_reference_text(id);
     s += '=';
     s += body;
     for (const std::string& rec : records_) {
@@ -595,7 +589,7 @@ class Rewriter {
     const auto found = list ? point_lists_.find(*list) : point_lists_.end();
     if (found == point_lists_.end()) return give_up("its Points are no IfcCartesianPointList2D or 3D");
     const std::vector<std::string_view>* points = points_of(*list, found->second, point_dimension_[*list]);
-    if (!points || points->empty()) return give_up("its point list " + reference(*list) + " is not a list of points");
+    if (!points || points->empty()) return give_up("its point list " + step_reference_text(*list) + " is not a list of points");
     std::vector<size_t> order;  // indices into the list; arcs' own points as ~index into `computed`
     std::vector<std::vector<double>> computed;
     auto push = [&](size_t i) {
@@ -659,7 +653,7 @@ class Rewriter {
       return;
     }
     const size_t line = 1 + size_t(std::count(text_.begin(), text_.begin() + std::ptrdiff_t(r.offset), '\n'));
-    warnings_.push_back("line " + std::to_string(line) + ", " + reference(r.id) + " (" + type + "): " + what);
+    warnings_.push_back("line " + std::to_string(line) + ", " + step_reference_text(r.id) + " (" + type + "): " + what);
   }
 
   /// Arcs' points made for the whole file, at most (72 for each arc): far beyond any

@@ -80,25 +80,22 @@ void skip_space(std::string_view s, size_t& i) {
   }
 }
 
-struct Record {
-  std::string keyword;                 ///< upper case
-  std::vector<std::string_view> attributes;  ///< top level, as written
-};
-
-/// One record "#id = KEYWORD(attr, attr, ...)"; nullopt for a malformed one.
-std::optional<Record> record_of(std::string_view r) {
+/// One record "#id = KEYWORD(attr, attr, ...)" (its id read from up to 18 digits; offset
+/// and size left for the caller); nullopt for a malformed one.
+std::optional<StepRecord> record_of(std::string_view r) {
   size_t i = 0;
   skip_space(r, i);
   if (i >= r.size() || r[i] != '#') return std::nullopt;
   ++i;
+  StepRecord out;
   const size_t digits = i;
-  while (i < r.size() && std::isdigit(static_cast<unsigned char>(r[i]))) ++i;
+  for (; i < r.size() && std::isdigit(static_cast<unsigned char>(r[i])); ++i)
+    if (i - digits < 18) out.id = out.id * 10 + unsigned(r[i] - '0');
   if (i == digits) return std::nullopt;
   skip_space(r, i);
   if (i >= r.size() || r[i] != '=') return std::nullopt;
   ++i;
   skip_space(r, i);
-  Record out;
   while (i < r.size() && (std::isalnum(static_cast<unsigned char>(r[i])) || r[i] == '_'))
     out.keyword += char(std::toupper(static_cast<unsigned char>(r[i++])));
   if (out.keyword.empty()) return std::nullopt;
@@ -135,13 +132,6 @@ std::optional<std::string_view> string_body(std::string_view a) {
   a = step_trimmed(a);
   if (a.size() < 2 || a.front() != '\'' || a.back() != '\'' || skip_string(a, 0) != a.size()) return std::nullopt;
   return a.substr(1, a.size() - 2);
-}
-
-/// "#12", built in steps (GCC 12 warns falsely of an overlap in "#" + std::to_string(n)).
-std::string reference(unsigned long long id) {
-  std::string s(1, '#');
-  s += std::to_string(id);
-  return s;
 }
 
 }  // namespace
@@ -256,10 +246,10 @@ std::optional<StepProblem> step_data_problem(std::string_view text) {
     ++j;
     skip_space(piece, j);
     if (j < piece.size() && piece[j] != '(') {
-      const std::optional<Record> r = record_of(piece);
-      if (!r) return StepProblem{at, "record " + reference(*id) + " is not a STEP record (#id=ENTITY(...);)"};
+      const std::optional<StepRecord> r = record_of(piece);
+      if (!r) return StepProblem{at, "record " + step_reference_text(*id) + " is not a STEP record (#id=ENTITY(...);)"};
     }
-    if (!defined.insert(*id).second) return StepProblem{at, "record " + reference(*id) + " is defined twice"};
+    if (!defined.insert(*id).second) return StepProblem{at, "record " + step_reference_text(*id) + " is defined twice"};
     // Its own id was counted as a reference: drop it.
     for (size_t r = referenced.size(); r-- > 0;)
       if (referenced[r].second == at) {
@@ -270,7 +260,7 @@ std::optional<StepProblem> step_data_problem(std::string_view text) {
   }
   if (!saw_data) return StepProblem{0, "it has no DATA section"};
   for (const auto& [id, offset] : referenced)
-    if (!defined.count(id)) return StepProblem{offset, reference(id) + " refers to no record"};
+    if (!defined.count(id)) return StepProblem{offset, step_reference_text(id) + " refers to no record"};
   return std::nullopt;
 }
 
@@ -292,17 +282,11 @@ void for_each_step_record(std::string_view text, const std::function<void(const 
     const size_t offset = start + from;
     piece.remove_prefix(from);
     start = ++i;
-    std::optional<Record> r = record_of(piece);
+    std::optional<StepRecord> r = record_of(piece);
     if (!r) continue;
-    StepRecord out;
-    size_t k = 1;
-    while (k < piece.size() && std::isdigit(static_cast<unsigned char>(piece[k])) && k < 19)
-      out.id = out.id * 10 + unsigned(piece[k++] - '0');
-    out.offset = offset;
-    out.size = piece.size();
-    out.keyword = std::move(r->keyword);
-    out.attributes = std::move(r->attributes);
-    f(out);
+    r->offset = offset;
+    r->size = piece.size();
+    f(*r);
   }
 }
 
@@ -338,6 +322,12 @@ std::optional<std::vector<std::string_view>> step_list(std::string_view a) {
   for (std::string_view item : items)
     if (item.empty()) return std::nullopt;  // "(a,,b)"
   return items;
+}
+
+std::string step_reference_text(unsigned long long id) {
+  std::string s(1, '#');  // built in steps (GCC 12 warns falsely of an overlap in "#" + std::to_string(n))
+  s += std::to_string(id);
+  return s;
 }
 
 std::optional<unsigned long long> step_reference(std::string_view a) {

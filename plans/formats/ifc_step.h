@@ -63,6 +63,9 @@ std::optional<std::vector<std::string_view>> step_list(std::string_view attribut
 /// The id of a reference attribute "#12"; nullopt for anything else.
 std::optional<unsigned long long> step_reference(std::string_view attribute);
 
+/// A reference to record `id` as STEP writes it: "#12".
+std::string step_reference_text(unsigned long long id);
+
 /// A STEP string's body (between its quotes, quotes still doubled) decoded to UTF-8;
 /// `ok` is set false (and the result is not to be used) for a malformed escape.
 std::string decode_step_string(std::string_view body, bool& ok);
