@@ -31,6 +31,12 @@ namespace avenues {
 
 namespace {
 
+/// s in lower case (ASCII): file names and extensions compared as systems that ignore case do.
+std::string lowercase(std::string s) {
+  for (char& ch : s) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  return s;
+}
+
 /// The axes Assimp's output is in for this file, and what the file itself declared.
 struct OutputAxes {
   char up = 'z';
@@ -155,16 +161,12 @@ std::optional<std::array<double, 3>> texture_colour(const aiScene& scene, const 
     // by folder (a DOS-era 3DS's "IMAGE1.JPG" beside it as IMAGE1.jpg; "../LWo2/x.jpg").
     std::error_code ec;
     auto in_any_case = [&ec](const fs::path& from, const fs::path& relative) {
-      auto lower = [](std::string t) {
-        for (char& ch : t) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-        return t;
-      };
       fs::path at = from.empty() ? fs::path(".") : from;
       for (const fs::path& part : relative) {
         fs::path next = at / part;
         if (!fs::exists(next, ec) && part != "." && part != "..")
           for (fs::directory_iterator it(at, ec), end; !ec && it != end; it.increment(ec))
-            if (lower(it->path().filename().string()) == lower(part.string())) {
+            if (lowercase(it->path().filename().string()) == lowercase(part.string())) {
               next = it->path();
               break;
             }
@@ -236,8 +238,7 @@ void collect(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent
 /// A binary glTF (its "glTF" magic and version 2) under a name Assimp does not take for one:
 /// Assimp's glTF reader goes by the extension alone. `bytes`, when given, gets the file.
 bool binary_gltf_by_content_only(const std::string& path, std::string* bytes = nullptr) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  const std::string ext = lowercase(std::filesystem::path(path).extension().string());
   if (ext == ".glb" || ext == ".gltf") return false;
   std::ifstream in(path, std::ios::binary);
   char head[8] = {};
@@ -293,9 +294,8 @@ ImportedScene import_scene(const std::string& path, const ImportOptions& options
         aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
     std::string bytes;
     if (!options.contents.empty()) {  // Assimp tells the format by the hint: the extension without its dot
-      std::string hint = std::filesystem::path(path).extension().string();
+      std::string hint = lowercase(std::filesystem::path(path).extension().string());
       if (!hint.empty()) hint.erase(0, 1);
-      for (char& c : hint) c = char(std::tolower(static_cast<unsigned char>(c)));
       scene = importer.ReadFileFromMemory(options.contents.data(), options.contents.size(), kSteps, hint.c_str());
     }
     else if (binary_gltf_by_content_only(path, &bytes))  // whole in one file: read from memory, told it is GLB
