@@ -196,7 +196,8 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
       throw std::runtime_error(file + " is read as a mesh scene, which has no plan: --save-plan " +
                                import.save_plan + " cannot be written");
     std::vector<std::string> said;  // its materials' missing files
-    const Mesh mesh = read ? *read : load_mesh(file, axes, &said);  // names the file when unreadable
+    Mesh loaded;
+    const Mesh& mesh = read ? *read : (loaded = load_mesh(file, axes, &said));  // names the file when unreadable
     out.stages.push_back({"read mesh", seconds_since(t0)});
     // A large soup takes a while (issue 16: minutes for the curved and the structural
     // models of a few hundred thousand triangles): say so before, not after.
