@@ -78,7 +78,7 @@ EffectPlan plan_effects(const CellComplex& complex, const std::vector<PlacedObje
   for (const PlacedObject& o : objects) {
     if (o.cell == kNoCell) continue;
     ++drawn;
-    cells_with_objects.insert(o.cell);
+    for (const ObjectCell& in : o.cells) cells_with_objects.insert(in.cell);
     if (curved(o.mesh)) curved_names.push_back(o.name);
   }
   p.depth.on = drawn > 0;

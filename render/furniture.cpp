@@ -79,21 +79,14 @@ void find_edges(FurniturePiece& p) {
 Furniture place_furniture(const CellComplex& c) {
   Furniture f;
   ObjectModels loaded;
-  std::vector<CellId> near;
   for (const Object& o : c.objects) {
     FurniturePiece p;
     p.name = o.name;
     p.mesh = place(model_of(o, loaded), o, floor_of(c, o));
     find_edges(p);
-    if (const CellId pinned = pinned_cell(c, o); pinned != kNoCell) {
-      p.cells.push_back(pinned);
-    } else {
-      Box3 box;
-      for (Vec3 v : p.mesh.vertices) box.add(v);
-      c.cells_near(box, near);
-      for (CellId id : near)
-        if (c.cells[size_t(id)].bounds().meets(box)) p.cells.push_back(id);
-    }
+    Box3 box;
+    for (Vec3 v : p.mesh.vertices) box.add(v);
+    for (const ObjectCell& in : cells_met(c, o, p.mesh, box)) p.cells.push_back(in.cell);
     f.pieces.push_back(std::move(p));
   }
   return f;

@@ -10,9 +10,9 @@
 //  - creases: edges between two different polygons, both facing the eye, whose normals differ
 //    by more than a threshold: creases. A quad's diagonal joins two triangles of one polygon,
 //    so it is never an edge here at all.
-// Walls hide furniture through the cells: an object belongs to every cell its bounding box
-// overlaps (so the cell holding its centroid, and any other it reaches), and each of its
-// edges is cut to each such cell's prism and then to that cell's masks.
+// Walls hide furniture through the cells: an object belongs to every cell it meets
+// (scene_objects.h, cells_met: the cell holding its centroid, and any other it reaches), and
+// each of its edges is cut to each such cell's prism and then to that cell's masks.
 #pragma once
 
 #include <cstdint>
@@ -41,7 +41,7 @@ struct FurniturePiece {
   std::vector<Vec3> polygon_normal;  ///< unit, outward, per input polygon of the mesh
   std::vector<Vec3> polygon_point;   ///< a vertex of each polygon
   std::vector<FurnitureEdge> edges;  ///< every edge between two different polygons, and the boundary
-  std::vector<CellId> cells;         ///< ascending: the cells the bounding box overlaps
+  std::vector<CellId> cells;         ///< ascending: the cells it meets (cells_met)
 };
 
 struct Furniture {

@@ -122,7 +122,8 @@ Interpenetration find_interpenetration(const CellComplex& complex, const std::ve
   Interpenetration out;
   std::vector<std::vector<int>> in_cell(complex.cells.size());
   for (size_t o = 0; o < objects.size(); ++o)
-    if (objects[o].cell != kNoCell) in_cell[size_t(objects[o].cell)].push_back(int(o));
+    for (const ObjectCell& in : objects[o].cells)
+      if (in.cell >= 0 && size_t(in.cell) < in_cell.size()) in_cell[size_t(in.cell)].push_back(int(o));
   std::vector<Tri> tris;
   for (size_t c = 0; c < complex.cells.size(); ++c) {
     if (in_cell[c].empty()) continue;

@@ -37,7 +37,8 @@ struct Interpenetration {
 /// True when triangles a and b cross properly (not merely touch), to `tol` [m].
 bool triangles_cross(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b, double tol);
 
-/// The objects of each cell against each other and the faces of their cell.
+/// The objects of each cell (every cell each meets, PlacedObject::cells) against each other
+/// and the faces of that cell.
 Interpenetration find_interpenetration(const CellComplex& complex, const std::vector<PlacedObject>& objects);
 
 /// Meshes alone, every polygon against every other.

@@ -100,16 +100,54 @@ CellId pinned_cell(const CellComplex& complex, const Object& o) {
   return o.cell >= 0 && size_t(o.cell) < complex.cells.size() ? o.cell : kNoCell;
 }
 
+std::vector<ObjectCell> cells_met(const CellComplex& complex, const Object& o, const Mesh& placed, const Box3& box) {
+  if (const CellId pinned = pinned_cell(complex, o); pinned != kNoCell) return {{pinned, true}};
+  std::vector<ObjectCell> out;
+  if (placed.vertices.empty()) return out;
+  std::vector<CellId> near;
+  complex.cells_near(box, near);  // ascending
+  const Vec3 corners[8] = {box.lo, {box.hi.x, box.lo.y, box.lo.z}, {box.lo.x, box.hi.y, box.lo.z},
+                           {box.hi.x, box.hi.y, box.lo.z}, {box.lo.x, box.lo.y, box.hi.z},
+                           {box.hi.x, box.lo.y, box.hi.z}, {box.lo.x, box.hi.y, box.hi.z}, box.hi};
+  for (const CellId id : near) {
+    const Cell& cell = complex.cells[size_t(id)];
+    if (!cell.bounds().meets(box)) continue;
+    // It misses the cell when some face plane has every vertex on or beyond it and one
+    // beyond (an object standing on the floor above); one lying in the plane (a rug of no
+    // height on the floor) meets it. The box's corners decide most planes: an affine
+    // function is greatest at a corner.
+    bool meets = true, whole = true;
+    for (size_t f = 0; f < cell.faces.size() && meets; ++f) {
+      const Plane& plane = cell.faces[f].plane;  // outward
+      bool beyond = false;
+      for (const Vec3& c : corners) beyond |= plane.eval(c) > kOnCellFace;
+      if (!beyond) continue;
+      bool none_inside = true, one_beyond = false;
+      for (const Vec3& v : placed.vertices) {
+        const double e = plane.eval(v);
+        none_inside &= e >= -kOnCellFace;
+        one_beyond |= e > kOnCellFace;
+      }
+      meets = !(none_inside && one_beyond);
+      whole &= !one_beyond;
+    }
+    if (meets) out.push_back({id, whole});
+  }
+  return out;
+}
+
 ObjectsByCell objects_by_cell(size_t cells, const std::vector<PlacedObject>& objects) {
   ObjectsByCell by;
   by.from.assign(cells + 2, 0);
   auto counted = [cells](CellId c) { return c >= 0 && size_t(c) < cells; };  // kNoCell is -1
   for (const PlacedObject& o : objects)
-    if (counted(o.cell)) ++by.from[size_t(o.cell) + 2];
+    for (const ObjectCell& in : o.cells)
+      if (counted(in.cell)) ++by.from[size_t(in.cell) + 2];
   for (size_t c = 2; c < by.from.size(); ++c) by.from[c] += by.from[c - 1];
   by.index.resize(by.from.back());
   for (size_t i = 0; i < objects.size(); ++i)
-    if (counted(objects[i].cell)) by.index[by.from[size_t(objects[i].cell) + 1]++] = uint32_t(i);
+    for (const ObjectCell& in : objects[i].cells)
+      if (counted(in.cell)) by.index[by.from[size_t(in.cell) + 1]++] = uint32_t(i) | (in.whole ? 0 : ObjectsByCell::kCut);
   by.from.pop_back();  // from[c] is now cell c's first, from[cells] the end
   return by;
 }
@@ -133,11 +171,14 @@ std::vector<PlacedObject> place_objects(const CellComplex& complex, std::vector<
       p.bounds.add(v);
     }
     centroid = (1.0 / double(p.mesh.vertices.size())) * centroid;
+    p.cells = cells_met(complex, o, p.mesh, p.bounds);
     p.cell = pinned_cell(complex, o);
     if (p.cell == kNoCell) {
       const Location at = complex.locate(centroid, hint);
       if (at.what == Location::What::Cell) p.cell = hint = at.cell;
+      else if (!p.cells.empty()) p.cell = p.cells[0].cell;
     }
+    if (p.cell == kNoCell) p.cells.clear();
     if (o.material >= 0 && size_t(o.material) < complex.materials.size())
       p.paint.materials.push_back(complex.materials[size_t(o.material)]);
     else p.paint = paint_of_mesh(p.mesh);

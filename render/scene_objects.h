@@ -39,11 +39,35 @@ struct PolygonRuns {
 /// The runs of m's triangles: a run ends at the first polygon's end after 16 triangles.
 PolygonRuns polygon_runs(const Mesh& m);
 
-/// A plan object loaded, placed, and assigned to the cell holding its centroid.
+/// A cell an object meets, and whether the object lies wholly inside it.
+struct ObjectCell {
+  CellId cell = kNoCell;
+  bool whole = false;  ///< every vertex inside the cell (within kOnCellFace): nothing to cut
+};
+
+/// [m] how far outside a cell's face plane a vertex may lie and still be in the cell: an
+/// object standing on a floor, or cut to a cell's face, belongs to that cell.
+inline constexpr double kOnCellFace = 1e-9;
+
+/// The cells an object placed as `placed` meets, ascending: those whose box meets the
+/// mesh's box `box` and none of whose face planes has every vertex beyond it. An object cut
+/// to a cell already (pinned_cell) meets that cell only, whole. One rule for the half-tone
+/// (PlacedObject::cells) and the line drawing's furniture (furniture.h).
+std::vector<ObjectCell> cells_met(const CellComplex& complex, const Object& o, const Mesh& placed, const Box3& box);
+
+/// A plan object loaded, placed, and assigned to the cells it meets. Jones's cells are the
+/// space between walls, so an object need not lie in one: a rug reaches under a low wall,
+/// a window's frame stands out of its opening into both rooms. It is drawn in every cell
+/// it meets, cut in 3D to that cell (scene_view.cpp), so that within an avenue it hides
+/// and is hidden as its cell's own contents are.
 struct PlacedObject {
   std::string name;
   Mesh mesh;               ///< world coordinates [m]
-  CellId cell = kNoCell;   ///< kNoCell: its centroid lies in a solid or outside the far box; never drawn
+  /// Its home: the cell holding its centroid (or pinned_cell), else the first it meets;
+  /// kNoCell: it meets no cell (inside a solid, outside the far box), never drawn. Lights
+  /// reach an object, and decide its shadows, by this cell.
+  CellId cell = kNoCell;
+  std::vector<ObjectCell> cells;  ///< every cell it meets (cells_met), ascending; empty when cell is kNoCell
   MeshPaint paint;
   Box3 bounds;             ///< of the placed mesh's vertices
   /// Coarser versions, placed like `mesh` (tolerances in metres, ascending), when
@@ -81,8 +105,9 @@ double floor_of(const CellComplex& complex, const Object& o);
 CellId pinned_cell(const CellComplex& complex, const Object& o);
 
 /// Loads every object of the complex (plans/mesh.h, each file read once), places it on
-/// its storey, and finds the cell holding the centroid of its vertices (an object cut to a
-/// cell already keeps that one, pinned_cell). Its paint is its
+/// its storey, and finds the cells it meets (cells_met) and its home among them, the cell
+/// holding the centroid of its vertices (an object cut to a cell already keeps that one,
+/// pinned_cell). Its paint is its
 /// own material (Object::material) where it has one, else its mesh's (paint_of_mesh). Throws
 /// std::runtime_error naming the mesh file when one cannot be read; what reading a mesh let
 /// pass (an OBJ's missing MTL library or image, load_object_mesh) goes to `warnings`
@@ -99,16 +124,19 @@ std::vector<PlacedObject> place_objects(const CellComplex& complex, std::vector<
 /// soup's detail is thousands of objects, and going through them all costs a frame that
 /// sees three polygons a tenth of a millisecond.
 struct ObjectsByCell {
+  /// Set on an entry of `index` whose object reaches beyond the cell (ObjectCell::whole
+  /// false): drawn in that cell, it is cut to the cell.
+  static constexpr uint32_t kCut = 1u << 31;
   std::vector<uint32_t> from;   ///< per cell c (and one more): cell c's objects are index[from[c] .. from[c + 1])
-  std::vector<uint32_t> index;  ///< into the objects
-  /// Cell c's objects (none for a cell out of range).
+  std::vector<uint32_t> index;  ///< into the objects, with kCut
+  /// Cell c's objects, each with kCut where it must be cut to the cell (none for a cell out of range).
   std::span<const uint32_t> of(CellId c) const {
     if (c < 0 || size_t(c) + 1 >= from.size()) return {};
     return {index.data() + from[size_t(c)], index.data() + from[size_t(c) + 1]};
   }
 };
-/// The objects of each of `cells` cells, by a counting sort (objects of no cell, or of a
-/// cell out of range, in none).
+/// The objects of each of `cells` cells (every cell each meets, PlacedObject::cells), by a
+/// counting sort (cells out of range left out).
 ObjectsByCell objects_by_cell(size_t cells, const std::vector<PlacedObject>& objects);
 
 /// Each object's coarser versions (PlacedObject::coarser), in the order of complex.objects:

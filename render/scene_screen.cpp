@@ -199,6 +199,12 @@ bool ScreenSceneBuilder::add(const std::vector<Vec3>& points, Vec3 n, double d, 
   return true;
 }
 
+void ScreenSceneBuilder::cut_to(const Cell* cell) {
+  cell_cut_.clear();
+  if (!cell) return;
+  for (const Face& f : cell->faces) cell_cut_.push_back({camera_dir(f.plane.n), f.plane.eval(camera_.eye)});
+}
+
 void ScreenSceneBuilder::drop_hidden() {
   if (drop_hidden_) return;
   drop_hidden_ = true;
@@ -256,6 +262,17 @@ bool ScreenSceneBuilder::project(const std::vector<Vec3>& given, ScreenPolygon& 
       cut(given, beyond, plane_cut_);
       if (plane_cut_.size() < 3) return false;
       kept = &plane_cut_;
+    }
+  }
+  if (!cell_cut_.empty()) {
+    std::vector<Vec3>* into = &cell_cut_a_;
+    for (const CellPlane& p : cell_cut_) {
+      auto inside = [&p](Vec3 q) { return kOnCellFace - (dot(p.n, q) + p.d); };
+      if (std::all_of(kept->begin(), kept->end(), [&](Vec3 q) { return inside(q) >= 0; })) continue;
+      cut(*kept, inside, *into);
+      if (into->size() < 3) return false;
+      kept = into;
+      into = into == &cell_cut_a_ ? &cell_cut_b_ : &cell_cut_a_;
     }
   }
   const std::vector<Vec3>& points = *kept;

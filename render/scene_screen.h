@@ -143,6 +143,10 @@ class ScreenSceneBuilder {
   /// (exact integer directions), a polygon goes.
   void cull_outside(int32_t clip, double margin);
   void no_cull() { cull_ = false; }
+  /// From now on every polygon is cut in 3D to `cell` (its face planes, kOnCellFace
+  /// outside them kept): an object reaching beyond the cell is drawn there only as the part
+  /// inside (PlacedObject::cells). nullptr: no longer.
+  void cut_to(const Cell* cell);
   /// From now on the scene is resolved by depth alone (one group, every polygon an
   /// Object): a polygon added that covers whole tiles of the raster is remembered
   /// (ScreenScene::drawn), and a planar polygon wholly behind what is already drawn is not added.
@@ -271,6 +275,13 @@ class ScreenSceneBuilder {
   std::vector<int> triangle_corners_;       ///< add_mesh: one triangle of a polygon that is not a fan
   std::vector<Vec3> triangle_normals_;      ///< and its corners' normals
   std::vector<FixedPoint> clip_points_;  ///< add_clip: the grown corners
+  /// cut_to: the cell's face planes in camera space, kept where dot(n, P) + d <= kOnCellFace.
+  struct CellPlane {
+    Vec3 n;
+    double d;
+  };
+  std::vector<CellPlane> cell_cut_;
+  std::vector<Vec3> cell_cut_a_, cell_cut_b_;
   bool has_cut_ = false;
   Vec3 cut_n_;          ///< options.cut in camera space, kept where dot(cut_n_, P) + cut_d_ >= 0
   double cut_d_ = 0;

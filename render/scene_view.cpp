@@ -13,8 +13,13 @@
 //     a face with no opaque piece at all (wholly a portal) is not drawn. A flat shade is
 //     taken at the centroid of the whole surface (cells' Surface), Bouknight's polygon,
 //     not of the piece a cell holds, so that no false edge shows where cells meet;
-//   - the objects of its cell, which resolve depth against that cell's faces and each
-//     other, inside the mask only.
+//   - the objects that meet its cell (PlacedObject::cells), which resolve depth against
+//     that cell's faces and each other, inside the mask only. One that reaches beyond the
+//     cell (a rug under a low wall, a window's frame standing out into a room) is cut in 3D
+//     to the cell first: the scan puts an object in front of every deeper avenue where it
+//     is nearer than its cell's face, which holds only of what lies inside the cell (a
+//     face that is wholly a portal is not drawn at all). Its other parts are drawn with
+//     the cells they lie in, as the line drawing's furniture is (furniture.h).
 // A conservative visible set (the hull search: masks that may hold more than their cell's
 // view, cells perhaps not seen at all) is drawn by depth instead: every face's opaque
 // pieces and every object in one group, each cut to its avenue's mask (which holds all
@@ -192,8 +197,12 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
     // The avenue's clip region, a little grown (two samples): what lies wholly outside it
     // cannot show through this avenue.
     b.cull_outside(clip, 2);
-    for (const uint32_t o : in_cell) {
+    for (const uint32_t entry : in_cell) {
+      const uint32_t o = entry & ~ObjectsByCell::kCut;
       if (!b.may_show(objects[o].bounds)) continue;  // a cell seen through many avenues: not through this one
+      // Reaching beyond the cell, it is drawn here as its part inside the cell: nearer than
+      // whatever the avenue sees beyond the cell's portals, as the scan takes it to be.
+      b.cut_to(entry & ObjectsByCell::kCut ? &cell : nullptr);
       source.mesh = int(o);
       const PlacedObject& object = objects[o];
       const int level = detail_of(object, camera, out.raster, options.detail_samples);
@@ -202,6 +211,7 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
       const PolygonRuns* of_mesh = level < 0 ? &object.runs : size_t(level) < runs.size() ? &runs[size_t(level)] : nullptr;
       b.add_mesh(mesh, object.paint, where, source, level < 0, of_mesh);
     }
+    b.cut_to(nullptr);
     b.no_cull();
   }
 }

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "render/interval_clip.h"
+#include "render/scene_objects.h"
 #include "render/shadow_outline.h"
 #include "render/stroke_merge.h"
 #include "render/thread_arena.h"
@@ -21,7 +22,6 @@ using detail::KeyedInterval;
 using detail::Interval;
 
 constexpr double kTouch = 1e-9;   ///< pieces of one line closer than this (in its parameter) are one piece
-constexpr double kOnFace = 1e-9;  ///< [m] furniture lying on a cell's face belongs to the cell
 
 /// The mask's edges as camera-space half-spaces s·P >= 0 (interval_clip.h): the left side of the
 /// edge p→q of a counter-clockwise mask, cross(q − p, (X/Z, Y/Z) − p) >= 0, times Z.
@@ -253,7 +253,7 @@ Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& ca
           bool alive = true;
           for (size_t f = 0; f < cell.faces.size() && alive; ++f) {  // inside the cell's prism
             const Plane& pl = cell.faces[f].plane;
-            alive = clip_interval(s, kOnFace - pl.eval(w0), kOnFace - pl.eval(w1));
+            alive = clip_interval(s, kOnCellFace - pl.eval(w0), kOnCellFace - pl.eval(w1));
           }
           if (alive && clip_to_avenue(s, pr, w0, w1, sides))
             edges.push_back({k, s});

@@ -195,6 +195,16 @@ TEST(AvenuePruning, SweetHomeHomesFromAboveTheirRoofsDrawTheSamePrunedOrNot) {
     const Scene s(build_cells(read_sweet_home((kExamples / (std::string(home) + ".xml")).string())));
     roof_views(s, 2, false, t);
     random_views(s, 18, 2, false, t);
+    if (std::string(home) == "4BedroomHouse") {
+      // From the attic, beside a wall's top standing out of its floor, over a dark red
+      // box laid on that floor and running under the wall: drawn only in the attic's cell,
+      // the box showed over the wall's top wherever the attic's face there is wholly a
+      // portal (2 % of the picture, against the hull search's; now within its edges).
+      SCOPED_TRACE("from the attic, over a box running under a wall");
+      const Vec3 eye{10.357893, -6.288873, 3.324859};
+      expect_same_view(s, Camera::yaw_pitch(eye, 213.956171, -25.366489, 84.488348, 96, 64), s.c.locate(eye).cell,
+                       false, t);
+    }
     std::printf("[ pruning  ] %s: %.1f s\n", home,
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }

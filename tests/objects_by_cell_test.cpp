@@ -21,6 +21,7 @@ std::vector<uint32_t> list(std::span<const uint32_t> s) { return {s.begin(), s.e
 PlacedObject in_cell(CellId c) {
   PlacedObject o;
   o.cell = c;
+  if (c != kNoCell) o.cells = {{c, true}};
   return o;
 }
 
@@ -39,6 +40,18 @@ TEST(ObjectsByCell, EachCellsObjectsInTheirOrder) {
   EXPECT_TRUE(by.of(7).empty());
   EXPECT_TRUE(objects_by_cell(0, objects).of(0).empty());
   EXPECT_TRUE(objects_by_cell(3, {}).of(2).empty());
+}
+
+// An object meeting several cells is listed in each, marked where it reaches beyond that
+// cell and must be cut to it (ObjectsByCell::kCut); an object wholly in a cell is not.
+TEST(ObjectsByCell, AnObjectMeetingSeveralCellsIsInEachMarkedWhereItReachesBeyond) {
+  PlacedObject across = in_cell(0);
+  across.cells = {{0, false}, {1, false}, {2, true}};
+  const std::vector<PlacedObject> objects{in_cell(1), across, in_cell(2)};
+  const ObjectsByCell by = objects_by_cell(3, objects);
+  EXPECT_EQ(list(by.of(0)), (std::vector<uint32_t>{1 | ObjectsByCell::kCut}));
+  EXPECT_EQ(list(by.of(1)), (std::vector<uint32_t>{0, 1 | ObjectsByCell::kCut}));
+  EXPECT_EQ(list(by.of(2)), (std::vector<uint32_t>{1, 2}));
 }
 
 // One FrameStorage renders the furnished room with its furniture, then without any, then

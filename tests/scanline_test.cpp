@@ -17,6 +17,7 @@
 #include "render/scenes.h"
 #include "tests/ray_oracle.h"
 #include "tests/test_meshes.h"
+#include "visibility/traverse.h"
 #include "visibility/viewpoint.h"
 
 namespace fs = std::filesystem;
@@ -388,6 +389,65 @@ TEST(Scanline, ObjectsInACellResolveDepthAgainstItsFaces) {
     EXPECT_GE(a, 0.999);
     EXPECT_EQ(off_edge, 0);
   }
+}
+
+// Jones's house with a bench standing through the door between the living room and the
+// dining room (its centroid in the living room, a metre of it in the dining room) and a
+// cube in the dining room beside it. Jones's cells are the space between walls, so an
+// object need not lie in one: each part of the bench shows where a ray meets it first,
+// seen from either room, through the door or not, in every search. (Drawn only in the
+// cell holding its centroid, the bench's part in the dining room was missing wherever
+// the door did not frame it.)
+TEST(Scanline, ObjectsReachingBeyondTheirCellShowWhereARayMeetsThemFirst) {
+  CellComplex c = build_cells(read_plan(std::string(AVENUES_SOURCE_DIR) + "/plans/jones-house.toml"));
+  Object bench;
+  bench.name = "bench";
+  bench.mesh = std::string(AVENUES_SOURCE_DIR) + "/plans/scenes/wylie-cube.off";
+  bench.position = {4.4, 1.65, 0.25};
+  bench.scale = {1.6, 0.2, 0.25};  // x 2.8 to 6.0 through the door (y 1.2 to 2.1)
+  Object cube = bench;
+  cube.name = "cube";
+  cube.position = {6.4, 1.0, 0.4};
+  cube.scale = {0.3, 0.3, 0.3};
+  c.objects = {bench, cube};
+  const std::vector<PlacedObject> objects = place_objects(c);
+  ASSERT_EQ(objects.size(), 2u);
+  ASSERT_EQ(objects[0].cells.size(), 2u) << "the bench meets both rooms";
+  EXPECT_FALSE(objects[0].cells[0].whole);
+  EXPECT_FALSE(objects[0].cells[1].whole);
+  EXPECT_EQ(objects[0].cell, c.locate({4.4, 1.65, 0.25}).cell) << "its home holds its centroid";
+  ASSERT_EQ(objects[1].cells.size(), 1u);
+  EXPECT_TRUE(objects[1].cells[0].whole);
+  const std::vector<Mesh> drawn{objects[0].mesh, objects[1].mesh};
+  const std::vector<Camera> views = {
+      Camera::look_at({8.0, 0.5, 1.6}, {5.2, 1.65, 0.3}, 70, 240, 135),  // the dining room's end of it
+      Camera::look_at({1.0, 0.6, 1.4}, {7.0, 1.9, 0.3}, 70, 240, 135),   // from the living room, through the door
+      Camera::look_at({2.0, 4.5, 1.7}, {5.0, 1.6, 0.3}, 80, 240, 135)};  // the door edge-on
+  for (size_t v = 0; v < views.size(); ++v)
+    for (int search = 0; search < 3; ++search) {
+      SCOPED_TRACE("view " + std::to_string(v) + (search == 0 ? ", Jones's" : search == 1 ? ", merged" : ", hull"));
+      const Camera& cam = views[v];
+      TraverseParams p;
+      p.merge_pieces = search > 0;
+      p.hull_pieces = search > 1;
+      const VisibleSet vs = find_visible(c, cam, c.locate(cam.eye).cell, p);
+      const ScreenScene scene = screen_scene_of_view(c, objects, cam, vs, {});
+      Image picture;
+      std::vector<int32_t> items;
+      render_scene(scene, {}, picture, nullptr, &items);
+      long bench_samples = 0;
+      for (int32_t id : items)
+        bench_samples += id >= 0 && scene.sources[size_t(id)].kind == PolygonSource::Kind::Object &&
+                         scene.sources[size_t(id)].mesh == 0;
+      EXPECT_GT(bench_samples, 500) << "the bench is in view";
+      int off_edge = 0;
+      const double a = agreement(
+          scene, items, cam,
+          [&](Vec3 d) { return std::min(avenues::testing::first_hit(c, cam.eye, d), nearest_triangle(drawn, cam.eye, d)); },
+          off_edge);
+      EXPECT_GE(a, 0.999);
+      EXPECT_EQ(off_edge, 0);
+    }
 }
 
 TEST(Scanline, PolygonsSmallerThanASampleColourTheSamplesTheyHoldAndNoOthers) {
