@@ -201,8 +201,33 @@ bool ScreenSceneBuilder::add(const std::vector<Vec3>& points, Vec3 n, double d, 
 
 void ScreenSceneBuilder::cut_to(const Cell* cell) {
   cell_cut_.clear();
+  cell_cut_world_.clear();
   if (!cell) return;
-  for (const Face& f : cell->faces) cell_cut_.push_back({camera_dir(f.plane.n), f.plane.eval(camera_.eye)});
+  for (const Face& f : cell->faces) {
+    cell_cut_.push_back({camera_dir(f.plane.n), f.plane.eval(camera_.eye)});
+    cell_cut_world_.push_back(f.plane);
+  }
+  cell_cut_box_ = cell->bounds();
+}
+
+bool ScreenSceneBuilder::beyond_cell(const Box3& box) const {
+  if (cell_cut_world_.empty()) return false;
+  if (!cell_cut_box_.meets(box, kOnCellFace)) return true;
+  for (const Plane& p : cell_cut_world_) {
+    // The box's corner least far along the plane's normal.
+    const Vec3 least{p.n.x >= 0 ? box.lo.x : box.hi.x, p.n.y >= 0 ? box.lo.y : box.hi.y,
+                     p.n.z >= 0 ? box.lo.z : box.hi.z};
+    if (p.eval(least) > kOnCellFace) return true;
+  }
+  return false;
+}
+
+bool ScreenSceneBuilder::beyond_cell(const Mesh& mesh, const std::vector<int>& corners) const {
+  for (const Plane& p : cell_cut_world_)
+    if (std::all_of(corners.begin(), corners.end(),
+                    [&](int v) { return p.eval(mesh.vertices[size_t(v)]) > kOnCellFace; }))
+      return true;
+  return false;
 }
 
 void ScreenSceneBuilder::drop_hidden() {
@@ -478,6 +503,7 @@ void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<in
   // polygon outside the region it will be clipped to, or one that holds no sample's centre.
   // Told first, from the corners' raster points alone: a far view of a steel frame drops
   // most of its triangles here.
+  if (beyond_cell(mesh, corners)) return;  // cut_to: none of it in the cell
   std::vector<Vec2>& raster = polygon_raster_;
   raster.clear();
   Vec2 lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
@@ -600,7 +626,7 @@ void ScreenSceneBuilder::add_mesh(const Mesh& mesh, const MeshPaint& paint, Plac
   std::vector<int> corners;
   std::vector<Vec3> normals;
   for (size_t r = 0; r < run_count; ++r) {
-    if (by_runs && !may_show(runs->boxes[r])) continue;
+    if (by_runs && (beyond_cell(runs->boxes[r]) || !may_show(runs->boxes[r]))) continue;
     const size_t t0 = by_runs ? runs->first[r] : 0, t1 = by_runs && r + 1 < run_count ? runs->first[r + 1] : n;
     for (size_t t = t0; t < t1;) {
       const int polygon = mesh.polygon_of[t];

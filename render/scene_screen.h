@@ -281,6 +281,12 @@ class ScreenSceneBuilder {
     double d;
   };
   std::vector<CellPlane> cell_cut_;
+  std::vector<Plane> cell_cut_world_;  ///< the same planes in the world, outward
+  Box3 cell_cut_box_;                  ///< the cell's box
+  /// Whether a world box, or a polygon's corners, lie wholly beyond one of cut_to's planes
+  /// (false when not cutting): nothing of them is left to draw.
+  bool beyond_cell(const Box3& box) const;
+  bool beyond_cell(const Mesh& mesh, const std::vector<int>& corners) const;
   std::vector<Vec3> cell_cut_a_, cell_cut_b_;
   bool has_cut_ = false;
   Vec3 cut_n_;          ///< options.cut in camera space, kept where dot(cut_n_, P) + cut_d_ >= 0

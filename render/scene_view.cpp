@@ -197,12 +197,20 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
     // The avenue's clip region, a little grown (two samples): what lies wholly outside it
     // cannot show through this avenue.
     b.cull_outside(clip, 2);
+    std::optional<Box3> cell_box;
     for (const uint32_t entry : in_cell) {
       const uint32_t o = entry & ~ObjectsByCell::kCut;
-      if (!b.may_show(objects[o].bounds)) continue;  // a cell seen through many avenues: not through this one
       // Reaching beyond the cell, it is drawn here as its part inside the cell: nearer than
       // whatever the avenue sees beyond the cell's portals, as the scan takes it to be.
-      b.cut_to(entry & ObjectsByCell::kCut ? &cell : nullptr);
+      const bool cut = entry & ObjectsByCell::kCut;
+      Box3 box = objects[o].bounds;
+      if (cut) {
+        if (!cell_box) cell_box = cell.bounds();
+        box = {{std::max(box.lo.x, cell_box->lo.x), std::max(box.lo.y, cell_box->lo.y), std::max(box.lo.z, cell_box->lo.z)},
+               {std::min(box.hi.x, cell_box->hi.x), std::min(box.hi.y, cell_box->hi.y), std::min(box.hi.z, cell_box->hi.z)}};
+      }
+      if (!b.may_show(box)) continue;  // a cell seen through many avenues: not through this one
+      b.cut_to(cut ? &cell : nullptr);
       source.mesh = int(o);
       const PlacedObject& object = objects[o];
       const int level = detail_of(object, camera, out.raster, options.detail_samples);
