@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <tuple>
 
 #include "cells/passes.h"
 
@@ -265,6 +266,11 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
   }
   // Doorway classes, keyed by the set of wall regions covering a triangle.
   std::map<std::vector<int32_t>, int32_t> region_class;
+  // Doorways alike in all but the walls they are cut through (two walls lying on one line,
+  // each stepped along a slope where it overlaps the other) are one class, so that their
+  // triangles merge into one cell where the union is convex. (SpaceClass::wall serves the
+  // choice of opening below and nothing after.)
+  std::map<std::tuple<int, PortalKind, Intervals>, int32_t> doorway_class;
 
   C.of.assign(C.bands.size(), std::vector<int32_t>(size_t(n), -1));
   C.wall_of.assign(C.bands.size() * size_t(n), -1);
@@ -352,7 +358,9 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
                          : k == OpeningKind::Hatch  ? PortalKind::Hatch
                                                     : PortalKind::Gap;
             }
-            it = region_class.emplace(keys, add_class(c)).first;
+            auto [alike, fresh] = doorway_class.try_emplace({c.opening, c.portal, c.open}, -1);
+            if (fresh) alike->second = add_class(c);
+            it = region_class.emplace(keys, alike->second).first;
           }
           of[size_t(t)] = it->second;
           break;

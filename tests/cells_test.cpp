@@ -261,6 +261,30 @@ TEST(Cells, LowWallsCarryingOnInOneLineMeetFlushEachAtItsOwnHeight) {
   EXPECT_EQ(doorways, 2) << "one over each wall";
 }
 
+TEST(Cells, OverlappingLowWallsOfOneHeightLeaveOneDoorwayOverThem) {
+  // Two low walls of one height lying on one line and overlapping (a sloped wall's steps
+  // read from two walls, a wall drawn twice): the space over them is one doorway, not one
+  // per wall or per stretch of overlap.
+  Plan p = box_room();
+  Wall a = wall("a", {{1, 0.8}, {2.5, 0.8}}, 0.2), b = wall("b", {{1.5, 0.8}, {3, 0.8}}, 0.2);
+  a.height = b.height = 0.5;
+  p.walls.push_back(a);
+  p.walls.push_back(b);
+  const CellComplex c = build_cells(p);
+  EXPECT_EQ(cells_are_valid(c), "");
+  int doorways = 0;
+  for (const Cell& cell : c.cells) {
+    if (cell.kind != CellKind::Doorway) continue;
+    ++doorways;
+    double x0 = HUGE_VAL, x1 = -HUGE_VAL;
+    for (Vec2 v : cell.footprint) x0 = std::min(x0, v.x), x1 = std::max(x1, v.x);
+    EXPECT_NEAR(cell.z0, 0.5, 1e-9);
+    EXPECT_NEAR(x0, 1.0, 1e-9);
+    EXPECT_NEAR(x1, 3.0, 1e-9);
+  }
+  EXPECT_EQ(doorways, 1);
+}
+
 TEST(Cells, PointLocationAgreesWithBruteForce) {
   for (double thickness : {0.2, 0.0}) {
     CellComplex c = build_cells(two_rooms_one_door(thickness));
