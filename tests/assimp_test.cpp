@@ -908,6 +908,39 @@ TEST(IfcStep, Ifc4RecordsAssimpCannotReadAreRewrittenAsIfc2x3WritesThem) {
   EXPECT_NE(z->warnings[0].find("#2 (IfcTriangulatedFaceSet): its point list #1 is not a list of three numbers"),
             std::string::npos)
       << z->warnings[0];
+
+  // CSG (IFC2X3 and IFC4 alike): a block and a cylinder are the extrusions they are; a CSG
+  // solid is its tree's root, a boolean result copied as written under the solid's id; a
+  // sphere is left out, said, as is a block of no size.
+  const auto g = ifc4_for_assimp(head + "#1=IFCAXIS2PLACEMENT3D(#9,$,$);\n#2=IFCBLOCK(#1,2.,0.8,0.5);\n"
+                                        "#3=IFCRIGHTCIRCULARCYLINDER(#1,2.5,0.1);\n#4=IFCBOOLEANRESULT(.DIFFERENCE.,#2,#3);\n"
+                                        "#5=IFCCSGSOLID(#4);\n#6=IFCCSGSOLID(#2);\n#7=IFCSPHERE(#1,1.);\n"
+                                        "#8=IFCBLOCK(#1,0.,1.,1.);\n#9=IFCCARTESIANPOINT((0.,0.,0.));\nENDSEC;\n");
+  ASSERT_TRUE(g);
+  EXPECT_TRUE(step_data_problem(g->text) == std::nullopt) << g->text;
+  EXPECT_NE(g->text.find("#2=IFCEXTRUDEDAREASOLID(#"), std::string::npos) << g->text;
+  EXPECT_NE(g->text.find(",#1,#"), std::string::npos) << "placed where the block is";
+  EXPECT_NE(g->text.find("=IFCCARTESIANPOINT((1.,0.4"), std::string::npos) << "the rectangle's middle";
+  EXPECT_NE(g->text.find("=IFCRECTANGLEPROFILEDEF(.AREA.,$,#"), std::string::npos);
+  EXPECT_NE(g->text.find(",2.,0.8)"), std::string::npos) << "its sides as written";
+  EXPECT_NE(g->text.find(",0.5);"), std::string::npos) << "its height as the depth";
+  EXPECT_NE(g->text.find("#3=IFCEXTRUDEDAREASOLID(#"), std::string::npos);
+  EXPECT_NE(g->text.find("=IFCCIRCLEPROFILEDEF(.AREA.,$,#"), std::string::npos);
+  EXPECT_NE(g->text.find(",2.5);"), std::string::npos) << "the cylinder's height";
+  EXPECT_NE(g->text.find("#4=IFCBOOLEANRESULT(.DIFFERENCE.,#2,#3);"), std::string::npos) << "as written";
+  EXPECT_NE(g->text.find("#5=IFCBOOLEANRESULT(.DIFFERENCE.,#2,#3)"), std::string::npos) << "the CSG solid's root";
+  EXPECT_NE(g->text.find("#6=IFCEXTRUDEDAREASOLID(#"), std::string::npos) << "a CSG solid of one block";
+  EXPECT_NE(g->text.find("#7=IFCBOUNDINGBOX(#"), std::string::npos);
+  EXPECT_NE(g->text.find("#8=IFCBOUNDINGBOX(#"), std::string::npos);
+  size_t ups = 0;
+  for (size_t at = g->text.find("IFCDIRECTION((0.,0.,1.))"); at != std::string::npos;
+       at = g->text.find("IFCDIRECTION((0.,0.,1.))", at + 1))
+    ++ups;
+  EXPECT_EQ(ups, 1u) << "one direction for every extrusion";
+  ASSERT_EQ(g->warnings.size(), 2u);
+  EXPECT_EQ(g->warnings[0], "line 12, #7 (IfcSphere): Assimp reads no IfcSphere: its geometry is left out");
+  EXPECT_EQ(g->warnings[1], "line 13, #8 (IfcBlock): its Position and dimensions are not a placement and positive "
+                            "numbers: its geometry is left out");
 }
 
 TEST(IfcStep, ListsAndReferencesAreReadAsWritten) {
@@ -944,6 +977,46 @@ TEST(IfcStep, NamesAndLongNamesAreReadFromTheRecords) {
   EXPECT_TRUE(ok);
   (void)decode_step_string("\\X2\\D800\\X0\\", ok);
   EXPECT_FALSE(ok) << "a lone surrogate";
+}
+
+TEST(Ifc, CsgColumnsStandAsTheirBlocksAndCylindersSay) {
+  // The L-walled room with two columns made by CSG, which Assimp reads only as extrusions:
+  // a 0.4 m block less a cylinder (a boolean result, the root of an IfcCsgSolid) and a
+  // round column (an IfcRightCircularCylinder alone); a ball on the floor left out, said.
+  std::string text = avenues::testing::slurp(l_walled_room());
+  const std::string columns =
+      "#200=IFCCARTESIANPOINT((1.,1.,0.));\n#201=IFCAXIS2PLACEMENT3D(#200,#9,#10);\n"
+      "#202=IFCBLOCK(#201,0.4,0.4,2.5);\n#203=IFCCARTESIANPOINT((1.2,1.2,0.));\n"
+      "#204=IFCAXIS2PLACEMENT3D(#203,#9,#10);\n#205=IFCRIGHTCIRCULARCYLINDER(#204,2.5,0.05);\n"
+      "#206=IFCBOOLEANRESULT(.DIFFERENCE.,#202,#205);\n#207=IFCCSGSOLID(#206);\n"
+      "#208=IFCSHAPEREPRESENTATION(#12,'Body','CSG',(#207));\n#209=IFCPRODUCTDEFINITIONSHAPE($,$,(#208));\n"
+      "#210=IFCCOLUMN('0ZvctVUKr0kugbFTf53O9L',#5,'Square',$,$,#14,#209,$);\n"
+      "#211=IFCCARTESIANPOINT((3.,2.,0.));\n#212=IFCAXIS2PLACEMENT3D(#211,#9,#10);\n"
+      "#213=IFCRIGHTCIRCULARCYLINDER(#212,2.5,0.15);\n#214=IFCSHAPEREPRESENTATION(#12,'Body','CSG',(#213));\n"
+      "#215=IFCPRODUCTDEFINITIONSHAPE($,$,(#214));\n#216=IFCCOLUMN('1ZvctVUKr0kugbFTf53O9L',#5,'Round',$,$,#14,#215,$);\n"
+      "#217=IFCSPHERE(#212,0.1);\n#218=IFCSHAPEREPRESENTATION(#12,'Body','CSG',(#217));\n"
+      "#219=IFCPRODUCTDEFINITIONSHAPE($,$,(#218));\n#220=IFCFURNISHINGELEMENT('2ZvctVUKr0kugbFTf53O9L',#5,'Ball',$,$,#14,#219,$);\n"
+      "#221=IFCRELCONTAINEDINSPATIALSTRUCTURE('3ZvctVUKr0kugbFTf53O9L',#5,$,$,(#210,#216,#220),#17);\n";
+  text.insert(text.rfind("ENDSEC;"), columns);
+  const fs::path dir = fs::temp_directory_path() / ("avenues-ifc-csg-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string path = (dir / "csg-columns.ifc").string();
+  std::ofstream(path, std::ios::binary) << text;
+  const Plan plan = read_ifc_building(path);
+  const CellComplex c = build_cells(plan);
+  EXPECT_EQ(cells_are_valid(c), "");
+  const std::set<std::string> walls = labels_of_walls(plan);
+  EXPECT_EQ(walls.count("IfcColumn 'Square'"), 1u);
+  EXPECT_EQ(walls.count("IfcColumn 'Round'"), 1u);
+  EXPECT_EQ(c.locate({1.05, 1.05, 1.2}).what, Location::What::Solid) << "the square column's corner";
+  EXPECT_EQ(c.locate({3.0, 2.14, 1.2}).what, Location::What::Solid) << "the round column";
+  EXPECT_EQ(c.locate({3.0, 2.2, 1.2}).what, Location::What::Cell) << "beside it";
+  EXPECT_EQ(c.locate({2.2, 1.7, 1.2}).what, Location::What::Cell) << "the room";
+  const bool said = std::any_of(plan.warnings.begin(), plan.warnings.end(), [](const std::string& w) {
+    return w.find("(IfcSphere): Assimp reads no IfcSphere") != std::string::npos;
+  });
+  EXPECT_TRUE(said) << "the ball";
+  fs::remove_all(dir);
 }
 
 TEST(Ifc, DanglingReferencesAndBrokenRecordsAreRefusedBeforeAssimpCrashesOnThem) {

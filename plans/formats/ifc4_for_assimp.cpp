@@ -40,6 +40,10 @@ constexpr Narrowing kNarrowings[] = {
 constexpr const char* kUnreadable[] = {"IFCADVANCEDBREP", "IFCADVANCEDBREPWITHVOIDS", "IFCFIXEDREFERENCESWEPTAREASOLID",
                                       "IFCCYLINDRICALSURFACE", "IFCSPHERICALSURFACE", "IFCTOROIDALSURFACE"};
 
+/// CSG primitives Assimp reads in no form: left out, said. (IfcBlock and
+/// IfcRightCircularCylinder are extrusions: see Rewriter::extrusion.)
+constexpr const char* kPrimitivesLeftOut[] = {"IFCSPHERE", "IFCRECTANGULARPYRAMID", "IFCRIGHTCIRCULARCONE"};
+
 /// IFC4's kinds of product that IFC2X3 knows under a more general name (its supertype, or a
 /// proxy): read as that, every attribute kept (IFC2X3's reader reads what it knows of them).
 /// The IFC4 names as IFC spells them; a keyword matches in upper case.
@@ -241,7 +245,10 @@ std::string title_case(std::string_view keyword) {
       {"IFCADVANCEDBREP", "IfcAdvancedBrep"},                         {"IFCADVANCEDBREPWITHVOIDS", "IfcAdvancedBrepWithVoids"},
       {"IFCFIXEDREFERENCESWEPTAREASOLID", "IfcFixedReferenceSweptAreaSolid"},
       {"IFCCYLINDRICALSURFACE", "IfcCylindricalSurface"},             {"IFCSPHERICALSURFACE", "IfcSphericalSurface"},
-      {"IFCTOROIDALSURFACE", "IfcToroidalSurface"}};
+      {"IFCTOROIDALSURFACE", "IfcToroidalSurface"},                   {"IFCBLOCK", "IfcBlock"},
+      {"IFCRIGHTCIRCULARCYLINDER", "IfcRightCircularCylinder"},       {"IFCSPHERE", "IfcSphere"},
+      {"IFCRECTANGULARPYRAMID", "IfcRectangularPyramid"},             {"IFCRIGHTCIRCULARCONE", "IfcRightCircularCone"},
+      {"IFCCSGSOLID", "IfcCsgSolid"}};
   for (const auto& [upper, name] : kNames)
     if (keyword == upper) return name;
   return std::string(keyword);
@@ -267,6 +274,9 @@ class Rewriter {
       else if (r.keyword == "IFCINDEXEDPOLYGONALFACE" || r.keyword == "IFCINDEXEDPOLYGONALFACEWITHVOIDS")
         indexed_faces_[r.id] = r.attributes;
       else if (r.keyword == "IFCSTYLEDITEM") styled.push_back(r);
+      else if (r.keyword == "IFCBLOCK" || r.keyword == "IFCRIGHTCIRCULARCYLINDER" || r.keyword == "IFCBOOLEANRESULT" ||
+               r.keyword == "IFCBOOLEANCLIPPINGRESULT")
+        csg_operands_[r.id] = r;
       else if (r.keyword == "IFCSURFACESTYLE" || r.keyword == "IFCCURVESTYLE" || r.keyword == "IFCFILLAREASTYLE" ||
                r.keyword == "IFCTEXTSTYLE")
         styles.insert(r.id);
@@ -441,6 +451,8 @@ class Rewriter {
            std::any_of(std::begin(kUnreadable), std::end(kUnreadable), is) ||
            std::any_of(std::begin(kSweptAreaSolids), std::end(kSweptAreaSolids), is) || is("IFCSWEPTDISKSOLID") ||
            std::any_of(std::begin(kProfiles), std::end(kProfiles), is) || is("IFCADVANCEDFACE") ||
+           is("IFCBLOCK") || is("IFCRIGHTCIRCULARCYLINDER") || is("IFCCSGSOLID") ||
+           std::any_of(std::begin(kPrimitivesLeftOut), std::end(kPrimitivesLeftOut), is) ||
            (r.attributes.size() >= 2 && is_global_id(r.attributes[0]) && step_trimmed(r.attributes[1]) == "$");
   }
 
@@ -453,7 +465,10 @@ class Rewriter {
   ///   placement, made once);
   /// - an IfcSweptDiskSolid without StartParam or EndParam, along an IfcPolyline, given
   ///   its polyline's whole range (0 to the number of its sides); along another directrix,
-  ///   left out (said).
+  ///   left out (said);
+  /// - an IfcBlock or IfcRightCircularCylinder as the extrusion it is (extrusion()), an
+  ///   IfcCsgSolid as its tree's root (Assimp reads a boolean result whose first operand is
+  ///   a swept solid or another boolean result); a sphere, cone or pyramid left out (said).
   std::optional<std::string> fixed(const StepRecord& r, Ifc4Rewrite& out) {
     records_.clear();
     std::string keyword = r.keyword;
@@ -518,6 +533,36 @@ class Rewriter {
       if (step_trimmed(a[4]) == "$") a[4] = step_real(double(corners->second - 1));
       changed = true;
     }
+    if (keyword == "IFCBLOCK" || keyword == "IFCRIGHTCIRCULARCYLINDER") {
+      std::optional<std::string> body = extrusion(keyword, a);
+      if (!body) return left_out("its Position and dimensions are not a placement and positive numbers");
+      ++out.solids;
+      return finish(r.id, *body);
+    }
+    if (std::any_of(std::begin(kPrimitivesLeftOut), std::end(kPrimitivesLeftOut), [&](const char* k) { return keyword == k; }))
+      return left_out("Assimp reads no " + type);
+    if (keyword == "IFCCSGSOLID") {
+      const auto root = a.empty() ? std::nullopt : step_reference(a[0]);
+      const auto found = root ? csg_operands_.find(*root) : csg_operands_.end();
+      if (found == csg_operands_.end())
+        return left_out("its TreeRootExpression is no boolean result, block or cylinder");
+      const StepRecord& t = found->second;
+      std::optional<std::string> body;
+      if (t.keyword == "IFCBLOCK" || t.keyword == "IFCRIGHTCIRCULARCYLINDER") {
+        body = extrusion(t.keyword, {t.attributes.begin(), t.attributes.end()});
+        if (!body) return left_out("its " + title_case(t.keyword) + " " + step_reference_text(t.id) +
+                                   " has no placement and positive dimensions");
+      } else {  // a boolean result, as written, under this solid's id
+        body = t.keyword;
+        for (size_t k = 0; k < t.attributes.size(); ++k) {
+          *body += k ? ',' : '(';
+          *body += t.attributes[k];
+        }
+        *body += ')';
+      }
+      ++out.solids;
+      return finish(r.id, *body);
+    }
     if (!changed) return std::nullopt;
     std::string body = keyword;
     for (size_t k = 0; k < a.size(); ++k) {
@@ -525,6 +570,43 @@ class Rewriter {
       body += a[k];
     }
     return finish(r.id, body + ")");
+  }
+
+  /// An IfcBlock (Position, XLength, YLength, ZLength: a box from its placement's origin
+  /// along +x, +y, +z) or IfcRightCircularCylinder (Position, Height, Radius: its base
+  /// centred on the origin, up +z) as the IfcExtrudedAreaSolid that is the same solid: a
+  /// rectangle (centred at half its lengths) or circle (centred at the origin) swept up its
+  /// placement's z. nullopt when the dimensions are not positive numbers.
+  std::optional<std::string> extrusion(const std::string& keyword, const std::vector<std::string>& a) {
+    const bool block = keyword == "IFCBLOCK";
+    if (a.size() < (block ? 4u : 3u) || !step_reference(a[0])) return std::nullopt;
+    std::vector<double> v;
+    for (size_t k = 1; k < a.size(); ++k) {
+      const std::string t(step_trimmed(a[k]));
+      char* end = nullptr;
+      const double x = std::strtod(t.c_str(), &end);
+      if (t.empty() || end != t.c_str() + t.size() || !std::isfinite(x) || !(x > 0)) return std::nullopt;
+      v.push_back(x);
+    }
+    if (!up_) up_ = add("IFCDIRECTION((0.,0.,1.))");
+    unsigned long long profile;
+    if (block) {
+      const unsigned long long middle =
+          add("IFCCARTESIANPOINT((" + step_real(v[0] / 2) + "," + step_real(v[1] / 2) + "))");
+      const unsigned long long at = add(listing("IFCAXIS2PLACEMENT2D(", {middle}, ",$)"));
+      const std::string sides = "," + std::string(step_trimmed(a[1])) + "," + std::string(step_trimmed(a[2])) + ")";
+      profile = add(listing("IFCRECTANGLEPROFILEDEF(.AREA.,$,", {at}, sides.c_str()));
+    } else {
+      if (!placement_2d_) {
+        const unsigned long long origin = add("IFCCARTESIANPOINT((0.,0.))");
+        placement_2d_ = add(listing("IFCAXIS2PLACEMENT2D(", {origin}, ",$)"));
+      }
+      const std::string radius = "," + std::string(step_trimmed(a[2])) + ")";
+      profile = add(listing("IFCCIRCLEPROFILEDEF(.AREA.,$,", {placement_2d_}, radius.c_str()));
+    }
+    const std::string rest = "," + std::string(step_trimmed(a[0])) + "," + step_reference_text(up_) + "," +
+                             std::string(step_trimmed(a[block ? 3 : 1])) + ")";
+    return listing("IFCEXTRUDEDAREASOLID(", {profile}, rest.c_str());
   }
 
   /// A new record with the next free id; returns the id.
@@ -665,6 +747,8 @@ class Rewriter {
   std::string_view text_;
   unsigned long long max_id_ = 0, next_id_ = 0;
   unsigned long long owner_ = 0, placement_ = 0, placement_2d_ = 0;  ///< made once, for all that lack them
+  unsigned long long up_ = 0;  ///< IfcDirection (0, 0, 1), made once for the primitives' extrusions
+  std::unordered_map<unsigned long long, StepRecord> csg_operands_;  ///< blocks, cylinders, boolean results by id
   std::unordered_map<unsigned long long, size_t> polyline_points_;  ///< IfcPolyline (also rewritten ones) -> its points
   std::unordered_map<unsigned long long, std::string_view> point_lists_;  ///< id -> its CoordList attribute
   std::unordered_map<unsigned long long, size_t> point_dimension_;       ///< id -> 2 or 3

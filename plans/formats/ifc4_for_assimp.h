@@ -34,6 +34,12 @@
 // sweep, curved surfaces as items) is left out: an empty bounding box, said. An
 // IfcAdvancedFace is an IfcFaceSurface, whose edge loops Assimp passes over (said).
 //
+// CSG, in IFC2X3 files as in IFC4. Assimp reads no CSG primitive and no IfcCsgSolid, and
+// a boolean result only where its first operand is a swept solid or a boolean result. An
+// IfcBlock is the extrusion of its rectangle, an IfcRightCircularCylinder that of its
+// circle (new profile records, one IfcDirection up for all), an IfcCsgSolid the root of its
+// tree written under its own id; a sphere, cone or pyramid is left out, said.
+//
 // Tessellated geometry. IFC4 added face sets over indexed points: IfcTriangulatedFaceSet and IfcPolygonalFaceSet,
 // their corners in an IfcCartesianPointList3D. The Reference View (the view Revit, ArchiCAD
 // and BlenderBIM offer for IFC4 exchange) has no other body geometry, so every wall, slab,
@@ -68,7 +74,7 @@ struct Ifc4Rewrite {
   size_t styles = 0;                  ///< styles given an IfcPresentationStyleAssignment
   size_t owners = 0;                  ///< IfcRoot records given the owner history they lacked
   size_t curves = 0;                  ///< IfcIndexedPolyCurves rewritten as IfcPolylines
-  size_t solids = 0;                  ///< IFC4 solids read as IFC2X3's, or left out
+  size_t solids = 0;                  ///< solids read as Assimp reads them (IFC4 solids as IFC2X3s, CSG as extrusions), or left out
   size_t products = 0;                ///< IFC4 kinds of product read as the IFC2X3 kind they are one of
   std::map<std::string, std::string> kinds;  ///< GlobalId -> the IFC4 kind of such a product ("IfcSanitaryTerminal")
   std::vector<std::string> warnings;  ///< what was dropped, per set ("line 40, #31 (IfcTriangulatedFaceSet): ...")
