@@ -91,6 +91,26 @@ inline double signed_area(const std::vector<Vec2>& p) {
   return a / 2;
 }
 
+/// The convex hull of points, counter-clockwise (Andrew's monotone chain); collinear
+/// points dropped. Fewer than three distinct points come back as they are, sorted.
+inline std::vector<Vec2> convex_hull(std::vector<Vec2> p) {
+  std::sort(p.begin(), p.end(), [](Vec2 a, Vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  p.erase(std::unique(p.begin(), p.end(), [](Vec2 a, Vec2 b) { return a.x == b.x && a.y == b.y; }), p.end());
+  if (p.size() < 3) return p;
+  std::vector<Vec2> h(2 * p.size());
+  size_t k = 0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    while (k >= 2 && cross(h[k - 1] - h[k - 2], p[i] - h[k - 2]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  for (size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
+    while (k >= t && cross(h[k - 1] - h[k - 2], p[i] - h[k - 2]) <= 0) --k;
+    h[k++] = p[i];
+  }
+  h.resize(k - 1);
+  return h;
+}
+
 /// Whether p is a convex polygon, counter-clockwise, with an area: at least three points,
 /// no turn to the right (a straight one allowed), turning once around.
 inline bool is_convex_ccw(const std::vector<Vec2>& p) {

@@ -25,6 +25,9 @@
 // pieces and every object in one group, each cut to its avenue's mask (which holds all
 // that can show of it), and Bouknight's depth sort decides what is seen where they
 // overlap — the nearest surface along each ray, which the exact masks would have shown.
+// There an object meeting several cells is drawn once, whole, cut to the convex hull of
+// the masks of its visible cells: wherever a part of it is the nearest surface, the cell
+// holding that part is seen there, and so is every surface in front of it.
 // A parallel view (an architect's drawing, `view --projection parallel`) is drawn as the
 // perspective from far behind its picture plane (distant_eye), cut where its rays start
 // (VisibleSet::cut): the whole pipeline (lights, shadows, smooth shading, objects) is the
@@ -33,6 +36,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_set>
+#include <utility>
+#include <vector>
 
 #include "core/angles.h"
 
@@ -150,6 +156,39 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
   // them as deeper masks are grown, so that no sample on a meeting line falls between.
   size_t roots = 0;
   for (const Avenue& a : visible.avenues) roots += a.parent < 0;
+  // Object o in full, or its coarser version (detail_of), at `where`.
+  auto add_object = [&](uint32_t o, ScreenSceneBuilder::Placement where, PolygonSource source) {
+    source.kind = PolygonSource::Kind::Object;
+    source.face = -1;
+    source.mesh = int(o);
+    const PlacedObject& object = objects[o];
+    const int level = detail_of(object, camera, out.raster, options.detail_samples);
+    const Mesh& mesh = level < 0 ? object.mesh : object.coarser[size_t(level)].mesh;
+    const std::vector<PolygonRuns>& runs = object.coarser_runs;
+    const PolygonRuns* of_mesh = level < 0 ? &object.runs : size_t(level) < runs.size() ? &runs[size_t(level)] : nullptr;
+    b.add_mesh(mesh, object.paint, where, source, level < 0, of_mesh);
+  };
+  // A conservative set: the objects meeting several cells drawn so far, and a clip region
+  // around the masks of every visible avenue into one of an object's cells.
+  std::unordered_set<uint32_t> drawn_whole;
+  std::vector<std::pair<CellId, uint32_t>> avenue_of_cell;  // (cell, avenue), sorted; made when first needed
+  std::vector<Vec2> mask_corners;
+  auto clip_around = [&](const PlacedObject& object) -> int32_t {
+    if (avenue_of_cell.empty()) {
+      for (size_t k = 0; k < visible.avenues.size(); ++k) avenue_of_cell.push_back({visible.avenues[k].cell, uint32_t(k)});
+      std::sort(avenue_of_cell.begin(), avenue_of_cell.end());
+    }
+    mask_corners.clear();
+    for (const ObjectCell& in : object.cells)
+      for (auto it = std::lower_bound(avenue_of_cell.begin(), avenue_of_cell.end(), std::pair{in.cell, uint32_t(0)});
+           it != avenue_of_cell.end() && it->first == in.cell; ++it) {
+        const Avenue& a = visible.avenues[it->second];
+        if (a.mask.size() < 3) continue;
+        for (Vec2 m : mask_of(a)) mask_corners.push_back(m);
+      }
+    const std::vector<Vec2> hull = convex_hull(mask_corners);
+    return hull.size() < 3 ? -1 : b.add_clip(hull, kMaskGrowth);
+  };
   for (size_t i = 0; i < visible.avenues.size(); ++i) {
     const Avenue& avenue = visible.avenues[i];
     if (avenue.mask.size() < 3) continue;
@@ -200,6 +239,21 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
     std::optional<Box3> cell_box;
     for (const uint32_t entry : in_cell) {
       const uint32_t o = entry & ~ObjectsByCell::kCut;
+      if (visible.conservative && objects[o].cells.size() > 1) {
+        // Resolved by depth, an object need not be cut: drawn once, whole, within the hull
+        // of the masks of every visible cell it meets (wherever it shows, a cell of its own
+        // is seen there, and whatever stands before it is drawn there too).
+        if (!drawn_whole.insert(o).second) continue;
+        const int32_t around = clip_around(objects[o]);
+        if (around < 0) continue;
+        b.cull_outside(around, 2);
+        if (b.may_show(objects[o].bounds)) {
+          b.cut_to(nullptr);
+          add_object(o, {around, 0, 0, PolygonRole::Object}, source);
+        }
+        b.cull_outside(clip, 2);
+        continue;
+      }
       // Reaching beyond the cell, it is drawn here as its part inside the cell: nearer than
       // whatever the avenue sees beyond the cell's portals, as the scan takes it to be.
       const bool cut = entry & ObjectsByCell::kCut;
@@ -211,13 +265,7 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
       }
       if (!b.may_show(box)) continue;  // a cell seen through many avenues: not through this one
       b.cut_to(cut ? &cell : nullptr);
-      source.mesh = int(o);
-      const PlacedObject& object = objects[o];
-      const int level = detail_of(object, camera, out.raster, options.detail_samples);
-      const Mesh& mesh = level < 0 ? object.mesh : object.coarser[size_t(level)].mesh;
-      const std::vector<PolygonRuns>& runs = object.coarser_runs;
-      const PolygonRuns* of_mesh = level < 0 ? &object.runs : size_t(level) < runs.size() ? &runs[size_t(level)] : nullptr;
-      b.add_mesh(mesh, object.paint, where, source, level < 0, of_mesh);
+      add_object(o, where, source);
     }
     b.cut_to(nullptr);
     b.no_cull();

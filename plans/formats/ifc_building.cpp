@@ -87,25 +87,6 @@ struct Element {
   std::string label() const { return (kind.empty() ? type : kind) + " '" + (name.empty() ? guid : name) + "'"; }
 };
 
-/// Andrew's monotone chain; collinear points dropped.
-std::vector<Vec2> convex_hull(std::vector<Vec2> p) {
-  std::sort(p.begin(), p.end(), [](Vec2 a, Vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
-  p.erase(std::unique(p.begin(), p.end()), p.end());
-  if (p.size() < 3) return p;
-  std::vector<Vec2> h(2 * p.size());
-  size_t k = 0;
-  for (size_t i = 0; i < p.size(); ++i) {
-    while (k >= 2 && cross(h[k - 1] - h[k - 2], p[i] - h[k - 2]) <= 0) --k;
-    h[k++] = p[i];
-  }
-  for (size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
-    while (k >= t && cross(h[k - 1] - h[k - 2], p[i] - h[k - 2]) <= 0) --k;
-    h[k++] = p[i];
-  }
-  h.resize(k - 1);
-  return h;
-}
-
 /// The smallest rectangle around a convex polygon (one side lies on a hull edge).
 struct Rect {
   Vec2 centre, along;  ///< along: unit, the long side's direction
