@@ -158,7 +158,10 @@ std::optional<std::vector<double>> coordinates(std::string_view item) {
 /// A STEP real: the shortest decimal that reads back as d, with its decimal point.
 std::string step_real(double d) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17G", d);
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*G", digits, d);
+    if (std::strtod(buf, nullptr) == d) break;
+  }
   std::string s = buf;
   const size_t e = s.find('E');
   if (s.find('.') == std::string::npos) s.insert(e == std::string::npos ? s.size() : e, ".");
