@@ -95,23 +95,6 @@ bool hit(const Camera& cam, Vec2 px, const Plane& plane, Vec3& at) {
   return true;
 }
 
-/// Convex hull of points in the plane (monotone chain), counter-clockwise.
-std::vector<Vec2> hull_of(std::vector<Vec2> p) {
-  std::sort(p.begin(), p.end(), [](Vec2 a, Vec2 b) { return a.x != b.x ? a.x < b.x : a.y < b.y; });
-  std::vector<Vec2> h(2 * p.size());
-  size_t k = 0;
-  for (size_t i = 0; i < p.size(); ++i) {
-    while (k >= 2 && cross(h[k - 1] - h[k - 2], p[i] - h[k - 2]) <= 0) --k;
-    h[k++] = p[i];
-  }
-  for (size_t i = p.size() - 1, lo = k + 1; i-- > 0;) {
-    while (k >= lo && cross(h[k - 1] - h[k - 2], p[i] - h[k - 2]) <= 0) --k;
-    h[k++] = p[i];
-  }
-  h.resize(k - 1);
-  return h;
-}
-
 bool inside(const std::vector<Vec2>& ccw, Vec2 q) {
   for (size_t i = 0; i < ccw.size(); ++i)
     if (cross(ccw[(i + 1) % ccw.size()] - ccw[i], q - ccw[i]) < 0) return false;
@@ -128,7 +111,7 @@ std::vector<Vec2> analytic_box_shadow() {
       const double k = kLamp.z / (kLamp.z - 1.0);  // top at z = 1
       pts.push_back({kLamp.x + k * (x - kLamp.x), kLamp.y + k * (y - kLamp.y)});
     }
-  return hull_of(pts);
+  return convex_hull(pts);
 }
 
 /// A grey picture of the view lit by the plan's lights, with its item buffer.
