@@ -517,11 +517,7 @@ class Rewriter {
     }
     if (std::any_of(std::begin(kProfiles), std::end(kProfiles), [&](const char* k) { return keyword == k; }) &&
         a.size() >= 3 && step_trimmed(a[2]) == "$") {
-      if (!placement_2d_) {
-        const unsigned long long origin = add("IFCCARTESIANPOINT((0.,0.))");
-        placement_2d_ = add(listing("IFCAXIS2PLACEMENT2D(", {origin}, ",$)"));
-      }
-      a[2] = step_reference_text(placement_2d_), changed = true;
+      a[2] = step_reference_text(identity_2d()), changed = true;
     }
     if (keyword == "IFCADVANCEDFACE") {  // IfcFaceSurface's attributes, bounded by edge loops Assimp passes over
       warn(r, "IfcAdvancedFace", "read as an IfcFaceSurface: its edge loops (curves, not polygons) are left out");
@@ -600,16 +596,21 @@ class Rewriter {
       const std::string sides = "," + std::string(step_trimmed(a[1])) + "," + std::string(step_trimmed(a[2])) + ")";
       profile = add(listing("IFCRECTANGLEPROFILEDEF(.AREA.,$,", {at}, sides.c_str()));
     } else {
-      if (!placement_2d_) {
-        const unsigned long long origin = add("IFCCARTESIANPOINT((0.,0.))");
-        placement_2d_ = add(listing("IFCAXIS2PLACEMENT2D(", {origin}, ",$)"));
-      }
       const std::string radius = "," + std::string(step_trimmed(a[2])) + ")";
-      profile = add(listing("IFCCIRCLEPROFILEDEF(.AREA.,$,", {placement_2d_}, radius.c_str()));
+      profile = add(listing("IFCCIRCLEPROFILEDEF(.AREA.,$,", {identity_2d()}, radius.c_str()));
     }
     const std::string rest = "," + std::string(step_trimmed(a[0])) + "," + step_reference_text(up_) + "," +
                              std::string(step_trimmed(a[block ? 3 : 1])) + ")";
     return listing("IFCEXTRUDEDAREASOLID(", {profile}, rest.c_str());
+  }
+
+  /// The identity IfcAxis2Placement2D, made once for every profile that needs one.
+  unsigned long long identity_2d() {
+    if (!placement_2d_) {
+      const unsigned long long origin = add("IFCCARTESIANPOINT((0.,0.))");
+      placement_2d_ = add(listing("IFCAXIS2PLACEMENT2D(", {origin}, ",$)"));
+    }
+    return placement_2d_;
   }
 
   /// A new record with the next free id; returns the id.
