@@ -120,15 +120,16 @@ bool triangles_cross(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b,
 
 Interpenetration find_interpenetration(const CellComplex& complex, const std::vector<PlacedObject>& objects) {
   Interpenetration out;
-  std::vector<std::vector<int>> in_cell(complex.cells.size());
-  for (size_t o = 0; o < objects.size(); ++o)
-    for (const ObjectCell& in : objects[o].cells)
-      if (in.cell >= 0 && size_t(in.cell) < in_cell.size()) in_cell[size_t(in.cell)].push_back(int(o));
+  const ObjectsByCell by_cell = objects_by_cell(complex.cells.size(), objects);
   std::vector<Tri> tris;
   for (size_t c = 0; c < complex.cells.size(); ++c) {
-    if (in_cell[c].empty()) continue;
+    const std::span<const uint32_t> in_cell = by_cell.of(CellId(c));
+    if (in_cell.empty()) continue;
     tris.clear();
-    for (int o : in_cell[c]) add_mesh(objects[size_t(o)].mesh, o, tris);
+    for (const uint32_t entry : in_cell) {
+      const uint32_t o = entry & ~ObjectsByCell::kCut;
+      add_mesh(objects[o].mesh, int(o), tris);
+    }
     for (const Face& f : complex.cells[c].faces)
       for (size_t k = 1; k + 1 < f.poly.size(); ++k) tris.push_back(make_tri({f.poly[0], f.poly[k], f.poly[k + 1]}, {-1, -1, -1}, -1));
     auto name = [&](int a, int b) {

@@ -178,7 +178,6 @@ std::vector<PlacedObject> place_objects(const CellComplex& complex, std::vector<
       if (at.what == Location::What::Cell) p.cell = hint = at.cell;
       else if (!p.cells.empty()) p.cell = p.cells[0].cell;
     }
-    if (p.cell == kNoCell) p.cells.clear();
     if (o.material >= 0 && size_t(o.material) < complex.materials.size())
       p.paint.materials.push_back(complex.materials[size_t(o.material)]);
     else p.paint = paint_of_mesh(p.mesh);
