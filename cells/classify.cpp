@@ -31,6 +31,103 @@ double triangle_area(const Triangulation& T, int t) {
                                 T.vert[size_t(T.tri[size_t(t)][2])]}));
 }
 
+/// The triangle's least height over its sides [m]: how wide a strip it fills.
+double triangle_width(const Triangulation& T, int t) {
+  double longest = 0;
+  for (int i = 0; i < 3; ++i) longest = std::max(longest, length(T.edge_to(t, i) - T.edge_from(t, i)));
+  return longest > 0 ? 2 * triangle_area(T, t) / longest : 0;
+}
+
+/// Per storey, the triangles no wall of it covers that are a gap between its walls
+/// (kGap): thinner than kGap, with every corner on a wall of the storey (a corner of a
+/// triangle it covers). A thin triangle in a room, made by another storey's walls, has
+/// a corner away from this storey's walls and stays free; so does one with two sides
+/// open to free space wider than kGap. Marks them in `gap` and `covered`, and gives
+/// each the regions of the storey's walls within kGap of it (`gap_regions`, its own
+/// covering, as it were): so a gap between two layers of a wall is solid where they
+/// are, and a doorway where both are open. Returns how many triangle-storeys it closed.
+size_t close_gaps(const Outline& outline, const Triangulation& T, std::vector<std::vector<uint8_t>>& covered,
+                  std::vector<std::vector<uint8_t>>& gap,
+                  std::vector<std::map<int, std::vector<int32_t>>>& gap_regions) {
+  const int n = T.size();
+  std::vector<uint8_t> thin(size_t(n), 0);
+  bool any = false;
+  // (Not a triangle flat in doubles: distinct points of the exact triangulation rounded
+  // together, which footprint_of reads as one point, not a gap.)
+  for (int t = 0; t < n; ++t) {
+    const double w = triangle_width(T, t);
+    any |= (thin[size_t(t)] = w > 0 && w < kGap) != 0;
+  }
+  size_t closed = 0;
+  gap.assign(covered.size(), std::vector<uint8_t>(size_t(n), 0));
+  gap_regions.assign(covered.size(), {});
+  if (!any) return 0;
+  // The triangles at each corner.
+  std::vector<int32_t> first_at(T.vert.size() + 1, 0), at_corner(3 * size_t(n));
+  for (const auto& v : T.tri)
+    for (int32_t c : v) ++first_at[size_t(c) + 1];
+  for (size_t c = 0; c < T.vert.size(); ++c) first_at[c + 1] += first_at[c];
+  {
+    std::vector<int32_t> fill(first_at.begin(), first_at.end() - 1);
+    for (int t = 0; t < n; ++t)
+      for (int32_t c : T.tri[size_t(t)]) at_corner[size_t(fill[size_t(c)]++)] = t;
+  }
+  std::vector<uint8_t> on_wall(T.vert.size());
+  for (size_t s = 0; s < covered.size(); ++s) {
+    std::fill(on_wall.begin(), on_wall.end(), 0);
+    for (int t = 0; t < n; ++t)
+      if (covered[s][size_t(t)])
+        for (int32_t v : T.tri[size_t(t)]) on_wall[size_t(v)] = 1;
+    std::vector<uint8_t>& g = gap[s];
+    for (int t = 0; t < n; ++t) {
+      if (!thin[size_t(t)] || covered[s][size_t(t)]) continue;
+      const auto& v = T.tri[size_t(t)];
+      g[size_t(t)] = on_wall[size_t(v[0])] && on_wall[size_t(v[1])] && on_wall[size_t(v[2])];
+    }
+    // Not where two sides open onto free space: a film drawn across a doorway's face by
+    // a corner beside it, not a gap (whose triangles open at most at its mouth).
+    std::vector<int> open_sides;
+    for (int t = 0; t < n; ++t) {
+      if (!g[size_t(t)]) continue;
+      int open = 0;
+      for (int i = 0; i < 3; ++i) {
+        const int32_t u = T.nbr[size_t(t)][size_t(i)];
+        open += !(u >= 0 && (covered[s][size_t(u)] || g[size_t(u)])) && length(T.edge_to(t, i) - T.edge_from(t, i)) >= kGap;
+      }
+      if (open > 1) open_sides.push_back(t);
+    }
+    for (int t : open_sides) g[size_t(t)] = 0;
+    // The walls beside each: of the storey's walls covering a triangle at one of its
+    // corners, those within kGap of its middle (a jamb at a doorway's edge is further).
+    auto& regions = gap_regions[s];
+    for (int t = 0; t < n; ++t) {
+      if (!g[size_t(t)]) continue;
+      ++closed;
+      const auto& v = T.tri[size_t(t)];
+      const Vec2 mid = (1.0 / 3) * (T.vert[size_t(v[0])] + T.vert[size_t(v[1])] + T.vert[size_t(v[2])]);
+      std::vector<int32_t>& mine = regions[t];
+      for (int32_t corner : v)
+        for (int32_t j = first_at[size_t(corner)]; j < first_at[size_t(corner) + 1]; ++j) {
+          const int32_t u = at_corner[size_t(j)];
+          if (!covered[s][size_t(u)] || g[size_t(u)]) continue;
+          for (int32_t k = T.region_start[size_t(u)]; k < T.region_start[size_t(u) + 1]; ++k) {
+            const int32_t r = T.region_items[size_t(k)];
+            const Region& reg = outline.regions[size_t(r)];
+            if (reg.storey != StoreyId(s) || reg.sheet) continue;
+            double d = HUGE_VAL;
+            for (size_t e = 0; e < reg.poly.size(); ++e)
+              d = std::min(d, distance_to_segment(mid, reg.poly[e], reg.poly[(e + 1) % reg.poly.size()]));
+            if (d < kGap) mine.push_back(r);
+          }
+        }
+      std::sort(mine.begin(), mine.end());
+      mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
+    }
+    for (int t = 0; t < n; ++t) covered[s][size_t(t)] |= g[size_t(t)];
+  }
+  return closed;
+}
+
 /// Names the spaces of storey s that no label point named by the rooms their bounding
 /// walls of no thickness say lie on that side (Wall::left_room / right_room), each
 /// space taking the room with the longest stretch of wall voting for it. Ties and
@@ -121,12 +218,15 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
     const Storey& st = plan.storeys[size_t(s)];
     bands.push_back({Band::Kind::Storey, st.elevation, st.elevation + st.height, s, true});
     double top = s + 1 < S ? plan.storeys[size_t(s) + 1].elevation : st.elevation + st.height + st.slab;
-    if (top > st.elevation + st.height) bands.push_back({Band::Kind::Slab, st.elevation + st.height, top, s, true});
+    // A slab thinner than kGap is a storey meant to meet the next: the storey reaches it.
+    if (top > st.elevation + st.height + kGap) bands.push_back({Band::Kind::Slab, st.elevation + st.height, top, s, true});
+    else if (top > st.elevation + st.height) bands.back().z1 = top;
   }
   bands.push_back({Band::Kind::Sky, bands.back().z1, outline.z_top, -1, true});
   for (Band b : bands) {
     // No ground to tell from air when the outside is solid (a Doom map's void): no split.
-    if (b.z0 < 0 && b.z1 > 0 && !plan.outside_solid) {
+    // A band reaching less than kGap below or above the ground is not split there.
+    if (b.z0 < -kGap && b.z1 > kGap && !plan.outside_solid) {
       Band lo = b, hi = b;
       lo.z1 = 0;
       hi.z0 = 0;
@@ -134,7 +234,7 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
       C.bands.push_back(lo);
       C.bands.push_back(hi);
     } else {
-      b.outside_free = b.z0 >= 0;
+      b.outside_free = b.z0 >= -kGap;
       C.bands.push_back(b);
     }
   }
@@ -146,6 +246,16 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
   for (int t = 0; t < n; ++t)
     for (int32_t k = T.region_start[size_t(t)]; k < T.region_start[size_t(t) + 1]; ++k)
       covered[size_t(outline.regions[size_t(T.region_items[size_t(k)])].storey)][size_t(t)] = 1;
+  std::vector<std::vector<uint8_t>> gap;
+  std::vector<std::map<int, std::vector<int32_t>>> gap_regions;
+  if (const size_t closed = close_gaps(outline, T, covered, gap, gap_regions); closed > 0) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "free space thinner than %g mm between walls (walls drawn to meet, stored in single precision) "
+                  "closed in %zu place(s): the walls are joined across it",
+                  kGap * 1e3, closed);
+    C.warnings.push_back(buf);
+  }
 
   // Named rooms first (RoomId = index in plan.rooms), then enclosed spaces nobody named.
   for (const Room& r : plan.rooms) C.rooms.push_back({r.name, r.storey, true, 0});
@@ -321,16 +431,27 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
             break;
           }
           // Under wall regions of this storey: free where all of them are open.
+          // (A gap closed between walls: under the walls beside it.)
           keys.clear();
           Intervals open{{band.z0, band.z1}};
-          for (int32_t k = T.region_start[size_t(t)]; k < T.region_start[size_t(t) + 1]; ++k) {
-            int32_t r = T.region_items[size_t(k)];
+          const std::vector<int32_t>* beside = nullptr;
+          if (gap[size_t(s)][size_t(t)]) {
+            beside = &gap_regions[size_t(s)][t];
+            if (beside->empty()) open.clear();  // (a gap walled in by gaps alone)
+          }
+          const int32_t k0 = beside ? 0 : T.region_start[size_t(t)];
+          const int32_t k1 = beside ? int32_t(beside->size()) : T.region_start[size_t(t) + 1];
+          for (int32_t k = k0; k < k1; ++k) {
+            int32_t r = beside ? (*beside)[size_t(k)] : T.region_items[size_t(k)];
             const Region& reg = outline.regions[size_t(r)];
             if (reg.storey != s) continue;
             keys.push_back(r);
             open = intersect(open, reg.open);
             if (C.wall_of[b * size_t(n) + size_t(t)] < 0) C.wall_of[b * size_t(n) + size_t(t)] = reg.wall;
           }
+          // Open over less than kGap (a sill a rounding above the wall's top): not open.
+          open.erase(std::remove_if(open.begin(), open.end(), [](auto iv) { return iv.second - iv.first < kGap; }),
+                     open.end());
           if (open.empty()) { of[size_t(t)] = -1; break; }
           auto it = region_class.find(keys);
           if (it == region_class.end()) {

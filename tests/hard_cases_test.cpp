@@ -327,6 +327,59 @@ TEST(HardCases, VerticesWithinANanometre) {
   }
 }
 
+namespace {
+
+/// The least depth of a cell behind any of its faces [m]: how thin it is.
+double thickness_of(const Cell& cell) {
+  double width = HUGE_VAL;
+  for (const Face& f : cell.faces) {
+    double depth = 0;
+    for (const Face& g : cell.faces)
+      for (Vec3 v : g.poly) depth = std::max(depth, -f.plane.eval(v));
+    width = std::min(width, depth);
+  }
+  return width;
+}
+
+/// Two rooms parted by a wall of two 10 cm layers with a door through both; the east
+/// layer stands `miss` east of the west one's face, and the storey starts `below`
+/// under the ground: a model stored in single precision, whose walls were drawn to meet.
+Plan two_layer_rooms(double miss, double below) {
+  Plan p = two_rooms(0.2);
+  p.storeys[0].elevation = -below;
+  p.walls[1] = wall("mid west", {{3.95, 0}, {3.95, 4}}, 0.1);
+  p.walls[1].openings.push_back(door(1.5));
+  Wall east = wall("mid east", {{4.05 + miss, 0}, {4.05 + miss, 4}}, 0.1);
+  east.openings.push_back(door(1.5));
+  p.walls.push_back(east);
+  return p;
+}
+
+}  // namespace
+
+// Stable: walls drawn to meet but stored in single precision miss each other by 90 nm,
+// and a storey starts 0.2 µm below the ground. The gap between the two layers of a wall
+// is closed where they are solid and open where the door goes through both; no cell is
+// thinner than a micrometre, the rooms stay two, and the eye sees through the door as
+// the rays do. Kernels claimed: double, filtered, exact.
+TEST(HardCases, WallsMissingEachOtherByASinglePrecisionRounding) {
+  const CellComplex exact = build_cells(two_layer_rooms(0, 0));
+  const CellComplex c = build_cells(two_layer_rooms(9e-8, 2.2e-7));
+  ASSERT_EQ(cells_are_valid(c), "");
+  EXPECT_EQ(c.rooms.size(), 2u) << "the gap is no space of its own";
+  EXPECT_EQ(c.cells.size(), exact.cells.size());
+  for (const Cell& cell : c.cells) EXPECT_GT(thickness_of(cell), 1e-6) << to_string(cell.kind) << " cell";
+  EXPECT_TRUE(std::any_of(c.warnings.begin(), c.warnings.end(),
+                          [](const std::string& w) { return w.find("closed") != std::string::npos; }));
+  const Camera through = Camera::look_at({1.0, 1.9, 1.0}, {8, 1.9, 1.0}, 70, 48, 32);
+  const auto seen = all_kernels(c, through, kDoubleExact);
+  bool east = false;
+  for (CellId id : seen.at(Kernel::Exact).cells) east |= room_of(c, id) == room_named(c, "east");
+  EXPECT_TRUE(east) << "the door through both layers is open";
+  all_kernels(c, Camera::look_at({1.0, 0.5, 1.0}, {8, 0.2, 1.0}, 70, 48, 32), kDoubleExact);  // along the gap's end
+  all_kernels(c, Camera::look_at({7.0, 3.0, 2.2}, {3.9, 1.0, 0.2}, 90, 48, 32), kDoubleExact);
+}
+
 // ---------------------------------------------------------------------------------------
 // Thin and coincident walls, tiny angles, nearly coincident vertices.
 
