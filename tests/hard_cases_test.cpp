@@ -378,6 +378,16 @@ TEST(HardCases, WallsMissingEachOtherByASinglePrecisionRounding) {
   EXPECT_TRUE(east) << "the door through both layers is open";
   all_kernels(c, Camera::look_at({1.0, 0.5, 1.0}, {8, 0.2, 1.0}, 70, 48, 32), kDoubleExact);  // along the gap's end
   all_kernels(c, Camera::look_at({7.0, 3.0, 2.2}, {3.9, 1.0, 0.2}, 90, 48, 32), kDoubleExact);
+
+  // A wall ending 90 nm short of the walls it was drawn to meet (a T junction) parts the
+  // rooms as if it met them.
+  Plan short_ends = two_rooms(0.2);
+  short_ends.walls[1].centre = {{4, 0.1 + 9e-8}, {4, 3.9 - 9e-8}};
+  const CellComplex t = build_cells(short_ends);
+  ASSERT_EQ(cells_are_valid(t), "");
+  EXPECT_EQ(t.rooms.size(), 2u);
+  EXPECT_EQ(t.cells.size(), build_cells(two_rooms(0.2)).cells.size());
+  for (const Cell& cell : t.cells) EXPECT_GT(thickness_of(cell), 1e-6) << to_string(cell.kind) << " cell";
 }
 
 // ---------------------------------------------------------------------------------------
