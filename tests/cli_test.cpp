@@ -775,16 +775,17 @@ TEST_F(Cli, DxfPlanDrawingShowsWhatWasUnderstoodOverTheDrawingsOwnLines) {
   EXPECT_EQ(slurp(path("own.svg")).find("class=\"drawing\""), std::string::npos);
 }
 
-TEST_F(Cli, DxfWithoutAWallLayerIsRefusedListingItsLayers) {
+TEST_F(Cli, DxfWithoutAWallLayerOpensSayingWhichLayerItTookAsWalls) {
   const std::string dxf = std::string(AVENUES_OUTSIDE_DIR) + "/dxf/evil-spirit-house.dxf";
-  const Outcome r = run({"cells", dxf, "--save-plan", "never.toml"});
-  EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("'s001-#def-active-grp'"), std::string::npos) << r.err;
+  const Outcome r = run({"cells", dxf, "--save-plan", "guessed.toml"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("the lines of layer(s) 's001-#def-active-grp' are taken as walls"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("--layers"), std::string::npos) << r.err;
-  EXPECT_EQ(files().count("never.toml"), 0u);
-  const Outcome named = run({"cells", dxf, "--layers", "walls=nosuch"});
+  EXPECT_EQ(files().count("guessed.toml"), 1u);
+  const Outcome named = run({"cells", dxf, "--layers", "walls=nosuch", "--save-plan", "never.toml"});
   EXPECT_EQ(named.status, 2);
   EXPECT_NE(named.err.find("no layer 'nosuch'"), std::string::npos) << named.err;
+  EXPECT_EQ(files().count("never.toml"), 0u);
 }
 
 // An IFC model's plan as understood, stairwells and bulkheads' gaps and all, is saved as for

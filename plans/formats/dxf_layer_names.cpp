@@ -128,16 +128,25 @@ std::string fold_layer_name(const std::string& name) {
 
 Folded::Folded(const std::string& name) : text(fold_layer_name(name)), words(words_of(text)) {}
 
+namespace {
+
+bool says_no_building(const Folded& f) {
+  return contains(f.text, {"virtual", "furn", "dim", "text", "hatch-", "grid", "möbel", "moebel", "mobili", "arredo",
+                           "cotation", "bemaß", "bemass", "beschrift", "annot", "demoli", "abbruch", "rückbau", "текст",
+                           "размер", "мебел", "标注", "文字", "家具", "轴网"}) ||
+         a_word_is(f.words, {"iden", "demo", "abov", "above", "ovhd", "elev", "nplt", "note", "notes", "symb", "tag",
+                             "tags", "cote", "cotes", "cotas", "quote", "defpoints"});
+}
+
+}  // namespace
+
+bool names_no_building(const std::string& name) { return says_no_building(Folded(name)); }
+
 LayerRole layer_role_by_name(const std::string& name) {
   const Folded f(name);
   const std::string_view n = f.text;
   const std::vector<std::string_view>& w = f.words;
-  if (contains(n, {"virtual", "furn", "dim", "text", "hatch-", "grid", "möbel", "moebel", "mobili", "arredo", "cotation",
-                   "bemaß", "bemass", "beschrift", "annot", "demoli", "abbruch", "rückbau", "текст", "размер", "мебел",
-                   "标注", "文字", "家具", "轴网"}) ||
-      a_word_is(w, {"iden", "demo", "abov", "above", "ovhd", "elev", "nplt", "note", "notes", "symb", "tag", "tags", "cote",
-                    "cotes", "cotas", "quote"}))
-    return LayerRole::None;
+  if (says_no_building(f)) return LayerRole::None;
   const bool door = f.door(), window = f.window();
   if (contains(n, {"menuiser", "carpinter", "infiss", "serrament", "esquadri", "kozijn"}) || (door && window))
     return LayerRole::Doors;

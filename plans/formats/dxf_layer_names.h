@@ -25,6 +25,11 @@ std::string fold_layer_name(const std::string& name);
 ///    NOTE, SYMB) are None, whatever else the name says.
 LayerRole layer_role_by_name(const std::string& name);
 
+/// Whether a layer's name says it holds no part of the building in plan: the names
+/// layer_role_by_name reads as None whatever else they say (furniture, text, dimensions,
+/// grids, AIA's IDEN, DEMO, NOTE ...), and AutoCAD's Defpoints.
+bool names_no_building(const std::string& name);
+
 /// Whether a name speaks of doors or windows, whatever its role (A-DOOR-IDEN's door
 /// numbers are no room names).
 bool names_openings(const std::string& name);

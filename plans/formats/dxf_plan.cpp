@@ -1004,6 +1004,25 @@ DxfPlan read_dxf_plan(const std::string& path, const DxfPlanOptions& opt) {
     out.metres_per_unit = metres_of_insunits(col.insunits);
     return out;
   }
+  // No layer named for walls and none given: as a CAD viewer shows a drawing whatever its
+  // layers, the lines of every layer whose name does not say it holds something else
+  // (dimensions, text, furniture ...) are the walls, and a warning names them and --layers.
+  if (wall_layers_used.empty() && given.empty()) {
+    for (const SegPiece& s : flat.segs)
+      if (role[s.layer] == LayerRole::None && !names_no_building(s.layer)) wall_layers_used.insert(s.layer);
+    for (const Band& b : flat.bands)
+      if (role[b.layer] == LayerRole::None && !names_no_building(b.layer)) wall_layers_used.insert(b.layer);
+    std::string list;
+    for (const std::string& l : wall_layers_used) {
+      role[l] = LayerRole::Walls;
+      taken[int(LayerRole::Walls)].push_back(l);
+      list += (list.empty() ? "'" : ", '") + l + "'";
+    }
+    if (!list.empty())
+      plan.warnings.push_back("no layer holds walls by its name: the lines of layer(s) " + list +
+                              " are taken as walls (name the wall layers with --layers "
+                              "'walls=NAME,NAME;doors=NAME;windows=NAME')");
+  }
   if (wall_layers_used.empty()) {
     std::string list;
     for (const std::string& l : layers) {
