@@ -249,7 +249,7 @@ class FrameWriter {
   FrameWriter(const CellComplex& c, const PathSettings& s, const Walk& walk, const std::string& pattern)
       : c_(c), s_(s), walk_(walk), pattern_(pattern) {
     if (s.svg) {
-      scene_ = prepare_line_scene(c);
+      scene_ = prepare_line_scene(c, place_objects(c, &said_));
     } else {
       objects_ = place_objects(c, &said_, s.halftone.detail_samples > 0);
       effects_.emplace(prepare_effects(c, objects_, s.halftone, s.kernel));  // once for every frame

@@ -291,7 +291,7 @@ class Session {
   }
 
   const LineScene& line_scene() {
-    if (!scene_) scene_ = prepare_line_scene(c_);
+    if (!scene_) scene_ = prepare_line_scene(c_, objects_);
     return *scene_;
   }
 

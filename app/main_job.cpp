@@ -38,14 +38,21 @@ int run_offline(const LoadedPlan& plan, const MainJobOptions& opt, bool summary_
   VisibleSet visible = find_visible(plan.complex, view.camera, view.eye_cell, view.search);
   const std::string overlay = (fs::path(opt.out_dir) / (plan.stem + "-avenues.svg")).string();
   write_overlay_svg(plan.complex, view.camera, visible, overlay);
+  // The furniture, read and placed once for both pictures.
+  std::vector<std::string> said;  // what reading the objects' meshes let pass
+  const std::vector<PlacedObject> objects = place_objects(plan.complex, &said);
+  print_warnings(plan.path, said);
   // What the eye sees, as a hidden-line drawing (Jones's perspective line drawing).
   const std::string drawing = (fs::path(opt.out_dir) / (plan.stem + "-view.svg")).string();
-  const DrawingStats lines = write_drawing(draw_view(plan.complex, prepare_line_scene(plan.complex), view.camera, visible), drawing);
+  const DrawingStats lines =
+      write_drawing(draw_view(plan.complex, prepare_line_scene(plan.complex, objects), view.camera, visible), drawing);
   // And as a half-tone picture (Wylie, Bouknight), four samples per pixel.
   const std::string picture = (fs::path(opt.out_dir) / (plan.stem + "-view.png")).string();
   HalftoneOptions halftone;
   halftone.samples = 4;
-  write_image(render_view(plan.complex, view.camera, visible, halftone), picture);
+  Image image;
+  render_view(plan.complex, objects, view.camera, visible, halftone, image);
+  write_image(image, picture);
 
   if (!summary_printed) print_summary(std::cout, plan);
   const Cell& eye_cell = plan.complex.cells[size_t(view.eye_cell)];

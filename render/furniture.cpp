@@ -76,21 +76,20 @@ void find_edges(FurniturePiece& p) {
 
 }  // namespace
 
-Furniture place_furniture(const CellComplex& c) {
+Furniture furniture_of(const std::vector<PlacedObject>& placed) {
   Furniture f;
-  ObjectModels loaded;
-  for (const Object& o : c.objects) {
+  for (const PlacedObject& o : placed) {
     FurniturePiece p;
     p.name = o.name;
-    p.mesh = place(model_of(o, loaded), o, floor_of(c, o));
+    p.mesh = o.mesh;
     find_edges(p);
-    Box3 box;
-    for (Vec3 v : p.mesh.vertices) box.add(v);
-    for (const ObjectCell& in : cells_met(c, o, p.mesh, box)) p.cells.push_back(in.cell);
+    for (const ObjectCell& in : o.cells) p.cells.push_back(in.cell);
     f.pieces.push_back(std::move(p));
   }
   return f;
 }
+
+Furniture place_furniture(const CellComplex& c) { return furniture_of(place_objects(c)); }
 
 std::vector<uint8_t> polygons_facing(const FurniturePiece& p, Vec3 eye) {
   std::vector<uint8_t> facing(p.polygon_normal.size());

@@ -22,6 +22,7 @@
 #include "cells/cell_complex.h"
 #include "render/drawing.h"
 #include "render/interval_clip.h"
+#include "render/scene_objects.h"
 #include "plans/mesh.h"
 #include "visibility/camera.h"
 
@@ -48,8 +49,12 @@ struct Furniture {
   std::vector<FurniturePiece> pieces;  ///< one per complex.objects entry, same order
 };
 
-/// Loads each object's mesh (each file once), places it on its storey, finds its edges and
-/// its cells. Throws std::runtime_error naming the mesh file if one cannot be read.
+/// The objects as placed (place_objects: one per complex.objects entry, in order, with
+/// the cells each meets), with their edges.
+Furniture furniture_of(const std::vector<PlacedObject>& placed);
+
+/// furniture_of(place_objects(complex)). Throws std::runtime_error naming the mesh file if
+/// one cannot be read.
 Furniture place_furniture(const CellComplex& complex);
 
 /// Crow's back-face test: 1 for each polygon of `piece` that faces `eye`.

@@ -158,15 +158,20 @@ void draw_shadow_outlines(const CellComplex& c, const LineScene& scene, const Ca
 
 }  // namespace
 
-LineScene prepare_line_scene(const CellComplex& complex) { return {line_faces(complex), place_furniture(complex), {}, {}}; }
-
-LineScene prepare_line_scene(const CellComplex& complex, const LineOptions& options) {
-  LineScene scene = prepare_line_scene(complex);
+LineScene prepare_line_scene(const CellComplex& complex, const std::vector<PlacedObject>& objects,
+                             const LineOptions& options) {
+  LineScene scene{line_faces(complex), furniture_of(objects), {}, {}};
   if (!options.shadows) return scene;
   scene.lighting = lighting_of(complex, Shading{}, Lights::Plan, false, false);
-  scene.shadows = cast_shadows(complex, place_objects(complex), scene.lighting);
+  scene.shadows = cast_shadows(complex, objects, scene.lighting);
   return scene;
 }
+
+LineScene prepare_line_scene(const CellComplex& complex, const LineOptions& options) {
+  return prepare_line_scene(complex, place_objects(complex), options);
+}
+
+LineScene prepare_line_scene(const CellComplex& complex) { return prepare_line_scene(complex, LineOptions{}); }
 
 Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& cam, const VisibleSet& vs,
                   const LineOptions& options) {

@@ -66,6 +66,9 @@ struct LineScene {
 LineScene prepare_line_scene(const CellComplex& complex);
 /// The same, and with options.shadows the shadows of the plan's point lights (shadows.h).
 LineScene prepare_line_scene(const CellComplex& complex, const LineOptions& options);
+/// The same with the objects placed already (place_objects), not read and placed again.
+LineScene prepare_line_scene(const CellComplex& complex, const std::vector<PlacedObject>& objects,
+                             const LineOptions& options = {});
 
 /// The hidden-line drawing of what `camera` sees; `visible` is find_visible() from the same
 /// camera, with exact masks: a conservative set (the hull search) would draw lines that are
