@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <span>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -30,19 +31,23 @@ struct Narrowing {
   const char* lost;  ///< what is left out
 };
 constexpr Narrowing kNarrowings[] = {
-    {"IFCEXTRUDEDAREASOLIDTAPERED", "IFCEXTRUDEDAREASOLID", 4, "its taper (the end profile)"},
-    {"IFCREVOLVEDAREASOLIDTAPERED", "IFCREVOLVEDAREASOLID", 4, "its taper (the end profile)"},
-    {"IFCSWEPTDISKSOLIDPOLYGONAL", "IFCSWEPTDISKSOLID", 5, "its fillets"},
+    {"IfcExtrudedAreaSolidTapered", "IfcExtrudedAreaSolid", 4, "its taper (the end profile)"},
+    {"IfcRevolvedAreaSolidTapered", "IfcRevolvedAreaSolid", 4, "its taper (the end profile)"},
+    {"IfcSweptDiskSolidPolygonal", "IfcSweptDiskSolid", 5, "its fillets"},
 };
 
 /// IFC4 geometry IFC2X3 has no form for (NURBS boundaries, sweeps along a fixed reference,
 /// curved surfaces as items): left out, said.
-constexpr const char* kUnreadable[] = {"IFCADVANCEDBREP", "IFCADVANCEDBREPWITHVOIDS", "IFCFIXEDREFERENCESWEPTAREASOLID",
-                                      "IFCCYLINDRICALSURFACE", "IFCSPHERICALSURFACE", "IFCTOROIDALSURFACE"};
+constexpr const char* kUnreadable[] = {"IfcAdvancedBrep", "IfcAdvancedBrepWithVoids", "IfcFixedReferenceSweptAreaSolid",
+                                      "IfcCylindricalSurface", "IfcSphericalSurface", "IfcToroidalSurface"};
 
 /// CSG primitives Assimp reads in no form: left out, said. (IfcBlock and
 /// IfcRightCircularCylinder are extrusions: see Rewriter::extrusion.)
-constexpr const char* kPrimitivesLeftOut[] = {"IFCSPHERE", "IFCRECTANGULARPYRAMID", "IFCRIGHTCIRCULARCONE"};
+constexpr const char* kPrimitivesLeftOut[] = {"IfcSphere", "IfcRectangularPyramid", "IfcRightCircularCone"};
+
+/// The other solids rewritten here, by name for messages (their keywords are matched in
+/// the code that rewrites them).
+constexpr const char* kRewrittenSolids[] = {"IfcSweptDiskSolid", "IfcBlock", "IfcRightCircularCylinder", "IfcCsgSolid"};
 
 /// IFC4's kinds of product that IFC2X3 knows under a more general name (its supertype, or a
 /// proxy): read as that, every attribute kept (IFC2X3's reader reads what it knows of them).
@@ -238,23 +243,24 @@ bool upper_is(std::string_view keyword, std::string_view name) {
                     [](char k, char n) { return k == std::toupper(static_cast<unsigned char>(n)); });
 }
 
-/// "IfcExtrudedAreaSolid" of "IFCEXTRUDEDAREASOLID", for messages: IFC's own spelling of the
-/// entities named here.
+/// IFC's own spelling of a keyword named in the tables above ("IfcExtrudedAreaSolid" of
+/// "IFCEXTRUDEDAREASOLID"), for messages; another keyword as it is.
 std::string title_case(std::string_view keyword) {
-  static const std::pair<const char*, const char*> kNames[] = {
-      {"IFCEXTRUDEDAREASOLIDTAPERED", "IfcExtrudedAreaSolidTapered"}, {"IFCEXTRUDEDAREASOLID", "IfcExtrudedAreaSolid"},
-      {"IFCREVOLVEDAREASOLIDTAPERED", "IfcRevolvedAreaSolidTapered"}, {"IFCREVOLVEDAREASOLID", "IfcRevolvedAreaSolid"},
-      {"IFCSWEPTDISKSOLIDPOLYGONAL", "IfcSweptDiskSolidPolygonal"},   {"IFCSWEPTDISKSOLID", "IfcSweptDiskSolid"},
-      {"IFCADVANCEDBREP", "IfcAdvancedBrep"},                         {"IFCADVANCEDBREPWITHVOIDS", "IfcAdvancedBrepWithVoids"},
-      {"IFCFIXEDREFERENCESWEPTAREASOLID", "IfcFixedReferenceSweptAreaSolid"},
-      {"IFCCYLINDRICALSURFACE", "IfcCylindricalSurface"},             {"IFCSPHERICALSURFACE", "IfcSphericalSurface"},
-      {"IFCTOROIDALSURFACE", "IfcToroidalSurface"},                   {"IFCBLOCK", "IfcBlock"},
-      {"IFCRIGHTCIRCULARCYLINDER", "IfcRightCircularCylinder"},       {"IFCSPHERE", "IfcSphere"},
-      {"IFCRECTANGULARPYRAMID", "IfcRectangularPyramid"},             {"IFCRIGHTCIRCULARCONE", "IfcRightCircularCone"},
-      {"IFCCSGSOLID", "IfcCsgSolid"}};
-  for (const auto& [upper, name] : kNames)
-    if (keyword == upper) return name;
+  for (const Narrowing& n : kNarrowings)
+    for (const char* name : {n.from, n.to})
+      if (upper_is(keyword, name)) return name;
+  using Names = std::span<const char* const>;
+  for (Names names : {Names(kUnreadable), Names(kPrimitivesLeftOut), Names(kRewrittenSolids)})
+    for (const char* name : names)
+      if (upper_is(keyword, name)) return name;
   return std::string(keyword);
+}
+
+/// The STEP keyword of IFC's name for an entity: "IFCEXTRUDEDAREASOLID" of "IfcExtrudedAreaSolid".
+std::string keyword_of(std::string_view name) {
+  std::string k(name);
+  for (char& c : k) c = char(std::toupper(static_cast<unsigned char>(c)));
+  return k;
 }
 
 class Rewriter {
@@ -450,12 +456,12 @@ class Rewriter {
   static bool needs_fixing(const StepRecord& r) {
     auto is = [&](const char* k) { return r.keyword == k; };
     return std::any_of(std::begin(kRenamed), std::end(kRenamed), [&](const auto& n) { return upper_is(r.keyword, n.first); }) ||
-           std::any_of(std::begin(kNarrowings), std::end(kNarrowings), [&](const Narrowing& n) { return is(n.from); }) ||
-           std::any_of(std::begin(kUnreadable), std::end(kUnreadable), is) ||
+           std::any_of(std::begin(kNarrowings), std::end(kNarrowings), [&](const Narrowing& n) { return upper_is(r.keyword, n.from); }) ||
+           std::any_of(std::begin(kUnreadable), std::end(kUnreadable), [&](const char* n) { return upper_is(r.keyword, n); }) ||
            std::any_of(std::begin(kSweptAreaSolids), std::end(kSweptAreaSolids), is) || is("IFCSWEPTDISKSOLID") ||
            std::any_of(std::begin(kProfiles), std::end(kProfiles), is) || is("IFCADVANCEDFACE") ||
            is("IFCBLOCK") || is("IFCRIGHTCIRCULARCYLINDER") || is("IFCCSGSOLID") ||
-           std::any_of(std::begin(kPrimitivesLeftOut), std::end(kPrimitivesLeftOut), is) ||
+           std::any_of(std::begin(kPrimitivesLeftOut), std::end(kPrimitivesLeftOut), [&](const char* n) { return upper_is(r.keyword, n); }) ||
            (r.attributes.size() >= 2 && is_global_id(r.attributes[0]) && step_trimmed(r.attributes[1]) == "$");
   }
 
@@ -484,9 +490,9 @@ class Rewriter {
     }
     const std::string type = title_case(keyword);
     for (const Narrowing& n : kNarrowings) {
-      if (keyword != n.from || a.size() < n.keep) continue;
-      warn(r, type.c_str(), std::string("read as an ") + title_case(n.to) + ", without " + n.lost);
-      keyword = n.to, a.resize(n.keep), changed = true, ++out.solids;
+      if (!upper_is(keyword, n.from) || a.size() < n.keep) continue;
+      warn(r, type.c_str(), std::string("read as an ") + n.to + ", without " + n.lost);
+      keyword = keyword_of(n.to), a.resize(n.keep), changed = true, ++out.solids;
     }
     auto left_out = [&](const std::string& why) {
       warn(r, type.c_str(), why + ": its geometry is left out");
@@ -495,7 +501,7 @@ class Rewriter {
       const unsigned long long corner = add("IFCCARTESIANPOINT((0.,0.,0.))");
       return finish(r.id, listing("IFCBOUNDINGBOX(", {corner}, ",0.,0.,0.)"));
     };
-    if (std::any_of(std::begin(kUnreadable), std::end(kUnreadable), [&](const char* k) { return keyword == k; }))
+    if (std::any_of(std::begin(kUnreadable), std::end(kUnreadable), [&](const char* n) { return upper_is(keyword, n); }))
       return left_out("IFC2X3, which Assimp reads, has no form for it");
     if (a.size() >= 2 && is_global_id(a[0]) && step_trimmed(a[1]) == "$") {
       if (!owner_) {
@@ -538,7 +544,7 @@ class Rewriter {
       ++out.solids;
       return finish(r.id, *body);
     }
-    if (std::any_of(std::begin(kPrimitivesLeftOut), std::end(kPrimitivesLeftOut), [&](const char* k) { return keyword == k; }))
+    if (std::any_of(std::begin(kPrimitivesLeftOut), std::end(kPrimitivesLeftOut), [&](const char* n) { return upper_is(keyword, n); }))
       return left_out("Assimp reads no " + type);
     if (keyword == "IFCCSGSOLID") {
       const auto root = a.empty() ? std::nullopt : step_reference(a[0]);
