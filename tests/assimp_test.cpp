@@ -1019,6 +1019,32 @@ TEST(Ifc, CsgColumnsStandAsTheirBlocksAndCylindersSay) {
   fs::remove_all(dir);
 }
 
+TEST(Ifc, AModelOfGeometryAssimpHasNoFormForIsRefusedNamingWhatWasLeftOut) {
+  // Only a ball (IfcSphere, which Assimp reads in no form): nothing is left for Assimp to
+  // read, and the error says what was left out and where, not only Assimp's own words.
+  std::string text = avenues::testing::slurp(l_walled_room());
+  text.erase(text.find("/* Wall A"), text.rfind("ENDSEC;") - text.find("/* Wall A"));
+  text.insert(text.rfind("ENDSEC;"),
+              "#200=IFCSPHERE(#11,0.5);\n#201=IFCSHAPEREPRESENTATION(#12,'Body','CSG',(#200));\n"
+              "#202=IFCPRODUCTDEFINITIONSHAPE($,$,(#201));\n"
+              "#203=IFCBUILDINGELEMENTPROXY('0ZvctVUKr0kugbFTf53O9L',#5,'Ball',$,$,#14,#202,$,$);\n"
+              "#204=IFCRELCONTAINEDINSPATIALSTRUCTURE('1ZvctVUKr0kugbFTf53O9L',#5,$,$,(#203),#17);\n");
+  const fs::path dir = fs::temp_directory_path() / ("avenues-ifc-ball-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string path = (dir / "ball.ifc").string();
+  std::ofstream(path, std::ios::binary) << text;
+  try {
+    read_ifc_building(path);
+    FAIL() << "read";
+  } catch (const PlanError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path), std::string::npos) << what;
+    EXPECT_NE(what.find("#200 (IfcSphere): Assimp reads no IfcSphere: its geometry is left out"), std::string::npos)
+        << what;
+  }
+  fs::remove_all(dir);
+}
+
 TEST(Ifc, DanglingReferencesAndBrokenRecordsAreRefusedBeforeAssimpCrashesOnThem) {
   // Assimp 5.2's STEP reader dereferences what it could not resolve (a fuzzer found both).
   const std::string room = avenues::testing::slurp(l_walled_room());

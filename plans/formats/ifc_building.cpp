@@ -359,7 +359,16 @@ class Builder {
     try {
       scene = import_scene(path_, options);
     } catch (const std::runtime_error& e) {
-      throw PlanError({path_, 0, 0, ""}, std::string("Assimp cannot read this IFC model: ") + e.what());
+      // Where the rewrite left geometry out (NURBS boundaries, spheres), that is likely why
+      // nothing was left to read: say so, naming the first few.
+      std::string left_out;
+      size_t n = 0;
+      for (const std::string& w : plan_.warnings)
+        if (w.find("left out") != std::string::npos && n++ < 3)
+          left_out += "\n  " + (w.rfind(path_ + ": ", 0) == 0 ? w.substr(path_.size() + 2) : w);
+      if (n > 3) left_out += "\n  and " + std::to_string(n - 3) + " more";
+      if (!left_out.empty()) left_out = "\nits geometry Assimp has no form for was left out:" + left_out;
+      throw PlanError({path_, 0, 0, ""}, std::string("Assimp cannot read this IFC model: ") + e.what() + left_out);
     }
     import_seconds = scene.import_seconds;
     gather(scene);
