@@ -80,6 +80,17 @@ Vec3 Cell::middle() const {
   return (1.0 / k) * s;
 }
 
+double Cell::width() const {
+  double width = HUGE_VAL;
+  for (const Face& f : faces) {
+    double depth = 0;
+    for (const Face& g : faces)
+      for (Vec3 v : g.poly) depth = std::max(depth, -f.plane.eval(v));
+    width = std::min(width, depth);
+  }
+  return width;
+}
+
 double Cell::volume() const {
   if (prism) return signed_area(footprint) * (z1 - z0);
   // A general convex polyhedron: pyramids from one of its vertices to every face.

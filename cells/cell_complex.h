@@ -132,6 +132,8 @@ struct Cell {
   double volume() const;
   /// [m] the mean of its faces' corners: inside it, as it is convex.
   Vec3 middle() const;
+  /// [m] how thin it is: the least, over its faces, of its depth behind the face.
+  double width() const;
   /// Closed containment with tolerance tol [m] (positive grows the cell).
   bool contains(Vec3 p, double tol = 0) const;
 };

@@ -541,13 +541,7 @@ void drop_slivers(CellComplex& out) {
   double thinnest = HUGE_VAL;
   for (size_t i = 0; i < out.cells.size(); ++i) {
     const Cell& cell = out.cells[i];
-    double width = HUGE_VAL;
-    for (const Face& f : cell.faces) {
-      double depth = 0;
-      for (const Face& g : cell.faces)
-        for (Vec3 v : g.poly) depth = std::max(depth, -f.plane.eval(v));
-      width = std::min(width, depth);
-    }
+    const double width = cell.width();
     sliver[i] = cell.faces.size() < 4 || cell.footprint.size() < 3 || !(width > thin) ||
                 !(signed_area(cell.footprint) > thin * thin) || !(cell.z1 > cell.z0);
     if (sliver[i]) thinnest = std::min(thinnest, width), ++dropped;

@@ -329,18 +329,6 @@ TEST(HardCases, VerticesWithinANanometre) {
 
 namespace {
 
-/// The least depth of a cell behind any of its faces [m]: how thin it is.
-double thickness_of(const Cell& cell) {
-  double width = HUGE_VAL;
-  for (const Face& f : cell.faces) {
-    double depth = 0;
-    for (const Face& g : cell.faces)
-      for (Vec3 v : g.poly) depth = std::max(depth, -f.plane.eval(v));
-    width = std::min(width, depth);
-  }
-  return width;
-}
-
 /// Two rooms parted by a wall of two 10 cm layers with a door through both; the east
 /// layer stands `miss` east of the west one's face, and the storey starts `below`
 /// under the ground: a model stored in single precision, whose walls were drawn to meet.
@@ -368,7 +356,7 @@ TEST(HardCases, WallsMissingEachOtherByASinglePrecisionRounding) {
   ASSERT_EQ(cells_are_valid(c), "");
   EXPECT_EQ(c.rooms.size(), 2u) << "the gap is no space of its own";
   EXPECT_EQ(c.cells.size(), exact.cells.size());
-  for (const Cell& cell : c.cells) EXPECT_GT(thickness_of(cell), 1e-6) << to_string(cell.kind) << " cell";
+  for (const Cell& cell : c.cells) EXPECT_GT(cell.width(), 1e-6) << to_string(cell.kind) << " cell";
   EXPECT_TRUE(std::any_of(c.warnings.begin(), c.warnings.end(),
                           [](const std::string& w) { return w.find("closed") != std::string::npos; }));
   const Camera through = Camera::look_at({1.0, 1.9, 1.0}, {8, 1.9, 1.0}, 70, 48, 32);
@@ -387,7 +375,7 @@ TEST(HardCases, WallsMissingEachOtherByASinglePrecisionRounding) {
   ASSERT_EQ(cells_are_valid(t), "");
   EXPECT_EQ(t.rooms.size(), 2u);
   EXPECT_EQ(t.cells.size(), build_cells(two_rooms(0.2)).cells.size());
-  for (const Cell& cell : t.cells) EXPECT_GT(thickness_of(cell), 1e-6) << to_string(cell.kind) << " cell";
+  for (const Cell& cell : t.cells) EXPECT_GT(cell.width(), 1e-6) << to_string(cell.kind) << " cell";
 }
 
 // ---------------------------------------------------------------------------------------
