@@ -89,8 +89,6 @@ Furniture furniture_of(const std::vector<PlacedObject>& placed) {
   return f;
 }
 
-Furniture place_furniture(const CellComplex& c) { return furniture_of(place_objects(c)); }
-
 std::vector<uint8_t> polygons_facing(const FurniturePiece& p, Vec3 eye) {
   std::vector<uint8_t> facing(p.polygon_normal.size());
   for (size_t k = 0; k < facing.size(); ++k) facing[k] = dot(p.polygon_normal[k], eye - p.polygon_point[k]) > 0;

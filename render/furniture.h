@@ -53,10 +53,6 @@ struct Furniture {
 /// the cells each meets), with their edges.
 Furniture furniture_of(const std::vector<PlacedObject>& placed);
 
-/// furniture_of(place_objects(complex)). Throws std::runtime_error naming the mesh file if
-/// one cannot be read.
-Furniture place_furniture(const CellComplex& complex);
-
 /// Crow's back-face test: 1 for each polygon of `piece` that faces `eye`.
 std::vector<uint8_t> polygons_facing(const FurniturePiece& piece, Vec3 eye);
 
