@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <span>
 #include <tuple>
 
 #include "cells/passes.h"
@@ -434,15 +435,14 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
           // (A gap closed between walls: under the walls beside it.)
           keys.clear();
           Intervals open{{band.z0, band.z1}};
-          const std::vector<int32_t>* beside = nullptr;
-          if (gap[size_t(s)][size_t(t)]) {
-            beside = &gap_regions[size_t(s)][t];
-            if (beside->empty()) open.clear();  // (a gap walled in by gaps alone)
-          }
-          const int32_t k0 = beside ? 0 : T.region_start[size_t(t)];
-          const int32_t k1 = beside ? int32_t(beside->size()) : T.region_start[size_t(t) + 1];
-          for (int32_t k = k0; k < k1; ++k) {
-            int32_t r = beside ? (*beside)[size_t(k)] : T.region_items[size_t(k)];
+          const bool closed_gap = gap[size_t(s)][size_t(t)];
+          const std::span<const int32_t> regions =
+              closed_gap ? std::span<const int32_t>(gap_regions[size_t(s)][t])
+                         : std::span<const int32_t>(T.region_items)
+                               .subspan(size_t(T.region_start[size_t(t)]),
+                                        size_t(T.region_start[size_t(t) + 1] - T.region_start[size_t(t)]));
+          if (closed_gap && regions.empty()) open.clear();  // (a gap walled in by gaps alone)
+          for (const int32_t r : regions) {
             const Region& reg = outline.regions[size_t(r)];
             if (reg.storey != s) continue;
             keys.push_back(r);

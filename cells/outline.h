@@ -19,9 +19,10 @@ namespace avenues::detail {
 /// [m] Free space thinner than this between walls, or a band of heights this thin, is a
 /// gap in the model, not a space: walls of a BIM model or a Sweet Home home stored in
 /// single precision miss each other by fractions of a micrometre where they were drawn
-/// to meet, and a storey may start 0.2 µm below the ground. Such a gap is closed (the
-/// walls welded across it) instead of becoming a cell no eye can stand in and no sight
-/// can pass through; a hundredth of a millimetre is far below anything built.
+/// to meet, and a storey may start 0.2 µm below the ground. Such a gap is closed (wall
+/// where the walls beside it are, classify.cpp's close_gaps; nothing is moved) instead of
+/// becoming a cell no eye can stand in and no sight can pass through; a hundredth of a
+/// millimetre is far below anything built.
 constexpr double kGap = 1e-5;
 
 /// Closed height intervals [lo, hi], absolute z [m], sorted and disjoint.
