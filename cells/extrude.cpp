@@ -33,28 +33,15 @@ struct Outline2 {
 Outline2 footprint_of(const Triangulation& T, const std::vector<int32_t>& boundary) {
   const size_t m = boundary.size();
   auto from = [&](int32_t h) { return T.vert[size_t(T.tri[size_t(h / 3)][size_t((h % 3 + 1) % 3)])]; };
-  // Points that rounded to one (a wall top whose corners lie within rounding of each other)
-  // come as runs of equal points: the first of a run stands for it, and a corner is judged
-  // against its nearest distinct neighbours — else both points of a corner would be dropped.
-  // Points a rounding apart (distinct in the exact triangulation, within a few ulps once
-  // rounded) count as one too: the turn they make is noise.
-  auto same = [](Vec2 a, Vec2 b) {
-    return std::fabs(a.x - b.x) + std::fabs(a.y - b.y) <= 1e-12 * (1 + std::fabs(a.x) + std::fabs(a.y));
-  };
-  auto distinct = [&](size_t k, bool forward) {
-    const Vec2 here = from(boundary[k]);
-    for (size_t j = 1; j < m; ++j) {
-      const Vec2 q = from(boundary[forward ? (k + j) % m : (k + m - j) % m]);
-      if (!same(q, here)) return q;
-    }
-    return here;
-  };
+  // Points that rounded to one (a wall top whose corners lie within rounding of each other),
+  // or to points a rounding apart, count as one: the first of a run stands for it, and a
+  // corner is judged against its nearest distinct neighbours (corners_of), as merging judged it.
+  std::vector<Vec2> ring(m);
+  for (size_t k = 0; k < m; ++k) ring[k] = from(boundary[k]);
+  std::vector<Corner> corner;
+  corners_of(ring, corner);
   std::vector<uint8_t> keep(m);
-  for (size_t k = 0; k < m; ++k) {
-    const Vec2 here = from(boundary[k]), before = from(boundary[(k + m - 1) % m]);
-    if (same(here, before)) continue;  // a repeat: its run's first stands for it
-    keep[k] = orientation(distinct(k, false), here, distinct(k, true)) != 0;
-  }
+  for (size_t k = 0; k < m; ++k) keep[k] = corner[k] == Corner::Left || corner[k] == Corner::Right;
   size_t first = 0;
   while (first < m && !keep[first]) ++first;
   Outline2 o;

@@ -4,7 +4,7 @@
 // ends stay convex; the result has at most four times the minimum number of convex
 // pieces. We remove the longest diagonals first, which in rooms tends to leave the
 // short cuts from reflex corners as the only transparent faces. Convexity is decided
-// by exact orientation on the rounded vertices the cells will carry, so a merged
+// by exact orientation on the rounded vertices the cells will carry (corners.cpp), so a merged
 // footprint is convex (collinear vertices allowed) in exactly the doubles downstream
 // code sees. Choice against the alternatives: CGAL's optimal_convex_partition_2 is
 // cubic and, like the approximate and Greene partitions, takes no holes (a storey's
@@ -39,6 +39,19 @@ Pieces merge_convex(const Triangulation& T, const std::vector<int32_t>& label, c
   auto to = [&](int32_t h) { return T.tri[size_t(h / 3)][size_t((h % 3 + 2) % 3)]; };
   auto across = [&](int32_t h) { return T.nbr[size_t(h / 3)][size_t(h % 3)]; };
   auto is_barrier = [&](int32_t h) { return !barrier.empty() && barrier[size_t(h)]; };
+
+  // Whether a boundary is convex as its cell's footprint will have it (corners_of). Two
+  // convex pieces joined convexly at both ends of their shared chain are convex in exact
+  // arithmetic; on the rounded points they need not be: two corners can round to one point
+  // (a pinch: the piece would be two) or to points a rounding apart, whose side's direction
+  // is noise (a corner judged against it can turn right once the noise is dropped).
+  std::vector<Vec2> ring, points;
+  std::vector<Corner> corners;
+  auto convex = [&](const std::vector<int32_t>& cycle) {
+    ring.clear();
+    for (int32_t e : cycle) ring.push_back(T.vert[size_t(from(e))]);
+    return convex_footprint(ring, corners, points);
+  };
 
   // Fast path: a connected region of one label whose whole boundary is one convex cycle
   // (a rectangular room, the roof of a rectangular building, the sky) is one piece at
@@ -79,11 +92,7 @@ Pieces merge_convex(const Triangulation& T, const std::vector<int32_t>& label, c
       for (int32_t e = next(edges[0]); e != edges[0] && e >= 0 && cycle.size() <= edges.size(); e = next(e))
         cycle.push_back(e);
       if (cycle.size() != edges.size()) continue;  // several cycles (holes) or broken
-      for (size_t k = 0; k < cycle.size() && ok; ++k) {
-        int32_t e = cycle[k], f = cycle[(k + 1) % cycle.size()];
-        ok = orientation(T.vert[size_t(from(e))], T.vert[size_t(to(e))], T.vert[size_t(to(f))]) >= 0;
-      }
-      if (!ok) continue;
+      if (!convex(cycle)) continue;
       const int32_t root = region[0];
       for (int32_t t : region) {
         parent[size_t(t)] = root;
@@ -107,36 +116,6 @@ Pieces merge_convex(const Triangulation& T, const std::vector<int32_t>& label, c
   }
   std::sort(cand.begin(), cand.end());
 
-  // Two convex pieces joined convexly at both ends of their shared chain are convex —
-  // unless rounding has put two of their corners on one point: then the merged boundary
-  // passes the point twice (a pinch), and the piece would be two. A run of equal points
-  // in a row is only a zero-length side (footprint_of drops it); equal points apart are a pinch.
-  std::vector<std::pair<Vec2, size_t>> corners;
-  auto pinched = [&](const std::vector<int32_t>& cycle) {
-    corners.clear();
-    for (size_t k = 0; k < cycle.size(); ++k) corners.push_back({T.vert[size_t(from(cycle[k]))], k});
-    std::sort(corners.begin(), corners.end(), [](const auto& x, const auto& y) {
-      return x.first.x < y.first.x || (x.first.x == y.first.x && (x.first.y < y.first.y ||
-                                                                  (x.first.y == y.first.y && x.second < y.second)));
-    });
-    const size_t m = cycle.size();
-    for (size_t i = 0; i < corners.size();) {
-      size_t j = i + 1;
-      while (j < corners.size() && corners[j].first.x == corners[i].first.x && corners[j].first.y == corners[i].first.y)
-        ++j;
-      // corners[i..j) share a point: a run when they are consecutive around the cycle.
-      size_t breaks = 0;
-      for (size_t k = i; k < j; ++k) {
-        const size_t next = (corners[k].second + 1) % m;
-        bool in_group = false;
-        for (size_t l = i; l < j && !in_group; ++l) in_group = corners[l].second == next;
-        breaks += !in_group;
-      }
-      if (j - i > 1 && breaks > 1) return true;
-      i = j;
-    }
-    return false;
-  };
   std::vector<int32_t> merged;
   for (auto [neg_len, h] : cand) {
     (void)neg_len;
@@ -182,7 +161,7 @@ Pieces merge_convex(const Triangulation& T, const std::vector<int32_t>& label, c
     merged.clear();
     for (size_t k = 0; k < np - len_p; ++k) merged.push_back(bp[(s + len_p + k) % np]);
     for (size_t k = 0; k < nq - len_q; ++k) merged.push_back(bq[(sq + len_q + k) % nq]);
-    if (pinched(merged)) continue;
+    if (!convex(merged)) continue;
     parent[size_t(Q)] = P;
     bp.swap(merged);
     std::vector<int32_t>().swap(bnd[size_t(Q)]);

@@ -41,6 +41,21 @@ struct Classes {
 
 Classes classify(const Plan& plan, const Outline& outline, const Triangulation& tri);
 
+/// Points a rounding apart: distinct in the exact triangulation, within a few ulps once
+/// rounded (or equal). A footprint takes them as one point: the turn between them is noise.
+bool rounding_apart(Vec2 a, Vec2 b);
+
+/// What a point of a piece's closed boundary is as a corner of its footprint: a Repeat
+/// (a rounding from the point before it; the first of such a run stands for it), or the
+/// turn it makes between its nearest neighbours that are not a rounding from it
+/// (cells/corners.cpp).
+enum class Corner : uint8_t { Repeat, Straight, Left, Right, Reversal };
+void corners_of(const std::vector<Vec2>& ring, std::vector<Corner>& out);
+
+/// Whether a closed boundary's footprint is convex: no corner turns right or back on
+/// itself, and the boundary winds once. `corners` and `points` are scratch.
+bool convex_footprint(const std::vector<Vec2>& ring, std::vector<Corner>& corners, std::vector<Vec2>& points);
+
 /// Pass 4: Hertel–Mehlhorn merging. Triangles with equal label >= 0 are merged across
 /// edges not marked as barriers while the union stays convex. Returns a piece index per
 /// triangle (-1 where label < 0) and each piece's boundary as half-edges 3t+i in

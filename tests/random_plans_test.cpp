@@ -456,3 +456,11 @@ TEST(RandomPlans, Seed7455LineOfNoLength) { check_stored(7455); }
 //    "portal 38 does not lie in a face of cell 18" (7322; its walls alone, the labels
 //    taken out because two of them share a space). footprint_of treats such points as one.
 TEST(RandomPlans, Seed7322FootprintVerticesARoundingApart) { check_stored(7322); }
+//  - merging judged a corner against a side between two points a rounding apart, whose
+//    direction is noise, and found it convex; footprint_of, taking the two as one, then
+//    had a corner turning right and its cell folded over a portal: "portal 4 does not lie
+//    in a face of cell 8" (30396: one wall 1 mm thick bent back at 24°; 32739: one 10 cm
+//    thick bent back at 24°; each with that wall alone). Both now judge corners alike
+//    (cells/corners.cpp), and a merged piece must wind once.
+TEST(RandomPlans, Seed30396CornerJudgedAgainstRoundingNoise) { check_stored(30396); }
+TEST(RandomPlans, Seed32739CornerJudgedAgainstRoundingNoise) { check_stored(32739); }
