@@ -41,12 +41,15 @@ double triangle_width(const Triangulation& T, int t) {
 
 /// Per storey, the triangles no wall of it covers that are a gap between its walls
 /// (kGap): thinner than kGap, with every corner on a wall of the storey (a corner of a
-/// triangle it covers). A thin triangle in a room, made by another storey's walls, has
-/// a corner away from this storey's walls and stays free; so does one with two sides
-/// open to free space wider than kGap. Marks them in `gap` and `covered`, and gives
-/// each the regions of the storey's walls within kGap of it (`gap_regions`, its own
-/// covering, as it were): so a gap between two layers of a wall is solid where they
-/// are, and a doorway where both are open. Returns how many triangle-storeys it closed.
+/// triangle it covers, or an end of a wall of no thickness). A thin triangle in a room,
+/// made by another storey's walls, has a corner away from this storey's walls and stays
+/// free; so does one with two sides open to free space wider than kGap, unless its
+/// longest side lies on a wall of no thickness (a wall ending a rounding short of such a
+/// wall: the film lies along the wall, not across a doorway). Marks them in `gap` and
+/// `covered`, and gives each the regions of the storey's walls within kGap of it
+/// (`gap_regions`, its own covering, as it were): so a gap between two layers of a wall
+/// is solid where they are, and a doorway where both are open. Returns how many
+/// triangle-storeys it closed.
 size_t close_gaps(const Outline& outline, const Triangulation& T, std::vector<std::vector<uint8_t>>& covered,
                   std::vector<std::vector<uint8_t>>& gap,
                   std::vector<std::map<int, std::vector<int32_t>>>& gap_regions) {
@@ -74,11 +77,22 @@ size_t close_gaps(const Outline& outline, const Triangulation& T, std::vector<st
       for (int32_t c : T.tri[size_t(t)]) at_corner[size_t(fill[size_t(c)]++)] = t;
   }
   std::vector<uint8_t> on_wall(T.vert.size());
+  // The sheets (walls of no thickness) of storey s on half-edge h.
+  auto each_sheet = [&](int32_t h, size_t s, auto&& f) {
+    for (int32_t k = T.sheet_start[size_t(h)]; k < T.sheet_start[size_t(h) + 1]; ++k)
+      if (outline.regions[size_t(T.sheet_items[size_t(k)])].storey == StoreyId(s)) f(T.sheet_items[size_t(k)]);
+  };
   for (size_t s = 0; s < covered.size(); ++s) {
     std::fill(on_wall.begin(), on_wall.end(), 0);
-    for (int t = 0; t < n; ++t)
+    for (int t = 0; t < n; ++t) {
       if (covered[s][size_t(t)])
         for (int32_t v : T.tri[size_t(t)]) on_wall[size_t(v)] = 1;
+      for (int i = 0; i < 3; ++i)
+        each_sheet(3 * t + i, s, [&](int32_t) {
+          on_wall[size_t(T.tri[size_t(t)][size_t((i + 1) % 3)])] = 1;
+          on_wall[size_t(T.tri[size_t(t)][size_t((i + 2) % 3)])] = 1;
+        });
+    }
     std::vector<uint8_t>& g = gap[s];
     for (int t = 0; t < n; ++t) {
       if (!thin[size_t(t)] || covered[s][size_t(t)]) continue;
@@ -90,12 +104,16 @@ size_t close_gaps(const Outline& outline, const Triangulation& T, std::vector<st
     std::vector<int> open_sides;
     for (int t = 0; t < n; ++t) {
       if (!g[size_t(t)]) continue;
-      int open = 0;
+      int open = 0, longest = 0;
+      bool on_sheet[3] = {false, false, false};
       for (int i = 0; i < 3; ++i) {
         const int32_t u = T.nbr[size_t(t)][size_t(i)];
-        open += !(u >= 0 && (covered[s][size_t(u)] || g[size_t(u)])) && length(T.edge_to(t, i) - T.edge_from(t, i)) >= kGap;
+        each_sheet(3 * t + i, s, [&](int32_t) { on_sheet[i] = true; });
+        const double len = length(T.edge_to(t, i) - T.edge_from(t, i));
+        if (len > length(T.edge_to(t, longest) - T.edge_from(t, longest))) longest = i;
+        open += !on_sheet[i] && !(u >= 0 && (covered[s][size_t(u)] || g[size_t(u)])) && len >= kGap;
       }
-      if (open > 1) open_sides.push_back(t);
+      if (open > 1 && !on_sheet[longest]) open_sides.push_back(t);
     }
     for (int t : open_sides) g[size_t(t)] = 0;
     // The walls beside each: of the storey's walls covering a triangle at one of its
@@ -121,6 +139,11 @@ size_t close_gaps(const Outline& outline, const Triangulation& T, std::vector<st
             if (d < kGap) mine.push_back(r);
           }
         }
+      for (int i = 0; i < 3; ++i)  // walls of no thickness along its sides
+        each_sheet(3 * t + i, s, [&](int32_t r) {
+          const Region& reg = outline.regions[size_t(r)];
+          if (distance_to_segment(mid, reg.poly[0], reg.poly[1]) < kGap) mine.push_back(r);
+        });
       std::sort(mine.begin(), mine.end());
       mine.erase(std::unique(mine.begin(), mine.end()), mine.end());
     }
@@ -252,7 +275,7 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
   if (const size_t closed = close_gaps(outline, T, covered, gap, gap_regions); closed > 0) {
     char buf[200];
     std::snprintf(buf, sizeof buf,
-                  "free space thinner than %g mm between walls (walls drawn to meet, stored in single precision) "
+                  "free space thinner than %g mm between walls (walls drawn to meet that miss each other by a rounding) "
                   "closed in %zu place(s): the walls are joined across it",
                   kGap * 1e3, closed);
     C.warnings.push_back(buf);

@@ -376,6 +376,38 @@ TEST(HardCases, WallsMissingEachOtherByASinglePrecisionRounding) {
   EXPECT_EQ(t.rooms.size(), 2u);
   EXPECT_EQ(t.cells.size(), build_cells(two_rooms(0.2)).cells.size());
   for (const Cell& cell : t.cells) EXPECT_GT(cell.width(), 1e-6) << to_string(cell.kind) << " cell";
+
+  // Walls of no thickness likewise (random plan 30249: a wall's end drawn on another, a
+  // tenth of a nanometre off it once rounded): one ending 90 nm short of the walls it
+  // meets, and one drawn twice, 90 nm apart, with the door through both. (The wall drawn
+  // twice keeps, at its door, the doorway between the two: 90 nm thick, sight passing.)
+  const CellComplex sheets_exact = build_cells(two_rooms(0));
+  Plan sheets = two_rooms(0);
+  sheets.walls[1].centre = {{4, 9e-8}, {4, 4 - 9e-8}};
+  Plan twice = two_rooms(0);
+  Wall again = twice.walls[1];
+  again.name = "mid again";
+  again.centre = {{4 + 9e-8, 0}, {4 + 9e-8, 4}};
+  twice.walls.push_back(again);
+  for (const Plan* p : {&sheets, &twice}) {
+    SCOPED_TRACE(p->walls.back().name);
+    const CellComplex k = build_cells(*p);
+    ASSERT_EQ(cells_are_valid(k), "");
+    EXPECT_EQ(k.rooms.size(), 2u);
+    for (const Cell& cell : k.cells) {
+      if (cell.kind != CellKind::Doorway || p == &sheets) {
+        EXPECT_GT(cell.width(), 1e-6) << to_string(cell.kind) << " cell";
+      }
+    }
+    if (p == &sheets) {
+      EXPECT_EQ(k.cells.size(), sheets_exact.cells.size());
+    }
+    const auto through_sheets = all_kernels(k, Camera::look_at({1.0, 1.9, 1.0}, {8, 1.9, 1.0}, 70, 48, 32), kDoubleExact);
+    bool east_seen = false;
+    for (CellId id : through_sheets.at(Kernel::Exact).cells) east_seen |= room_of(k, id) == room_named(k, "east");
+    EXPECT_TRUE(east_seen) << "the door is open";
+    all_kernels(k, Camera::look_at({7.0, 3.9, 2.2}, {3.9, 0.05, 0.2}, 90, 48, 32), kDoubleExact);  // along the wall
+  }
 }
 
 // ---------------------------------------------------------------------------------------

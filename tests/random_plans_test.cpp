@@ -464,3 +464,11 @@ TEST(RandomPlans, Seed7322FootprintVerticesARoundingApart) { check_stored(7322);
 //    (cells/corners.cpp), and a merged piece must wind once.
 TEST(RandomPlans, Seed30396CornerJudgedAgainstRoundingNoise) { check_stored(30396); }
 TEST(RandomPlans, Seed32739CornerJudgedAgainstRoundingNoise) { check_stored(32739); }
+
+// A wall of no thickness ended on another, as drawn, but a tenth of a nanometre off it once
+// its ends were rounded; the sliver of free space between them was a cell 1e-10 m wide, an
+// eye placed in it stood on the far side of the wall within rounding, and every avenue it
+// saw through the wall was one the rays never enter (30249, 30518). Such a gap between
+// walls of no thickness is now closed, as between thick ones (close_gaps, cells/classify.cpp).
+TEST(RandomPlans, Seed30249WallOfNoThicknessEndingARoundingShort) { check_stored(30249); }
+TEST(RandomPlans, Seed30518WallOfNoThicknessEndingARoundingShort) { check_stored(30518); }
