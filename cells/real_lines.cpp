@@ -102,7 +102,9 @@ void real_lines(const Outline& outline, const Triangulation& T, const Classes& C
         else if (solid == 0) line = sa != sb, kind = LineKind::Sheet;  // top or bottom edge of a sheet
         if (!line) continue;
         Piece p{{T.edge_from(t, i).x, T.edge_from(t, i).y, z}, {T.edge_to(t, i).x, T.edge_to(t, i).y, z}, kind, {}};
-        if (p.a == p.b) continue;  // an edge between points that rounded to one: no line
+        // An edge between points that rounded to one, or to points a rounding apart: no
+        // line (a piece 1e-16 m long at a line's end has no length in the line's parameter).
+        if (rounding_apart(T.edge_from(t, i), T.edge_to(t, i))) continue;
         for (CellId c : {lb, la, rb, ra}) add_cells(p.cells, c);
         pieces.push_back(std::move(p));
       }
