@@ -97,7 +97,18 @@ std::string whole_file(const std::string& path) {
 
 void print_warnings(const std::string& path, const std::vector<std::string>& warnings) {
   constexpr size_t kShown = 12;
-  for (size_t i = 0; i < warnings.size() && i < kShown; ++i) std::cerr << path << ": warning: " << warnings[i] << "\n";
+  for (size_t i = 0; i < warnings.size() && i < kShown; ++i) {
+    const std::string& w = warnings[i];
+    // A warning that names its own place in the file ("house.sh3d:Home.xml:26:3 (level
+    // 'Attic'): ..." or "house.sh3d: ...") keeps that place in front, once.
+    const size_t place = w.compare(0, path.size(), path) == 0 && w.size() > path.size() && w[path.size()] == ':'
+                             ? w.find(": ", path.size())
+                             : std::string::npos;
+    if (place != std::string::npos)
+      std::cerr << w.substr(0, place) << ": warning: " << w.substr(place + 2) << "\n";
+    else
+      std::cerr << path << ": warning: " << w << "\n";
+  }
   if (warnings.size() > kShown)
     std::cerr << path << ": " << warnings.size() - kShown << " more warnings (avenues cells PLAN --json lists them all)\n";
 }

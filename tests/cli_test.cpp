@@ -788,6 +788,25 @@ TEST_F(Cli, DxfWithoutAWallLayerOpensSayingWhichLayerItTookAsWalls) {
   EXPECT_EQ(files().count("never.toml"), 0u);
 }
 
+// A warning that names its own place in the file (a Sweet Home element's line) is printed
+// with that place in front and the file named once, as a compiler would print it.
+TEST_F(Cli, WarningsNameTheirFileOnceWithTheirPlaceInIt) {
+  const std::string home = std::string(AVENUES_OUTSIDE_DIR) + "/sweethome/casa-both-formats.sh3d";
+  const Outcome r = run({"cells", home});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find(home + ":Home.xml:26:3 (level 'Seminterrato'): warning: level 'Seminterrato'"), std::string::npos)
+      << r.err;
+  std::istringstream lines(r.err);
+  int warnings = 0;
+  for (std::string l; std::getline(lines, l);) {
+    if (l.find("warning: ") == std::string::npos) continue;
+    ++warnings;
+    EXPECT_EQ(l.find(home, 1), std::string::npos) << l;
+    EXPECT_EQ(l.rfind(home, 0), 0u) << l;
+  }
+  EXPECT_GE(warnings, 10);
+}
+
 // An IFC model's plan as understood, stairwells and bulkheads' gaps and all, is saved as for
 // any import, and reads back as the same cells.
 TEST_F(Cli, IfcModelSavesItsPlanAndItReadsBackTheSame) {
