@@ -338,9 +338,15 @@ std::string random_plan(uint32_t seed) {
     for (size_t v = 1; v < stairwells[k].size(); ++v) t << ", " << point(stairwells[k][v]);
     t << "]\n";
   }
+  // Now and then a room's own floor raised, or its ceiling lowered (a platform, a
+  // suspended ceiling), from dice of their own like the upper storey's.
+  Dice raise(seed * 2246822519u + 0x27d4eb2fu);
   for (size_t r = 0; r < labels.size(); ++r) {
     t << "\n[[room]]\nname = \"r" << r << "\"\nat = " << point(labels[r]) << "\n";
     if (two_storeys) t << "storey = \"ground\"\n";
+    double floor_at = 0;
+    if (raise.chance(0.2)) t << "floor_at = " << num(floor_at = raise.length(0.05, 0.6)) << "\n";
+    if (raise.chance(0.2)) t << "ceiling_at = " << num(raise.length(floor_at + 1.5, storey_height - 0.02)) << "\n";
   }
   return t.str();
 }
