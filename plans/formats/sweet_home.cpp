@@ -26,6 +26,7 @@
 // odd but readable data (NaN, zero-length walls, a window in no wall, a wall or piece
 // without its coordinates or size) is repaired or dropped with a line in Plan::warnings.
 #include "plans/formats/sweet_home.h"
+#include "plans/formats/zip_salvage.h"
 #include "plans/formats/home_tree.h"
 #include "core/number_format.h"
 #include "core/srgb.h"
@@ -144,11 +145,28 @@ class ZipArchive {
       const std::string why = zip_error_strerror(&err);
       zip_error_fini(&err);
       // It starts like a zip (read_sweet_home checked): a damaged one, most often cut short.
-      throw PlanError(at, "the archive is damaged (truncated, or its central directory is missing): " + why);
+      // Sweet Home 3D reads such a home from the entries that are whole; so does Avenues.
+      std::optional<SalvagedZip> whole = salvage_zip(bytes);
+      const std::string damaged = "the archive is damaged (truncated, or its central directory is missing: " + why + ")";
+      if (!whole) throw PlanError(at, damaged + ", and not even its first entry is whole");
+      salvaged_ = std::move(whole->bytes);
+      zip_error_init(&err);
+      src = zip_source_buffer_create(salvaged_.data(), salvaged_.size(), 0, &err);
+      za = src ? zip_open_from_source(src, ZIP_RDONLY, &err) : nullptr;
+      if (!za) {
+        if (src) zip_source_free(src);
+        const std::string again = zip_error_strerror(&err);
+        zip_error_fini(&err);
+        throw PlanError(at, damaged + ", and its whole entries cannot be read either: " + again);
+      }
+      repaired_ = damaged + ": read from the " + std::to_string(whole->kept.size()) + " entries whole before the damage" +
+                  (whole->first_lost.empty() ? std::string() : ", the rest lost from '" + whole->first_lost + "' on");
     }
     zip_error_fini(&err);
     archive_.reset(za);
   }
+  /// What was wrong with an archive read from the entries whole before its damage ("" if none).
+  const std::string& repaired() const { return repaired_; }
   bool has(const std::string& name) const { return zip_name_locate(archive_.get(), name.c_str(), 0) >= 0; }
   /// The entry's bytes; nullopt when there is no such entry. A damaged entry: PlanError.
   std::optional<std::string> entry(const std::string& name) const {
@@ -192,6 +210,8 @@ class ZipArchive {
   }
   std::string path_;
   size_t max_entry_bytes_;
+  std::string salvaged_;  ///< a damaged archive's whole entries with a new central directory
+  std::string repaired_;
   std::unique_ptr<zip_t, Discard> archive_;
 };
 
@@ -1808,11 +1828,13 @@ HomeTree home_tree_of_xml(const std::string& text, const std::string& file) {
   return t;
 }
 
-/// Sweet Home 3D refuses a home whose ContentDigests names entries the archive does not
-/// hold (DefaultHomeInputStream: DamagedHomeIOException); so does Avenues.
-void check_content_digests(const std::string& path, const ZipArchive& zip) {
+/// A home whose ContentDigests names entries the archive does not hold is damaged:
+/// Sweet Home 3D says so (DefaultHomeInputStream: DamagedHomeIOException) and opens it
+/// with that content missing, if the user agrees. Avenues opens it and says so ("" when
+/// nothing is missing).
+std::string missing_content(const ZipArchive& zip) {
   const std::optional<std::string> digests = zip.entry("ContentDigests");
-  if (!digests) return;
+  if (!digests) return {};
   std::istringstream in(*digests);
   std::vector<std::string> missing;
   for (std::string line; std::getline(in, line);) {
@@ -1821,13 +1843,12 @@ void check_content_digests(const std::string& path, const ZipArchive& zip) {
     const std::string name = line.substr(6);
     if (!zip.has(name)) missing.push_back(name);
   }
-  if (missing.empty()) return;
+  if (missing.empty()) return {};
   std::string list;
   for (size_t i = 0; i < missing.size() && i < 5; ++i) list += (i ? ", " : "") + missing[i];
   if (missing.size() > 5) list += " and " + std::to_string(missing.size() - 5) + " more";
-  throw PlanError(SourceLoc{path, 0, 0, ""}, "the home is damaged: its ContentDigests names " +
-                                                 std::to_string(missing.size()) +
-                                                 " entr(ies) the archive does not hold (" + list + ")");
+  return "the home is damaged: its ContentDigests names " + std::to_string(missing.size()) +
+         " entr(ies) the archive does not hold (" + list + "): what uses them is drawn without them";
 }
 
 }  // namespace
@@ -1837,15 +1858,19 @@ Plan read_sweet_home(const std::string& path, HomeEntry which, const HomeLimits&
   std::unique_ptr<ZipArchive> zip;
   ModelSource models;
   std::optional<HomeTree> tree;
+  std::vector<std::string> damage;  ///< what was wrong with the archive, said first
   if (looks_like_zip(bytes) || has_sh3d_extension(path)) {
     if (!looks_like_zip(bytes))
       throw PlanError(SourceLoc{path, 0, 0, ""}, "not a Sweet Home 3D .sh3d file: not a zip archive");
     zip = std::make_unique<ZipArchive>(path, bytes, limits.max_entry_bytes);
     const bool has_xml = zip->has("Home.xml"), has_home = zip->has("Home");
+    if (!has_xml && !has_home && !zip->repaired().empty())
+      throw PlanError(SourceLoc{path, 0, 0, ""}, zip->repaired() + ", and neither Home.xml nor Home is among them");
     if (!has_xml && !has_home)
       throw PlanError(SourceLoc{path, 0, 0, ""},
                       "the archive holds neither a Home.xml nor a serialized Home entry: not a Sweet Home 3D home");
-    check_content_digests(path, *zip);
+    if (!zip->repaired().empty()) damage.push_back(path + ": " + zip->repaired());
+    if (std::string missing = missing_content(*zip); !missing.empty()) damage.push_back(path + ": " + missing);
     const bool xml = which == HomeEntry::Xml || (which == HomeEntry::Preferred && has_xml);
     if (xml && !has_xml)
       throw PlanError(SourceLoc{path, 0, 0, ""}, "the archive holds no Home.xml entry (only the serialized Home)");
@@ -1899,7 +1924,9 @@ Plan read_sweet_home(const std::string& path, HomeEntry which, const HomeLimits&
     };
     tree = home_tree_of_xml(bytes, path);
   }
-  return HomeReader(path, *tree, std::move(models)).read();
+  Plan plan = HomeReader(path, *tree, std::move(models)).read();
+  plan.warnings.insert(plan.warnings.begin(), damage.begin(), damage.end());
+  return plan;
 }
 
 }  // namespace avenues
