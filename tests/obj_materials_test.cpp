@@ -338,7 +338,7 @@ TEST_F(ObjColours, AMissingLibraryIsOneWarningAndTheDefaultColour) {
                                  "[[object]]\nname = 'crate'\nmesh = 'crate.obj'\nposition = [2.5, 2, 0]\n");
   view(plan, "2.5,0.5,0.5", "2.5,2,0.5", &err);
   EXPECT_EQ(count(err, "is not at hand"), 1u) << err;
-  EXPECT_NE(err.find("(object 'crate'): mesh "), std::string::npos) << err;
+  EXPECT_NE(err.find("room.toml:10:1 (object 'crate'): warning: mesh "), std::string::npos) << err;
 
   const std::string cornell = avenues::testing::outside_path("meshes/CornellBox-Original.obj");
   warnings.clear();
