@@ -1301,6 +1301,24 @@ TEST(DxfPlan, SimpleAndTwoRoomsOpenWithTheirDoor) {
   }
 }
 
+// The default view of a drawing whose first room's largest cell has no door of its own
+// (two-rooms.dxf: the room is parted into cells, its opening in another) looks along the
+// room and out of it, not at the nearest wall: the old rule, the portal listed first, saw
+// 3 cells and a wall; the heading that sees the most cells sees 13.
+TEST(DxfPlan, TheDefaultViewOfARoomWithoutADoorInItsCellLooksAlongTheRoom) {
+  const DxfPlan r = read_dxf_plan((kSamples / "two-rooms.dxf").string());
+  const CellComplex c = build_cells(r.plan);
+  const Viewpoint v = default_viewpoint(c);
+  const Location at = c.locate(v.eye);
+  ASSERT_EQ(at.what, Location::What::Cell);
+  const Camera cam = Camera::look_at(v.eye, v.look, v.fov_deg, 64, 36);
+  const size_t seen = find_visible(c, cam, at.cell, Kernel::Double).cells.size();
+  EXPECT_GE(seen, 10u);
+  for (int k = 0; k < 16; ++k)  // none of the sixteen headings sees more
+    EXPECT_LE(find_visible(c, Camera::yaw_pitch(v.eye, k * 22.5, 0, v.fov_deg, 64, 36), at.cell, Kernel::Double).cells.size(),
+              seen);
+}
+
 TEST(DxfPlan, FuzzFindingsAreReadOrRefusedNamingTheFile) {
   // tests/fuzz/regressions/dxf: inputs the DXF fuzz target once broke the reader with
   // (coordinates near 1e50 overflowed the wall-line-end grid's cell count).

@@ -9,8 +9,9 @@ namespace avenues {
 constexpr double kEyeHeight = 1.6;  ///< [m] above the floor
 
 /// The plan's viewpoint if it names one; otherwise the centre of the largest cell of
-/// the first named room, 1.6 m above its floor, looking at the middle of that room's
-/// first door (or window, or any portal), with a 60° field of view.
+/// the first named room, 1.6 m above its floor, looking at the middle of that cell's
+/// first door (or window, or hatch) or, where it has none, along the level heading of
+/// sixteen that sees the most cells, with a 60° field of view.
 Viewpoint default_viewpoint(const CellComplex& complex);
 
 }  // namespace avenues
