@@ -316,6 +316,8 @@ class Rewriter {
     }
     out.text.append(text_.substr(copied));
     out.warnings = std::move(warnings_);
+    out.left_out = std::move(left_out_);
+    out.left_out_count = left_out_count_;
     if (unlisted_ > 0) out.warnings.push_back(std::to_string(unlisted_) + " more IFC4 records lost some of their geometry");
     return out;
   }
@@ -495,7 +497,7 @@ class Rewriter {
       keyword = keyword_of(n.to), a.resize(n.keep), changed = true, ++out.solids;
     }
     auto left_out = [&](const std::string& why) {
-      warn(r, type.c_str(), why + ": its geometry is left out");
+      warn(r, type.c_str(), why + ": its geometry is left out", true);
       records_.clear();
       ++out.solids;
       const unsigned long long corner = add("IFCCARTESIANPOINT((0.,0.,0.))");
@@ -526,7 +528,7 @@ class Rewriter {
       a[2] = step_reference_text(identity_2d()), changed = true;
     }
     if (keyword == "IFCADVANCEDFACE") {  // IfcFaceSurface's attributes, bounded by edge loops Assimp passes over
-      warn(r, "IfcAdvancedFace", "read as an IfcFaceSurface: its edge loops (curves, not polygons) are left out");
+      warn(r, "IfcAdvancedFace", "read as an IfcFaceSurface: its edge loops (curves, not polygons) are left out", true);
       keyword = "IFCFACESURFACE", changed = true, ++out.solids;
     }
     if (keyword == "IFCSWEPTDISKSOLID" && a.size() >= 5 && (step_trimmed(a[3]) == "$" || step_trimmed(a[4]) == "$")) {
@@ -669,7 +671,7 @@ class Rewriter {
       return finish(r.id, listing("IFCPOLYLINE((", corners, "))"));
     };
     auto give_up = [&](const std::string& why) {
-      warn(r, type, why + ": the curve is left out");
+      warn(r, type, why + ": the curve is left out", true);
       records_.clear();
       corners.clear();
       for (int k = 0; k < 2; ++k) corners.push_back(add("IFCCARTESIANPOINT((0.,0.))"));
@@ -739,13 +741,16 @@ class Rewriter {
     return made();
   }
 
-  void warn(const StepRecord& r, const char* type, const std::string& what) {
+  /// Says what happened to record r; `whole` when its geometry is left out altogether.
+  void warn(const StepRecord& r, const char* type, const std::string& what, bool whole = false) {
+    left_out_count_ += whole;
     if (warnings_.size() >= kWarningsListed) {
       ++unlisted_;
       return;
     }
     const size_t line = 1 + size_t(std::count(text_.begin(), text_.begin() + std::ptrdiff_t(r.offset), '\n'));
     warnings_.push_back("line " + std::to_string(line) + ", " + step_reference_text(r.id) + " (" + type + "): " + what);
+    if (whole) left_out_.push_back(warnings_.back());
   }
 
   /// Arcs' points made for the whole file, at most (72 for each arc): far beyond any
@@ -766,7 +771,8 @@ class Rewriter {
   std::unordered_map<unsigned long long, std::optional<std::vector<std::string_view>>> points_;
   std::vector<std::string> records_;  ///< the new records of the set being rewritten
   std::vector<std::string> warnings_;
-  size_t unlisted_ = 0;
+  std::vector<std::string> left_out_;  ///< the listed warnings of records left out whole
+  size_t unlisted_ = 0, left_out_count_ = 0;
 };
 
 }  // namespace

@@ -78,6 +78,10 @@ struct Ifc4Rewrite {
   size_t products = 0;                ///< IFC4 kinds of product read as the IFC2X3 kind they are one of
   std::map<std::string, std::string> kinds;  ///< GlobalId -> the IFC4 kind of such a product ("IfcSanitaryTerminal")
   std::vector<std::string> warnings;  ///< what was dropped, per set ("line 40, #31 (IfcTriangulatedFaceSet): ...")
+  /// Of those, the records whose geometry was left out whole (a sphere, a NURBS face, a
+  /// curve Assimp has no form for): the first few, and how many in all.
+  std::vector<std::string> left_out;
+  size_t left_out_count = 0;
 };
 
 /// The text with its owner histories, face sets and styles as IFC2X3 writes them; nullopt

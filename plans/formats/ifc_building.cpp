@@ -362,10 +362,8 @@ class Builder {
       // Where the rewrite left geometry out (NURBS boundaries, spheres), that is likely why
       // nothing was left to read: say so, naming the first few.
       std::string left_out;
-      size_t n = 0;
-      for (const std::string& w : rewrite_warnings_)
-        if (w.find("left out") != std::string::npos && n++ < 3) left_out += "\n  " + w;
-      if (n > 3) left_out += "\n  and " + std::to_string(n - 3) + " more";
+      for (size_t k = 0; k < rewrite_left_out_.size() && k < 3; ++k) left_out += "\n  " + rewrite_left_out_[k];
+      if (rewrite_left_out_count_ > 3) left_out += "\n  and " + std::to_string(rewrite_left_out_count_ - 3) + " more";
       if (!left_out.empty()) left_out = "\nits geometry Assimp has no form for was left out:" + left_out;
       throw PlanError({path_, 0, 0, ""}, std::string("Assimp cannot read this IFC model: ") + e.what() + left_out);
     }
@@ -444,7 +442,8 @@ class Builder {
     // IFC4's face sets and styles, which Assimp 5.2 cannot read, as IFC2X3 writes them.
     if (std::optional<Ifc4Rewrite> r = ifc4_for_assimp(text)) {
       for (const std::string& w : r->warnings) plan_.warnings.push_back(path_ + ": " + w);
-      rewrite_warnings_ = std::move(r->warnings);
+      rewrite_left_out_ = std::move(r->left_out);
+      rewrite_left_out_count_ = r->left_out_count;
       for_assimp_ = std::move(r->text);
       ifc4_kinds_ = std::move(r->kinds);
     }
@@ -1020,7 +1019,8 @@ class Builder {
   std::map<std::string, IfcRootNames> names_;  ///< GlobalId -> the file's own names (spaces kept)
   std::string for_assimp_;  ///< the STEP text Assimp reads instead of the file, where it differs (ifc4_for_assimp.h)
   std::map<std::string, std::string> ifc4_kinds_;  ///< GlobalId -> IFC4 kind, for products Assimp read as another
-  std::vector<std::string> rewrite_warnings_;  ///< what ifc4_for_assimp changed or left out, as it said it
+  std::vector<std::string> rewrite_left_out_;  ///< what ifc4_for_assimp left out whole, as it said it (the first few)
+  size_t rewrite_left_out_count_ = 0;         ///< and how many records in all
   std::map<std::array<int, 3>, MaterialId> materials_;
 };
 
