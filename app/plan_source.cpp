@@ -202,11 +202,11 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
   };
   // A mesh as a whole scene: OpenMesh or Assimp by its format, turned to z-up metres.
   // `read`: the mesh, when the file's reader has it already (an IFC model without walls).
-  auto read_mesh = [&](const std::string& file, const MeshAxes& axes, const Mesh* read = nullptr) {
+  auto read_mesh = [&](const std::string& file, const MeshAxes& axes, const Mesh* read = nullptr,
+                       std::vector<std::string> said = {}) {  // said: what reading it found (missing files)
     if (!import.save_plan.empty())  // told before the work, and nothing written
       throw std::runtime_error(file + " is read as a mesh scene, which has no plan: --save-plan " +
                                import.save_plan + " cannot be written");
-    std::vector<std::string> said;  // its materials' missing files
     Mesh loaded;
     const Mesh& mesh = read ? *read : (loaded = load_mesh(file, axes, &said));  // names the file when unreadable
     out.stages.push_back({"read mesh", seconds_since(t0)});
@@ -255,7 +255,21 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
         if (format_of_extension(spec.file) != spec.format && format_of_extension(spec.file) != FileFormat::Unknown)
           throw std::runtime_error(spec.file + " is " + format_name(spec.format) +
                                    " under another extension: name it as one to read it as a scene");
-        read_mesh(spec.file, import.mesh_axes());
+        if (!import.up.empty()) {
+          read_mesh(spec.file, import.mesh_axes());
+          break;
+        }
+        // The format does not say which axis is up, and neither did the user: a model that
+        // stands on y = 0 is taken as drawn Y-up (guessed_up_axis), with a warning.
+        std::vector<std::string> said;
+        Mesh mesh = load_mesh(spec.file, import.mesh_axes(), &said);
+        if (guessed_up_axis(mesh) == 'y') {
+          orient_z_up(mesh, 'y', 1.0);
+          said.insert(said.begin(), spec.file + ": the file does not say which axis is up: taken as y, as the model "
+                                                "stands on y = 0 (as Y-up exports from Blender, SketchUp or 3ds Max "
+                                                "do); say --up z if it is drawn Z-up");
+        }
+        read_mesh(spec.file, import.mesh_axes(), &mesh, std::move(said));
         break;
       }
       case FileFormat::Model:

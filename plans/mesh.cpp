@@ -498,6 +498,21 @@ void orient_z_up(Mesh& m, char up, double metres_per_unit) {
   for (Vec3& n : m.corner_normals) n = turn(n);
 }
 
+std::optional<char> guessed_up_axis(const Mesh& m) {
+  if (m.vertices.empty()) return std::nullopt;
+  Vec3 lo = m.vertices[0], hi = m.vertices[0];
+  for (const Vec3& v : m.vertices) {
+    lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
+    hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
+  }
+  const double height = hi.y - lo.y, depth = hi.z - lo.z;
+  if (!(height > 0) || !(depth > 0)) return std::nullopt;
+  const bool stands_on_y0 = std::fabs(lo.y) <= 0.02 * height && hi.y > 0;
+  const bool z_straddles = lo.z < -0.05 * depth && hi.z > 0.05 * depth;
+  if (stands_on_y0 && z_straddles) return 'y';
+  return std::nullopt;
+}
+
 namespace {
 
 /// The files an OBJ on disk names (its MTL libraries, their images): a regular file's

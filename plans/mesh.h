@@ -96,6 +96,13 @@ std::optional<double> metres_per_unit_named(const std::string& name);
 /// by `metres_per_unit`: y up becomes (x, -z, y), as Blender's Y-up export turned back.
 void orient_z_up(Mesh& m, char up, double metres_per_unit);
 
+/// The up axis a mesh read as its file has it, from a format that does not say (OBJ, PLY,
+/// STL, OFF), seems drawn with: 'y' where the mesh stands on y = 0 (its lowest y within 2 %
+/// of its height of zero, its highest above) while its z straddles zero by more than 5 % of
+/// its extent either way, as Blender, SketchUp and 3ds Max export a model from their ground
+/// plane with Y up; std::nullopt otherwise (z up, the default, stands).
+std::optional<char> guessed_up_axis(const Mesh& m);
+
 /// Reads a mesh held in memory (a model inside an archive): `ext` is its format (".obj"),
 /// `name` what messages call it. Throws std::runtime_error naming it when it cannot be read.
 /// An OBJ's `usemtl` groups become its materials, by name, in Material's default colour (the

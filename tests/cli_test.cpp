@@ -658,6 +658,40 @@ TEST_F(Cli, AMeshIsAWholeSceneAndACrowObjectToo) {
   EXPECT_NE(r.err.find("broken.off"), std::string::npos) << r.err;
 }
 
+// An OBJ says nothing of its up axis. One that stands on y = 0 with its z either side of
+// zero (a hut 3 m high, 4 m deep, as Blender exports Y-up) is taken as Y-up, with a warning
+// saying so and how to say otherwise; --up z keeps it as written; the Viking room, whose
+// lowest point is below zero, stays z-up.
+TEST_F(Cli, AnObjStandingOnYZeroIsTakenAsDrawnYUpSayingSo) {
+  write("hut.obj", "v -1 0 -2\nv 1 0 -2\nv 1 0 2\nv -1 0 2\nv -1 3 -2\nv 1 3 -2\nv 1 3 2\nv -1 3 2\n"
+                   "f 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\nf 2 6 7 3\nf 4 3 7 8\n");
+  auto extent = [&](const std::string& obj, int axis) {  // of the exported surfaces, far box and all
+    double lo = HUGE_VAL, hi = -HUGE_VAL;
+    std::istringstream in(slurp(path(obj)));
+    for (std::string l; std::getline(in, l);) {
+      if (!l.starts_with("v ")) continue;
+      std::istringstream v(l.substr(2));
+      double c[3];
+      v >> c[0] >> c[1] >> c[2];
+      lo = std::min(lo, c[axis]), hi = std::max(hi, c[axis]);
+    }
+    return hi - lo;
+  };
+  Outcome r = run({"export", "hut.obj", "-o", "guessed.obj"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("hut.obj: warning: the file does not say which axis is up: taken as y"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--up z"), std::string::npos) << r.err;
+  r = run({"export", "hut.obj", "--up", "z", "-o", "as-written.obj"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("which axis is up"), std::string::npos) << r.err;
+  // The far box's margin is the same either way: the heights differ by the hut's 3 m and 4 m.
+  EXPECT_NEAR(extent("guessed.obj", 2) - extent("as-written.obj", 2), 3.0 - 4.0, 1e-9);
+  const std::string viking = std::string(AVENUES_OUTSIDE_DIR) + "/meshes/viking-room/viking_room.obj";
+  r = run({"cells", viking});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("which axis is up"), std::string::npos) << r.err;
+}
+
 // Every broken file of Assimp's own test models (and one cut short) is refused with exit 2
 // and a message naming it, never a crash or a hang. Two OBJ files are read, as OBJ's own
 // tools read them: malformed2.obj, whose only fault is a stray line, and malformed.obj,
