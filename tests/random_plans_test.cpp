@@ -128,6 +128,22 @@ void add_openings(Dice& dice, GenWall& w, double along, double seg_len, double s
   }
 }
 
+/// A closed wall around `ring`, with openings on about half its sides.
+GenWall perimeter_wall(Dice& dice, const std::vector<Vec2>& ring, double thickness, double storey_height, int& openings) {
+  GenWall w;
+  w.path = ring;
+  w.path.push_back(ring.front());
+  w.arc_through.assign(ring.size(), -1);
+  w.thickness = thickness;
+  double along = 0;
+  for (size_t i = 0; i + 1 < w.path.size(); ++i) {
+    const double len = length(w.path[i + 1] - w.path[i]);
+    if (dice.chance(0.5)) add_openings(dice, w, along, len, storey_height, openings);
+    along += len;
+  }
+  return w;
+}
+
 /// The plan of `seed`, as TOML.
 std::string random_plan(uint32_t seed) {
   Dice dice(seed);
@@ -143,19 +159,9 @@ std::string random_plan(uint32_t seed) {
     outline = {{0, 0}, {W, 0}, {W, H - cy}, {W - cx, H}, {0, H}};
   }
   {
-    GenWall w;
-    w.path = outline;
-    w.path.push_back(outline.front());
-    w.arc_through.assign(outline.size(), -1);
     const double t[] = {0, 0.1, 0.2, 0.35};
-    w.thickness = t[dice.below(4)];
-    double along = 0;
-    for (size_t i = 0; i + 1 < w.path.size(); ++i) {
-      const double len = length(w.path[i + 1] - w.path[i]);
-      if (dice.chance(0.5)) add_openings(dice, w, along, len, storey_height, openings);
-      along += len;
-    }
-    walls.push_back(w);
+    const double thickness = t[dice.below(4)];
+    walls.push_back(perimeter_wall(dice, outline, thickness, storey_height, openings));
   }
 
   // A random point on the perimeter's side k (0: south, then anticlockwise).
@@ -268,19 +274,9 @@ std::string random_plan(uint32_t seed) {
     const double uw = up.chance(0.5) ? W : up.length(std::min(2.0, W), W);
     const double uh = up.chance(0.5) ? H : up.length(std::min(2.0, H), H);
     const std::vector<Vec2> top = uw == W && uh == H ? outline : std::vector<Vec2>{{0, 0}, {uw, 0}, {uw, uh}, {0, uh}};
-    GenWall perimeter;
-    perimeter.upper = true;
-    perimeter.path = top;
-    perimeter.path.push_back(top.front());
-    perimeter.arc_through.assign(top.size(), -1);
-    perimeter.thickness = thick[up.below(8)];
-    double along = 0;
-    for (size_t i = 0; i + 1 < perimeter.path.size(); ++i) {
-      const double len = length(perimeter.path[i + 1] - perimeter.path[i]);
-      if (up.chance(0.5)) add_openings(up, perimeter, along, len, upper_height, openings);
-      along += len;
-    }
-    walls.push_back(perimeter);
+    const double thickness = thick[up.below(8)];
+    walls.push_back(perimeter_wall(up, top, thickness, upper_height, openings));
+    walls.back().upper = true;
     const int inner = up.below(4);
     for (int i = 0; i < inner; ++i) {
       GenWall w;
