@@ -390,6 +390,19 @@ TEST(SweetHomeSerialized, TheExecutableOpensDamagedHomesSayingSo) {
 class ScratchDir : public avenues::testing::TempDir {
  public:
   ScratchDir() : avenues::testing::TempDir("avenues-sh3ds") {}
+  /// A zip `name` in the folder holding these entries, in order (libzip: sizes in the local
+  /// headers, a central directory at the end); its path.
+  std::string zip(const std::string& name, const std::vector<std::pair<std::string, std::string>>& entries) const {
+    const std::string file = (path() / name).string();
+    int err = 0;
+    zip_t* za = zip_open(file.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
+    EXPECT_NE(za, nullptr) << "libzip error " << err;
+    if (!za) return file;
+    for (const auto& [entry, bytes] : entries)
+      EXPECT_GE(zip_file_add(za, entry.c_str(), zip_source_buffer(za, bytes.data(), bytes.size(), 0), 0), 0);
+    EXPECT_EQ(zip_close(za), 0);  // writes the entries (their bytes are alive till here)
+    return file;
+  }
   /// A 2 x 1 PNG, its left pixel red and its right blue (mean (0.5, 0, 0.5) in linear light).
   std::string red_blue_png(const std::string& name) {
     Image png;
@@ -470,15 +483,8 @@ TEST(SweetHomeHostile, AModelIsToldByItsContentWhateverItsEntryIsCalled) {
                           "  <pieceOfFurniture name='Shelf' model='3/shelf.obj' x='300' y='100' width='40' depth='40' height='90'/>\n"
                           "  <pieceOfFurniture name='Picture' model='9' x='400' y='100' width='40' depth='40' height='90'/>\n"
                           "</home>\n";
-  const std::string path = (fs::path(dir.write("x", "")).parent_path() / "kitchen.sh3d").string();
-  int err = 0;
-  zip_t* za = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
-  ASSERT_NE(za, nullptr);
   const std::string png = std::string("\x89PNG\r\n\x1a\n", 8) + std::string(32, '\0');
-  for (const auto& [name, bytes] : std::vector<std::pair<std::string, const std::string*>>{
-           {"Home.xml", &xml}, {"28", &obj}, {"3/shelf.obj", &obj}, {"9", &png}})
-    ASSERT_GE(zip_file_add(za, name.c_str(), zip_source_buffer(za, bytes->data(), bytes->size(), 0), 0), 0);
-  ASSERT_EQ(zip_close(za), 0);
+  const std::string path = dir.zip("kitchen.sh3d", {{"Home.xml", xml}, {"28", obj}, {"3/shelf.obj", obj}, {"9", png}});
   const Plan p = read_sweet_home(path);
   ASSERT_EQ(p.objects.size(), 3u);
   EXPECT_NE(p.objects[0].model, nullptr) << "model='28' is an OBJ file";
@@ -501,13 +507,7 @@ TEST(SweetHomeHostile, AHomeCutBeforeItsCentralDirectoryOpensFromItsEntries) {
   const std::string xml = "<home>\n" + kBox +
                           "  <pieceOfFurniture name='Cupboard' model='28' x='100' y='100' width='40' depth='40' height='90'/>\n"
                           "</home>\n";
-  const std::string whole = (fs::path(dir.write("x", "")).parent_path() / "whole.sh3d").string();
-  int err = 0;
-  zip_t* za = zip_open(whole.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &err);
-  ASSERT_NE(za, nullptr);
-  ASSERT_GE(zip_file_add(za, "Home.xml", zip_source_buffer(za, xml.data(), xml.size(), 0), 0), 0);
-  ASSERT_GE(zip_file_add(za, "28", zip_source_buffer(za, obj.data(), obj.size(), 0), 0), 0);
-  ASSERT_EQ(zip_close(za), 0);
+  const std::string whole = dir.zip("whole.sh3d", {{"Home.xml", xml}, {"28", obj}});
   const std::string bytes = avenues::testing::slurp(whole);
   const size_t directory = bytes.find("PK\x01\x02");
   ASSERT_NE(directory, std::string::npos);
