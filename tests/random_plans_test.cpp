@@ -561,3 +561,11 @@ TEST(RandomPlans, Seed9LinePieceARoundingLong) { check_stored(9); }
 // sides (visibility/traverse.h, kOnBoundary); the rays stopped at the wall 2e-11 m away
 // and found 18 avenues extra (5556). The oracle now takes such an eye as the search does.
 TEST(RandomPlans, Seed5556EyeANanometreFromAWall) { check_stored(5556); }
+
+// The double kernel missed five outside cells (432 rays) seen up through a room's open top
+// and out of the cell above it: the mask of that cell kept, beside an edge, a half-plane
+// nearly parallel to it that bounded nothing, whose vertex lay at (-5.7, -1.6) in a window
+// 0.51 wide; cone_planes (visibility/traverse.h) turned each plane by the mask's centroid,
+// which that vertex had pulled outside the mask, and a plane turned the wrong way culled
+// the portals beyond (8836). A plane with a mask vertex clearly outside it now culls nothing.
+TEST(RandomPlans, Seed8836ConeTurnedByAFarMaskVertex) { check_stored(8836); }
