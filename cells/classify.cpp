@@ -21,6 +21,13 @@ namespace avenues::detail {
 
 namespace {
 
+/// Calls f(region) for each sheet (wall of no thickness) of storey s on half-edge h.
+template <class F>
+void for_each_sheet_of_storey(const Outline& o, const Triangulation& T, int h, StoreyId s, F&& f) {
+  for (int32_t k = T.sheet_start[size_t(h)]; k < T.sheet_start[size_t(h) + 1]; ++k)
+    if (o.regions[size_t(T.sheet_items[size_t(k)])].storey == s) f(T.sheet_items[size_t(k)]);
+}
+
 bool has_sheet_of_storey(const Outline& o, const Triangulation& T, int h, StoreyId s) {
   for (int32_t k = T.sheet_start[size_t(h)]; k < T.sheet_start[size_t(h) + 1]; ++k)
     if (o.regions[size_t(T.sheet_items[size_t(k)])].storey == s) return true;
@@ -77,21 +84,16 @@ size_t close_gaps(const Outline& outline, const Triangulation& T, std::vector<st
       for (int32_t c : T.tri[size_t(t)]) at_corner[size_t(fill[size_t(c)]++)] = t;
   }
   std::vector<uint8_t> on_wall(T.vert.size());
-  // The sheets (walls of no thickness) of storey s on half-edge h.
-  auto each_sheet = [&](int32_t h, size_t s, auto&& f) {
-    for (int32_t k = T.sheet_start[size_t(h)]; k < T.sheet_start[size_t(h) + 1]; ++k)
-      if (outline.regions[size_t(T.sheet_items[size_t(k)])].storey == StoreyId(s)) f(T.sheet_items[size_t(k)]);
-  };
   for (size_t s = 0; s < covered.size(); ++s) {
     std::fill(on_wall.begin(), on_wall.end(), 0);
     for (int t = 0; t < n; ++t) {
       if (covered[s][size_t(t)])
         for (int32_t v : T.tri[size_t(t)]) on_wall[size_t(v)] = 1;
       for (int i = 0; i < 3; ++i)
-        each_sheet(3 * t + i, s, [&](int32_t) {
+        if (has_sheet_of_storey(outline, T, 3 * t + i, StoreyId(s))) {
           on_wall[size_t(T.tri[size_t(t)][size_t((i + 1) % 3)])] = 1;
           on_wall[size_t(T.tri[size_t(t)][size_t((i + 2) % 3)])] = 1;
-        });
+        }
     }
     std::vector<uint8_t>& g = gap[s];
     for (int t = 0; t < n; ++t) {
@@ -108,7 +110,7 @@ size_t close_gaps(const Outline& outline, const Triangulation& T, std::vector<st
       bool on_sheet[3] = {false, false, false};
       for (int i = 0; i < 3; ++i) {
         const int32_t u = T.nbr[size_t(t)][size_t(i)];
-        each_sheet(3 * t + i, s, [&](int32_t) { on_sheet[i] = true; });
+        on_sheet[i] = has_sheet_of_storey(outline, T, 3 * t + i, StoreyId(s));
         const double len = length(T.edge_to(t, i) - T.edge_from(t, i));
         if (len > length(T.edge_to(t, longest) - T.edge_from(t, longest))) longest = i;
         open += !on_sheet[i] && !(u >= 0 && (covered[s][size_t(u)] || g[size_t(u)])) && len >= kGap;
@@ -140,7 +142,7 @@ size_t close_gaps(const Outline& outline, const Triangulation& T, std::vector<st
           }
         }
       for (int i = 0; i < 3; ++i)  // walls of no thickness along its sides
-        each_sheet(3 * t + i, s, [&](int32_t r) {
+        for_each_sheet_of_storey(outline, T, 3 * t + i, StoreyId(s), [&](int32_t r) {
           const Region& reg = outline.regions[size_t(r)];
           if (distance_to_segment(mid, reg.poly[0], reg.poly[1]) < kGap) mine.push_back(r);
         });
