@@ -131,38 +131,22 @@ class ZipArchive {
   ZipArchive(const std::string& path, const std::string& bytes, size_t max_entry_bytes)
       : path_(path), max_entry_bytes_(max_entry_bytes) {
     const SourceLoc at{path, 0, 0, ""};
-    zip_error_t err;
-    zip_error_init(&err);
-    zip_source_t* src = zip_source_buffer_create(bytes.data(), bytes.size(), 0, &err);
-    if (!src) {
-      const std::string why = zip_error_strerror(&err);
-      zip_error_fini(&err);
-      throw PlanError(at, "cannot read the archive: " + why);
-    }
-    zip_t* za = zip_open_from_source(src, ZIP_RDONLY, &err);
+    std::string why;
+    bool no_source = false;
+    zip_t* za = open_in_memory(bytes, why, no_source);
+    if (!za && no_source) throw PlanError(at, "cannot read the archive: " + why);
     if (!za) {
-      zip_source_free(src);
-      const std::string why = zip_error_strerror(&err);
-      zip_error_fini(&err);
       // It starts like a zip (read_sweet_home checked): a damaged one, most often cut short.
       // Sweet Home 3D reads such a home from the entries that are whole; so does Avenues.
       std::optional<SalvagedZip> whole = salvage_zip(bytes);
       const std::string damaged = "the archive is damaged (truncated, or its central directory is missing: " + why + ")";
       if (!whole) throw PlanError(at, damaged + ", and not even its first entry is whole");
       salvaged_ = std::move(whole->bytes);
-      zip_error_init(&err);
-      src = zip_source_buffer_create(salvaged_.data(), salvaged_.size(), 0, &err);
-      za = src ? zip_open_from_source(src, ZIP_RDONLY, &err) : nullptr;
-      if (!za) {
-        if (src) zip_source_free(src);
-        const std::string again = zip_error_strerror(&err);
-        zip_error_fini(&err);
-        throw PlanError(at, damaged + ", and its whole entries cannot be read either: " + again);
-      }
+      za = open_in_memory(salvaged_, why, no_source);
+      if (!za) throw PlanError(at, damaged + ", and its whole entries cannot be read either: " + why);
       repaired_ = damaged + ": read from the " + std::to_string(whole->kept.size()) + " entries whole before the damage" +
                   (whole->first_lost.empty() ? std::string() : ", the rest lost from '" + whole->first_lost + "' on");
     }
-    zip_error_fini(&err);
     archive_.reset(za);
   }
   /// What was wrong with an archive read from the entries whole before its damage ("" if none).
@@ -202,6 +186,21 @@ class ZipArchive {
   struct Discard {
     void operator()(zip_t* z) const { zip_discard(z); }
   };
+  /// libzip over `bytes`, which must outlive it; nullptr when it cannot, with libzip's
+  /// reason in `why`, and `no_source` when it failed before reading the bytes at all.
+  static zip_t* open_in_memory(const std::string& bytes, std::string& why, bool& no_source) {
+    zip_error_t err;
+    zip_error_init(&err);
+    zip_source_t* src = zip_source_buffer_create(bytes.data(), bytes.size(), 0, &err);
+    no_source = src == nullptr;
+    zip_t* za = src ? zip_open_from_source(src, ZIP_RDONLY, &err) : nullptr;
+    if (!za) {
+      if (src) zip_source_free(src);
+      why = zip_error_strerror(&err);
+    }
+    zip_error_fini(&err);
+    return za;
+  }
   /// "512 MiB", "1 KiB", "100 bytes": a limit as a message says it.
   static std::string size_text(size_t n) {
     if (n >= (size_t(1) << 20) && n % (size_t(1) << 20) == 0) return std::to_string(n >> 20) + " MiB";
