@@ -323,28 +323,24 @@ class Traversal {
     }
     for (size_t i = 0; i < mask.size(); ++i) {
       const Vec3 a = dir(mask[i]), b = dir(mask[(i + 1) % mask.size()]);
+      Plane plane;
       if (parallel_) {
         Vec3 p = cross(b - a, cam_.forward);
         const double l = length(p);
         if (!(l > 1e-9 * (1 + length(a) + length(b)))) continue;  // as below: too short to give a plane
         p = (1.0 / l) * p;
         if (dot(p, inside - a) < 0) p = -1.0 * p;
-        bool supports = true;  // as below: no plane with a vertex of the mask clearly outside it
-        for (size_t j = 0; careful && j < mask.size() && supports; ++j) {
-          const Vec3 v = dir(mask[j]) - a;
-          supports = dot(p, v) >= -1e-9 * (1 + length(v));
-        }
-        if (supports) n.push_back({p, -dot(p, a)});
-        continue;
+        plane = {p, -dot(p, a)};
+      } else {
+        Vec3 p = cross(a, b);
+        const double l = length(p);
+        // Two mask vertices that (nearly) coincide give no plane: a normal from a cross
+        // product this short is all rounding, and could cull what the mask sees. Skipping
+        // a plane only makes the cull more conservative.
+        if (!(l > 1e-9 * length(a) * length(b))) continue;
+        p = (1.0 / l) * p;
+        plane = {dot(p, inside) < 0 ? -1.0 * p : p, 0};
       }
-      Vec3 p = cross(a, b);
-      const double l = length(p);
-      // Two mask vertices that (nearly) coincide give no plane: a normal from a cross
-      // product this short is all rounding, and could cull what the mask sees. Skipping
-      // a plane only makes the cull more conservative.
-      if (!(l > 1e-9 * length(a) * length(b))) continue;
-      p = (1.0 / l) * p;
-      if (dot(p, inside) < 0) p = -1.0 * p;
       // Nor does a plane with a vertex of the mask clearly outside it. A mask in floating
       // point can keep, beside an edge, a half-plane nearly parallel to it that bounds
       // nothing; its vertex with the edge lies far off (random plan 8836: (-5.7, -1.6) in a
@@ -353,9 +349,9 @@ class Traversal {
       bool supports = true;
       for (size_t j = 0; careful && j < mask.size() && supports; ++j) {
         const Vec3 v = dir(mask[j]);
-        supports = dot(p, v) >= -1e-9 * length(v);
+        supports = plane.eval(v) >= -1e-9 * (parallel_ ? 1 + length(v - a) : length(v));
       }
-      if (supports) n.push_back({p, 0});
+      if (supports) n.push_back(plane);
     }
     return n;
   }
