@@ -988,7 +988,10 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
   }
   if (!(box.lo.x <= box.hi.x)) throw std::invalid_argument("mesh scene: no triangles and nothing to include");
   frame_scene(out, box, params.margin);
-  SoupSplit split = split_detail(soup, polygon, params.detail_above, params.structural_triangles);
+  const Vec3 extent = box.hi - box.lo;
+  const double least_area = std::min(params.structural_area_cap,
+                                     params.structural_share * std::max({extent.x * extent.y, extent.y * extent.z, extent.x * extent.z}));
+  SoupSplit split = split_detail(soup, polygon, params.detail_above, params.structural_triangles, least_area);
   // What cuts space: the whole soup, or its structural part (`cut_of`: its soup numbers).
   std::vector<SoupTriangle> structural, detail;
   std::vector<size_t> cut_of;
@@ -1022,7 +1025,7 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     } catch (const SoupTooCluttered&) {
       if (!out.timings.empty()) out.timings.back().stage = "decompose, abandoned";
       cluttered = true;
-      split = split_detail(soup, polygon, 0, split.structural / 4);
+      split = split_detail(soup, polygon, 0, split.structural / 4, least_area);
       partition();
     }
   }
@@ -1066,11 +1069,15 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     std::ostringstream said;
     said << source << ": " << split.structural + split.detail_triangles << " triangles with area"
          << (cluttered ? " whose planes cut space into more than " + std::to_string(params.leaf_budget) + " pieces"
-                       : std::string(", more than a decomposition takes in seconds"))
-         << ": its largest polygons (from "
-         << split.smallest_structural << " m², " << split.structural << " triangles) cut space into cells, and the other "
-         << split.detail_triangles << " triangles are detail, drawn in the " << cells_holding
-         << " cells they cross; the search sees through detail, the pictures show it";
+                       : std::string(", more than a decomposition takes in seconds"));
+    if (split.structural > 0)
+      said << ": its largest polygons (from " << split.smallest_structural << " m², " << split.structural
+           << " triangles) cut space into cells, and the other ";
+    else
+      said << ": none of its polygons is large enough to cut space (" << least_area << " m² or more), and all ";
+    said << split.detail_triangles << " triangles are detail, drawn in "
+         << (cells_holding == 1 ? std::string("the one cell") : "the " + std::to_string(cells_holding) + " cells")
+         << " they cross; the search sees through detail, the pictures show it";
     out.warnings.push_back(said.str());
   }
   {

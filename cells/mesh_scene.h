@@ -46,6 +46,11 @@ struct MeshSceneParams {
   /// cut space, and every other polygon is detail, drawn in the cells it crosses.
   size_t detail_above = 50'000;
   size_t structural_triangles = 16'000;
+  /// Bsp only, where a soup is split: a polygon cuts space only if its area is at least
+  /// this share of the largest face of the meshes' bounding box, and never needs more than
+  /// `structural_area_cap` [m²] (a wall's face cuts; a smooth surface's facets do not).
+  double structural_share = 1e-4;
+  double structural_area_cap = 0.1;
   /// Bsp only: a soup whose planes cut space into more leaves than this (cluttered: it
   /// would take minutes and gigabytes) is split too, its largest polygons a quarter as
   /// many triangles at each try (0: no limit).

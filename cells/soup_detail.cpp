@@ -129,7 +129,7 @@ void cluster_pieces(const std::vector<DetailPiece>& pieces, std::vector<std::vec
 }  // namespace
 
 SoupSplit split_detail(const std::vector<SoupTriangle>& soup, const std::vector<int64_t>& polygon, size_t above,
-                       size_t budget) {
+                       size_t budget, double least_area) {
   SoupSplit s;
   s.detail.assign(soup.size(), false);
   std::vector<double> area(soup.size());
@@ -160,7 +160,7 @@ SoupSplit split_detail(const std::vector<SoupTriangle>& soup, const std::vector<
   std::vector<bool> structural(polygons.size(), false);
   size_t taken = 0;
   for (size_t k : order) {
-    if (taken + polygons[k].triangles > budget) break;
+    if (taken + polygons[k].triangles > budget || polygons[k].area < least_area) break;
     taken += polygons[k].triangles;
     structural[k] = true;
     if (polygons[k].area > 0) s.smallest_structural = polygons[k].area;

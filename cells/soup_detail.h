@@ -38,10 +38,13 @@ struct SoupSplit {
 
 /// With at most `above` triangles of non-zero area, none is detail. With more, the
 /// polygons (`polygon`: one number per triangle, shared by the triangles of one input
-/// polygon) are taken largest area first, ties by number, while their triangles with area
-/// number at most `budget`; the triangles of every other polygon are detail.
+/// polygon) of at least `least_area` [m²] are taken largest area first, ties by number,
+/// while their triangles with area number at most `budget`; the triangles of every other
+/// polygon are detail. (A polygon smaller than `least_area` hides too little to be worth
+/// the cells its plane makes: a smooth surface's facets, a bolt. A soup of such polygons
+/// alone, a sculpture subdivided into a quarter of a million facets, cuts no space at all.)
 SoupSplit split_detail(const std::vector<SoupTriangle>& soup, const std::vector<int64_t>& polygon, size_t above,
-                       size_t budget);
+                       size_t budget, double least_area = 0);
 
 /// Cuts each detail triangle to every cell of `out` it crosses (in double: the pieces are
 /// drawn, not part of the complex's exact geometry) and appends, for each cell that holds

@@ -132,6 +132,113 @@ TEST(SoupDetail, TheLargestPolygonsCutSpaceUpToTheBudgetAndWholePolygonsAreDetai
   EXPECT_TRUE(s.detail[12]) << "a polygon with no area is no larger than any other";
 }
 
+// A polygon smaller than the least area that cuts space is detail however much of the
+// budget is left; a soup of such polygons alone cuts no space.
+TEST(SoupDetail, PolygonsTooSmallToHideMuchCutNoSpace) {
+  std::vector<SoupTriangle> soup;
+  std::vector<int64_t> polygon;
+  for (int p = 0; p < 4; ++p) {  // squares of side 1, 2, 3, 4: areas 1, 4, 9, 16 m²
+    const double s = p + 1;
+    soup.push_back({{Vec3{0, 0, double(p)}, Vec3{s, 0, double(p)}, Vec3{s, s, double(p)}}});
+    soup.push_back({{Vec3{0, 0, double(p)}, Vec3{s, s, double(p)}, Vec3{0, s, double(p)}}});
+    polygon.insert(polygon.end(), {p, p});
+  }
+  const SoupSplit s = split_detail(soup, polygon, 0, 100, 5.0);
+  EXPECT_EQ(s.structural, 4u);
+  EXPECT_EQ(s.detail_triangles, 4u);
+  for (size_t t = 0; t < soup.size(); ++t) EXPECT_EQ(s.detail[t], polygon[t] < 2) << "triangle " << t;
+  const SoupSplit none = split_detail(soup, polygon, 0, 100, 20.0);
+  EXPECT_EQ(none.structural, 0u);
+  EXPECT_EQ(none.detail_triangles, 8u);
+}
+
+/// A closed sphere of radius r about c: an icosahedron whose faces are split into four
+/// `levels` times, its corners pushed out on to the sphere (triangles only, no two coplanar).
+Mesh icosphere(Vec3 c, double r, int levels) {
+  const double g = (1 + std::sqrt(5.0)) / 2;
+  std::vector<Vec3> v{{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+                      {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+  for (Vec3& p : v) p = unit(p);
+  std::vector<std::array<int, 3>> f{{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                                    {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                                    {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (int l = 0; l < levels; ++l) {
+    std::map<std::pair<int, int>, int> middle;
+    auto mid = [&](int a, int b) {
+      const auto key = std::minmax(a, b);
+      auto [it, added] = middle.try_emplace(key, int(v.size()));
+      if (added) v.push_back(unit(v[size_t(a)] + v[size_t(b)]));
+      return it->second;
+    };
+    std::vector<std::array<int, 3>> next;
+    for (const auto& t : f) {
+      const int ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
+      next.insert(next.end(), {{t[0], ab, ca}, {t[1], bc, ab}, {t[2], ca, bc}, {ab, bc, ca}});
+    }
+    f = std::move(next);
+  }
+  for (Vec3& p : v) p = c + r * p;
+  std::vector<std::vector<int>> polygons;
+  for (const auto& t : f) polygons.push_back({t[0], t[1], t[2]});
+  return mesh_from(v, polygons);
+}
+
+// A finely faceted object alone (a sculpture subdivided into a quarter of a million
+// facets, Assimp's sample_subdiv.ac: 22,831 cells and two minutes before) cuts no space:
+// the far box is one cell, the object its detail, and its pictures are those of the
+// object decomposed whole.
+TEST(SoupDetail, AFinelyFacetedObjectAloneIsDetailInOneCellAndLooksTheSame) {
+  Mesh sphere = icosphere({0, 0, 1}, 1.0, 2);  // 320 triangles of about 0.04 m²
+  Material red;
+  red.name = "red";
+  red.colour = {0.8, 0.1, 0.1};
+  sphere.materials = {red};
+  sphere.material_of.assign(sphere.triangles.size(), 0);
+  const std::vector<Mesh> meshes{sphere};
+  const CellComplex whole = build_mesh_scene(meshes);
+  EXPECT_TRUE(whole.objects.empty());
+  EXPECT_GT(whole.cells.size(), 50u);
+  MeshSceneParams p;
+  p.detail_above = 0;
+  p.structural_share = 0.05;  // the box's largest face is 4 m²: facets under 0.2 m² do not cut
+  p.structural_area_cap = 1;
+  const CellComplex split = build_mesh_scene(meshes, p);
+  ASSERT_EQ(split.cells.size(), 1u);
+  ASSERT_FALSE(split.objects.empty());
+  bool said = false;
+  for (const std::string& w : split.warnings)
+    said |= w.find("none of its polygons is large enough to cut space") != std::string::npos &&
+            w.find("drawn in the one cell they cross") != std::string::npos;
+  EXPECT_TRUE(said);
+  double pieces = 0;
+  for (const Object& o : split.objects) pieces += area_of(*o.model);
+  EXPECT_NEAR(pieces, area_of(meshes[0]), 1e-9 * area_of(meshes[0]));
+  const std::vector<PlacedObject> no_objects, detail = place_objects(split);
+  HalftoneOptions o;
+  o.threads = 1;
+  o.shading.back = 1;
+  TraverseParams merged;
+  merged.merge_pieces = true;
+  for (const Camera& cam : {Camera::yaw_pitch({-2.5, -1.0, 1.5}, 20, -10, 70, 240, 160),
+                            Camera::yaw_pitch({0.5, 2.5, 2.8}, -80, -35, 70, 240, 160)}) {
+    const Location in_whole = whole.locate(cam.eye), in_split = split.locate(cam.eye);
+    ASSERT_EQ(in_whole.what, Location::What::Cell);
+    ASSERT_EQ(in_split.what, Location::What::Cell);
+    Image truth, pic;
+    render_view(whole, no_objects, cam, find_visible(whole, cam, in_whole.cell, merged), o, truth);
+    TraverseParams hull = merged;
+    hull.hull_pieces = true;
+    const VisibleSet vs = find_visible(split, cam, in_split.cell, hull);
+    render_view(split, detail, cam, vs, o, pic);
+    Image empty;  // the far box alone: the sphere must be in view
+    render_view(split, no_objects, cam, vs, o, empty);
+    EXPECT_GT(avenues::testing::compare_off_edges(truth, empty).differ, truth.width * truth.height / 10);
+    const avenues::testing::PictureDifference d = avenues::testing::compare_off_edges(truth, pic);
+    EXPECT_EQ(d.off_edges, 0) << "the pictures differ in " << d.off_edges << " pixels away from every edge";
+    EXPECT_LE(d.differ, d.pixels / 200) << "the pictures differ in " << d.differ << " pixels";
+  }
+}
+
 // Every detail triangle is kept, cut to the cells it crosses: the pieces cover its area,
 // each lies in its own cell, and the split complex is sound and says what it did.
 TEST(SoupDetail, DetailIsCutToTheCellsItCrossesAndKeepsEveryBitOfItsArea) {
