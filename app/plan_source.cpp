@@ -93,6 +93,27 @@ std::string whole_file(const std::string& path) {
   return text.str();
 }
 
+/// The first `n` bytes of a file (fewer when it is shorter; "" when it cannot be read).
+std::string file_head(const std::string& path, size_t n) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(n, '\0');
+  head.resize(size_t(in.read(head.data(), std::streamsize(head.size())).gcount()));
+  return head;
+}
+
+bool is_zip_file(const std::string& path) { return file_head(path, 4) == "PK\x03\x04"; }
+
+/// Whether the first 64 KiB of an XML file open a <home> element (a Sweet Home 3D Home.xml
+/// after its prolog and document type).
+bool xml_mentions_home(const std::string& path) {
+  const std::string head = file_head(path, 64 * 1024);
+  for (size_t at = head.find("<home"); at != std::string::npos; at = head.find("<home", at + 1)) {
+    const char next = at + 5 < head.size() ? head[at + 5] : '>';
+    if (next == '>' || next == '/' || std::isspace(static_cast<unsigned char>(next))) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 void print_warnings(const std::string& path, const std::vector<std::string>& warnings) {
@@ -148,6 +169,13 @@ PlanSpec parse_plan_spec(const std::string& plan) {
     spec.content_reader = assimp_importer_by_content(spec.file);
     if (!spec.content_reader.empty()) spec.format = FileFormat::Model;
   }
+  // An .xml file with no <home> in it is no Sweet Home home, whatever its name says: it may
+  // be a model in XML that Assimp knows by its root element (COLLADA, XGL, Irrlicht, Ogre).
+  // Else the Sweet Home reader names its root element.
+  if (spec.format == FileFormat::SweetHome && !foreign_zip && !is_zip_file(spec.file) && !xml_mentions_home(spec.file)) {
+    spec.content_reader = assimp_importer_by_content(spec.file);
+    if (!spec.content_reader.empty()) spec.format = FileFormat::Model;
+  }
   return spec;
 }
 
@@ -167,6 +195,7 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
   bool foreign_text = false;
   // What the file's name says, for an error about a file Avenues does not know.
   auto what_the_name_says = [&p] {
+    if (lower(p.extension().string()) == ".xml") return std::string("it is XML with no <home> element, no Sweet Home 3D home");
     return p.extension().empty() ? std::string("its name has no extension")
                                  : "its extension '" + p.extension().string() + "' names no format Avenues reads";
   };

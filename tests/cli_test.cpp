@@ -734,6 +734,26 @@ TEST_F(Cli, IfcModelIsABuildingAndBadUpOrUnitIsRefused) {
   EXPECT_EQ(run({"cells", model, "--unit", "furlong"}).status, 2);
 }
 
+// An .xml file that is no Sweet Home home but a model in XML (COLLADA, XGL) opens as a
+// mesh scene; XML that nothing reads names its root element, and an Irrlicht mesh Assimp
+// takes but cannot read says so.
+TEST_F(Cli, ModelsInXmlOpenAndOtherXmlNamesItsRoot) {
+  const fs::path models = "/usr/share/assimp/models";
+  if (!fs::exists(models / "Collada/AsXML.xml")) GTEST_SKIP() << "assimp-testmodels not installed (.ci/install-deps)";
+  for (const char* f : {"Collada/AsXML.xml", "XGL/sample_official_asxml.xml"}) {
+    const Outcome r = run({"cells", (models / f).string(), "--json"});
+    ASSERT_EQ(r.status, 0) << f << ": " << r.err;
+    EXPECT_GT(parse_json(r)["cells"].get<int>(), 1) << f;
+  }
+  write("drawing.xml", "<?xml version=\"1.0\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\"/>\n");
+  const Outcome svg = run({"cells", path("drawing.xml").string()});
+  EXPECT_EQ(svg.status, 2);
+  EXPECT_NE(svg.err.find("root element is <svg>, not <home>"), std::string::npos) << svg.err;
+  const Outcome irr = run({"cells", (models / "invalid/emptyIrrMesh.xml").string()});
+  EXPECT_EQ(irr.status, 2);
+  EXPECT_NE(irr.err.find("it is XML with no <home> element"), std::string::npos) << irr.err;
+}
+
 // A 3D model saved as DXF (no wall layer, 3D faces) opens as a mesh scene, not as a
 // floor plan refused for its layers.
 TEST_F(Cli, DxfThatIsA3dModelOpensAsAMeshScene) {
