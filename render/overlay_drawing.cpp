@@ -51,9 +51,23 @@ std::string overlay_svg(const CellComplex& c, const Camera& cam, const VisibleSe
   const double PW = pw * plan_scale, PH = ph * plan_scale;
   // Panel 3: the avenue tree.
   const double row = 16, col = 120;
+  const size_t tree_rows = std::min(vs.avenues.size(), kOverlayTreeRows);
   int max_depth = 0;
-  for (const Avenue& a : vs.avenues) max_depth = std::max(max_depth, a.depth);
-  const double TW = (max_depth + 1) * col + 160, TH = vs.avenues.size() * row + 40;
+  for (size_t i = 0; i < tree_rows; ++i) max_depth = std::max(max_depth, vs.avenues[i].depth);
+  const double TW = (max_depth + 1) * col + 160, TH = double(tree_rows) * row + 40;
+  // The masks outlined: every one, or the shallowest kOverlayMasks (ties in search order).
+  std::vector<size_t> outlined(vs.avenues.size());
+  for (size_t i = 0; i < outlined.size(); ++i) outlined[i] = i;
+  if (outlined.size() > kOverlayMasks) {
+    std::stable_sort(outlined.begin(), outlined.end(),
+                     [&](size_t a, size_t b) { return vs.avenues[a].depth < vs.avenues[b].depth; });
+    outlined.resize(kOverlayMasks);
+    std::sort(outlined.begin(), outlined.end());
+  }
+  auto of_all = [](size_t shown, size_t all, const char* what) {
+    return shown == all ? std::to_string(all) + " " + what
+                        : std::to_string(shown) + " of " + std::to_string(all) + " " + what;
+  };
   const double gap = 30, total_w = W + gap + PW + gap + TW, total_h = std::max({H, PH, TH}) + 40;
 
   std::ostringstream o;
@@ -64,11 +78,12 @@ std::string overlay_svg(const CellComplex& c, const Camera& cam, const VisibleSe
 
   // --- panel 1: picture plane with masks.
   o << "<g id=\"picture-plane\" transform=\"translate(0,30)\">\n"
-    << "<text x=\"0\" y=\"-10\" font-size=\"14\">Picture plane: masks of " << vs.avenues.size() << " avenues, "
-    << vs.cells.size() << " cells</text>\n"
+    << "<text x=\"0\" y=\"-10\" font-size=\"14\">Picture plane: masks of "
+    << of_all(outlined.size(), vs.avenues.size(), outlined.size() < vs.avenues.size() ? "avenues (the shallowest)" : "avenues")
+    << ", " << vs.cells.size() << " cells</text>\n"
     << "<rect x=\"0\" y=\"0\" width=\"" << fmt(W) << "\" height=\"" << fmt(H)
     << "\" fill=\"#fbfbf8\" stroke=\"#000\" stroke-width=\"1\"/>\n";
-  for (size_t i = 0; i < vs.avenues.size(); ++i) {
+  for (size_t i : outlined) {
     const Avenue& a = vs.avenues[i];
     std::string pts;
     double cx = 0, cy = 0;
@@ -133,8 +148,10 @@ std::string overlay_svg(const CellComplex& c, const Camera& cam, const VisibleSe
 
   // --- panel 3: the avenue tree (depth across, depth-first order down).
   o << "<g id=\"avenue-tree\" transform=\"translate(" << fmt(W + gap + PW + gap) << ",30)\">\n"
-    << "<text x=\"0\" y=\"-10\" font-size=\"14\">Avenue tree (Jones's Fig. 5)</text>\n";
-  for (size_t i = 0; i < vs.avenues.size(); ++i) {
+    << "<text x=\"0\" y=\"-10\" font-size=\"14\">Avenue tree (Jones's Fig. 5)"
+    << (tree_rows < vs.avenues.size() ? ": the first " + of_all(tree_rows, vs.avenues.size(), "avenues") : std::string())
+    << "</text>\n";
+  for (size_t i = 0; i < tree_rows; ++i) {
     const Avenue& a = vs.avenues[i];
     double x = a.depth * col + 6, y = i * row + 10;
     if (a.parent >= 0) {

@@ -18,6 +18,7 @@
 
 #include "cells/build_cells.h"
 #include "render/drawing.h"
+#include "render/overlay_drawing.h"
 #include "render/stereo_drawing.h"
 #include "render/view_lines.h"
 #include "tests/avenues_run.h"
@@ -65,6 +66,63 @@ Drawing random_drawing(int n, unsigned seed) {
 }
 
 }  // namespace
+
+// The avenue overlay outlines every mask and draws the whole tree of a view of a few
+// avenues; of a view of very many (here the furnished room's avenues repeated, as a finely
+// cut scene's view gives 600,000), it outlines the shallowest kOverlayMasks and the first
+// kOverlayTreeRows of the tree, and says so: the file stays one a browser opens.
+TEST_F(DrawingExport, TheAvenueOverlayOfAVastViewShowsWhatAPersonCanRead) {
+  const CellComplex c = build_cells(read_plan(std::string(AVENUES_SOURCE_DIR) + "/plans/furnished-room.toml"));
+  const Viewpoint vp = default_viewpoint(c);
+  const Camera cam = Camera::look_at(vp.eye, vp.look, vp.fov_deg, 640, 360);
+  const VisibleSet few = find_visible(c, cam, c.locate(cam.eye).cell);
+  ASSERT_GE(few.avenues.size(), 2u);
+  auto count = [](const pugi::xml_document& doc, const char* group, const char* element) {
+    return doc.select_nodes((std::string("//*[@id='") + group + "']/*[local-name()='" + element + "']").c_str()).size();
+  };
+  auto title = [](const pugi::xml_document& doc, const char* group) {
+    return std::string(doc.select_node((std::string("//*[@id='") + group + "']/*[local-name()='text']").c_str())
+                           .node()
+                           .child_value());
+  };
+  pugi::xml_document small;
+  ASSERT_TRUE(small.load_string(overlay_svg(c, cam, few).c_str()));
+  EXPECT_EQ(count(small, "picture-plane", "polygon"), few.avenues.size());
+  EXPECT_EQ(count(small, "avenue-tree", "circle"), few.avenues.size());
+  EXPECT_EQ(title(small, "picture-plane").find("shallowest"), std::string::npos) << title(small, "picture-plane");
+
+  VisibleSet vast = few;  // copies of the avenues below the root, each a level deeper
+  const size_t n = few.avenues.size();
+  while (vast.avenues.size() < 2 * kOverlayMasks + 7) {
+    const size_t from = vast.avenues.size() - (n - 1);
+    for (size_t i = 1; i < n; ++i) {
+      Avenue a = vast.avenues[from + i - 1];
+      a.depth += 1;
+      a.parent = int(from + i - 1);
+      vast.avenues.push_back(a);
+    }
+  }
+  const std::string svg = overlay_svg(c, cam, vast);
+  pugi::xml_document big;
+  ASSERT_TRUE(big.load_string(svg.c_str()));
+  EXPECT_EQ(count(big, "picture-plane", "polygon"), kOverlayMasks);
+  EXPECT_EQ(count(big, "avenue-tree", "circle"), kOverlayTreeRows);
+  EXPECT_NE(title(big, "picture-plane").find(std::to_string(kOverlayMasks) + " of " + std::to_string(vast.avenues.size())),
+            std::string::npos)
+      << title(big, "picture-plane");
+  EXPECT_NE(title(big, "avenue-tree").find("the first " + std::to_string(kOverlayTreeRows) + " of"), std::string::npos)
+      << title(big, "avenue-tree");
+  // The shallowest are outlined: the root's mask among them, and none deeper than one left out.
+  std::vector<bool> outlined(vast.avenues.size(), false);
+  for (const pugi::xpath_node& t : big.select_nodes("//*[@id='picture-plane']/*[local-name()='polygon']/*[local-name()='title']"))
+    outlined.at(std::stoul(std::string(t.node().child_value()).substr(std::string("avenue ").size()))) = true;
+  EXPECT_TRUE(outlined[0]);
+  int deepest_outlined = 0, shallowest_left = 1 << 30;
+  for (size_t i = 0; i < outlined.size(); ++i)
+    (outlined[i] ? deepest_outlined : shallowest_left) =
+        outlined[i] ? std::max(deepest_outlined, vast.avenues[i].depth) : std::min(shallowest_left, vast.avenues[i].depth);
+  EXPECT_LE(deepest_outlined, shallowest_left);
+}
 
 TEST_F(DrawingExport, SvgReadsBackWithAGroupPerLayerAndWidthsInMillimetres) {
   const Drawing& d = room_drawing();
