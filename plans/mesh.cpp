@@ -469,7 +469,74 @@ void smooth_corner_normals(Mesh& m, double crease_deg) {
 }
 
 namespace {
-Mesh mesh_of_openmesh(const PolyMesh& pm, const std::string& path, std::vector<std::string>* dropped = nullptr);
+Mesh mesh_of_openmesh(const PolyMesh& pm, const std::string& path, std::vector<std::string>* dropped = nullptr,
+                      const std::vector<Vec3>* exact = nullptr);
+
+/// OpenMesh reads every coordinate of an OBJ, OFF or PLY file into a float, whatever its
+/// mesh's traits: a model in site coordinates (a survey's 5,400,000 m northing) lands on a
+/// grid half a metre wide, its rooms a step larger or smaller and its shelves flattened.
+/// The text's own numbers are read here in double, in the order of its vertices: an OBJ's
+/// "v" lines, an OFF's vertex lines after its counts. mesh_of_openmesh takes them where
+/// they are the vertices OpenMesh read, each its float (else it keeps OpenMesh's).
+std::vector<Vec3> obj_vertices_in_double(const std::string& text) {
+  std::vector<Vec3> out;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    const char* c = line.c_str();
+    while (*c == ' ' || *c == '\t') ++c;
+    if (c[0] != 'v' || (c[1] != ' ' && c[1] != '\t')) continue;
+    char* end = nullptr;
+    const char* at = c + 1;
+    double x[3];
+    int k = 0;
+    for (; k < 3; ++k, at = end) {
+      x[k] = std::strtod(at, &end);
+      if (end == at) break;
+    }
+    out.push_back(k == 3 ? Vec3{x[0], x[1], x[2]} : Vec3{NAN, NAN, NAN});
+  }
+  return out;
+}
+
+std::vector<Vec3> off_vertices_in_double(const std::string& text) {
+  std::vector<Vec3> out;
+  std::istringstream in(text);
+  std::string line;
+  bool header = false;
+  long long count = -1;
+  while (std::getline(in, line)) {
+    const std::string body = line.substr(0, line.find('#'));
+    std::istringstream ls(body);
+    std::string first;
+    if (!(ls >> first)) continue;
+    if (!header) {  // "OFF", "COFF", "NOFF", ... perhaps followed by the counts
+      header = true;
+      if (first.find("OFF") == std::string::npos || first.find('4') != std::string::npos || first[0] == 'n')
+        return {};  // homogeneous or n-dimensional: not x y z
+      if (ls >> count) break;
+      continue;
+    }
+    if (count < 0) {
+      count = std::strtoll(first.c_str(), nullptr, 10);
+      break;
+    }
+  }
+  while (count > 0 && static_cast<long long>(out.size()) < count && std::getline(in, line)) {
+    const std::string body = line.substr(0, line.find('#'));
+    const char* at = body.c_str();
+    char* end = nullptr;
+    double x[3];
+    int k = 0;
+    for (; k < 3; ++k, at = end) {
+      x[k] = std::strtod(at, &end);
+      if (end == at) break;
+    }
+    if (k == 0 && body.find_first_not_of(" \t\r") == std::string::npos) continue;  // a blank line
+    out.push_back(k == 3 ? Vec3{x[0], x[1], x[2]} : Vec3{NAN, NAN, NAN});
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -597,7 +664,15 @@ Mesh load_mesh(const std::string& path, const MeshAxes& axes, std::vector<std::s
     throw std::runtime_error("cannot read mesh " + path + ": not a mesh OpenMesh can read (OBJ, OFF, PLY, STL)");
   std::vector<std::string>& dropped = ext == ".off" ? off_dropped : stl_dropped;
   if (pm.n_faces() == 0 && !dropped.empty()) throw_no_face_left(path, dropped);
-  Mesh m = oriented(mesh_of_openmesh(pm, path, &dropped));
+  std::vector<Vec3> exact;
+  if (ext == ".off") {
+    if (!off_text.empty()) exact = off_vertices_in_double(off_text);
+    else {
+      std::ifstream text(path, std::ios::binary);
+      exact = off_vertices_in_double(std::string((std::istreambuf_iterator<char>(text)), std::istreambuf_iterator<char>()));
+    }
+  }
+  Mesh m = oriented(mesh_of_openmesh(pm, path, &dropped, exact.empty() ? nullptr : &exact));
   if (!dropped.empty() && warnings) warnings->push_back(said_dropped(path, dropped));
   return m;
 }
@@ -613,7 +688,8 @@ Mesh read_mesh_bytes(const std::string& bytes, const std::string& ext, const std
   std::istringstream in(text);
   if (!OpenMesh::IO::read_mesh(pm, in, ext, opt)) throw std::runtime_error("cannot read mesh " + name + ": not an OBJ mesh");
   if (pm.n_faces() == 0 && !dropped.empty()) throw_no_face_left(name, dropped);
-  Mesh m = mesh_of_openmesh(pm, name);
+  const std::vector<Vec3> exact = obj_vertices_in_double(text);
+  Mesh m = mesh_of_openmesh(pm, name, nullptr, &exact);
   if (!dropped.empty() && warnings) warnings->push_back(said_dropped(name, dropped));
   ObjMaterialUse use = obj_material_use(text);
   const std::string why = name_obj_materials(m, use, pm.n_faces());
@@ -624,8 +700,22 @@ Mesh read_mesh_bytes(const std::string& bytes, const std::string& ext, const std
 
 namespace {
 
-Mesh mesh_of_openmesh(const PolyMesh& pm, const std::string& path, std::vector<std::string>* dropped) {
+Mesh mesh_of_openmesh(const PolyMesh& pm, const std::string& path, std::vector<std::string>* dropped,
+                      const std::vector<Vec3>* exact) {
   if (pm.n_faces() == 0) throw std::runtime_error("mesh " + path + " has no faces");
+  // The text's doubles, where they are the vertices OpenMesh read (each rounds to its float).
+  bool use_exact = exact && exact->size() == pm.n_vertices();
+  for (auto v : pm.vertices()) {
+    if (!use_exact) break;
+    const auto p = pm.point(v);
+    const Vec3 q = (*exact)[size_t(v.idx())];
+    // (Decimal to float directly and through double may differ by one float in rare ties.)
+    auto near = [](double d, float f) {
+      const float g = float(d);
+      return g == f || std::nextafter(g, HUGE_VALF) == f || std::nextafter(g, -HUGE_VALF) == f;
+    };
+    use_exact = near(q.x, p[0]) && near(q.y, p[1]) && near(q.z, p[2]);
+  }
   // A vertex that is not a finite number (a binary PLY's NaN, which no check in front of
   // OpenMesh reads) costs the faces using it, said in `dropped`; without `dropped` it
   // refuses the mesh. It keeps its number, as a copy of a finite vertex.
@@ -636,7 +726,7 @@ Mesh mesh_of_openmesh(const PolyMesh& pm, const std::string& path, std::vector<s
     finite.push_back(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]));
     if (!finite.back() && !dropped) throw std::runtime_error("mesh " + path + " has a vertex that is not a finite number");
     if (!finite.back()) dropped->push_back("vertex " + std::to_string(v.idx()) + " is not a finite number: it is dropped, with its faces");
-    vertices.push_back(finite.back() ? Vec3{p[0], p[1], p[2]} : Vec3{});
+    vertices.push_back(!finite.back() ? Vec3{} : use_exact ? (*exact)[size_t(v.idx())] : Vec3{p[0], p[1], p[2]});
   }
   if (const auto good = std::find(finite.begin(), finite.end(), 1); good != finite.end())
     for (size_t i = 0; i < vertices.size(); ++i)

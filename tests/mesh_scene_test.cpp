@@ -14,6 +14,7 @@
 #include "cells/mesh_scene.h"
 #include "ray_oracle.h"
 #include "visibility/visible_set.h"
+#include "tests/test_files.h"
 #include "tests/test_meshes.h"
 
 using namespace avenues;
@@ -280,4 +281,47 @@ TEST(MeshScene, AnUnreadableFileIsAnErrorNamingIt) {
   MeshSceneParams bad;
   bad.margin = 0;
   EXPECT_THROW(build_mesh_scene({box_mesh({1, 1, 1})}, bad), std::invalid_argument);
+}
+
+// A model in site coordinates (a survey's easting and northing: 512 km, 5,400 km) keeps
+// every coordinate its OBJ or OFF file gives, as the same model near the origin does:
+// OpenMesh reads them into floats (half a metre apart up there), so the file's own
+// numbers are read again in double. A shelf's two faces 1 cm apart stay two faces, and
+// the scene has the cells it has at the origin.
+TEST(MeshScene, AModelInSiteCoordinatesKeepsItsFilesOwnNumbers) {
+  avenues::testing::TempDir dir;
+  auto obj = [](double x0, double y0) {
+    const double q[][4][3] = {{{0, 0, 0}, {4, 0, 0}, {4, 3, 0}, {0, 3, 0}},       {{0, 0, 0}, {0, 0, 2.5}, {4, 0, 2.5}, {4, 0, 0}},
+                              {{4, 0, 0}, {4, 0, 2.5}, {4, 3, 2.5}, {4, 3, 0}},   {{4, 3, 0}, {4, 3, 2.5}, {0, 3, 2.5}, {0, 3, 0}},
+                              {{1, 1, 0.51}, {2, 1, 0.51}, {2, 1.3, 0.51}, {1, 1.3, 0.51}},
+                              {{1.001, 1, 0.52}, {1.001, 1.3, 0.52}, {2.001, 1.3, 0.52}, {2.001, 1, 0.52}}};
+    std::string text;
+    char line[128];
+    for (const auto& quad : q)
+      for (const auto& v : quad) {
+        std::snprintf(line, sizeof line, "v %.3f %.3f %.3f\n", x0 + v[0], y0 + v[1], v[2]);
+        text += line;
+      }
+    for (int k = 0; k < 6; ++k) text += "f " + std::to_string(4 * k + 1) + " " + std::to_string(4 * k + 2) + " " +
+                                        std::to_string(4 * k + 3) + " " + std::to_string(4 * k + 4) + "\n";
+    return text;
+  };
+  const double x0 = 512345.678, y0 = 5400123.456;
+  const std::string far = dir.write("far.obj", obj(x0, y0)), near = dir.write("near.obj", obj(0, 0));
+  const Mesh m = load_mesh(far);
+  ASSERT_EQ(m.vertices.size(), 24u);
+  EXPECT_EQ(m.vertices[0].x, 512345.678);
+  EXPECT_EQ(m.vertices[0].y, 5400123.456);
+  EXPECT_EQ(m.vertices[23].x, std::strtod("512347.679", nullptr));
+  const CellComplex at_site = read_mesh_scene(far), at_origin = read_mesh_scene(near);
+  EXPECT_EQ(at_site.cells.size(), at_origin.cells.size());
+  EXPECT_EQ(at_site.portals.size(), at_origin.portals.size());
+  // An OFF file's vertex lines alike.
+  const std::string off = dir.write("far.off", "OFF\n# a triangle\n3 1 0\n512345.678 5400123.456 0.25\n512346 5400123.456 0\n"
+                                                "512345.678 5400124 0\n3 0 1 2\n");
+  const Mesh t = load_mesh(off);
+  ASSERT_EQ(t.vertices.size(), 3u);
+  EXPECT_EQ(t.vertices[0].x, 512345.678);
+  EXPECT_EQ(t.vertices[0].y, 5400123.456);
+  EXPECT_EQ(t.vertices[0].z, 0.25);
 }
