@@ -475,8 +475,8 @@ Mesh mesh_of_openmesh(const PolyMesh& pm, const std::string& path, std::vector<s
 /// OpenMesh reads every coordinate of an OBJ, OFF or PLY file into a float, whatever its
 /// mesh's traits: a model in site coordinates (a survey's 5,400,000 m northing) lands on a
 /// grid half a metre wide, its rooms a step larger or smaller and its shelves flattened.
-/// The text's own numbers are read here in double, in the order of its vertices: an OBJ's
-/// "v" lines, an OFF's vertex lines after its counts. mesh_of_openmesh takes them where
+/// The file's own numbers are read here in double, in the order of its vertices: an OBJ's
+/// "v" lines, an OFF's vertex lines after its counts, a PLY's x, y and z. mesh_of_openmesh takes them where
 /// they are the vertices OpenMesh read, each its float (else it keeps OpenMesh's).
 std::vector<Vec3> obj_vertices_in_double(const std::string& text) {
   std::vector<Vec3> out;
@@ -497,6 +497,93 @@ std::vector<Vec3> obj_vertices_in_double(const std::string& text) {
     out.push_back(k == 3 ? Vec3{x[0], x[1], x[2]} : Vec3{NAN, NAN, NAN});
   }
   return out;
+}
+
+/// A PLY file's vertices in double, from its own x, y and z properties (ASCII, or binary
+/// either way round, of any of PLY's number types); empty where the vertex element holds a
+/// list or lacks a coordinate. The vertex element comes first (check_ply).
+std::vector<Vec3> ply_vertices_in_double(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line, format;
+  long long count = -1;
+  struct Property { std::string type, name; };
+  std::vector<Property> props;
+  bool in_vertex = false;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::istringstream ls(line);
+    std::string key;
+    ls >> key;
+    if (key == "end_header") break;
+    if (key == "format") ls >> format;
+    else if (key == "element") {
+      std::string name;
+      ls >> name;
+      in_vertex = name == "vertex" && count < 0;
+      if (in_vertex) ls >> count;
+    } else if (key == "property" && in_vertex) {
+      Property p;
+      ls >> p.type >> p.name;
+      if (p.type == "list") return {};
+      props.push_back(p);
+    }
+  }
+  auto size_of = [](const std::string& t) -> int {
+    if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+    if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+    if (t == "int" || t == "uint" || t == "float" || t == "int32" || t == "uint32" || t == "float32") return 4;
+    if (t == "double" || t == "float64") return 8;
+    return 0;
+  };
+  int at[3] = {-1, -1, -1};
+  size_t record = 0;
+  std::vector<size_t> offset;
+  for (size_t k = 0; k < props.size(); ++k) {
+    const int sz = size_of(props[k].type);
+    if (sz == 0) return {};
+    offset.push_back(record);
+    record += size_t(sz);
+    for (int c = 0; c < 3; ++c)
+      if (props[k].name == std::string(1, char('x' + c))) at[c] = int(k);
+  }
+  if (count <= 0 || at[0] < 0 || at[1] < 0 || at[2] < 0) return {};
+  std::vector<Vec3> out;
+  out.reserve(size_t(std::min<long long>(count, 1 << 24)));
+  if (format == "ascii") {
+    std::vector<double> value(props.size());
+    while (static_cast<long long>(out.size()) < count && std::getline(in, line)) {
+      const char* c = line.c_str();
+      char* end = nullptr;
+      size_t k = 0;
+      for (; k < props.size(); ++k, c = end) {
+        value[k] = std::strtod(c, &end);
+        if (end == c) break;
+      }
+      if (k == 0 && line.find_first_not_of(" \t\r") == std::string::npos) continue;
+      if (k < props.size()) return {};
+      out.push_back({value[size_t(at[0])], value[size_t(at[1])], value[size_t(at[2])]});
+    }
+    return out;
+  }
+  const bool big = format == "binary_big_endian";
+  if (!big && format != "binary_little_endian") return {};
+  std::vector<unsigned char> r(record);
+  auto read = [&](size_t k) {
+    unsigned char b[8];
+    const int sz = size_of(props[k].type);
+    for (int i = 0; i < sz; ++i) b[i] = r[offset[k] + size_t(big ? sz - 1 - i : i)];  // little-endian now
+    uint64_t u = 0;
+    for (int i = sz - 1; i >= 0; --i) u = (u << 8) | b[i];
+    const std::string& t = props[k].type;
+    if (t == "float" || t == "float32") { float f; uint32_t w = uint32_t(u); std::memcpy(&f, &w, 4); return double(f); }
+    if (t == "double" || t == "float64") { double d; std::memcpy(&d, &u, 8); return d; }
+    const bool is_signed = t == "char" || t == "int8" || t == "short" || t == "int16" || t == "int" || t == "int32";
+    if (is_signed && sz < 8 && (u >> (8 * sz - 1)) & 1) return double(int64_t(u) - (int64_t(1) << (8 * sz)));
+    return double(u);
+  };
+  while (static_cast<long long>(out.size()) < count && in.read(reinterpret_cast<char*>(r.data()), std::streamsize(record)))
+    out.push_back({read(size_t(at[0])), read(size_t(at[1])), read(size_t(at[2]))});
+  return static_cast<long long>(out.size()) == count ? out : std::vector<Vec3>{};
 }
 
 std::vector<Vec3> off_vertices_in_double(const std::string& text) {
@@ -665,6 +752,7 @@ Mesh load_mesh(const std::string& path, const MeshAxes& axes, std::vector<std::s
   std::vector<std::string>& dropped = ext == ".off" ? off_dropped : stl_dropped;
   if (pm.n_faces() == 0 && !dropped.empty()) throw_no_face_left(path, dropped);
   std::vector<Vec3> exact;
+  if (ext == ".ply") exact = ply_vertices_in_double(path);
   if (ext == ".off") {
     if (!off_text.empty()) exact = off_vertices_in_double(off_text);
     else {

@@ -324,4 +324,34 @@ TEST(MeshScene, AModelInSiteCoordinatesKeepsItsFilesOwnNumbers) {
   EXPECT_EQ(t.vertices[0].x, 512345.678);
   EXPECT_EQ(t.vertices[0].y, 5400123.456);
   EXPECT_EQ(t.vertices[0].z, 0.25);
+  // A PLY file's, ASCII or binary, in double or in float (then as the file has them).
+  const std::string ascii = dir.write("far.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
+                                                  "property double z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                                                  "end_header\n512345.678 5400123.456 0.25\n512346 5400123.456 0\n"
+                                                  "512345.678 5400124 0\n3 0 1 2\n");
+  EXPECT_EQ(load_mesh(ascii).vertices[0].y, 5400123.456);
+  for (bool big : {false, true}) {
+    std::string bin = std::string("ply\nformat ") + (big ? "binary_big_endian" : "binary_little_endian") +
+                      " 1.0\nelement vertex 3\nproperty uchar flag\nproperty double x\nproperty double y\nproperty float z\n"
+                      "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    auto put = [&](const void* p, size_t n) {
+      std::string b(static_cast<const char*>(p), n);
+      if (big) std::reverse(b.begin(), b.end());
+      bin += b;
+    };
+    const double xy[3][2] = {{512345.678, 5400123.456}, {512346, 5400123.456}, {512345.678, 5400124}};
+    for (const auto& v : xy) {
+      const unsigned char flag = 7;
+      const float z = 0.25f;
+      put(&flag, 1), put(&v[0], 8), put(&v[1], 8), put(&z, 4);
+    }
+    const unsigned char three = 3;
+    put(&three, 1);
+    for (int i = 0; i < 3; ++i) put(&i, 4);
+    const Mesh b = load_mesh(dir.write(big ? "big.ply" : "little.ply", bin));
+    ASSERT_EQ(b.vertices.size(), 3u) << big;
+    EXPECT_EQ(b.vertices[0].x, 512345.678) << big;
+    EXPECT_EQ(b.vertices[2].y, 5400124.0) << big;
+    EXPECT_EQ(b.vertices[1].z, 0.25) << big;
+  }
 }
