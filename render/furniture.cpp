@@ -23,15 +23,21 @@ void find_edges(FurniturePiece& p) {
   const Mesh& m = p.mesh;
   const size_t polygons = m.polygon_of.empty() ? 0 : size_t(*std::max_element(m.polygon_of.begin(), m.polygon_of.end())) + 1;
   std::vector<Vec3> sum(polygons, Vec3{0, 0, 0});
+  std::vector<double> span2(polygons, 0);  // per polygon: its longest side, squared
   p.polygon_point.assign(polygons, Vec3{0, 0, 0});
   for (size_t t = 0; t < m.triangles.size(); ++t) {
     const auto& tri = m.triangles[t];
     const Vec3 a = m.vertices[size_t(tri[0])], b = m.vertices[size_t(tri[1])], c = m.vertices[size_t(tri[2])];
-    sum[size_t(m.polygon_of[t])] = sum[size_t(m.polygon_of[t])] + cross(b - a, c - a);
-    p.polygon_point[size_t(m.polygon_of[t])] = a;
+    const size_t k = size_t(m.polygon_of[t]);
+    sum[k] = sum[k] + cross(b - a, c - a);
+    span2[k] = std::max({span2[k], dot(b - a, b - a), dot(c - b, c - b), dot(a - c, a - c)});
+    p.polygon_point[k] = a;
   }
+  // A polygon whose area is rounding beside its size (a needle whose corners were on one
+  // line until placing it rounded them off it) has no normal: it is no surface.
   p.polygon_normal.clear();
-  for (Vec3 s : sum) p.polygon_normal.push_back(unit(s));
+  for (size_t k = 0; k < polygons; ++k)
+    p.polygon_normal.push_back(length(sum[k]) <= 1e-12 * span2[k] ? Vec3{0, 0, 0} : unit(sum[k]));
   // Every triangle side, keyed by its vertex pair; sides of one polygon only are diagonals.
   struct Side {
     int32_t lo, hi, polygon;

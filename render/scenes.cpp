@@ -277,7 +277,7 @@ Mesh mesh_of(const PaperScene& s) {
 
 std::string off_text(const PaperScene& s) {
   std::ostringstream o;
-  o.precision(9);  // round-trips a float
+  o.precision(17);  // round-trips a double (the vertices are floats: read as doubles, each the same number)
   o << "OFF\n" << s.vertices.size() << " " << s.polygons.size() << " 0\n";
   for (Vec3 v : s.vertices) o << v.x << " " << v.y << " " << v.z << "\n";
   for (const auto& p : s.polygons) {
