@@ -239,11 +239,12 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
     Mesh loaded;
     const Mesh& mesh = read ? *read : (loaded = load_mesh(file, axes, &said));  // names the file when unreadable
     out.stages.push_back({"read mesh", seconds_since(t0)});
-    // A large soup takes a while (issue 16: minutes for the curved and the structural
-    // models of a few hundred thousand triangles): say so before, not after.
+    // A large soup takes a while (issue 16: 5-15 s for the curved and the structural
+    // models of a few hundred thousand triangles, split into structure and detail): say so
+    // before, not after.
     if (mesh.triangles.size() >= 50'000)
       std::cerr << file << ": " << mesh.triangles.size()
-                << " triangles to decompose as a polygon soup: this may take minutes\n";
+                << " triangles to decompose as a polygon soup: this may take a while\n";
     try {
       out.complex = build_mesh_scene({mesh});
     } catch (const std::bad_alloc&) {
