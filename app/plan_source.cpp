@@ -101,17 +101,16 @@ std::string file_head(const std::string& path, size_t n) {
   return head;
 }
 
-bool is_zip_file(const std::string& path) { return file_head(path, 4) == "PK\x03\x04"; }
-
-/// Whether the first 64 KiB of an XML file open a <home> element (a Sweet Home 3D Home.xml
-/// after its prolog and document type).
-bool xml_mentions_home(const std::string& path) {
+/// Whether a file is neither a zip archive nor one whose first 64 KiB open a <home>
+/// element (a Sweet Home 3D Home.xml, its <home> after its prolog and document type).
+bool xml_without_home(const std::string& path) {
   const std::string head = file_head(path, 64 * 1024);
+  if (head.compare(0, 4, "PK\x03\x04") == 0) return false;
   for (size_t at = head.find("<home"); at != std::string::npos; at = head.find("<home", at + 1)) {
     const char next = at + 5 < head.size() ? head[at + 5] : '>';
-    if (next == '>' || next == '/' || std::isspace(static_cast<unsigned char>(next))) return true;
+    if (next == '>' || next == '/' || std::isspace(static_cast<unsigned char>(next))) return false;
   }
-  return false;
+  return true;
 }
 
 }  // namespace
@@ -172,7 +171,7 @@ PlanSpec parse_plan_spec(const std::string& plan) {
   // An .xml file with no <home> in it is no Sweet Home home, whatever its name says: it may
   // be a model in XML that Assimp knows by its root element (COLLADA, XGL, Irrlicht, Ogre).
   // Else the Sweet Home reader names its root element.
-  if (spec.format == FileFormat::SweetHome && !foreign_zip && !is_zip_file(spec.file) && !xml_mentions_home(spec.file)) {
+  if (spec.format == FileFormat::SweetHome && !foreign_zip && xml_without_home(spec.file)) {
     spec.content_reader = assimp_importer_by_content(spec.file);
     if (!spec.content_reader.empty()) spec.format = FileFormat::Model;
   }
@@ -201,10 +200,7 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
   };
   if ((spec.format == FileFormat::Toml || spec.format == FileFormat::Unknown) && lower(p.extension().string()) != ".toml") {
     // No telling signature: a few lines of content tell floor-plan annotations.
-    std::ifstream in(spec.file, std::ios::binary);
-    std::string head(4096, '\0');
-    head.resize(size_t(in.read(head.data(), std::streamsize(head.size())).gcount()));
-    if (looks_like_floorplan_vectors(head)) spec.format = FileFormat::FloorplanVectors;
+    if (looks_like_floorplan_vectors(file_head(spec.file, 4096))) spec.format = FileFormat::FloorplanVectors;
     // Text that is not TOML, under a name that says nothing: a model Assimp knows by its
     // first keywords ("AC3Db", "*3DSMAX_ASCIIEXPORT", "xof 0302txt"). TOML text stays a
     // plan, whatever else it might pass for, and text neither knows keeps TOML's message.

@@ -80,8 +80,10 @@ const std::string kCoordinateRule = "is not a coordinate (a finite number of mag
 /// from the last vertex so far), costs its element, not the file. A bad vertex's line
 /// becomes a copy of a good vertex (so that the numbering stays, and the extent too) and
 /// every face using it goes; a bad face's line goes. Returns the text to read; `dropped`
-/// gets one line per element dropped ("line 11: '3.1+e2' is not a coordinate ...").
-std::string readable_obj(const std::string& bytes, std::vector<std::string>& dropped) {
+/// gets one line per element dropped ("line 11: '3.1+e2' is not a coordinate ..."), and
+/// `vertices`, where given, every vertex of the text to read in double (see mesh_of_openmesh).
+std::string readable_obj(const std::string& bytes, std::vector<std::string>& dropped,
+                         std::vector<Vec3>* vertices_in_double = nullptr) {
   // Positive indices may name vertices listed later; negative ones count back from here.
   // A first pass finds every vertex and which are bad, since a face may name one listed later.
   std::vector<uint8_t> bad_vertex(1, 0);  // 1-based
@@ -101,6 +103,13 @@ std::string readable_obj(const std::string& bytes, std::vector<std::string>& dro
   }
   const long long total = (long long)bad_vertex.size() - 1;
   if (stand_in.empty()) stand_in = "v 0 0 0";
+  Vec3 stand_in_at;
+  {
+    std::istringstream ls(stand_in);
+    std::string key;
+    ls >> key >> stand_in_at.x >> stand_in_at.y >> stand_in_at.z;
+  }
+  if (vertices_in_double) vertices_in_double->clear();
   std::ostringstream out;
   std::istringstream in(bytes);
   std::string line;
@@ -116,13 +125,16 @@ std::string readable_obj(const std::string& bytes, std::vector<std::string>& dro
     ls >> key;  // stays empty on a blank line
     if (key == "v") {
       std::string t;
+      double at[3] = {0, 0, 0};
       int n = 0;
       while (n < 3 && why.empty() && ls >> t) {
         if (!coordinate(t)) why = "'" + t + "' " + kCoordinateRule;
+        else at[n] = std::strtod(t.c_str(), nullptr);
         ++n;
       }
       if (why.empty() && n < 3) why = "a vertex needs three coordinates";
       ++vertices;
+      if (vertices_in_double) vertices_in_double->push_back(why.empty() ? Vec3{at[0], at[1], at[2]} : stand_in_at);
       if (!why.empty()) {
         dropped.push_back("line " + std::to_string(lineno) + ": " + why + ": the vertex is dropped, with its faces");
         out << stand_in << '\n';
@@ -191,16 +203,30 @@ std::string obj_text(const std::string& bytes, const std::string& name) {
   return text;
 }
 
+/// A PLY file's header, as check_ply read it.
+struct PlyHeader {
+  struct Property {
+    std::string type, name;  ///< type "list" for a list property
+  };
+  struct Element {
+    std::string name;
+    long long count = 0;
+    std::vector<Property> properties;
+  };
+  std::string format;             ///< "ascii", "binary_little_endian", "binary_big_endian"
+  std::vector<Element> elements;  ///< the vertices first
+  std::streamoff data_start = 0;  ///< where the elements' data begins
+};
+
 /// A PLY header's element counts, checked against the file's size before OpenMesh
 /// allocates for them: each element takes at least one byte per property (binary) or two
-/// (ASCII: a digit and a separator).
-void check_ply(const std::string& path) {
+/// (ASCII: a digit and a separator). Returns the header.
+PlyHeader check_ply(const std::string& path) {
   auto bad = [&](const std::string& what) { throw std::runtime_error("cannot read mesh " + path + ": " + what); };
   std::ifstream in(path, std::ios::binary);
   std::string line;
-  bool ascii = false;
-  struct Element { std::string name; long long count = 0; int properties = 0; };
-  std::vector<Element> elements;
+  PlyHeader h;
+  std::vector<PlyHeader::Element>& elements = h.elements;
   int lineno = 0;
   bool ended = false;
   while (std::getline(in, line)) {
@@ -219,29 +245,29 @@ void check_ply(const std::string& path) {
       break;
     }
     if (key == "format") {
-      std::string f;
-      ls >> f;
-      ascii = f == "ascii";
+      ls >> h.format;
     } else if (key == "element") {
-      Element e;
+      PlyHeader::Element e;
       std::string count;
       ls >> e.name >> count;
       if (!whole_integer(count, e.count) || e.count < 0)
         bad("line " + std::to_string(lineno) + ": element '" + e.name + "' has no count");
       elements.push_back(e);
     } else if (key == "property" && !elements.empty()) {
-      ++elements.back().properties;
+      PlyHeader::Property p;
+      ls >> p.type >> p.name;
+      elements.back().properties.push_back(p);
     }
     if (lineno > 10000) bad("its header does not end (no end_header in 10000 lines)");
   }
   if (!ended) bad("its header has no end_header line");
   if (elements.empty() || elements.front().name != "vertex")
     bad("its header does not declare its vertices first (element vertex N)");
-  const std::streamoff data_start = in ? static_cast<std::streamoff>(in.tellg()) : 0;
-  const auto body = static_cast<long double>(std::filesystem::file_size(path)) - static_cast<long double>(data_start);
+  h.data_start = in ? static_cast<std::streamoff>(in.tellg()) : 0;
+  const auto body = static_cast<long double>(std::filesystem::file_size(path)) - static_cast<long double>(h.data_start);
   long double need = 0;
-  for (const Element& e : elements) {
-    need += static_cast<long double>(e.count) * std::max(1, e.properties) * (ascii ? 2 : 1);
+  for (const PlyHeader::Element& e : elements) {
+    need += static_cast<long double>(e.count) * std::max<size_t>(1, e.properties.size()) * (h.format == "ascii" ? 2 : 1);
     if (need > body)
       bad("its header announces " + std::to_string(e.count) + " " + e.name + " elements, more than its " +
           std::to_string(static_cast<long long>(std::max<long double>(body, 0))) + " bytes of data can hold");
@@ -249,11 +275,12 @@ void check_ply(const std::string& path) {
   // Only faces make a surface: a scan's point cloud (vertices alone) has nothing to stand
   // between free space and free space.
   long long faces = 0;
-  for (const Element& e : elements)
+  for (const PlyHeader::Element& e : elements)
     if (e.name == "face") faces += e.count;
   if (faces == 0)
     bad("it holds " + std::to_string(elements.front().count) +
         " points and no faces (a point cloud): Avenues needs surfaces, polygons joining the points");
+  return h;
 }
 
 /// A binary STL's triangle count against the file's size (a file cut short is refused),
@@ -332,7 +359,10 @@ std::string readable_stl(const std::string& path, std::vector<std::string>& drop
 /// to OpenMesh. OpenMesh's reader also loses every face after a comment or a blank line,
 /// so the checked lines, without comments and blank lines, are what it is given: the
 /// returned text (empty for a binary OFF file, which OpenMesh reads from the file).
-std::string check_off(const std::string& path, std::vector<std::string>& dropped) {
+/// `vertices_in_double`, where given, gets the text's vertices in double (see mesh_of_openmesh;
+/// none for a binary or homogeneous OFF file).
+std::string check_off(const std::string& path, std::vector<std::string>& dropped,
+                      std::vector<Vec3>* vertices_in_double = nullptr) {
   auto bad = [&](const std::string& what) { throw std::runtime_error("cannot read mesh " + path + ": " + what); };
   std::ifstream in(path, std::ios::binary);
   std::string line;
@@ -380,6 +410,8 @@ std::string check_off(const std::string& path, std::vector<std::string>& dropped
   std::vector<std::string> vertex_lines;
   std::vector<uint8_t> bad_vertex(size_t(nv), 0);
   std::string stand_in;
+  std::vector<Vec3> coords;  // each vertex line's x, y, z in double (a bad one's: the stand-in's)
+  Vec3 stand_in_at;
   for (long long i = 0; i < nv; ++i) {
     if (!next_line()) bad("it ends after " + std::to_string(i) + " of its " + std::to_string(nv) + " vertices");
     std::string why;
@@ -392,12 +424,20 @@ std::string check_off(const std::string& path, std::vector<std::string>& dropped
       bad_vertex[size_t(i)] = 1;
       dropped.push_back(at() + why + ": the vertex is dropped, with its faces");
       vertex_lines.emplace_back();
+      coords.emplace_back();
       continue;
     }
     vertex_lines.push_back(joined(tok.size()));
-    if (stand_in.empty()) stand_in = vertex_lines.back();
+    coords.push_back({std::strtod(tok[0].c_str(), nullptr), std::strtod(tok[1].c_str(), nullptr),
+                  std::strtod(tok[2].c_str(), nullptr)});
+    if (stand_in.empty()) stand_in = vertex_lines.back(), stand_in_at = coords.back();
   }
   if (stand_in.empty()) stand_in = "0 0 0\n";
+  if (vertices_in_double && header.find('4') == std::string::npos) {  // 4OFF: homogeneous, x y z w
+    for (size_t i = 0; i < coords.size(); ++i)
+      if (bad_vertex[i]) coords[i] = stand_in_at;
+    *vertices_in_double = std::move(coords);
+  }
   std::string faces;
   long long kept = 0;
   for (long long f = 0; f < nf; ++f) {
@@ -469,65 +509,29 @@ void smooth_corner_normals(Mesh& m, double crease_deg) {
 }
 
 namespace {
-Mesh mesh_of_openmesh(const PolyMesh& pm, const std::string& path, std::vector<std::string>* dropped = nullptr,
-                      const std::vector<Vec3>* exact = nullptr);
 
 /// OpenMesh reads every coordinate of an OBJ, OFF or PLY file into a float, whatever its
 /// mesh's traits: a model in site coordinates (a survey's 5,400,000 m northing) lands on a
 /// grid half a metre wide, its rooms a step larger or smaller and its shelves flattened.
-/// The file's own numbers are read here in double, in the order of its vertices: an OBJ's
-/// "v" lines, an OFF's vertex lines after its counts, a PLY's x, y and z. mesh_of_openmesh takes them where
-/// they are the vertices OpenMesh read, each its float (else it keeps OpenMesh's).
-std::vector<Vec3> obj_vertices_in_double(const std::string& text) {
-  std::vector<Vec3> out;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) {
-    const char* c = line.c_str();
-    while (*c == ' ' || *c == '\t') ++c;
-    if (c[0] != 'v' || (c[1] != ' ' && c[1] != '\t')) continue;
-    char* end = nullptr;
-    const char* at = c + 1;
-    double x[3];
-    int k = 0;
-    for (; k < 3; ++k, at = end) {
-      x[k] = std::strtod(at, &end);
-      if (end == at) break;
-    }
-    out.push_back(k == 3 ? Vec3{x[0], x[1], x[2]} : Vec3{NAN, NAN, NAN});
-  }
-  return out;
-}
+/// So the readers in front of OpenMesh read the file's own numbers in double as they check
+/// it, in the order of its vertices: an OBJ's "v" lines (readable_obj), an OFF's vertex
+/// lines (check_off), a PLY's x, y and z (ply_vertices_in_double). mesh_of_openmesh takes
+/// them where they are the vertices OpenMesh read, each its float (else it keeps OpenMesh's).
+Mesh mesh_of_openmesh(const PolyMesh& pm, const std::string& path, std::vector<std::string>* dropped = nullptr,
+                      const std::vector<Vec3>* exact = nullptr);
 
 /// A PLY file's vertices in double, from its own x, y and z properties (ASCII, or binary
 /// either way round, of any of PLY's number types); empty where the vertex element holds a
-/// list or lacks a coordinate. The vertex element comes first (check_ply).
-std::vector<Vec3> ply_vertices_in_double(const std::string& path) {
+/// list or lacks a coordinate. `header` is check_ply's (the vertex element first).
+std::vector<Vec3> ply_vertices_in_double(const std::string& path, const PlyHeader& header) {
+  const std::string& format = header.format;
+  const long long count = header.elements.front().count;
+  const std::vector<PlyHeader::Property>& props = header.elements.front().properties;
+  for (const PlyHeader::Property& p : props)
+    if (p.type == "list") return {};
   std::ifstream in(path, std::ios::binary);
-  std::string line, format;
-  long long count = -1;
-  struct Property { std::string type, name; };
-  std::vector<Property> props;
-  bool in_vertex = false;
-  while (std::getline(in, line)) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    std::istringstream ls(line);
-    std::string key;
-    ls >> key;
-    if (key == "end_header") break;
-    if (key == "format") ls >> format;
-    else if (key == "element") {
-      std::string name;
-      ls >> name;
-      in_vertex = name == "vertex" && count < 0;
-      if (in_vertex) ls >> count;
-    } else if (key == "property" && in_vertex) {
-      Property p;
-      ls >> p.type >> p.name;
-      if (p.type == "list") return {};
-      props.push_back(p);
-    }
-  }
+  in.seekg(header.data_start);
+  std::string line;
   auto size_of = [](const std::string& t) -> int {
     if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
     if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
@@ -584,45 +588,6 @@ std::vector<Vec3> ply_vertices_in_double(const std::string& path) {
   while (static_cast<long long>(out.size()) < count && in.read(reinterpret_cast<char*>(r.data()), std::streamsize(record)))
     out.push_back({read(size_t(at[0])), read(size_t(at[1])), read(size_t(at[2]))});
   return static_cast<long long>(out.size()) == count ? out : std::vector<Vec3>{};
-}
-
-std::vector<Vec3> off_vertices_in_double(const std::string& text) {
-  std::vector<Vec3> out;
-  std::istringstream in(text);
-  std::string line;
-  bool header = false;
-  long long count = -1;
-  while (std::getline(in, line)) {
-    const std::string body = line.substr(0, line.find('#'));
-    std::istringstream ls(body);
-    std::string first;
-    if (!(ls >> first)) continue;
-    if (!header) {  // "OFF", "COFF", "NOFF", ... perhaps followed by the counts
-      header = true;
-      if (first.find("OFF") == std::string::npos || first.find('4') != std::string::npos || first[0] == 'n')
-        return {};  // homogeneous or n-dimensional: not x y z
-      if (ls >> count) break;
-      continue;
-    }
-    if (count < 0) {
-      count = std::strtoll(first.c_str(), nullptr, 10);
-      break;
-    }
-  }
-  while (count > 0 && static_cast<long long>(out.size()) < count && std::getline(in, line)) {
-    const std::string body = line.substr(0, line.find('#'));
-    const char* at = body.c_str();
-    char* end = nullptr;
-    double x[3];
-    int k = 0;
-    for (; k < 3; ++k, at = end) {
-      x[k] = std::strtod(at, &end);
-      if (end == at) break;
-    }
-    if (k == 0 && body.find_first_not_of(" \t\r") == std::string::npos) continue;  // a blank line
-    out.push_back(k == 3 ? Vec3{x[0], x[1], x[2]} : Vec3{NAN, NAN, NAN});
-  }
-  return out;
 }
 
 }  // namespace
@@ -727,7 +692,8 @@ Mesh load_mesh(const std::string& path, const MeshAxes& axes, std::vector<std::s
                                ", and no reader knows its content");
     return load_assimp_mesh(path, axes, warnings);
   }
-  if (ext == ".ply") check_ply(path);
+  std::vector<Vec3> exact;  // the vertices in double (see mesh_of_openmesh)
+  if (ext == ".ply") exact = ply_vertices_in_double(path, check_ply(path));
   std::vector<std::string> stl_dropped;
   const std::string stl = ext == ".stl" ? readable_stl(path, stl_dropped) : std::string();
   const auto oriented = [&axes](Mesh m) {
@@ -737,7 +703,7 @@ Mesh load_mesh(const std::string& path, const MeshAxes& axes, std::vector<std::s
   };
   if (ext == ".obj") return oriented(load_obj(path, warnings));
   std::vector<std::string> off_dropped;
-  const std::string off_text = ext == ".off" ? check_off(path, off_dropped) : std::string();
+  const std::string off_text = ext == ".off" ? check_off(path, off_dropped, &exact) : std::string();
   PolyMesh pm;
   OpenMesh::IO::Options opt;
   const QuietOpenMesh quiet;
@@ -751,15 +717,6 @@ Mesh load_mesh(const std::string& path, const MeshAxes& axes, std::vector<std::s
     throw std::runtime_error("cannot read mesh " + path + ": not a mesh OpenMesh can read (OBJ, OFF, PLY, STL)");
   std::vector<std::string>& dropped = ext == ".off" ? off_dropped : stl_dropped;
   if (pm.n_faces() == 0 && !dropped.empty()) throw_no_face_left(path, dropped);
-  std::vector<Vec3> exact;
-  if (ext == ".ply") exact = ply_vertices_in_double(path);
-  if (ext == ".off") {
-    if (!off_text.empty()) exact = off_vertices_in_double(off_text);
-    else {
-      std::ifstream text(path, std::ios::binary);
-      exact = off_vertices_in_double(std::string((std::istreambuf_iterator<char>(text)), std::istreambuf_iterator<char>()));
-    }
-  }
   Mesh m = oriented(mesh_of_openmesh(pm, path, &dropped, exact.empty() ? nullptr : &exact));
   if (!dropped.empty() && warnings) warnings->push_back(said_dropped(path, dropped));
   return m;
@@ -769,14 +726,14 @@ Mesh read_mesh_bytes(const std::string& bytes, const std::string& ext, const std
                      std::vector<std::string>* warnings, std::vector<std::string>* material_libraries) {
   if (ext != ".obj") throw std::runtime_error("cannot read mesh " + name + ": only OBJ models are read from memory");
   std::vector<std::string> dropped;
-  const std::string text = readable_obj(obj_text(bytes, name), dropped);
+  std::vector<Vec3> exact;  // the vertices in double (see mesh_of_openmesh)
+  const std::string text = readable_obj(obj_text(bytes, name), dropped, &exact);
   PolyMesh pm;
   OpenMesh::IO::Options opt;
   const QuietOpenMesh quiet;
   std::istringstream in(text);
   if (!OpenMesh::IO::read_mesh(pm, in, ext, opt)) throw std::runtime_error("cannot read mesh " + name + ": not an OBJ mesh");
   if (pm.n_faces() == 0 && !dropped.empty()) throw_no_face_left(name, dropped);
-  const std::vector<Vec3> exact = obj_vertices_in_double(text);
   Mesh m = mesh_of_openmesh(pm, name, nullptr, &exact);
   if (!dropped.empty() && warnings) warnings->push_back(said_dropped(name, dropped));
   ObjMaterialUse use = obj_material_use(text);
@@ -792,16 +749,16 @@ Mesh mesh_of_openmesh(const PolyMesh& pm, const std::string& path, std::vector<s
                       const std::vector<Vec3>* exact) {
   if (pm.n_faces() == 0) throw std::runtime_error("mesh " + path + " has no faces");
   // The text's doubles, where they are the vertices OpenMesh read (each rounds to its float).
+  // (Decimal to float directly and through double may differ by one float in rare ties.)
+  auto near = [](double d, float f) {
+    const float g = float(d);
+    return g == f || std::nextafter(g, HUGE_VALF) == f || std::nextafter(g, -HUGE_VALF) == f;
+  };
   bool use_exact = exact && exact->size() == pm.n_vertices();
   for (auto v : pm.vertices()) {
     if (!use_exact) break;
     const auto p = pm.point(v);
     const Vec3 q = (*exact)[size_t(v.idx())];
-    // (Decimal to float directly and through double may differ by one float in rare ties.)
-    auto near = [](double d, float f) {
-      const float g = float(d);
-      return g == f || std::nextafter(g, HUGE_VALF) == f || std::nextafter(g, -HUGE_VALF) == f;
-    };
     use_exact = near(q.x, p[0]) && near(q.y, p[1]) && near(q.z, p[2]);
   }
   // A vertex that is not a finite number (a binary PLY's NaN, which no check in front of
