@@ -203,6 +203,15 @@ std::string obj_text(const std::string& bytes, const std::string& name) {
   return text;
 }
 
+/// The bytes of a PLY number type ("uchar", "float32", ...); 0 for a name that is none.
+int ply_type_size(const std::string& t) {
+  if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+  if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+  if (t == "int" || t == "uint" || t == "float" || t == "int32" || t == "uint32" || t == "float32") return 4;
+  if (t == "double" || t == "float64") return 8;
+  return 0;
+}
+
 /// A PLY file's header, as check_ply read it.
 struct PlyHeader {
   struct Property {
@@ -254,8 +263,17 @@ PlyHeader check_ply(const std::string& path) {
         bad("line " + std::to_string(lineno) + ": element '" + e.name + "' has no count");
       elements.push_back(e);
     } else if (key == "property" && !elements.empty()) {
+      // "property TYPE NAME" or "property list COUNT_TYPE ITEM_TYPE NAME", of PLY's types:
+      // OpenMesh's reader loops for ever on a type it does not know (found by fuzzing).
       PlyHeader::Property p;
-      ls >> p.type >> p.name;
+      std::string count_type, item_type;
+      ls >> p.type;
+      if (p.type == "list") ls >> count_type >> item_type;
+      ls >> p.name;
+      for (const std::string& t : p.type == "list" ? std::vector<std::string>{count_type, item_type} : std::vector<std::string>{p.type})
+        if (ply_type_size(t) == 0)
+          bad("line " + std::to_string(lineno) + ": property type '" + t + "' is none of PLY's number types");
+      if (p.name.empty()) bad("line " + std::to_string(lineno) + ": a property with no name");
       elements.back().properties.push_back(p);
     }
     if (lineno > 10000) bad("its header does not end (no end_header in 10000 lines)");
@@ -532,18 +550,11 @@ std::vector<Vec3> ply_vertices_in_double(const std::string& path, const PlyHeade
   std::ifstream in(path, std::ios::binary);
   in.seekg(header.data_start);
   std::string line;
-  auto size_of = [](const std::string& t) -> int {
-    if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
-    if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
-    if (t == "int" || t == "uint" || t == "float" || t == "int32" || t == "uint32" || t == "float32") return 4;
-    if (t == "double" || t == "float64") return 8;
-    return 0;
-  };
   int at[3] = {-1, -1, -1};
   size_t record = 0;
   std::vector<size_t> offset;
   for (size_t k = 0; k < props.size(); ++k) {
-    const int sz = size_of(props[k].type);
+    const int sz = ply_type_size(props[k].type);
     if (sz == 0) return {};
     offset.push_back(record);
     record += size_t(sz);
@@ -574,7 +585,7 @@ std::vector<Vec3> ply_vertices_in_double(const std::string& path, const PlyHeade
   std::vector<unsigned char> r(record);
   auto read = [&](size_t k) {
     unsigned char b[8];
-    const int sz = size_of(props[k].type);
+    const int sz = ply_type_size(props[k].type);
     for (int i = 0; i < sz; ++i) b[i] = r[offset[k] + size_t(big ? sz - 1 - i : i)];  // little-endian now
     uint64_t u = 0;
     for (int i = sz - 1; i >= 0; --i) u = (u << 8) | b[i];
