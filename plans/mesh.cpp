@@ -254,7 +254,13 @@ PlyHeader check_ply(const std::string& path) {
       break;
     }
     if (key == "format") {
-      ls >> h.format;
+      // One of PLY's three, and a version that is a number: OpenMesh's reader loops for
+      // ever on one that is not ("format ascii 1.eel", found by fuzzing).
+      std::string version;
+      ls >> h.format >> version;
+      if (h.format != "ascii" && h.format != "binary_little_endian" && h.format != "binary_big_endian")
+        bad("line " + std::to_string(lineno) + ": format '" + h.format + "' is none of PLY's (ascii, binary_little_endian, binary_big_endian)");
+      if (!whole_number(version)) bad("line " + std::to_string(lineno) + ": format version '" + version + "' is not a number");
     } else if (key == "element") {
       PlyHeader::Element e;
       std::string count;
