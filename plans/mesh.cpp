@@ -215,7 +215,8 @@ int ply_type_size(const std::string& t) {
 /// A PLY file's header, as check_ply read it.
 struct PlyHeader {
   struct Property {
-    std::string type, name;  ///< type "list" for a list property
+    std::string type, name;            ///< type "list" for a list property
+    std::string count_type, item_type; ///< a list's
   };
   struct Element {
     std::string name;
@@ -225,11 +226,27 @@ struct PlyHeader {
   std::string format;             ///< "ascii", "binary_little_endian", "binary_big_endian"
   std::vector<Element> elements;  ///< the vertices first
   std::streamoff data_start = 0;  ///< where the elements' data begins
+
+  /// The header as Avenues writes it: what was read of it, and nothing else (no comments,
+  /// no lines of unknown keywords), in the usual form.
+  std::string text() const {
+    std::string t = "ply\nformat " + format + " 1.0\n";
+    for (const Element& e : elements) {
+      t += "element " + e.name + " " + std::to_string(e.count) + "\n";
+      for (const Property& p : e.properties)
+        t += p.type == "list" ? "property list " + p.count_type + " " + p.item_type + " " + p.name + "\n"
+                              : "property " + p.type + " " + p.name + "\n";
+    }
+    return t + "end_header\n";
+  }
 };
 
 /// A PLY header's element counts, checked against the file's size before OpenMesh
 /// allocates for them: each element takes at least one byte per property (binary) or two
-/// (ASCII: a digit and a separator). Returns the header.
+/// (ASCII: a digit and a separator). Returns the header. OpenMesh's header reader trusts
+/// its input: a format version that is no number makes it loop for ever, a property before
+/// any element makes it crash (both found by fuzzing). So it is given the header as
+/// PlyHeader::text() writes it, from what is read and checked here.
 PlyHeader check_ply(const std::string& path) {
   auto bad = [&](const std::string& what) { throw std::runtime_error("cannot read mesh " + path + ": " + what); };
   std::ifstream in(path, std::ios::binary);
@@ -268,15 +285,15 @@ PlyHeader check_ply(const std::string& path) {
       if (!whole_integer(count, e.count) || e.count < 0)
         bad("line " + std::to_string(lineno) + ": element '" + e.name + "' has no count");
       elements.push_back(e);
-    } else if (key == "property" && !elements.empty()) {
-      // "property TYPE NAME" or "property list COUNT_TYPE ITEM_TYPE NAME", of PLY's types:
-      // OpenMesh's reader loops for ever on a type it does not know (found by fuzzing).
+    } else if (key == "property") {
+      // "property TYPE NAME" or "property list COUNT_TYPE ITEM_TYPE NAME", of PLY's types
+      // (OpenMesh's reader loops for ever on a type it does not know), in an element.
+      if (elements.empty()) bad("line " + std::to_string(lineno) + ": a property before any element");
       PlyHeader::Property p;
-      std::string count_type, item_type;
       ls >> p.type;
-      if (p.type == "list") ls >> count_type >> item_type;
+      if (p.type == "list") ls >> p.count_type >> p.item_type;
       ls >> p.name;
-      for (const std::string& t : p.type == "list" ? std::vector<std::string>{count_type, item_type} : std::vector<std::string>{p.type})
+      for (const std::string& t : p.type == "list" ? std::vector<std::string>{p.count_type, p.item_type} : std::vector<std::string>{p.type})
         if (ply_type_size(t) == 0)
           bad("line " + std::to_string(lineno) + ": property type '" + t + "' is none of PLY's number types");
       if (p.name.empty()) bad("line " + std::to_string(lineno) + ": a property with no name");
@@ -710,7 +727,14 @@ Mesh load_mesh(const std::string& path, const MeshAxes& axes, std::vector<std::s
     return load_assimp_mesh(path, axes, warnings);
   }
   std::vector<Vec3> exact;  // the vertices in double (see mesh_of_openmesh)
-  if (ext == ".ply") exact = ply_vertices_in_double(path, check_ply(path));
+  std::string ply;  // the PLY with the header Avenues writes (check_ply)
+  if (ext == ".ply") {
+    const PlyHeader header = check_ply(path);
+    exact = ply_vertices_in_double(path, header);
+    std::ifstream in(path, std::ios::binary);
+    in.seekg(header.data_start);
+    ply = header.text() + std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  }
   std::vector<std::string> stl_dropped;
   const std::string stl = ext == ".stl" ? readable_stl(path, stl_dropped) : std::string();
   const auto oriented = [&axes](Mesh m) {
@@ -724,8 +748,9 @@ Mesh load_mesh(const std::string& path, const MeshAxes& axes, std::vector<std::s
   PolyMesh pm;
   OpenMesh::IO::Options opt;
   const QuietOpenMesh quiet;
-  // Checked text, or an STL with its bad triangles taken out, is read from memory.
-  const std::string& cleaned = !off_text.empty() ? off_text : stl;
+  // Checked text, a PLY under its checked header, or an STL with its bad triangles taken
+  // out, is read from memory.
+  const std::string& cleaned = !off_text.empty() ? off_text : !ply.empty() ? ply : stl;
   std::istringstream cleaned_stream(cleaned);
   if (!stl.empty() && stl.compare(0, 5, "solid") != 0) opt += OpenMesh::IO::Options::Binary;
   const bool read = cleaned.empty() ? OpenMesh::IO::read_mesh(pm, path, opt)
