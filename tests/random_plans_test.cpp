@@ -558,7 +558,7 @@ TEST(RandomPlans, Seed9LinePieceARoundingLong) { check_stored(9); }
 // An eye in a cell 3e-11 m wide between an upper storey's wall of no thickness and a point
 // of the ground storey's walls a rounding off it (the storeys share one triangulation)
 // stands within a nanometre of that wall. The search takes it as on the wall, seeing both
-// sides (visibility/traverse.h, kOnBoundary); the rays stopped at the wall 2e-11 m away
+// sides (kOnBoundary, visibility/visible_set.h); the rays stopped at the wall 2e-11 m away
 // and found 18 avenues extra (5556). The oracle now takes such an eye as the search does.
 TEST(RandomPlans, Seed5556EyeANanometreFromAWall) { check_stored(5556); }
 

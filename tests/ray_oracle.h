@@ -14,17 +14,15 @@
 namespace avenues::testing {
 
 /// Distance along `dir` from `o` to the first opaque polygon hit (dir need not be unit).
-/// An eye within a nanometre of a surface stands on it, as the search takes it
-/// (visibility/traverse.h, kOnBoundary: it stands in the cells on both sides): that
-/// surface does not stop its rays.
+/// An eye within kOnBoundary of a surface stands on it, as the search takes it (in the
+/// cells on both sides): that surface does not stop its rays.
 inline double first_hit(const CellComplex& c, Vec3 o, Vec3 dir) {
-  constexpr double kOnSurface = 1e-9;  // [m] the search's kOnBoundary
   double best = std::numeric_limits<double>::infinity();
   for (const Cell& cell : c.cells)
     for (const Face& f : cell.faces) {
       double den = dot(f.plane.n, dir);
       if (den == 0) continue;
-      if (std::fabs(f.plane.eval(o)) <= kOnSurface * length(f.plane.n)) continue;
+      if (std::fabs(f.plane.eval(o)) <= kOnBoundary * length(f.plane.n)) continue;
       double t = -f.plane.eval(o) / den;
       if (!(t > 0) || t >= best) continue;
       Vec3 p = o + t * dir;

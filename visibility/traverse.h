@@ -213,10 +213,6 @@ class Traversal {
     return d <= 64 * std::numeric_limits<double>::epsilon() * scale;
   }
 
-  /// [m] An eye this near a face's plane stands on it: far below any plan's detail, far
-  /// above the rounding of coordinates of a building's size.
-  static constexpr double kOnBoundary = 1e-9;
-
   /// Whether the eye lies on a face of cell `id` (within kOnBoundary).
   bool on_boundary(CellId id) const {
     for (const Face& f : c_.cells[size_t(id)].faces)

@@ -19,6 +19,11 @@ const char* to_string(Kernel k);
 /// Parses "float", "double", "filtered" or "exact"; false if it is none of them.
 bool parse_kernel(const std::string& s, Kernel& out);
 
+/// [m] An eye this near a face's plane stands on it (in the cells on both sides): far below
+/// any plan's detail, far above the rounding of coordinates of a building's size. The
+/// search and the ray oracle that checks it both take it so.
+inline constexpr double kOnBoundary = 1e-9;
+
 /// One avenue of sight ending in a cell (Jones's Fig. 5: a node of the directed subgraph).
 struct Avenue {
   CellId cell = kNoCell;
