@@ -21,18 +21,6 @@ namespace avenues::detail {
 
 namespace {
 
-/// Calls f(region) for each sheet (wall of no thickness) of storey s on half-edge h.
-template <class F>
-void for_each_sheet_of_storey(const Outline& o, const Triangulation& T, int h, StoreyId s, F&& f) {
-  for (int32_t k = T.sheet_start[size_t(h)]; k < T.sheet_start[size_t(h) + 1]; ++k)
-    if (o.regions[size_t(T.sheet_items[size_t(k)])].storey == s) f(T.sheet_items[size_t(k)]);
-}
-
-bool has_sheet_of_storey(const Outline& o, const Triangulation& T, int h, StoreyId s) {
-  for (int32_t k = T.sheet_start[size_t(h)]; k < T.sheet_start[size_t(h) + 1]; ++k)
-    if (o.regions[size_t(T.sheet_items[size_t(k)])].storey == s) return true;
-  return false;
-}
 
 double triangle_area(const Triangulation& T, int t) {
   return std::fabs(signed_area({T.vert[size_t(T.tri[size_t(t)][0])], T.vert[size_t(T.tri[size_t(t)][1])],
@@ -176,15 +164,14 @@ void name_by_wall_sides(const Plan& plan, const Outline& o, const Triangulation&
     for (int i = 0; i < 3; ++i) {
       const int32_t h = 3 * t + i;
       const Vec2 a = T.edge_from(t, i), b = T.edge_to(t, i);
-      for (int32_t k = T.sheet_start[size_t(h)]; k < T.sheet_start[size_t(h) + 1]; ++k) {
-        const Region& reg = o.regions[size_t(T.sheet_items[size_t(k)])];
-        if (reg.storey != s) continue;
+      for_each_sheet_of_storey(o, T, h, s, [&](int32_t r) {
+        const Region& reg = o.regions[size_t(r)];
         const Wall& w = plan.walls[size_t(reg.wall)];
         // The triangle lies left of its counter-clockwise edge a -> b.
         const bool left = dot(b - a, reg.poly[1] - reg.poly[0]) > 0;
         const int room = left ? w.left_room : w.right_room;
         if (room >= 0 && !plan.rooms[size_t(room)].label) votes[size_t(c)][room] += length(b - a);
-      }
+      });
     }
   }
   std::vector<double> got(plan.rooms.size(), 0);

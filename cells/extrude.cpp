@@ -98,25 +98,13 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
   std::vector<size_t> band_of, band_last;  // per cell: the bands it spans, first and last
   std::vector<Outline2> shape;
 
-  auto sheets_on = [&](int32_t h, StoreyId s, std::vector<int32_t>& r) {
-    r.clear();
-    for (int32_t k = T.sheet_start[size_t(h)]; k < T.sheet_start[size_t(h) + 1]; ++k) {
-      int32_t reg = T.sheet_items[size_t(k)];
-      if (outline.regions[size_t(reg)].storey == s) r.push_back(reg);
-    }
-  };
-  std::vector<int32_t> tmp;
-
   // --- 4. merge, per band; 5a. one cell per piece and open interval.
   for (size_t b = 0; b < C.bands.size(); ++b) {
     const Band& band = C.bands[b];
     std::vector<uint8_t> barrier;
     if (band.kind == Band::Kind::Storey) {
       barrier.assign(size_t(3 * n), 0);
-      for (int32_t h = 0; h < 3 * n; ++h) {
-        sheets_on(h, band.storey, tmp);
-        barrier[size_t(h)] = !tmp.empty();
-      }
+      for (int32_t h = 0; h < 3 * n; ++h) barrier[size_t(h)] = has_sheet_of_storey(outline, T, h, band.storey);
     }
     L.pieces.push_back(merge_convex(T, C.of[b], barrier));
     const Pieces& P = L.pieces.back();
@@ -306,12 +294,11 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
       Intervals reach{{zlo, zhi}};
       int sheet_wall = -1, sheet_opening = -1;
       if (band.kind == Band::Kind::Storey) {
-        sheets_on(h, band.storey, tmp);
-        for (int32_t r : tmp) {
+        for_each_sheet_of_storey(outline, T, h, band.storey, [&](int32_t r) {
           reach = intersect(reach, outline.regions[size_t(r)].open);
           sheet_wall = outline.regions[size_t(r)].wall;
           if (outline.regions[size_t(r)].opening >= 0) sheet_opening = r;
-        }
+        });
       }
       next.clear();
       if (u >= 0 && L.pieces[b].of[size_t(u)] >= 0) {

@@ -41,6 +41,20 @@ struct Classes {
 
 Classes classify(const Plan& plan, const Outline& outline, const Triangulation& tri);
 
+/// Calls f(region) for each sheet (wall of no thickness) of storey s on half-edge h.
+template <class F>
+void for_each_sheet_of_storey(const Outline& o, const Triangulation& T, int h, StoreyId s, F&& f) {
+  for (int32_t k = T.sheet_start[size_t(h)]; k < T.sheet_start[size_t(h) + 1]; ++k)
+    if (o.regions[size_t(T.sheet_items[size_t(k)])].storey == s) f(T.sheet_items[size_t(k)]);
+}
+
+/// Whether a sheet of storey s lies on half-edge h.
+inline bool has_sheet_of_storey(const Outline& o, const Triangulation& T, int h, StoreyId s) {
+  for (int32_t k = T.sheet_start[size_t(h)]; k < T.sheet_start[size_t(h) + 1]; ++k)
+    if (o.regions[size_t(T.sheet_items[size_t(k)])].storey == s) return true;
+  return false;
+}
+
 /// Points a rounding apart: distinct in the exact triangulation, within a few ulps once
 /// rounded (or equal). A footprint takes them as one point: the turn between them is noise.
 bool rounding_apart(Vec2 a, Vec2 b);
