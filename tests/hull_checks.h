@@ -24,15 +24,20 @@
 namespace avenues::testing {
 
 /// How far p lies outside the convex counter-clockwise polygon m: the largest distance to
-/// the outside of one of its sides' lines (0 or less: inside). Sides shorter than 1e-12
-/// are skipped: two corners of an exact mask a rounding apart in doubles give a side of no
-/// direction (as cone_planes skips them in the search).
+/// the outside of one of its sides' lines (0 or less: inside). Sides shorter than a
+/// millionth of the mask's reach are skipped: two corners a rounding apart (of an exact
+/// mask in doubles, or where a hull's nearly parallel sides meet) give a side whose
+/// direction is their rounding, and the line along it can pass anywhere a little way off
+/// (as cone_planes skips such sides in the search). Skipping one only grows the polygon
+/// by the sliver between its neighbours' lines.
 inline double outside_by(const std::vector<Vec2>& m, Vec2 p) {
+  double reach = 0;
+  for (Vec2 v : m) reach = std::max({reach, std::fabs(v.x), std::fabs(v.y)});
   double most = 0;
   for (size_t k = 0; k < m.size(); ++k) {
     const Vec2 a = m[k], b = m[(k + 1) % m.size()];
     const double len = std::hypot(b.x - a.x, b.y - a.y);
-    if (!(len > 1e-12)) continue;
+    if (!(len > 1e-6 * (1 + reach))) continue;
     most = std::max(most, -((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)) / len);
   }
   return most;

@@ -465,7 +465,7 @@ class Traversal {
     Facing fc;
     if (!facing(cell, pi, fc)) return;  // before copying the mask: most portals end here
     Mask<T> m = mask;
-    if (!through(cell, pi, fc, m)) return;
+    if (!through(cell, pi, fc, m) || !m.settle_within(mask)) return;
     if (prune_ && covered(other, m)) {
       ++out_.avenues_pruned;
       return;
@@ -694,7 +694,7 @@ class Traversal {
         Mask<T> m = piece.mask;
         // A hull's first parents are not its rays' chain (they may pass cells its other
         // rays meet later): the hull search ends instead where a cell has nothing new.
-        if (!through(cell, pi, fc, m) || (!hull_ && on_chain(self, other))) return;
+        if (!through(cell, pi, fc, m) || !m.settle_within(piece.mask) || (!hull_ && on_chain(self, other))) return;
         add_piece(other, std::move(m), self, pi, piece.depth + 1);
       });
     }
