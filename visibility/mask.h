@@ -261,17 +261,7 @@ class Mask {
   /// every half-plane of `outer` or outside it by at most twice kHullGrowth of its extent
   /// (floating point; exact number types: closed, exactly). The hull search's test for
   /// pieces that add nothing to what a cell was searched through already.
-  bool within(const Mask& outer) const {
-    return vertices_kept_by(outer, [](const T& s, const HalfPlane<T>& l, const Point2T<T>& v) {
-      if constexpr (std::is_floating_point_v<T>) {
-        const T slack = T(2 * kHullGrowth) * (T(1) + std::max(std::fabs(v.x), std::fabs(v.y))) *
-                        (std::fabs(l.a) + std::fabs(l.b));
-        return !(s < -slack);
-      } else {
-        return !(s < T(0));
-      }
-    });
-  }
+  bool within(const Mask& outer) const { return vertices_kept_by(outer, inside_up_to_growth); }
 
   /// After this mask was clipped from `before`: in floating point, a vertex where two nearly
   /// parallel sides meet lands anywhere along them that their rounding puts it, even outside
@@ -290,10 +280,8 @@ class Mask {
         bool out = false;
         for (size_t k = 0; k < h_.size(); ++k) {
           const Point2T<T> v = vertex(k);
-          const T slack = T(2 * kHullGrowth) * (T(1) + std::max(std::fabs(v.x), std::fabs(v.y)));
           bool in = true;
-          for (const HalfPlane<T>& l : before.h_)
-            in = in && !(l.a * v.x + l.b * v.y + l.c < -slack * (std::fabs(l.a) + std::fabs(l.b)));
+          for (const HalfPlane<T>& l : before.h_) in = in && inside_up_to_growth(l.a * v.x + l.b * v.y + l.c, l, v);
           if (in) kept.push_back(v);
           out = out || !in;
         }
@@ -327,6 +315,19 @@ class Mask {
   }
 
  private:
+  /// Whether vertex v, where half-plane l takes the value s, lies inside l or outside it by
+  /// at most twice kHullGrowth of its extent (floating point; exact number types: closed,
+  /// exactly): within()'s test, and settle_within()'s.
+  static bool inside_up_to_growth(const T& s, const HalfPlane<T>& l, const Point2T<T>& v) {
+    if constexpr (std::is_floating_point_v<T>) {
+      const T slack =
+          T(2 * kHullGrowth) * (T(1) + std::max(std::fabs(v.x), std::fabs(v.y))) * (std::fabs(l.a) + std::fabs(l.b));
+      return !(s < -slack);
+    } else {
+      return !(s < T(0));
+    }
+  }
+
   /// Whether keep(s, l, v) holds for every vertex v of this mask and every half-plane l of
   /// `outer`, s being l's value at v (false when either mask is empty).
   template <class Keep>

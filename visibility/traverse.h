@@ -464,8 +464,8 @@ class Traversal {
     if (on_path_[size_t(other)]) return;
     Facing fc;
     if (!facing(cell, pi, fc)) return;  // before copying the mask: most portals end here
-    Mask<T> m = mask;
-    if (!through(cell, pi, fc, m) || !m.settle_within(mask)) return;
+    Mask<T> m;
+    if (!through(cell, pi, fc, mask, m)) return;
     if (prune_ && covered(other, m)) {
       ++out_.avenues_pruned;
       return;
@@ -503,10 +503,13 @@ class Traversal {
     return (fc.s < T(0)) == (cell == p.cell[0]);  // else seen from behind
   }
 
-  /// Narrows mask m (of an avenue in `cell`) to the rays that also pass portal pi, seen
-  /// from `cell`, once facing() said it may be crossed: false when none of area do (the
-  /// eye in the portal's plane but outside it, or clipped away).
-  bool through(CellId cell, PortalId pi, const Facing& fc, Mask<T>& m) {
+  /// Sets m to mask `from` (of an avenue in `cell`) narrowed to the rays that also pass
+  /// portal pi, seen from `cell`, once facing() said it may be crossed: false when none of
+  /// area do (the eye in the portal's plane but outside it, or clipped away). In floating
+  /// point a needle the clips leave with a corner strayed outside `from` is settled
+  /// (Mask::settle_within).
+  bool through(CellId cell, PortalId pi, const Facing& fc, const Mask<T>& from, Mask<T>& m) {
+    m = from;
     const Portal& p = c_.portals[size_t(pi)];
     const size_t n = p.poly.size();
     const Vec3T<T>& N = fc.N;
@@ -530,7 +533,7 @@ class Traversal {
         if (!m.clip(trace(e, a))) return false;
       }
     }
-    return m.area2() > T(0);
+    return m.area2() > T(0) && m.settle_within(from);
   }
 
   // ---- The merged search (TraverseParams::merge_pieces) ----
@@ -691,10 +694,10 @@ class Traversal {
         const CellId other = c_.portals[size_t(pi)].other(cell);
         Facing fc;
         if (!facing(cell, pi, fc)) return;  // before copying the mask: most portals end here
-        Mask<T> m = piece.mask;
+        Mask<T> m;
         // A hull's first parents are not its rays' chain (they may pass cells its other
         // rays meet later): the hull search ends instead where a cell has nothing new.
-        if (!through(cell, pi, fc, m) || !m.settle_within(piece.mask) || (!hull_ && on_chain(self, other))) return;
+        if (!through(cell, pi, fc, piece.mask, m) || (!hull_ && on_chain(self, other))) return;
         add_piece(other, std::move(m), self, pi, piece.depth + 1);
       });
     }
