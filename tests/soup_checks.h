@@ -91,22 +91,37 @@ inline bool inside_closed_solid(const std::vector<ClosedSolid>& solids, Vec3 p) 
   return w > 0.5;
 }
 
+/// How far a triangle of the meshes may lie off the plane it is cut on: a larger nearly
+/// coplanar triangle's (cells/shared_planes.h), whose corners and its own lie off one plane
+/// by up to the rounding of the coordinates as stored: a float's where every coordinate is
+/// a float's (whatever Assimp reads), else a micrometre, the checks' own tolerance.
+inline double snapping_reach(const std::vector<Mesh>& meshes) {
+  bool floats = true;
+  double largest = 0;
+  for (const Mesh& m : meshes)
+    for (Vec3 v : m.vertices)
+      for (double x : {v.x, v.y, v.z}) floats = floats && double(float(x)) == x, largest = std::max(largest, std::fabs(x));
+  return floats ? std::max(1e-6, 2 * std::ldexp(largest, -23)) : 1e-6;
+}
+
 /// Input triangles missing from the export (triangles_missing_from_export) that someone
 /// could see: those with a side not inside a closed solid, and not hidden by another
 /// surface within a micrometre of them (coincident faces of two elements, of which the
-/// complex keeps the one in front). A triangle between two solids that touch, or inside a
-/// solid, is seen from neither side, and is not counted. Its sides are tested a micrometre
-/// off its centroid.
+/// complex keeps the one in front), or within snapping_reach where that is more. A triangle
+/// between two solids that touch, or inside a solid, is seen from neither side, and is not
+/// counted. Its sides are tested twice that far off its centroid: a floor of floats whose
+/// height wanders by a float's rounding lies that far above the slab it stands on.
 inline int visible_triangles_missing_from_export(const CellComplex& c, const std::vector<Mesh>& meshes) {
   const std::vector<ClosedSolid> solids = closed_solids(meshes);
+  const double near = snapping_reach(meshes);
   int missing = 0;
-  for (const auto& [mi, ti] : missing_triangles(c, meshes, 1e-6)) {
+  for (const auto& [mi, ti] : missing_triangles(c, meshes, near)) {
     const Mesh& m = meshes[mi];
     const auto& t = m.triangles[ti];
     const Vec3 a = m.vertices[size_t(t[0])], b = m.vertices[size_t(t[1])], d = m.vertices[size_t(t[2])];
     const Vec3 g = (1.0 / 3) * (a + b + d);
     Vec3 n = cross(b - a, d - a);
-    n = (1e-6 / length(n)) * n;
+    n = (2 * near / length(n)) * n;
     missing += !inside_closed_solid(solids, g + n) || !inside_closed_solid(solids, g - n);
   }
   return missing;
@@ -141,7 +156,11 @@ inline void expect_soup_views_agree_with_rays(const CellComplex& c, int views, u
     ASSERT_EQ(loc.what, Location::What::Cell) << "view " << v;
     const double y = yaw(rng), p = pitch(rng), f = fov(rng);
     if (v < first) continue;  // drawn, so that view `first` is the one a longer run makes
-    const Camera cam = Camera::yaw_pitch(eye, y, p, f, width, height);
+    Camera cam = Camera::yaw_pitch(eye, y, p, f, width, height);
+    // A soup's cells can be millimetres across, and the eye as near a surface: a near plane
+    // cutting a surface in view shows what lies behind it in a picture resolved by depth and
+    // nothing in one drawn by masks (the search never looks behind an opaque surface).
+    cam.near = 1e-4;
     SCOPED_TRACE("view " + std::to_string(v) + ": eye " + std::to_string(eye.x) + "," + std::to_string(eye.y) + "," +
                  std::to_string(eye.z) + " yaw " + std::to_string(y) + " pitch " + std::to_string(p));
     // Jones's search and the merged one (TraverseParams::merge_pieces), which the
