@@ -117,11 +117,15 @@ inline void expect_hull_holds_merged(const CellComplex& c, const Camera& cam, Ce
   ++t.pictures;
   // The masked picture cuts each cell's faces at its masks (grown by 1/64 of a sample); the
   // one resolved by depth at the nearest surface's own edges: a sample centred on such an
-  // edge may go either way, so a pixel may differ only on an edge, and few do.
+  // edge may go either way, so a pixel may differ only on an edge, and few do: one in 200
+  // of the picture, or one in 50 of its edge pixels where edges fill the picture (the
+  // duplex's stair seen through its balusters at 96 × 64: 41 % of the pixels on an edge,
+  // 35 differing; at 384 × 256 the count grew with the edges' length, 122, not their area).
   const PictureDifference d = compare_off_edges(by_masks, by_depth);
   t.pixels_differ += d.differ, t.pixels += d.pixels;
   EXPECT_EQ(d.off_edges, 0) << "the half-tones differ in " << d.off_edges << " pixels away from every edge";
-  EXPECT_LE(d.differ, d.pixels / 200) << "the half-tones differ in " << d.differ << " pixels";
+  EXPECT_LE(d.differ, std::max(d.pixels / 200, d.edges / 50))
+      << "the half-tones differ in " << d.differ << " pixels (" << d.edges << " on an edge)";
   // Dropping what lies behind polygons already drawn changes no byte of the picture.
   RenderStats dropping, all;
   Image every;

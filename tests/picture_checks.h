@@ -41,6 +41,7 @@ inline void expect_pixel_shows(const Image& pic, const std::array<double, 3>& co
 /// from every edge (no pixel of another colour beside it, in either picture).
 struct PictureDifference {
   long pixels = 0, differ = 0, off_edges = 0;
+  long edges = 0;  ///< pixels beside a pixel of another colour, in either picture
 };
 
 /// Two pictures of one view made two ways that should agree up to the renderer's edge
@@ -69,9 +70,11 @@ inline PictureDifference compare_off_edges(const Image& a, const Image& b) {
   d.pixels = long(w) * h;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
+      const bool edge = on_edge(a, x, y) || on_edge(b, x, y);
+      d.edges += edge;
       if (pixel(a, x, y) == pixel(b, x, y)) continue;
       ++d.differ;
-      d.off_edges += !on_edge(a, x, y) && !on_edge(b, x, y);
+      d.off_edges += !edge;
     }
   return d;
 }
