@@ -26,6 +26,8 @@
 //               rounded corners. Rounded to double once.
 #include "cells/soup_bsp.h"
 
+#include "cells/shared_planes.h"
+
 #include "core/memory_reserve.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
@@ -534,6 +536,51 @@ double area_of(const std::vector<Vec3>& p) {
   return length(s) / 2;
 }
 
+/// Width [m] of a rounded convex polygon: the least, over its edges, of the distance from
+/// the edge's line to the farthest corner.
+double width_of(const std::vector<Vec3>& p) {
+  double w = HUGE_VAL;
+  for (size_t i = 0; i < p.size(); ++i) {
+    const Vec3 a = p[i], e = p[(i + 1) % p.size()] - a;
+    const double l = length(e);
+    if (!(l > 0)) continue;
+    double far = 0;
+    for (const Vec3& q : p) far = std::max(far, length(cross(e, q - a)) / l);
+    w = std::min(w, far);
+  }
+  return w;
+}
+
+/// Drops each corner of p within `near` [m] (in every coordinate) of the corner kept
+/// before it, and appends to `cut` the piece each drop cuts off (the corner with its two
+/// neighbours then), so that those can stay opaque and the face stays covered.
+void drop_close_corners(std::vector<Vec3>& p, double near, std::vector<std::vector<Vec3>>& cut) {
+  auto close = [near](Vec3 a, Vec3 b) {
+    return std::fabs(a.x - b.x) <= near && std::fabs(a.y - b.y) <= near && std::fabs(a.z - b.z) <= near;
+  };
+  const size_t n = p.size();
+  std::vector<Vec3> kept;
+  for (size_t i = 0; i < n; ++i) {
+    if (!kept.empty() && close(kept.back(), p[i])) cut.push_back({kept.back(), p[i], p[(i + 1) % n]});
+    else kept.push_back(p[i]);
+  }
+  while (kept.size() > 1 && close(kept.back(), kept.front())) {
+    if (kept.size() > 2) cut.push_back({kept[kept.size() - 2], kept.back(), kept.front()});
+    kept.pop_back();
+  }
+  p = std::move(kept);
+}
+
+/// A polygon's corners to within their intervals (for estimates, not for the output).
+std::vector<Vec3> approx_corners(const Poly& p) {
+  std::vector<Vec3> v;
+  for (const P3& q : p.v) {
+    const auto& a = CGAL::approx(q);
+    v.push_back({CGAL::to_double(a.x()), CGAL::to_double(a.y()), CGAL::to_double(a.z())});
+  }
+  return v;
+}
+
 /// Bounds of a polygon from its vertices' intervals, which hold the exact points: a cheap
 /// rejection that never rejects a true overlap. (An interval's middle is no bound: a vertex
 /// where nearly parallel planes meet can have an interval millimetres wide, and a fragment
@@ -554,20 +601,29 @@ bool boxes_meet(const Box3& a, const Box3& b, double tol) {
          a.lo.z <= b.hi.z + tol && b.lo.z <= a.hi.z + tol;
 }
 
-/// A triangle as a plane-based polygon: its edge planes hold the edge and the support's
-/// dominant axis (small coefficients: differences of input coordinates).
-Poly triangle_poly(const P3& a, const P3& b, const P3& c) {
+/// A triangle as a plane-based polygon on `support` (its own plane, or one it lies on
+/// within a rounding: cells/shared_planes.h), oriented as the triangle a, b, c: its edge
+/// planes hold the edge and the support's dominant axis (small coefficients: differences of
+/// input coordinates), so its corners are a, b and c moved along that axis onto the
+/// support, and two triangles on one support that share an edge share its corners exactly.
+/// `on_support[i]`: corner i lies on the support as it is (kept as the input point).
+Poly triangle_poly(const Pl& support, const P3& a, const P3& b, const P3& c, const std::array<bool, 3>& on_support) {
   Poly p;
-  p.support = plane_through(a, b, c, {0, 0, 0});
+  p.support = support;
   const int k = dominant_axis(p.support);
   const std::array<int, 3> axis{k == 0 ? 1 : 0, k == 1 ? 1 : 0, k == 2 ? 1 : 0};
-  p.v = {a, b, c};
-  for (int i = 0; i < 3; ++i) {
-    const P3 &s = p.v[size_t(i)], &t = p.v[size_t((i + 1) % 3)], &o = p.v[size_t((i + 2) % 3)];
+  const std::array<const P3*, 3> corner{&a, &b, &c};
+  for (size_t i = 0; i < 3; ++i) {
+    const P3 &s = *corner[i], &t = *corner[(i + 1) % 3], &o = *corner[(i + 2) % 3];
     const Pl e = plane_through(s, t, s, axis);
     p.e.push_back(e.oriented_side(o) == ON_POSITIVE_SIDE ? opposite_of(e) : e);
   }
+  for (size_t i = 0; i < 3; ++i) p.v.push_back(on_support[i] ? *corner[i] : meet(p.support, p.e[(i + 2) % 3], p.e[i]));
   return p;
+}
+
+Poly triangle_poly(const P3& a, const P3& b, const P3& c) {
+  return triangle_poly(plane_through(a, b, c, {0, 0, 0}), a, b, c, {true, true, true});
 }
 
 /// The approximate plane of a triangle, for choosing splitters in doubles.
@@ -822,7 +878,8 @@ struct Union {
 };
 
 std::vector<Union> join_leaves(const std::vector<Builder::Leaf>& leaves,
-                               const std::vector<std::vector<std::vector<Contact>>>& contacts, std::vector<int>& union_of) {
+                               const std::vector<std::vector<std::vector<Contact>>>& contacts, std::vector<int>& union_of,
+                               double crack) {
   const size_t n = leaves.size();
   std::vector<Union> u(n);
   union_of.resize(n);
@@ -841,6 +898,8 @@ std::vector<Union> join_leaves(const std::vector<Builder::Leaf>& leaves,
       for (const Contact& c : cs) {
         const int o = union_of[size_t(c.other)];
         if (!c.opaque.empty() || o == g || (h >= 0 && o != h)) return -1;
+        for (const Poly& p : c.open)
+          if (crack > 0 && !(width_of(approx_corners(p)) > crack)) return -1;  // a crack: closed
         h = o;
       }
     }
@@ -938,23 +997,58 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
   std::vector<MaterialId> material;
   {
     ScopedStageTimer timer(out.timings, "decompose");
-    for (size_t i = 0; i < triangles.size(); ++i) {
-      const SoupTriangle& t = triangles[i];
-      const P3 a(t.p[0].x, t.p[0].y, t.p[0].z), c1(t.p[1].x, t.p[1].y, t.p[1].z), c2(t.p[2].x, t.p[2].y, t.p[2].z);
-      if (CGAL::collinear(a, c1, c2)) {
-        b.stats.degenerate.push_back(i);
-        continue;
-      }
-      Frag f;
-      f.poly = triangle_poly(a, c1, c2);
-      f.tri = int(b.support_of.size());
-      b.support_of.push_back(f.poly.support);
+    // Nearly coplanar neighbours on one plane, their seed's (cells/shared_planes.h): each
+    // seed's exact plane, made once, and its plane in doubles for choosing splitters.
+    const std::vector<int> seed = shared_planes(triangles);
+    std::vector<std::optional<Pl>> seed_plane(triangles.size());
+    auto as_point = [](Vec3 p) { return P3(p.x, p.y, p.z); };
+    auto approx_plane = [](const SoupTriangle& t) {
       ApproxPlane h;
       h.n = cross(t.p[1] - t.p[0], t.p[2] - t.p[0]);
       h.n = (1.0 / length(h.n)) * h.n;
       h.d = -dot(h.n, t.p[0]);
       h.axis = (t.p[0].x == t.p[1].x && t.p[1].x == t.p[2].x) || (t.p[0].y == t.p[1].y && t.p[1].y == t.p[2].y) ||
                (t.p[0].z == t.p[1].z && t.p[1].z == t.p[2].z);
+      return h;
+    };
+    for (size_t i = 0; i < triangles.size(); ++i) {
+      const SoupTriangle& t = triangles[i];
+      const P3 a = as_point(t.p[0]), c1 = as_point(t.p[1]), c2 = as_point(t.p[2]);
+      if (CGAL::collinear(a, c1, c2)) {
+        b.stats.degenerate.push_back(i);
+        continue;
+      }
+      Frag f;
+      ApproxPlane h;
+      const size_t s = size_t(seed[i]);
+      const SoupTriangle& st = triangles[s];
+      if (s == i && seed_plane[i]) {  // a seed whose members came first
+        f.poly = triangle_poly(*seed_plane[i], a, c1, c2, {true, true, true});
+        h = approx_plane(t);
+      } else if (s == i || CGAL::collinear(as_point(st.p[0]), as_point(st.p[1]), as_point(st.p[2]))) {
+        f.poly = triangle_poly(a, c1, c2);
+        h = approx_plane(t);
+        if (s == i) seed_plane[i] = f.poly.support;
+      } else {
+        if (!seed_plane[s]) seed_plane[s] = plane_through(as_point(st.p[0]), as_point(st.p[1]), as_point(st.p[2]), {0, 0, 0});
+        h = approx_plane(st);
+        const bool turned = dot(cross(t.p[1] - t.p[0], t.p[2] - t.p[0]), h.n) < 0;
+        if (turned) h.n = -1.0 * h.n, h.d = -h.d;
+        std::array<bool, 3> on{};
+        for (size_t k = 0; k < 3; ++k) {
+          on[k] = CGAL::orientation(Epick::Point_3(st.p[0].x, st.p[0].y, st.p[0].z),
+                                    Epick::Point_3(st.p[1].x, st.p[1].y, st.p[1].z),
+                                    Epick::Point_3(st.p[2].x, st.p[2].y, st.p[2].z),
+                                    Epick::Point_3(t.p[k].x, t.p[k].y, t.p[k].z)) == CGAL::COPLANAR;
+          // How far it moves: along the plane's dominant axis, onto the plane.
+          const double along = std::max({std::fabs(h.n.x), std::fabs(h.n.y), std::fabs(h.n.z)});
+          if (!on[k]) b.stats.largest_snap = std::max(b.stats.largest_snap, std::fabs(dot(h.n, t.p[k]) + h.d) / along);
+        }
+        ++b.stats.snapped;
+        f.poly = triangle_poly(turned ? opposite_of(*seed_plane[s]) : *seed_plane[s], a, c1, c2, on);
+      }
+      f.tri = int(b.support_of.size());
+      b.support_of.push_back(f.poly.support);
       b.approx.push_back(h);
       material.push_back(t.material);
       frags.push_back(std::move(f));
@@ -1017,7 +1111,10 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
 
   // Leaves joined into convex unions: the cells.
   std::vector<int> union_of;
-  const std::vector<Union> unions = join_leaves(b.leaves, contacts, union_of);
+  // How wide a crack left by corners moved onto a shared plane can be: twice the largest
+  // move, and the rounding of the corners (as thin as drop_slivers' slivers).
+  const double crack = b.stats.snapped > 0 ? 2 * b.stats.largest_snap + 1e-9 * scale : 0;  // [m]
+  const std::vector<Union> unions = join_leaves(b.leaves, contacts, union_of, crack);
   std::vector<CellId> cell_of(unions.size(), kNoCell);
   const CellId base = CellId(out.cells.size());
   {
@@ -1029,7 +1126,8 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
 
   // Portals, from the lower-numbered leaf of each pair in two cells: convex,
   // counter-clockwise about its outward normal. A piece that rounds to no area stays opaque
-  // on both sides.
+  // on both sides, and so does a crack left where triangles put on another's plane moved a
+  // corner their neighbours keep (no wider than twice the move: see soup_bsp.h).
   const double tiny = 1e-18 * scale * scale;  // [m²]
   struct Shared {
     std::vector<PortalId> portals;
@@ -1074,7 +1172,10 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
         Shared& s = shared[{int(l), c.other}];
         for (const Poly& p : c.open) {
           std::vector<Vec3> poly = rounding.corners(p, !about_n);
-          if (!(area_of(poly) > tiny)) {
+          // Corners a crack apart are one corner: the short side between them would give the
+          // search a plane through the eye turned by its corners' rounding.
+          if (crack > 0) drop_close_corners(poly, crack, s.closed);
+          if (poly.size() < 3 || !(area_of(poly) > tiny) || (crack > 0 && !(width_of(poly) > crack))) {
             s.closed.push_back(std::move(poly));
             continue;
           }

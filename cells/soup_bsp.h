@@ -34,6 +34,8 @@ struct SoupBspStats {
   size_t cells = 0;          ///< cells made of them (leaves joined where the union stays convex)
   size_t fragments = 0;      ///< pieces of triangles in leaves (triangles cut by splits)
   int depth = 0;             ///< deepest leaf
+  size_t snapped = 0;        ///< triangles put on a larger one's plane (cells/shared_planes.h)
+  double largest_snap = 0;   ///< [m] the farthest a corner moved onto such a plane
 };
 
 /// A soup whose planes cut space into more leaves than the decomposition was given
@@ -53,6 +55,12 @@ class SoupTooCluttered : public std::runtime_error {
 /// and none of their planes divides them (a convex cluster: a sphere), an axis-aligned
 /// plane through their median halves it instead. Leaves are then joined across faces that
 /// hold nothing wherever the union stays convex, exactly: one cell is then several leaves.
+/// Triangles nearly coplanar with a larger one are cut on its plane (cells/shared_planes.h);
+/// where a corner so moved is shared with a triangle on another plane, the two no longer
+/// meet along their edge but leave a crack as wide as the move: an open piece of a leaf
+/// face no wider than twice the largest move and a rounding (1e-9 of the far box's scale,
+/// drop_slivers' sliver) stays opaque on both sides, as a piece that rounds to no area does,
+/// and no leaves are joined across it.
 /// With a leaf_budget, a tree that grows more leaves throws SoupTooCluttered, having added
 /// nothing to `out` but the time it took (a "decompose" timing).
 SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Box3& far_box, CellComplex& out,
