@@ -70,17 +70,16 @@ std::vector<int> shared_planes(const std::vector<SoupTriangle>& soup, const Shar
   // place, twice over for the seed's corners and the member's).
   const double unit = stored_in_floats(soup) ? std::ldexp(1.0, -23) : 16 * DBL_EPSILON;
 
-  // Each triangle's unit normal, area and longest edge; a triangle of no area in doubles
-  // takes part in no group.
+  // Each triangle's unit normal, area, tolerance and offset; a triangle of no area in
+  // doubles takes part in no group.
   std::vector<Vec3> normal(n);
-  std::vector<double> area(n, 0), longest(n, 0), tolerance(n, 0), offset(n, 0);
+  std::vector<double> area(n, 0), tolerance(n, 0), offset(n, 0);
   std::vector<uint32_t> order;
   for (size_t i = 0; i < n; ++i) {
     const auto& p = soup[i].p;
     const Vec3 c = cross(p[1] - p[0], p[2] - p[0]);
     const double l = std::max({length(p[1] - p[0]), length(p[2] - p[1]), length(p[0] - p[2])});
     area[i] = length(c);
-    longest[i] = l;
     // Far from collinear as doubles go (collinear corners' rounding leaves ~1e-16 l²).
     if (!(area[i] > 1e-12 * l * l)) continue;
     normal[i] = (1.0 / area[i]) * c;

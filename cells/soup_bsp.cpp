@@ -622,10 +622,6 @@ Poly triangle_poly(const Pl& support, const P3& a, const P3& b, const P3& c, con
   return p;
 }
 
-Poly triangle_poly(const P3& a, const P3& b, const P3& c) {
-  return triangle_poly(plane_through(a, b, c, {0, 0, 0}), a, b, c, {true, true, true});
-}
-
 /// The approximate plane of a triangle, for choosing splitters in doubles.
 struct ApproxPlane {
   Vec3 n;
@@ -888,18 +884,26 @@ std::vector<Union> join_leaves(const std::vector<Builder::Leaf>& leaves,
     u[l].leaves = {int(l)};
     for (size_t k = 0; k < leaves[l].faces.size(); ++k) u[l].faces.push_back({leaves[l].faces[k].poly.support, {{int(l), int(k)}}});
   }
+  // Leaf faces holding a crack (an open piece no wider than `crack`), which no join crosses:
+  // told once, not at every look at the face.
+  std::vector<std::vector<char>> cracked(n);
+  for (size_t l = 0; l < n; ++l) {
+    cracked[l].assign(contacts[l].size(), 0);
+    if (crack > 0)
+      for (size_t k = 0; k < contacts[l].size(); ++k)
+        for (const Contact& c : contacts[l][k])
+          for (const Poly& p : c.open) cracked[l][k] = cracked[l][k] || !(width_of(approx_corners(p)) > crack);
+  }
   // The union that face f of union g is wholly open onto, or -1.
   auto open_onto = [&](int g, const Union::Face& f) {
     int h = -1;
     for (const auto& [l, k] : f.parts) {
       if (leaves[size_t(l)].faces[size_t(k)].id < 0) return -1;  // the far box
       const std::vector<Contact>& cs = contacts[size_t(l)][size_t(k)];
-      if (cs.empty()) return -1;
+      if (cs.empty() || cracked[size_t(l)][size_t(k)]) return -1;
       for (const Contact& c : cs) {
         const int o = union_of[size_t(c.other)];
         if (!c.opaque.empty() || o == g || (h >= 0 && o != h)) return -1;
-        for (const Poly& p : c.open)
-          if (crack > 0 && !(width_of(approx_corners(p)) > crack)) return -1;  // a crack: closed
         h = o;
       }
     }
@@ -1020,17 +1024,14 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
       }
       Frag f;
       ApproxPlane h;
+      // A seed has area in doubles (shared_planes), so its corners are never collinear.
       const size_t s = size_t(seed[i]);
       const SoupTriangle& st = triangles[s];
-      if (s == i && seed_plane[i]) {  // a seed whose members came first
-        f.poly = triangle_poly(*seed_plane[i], a, c1, c2, {true, true, true});
+      if (!seed_plane[s]) seed_plane[s] = plane_through(as_point(st.p[0]), as_point(st.p[1]), as_point(st.p[2]), {0, 0, 0});
+      if (s == i) {
+        f.poly = triangle_poly(*seed_plane[s], a, c1, c2, {true, true, true});
         h = approx_plane(t);
-      } else if (s == i || CGAL::collinear(as_point(st.p[0]), as_point(st.p[1]), as_point(st.p[2]))) {
-        f.poly = triangle_poly(a, c1, c2);
-        h = approx_plane(t);
-        if (s == i) seed_plane[i] = f.poly.support;
       } else {
-        if (!seed_plane[s]) seed_plane[s] = plane_through(as_point(st.p[0]), as_point(st.p[1]), as_point(st.p[2]), {0, 0, 0});
         h = approx_plane(st);
         const bool turned = dot(cross(t.p[1] - t.p[0], t.p[2] - t.p[0]), h.n) < 0;
         if (turned) h.n = -1.0 * h.n, h.d = -h.d;
