@@ -7,21 +7,14 @@
 #include <sstream>
 #include <tuple>
 
+#include "core/float_rounding.h"
+
 namespace avenues {
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr int kSize = 512;  ///< [px] Bouknight's and Wylie's raster
-
-/// v rounded to float's 24-bit significand (ties to even), kept as a double. Written out
-/// because GCC 12 at -O3 vectorises double(float(x)) on neighbouring fields wrongly and
-/// drops the rounding of some of them.
-double to_float(double v) {
-  int e = 0;
-  const double m = std::frexp(v, &e);
-  return std::ldexp(std::nearbyint(std::ldexp(m, 24)), e - 24);
-}
 
 /// Builds a scene's polygons, sharing equal vertices. Coordinates are rounded to float,
 /// as an OFF file read by OpenMesh holds them, so the generated mesh and the bundled

@@ -14,6 +14,7 @@
 
 #include "cells/mesh_scene.h"
 #include "cells/solid_insides.h"
+#include "core/float_rounding.h"
 #include "hull_checks.h"
 #include "ray_oracle.h"
 #include "test_files.h"
@@ -100,7 +101,7 @@ inline double snapping_reach(const std::vector<Mesh>& meshes) {
   double largest = 0;
   for (const Mesh& m : meshes)
     for (Vec3 v : m.vertices)
-      for (double x : {v.x, v.y, v.z}) floats = floats && double(float(x)) == x, largest = std::max(largest, std::fabs(x));
+      for (double x : {v.x, v.y, v.z}) floats = floats && is_float(x), largest = std::max(largest, std::fabs(x));
   return floats ? std::max(1e-6, 2 * std::ldexp(largest, -23)) : 1e-6;
 }
 
