@@ -15,6 +15,7 @@
 // share it exactly.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "cells/soup_bsp.h"
@@ -31,10 +32,31 @@ struct SharedPlaneParams {
   double normal_turn = 1e-3;  ///< [rad] so that a standing sliver keeps its own plane
 };
 
-/// For each triangle of `soup`, the triangle whose plane it lies on in the decomposition:
-/// itself, or the largest triangle nearly coplanar with it (SharedPlaneParams) whose plane
-/// is its own. Triangles are taken largest first; each takes the plane of the first larger
-/// one it lies on, or keeps its own. A triangle of no area (in doubles) keeps its own.
-std::vector<int> shared_planes(const std::vector<SoupTriangle>& soup, const SharedPlaneParams& params = {});
+/// A plane the decomposition cuts on, as three corners of the soup's triangles (exact
+/// input points, so the exact plane through them has small coefficients), its normal
+/// cross(p[1] − p[0], p[2] − p[0]).
+struct SharedPlane {
+  std::array<Vec3, 3> p;
+};
+
+/// The planes of a soup's triangles: each triangle's own, or one that nearly coplanar
+/// neighbours share.
+struct SharedPlanes {
+  std::vector<SharedPlane> planes;
+  std::vector<int> plane_of;  ///< per triangle, the index of its plane
+  /// Per triangle, true when its plane is its own: through its three corners, as they are.
+  std::vector<bool> own;
+};
+
+/// The plane each triangle of `soup` lies on in the decomposition. Triangles are taken
+/// largest first; each takes the first plane so far it lies on (SharedPlaneParams), or
+/// makes its own. A group's plane is then made again through three of its members' corners
+/// spread across it, so that its rounding tilts it by the rounding over the group's size,
+/// not over its first triangle's, and the triangles are grouped again on those planes: the
+/// triangles of a face tessellated finely, each coplanar with its neighbours only to a
+/// rounding, come to one plane. The planes of the last grouping are the ones returned, so
+/// every triangle lies on its plane within the tolerance. A triangle of no area (in
+/// doubles) keeps its own plane.
+SharedPlanes shared_planes(const std::vector<SoupTriangle>& soup, const SharedPlaneParams& params = {});
 
 }  // namespace avenues

@@ -1001,18 +1001,18 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
   std::vector<MaterialId> material;
   {
     ScopedStageTimer timer(out.timings, "decompose");
-    // Nearly coplanar neighbours on one plane, their seed's (cells/shared_planes.h): each
-    // seed's exact plane, made once, and its plane in doubles for choosing splitters.
-    const std::vector<int> seed = shared_planes(triangles);
-    std::vector<std::optional<Pl>> seed_plane(triangles.size());
+    // Nearly coplanar neighbours on one plane (cells/shared_planes.h): each plane exact,
+    // made once, and in doubles for choosing splitters.
+    const SharedPlanes shared = shared_planes(triangles);
+    std::vector<std::optional<Pl>> exact_plane(shared.planes.size());
     auto as_point = [](Vec3 p) { return P3(p.x, p.y, p.z); };
-    auto approx_plane = [](const SoupTriangle& t) {
+    auto approx_plane = [](const std::array<Vec3, 3>& p) {
       ApproxPlane h;
-      h.n = cross(t.p[1] - t.p[0], t.p[2] - t.p[0]);
+      h.n = cross(p[1] - p[0], p[2] - p[0]);
       h.n = (1.0 / length(h.n)) * h.n;
-      h.d = -dot(h.n, t.p[0]);
-      h.axis = (t.p[0].x == t.p[1].x && t.p[1].x == t.p[2].x) || (t.p[0].y == t.p[1].y && t.p[1].y == t.p[2].y) ||
-               (t.p[0].z == t.p[1].z && t.p[1].z == t.p[2].z);
+      h.d = -dot(h.n, p[0]);
+      h.axis = (p[0].x == p[1].x && p[1].x == p[2].x) || (p[0].y == p[1].y && p[1].y == p[2].y) ||
+               (p[0].z == p[1].z && p[1].z == p[2].z);
       return h;
     };
     for (size_t i = 0; i < triangles.size(); ++i) {
@@ -1024,29 +1024,27 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
       }
       Frag f;
       ApproxPlane h;
-      // A seed has area in doubles (shared_planes), so its corners are never collinear.
-      const size_t s = size_t(seed[i]);
-      const SoupTriangle& st = triangles[s];
-      if (!seed_plane[s]) seed_plane[s] = plane_through(as_point(st.p[0]), as_point(st.p[1]), as_point(st.p[2]), {0, 0, 0});
-      if (s == i) {
-        f.poly = triangle_poly(*seed_plane[s], a, c1, c2, {true, true, true});
-        h = approx_plane(t);
+      const size_t s = size_t(shared.plane_of[i]);
+      const auto& sp = shared.planes[s].p;
+      // A plane's corners have area in doubles (shared_planes), so are never collinear.
+      if (!exact_plane[s]) exact_plane[s] = plane_through(as_point(sp[0]), as_point(sp[1]), as_point(sp[2]), {0, 0, 0});
+      h = approx_plane(sp);
+      if (shared.own[i]) {
+        f.poly = triangle_poly(*exact_plane[s], a, c1, c2, {true, true, true});
       } else {
-        h = approx_plane(st);
         const bool turned = dot(cross(t.p[1] - t.p[0], t.p[2] - t.p[0]), h.n) < 0;
         if (turned) h.n = -1.0 * h.n, h.d = -h.d;
         std::array<bool, 3> on{};
         for (size_t k = 0; k < 3; ++k) {
-          on[k] = CGAL::orientation(Epick::Point_3(st.p[0].x, st.p[0].y, st.p[0].z),
-                                    Epick::Point_3(st.p[1].x, st.p[1].y, st.p[1].z),
-                                    Epick::Point_3(st.p[2].x, st.p[2].y, st.p[2].z),
+          on[k] = CGAL::orientation(Epick::Point_3(sp[0].x, sp[0].y, sp[0].z), Epick::Point_3(sp[1].x, sp[1].y, sp[1].z),
+                                    Epick::Point_3(sp[2].x, sp[2].y, sp[2].z),
                                     Epick::Point_3(t.p[k].x, t.p[k].y, t.p[k].z)) == CGAL::COPLANAR;
           // How far it moves: along the plane's dominant axis, onto the plane.
           const double along = std::max({std::fabs(h.n.x), std::fabs(h.n.y), std::fabs(h.n.z)});
           if (!on[k]) b.stats.largest_snap = std::max(b.stats.largest_snap, std::fabs(dot(h.n, t.p[k]) + h.d) / along);
         }
         ++b.stats.snapped;
-        f.poly = triangle_poly(turned ? opposite_of(*seed_plane[s]) : *seed_plane[s], a, c1, c2, on);
+        f.poly = triangle_poly(turned ? opposite_of(*exact_plane[s]) : *exact_plane[s], a, c1, c2, on);
       }
       f.tri = int(b.support_of.size());
       b.support_of.push_back(f.poly.support);
@@ -1087,24 +1085,37 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
       for (auto& [other, piece] : pieces) {
         Contact c;
         c.other = other;
-        // Only the fragments meeting the piece's bounds can cover part of it (a big
-        // face may hold thousands of fragments and face thousands of small leaves).
+        // Only the fragments meeting a piece's bounds can cover part of it (a big face
+        // may hold thousands of fragments and face thousands of small leaves; a face
+        // tessellated finely leaves as many open pieces as it has fragments, each met by
+        // a few).
         const Box3 pb = interval_bounds(piece);
-        std::vector<Poly> open{std::move(piece)};
+        std::vector<std::pair<Poly, Box3>> open;
+        open.emplace_back(std::move(piece), pb);
+        std::vector<Poly> outside;
         for (const auto& [f, fb] : cover) {
           if (!boxes_meet(fb, pb, b.tol)) continue;
-          std::vector<Poly> next;
-          for (Poly& r : open) {
-            Poly in = subtract(std::move(r), f->poly, next);
+          std::vector<std::pair<Poly, Box3>> next;
+          for (auto& [r, rb] : open) {
+            if (!boxes_meet(fb, rb, b.tol)) {
+              next.emplace_back(std::move(r), rb);
+              continue;
+            }
+            outside.clear();
+            Poly in = subtract(std::move(r), f->poly, outside);
             if (in.v.size() >= 3) {
               c.opaque.push_back(std::move(in));
               c.material.push_back(material[size_t(f->tri)]);
+            }
+            for (Poly& o : outside) {
+              const Box3 ob = interval_bounds(o);
+              next.emplace_back(std::move(o), ob);
             }
           }
           open = std::move(next);
           if (open.empty()) break;
         }
-        c.open = std::move(open);
+        for (auto& [r, rb] : open) c.open.push_back(std::move(r));
         contacts[l][k].push_back(std::move(c));
       }
     }

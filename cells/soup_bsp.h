@@ -34,7 +34,7 @@ struct SoupBspStats {
   size_t cells = 0;          ///< cells made of them (leaves joined where the union stays convex)
   size_t fragments = 0;      ///< pieces of triangles in leaves (triangles cut by splits)
   int depth = 0;             ///< deepest leaf
-  size_t snapped = 0;        ///< triangles put on a larger one's plane (cells/shared_planes.h)
+  size_t snapped = 0;        ///< triangles put on a plane not their own (cells/shared_planes.h)
   double largest_snap = 0;   ///< [m] the farthest a corner moved onto such a plane
 };
 
