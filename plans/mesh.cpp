@@ -22,6 +22,7 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <string_view>
 #include <vector>
 #include <map>
 #include <unordered_map>
@@ -563,16 +564,14 @@ Mesh mesh_of_openmesh(const PolyMesh& pm, const std::string& path, std::vector<s
 
 /// A PLY file's vertices in double, from its own x, y and z properties (ASCII, or binary
 /// either way round, of any of PLY's number types); empty where the vertex element holds a
-/// list or lacks a coordinate. `header` is check_ply's (the vertex element first).
-std::vector<Vec3> ply_vertices_in_double(const std::string& path, const PlyHeader& header) {
+/// list or lacks a coordinate. `header` is check_ply's (the vertex element first); `data`
+/// the file's bytes after it, read once for this and for OpenMesh.
+std::vector<Vec3> ply_vertices_in_double(std::string_view data, const PlyHeader& header) {
   const std::string& format = header.format;
   const long long count = header.elements.front().count;
   const std::vector<PlyHeader::Property>& props = header.elements.front().properties;
   for (const PlyHeader::Property& p : props)
     if (p.type == "list") return {};
-  std::ifstream in(path, std::ios::binary);
-  in.seekg(header.data_start);
-  std::string line;
   int at[3] = {-1, -1, -1};
   size_t record = 0;
   std::vector<size_t> offset;
@@ -589,7 +588,11 @@ std::vector<Vec3> ply_vertices_in_double(const std::string& path, const PlyHeade
   out.reserve(size_t(std::min<long long>(count, 1 << 24)));
   if (format == "ascii") {
     std::vector<double> value(props.size());
-    while (static_cast<long long>(out.size()) < count && std::getline(in, line)) {
+    std::string line;
+    for (size_t from = 0; static_cast<long long>(out.size()) < count && from < data.size();) {
+      const size_t eol = std::min(data.find('\n', from), data.size());
+      line.assign(data.substr(from, eol - from));
+      from = eol + 1;
       const char* c = line.c_str();
       char* end = nullptr;
       size_t k = 0;
@@ -619,8 +622,10 @@ std::vector<Vec3> ply_vertices_in_double(const std::string& path, const PlyHeade
     if (is_signed && sz < 8 && (u >> (8 * sz - 1)) & 1) return double(int64_t(u) - (int64_t(1) << (8 * sz)));
     return double(u);
   };
-  while (static_cast<long long>(out.size()) < count && in.read(reinterpret_cast<char*>(r.data()), std::streamsize(record)))
+  for (size_t from = 0; static_cast<long long>(out.size()) < count && from + record <= data.size(); from += record) {
+    std::memcpy(r.data(), data.data() + from, record);
     out.push_back({read(size_t(at[0])), read(size_t(at[1])), read(size_t(at[2]))});
+  }
   return static_cast<long long>(out.size()) == count ? out : std::vector<Vec3>{};
 }
 
@@ -730,10 +735,12 @@ Mesh load_mesh(const std::string& path, const MeshAxes& axes, std::vector<std::s
   std::string ply;  // the PLY with the header Avenues writes (check_ply)
   if (ext == ".ply") {
     const PlyHeader header = check_ply(path);
-    exact = ply_vertices_in_double(path, header);
     std::ifstream in(path, std::ios::binary);
     in.seekg(header.data_start);
-    ply = header.text() + std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ply = header.text();
+    const size_t data_at = ply.size();
+    ply.append(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    exact = ply_vertices_in_double(std::string_view(ply).substr(data_at), header);
   }
   std::vector<std::string> stl_dropped;
   const std::string stl = ext == ".stl" ? readable_stl(path, stl_dropped) : std::string();
