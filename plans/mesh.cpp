@@ -4,6 +4,7 @@
 #include "plans/obj_materials.h"
 #include "plans/polygon_triangulation.h"
 #include "core/angles.h"
+#include "core/float_rounding.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
@@ -329,8 +330,12 @@ PlyHeader check_ply(const std::string& path) {
 /// and every vertex by the rule above; an ASCII STL's vertex lines likewise. An STL is a
 /// list of separate triangles, so one with a vertex that is no coordinate is dropped, as
 /// its tools drop it, and said in `dropped` ("triangle 7: ..."). Returns the bytes to read
-/// when something was dropped ("" when the file reads as it is).
-std::string readable_stl(const std::string& path, std::vector<std::string>& dropped) {
+/// when something was dropped ("" when the file reads as it is). `vertices_in_double`, where
+/// given, gets an ASCII STL's vertices in double, one per distinct float position in the
+/// order OpenMesh's reader first meets them (it joins the corners of separate triangles
+/// that are the same floats); a binary STL holds floats, and gets none.
+std::string readable_stl(const std::string& path, std::vector<std::string>& dropped,
+                         std::vector<Vec3>* vertices_in_double = nullptr) {
   auto bad = [&](const std::string& what) { throw std::runtime_error("cannot read mesh " + path + ": " + what); };
   std::ifstream in(path, std::ios::binary);
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -342,24 +347,40 @@ std::string readable_stl(const std::string& path, std::vector<std::string>& drop
     std::string line, facet, kept, why;
     int lineno = 0, facets = 0;
     bool in_facet = false;
+    std::vector<Vec3> corners, facet_corners;  // of the facets kept, in order
     while (std::getline(lines, line)) {
       ++lineno;
       std::istringstream ls(line);
       std::string key, t;
       ls >> key;
-      if (key == "facet") in_facet = true, ++facets, facet.clear(), why.clear();
-      if (key == "vertex")
-        for (int k = 0; k < 3 && why.empty(); ++k)
+      if (key == "facet") in_facet = true, ++facets, facet.clear(), why.clear(), facet_corners.clear();
+      if (key == "vertex") {
+        double at[3] = {0, 0, 0};
+        for (int k = 0; k < 3 && why.empty(); ++k) {
           if (!(ls >> t) || !coordinate(t)) why = "line " + std::to_string(lineno) + ": '" + t + "' " + kCoordinateRule;
+          else at[k] = std::strtod(t.c_str(), nullptr);
+        }
+        if (why.empty()) (in_facet ? facet_corners : corners).push_back({at[0], at[1], at[2]});
+      }
       (in_facet ? facet : kept) += line + '\n';
       if (key == "endfacet" && in_facet) {
         in_facet = false;
-        if (why.empty()) kept += facet;
+        if (why.empty()) kept += facet, corners.insert(corners.end(), facet_corners.begin(), facet_corners.end());
         else dropped.push_back("facet " + std::to_string(facets) + ", " + why + ": the triangle is dropped");
-        facet.clear();
+        facet.clear(), facet_corners.clear();
       }
     }
     kept += facet;  // an unfinished facet: OpenMesh's to judge
+    corners.insert(corners.end(), facet_corners.begin(), facet_corners.end());
+    if (vertices_in_double) {
+      // OpenMesh reads each coordinate into a float and joins equal floats: one vertex per
+      // distinct float position, the first met's doubles (mesh_of_openmesh checks each).
+      std::map<std::array<double, 3>, size_t> seen;
+      vertices_in_double->clear();
+      for (const Vec3& p : corners)
+        if (seen.try_emplace({to_float(p.x), to_float(p.y), to_float(p.z)}, vertices_in_double->size()).second)
+          vertices_in_double->push_back(p);
+    }
     return dropped.empty() ? std::string() : kept;
   }
   if (bytes.size() < 84) bad("a binary STL file needs 84 bytes of header, this has " + std::to_string(bytes.size()));
@@ -557,7 +578,8 @@ namespace {
 /// grid half a metre wide, its rooms a step larger or smaller and its shelves flattened.
 /// So the readers in front of OpenMesh read the file's own numbers in double as they check
 /// it, in the order of its vertices: an OBJ's "v" lines (readable_obj), an OFF's vertex
-/// lines (check_off), a PLY's x, y and z (ply_vertices_in_double). mesh_of_openmesh takes
+/// lines (check_off), a PLY's x, y and z (ply_vertices_in_double), an ASCII STL's vertex
+/// lines (readable_stl; a binary STL holds floats). mesh_of_openmesh takes
 /// them where they are the vertices OpenMesh read, each its float (else it keeps OpenMesh's).
 Mesh mesh_of_openmesh(const PolyMesh& pm, const std::string& path, std::vector<std::string>* dropped = nullptr,
                       const std::vector<Vec3>* exact = nullptr);
@@ -743,7 +765,7 @@ Mesh load_mesh(const std::string& path, const MeshAxes& axes, std::vector<std::s
     exact = ply_vertices_in_double(std::string_view(ply).substr(data_at), header);
   }
   std::vector<std::string> stl_dropped;
-  const std::string stl = ext == ".stl" ? readable_stl(path, stl_dropped) : std::string();
+  const std::string stl = ext == ".stl" ? readable_stl(path, stl_dropped, &exact) : std::string();
   const auto oriented = [&axes](Mesh m) {
     if (axes.up.value_or('z') != 'z' || axes.metres_per_unit.value_or(1) != 1)
       orient_z_up(m, axes.up.value_or('z'), axes.metres_per_unit.value_or(1));

@@ -324,6 +324,19 @@ TEST(MeshScene, AModelInSiteCoordinatesKeepsItsFilesOwnNumbers) {
   EXPECT_EQ(t.vertices[0].x, 512345.678);
   EXPECT_EQ(t.vertices[0].y, 5400123.456);
   EXPECT_EQ(t.vertices[0].z, 0.25);
+  // An ASCII STL's vertex lines alike, its triangles' shared corners joined as OpenMesh
+  // joins them (a binary STL holds floats: those it keeps).
+  const std::string stl = dir.write("far.stl", "solid far\nfacet normal 0 0 1\nouter loop\nvertex 512345.678 5400123.456 0.25\n"
+                                               "vertex 512346 5400123.456 0\nvertex 512345.678 5400124 0\nendloop\nendfacet\n"
+                                               "facet normal 0 0 1\nouter loop\nvertex 512346 5400123.456 0\n"
+                                               "vertex 512346.25 5400124.125 0.5\nvertex 512345.678 5400124 0\nendloop\n"
+                                               "endfacet\nendsolid far\n");
+  const Mesh s = load_mesh(stl);
+  ASSERT_EQ(s.vertices.size(), 4u);
+  EXPECT_EQ(s.triangles.size(), 2u);
+  EXPECT_EQ(s.vertices[0].x, 512345.678);
+  EXPECT_EQ(s.vertices[0].y, 5400123.456);
+  EXPECT_EQ(s.vertices[2].y, 5400124.0);
   // A PLY file's, ASCII or binary, in double or in float (then as the file has them).
   const std::string ascii = dir.write("far.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
                                                   "property double z\nelement face 1\nproperty list uchar int vertex_indices\n"
