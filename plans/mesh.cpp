@@ -863,8 +863,8 @@ Mesh mesh_of_openmesh(const PolyMesh& pm, const std::string& path, std::vector<s
 /// the edge; `inserted` says, per polygon corner, whether it was put in here.
 void insert_t_junctions(const std::vector<Vec3>& v, std::vector<std::vector<int>>& polygons,
                         std::vector<std::vector<uint8_t>>& inserted) {
-  // The vertices in use, sorted along each axis: an edge looks in the thinnest slab around
-  // it (along the axis it spans least), so that few vertices are tried.
+  // The vertices in use, sorted along each axis: an edge looks in the slab around it that
+  // holds fewest, so that few vertices are tried.
   std::vector<uint8_t> used(v.size(), 0);
   for (const auto& p : polygons)
     for (int i : p) used[size_t(i)] = 1;
@@ -891,15 +891,24 @@ void insert_t_junctions(const std::vector<Vec3>& v, std::vector<std::vector<int>
       const double l2 = dot(d, d);
       if (!(l2 > 0)) continue;
       // On the edge: strictly between its ends, within 1e-9 of its length of its line.
+      // The candidates: the vertices in the edge's slab along the axis whose slab holds
+      // fewest (an edge of a floor laid on a grid has all the floor's vertices in its
+      // thinnest slab, and few in the slab along its own length).
       const double tol = 1e-9 * std::sqrt(l2);
-      const int axis = std::fabs(d.x) <= std::fabs(d.y) ? (std::fabs(d.x) <= std::fabs(d.z) ? 0 : 2)
-                                                         : (std::fabs(d.y) <= std::fabs(d.z) ? 1 : 2);
-      const std::vector<int>& order = by[size_t(axis)];
-      const double c0 = std::min(coord(a, axis), coord(a + d, axis)) - tol, c1 = std::max(coord(a, axis), coord(a + d, axis)) + tol;
-      auto it = std::lower_bound(order.begin(), order.end(), c0,
-                                 [&](int i, double c) { return coord(v[size_t(i)], axis) < c; });
+      size_t best = SIZE_MAX;
+      std::vector<int>::const_iterator it, end;
+      for (int axis = 0; axis < 3; ++axis) {
+        const std::vector<int>& order = by[size_t(axis)];
+        const double c0 = std::min(coord(a, axis), coord(a + d, axis)) - tol,
+                     c1 = std::max(coord(a, axis), coord(a + d, axis)) + tol;
+        const auto lo = std::lower_bound(order.begin(), order.end(), c0,
+                                         [&](int i, double c) { return coord(v[size_t(i)], axis) < c; });
+        const auto hi = std::upper_bound(lo, order.end(), c1,
+                                         [&](double c, int i) { return c < coord(v[size_t(i)], axis); });
+        if (size_t(hi - lo) < best) best = size_t(hi - lo), it = lo, end = hi;
+      }
       on_edge.clear();
-      for (; it != order.end() && coord(v[size_t(*it)], axis) <= c1; ++it) {
+      for (; it != end; ++it) {
         const int iv = *it;
         if (iv == ia || iv == ib) continue;
         const Vec3 w = v[size_t(iv)] - a;
