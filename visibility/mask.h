@@ -122,10 +122,19 @@ class Mask {
   /// so a mask touching `outer`'s boundary from inside, or equal to it, is not taken as
   /// inside: the answer errs only towards "not inside".
   bool inside(const Mask& outer) const {
-    return vertices_kept_by(outer, [](const T& s, const HalfPlane<T>& l, const Point2T<T>& v) {
-      if constexpr (std::is_floating_point_v<T>) return s > rounding_bound(l, v);
-      else return !(s < T(0));
-    });
+    if (empty() || outer.empty()) return false;
+    for (size_t k = 0; k < h_.size(); ++k) {
+      const Point2T<T> v = vertex(k);
+      for (const HalfPlane<T>& l : outer.h_) {
+        const T s = l.a * v.x + l.b * v.y + l.c;
+        if constexpr (std::is_floating_point_v<T>) {
+          if (!(s > rounding_bound(l, v))) return false;
+        } else {
+          if (s < T(0)) return false;
+        }
+      }
+    }
+    return true;
   }
 
   /// The same cycle of half-planes, coefficient for coefficient (from the same index on):
@@ -395,19 +404,6 @@ class Mask {
       } else {
         if (l.a * v.x + l.b * v.y + l.c < T(0)) return false;
       }
-    }
-    return true;
-  }
-
-  /// Whether keep(s, l, v) holds for every vertex v of this mask and every half-plane l of
-  /// `outer`, s being l's value at v (false when either mask is empty).
-  template <class Keep>
-  bool vertices_kept_by(const Mask& outer, Keep keep) const {
-    if (empty() || outer.empty()) return false;
-    for (size_t k = 0; k < h_.size(); ++k) {
-      const Point2T<T> v = vertex(k);
-      for (const HalfPlane<T>& l : outer.h_)
-        if (!keep(l.a * v.x + l.b * v.y + l.c, l, v)) return false;
     }
     return true;
   }
