@@ -8,16 +8,16 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
-#include <numeric>
 #include <unordered_map>
 
 namespace avenues {
 
 namespace {
 
-double largest_coordinate(const SoupTriangle& t) {
+/// The largest coordinate, in magnitude, of three points (a triangle's, a plane's).
+double largest_coordinate(const std::array<Vec3, 3>& p) {
   double m = 0;
-  for (const Vec3& p : t.p) m = std::max({m, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+  for (const Vec3& q : p) m = std::max({m, std::fabs(q.x), std::fabs(q.y), std::fabs(q.z)});
   return m;
 }
 
@@ -78,9 +78,7 @@ struct Grouping {
     const Vec3 x = cross(plane.p[1] - plane.p[0], plane.p[2] - plane.p[0]);
     c.n = (1.0 / length(x)) * x;
     c.offset = dot(c.n, plane.p[0] - mid);
-    double largest = 0;
-    for (const Vec3& q : plane.p) largest = std::max({largest, std::fabs(q.x), std::fabs(q.y), std::fabs(q.z)});
-    c.rounding = unit * largest;
+    c.rounding = unit * largest_coordinate(plane.p);
     return c;
   }
 
@@ -104,15 +102,16 @@ struct Grouping {
       double reach = 0;
       for (const Vec3& q : p) reach = std::max(reach, length(q - mid));
       const double window = tolerance[u] + largest_rounding + 4 / kNormalCells * reach;
+      const double offset = dot(normal[u], p[0] - mid);
       int found = -1;
       for (double sign : {1.0, -1.0}) {
         const NormalKey k = key_of(sign * normal[u]);
+        const double d = sign * offset;
         for (int dx = -1; dx <= 1; ++dx)
           for (int dy = -1; dy <= 1; ++dy)
             for (int dz = -1; dz <= 1; ++dz) {
               const auto it = by_normal.find({k.x + dx, k.y + dy, k.z + dz});
               if (it == by_normal.end()) continue;
-              const double d = sign * dot(normal[u], p[0] - mid);
               for (auto c = it->second.lower_bound(d - window); c != it->second.end() && c->first <= d + window; ++c) {
                 if (found >= 0 && uint32_t(found) < c->second) continue;
                 const Candidate& h = planes[c->second];
@@ -212,7 +211,7 @@ SharedPlanes shared_planes(const std::vector<SoupTriangle>& soup, const SharedPl
     // Far from collinear as doubles go (collinear corners' rounding leaves ~1e-16 l²).
     if (!(g.area[i] > 1e-12 * l * l)) continue;
     g.normal[i] = (1.0 / g.area[i]) * c;
-    g.tolerance[i] = params.angle * l + g.unit * largest_coordinate(soup[i]);
+    g.tolerance[i] = params.angle * l + g.unit * largest_coordinate(p);
     g.order.push_back(uint32_t(i));
   }
   std::stable_sort(g.order.begin(), g.order.end(), [&](uint32_t a, uint32_t b) { return g.area[a] > g.area[b]; });
@@ -235,8 +234,7 @@ SharedPlanes shared_planes(const std::vector<SoupTriangle>& soup, const SharedPl
     int& k = index[size_t(plane_of[i])];
     if (k < 0) k = int(out.planes.size()), out.planes.push_back(planes[size_t(plane_of[i])].plane);
     out.plane_of[i] = k;
-    const SharedPlane& h = out.planes[size_t(k)];
-    out.own[i] = h.p[0] == p[0] && h.p[1] == p[1] && h.p[2] == p[2];
+    out.own[i] = out.planes[size_t(k)].p == p;
   }
   return out;
 }

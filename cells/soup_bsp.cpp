@@ -1023,24 +1023,23 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
         continue;
       }
       Frag f;
-      ApproxPlane h;
       const size_t s = size_t(shared.plane_of[i]);
       const auto& sp = shared.planes[s].p;
       // A plane's corners have area in doubles (shared_planes), so are never collinear.
       if (!exact_plane[s]) exact_plane[s] = plane_through(as_point(sp[0]), as_point(sp[1]), as_point(sp[2]), {0, 0, 0});
-      h = approx_plane(sp);
+      ApproxPlane h = approx_plane(sp);
       if (shared.own[i]) {
         f.poly = triangle_poly(*exact_plane[s], a, c1, c2, {true, true, true});
       } else {
         const bool turned = dot(cross(t.p[1] - t.p[0], t.p[2] - t.p[0]), h.n) < 0;
         if (turned) h.n = -1.0 * h.n, h.d = -h.d;
+        auto epick = [](Vec3 p) { return Epick::Point_3(p.x, p.y, p.z); };
+        const Epick::Point_3 q0 = epick(sp[0]), q1 = epick(sp[1]), q2 = epick(sp[2]);
+        // How far a corner moves: along the plane's dominant axis, onto the plane.
+        const double along = std::max({std::fabs(h.n.x), std::fabs(h.n.y), std::fabs(h.n.z)});
         std::array<bool, 3> on{};
         for (size_t k = 0; k < 3; ++k) {
-          on[k] = CGAL::orientation(Epick::Point_3(sp[0].x, sp[0].y, sp[0].z), Epick::Point_3(sp[1].x, sp[1].y, sp[1].z),
-                                    Epick::Point_3(sp[2].x, sp[2].y, sp[2].z),
-                                    Epick::Point_3(t.p[k].x, t.p[k].y, t.p[k].z)) == CGAL::COPLANAR;
-          // How far it moves: along the plane's dominant axis, onto the plane.
-          const double along = std::max({std::fabs(h.n.x), std::fabs(h.n.y), std::fabs(h.n.z)});
+          on[k] = CGAL::orientation(q0, q1, q2, epick(t.p[k])) == CGAL::COPLANAR;
           if (!on[k]) b.stats.largest_snap = std::max(b.stats.largest_snap, std::fabs(dot(h.n, t.p[k]) + h.d) / along);
         }
         ++b.stats.snapped;

@@ -55,7 +55,7 @@ class SoupTooCluttered : public std::runtime_error {
 /// and none of their planes divides them (a convex cluster: a sphere), an axis-aligned
 /// plane through their median halves it instead. Leaves are then joined across faces that
 /// hold nothing wherever the union stays convex, exactly: one cell is then several leaves.
-/// Triangles nearly coplanar with a larger one are cut on its plane (cells/shared_planes.h);
+/// Nearly coplanar triangles are cut on a plane they share (cells/shared_planes.h);
 /// where a corner so moved is shared with a triangle on another plane, the two no longer
 /// meet along their edge but leave a crack as wide as the move: an open piece of a leaf
 /// face no wider than twice the largest move and a rounding (1e-9 of the far box's scale,
