@@ -357,46 +357,6 @@ TEST(SoupBsp, ASphereIsHalvedNotPeeledFaceByFaceAndKeepsEveryFaceAndView) {
   expect_soup_views_agree_with_rays(c, 8, 7, 96, 64, 8);
 }
 
-// A cube turned about an axis no coordinate plane holds: each face's four corners,
-// rotated in doubles, are coplanar only to a rounding, so its two triangles lie on two
-// planes a hair apart. Each plane cuts the whole cell it crosses; the wedge between them
-// ran from the face's diagonal across the far box, thinner than rounding, and was dropped
-// as a sliver, leaving walls in open space. The triangles nearly coplanar with a larger
-// one now take its plane (cells/shared_planes.h): no sliver, the cube's inside solid and
-// the rest free. The same in floats (every format Assimp reads), whose rounding is larger.
-TEST(SoupBsp, NearlyCoplanarTrianglesOfAFaceCutSpaceByOnePlane) {
-  for (const bool floats : {false, true}) {
-    SCOPED_TRACE(floats ? "floats" : "doubles");
-    Mesh m = cube({0, 0, 0}, 2);
-    m.path = "turned-cube.obj";
-    const Vec3 axis = (1 / std::sqrt(14.0)) * Vec3{1, 2, 3};
-    const double angle = 0.7, c = std::cos(angle), s = std::sin(angle);
-    auto turn = [&](Vec3 v) {  // Rodrigues' rotation, then moved off the origin
-      return c * v + s * cross(axis, v) + (1 - c) * dot(axis, v) * axis + Vec3{3.1, -1.7, 2.3};
-    };
-    for (Vec3& v : m.vertices) {
-      v = turn(v);
-      if (floats) v = to_float(v);
-    }
-    const CellComplex cx = build_mesh_scene({m});
-    ASSERT_EQ(cells_are_valid(cx), "");
-    for (const std::string& w : cx.warnings) EXPECT_EQ(w.find("slivers of free space"), std::string::npos) << w;
-    EXPECT_NEAR(free_volume(cx), box_volume(cx.far_box) - closed_solids_volume({m}), 1e-9 * box_volume(cx.far_box));
-    EXPECT_EQ(cx.locate(turn({0, 0, 1})).what, Location::What::Solid);  // its middle
-    EXPECT_EQ(visible_triangles_missing_from_export(cx, {m}), 0);
-    expect_soup_views_agree_with_rays(cx, 4, 12, 96, 64, 8);
-  }
-}
-
-// The same cube with each face tessellated n × n, as a modeller or an exporter leaves a
-// wall, turned and stored in floats. A face's triangles are coplanar only to a rounding,
-// and a small triangle's own plane, exact through its three rounded corners, is tilted by
-// that rounding over its own size: across the face it strays by n times as much, so the
-// far triangles of the face fell outside its reach and cut space on planes of their own,
-// crossing inside the wall: at n = 8 and 16, 323 and 1,175 slivers were closed, leaving 14
-// and 18 m² of walls in open space. A face's plane is now one through corners spread
-// across it. (Its 512 triangles also cost 8.9 s to cut from the leaf faces they cover,
-// each fragment tried against every piece left open; now 0.6 s.)
 namespace {
 
 /// A box of sides `size` at the origin, each face cut n × n into quads of two triangles,
@@ -431,6 +391,43 @@ Vec3 turned(Vec3 p, Vec3 axis, double angle, Vec3 offset) {
 
 }  // namespace
 
+// A cube turned about an axis no coordinate plane holds: each face's four corners,
+// rotated in doubles, are coplanar only to a rounding, so its two triangles lie on two
+// planes a hair apart. Each plane cuts the whole cell it crosses; the wedge between them
+// ran from the face's diagonal across the far box, thinner than rounding, and was dropped
+// as a sliver, leaving walls in open space. Nearly coplanar triangles now take a plane
+// they share (cells/shared_planes.h): no sliver, the cube's inside solid and the rest
+// free. The same in floats (every format Assimp reads), whose rounding is larger.
+TEST(SoupBsp, NearlyCoplanarTrianglesOfAFaceCutSpaceByOnePlane) {
+  for (const bool floats : {false, true}) {
+    SCOPED_TRACE(floats ? "floats" : "doubles");
+    Mesh m = cube({0, 0, 0}, 2);
+    m.path = "turned-cube.obj";
+    const Vec3 axis = (1 / std::sqrt(14.0)) * Vec3{1, 2, 3};
+    auto turn = [&](Vec3 v) { return turned(v, axis, 0.7, {3.1, -1.7, 2.3}); };
+    for (Vec3& v : m.vertices) {
+      v = turn(v);
+      if (floats) v = to_float(v);
+    }
+    const CellComplex cx = build_mesh_scene({m});
+    ASSERT_EQ(cells_are_valid(cx), "");
+    for (const std::string& w : cx.warnings) EXPECT_EQ(w.find("slivers of free space"), std::string::npos) << w;
+    EXPECT_NEAR(free_volume(cx), box_volume(cx.far_box) - closed_solids_volume({m}), 1e-9 * box_volume(cx.far_box));
+    EXPECT_EQ(cx.locate(turn({0, 0, 1})).what, Location::What::Solid);  // its middle
+    EXPECT_EQ(visible_triangles_missing_from_export(cx, {m}), 0);
+    expect_soup_views_agree_with_rays(cx, 4, 12, 96, 64, 8);
+  }
+}
+
+// The same cube with each face tessellated n × n, as a modeller or an exporter leaves a
+// wall, turned and stored in floats. A face's triangles are coplanar only to a rounding,
+// and a small triangle's own plane, exact through its three rounded corners, is tilted by
+// that rounding over its own size: across the face it strays by n times as much, so the
+// far triangles of the face fell outside its reach and cut space on planes of their own,
+// crossing inside the wall: at n = 8 and 16, 323 and 1,175 slivers were closed, leaving 14
+// and 18 m² of walls in open space. A face's plane is now one through corners spread
+// across it. (Its 512 triangles also cost 8.9 s to cut from the leaf faces they cover,
+// each fragment tried against every piece left open; now 0.6 s.)
 TEST(SoupBsp, TessellatedFacesOfATurnedCubeCutSpaceByOnePlaneEach) {
   for (const int n : {3, 8, 16}) {
     SCOPED_TRACE(n);
