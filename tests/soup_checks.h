@@ -137,9 +137,13 @@ inline double closed_solids_volume(const std::vector<Mesh>& meshes) {
 }
 
 /// `views` random views from random cells at `width` × `height`, one ray every `step`
-/// pixels checked against the ray oracle: no missing cell, no extra avenue.
+/// pixels checked against the ray oracle: no missing cell, no extra avenue. With
+/// `needles` > 0, only the first `needles` views where a search settles a mask
+/// (VisibleSet::masks_settled: a portal clipped a mask to a needle with a corner strayed
+/// past its parent's) are checked, and `checked` counts them.
 inline void expect_soup_views_agree_with_rays(const CellComplex& c, int views, unsigned seed, int width, int height,
-                                              int step, int first = 0) {
+                                              int step, int first = 0, int needles = 0, int* checked = nullptr) {
+  int needle_views = 0;
   std::mt19937 rng(seed);
   std::uniform_int_distribution<size_t> pick(0, c.cells.size() - 1);
   std::uniform_real_distribution<double> yaw(0, 360), pitch(-60, 60), fov(40, 110), w(0.05, 1.0);
@@ -162,6 +166,19 @@ inline void expect_soup_views_agree_with_rays(const CellComplex& c, int views, u
     // cutting a surface in view shows what lies behind it in a picture resolved by depth and
     // nothing in one drawn by masks (the search never looks behind an opaque surface).
     cam.near = 1e-4;
+    if (needles > 0) {
+      if (needle_views == needles) return;
+      long settled = 0;
+      for (int search = 0; search < 3; ++search) {  // Jones's, merged, hull
+        TraverseParams params;
+        params.merge_pieces = search > 0;
+        params.hull_pieces = search == 2;
+        settled += find_visible(c, cam, loc.cell, params).masks_settled;
+      }
+      if (settled == 0) continue;
+      ++needle_views;
+    }
+    if (checked) ++*checked;
     SCOPED_TRACE("view " + std::to_string(v) + ": eye " + std::to_string(eye.x) + "," + std::to_string(eye.y) + "," +
                  std::to_string(eye.z) + " yaw " + std::to_string(y) + " pitch " + std::to_string(p));
     // Jones's search and the merged one (TraverseParams::merge_pieces), which the

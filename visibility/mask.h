@@ -295,8 +295,9 @@ class Mask {
   ///   that side, not away from the mask (a triangle of 0.06 by 0.2 across a duplex view had
   ///   its corner 1e-7 past its parent's: dropping that corner lost the triangle).
   /// The mask is empty when the vertices kept span no area, or when the hull's own vertices
-  /// stray again. Exact number types: nothing to settle. Returns whether the mask has area.
-  bool settle_within(const Mask& before) {
+  /// stray again. Exact number types: nothing to settle. Returns whether the mask has area;
+  /// `settled`, when given, is set when a vertex was dropped or moved.
+  bool settle_within(const Mask& before, bool* settled = nullptr) {
     if constexpr (std::is_floating_point_v<T>) {
       if (empty() || before.empty()) return !empty();
       const Reach r = before.reach();
@@ -317,6 +318,7 @@ class Mask {
         kept.push_back(c);
       }
       if (!moved) return true;
+      if (settled) *settled = true;
       *this = hull(kept, false);
       if (empty() || !(area2() > T(0))) {
         h_.clear();

@@ -533,7 +533,11 @@ class Traversal {
         if (!m.clip(trace(e, a))) return false;
       }
     }
-    return m.area2() > T(0) && m.settle_within(from);
+    if (!(m.area2() > T(0))) return false;
+    bool settled = false;
+    const bool kept = m.settle_within(from, &settled);
+    out_.masks_settled += settled;
+    return kept;
   }
 
   // ---- The merged search (TraverseParams::merge_pieces) ----

@@ -42,6 +42,7 @@ struct VisibleSet {
   long portals_tested = 0;      ///< portals examined (facing test and clipping)
   long avenues_pruned = 0;      ///< avenues not followed: mask inside one already found into the cell
   long avenues_merged = 0;      ///< merged (or hull) search: pieces joined into another piece of their cell
+  long masks_settled = 0;       ///< floating point: masks with a corner strayed past their parent's, settled (Mask::settle_within)
   /// The hull search (TraverseParams::hull_pieces) found it: the cells hold every visible
   /// cell and the masks every ray of their cells, but may hold more (so what they show must
   /// be resolved by depth).
