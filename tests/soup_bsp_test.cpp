@@ -541,8 +541,8 @@ TEST(SoupBsp, EveryMeshFromOutsideKeepsAllItsFacesAndAgreesWithRayCasting) {
 // there into the cell beyond (Mask::settle_within now settles such a corner). Views 5 and 7
 // of the Viking room's random views met such needles once; as the decomposition changed,
 // they met none, and the test no longer tested what it is named for. So the views checked
-// now are the first three of the room's random views where a search does settle a mask
-// (VisibleSet::masks_settled), and there must be three. Their checks also cover the line
+// now are the first two of the room's random views where a search does settle a mask
+// (VisibleSet::masks_settled), and there must be two (each such view takes 30-50 s here). Their checks also cover the line
 // through two hull corners 7e-7 apart that the hull check once took for a side (outside_by
 // now skips sides that short).
 TEST(SoupBsp, NeedleMasksOfNearlyParallelPortalEdgesSeeNothing) {
@@ -550,8 +550,8 @@ TEST(SoupBsp, NeedleMasksOfNearlyParallelPortalEdgesSeeNothing) {
   const CellComplex c = build_mesh_scene(meshes);
   ASSERT_EQ(cells_are_valid(c), "");
   int needles = 0;
-  expect_soup_views_agree_with_rays(c, 64, 1992, 96, 64, 16, 0, 3, &needles);
-  EXPECT_EQ(needles, 3) << "fewer than three of 64 views settle a needle mask: this test needs other views";
+  expect_soup_views_agree_with_rays(c, 64, 1992, 96, 64, 16, 0, 2, &needles);
+  EXPECT_EQ(needles, 2) << "fewer than two of 64 views settle a needle mask: this test needs other views";
 }
 
 /// Scenes of Assimp's test models, each read as its format's own tools read it (COLLADA,
