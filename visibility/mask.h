@@ -229,9 +229,7 @@ class Mask {
       }
       chain.pop_back();  // the last point of each pass starts the other
     }
-    // Floating point, growing: the chain before corners near a chord were dropped (below).
-    thread_local std::vector<Point2T<T>> before_near;
-    bool near_dropped = false;
+    bool near_dropped = false;  // floating point, growing: a corner near a chord dropped (below)
     if constexpr (std::is_floating_point_v<T>) {
       // Two sides that nearly run on in one line meet at a vertex their rounding would put
       // anywhere along them: in floating point a corner turning by less than kCollinear
@@ -245,7 +243,7 @@ class Mask {
       // between them then points anywhere (a Viking room view's hull had a side 3.5e-6
       // long, 3.5e-9 off the chord, turned by 9e-4, and the outline through the hull's
       // vertices passed 2.5e-5 inside a point it holds, 0.03 away). Dropped corners can
-      // add up, so the sides are then moved out as far as every point of the chain needs.
+      // add up, so the sides are then moved out as far as every point needs.
       T slack(0);
       if (grow_out) {
         T extent(0);
@@ -261,7 +259,6 @@ class Mask {
           const T cross = ax * by - ay * bx;
           if (cross > T(kCollinear) * std::sqrt((ax * ax + ay * ay) * (bx * bx + by * by))) {
             if (!(cross * cross <= slack * slack * (bx * bx + by * by))) continue;  // farther than slack
-            if (!near_dropped) before_near.assign(chain.begin(), chain.end());
             near_dropped = true;
           }
           chain.erase(chain.begin() + long(k));
@@ -284,9 +281,9 @@ class Mask {
       l.c = -(l.a * p.x + l.b * p.y);
       if constexpr (std::is_floating_point_v<T>) {
         l.c += grow * (std::fabs(l.a) + std::fabs(l.b));
-        if (near_dropped) {  // every point of the chain inside, by a quarter of the growth
+        if (near_dropped) {  // every point inside, by a quarter of the growth
           T least(0);
-          for (const Point2T<T>& x : before_near) least = std::min(least, l.a * x.x + l.b * x.y + l.c);
+          for (const Point2T<T>& x : points) least = std::min(least, l.a * x.x + l.b * x.y + l.c);
           if (least < T(0)) l.c += grow / T(4) * (std::fabs(l.a) + std::fabs(l.b)) - least;
         }
       }
