@@ -112,8 +112,54 @@ double total_volume(const CellComplex& c) {
   return v;
 }
 
+void CellComplex::index_portals() { portal_table = lay_out_portals(*this); }
+
+CellComplex::PortalTable lay_out_portals(const CellComplex& c) {
+  const auto& cells = c.cells;
+  const auto& portals = c.portals;
+  CellComplex::PortalTable t;
+  size_t faces = 0, sides = 0;
+  for (const Cell& cl : cells) {
+    faces += cl.faces.size();
+    for (const Face& f : cl.faces) sides += f.portals.size();
+  }
+  t.cell_faces.reserve(cells.size() + 1);
+  t.face_seen.reserve(faces + 1);
+  t.seen.reserve(sides);
+  for (CellId id = 0; id < CellId(cells.size()); ++id) {
+    t.cell_faces.push_back(int32_t(t.face_seen.size()));
+    for (const Face& f : cells[size_t(id)].faces) {
+      t.face_seen.push_back(int32_t(t.seen.size()));
+      for (PortalId pi : f.portals) {
+        const Portal& p = portals[size_t(pi)];
+        CellComplex::PortalTable::Seen s;
+        s.plane = p.plane;
+        s.portal = pi;
+        s.other = p.other(id);
+        s.corner0 = int32_t(t.corners.size());
+        s.corners = uint16_t(p.poly.size());
+        s.first = p.cell[0] == id;
+        // As the search would find it: the corners after corner 0 spanning the most area
+        // with it (not simply the first three, which may hold two a rounding apart).
+        double most = -1;
+        for (size_t k = 1; k + 1 < p.poly.size(); ++k) {
+          const Vec3 n = cross(p.poly[k] - p.poly[0], p.poly[k + 1] - p.poly[0]);
+          if (const double a = dot(n, n); a > most) most = a, s.spread = uint16_t(k);
+        }
+        t.corners.insert(t.corners.end(), p.poly.begin(), p.poly.end());
+        t.seen.push_back(s);
+      }
+    }
+  }
+  t.cell_faces.push_back(int32_t(t.face_seen.size()));
+  t.face_seen.push_back(int32_t(t.seen.size()));
+  t.portal_count = portals.size();
+  return t;
+}
+
 void CellComplex::index() {
   index_surfaces();
+  index_portals();
   // One uniform grid in plan over the far box; each grid square lists the cells whose
   // footprint's bounding box overlaps it (all heights: a few storeys per square).
   bands.assign(1, Band{});

@@ -76,6 +76,76 @@ TEST(Visibility, RandomViewsOfEveryBundledPlanAgreeWithRayCasting) {
   }
 }
 
+// The search reads each cell's portals from CellComplex::portal_table, laid out by index():
+// every face's portals in the face's order, as seen from the cell, with their corners. A
+// complex never indexed (a copy with the table cleared) is searched through a table the
+// search lays out for itself, and every avenue is the same, bit for bit, in Jones's, the
+// merged and the hull search, perspective and parallel.
+TEST(Visibility, EachCellsPortalsAreReadFromOneTableAndAComplexNeverIndexedSeesTheSame) {
+  const CellComplex c = build_cells(read_plan(plan_path("two-storey-house.toml")));
+  const CellComplex::PortalTable& t = c.portal_table;
+  ASSERT_TRUE(t.fits(c));
+  ASSERT_EQ(t.cell_faces.size(), c.cells.size() + 1);
+  for (CellId id = 0; id < CellId(c.cells.size()); ++id) {
+    const Cell& cell = c.cells[size_t(id)];
+    ASSERT_EQ(size_t(t.cell_faces[size_t(id) + 1] - t.cell_faces[size_t(id)]), cell.faces.size()) << "cell " << id;
+    for (size_t k = 0; k < cell.faces.size(); ++k) {
+      const int32_t face = t.cell_faces[size_t(id)] + int32_t(k);
+      const Face& f = cell.faces[k];
+      ASSERT_EQ(size_t(t.face_seen[size_t(face) + 1] - t.face_seen[size_t(face)]), f.portals.size());
+      for (size_t i = 0; i < f.portals.size(); ++i) {
+        const auto& s = t.seen[size_t(t.face_seen[size_t(face)]) + i];
+        const Portal& p = c.portals[size_t(f.portals[i])];
+        EXPECT_EQ(s.portal, f.portals[i]);
+        EXPECT_EQ(s.other, p.other(id));
+        EXPECT_EQ(s.first, p.cell[0] == id);
+        ASSERT_EQ(s.corners, p.poly.size());
+        EXPECT_GE(s.spread, 1);
+        EXPECT_LT(size_t(s.spread) + 1, std::max<size_t>(p.poly.size(), 3));
+        for (size_t v = 0; v < p.poly.size(); ++v) {
+          EXPECT_EQ(t.corners[size_t(s.corner0) + v].x, p.poly[v].x);
+          EXPECT_EQ(t.corners[size_t(s.corner0) + v].y, p.poly[v].y);
+          EXPECT_EQ(t.corners[size_t(s.corner0) + v].z, p.poly[v].z);
+        }
+      }
+    }
+  }
+  CellComplex bare = c;
+  bare.portal_table = {};
+  ASSERT_FALSE(bare.portal_table.fits(bare));
+  auto same = [](const VisibleSet& a, const VisibleSet& b) {
+    if (a.avenues.size() != b.avenues.size() || a.cells != b.cells) return false;
+    for (size_t i = 0; i < a.avenues.size(); ++i) {
+      const Avenue &x = a.avenues[i], &y = b.avenues[i];
+      if (x.cell != y.cell || x.parent != y.parent || x.portal != y.portal || x.mask.size() != y.mask.size()) return false;
+      for (size_t k = 0; k < x.mask.size(); ++k)
+        if (x.mask[k].x != y.mask[k].x || x.mask[k].y != y.mask[k].y) return false;
+    }
+    return true;
+  };
+  std::mt19937 rng(614);
+  int avenues = 0;
+  for (int v = 0; v < 24; ++v) {
+    CellId cell;
+    const Vec3 eye = random_eye(c, rng, cell);
+    std::uniform_real_distribution<double> yaw(0, 360), pitch(-40, 40);
+    const Camera cam = Camera::yaw_pitch(eye, yaw(rng), pitch(rng), 90, 96, 64);
+    for (int search = 0; search < 3; ++search) {
+      TraverseParams params;
+      params.merge_pieces = search > 0;
+      params.hull_pieces = search == 2;
+      const VisibleSet a = find_visible(c, cam, cell, params), b = find_visible(bare, cam, cell, params);
+      EXPECT_TRUE(same(a, b)) << "view " << v << ", search " << search;
+      avenues += int(a.avenues.size());
+    }
+    const Camera flat = Camera::parallel(eye, eye + cam.forward, 12, 96, 64);
+    EXPECT_TRUE(same(find_visible_from_cut(c, flat, flat.picture_plane(), Kernel::Double),
+                     find_visible_from_cut(bare, flat, flat.picture_plane(), Kernel::Double)))
+        << "view " << v << ", parallel";
+  }
+  EXPECT_GT(avenues, 24 * 3 * 2);  // views that see beyond their own cell
+}
+
 TEST(Route, JonesHouseFromLivingRoomToKitchenToDiningRoomOnFoot) {
   using avenues::testing::plan_path;
   CellComplex c = build_cells(read_plan(plan_path("jones-house.toml")));

@@ -65,11 +65,36 @@ class Mask {
     return v;
   }
 
+  /// The vertices of one state of a mask, each computed once, with their bounds (floating
+  /// point): for a mask narrowed by many portals in turn (every portal of a cell starts
+  /// from the mask it was reached through), which would otherwise compute the same
+  /// vertices again at each. They are the values vertex() gives, and only ever read, never
+  /// fed into a construction.
+  struct Corners {
+    std::vector<Point2T<T>> at;  ///< at[k] == vertex(k)
+    T lo_x{}, hi_x{}, lo_y{}, hi_y{};  ///< floating point: the bounds of `at` (reach()); exact: unset
+  };
+  /// Fills `out` with this mask's vertices and their bounds (its storage reused).
+  void corners(Corners& out) const {
+    out.at.resize(h_.size());
+    for (size_t k = 0; k < h_.size(); ++k) out.at[k] = vertex(k);
+    if constexpr (std::is_floating_point_v<T>) {
+      out.lo_x = out.lo_y = std::numeric_limits<T>::infinity(), out.hi_x = out.hi_y = -out.lo_x;
+      for (const Point2T<T>& v : out.at) {
+        out.lo_x = std::min(out.lo_x, v.x), out.hi_x = std::max(out.hi_x, v.x);
+        out.lo_y = std::min(out.lo_y, v.y), out.hi_y = std::max(out.hi_y, v.y);
+      }
+    }
+  }
+
   /// Intersects the mask with half-plane l. Returns false when nothing of area is left
   /// (the mask is then empty). A half-plane containing the whole mask changes nothing.
-  bool clip(const HalfPlane<T>& l) {
+  /// `now`, where given and not null, points to the mask's corners as it stands, used
+  /// instead of computing its vertices; it is set to null when the clip changes the mask.
+  bool clip(const HalfPlane<T>& l, const Corners** now = nullptr) {
     const size_t n = h_.size();
     if (n < 3) return false;
+    const Point2T<T>* known = now && *now ? (*now)->at.data() : nullptr;
     // Sign of l at each vertex (scratch buffers per thread: a mask is copied at every
     // portal, and carrying its scratch along would allocate three times per copy).
     thread_local std::vector<int> side_;
@@ -77,7 +102,7 @@ class Mask {
     side_.resize(n);
     bool any_out = false, any_in = false;
     for (size_t k = 0; k < n; ++k) {
-      Point2T<T> v = vertex(k);
+      const Point2T<T> v = known ? known[k] : vertex(k);
       T s = l.a * v.x + l.b * v.y + l.c;
       if constexpr (std::is_floating_point_v<T>) {
         // Floating point: a sign smaller than the evaluation's rounding error is taken as
@@ -92,6 +117,7 @@ class Mask {
       any_in |= side_[k] > 0;
     }
     if (!any_out) return true;  // l contains the mask
+    if (now) *now = nullptr;
     if (!any_in) {              // nothing of area left
       h_.clear();
       return false;
@@ -325,12 +351,24 @@ class Mask {
   bool settle_within(const Mask& before, bool* settled = nullptr) {
     if constexpr (std::is_floating_point_v<T>) {
       if (empty() || before.empty()) return !empty();
-      const Reach r = before.reach();
+      thread_local Corners own, theirs;
+      corners(own);
+      before.corners(theirs);
+      return settle_within(before, theirs, own, settled);
+    } else {
+      return !empty();
+    }
+  }
+  /// The same, given the corners of `before` and this mask's own (as corners() makes them).
+  bool settle_within(const Mask& before, const Corners& before_corners, const Corners& own, bool* settled = nullptr) {
+    if constexpr (std::is_floating_point_v<T>) {
+      if (empty() || before.empty()) return !empty();
+      const Reach r{before_corners.lo_x, before_corners.hi_x, before_corners.lo_y, before_corners.hi_y};
       thread_local std::vector<Point2T<T>> kept;
       kept.clear();
       bool moved = false;
       for (size_t k = 0; k < h_.size(); ++k) {
-        const Point2T<T> v = vertex(k);
+        const Point2T<T> v = own.at[k];
         const T grow = growth_at(v);
         if (!before.in_half_planes_up_to(v, grow)) {
           moved = true;
@@ -365,17 +403,11 @@ class Mask {
   T area2() const {
     // The vertices as polygon() gives them, in the same order, without allocating: a mask's
     // area is asked at every portal it passes.
-    T a(0);
-    const size_t n = h_.size();
-    if (n == 0) return a;
-    const Point2T<T> first = vertex(0);
-    Point2T<T> p = first;
-    for (size_t k = 0; k < n; ++k) {
-      const Point2T<T> q = k + 1 < n ? vertex(k + 1) : first;
-      a += p.x * q.y - q.x * p.y;
-      p = q;
-    }
-    return a;
+    return area2_of(h_.size(), [this](size_t k) { return vertex(k); });
+  }
+  /// The same from its corners (the same sum, in the same order).
+  static T area2(const Corners& c) {
+    return area2_of(c.at.size(), [&c](size_t k) { return c.at[k]; });
   }
 
  private:
@@ -383,6 +415,20 @@ class Mask {
   struct Reach {
     T lo_x{}, hi_x{}, lo_y{}, hi_y{};
   };
+  template <class V>
+  static T area2_of(size_t n, V vertex_at) {
+    T a(0);
+    if (n == 0) return a;
+    const Point2T<T> first = vertex_at(0);
+    Point2T<T> p = first;
+    for (size_t k = 0; k < n; ++k) {
+      const Point2T<T> q = k + 1 < n ? vertex_at(k + 1) : first;
+      a += p.x * q.y - q.x * p.y;
+      p = q;
+    }
+    return a;
+  }
+
   Reach reach() const {
     Reach r;
     if constexpr (std::is_floating_point_v<T>) {

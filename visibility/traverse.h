@@ -97,6 +97,12 @@ class Traversal {
     thread_local std::vector<int32_t> last_into;
     if (last_into.size() < c.cells.size()) last_into.assign(c.cells.size(), -1);
     last_into_ = last_into.data();
+    if (c.portal_table.fits(c)) {
+      table_ = &c.portal_table;
+    } else {  // a complex never indexed (one a test made by hand): laid out for this search
+      own_table_ = lay_out_portals(c);
+      table_ = &own_table_;
+    }
   }
 
   /// The search from the eye in cell `start`. An eye on the boundary of its cell (within
@@ -229,8 +235,23 @@ class Traversal {
     return {dotT(n, right_), dotT(n, up_), dotT(n, forward_)};
   }
 
+  using Corners = typename Mask<T>::Corners;
+  using Seen = CellComplex::PortalTable::Seen;
+
+  /// Corner k of the portal seen as s.
+  const Vec3& corner(const Seen& s, size_t k) const { return table_->corners[size_t(s.corner0) + k]; }
+
+  /// How a portal faces the eye: its normal N (into p.cell[1], exact in T) and the eye's
+  /// side of its plane, s = N·(eye − corner) (parallel: N·(−forward)).
+  struct Facing {
+    Vec3T<T> N;
+    T s;
+  };
+
   void visit(CellId cell, const Mask<T>& mask, int parent, PortalId via, int depth) {
-    const int self = emit(cell, mask, parent, via, depth);
+    Corners corners;  // its own: the search recurses from here
+    mask.corners(corners);
+    const int self = emit(cell, corners, parent, via, depth);
     std::vector<Vec2> mask_here = out_.avenues[size_t(self)].mask;  // a copy: the avenues move as the search adds more
     out_.max_depth = std::max(out_.max_depth, depth);
     on_path_[size_t(cell)] = 1;
@@ -238,23 +259,26 @@ class Traversal {
       reached_.push_back({mask, box_of(mask_here), last_into_[size_t(cell)]});
       last_into_[size_t(cell)] = self;
     }
-    for_each_portal_seen(cell, mask_here, [&](PortalId pi) { consider(cell, mask, self, via, depth, pi); });
+    for_each_portal_seen(cell, mask_here, via,
+                         [&](const Seen& s, const Facing& fc) { consider(mask, corners, self, depth, s, fc); });
     on_path_[size_t(cell)] = 0;
   }
 
   /// The mask's vertices in double, as an Avenue keeps them.
-  static std::vector<Vec2> doubles_of(const Mask<T>& m) {
+  static std::vector<Vec2> doubles_of(const Corners& c) {
     std::vector<Vec2> v;
-    v.reserve(m.half_planes().size());
-    for (size_t k = 0; k < m.half_planes().size(); ++k) {
-      const Point2T<T> p = m.vertex(k);
-      v.push_back({to_double_of(p.x), to_double_of(p.y)});
-    }
+    v.reserve(c.at.size());
+    for (const Point2T<T>& p : c.at) v.push_back({to_double_of(p.x), to_double_of(p.y)});
     return v;
   }
+  static std::vector<Vec2> doubles_of(const Mask<T>& m) {
+    thread_local Corners c;
+    m.corners(c);
+    return doubles_of(c);
+  }
 
-  /// Appends the avenue (cell, mask, ...) to the visible set; returns its index.
-  int emit(CellId cell, const Mask<T>& mask, int parent, PortalId via, int depth) {
+  /// Appends the avenue (cell, the mask of these corners, ...) to the visible set; returns its index.
+  int emit(CellId cell, const Corners& mask, int parent, PortalId via, int depth) {
     Avenue a;
     a.cell = cell;
     a.parent = parent;
@@ -265,26 +289,35 @@ class Traversal {
     return int(out_.avenues.size()) - 1;
   }
 
-  /// Calls f for each portal of `cell` that rays through `mask` (its vertices in double)
-  /// may pass: each face's portals, on a long side face (a corridor's wall of doors) only
-  /// those within the stretch of wall the mask can see (portals are sorted along side
-  /// faces), and none that the mask's cone surely misses. `mask` must outlive the calls:
-  /// where f may append avenues (which moves the visible set's masks), the caller's own copy.
+  /// Calls f(portal, its Facing) for each portal of `cell` but `via` (the one the mask came
+  /// through) that rays through `mask` (its vertices in double) may pass: each face's
+  /// portals, on a long side face (a corridor's wall of doors) only those within the
+  /// stretch of wall the mask can see (portals are sorted along side faces), none seen from
+  /// behind (facing(), the cheaper test: about half of a cell's portals end there), and
+  /// none that the mask's cone surely misses. `mask` must outlive the calls: where f may
+  /// append avenues (which moves the visible set's masks), the caller's own copy.
   template <class F>
-  void for_each_portal_seen(CellId cell, const std::vector<Vec2>& mask, F&& f) {
-    const Cell& cl = c_.cells[size_t(cell)];
+  void for_each_portal_seen(CellId cell, const std::vector<Vec2>& mask, PortalId via, F&& f) {
+    const CellComplex::PortalTable& t = *table_;
     Cone cone;  // made when the first portal not seen edge-on wants it (a plan's cells may have none)
     bool cone_made = false;
-    for (size_t k = 0; k < cl.faces.size(); ++k) {
-      const auto& ps = cl.faces[k].portals;
-      size_t lo = 0, hi = ps.size();
-      if (cl.prism && k < cl.footprint.size() && ps.size() > kLinearScan) side_range(cl, k, mask, lo, hi);
+    Facing fc;
+    const int32_t first_face = t.cell_faces[size_t(cell)], end_face = t.cell_faces[size_t(cell) + 1];
+    for (int32_t face = first_face; face < end_face; ++face) {
+      const Seen* ps = t.seen.data() + t.face_seen[size_t(face)];
+      size_t lo = 0, hi = size_t(t.face_seen[size_t(face) + 1] - t.face_seen[size_t(face)]);
+      if (hi > kLinearScan) {
+        const Cell& cl = c_.cells[size_t(cell)];
+        const size_t k = size_t(face - first_face);
+        if (cl.prism && k < cl.footprint.size()) side_range(cl, k, ps, hi, mask, lo, hi);
+      }
       for (size_t i = lo; i < hi; ++i) {
+        if (ps[i].portal == via || !facing(ps[i], fc)) continue;
         if (!seen_edge_on(ps[i])) {
           if (!cone_made) cone = cone_planes(mask), cone_made = true;
           if (surely_outside(cone, ps[i])) continue;
         }
-        f(ps[i]);
+        f(ps[i], fc);
       }
     }
   }
@@ -292,8 +325,7 @@ class Traversal {
   /// Whether parallel rays see portal pi edge-on, in double (a door in a plan): such a
   /// portal lies along the side of a mask's prism, where no plane of it culls the portal;
   /// facing() refuses it exactly.
-  bool seen_edge_on(PortalId pi) const {
-    const Portal& p = c_.portals[size_t(pi)];
+  bool seen_edge_on(const Seen& p) const {
     return parallel_ && std::fabs(dot(p.plane.n, cam_.forward)) <= 1e-12 * length(p.plane.n);
   }
 
@@ -355,12 +387,11 @@ class Traversal {
   /// A cheap, conservative cull before the kernel's exact work: true when every vertex of
   /// the portal lies clearly outside one plane of the mask's cone (by more than a margin far
   /// above double rounding), so no ray through the mask can pass the portal.
-  bool surely_outside(const Cone& cone, PortalId pi) const {
-    const Portal& p = c_.portals[size_t(pi)];
+  bool surely_outside(const Cone& cone, const Seen& p) const {
     for (const Plane& n : cone) {
       bool all_out = true;
-      for (const Vec3& v : p.poly) {
-        const Vec3 d = v - eye_d_;
+      for (size_t k = 0; k < p.corners; ++k) {
+        const Vec3 d = corner(p, k) - eye_d_;
         if (n.eval(d) >= -1e-9 * (1 + std::fabs(d.x) + std::fabs(d.y) + std::fabs(d.z) + std::fabs(n.d))) {
           all_out = false;
           break;
@@ -374,15 +405,17 @@ class Traversal {
   /// Portals on a side face beyond which a mask is never worth a look-up.
   static constexpr size_t kLinearScan = 8;
 
-  /// The index range [lo, hi) of side face k's portals that the mask can see: the
-  /// stretch of the face's line hit by rays through the mask (conservatively, in double,
-  /// with a margin; rays parallel to the face reach out to infinity).
-  void side_range(const Cell& cl, size_t k, const std::vector<Vec2>& mask, size_t& lo, size_t& hi) const {
+  /// The index range [lo, hi) of side face k's portals (its n portals seen, ps) that the
+  /// mask can see: the stretch of the face's line hit by rays through the mask
+  /// (conservatively, in double, with a margin; rays parallel to the face reach out to
+  /// infinity).
+  void side_range(const Cell& cl, size_t k, const Seen* ps, size_t n_ps, const std::vector<Vec2>& mask, size_t& lo,
+                  size_t& hi) const {
     const size_t n = cl.footprint.size();
     const Vec2 a = cl.footprint[k], b = cl.footprint[(k + 1) % n];
     const Vec2 u = (1.0 / length(b - a)) * (b - a);
     const Vec3 nrm = cl.faces[k].plane.n;
-    if (parallel_) return side_range_parallel(cl, k, a, u, mask, lo, hi);
+    if (parallel_) return side_range_parallel(cl, k, ps, n_ps, a, u, mask, lo, hi);
     // Signed distance from the eye to the face's plane: positive when the eye is on the
     // cell's side (its own cell), negative beyond it (a cell seen through portals). A ray d
     // meets the plane ahead when h / (n·d) > 0.
@@ -412,15 +445,15 @@ class Traversal {
       lo = hi = 0;
       return;
     }
-    portal_range(cl, k, a, u, smin - 1e-6 * (1 + std::fabs(se) + length(b - a)),
+    portal_range(cl, k, ps, n_ps, a, u, smin - 1e-6 * (1 + std::fabs(se) + length(b - a)),
                  smax + 1e-6 * (1 + std::fabs(se) + length(b - a)), lo, hi);
   }
 
   /// The same for parallel rays: a ray from o along f meets the face's plane at an affine
   /// function of the mask point, so the mask's vertices bound the stretch (hits behind the
   /// ray's start only widen it); a face parallel to the rays keeps them all.
-  void side_range_parallel(const Cell& cl, size_t k, Vec2 a, Vec2 u, const std::vector<Vec2>& mask, size_t& lo,
-                           size_t& hi) const {
+  void side_range_parallel(const Cell& cl, size_t k, const Seen* ps, size_t n_ps, Vec2 a, Vec2 u,
+                           const std::vector<Vec2>& mask, size_t& lo, size_t& hi) const {
     const Plane& pl = cl.faces[k].plane;
     const double nf = dot(pl.n, cam_.forward);
     if (!(std::fabs(nf) > 1e-9)) return;
@@ -433,16 +466,17 @@ class Traversal {
     }
     if (!std::isfinite(smin) || !std::isfinite(smax)) return;
     const double margin = 1e-6 * (1 + std::fabs(smin) + std::fabs(smax));
-    portal_range(cl, k, a, u, smin - margin, smax + margin, lo, hi);
+    portal_range(cl, k, ps, n_ps, a, u, smin - margin, smax + margin, lo, hi);
   }
 
   /// The index range [lo, hi) of side face k's portals that meet the stretch [smin, smax]
   /// of the face's line (coordinate along u from footprint vertex a).
-  void portal_range(const Cell& cl, size_t k, Vec2 a, Vec2 u, double smin, double smax, size_t& lo, size_t& hi) const {
-    const auto& ps = cl.faces[k].portals;
-    auto extent = [&](PortalId p, bool hi_end) {
+  void portal_range(const Cell& cl, size_t k, const Seen* ps, size_t n_ps, Vec2 a, Vec2 u, double smin, double smax,
+                    size_t& lo, size_t& hi) const {
+    auto extent = [&](const Seen& p, bool hi_end) {
       double s = hi_end ? -HUGE_VAL : HUGE_VAL;
-      for (Vec3 v : c_.portals[size_t(p)].poly) {
+      for (size_t i = 0; i < p.corners; ++i) {
+        const Vec3& v = corner(p, i);
         double t = dot(Vec2{v.x, v.y} - a, u);
         s = hi_end ? std::max(s, t) : std::min(s, t);
       }
@@ -450,92 +484,76 @@ class Traversal {
     };
     // Sorted by start; where they do not overlap (the rule), sorted by end too. Stacked
     // portals (Face::portals_overlap) are scanned from the first, the cone culls the rest.
+    const Seen* end = ps + n_ps;
     lo = cl.faces[k].portals_overlap
              ? 0
-             : size_t(std::partition_point(ps.begin(), ps.end(), [&](PortalId p) { return extent(p, true) < smin; }) -
-                      ps.begin());
-    hi = size_t(std::partition_point(ps.begin() + long(lo), ps.end(), [&](PortalId p) { return extent(p, false) <= smax; }) -
-                ps.begin());
+             : size_t(std::partition_point(ps, end, [&](const Seen& p) { return extent(p, true) < smin; }) - ps);
+    hi = size_t(std::partition_point(ps + lo, end, [&](const Seen& p) { return extent(p, false) <= smax; }) - ps);
   }
 
-  void consider(CellId cell, const Mask<T>& mask, int self, PortalId via, int depth, PortalId pi) {
-    if (pi == via) return;
-    const CellId other = c_.portals[size_t(pi)].other(cell);
+  void consider(const Mask<T>& mask, const Corners& corners, int self, int depth, const Seen& s, const Facing& fc) {
+    const CellId other = s.other;
     if (on_path_[size_t(other)]) return;
-    Facing fc;
-    if (!facing(cell, pi, fc)) return;  // before copying the mask: most portals end here
     Mask<T> m;
-    if (!through(cell, pi, fc, mask, m)) return;
+    if (!through(s, fc, mask, corners, m)) return;
     if (prune_ && covered(other, m)) {
       ++out_.avenues_pruned;
       return;
     }
-    visit(other, m, self, pi, depth + 1);
+    visit(other, m, self, s.portal, depth + 1);
   }
-
-  /// How a portal faces the eye: its normal N (into p.cell[1], exact in T) and the eye's
-  /// side of its plane, s = N·(eye − corner) (parallel: N·(−forward)).
-  struct Facing {
-    Vec3T<T> N;
-    T s;
-  };
 
   /// The first half of through(), without the mask: false when no ray from the eye in
   /// `cell` can cross portal pi (seen from behind, or edge-on by parallel rays).
-  bool facing(CellId cell, PortalId pi, Facing& fc) {
-    const Portal& p = c_.portals[size_t(pi)];
+  bool facing(const Seen& p, Facing& fc) {
     ++out_.portals_tested;
     // Which side of the portal's plane is the eye on? Exactly, from input vertices: the
     // corners spanning the most area (not simply the first three, which may hold two
-    // corners a rounding apart: see rounded_apart).
-    const size_t n = p.poly.size();
-    size_t k1 = 1;
-    double most = -1;
-    for (size_t k = 1; k + 1 < n; ++k) {
-      const Vec3 c = cross(p.poly[k] - p.poly[0], p.poly[k + 1] - p.poly[0]);
-      if (const double a = dot(c, c); a > most) most = a, k1 = k;  // twice the area, squared
-    }
-    const Vec3T<T> v0 = in(p.poly[0]), v1 = in(p.poly[k1]), v2 = in(p.poly[k1 + 1]);
+    // corners a rounding apart: see rounded_apart), found when the table was laid out.
+    const size_t k1 = p.spread;
+    const Vec3T<T> v0 = in(corner(p, 0)), v1 = in(corner(p, k1)), v2 = in(corner(p, k1 + 1));
     fc.N = crossT(sub(v1, v0), sub(v2, v0));  // points into p.cell[1]
     // Parallel: the eye is at infinity behind the picture, s = N·(−f).
     fc.s = parallel_ ? -dotT(fc.N, forward_) : dotT(fc.N, sub(eye_, v0));
     if (fc.s == T(0)) return !parallel_;  // parallel rays never cross a portal seen edge-on
-    return (fc.s < T(0)) == (cell == p.cell[0]);  // else seen from behind
+    return (fc.s < T(0)) == p.first;  // else seen from behind
   }
 
-  /// Sets m to mask `from` (of an avenue in `cell`) narrowed to the rays that also pass
-  /// portal pi, seen from `cell`, once facing() said it may be crossed: false when none of
-  /// area do (the eye in the portal's plane but outside it, or clipped away). In floating
-  /// point a needle the clips leave with a corner strayed outside `from` is settled
-  /// (Mask::settle_within).
-  bool through(CellId cell, PortalId pi, const Facing& fc, const Mask<T>& from, Mask<T>& m) {
+  /// Sets m to mask `from` (of an avenue in `cell`; `from_corners`, its corners) narrowed
+  /// to the rays that also pass portal pi, seen from `cell`, once facing() said it may be
+  /// crossed: false when none of area do (the eye in the portal's plane but outside it, or
+  /// clipped away). In floating point a needle the clips leave with a corner strayed
+  /// outside `from` is settled (Mask::settle_within).
+  bool through(const Seen& p, const Facing& fc, const Mask<T>& from, const Corners& from_corners, Mask<T>& m) {
     m = from;
-    const Portal& p = c_.portals[size_t(pi)];
-    const size_t n = p.poly.size();
+    const Corners* now = &from_corners;  // m's corners while no clip has changed it
+    const size_t n = p.corners;
     const Vec3T<T>& N = fc.N;
     const T& s = fc.s;
-    const bool from_first = cell == p.cell[0];
+    const bool from_first = p.first;
     if (s == T(0)) {
       // The eye stands in the portal's plane: through it, if it stands in the portal,
       // lies the whole half-space on the far side; otherwise it is seen edge-on.
       if (!eye_in_polygon(p, N)) return false;
       const Vec3T<T> toward = from_first ? N : Vec3T<T>{-N.x, -N.y, -N.z};
-      if (!m.clip(trace(toward, eye_))) return false;
+      if (!m.clip(trace(toward, eye_), &now)) return false;
     } else {
       // Rays through the portal: inside every plane through the eye and an edge.
       // With the eye behind N (s < 0) the edge normals (a-e)×(b-e) point inwards; for
       // parallel rays their limit as the eye recedes along −f, f×(b−a).
       for (size_t k = 0; k < n; ++k) {
-        if (rounded_apart(p.poly[k], p.poly[(k + 1) % n])) continue;
-        const Vec3T<T> a = in(p.poly[k]), b = in(p.poly[(k + 1) % n]);
+        if (rounded_apart(corner(p, k), corner(p, (k + 1) % n))) continue;
+        const Vec3T<T> a = in(corner(p, k)), b = in(corner(p, (k + 1) % n));
         Vec3T<T> e = parallel_ ? crossT(forward_, sub(b, a)) : crossT(sub(a, eye_), sub(b, eye_));
         if (s > T(0)) e = {-e.x, -e.y, -e.z};
-        if (!m.clip(trace(e, a))) return false;
+        if (!m.clip(trace(e, a), &now)) return false;
       }
     }
-    if (!(m.area2() > T(0))) return false;
+    thread_local Corners clipped;
+    if (!now) m.corners(clipped), now = &clipped;
+    if (!(Mask<T>::area2(*now) > T(0))) return false;
     bool settled = false;
-    const bool kept = m.settle_within(from, &settled);
+    const bool kept = m.settle_within(from, from_corners, *now, &settled);
     out_.masks_settled += settled;
     return kept;
   }
@@ -691,18 +709,16 @@ class Traversal {
       }
     }
     for (Piece& piece : ps) {
-      const int self = emit(cell, piece.mask, piece.parent, piece.via, piece.depth);
+      piece.mask.corners(corners_);
+      const int self = emit(cell, corners_, piece.parent, piece.via, piece.depth);
       // Its own mask, by reference: nothing below appends avenues.
-      for_each_portal_seen(cell, out_.avenues[size_t(self)].mask, [&](PortalId pi) {
-        if (pi == piece.via) return;
-        const CellId other = c_.portals[size_t(pi)].other(cell);
-        Facing fc;
-        if (!facing(cell, pi, fc)) return;  // before copying the mask: most portals end here
+      for_each_portal_seen(cell, out_.avenues[size_t(self)].mask, piece.via, [&](const Seen& sp, const Facing& fc) {
+        const CellId other = sp.other;
         Mask<T> m;
         // A hull's first parents are not its rays' chain (they may pass cells its other
         // rays meet later): the hull search ends instead where a cell has nothing new.
-        if (!through(cell, pi, fc, piece.mask, m) || (!hull_ && on_chain(self, other))) return;
-        add_piece(other, std::move(m), self, pi, piece.depth + 1);
+        if (!through(sp, fc, piece.mask, corners_, m) || (!hull_ && on_chain(self, other))) return;
+        add_piece(other, std::move(m), self, sp.portal, piece.depth + 1);
       });
     }
     ps.clear();
@@ -777,17 +793,19 @@ class Traversal {
   }
 
   /// Closed point-in-convex-polygon test of the eye, which lies in the polygon's plane.
-  bool eye_in_polygon(const Portal& p, const Vec3T<T>& N) const {
-    const size_t n = p.poly.size();
+  bool eye_in_polygon(const Seen& p, const Vec3T<T>& N) const {
+    const size_t n = p.corners;
     for (size_t k = 0; k < n; ++k) {
-      if (rounded_apart(p.poly[k], p.poly[(k + 1) % n])) continue;
-      Vec3T<T> a = in(p.poly[k]), b = in(p.poly[(k + 1) % n]);
+      if (rounded_apart(corner(p, k), corner(p, (k + 1) % n))) continue;
+      Vec3T<T> a = in(corner(p, k)), b = in(corner(p, (k + 1) % n));
       if (dotT(crossT(sub(b, a), sub(eye_, a)), N) < T(0)) return false;
     }
     return true;
   }
 
   const CellComplex& c_;
+  const CellComplex::PortalTable* table_ = nullptr;  ///< c_'s, or own_table_
+  CellComplex::PortalTable own_table_;               ///< for a complex never indexed
   VisibleSet& out_;
   Vec3T<T> eye_, right_, up_, forward_;
   Mask<T> window_;
@@ -811,6 +829,7 @@ class Traversal {
   std::vector<CellId>* waiters_ = nullptr;      ///< per cell: cells waiting on it
   uint8_t* state_ = nullptr;                    ///< per cell: kIdle or kPending
   std::vector<CellId> touched_, queued_, ready_;
+  Corners corners_;            ///< the merged search: the corners of the piece being expanded
   Vec3 eye_d_;                 ///< the eye in double, for culling only
   Camera cam_;
   bool parallel_ = false;      ///< cam_.projection == Projection::Parallel
