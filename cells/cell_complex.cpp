@@ -123,11 +123,14 @@ CellComplex::PortalTable lay_out_portals(const CellComplex& c) {
     faces += cl.faces.size();
     for (const Face& f : cl.faces) sides += f.portals.size();
   }
+  std::vector<int32_t> at(portals.size(), -1);  // per portal: its entry in the cell at hand
+  t.listed.reserve(sides);
   t.cell_faces.reserve(cells.size() + 1);
   t.face_seen.reserve(faces + 1);
   t.seen.reserve(sides);
   for (CellId id = 0; id < CellId(cells.size()); ++id) {
     t.cell_faces.push_back(int32_t(t.face_seen.size()));
+    const size_t first_seen = t.seen.size();
     for (const Face& f : cells[size_t(id)].faces) {
       t.face_seen.push_back(int32_t(t.seen.size()));
       for (PortalId pi : f.portals) {
@@ -147,9 +150,16 @@ CellComplex::PortalTable lay_out_portals(const CellComplex& c) {
           if (const double a = dot(n, n); a > most) most = a, s.spread = uint16_t(k);
         }
         t.corners.insert(t.corners.end(), p.poly.begin(), p.poly.end());
+        at[size_t(pi)] = int32_t(t.seen.size());
         t.seen.push_back(s);
       }
     }
+    // As many as the cell's entries in `seen` (the same, in a valid complex).
+    for (PortalId pi : cells[size_t(id)].portals)
+      if (t.listed.size() < t.seen.size() && pi >= 0 && size_t(pi) < at.size() && at[size_t(pi)] >= 0)
+        t.listed.push_back(at[size_t(pi)]);
+    t.listed.resize(t.seen.size(), -1);
+    for (size_t i = first_seen; i < t.seen.size(); ++i) at[size_t(t.seen[i].portal)] = -1;
   }
   t.cell_faces.push_back(int32_t(t.face_seen.size()));
   t.face_seen.push_back(int32_t(t.seen.size()));

@@ -241,6 +241,9 @@ struct CellComplex {
     std::vector<int32_t> cell_faces;  ///< per cell, and one more: its first face's entry in face_seen
     std::vector<int32_t> face_seen;   ///< per face of every cell in order, and one more: its first in `seen`
     std::vector<Seen> seen;
+    /// Beside `seen`, each cell's portals in the order of Cell::portals: indices into `seen`
+    /// (-1 past the end of a cell whose list names fewer portals than its faces hold).
+    std::vector<int32_t> listed;
     std::vector<Vec3> corners;
     size_t portal_count = 0;          ///< portals.size() when laid out
     /// Whether the table was laid out for a complex of c's size (a complex changed since

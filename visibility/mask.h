@@ -299,6 +299,7 @@ class Mask {
       for (const Point2T<T>& p : chain) extent = std::max({extent, T(std::fabs(p.x)), T(std::fabs(p.y))});
       if (grow_out) grow = T(kHullGrowth) * (T(1) + extent);
     }
+    m.h_.reserve(chain.size());  // one allocation, not one per doubling
     for (size_t k = 0; k < chain.size(); ++k) {
       const Point2T<T>& p = chain[k];
       const Point2T<T>& q = chain[(k + 1) % chain.size()];

@@ -619,14 +619,18 @@ class Traversal {
   /// A pending cell in front of `cell` (the eye on its side of a portal between them,
   /// clearly), which may yet send it a piece; kNoCell when there is none.
   CellId blocker(CellId cell) const {
-    for (PortalId pi : c_.cells[size_t(cell)].portals) {
-      const Portal& p = c_.portals[size_t(pi)];
-      const CellId other = p.other(cell);
+    const CellComplex::PortalTable& t = *table_;
+    const size_t begin = size_t(t.face_seen[size_t(t.cell_faces[size_t(cell)])]);
+    const size_t end = size_t(t.face_seen[size_t(t.cell_faces[size_t(cell) + 1])]);
+    for (size_t i = begin; i < end; ++i) {  // in the order of Cell::portals
+      if (t.listed[i] < 0) continue;
+      const Seen& p = t.seen[size_t(t.listed[i])];
+      const CellId other = p.other;
       if (other == cell || state_[size_t(other)] != kPending) continue;
       const double e = p.plane.eval(eye_d_), tol = 1e-9 * (1 + length(eye_d_));
       // p.plane's normal points into cell[1]: the eye is on other's side when it is on the
       // side away from `cell`.
-      if (cell == p.cell[1] ? e < -tol : e > tol) return other;
+      if (!p.first ? e < -tol : e > tol) return other;
     }
     return kNoCell;
   }
