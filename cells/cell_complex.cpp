@@ -140,14 +140,14 @@ CellComplex::PortalTable lay_out_portals(const CellComplex& c) {
         s.portal = pi;
         s.other = p.other(id);
         s.corner0 = int32_t(t.corners.size());
-        s.corners = uint16_t(p.poly.size());
+        s.corners = uint32_t(p.poly.size());
         s.first = p.cell[0] == id;
         // As the search would find it: the corners after corner 0 spanning the most area
         // with it (not simply the first three, which may hold two a rounding apart).
         double most = -1;
         for (size_t k = 1; k + 1 < p.poly.size(); ++k) {
           const Vec3 n = cross(p.poly[k] - p.poly[0], p.poly[k + 1] - p.poly[0]);
-          if (const double a = dot(n, n); a > most) most = a, s.spread = uint16_t(k);
+          if (const double a = dot(n, n); a > most) most = a, s.spread = uint32_t(k);
         }
         t.corners.insert(t.corners.end(), p.poly.begin(), p.poly.end());
         at[size_t(pi)] = int32_t(t.seen.size());

@@ -234,8 +234,8 @@ struct CellComplex {
       PortalId portal = -1;
       CellId other = kNoCell; ///< the cell beyond it
       int32_t corner0 = 0;    ///< its first corner in `corners`
-      uint16_t corners = 0;   ///< how many (Portal::poly, in order)
-      uint16_t spread = 1;    ///< k: corners 0, k and k + 1 span the most area (1 for fewer than 4)
+      uint32_t corners = 0;   ///< how many (Portal::poly, in order)
+      uint32_t spread = 1;    ///< k: corners 0, k and k + 1 span the most area (1 for fewer than 4)
       bool first = false;     ///< the cell is the portal's cell[0]
     };
     std::vector<int32_t> cell_faces;  ///< per cell, and one more: its first face's entry in face_seen
