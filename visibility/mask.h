@@ -70,21 +70,19 @@ class Mask {
   /// from the mask it was reached through), which would otherwise compute the same
   /// vertices again at each. They are the values vertex() gives, and only ever read, never
   /// fed into a construction.
+  /// The bounds of a mask's vertices (floating point; exact number types: none needed).
+  struct Reach {
+    T lo_x{}, hi_x{}, lo_y{}, hi_y{};
+  };
   struct Corners {
     std::vector<Point2T<T>> at;  ///< at[k] == vertex(k)
-    T lo_x{}, hi_x{}, lo_y{}, hi_y{};  ///< floating point: the bounds of `at` (reach()); exact: unset
+    Reach reach;                 ///< their bounds, as reach() gives them
   };
   /// Fills `out` with this mask's vertices and their bounds (its storage reused).
   void corners(Corners& out) const {
     out.at.resize(h_.size());
     for (size_t k = 0; k < h_.size(); ++k) out.at[k] = vertex(k);
-    if constexpr (std::is_floating_point_v<T>) {
-      out.lo_x = out.lo_y = std::numeric_limits<T>::infinity(), out.hi_x = out.hi_y = -out.lo_x;
-      for (const Point2T<T>& v : out.at) {
-        out.lo_x = std::min(out.lo_x, v.x), out.hi_x = std::max(out.hi_x, v.x);
-        out.lo_y = std::min(out.lo_y, v.y), out.hi_y = std::max(out.hi_y, v.y);
-      }
-    }
+    out.reach = reach_of(out.at.size(), [&out](size_t k) { return out.at[k]; });
   }
 
   /// Intersects the mask with half-plane l. Returns false when nothing of area is left
@@ -364,7 +362,7 @@ class Mask {
   bool settle_within(const Mask& before, const Corners& before_corners, const Corners& own, bool* settled = nullptr) {
     if constexpr (std::is_floating_point_v<T>) {
       if (empty() || before.empty()) return !empty();
-      const Reach r{before_corners.lo_x, before_corners.hi_x, before_corners.lo_y, before_corners.hi_y};
+      const Reach& r = before_corners.reach;
       thread_local std::vector<Point2T<T>> kept;
       kept.clear();
       bool moved = false;
@@ -412,10 +410,6 @@ class Mask {
   }
 
  private:
-  /// The bounds of a mask's vertices (floating point; exact number types: none needed).
-  struct Reach {
-    T lo_x{}, hi_x{}, lo_y{}, hi_y{};
-  };
   template <class V>
   static T area2_of(size_t n, V vertex_at) {
     T a(0);
@@ -431,11 +425,16 @@ class Mask {
   }
 
   Reach reach() const {
+    return reach_of(h_.size(), [this](size_t k) { return vertex(k); });
+  }
+  /// The bounds of n vertices, vertex_at(k) each (exact number types: none).
+  template <class V>
+  static Reach reach_of(size_t n, V vertex_at) {
     Reach r;
     if constexpr (std::is_floating_point_v<T>) {
       r.lo_x = r.lo_y = std::numeric_limits<T>::infinity(), r.hi_x = r.hi_y = -r.lo_x;
-      for (size_t k = 0; k < h_.size(); ++k) {
-        const Point2T<T> v = vertex(k);
+      for (size_t k = 0; k < n; ++k) {
+        const Point2T<T> v = vertex_at(k);
         r.lo_x = std::min(r.lo_x, v.x), r.hi_x = std::max(r.hi_x, v.x);
         r.lo_y = std::min(r.lo_y, v.y), r.hi_y = std::max(r.hi_y, v.y);
       }

@@ -322,7 +322,7 @@ class Traversal {
     }
   }
 
-  /// Whether parallel rays see portal pi edge-on, in double (a door in a plan): such a
+  /// Whether parallel rays see portal p edge-on, in double (a door in a plan): such a
   /// portal lies along the side of a mask's prism, where no plane of it culls the portal;
   /// facing() refuses it exactly.
   bool seen_edge_on(const Seen& p) const {
@@ -503,8 +503,8 @@ class Traversal {
     visit(other, m, self, s.portal, depth + 1);
   }
 
-  /// The first half of through(), without the mask: false when no ray from the eye in
-  /// `cell` can cross portal pi (seen from behind, or edge-on by parallel rays).
+  /// The first half of through(), without the mask: false when no ray from the eye in the
+  /// cell p is seen from can cross portal p (seen from behind, or edge-on by parallel rays).
   bool facing(const Seen& p, Facing& fc) {
     ++out_.portals_tested;
     // Which side of the portal's plane is the eye on? Exactly, from input vertices: the
@@ -519,8 +519,8 @@ class Traversal {
     return (fc.s < T(0)) == p.first;  // else seen from behind
   }
 
-  /// Sets m to mask `from` (of an avenue in `cell`; `from_corners`, its corners) narrowed
-  /// to the rays that also pass portal pi, seen from `cell`, once facing() said it may be
+  /// Sets m to mask `from` (of an avenue in the cell p is seen from; `from_corners`, its
+  /// corners) narrowed to the rays that also pass portal p, once facing() said it may be
   /// crossed: false when none of area do (the eye in the portal's plane but outside it, or
   /// clipped away). In floating point a needle the clips leave with a corner strayed
   /// outside `from` is settled (Mask::settle_within).
