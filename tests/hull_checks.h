@@ -74,11 +74,14 @@ inline void expect_hull_holds_merged(const CellComplex& c, const Camera& cam, Ce
   // the same lines in different orders, and a vertex where nearly parallel lines meet
   // moves with the rounding of each.
   const double tol = k == Kernel::Float ? 5e-3 : 1e-3 * 2 * cam.half_width() / cam.width;
+  // The hull masks of each cell, so that a vertex is held against its own cell's only
+  // (looked up through every hull avenue, a soup's thousands of avenues took most of a test).
+  std::vector<std::vector<const std::vector<Vec2>*>> hull_masks(c.cells.size());
+  for (const Avenue& h : hull.avenues) hull_masks[size_t(h.cell)].push_back(&h.mask);
   // How far v lies outside the nearest hull mask of `in` (HUGE_VAL: it has none).
   auto outside_hull = [&](CellId in, Vec2 v) {
     double least = HUGE_VAL;
-    for (const Avenue& h : hull.avenues)
-      if (h.cell == in) least = std::min(least, outside_by(h.mask, v));
+    for (const std::vector<Vec2>* m : hull_masks[size_t(in)]) least = std::min(least, outside_by(*m, v));
     return least;
   };
   auto held = [&](const Avenue& a) {

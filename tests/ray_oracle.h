@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "cells/cell_complex.h"
@@ -13,43 +15,44 @@
 
 namespace avenues::testing {
 
-/// Distance along `dir` from `o` to the first opaque polygon hit (dir need not be unit).
-/// An eye within kOnBoundary of a surface stands on it, as the search takes it (in the
-/// cells on both sides): that surface does not stop its rays.
+/// The distance along `dir` from `o` to face f's opaque polygons where it is less than
+/// `best`, else `best`. An eye within kOnBoundary of the face's plane stands on it, as the
+/// search takes it (in the cells on both sides): that face does not stop its rays.
+inline double face_hit(const Face& f, Vec3 o, Vec3 dir, double best) {
+  const double den = dot(f.plane.n, dir);
+  if (den == 0) return best;
+  if (std::fabs(f.plane.eval(o)) <= kOnBoundary * length(f.plane.n)) return best;
+  const double t = -f.plane.eval(o) / den;
+  if (!(t > 0) || t >= best) return best;
+  const Vec3 p = o + t * dir;
+  for (const OpaquePoly& op : f.opaque) {
+    // Inside the convex polygon (counter-clockwise about the inward normal -n), and
+    // within its bounds: the edge test alone holds a polygon of no area (a needle a few
+    // picometres long, a portal piece that rounded to nothing) to be the whole line
+    // through it.
+    const size_t m = op.poly.size();
+    Box3 bounds;
+    for (const Vec3& q : op.poly) bounds.add(q);
+    const double tol = 1e-9 * std::max({1.0, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+    bool in = bounds.contains(p, tol);
+    for (size_t k = 0; k < m && in; ++k) {
+      Vec3 a = op.poly[k], b = op.poly[(k + 1) % m];
+      // Two corners a rounding apart bound nothing: the edge between them has no
+      // direction of its own, and may turn the rounded polygon inward.
+      if (length(b - a) <= 1e-12 * std::max({1.0, std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)})) continue;
+      in = dot(cross(b - a, p - a), f.plane.n) <= 1e-12;
+    }
+    if (in) return t;
+  }
+  return best;
+}
+
+/// Distance along `dir` from `o` to the first opaque polygon hit (dir need not be unit):
+/// every face of every cell tried (OracleIndex::first_hit finds the same by boxes).
 inline double first_hit(const CellComplex& c, Vec3 o, Vec3 dir) {
   double best = std::numeric_limits<double>::infinity();
   for (const Cell& cell : c.cells)
-    for (const Face& f : cell.faces) {
-      double den = dot(f.plane.n, dir);
-      if (den == 0) continue;
-      if (std::fabs(f.plane.eval(o)) <= kOnBoundary * length(f.plane.n)) continue;
-      double t = -f.plane.eval(o) / den;
-      if (!(t > 0) || t >= best) continue;
-      Vec3 p = o + t * dir;
-      for (const OpaquePoly& op : f.opaque) {
-        // Inside the convex polygon (counter-clockwise about the inward normal -n), and
-        // within its bounds: the edge test alone holds a polygon of no area (a needle a few
-        // picometres long, a portal piece that rounded to nothing) to be the whole line
-        // through it.
-        bool in = true;
-        const size_t m = op.poly.size();
-        Box3 bounds;
-        for (const Vec3& q : op.poly) bounds.add(q);
-        const double tol = 1e-9 * std::max({1.0, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
-        in = bounds.contains(p, tol);
-        for (size_t k = 0; k < m && in; ++k) {
-          Vec3 a = op.poly[k], b = op.poly[(k + 1) % m];
-          // Two corners a rounding apart bound nothing: the edge between them has no
-          // direction of its own, and may turn the rounded polygon inward.
-          if (length(b - a) <= 1e-12 * std::max({1.0, std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)})) continue;
-          in = dot(cross(b - a, p - a), f.plane.n) <= 1e-12;
-        }
-        if (in) {
-          best = t;
-          break;
-        }
-      }
-    }
+    for (const Face& f : cell.faces) best = face_hit(f, o, dir, best);
   return best;
 }
 
@@ -69,6 +72,191 @@ inline double length_inside(const Cell& cell, Vec3 o, Vec3 dir, double t0, doubl
   return (t1 - t0) * length(dir);
 }
 
+/// A hierarchy of boxes (median splits along the longest side) over items given by their
+/// boxes: a ray's segment visits only the items whose boxes it passes through. The boxes
+/// are grown by a millionth of their size from the origin, a billion times what the exact
+/// tests round by, so an item it skips is one the exact test would reject.
+class BoxTree {
+ public:
+  explicit BoxTree(std::vector<Box3> boxes) : boxes_(std::move(boxes)) {
+    for (Box3& b : boxes_) {
+      const double reach = std::max({1.0, std::fabs(b.lo.x), std::fabs(b.lo.y), std::fabs(b.lo.z), std::fabs(b.hi.x),
+                                     std::fabs(b.hi.y), std::fabs(b.hi.z)});
+      b = b.grown(1e-6 * reach);
+    }
+    order_.resize(boxes_.size());
+    for (size_t k = 0; k < order_.size(); ++k) order_[k] = uint32_t(k);
+    if (order_.empty()) return;
+    nodes_.emplace_back();
+    build(0, 0, uint32_t(order_.size()));
+  }
+
+  /// Calls visit(item) for each item whose box the segment o + t·dir, t in [0, t1] meets,
+  /// nearer boxes first; visit returns the segment's new end (t1 or less).
+  template <class Visit>
+  void visit(Vec3 o, Vec3 dir, double t1, Visit&& visit) const {
+    if (nodes_.empty()) return;
+    uint32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& n = nodes_[stack[--top]];
+      double at;
+      if (!enters(n.box, o, dir, t1, at)) continue;
+      if (n.count > 0) {
+        for (uint32_t k = n.first; k < n.first + n.count; ++k) {
+          double in;
+          if (enters(boxes_[order_[k]], o, dir, t1, in)) t1 = visit(order_[k]);
+        }
+        continue;
+      }
+      // The nearer child on top.
+      double a = 0, b = 0;
+      const bool ea = enters(nodes_[n.first].box, o, dir, t1, a), eb = enters(nodes_[n.first + 1].box, o, dir, t1, b);
+      if (ea && eb) {
+        stack[top++] = a <= b ? n.first + 1 : n.first;
+        stack[top++] = a <= b ? n.first : n.first + 1;
+      } else if (ea) {
+        stack[top++] = n.first;
+      } else if (eb) {
+        stack[top++] = n.first + 1;
+      }
+    }
+  }
+
+  /// Calls visit(item) for each item whose box holds p within tol, until visit returns true.
+  template <class Visit>
+  void visit_holding(Vec3 p, double tol, Visit&& visit) const {
+    if (nodes_.empty()) return;
+    uint32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& n = nodes_[stack[--top]];
+      if (!n.box.contains(p, tol)) continue;
+      if (n.count == 0) {
+        stack[top++] = n.first, stack[top++] = n.first + 1;
+        continue;
+      }
+      for (uint32_t k = n.first; k < n.first + n.count; ++k)
+        if (boxes_[order_[k]].contains(p, tol) && visit(order_[k])) return;
+    }
+  }
+
+ private:
+  struct Node {
+    Box3 box;
+    uint32_t first = 0;  ///< a leaf's first item in order_, or an inner node's first child
+    uint32_t count = 0;  ///< items of a leaf; 0: inner
+  };
+
+  static double along(Vec3 v, int axis) { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; }
+
+  /// Whether the segment o + t·dir, t in [0, t1], meets box b; `at` is where it enters.
+  static bool enters(const Box3& b, Vec3 o, Vec3 dir, double t1, double& at) {
+    double t0 = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      const double oa = along(o, axis), da = along(dir, axis), lo = along(b.lo, axis), hi = along(b.hi, axis);
+      if (da == 0) {
+        if (oa < lo || oa > hi) return false;
+        continue;
+      }
+      double ta = (lo - oa) / da, tb = (hi - oa) / da;
+      if (ta > tb) std::swap(ta, tb);
+      t0 = std::max(t0, ta), t1 = std::min(t1, tb);
+      if (t0 > t1) return false;
+    }
+    at = t0;
+    return true;
+  }
+
+  /// Makes nodes_[slot] the node over order_[first, last), and its children below it.
+  void build(size_t slot, uint32_t first, uint32_t last) {
+    Box3 box, mids;
+    for (uint32_t k = first; k < last; ++k) {
+      const Box3& b = boxes_[order_[k]];
+      box.add(b.lo), box.add(b.hi);
+      mids.add(0.5 * (b.lo + b.hi));
+    }
+    nodes_[slot].box = box;
+    if (last - first <= 4) {
+      nodes_[slot].first = first, nodes_[slot].count = last - first;
+      return;
+    }
+    const Vec3 span = mids.hi - mids.lo;
+    const int axis = span.x >= span.y && span.x >= span.z ? 0 : span.y >= span.z ? 1 : 2;
+    const uint32_t mid = first + (last - first) / 2;
+    std::nth_element(order_.begin() + first, order_.begin() + mid, order_.begin() + last, [&](uint32_t a, uint32_t b) {
+      return along(boxes_[a].lo + boxes_[a].hi, axis) < along(boxes_[b].lo + boxes_[b].hi, axis);
+    });
+    // The two children side by side, so that an inner node names only the first.
+    const size_t children = nodes_.size();
+    nodes_.emplace_back(), nodes_.emplace_back();
+    nodes_[slot].first = uint32_t(children);
+    build(children, first, mid);
+    build(children + 1, mid, last);
+  }
+
+  std::vector<Box3> boxes_;
+  std::vector<uint32_t> order_;
+  std::vector<Node> nodes_;
+};
+
+/// The ray oracle with its faces and cells in box trees, built once for many rays: first_hit
+/// and the cells a ray crosses come out as the brute-force loops find them (tested in
+/// ray_oracle_test.cpp), in a time that grows with the log of the complex's size.
+class OracleIndex {
+ public:
+  explicit OracleIndex(const CellComplex& c) : c_(c), faces_(), face_tree_(face_boxes(c, faces_)), cell_tree_(cell_boxes(c)) {}
+
+  /// first_hit(c, o, dir).
+  double first_hit(Vec3 o, Vec3 dir) const {
+    double best = std::numeric_limits<double>::infinity();
+    face_tree_.visit(o, dir, best, [&](uint32_t k) {
+      best = face_hit(c_.cells[faces_[k].first].faces[faces_[k].second], o, dir, best);
+      return best;
+    });
+    return best;
+  }
+
+  /// Calls f(cell) for each cell whose box the segment o + t·dir, t in [0, t1], meets: every
+  /// cell the segment runs inside for any length, and some it misses.
+  template <class F>
+  void cells_near(Vec3 o, Vec3 dir, double t1, F&& f) const {
+    cell_tree_.visit(o, dir, t1, [&](uint32_t k) {
+      f(CellId(k));
+      return t1;
+    });
+  }
+
+ private:
+  static std::vector<Box3> face_boxes(const CellComplex& c, std::vector<std::pair<uint32_t, uint32_t>>& faces) {
+    std::vector<Box3> boxes;
+    for (size_t i = 0; i < c.cells.size(); ++i)
+      for (size_t j = 0; j < c.cells[i].faces.size(); ++j) {
+        const Face& f = c.cells[i].faces[j];
+        if (f.opaque.empty()) continue;
+        Box3 b;
+        for (const OpaquePoly& op : f.opaque)
+          for (Vec3 q : op.poly) b.add(q);
+        faces.push_back({uint32_t(i), uint32_t(j)});
+        boxes.push_back(b);
+      }
+    return boxes;
+  }
+  static std::vector<Box3> cell_boxes(const CellComplex& c) {
+    std::vector<Box3> boxes(c.cells.size());
+    for (size_t i = 0; i < c.cells.size(); ++i)
+      for (const Face& f : c.cells[i].faces)
+        for (Vec3 q : f.poly) boxes[i].add(q);
+    return boxes;
+  }
+
+  const CellComplex& c_;
+  std::vector<std::pair<uint32_t, uint32_t>> faces_;  ///< (cell, face) of each face with opaque polygons
+  BoxTree face_tree_, cell_tree_;
+};
+
 struct OracleResult {
   int missing = 0;  ///< (ray, cell) pairs: a ray crosses the cell before its first hit, the cell is not visible
   int extra = 0;    ///< avenues over a pixel in size whose cell the ray through their mask never enters
@@ -82,22 +270,24 @@ struct OracleResult {
 /// avenue's cell (the eye's own cell is exempt: the eye may stand on its face).
 inline OracleResult check_visible_set(const CellComplex& c, const Camera& cam, const VisibleSet& vs, int step = 1) {
   OracleResult r;
+  const OracleIndex index(c);
   std::vector<uint8_t> visible(c.cells.size(), 0);
   for (CellId id : vs.cells) visible[size_t(id)] = 1;
   for (int j = step / 2; j < cam.height; j += step)
     for (int i = step / 2; i < cam.width; i += step) {
       const Vec3 dir = cam.ray_through_raster({i + 0.5, j + 0.5});
-      const double t = first_hit(c, cam.eye, dir);
+      const double t = index.first_hit(cam.eye, dir);
       ++r.rays;
-      for (CellId id = 0; id < CellId(c.cells.size()); ++id)
+      index.cells_near(cam.eye, dir, t, [&](CellId id) {
         if (!visible[size_t(id)] && length_inside(c.cells[size_t(id)], cam.eye, dir, 0, t) > 1e-6) ++r.missing;
+      });
     }
   const double px2 = (cam.width / (2 * cam.half_width())) * (cam.height / (2 * cam.half_height()));
   for (const Avenue& a : vs.avenues) {
     if (signed_area(a.mask) * px2 <= 1 || a.depth == 0) continue;
     const Vec2 mid = centroid(a.mask);  // core/geometry.h
     const Vec3 dir = mid.x * cam.right + mid.y * cam.up + cam.forward;
-    if (!(length_inside(c.cells[size_t(a.cell)], cam.eye, dir, 0, first_hit(c, cam.eye, dir)) > 0)) ++r.extra;
+    if (!(length_inside(c.cells[size_t(a.cell)], cam.eye, dir, 0, index.first_hit(cam.eye, dir)) > 0)) ++r.extra;
   }
   return r;
 }
@@ -128,15 +318,17 @@ inline ParallelFrame frame_on_cut(const Camera& cam, const Plane& cut) {
 inline OracleResult check_parallel_rays(const CellComplex& c, const ParallelFrame& f, const std::vector<CellId>& cells,
                                         int step = 1) {
   OracleResult r;
+  const OracleIndex index(c);
   std::vector<uint8_t> visible(c.cells.size(), 0);
   for (CellId id : cells) visible[size_t(id)] = 1;
   for (int j = step / 2; j < f.ny; j += step)
     for (int i = step / 2; i < f.nx; i += step) {
       const Vec3 o = f.origin + ((i + 0.5) / f.nx) * f.right + ((j + 0.5) / f.ny) * f.up;
-      const double t = first_hit(c, o, f.direction);
+      const double t = index.first_hit(o, f.direction);
       ++r.rays;
-      for (CellId id = 0; id < CellId(c.cells.size()); ++id)
+      index.cells_near(o, f.direction, t, [&](CellId id) {
         if (!visible[size_t(id)] && length_inside(c.cells[size_t(id)], o, f.direction, 0, t) > 1e-6) ++r.missing;
+      });
     }
   return r;
 }

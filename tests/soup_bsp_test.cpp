@@ -542,7 +542,7 @@ TEST(SoupBsp, EveryMeshFromOutsideKeepsAllItsFacesAndAgreesWithRayCasting) {
 // of the Viking room's random views met such needles once; as the decomposition changed,
 // they met none, and the test no longer tested what it is named for. So the views checked
 // now are the first two of the room's random views where a search does settle a mask
-// (VisibleSet::masks_settled), and there must be two (each such view takes 30-50 s here). Their checks also cover the line
+// (VisibleSet::masks_settled), and there must be two. Their checks also cover the line
 // through two hull corners 7e-7 apart that the hull check once took for a side (outside_by
 // now skips sides that short).
 TEST(SoupBsp, NeedleMasksOfNearlyParallelPortalEdgesSeeNothing) {

@@ -25,8 +25,9 @@ namespace avenues::testing {
 
 /// Input triangles (of some area) with no opaque piece of the complex covering their
 /// centroid, on their plane, as (mesh, triangle) indices. Each triangle is looked up among
-/// the opaque pieces whose bounds hold the centroid. `near` [m]: how far off the triangle's
-/// plane a covering piece may lie (0: the rounding of one coordinate, 1e-9 of the far box).
+/// the opaque pieces whose bounds hold the centroid (found in a BoxTree). `near` [m]: how
+/// far off the triangle's plane a covering piece may lie (0: the rounding of one
+/// coordinate, 1e-9 of the far box).
 inline std::vector<std::pair<size_t, size_t>> missing_triangles(const CellComplex& c, const std::vector<Mesh>& meshes,
                                                                 double near = 0) {
   struct Piece {
@@ -35,14 +36,16 @@ inline std::vector<std::pair<size_t, size_t>> missing_triangles(const CellComple
     Box3 box;
   };
   std::vector<Piece> pieces;
+  std::vector<Box3> boxes;
   for (const Cell& cell : c.cells)
     for (const Face& f : cell.faces)
       for (const OpaquePoly& op : f.opaque) {
         Box3 b;
         for (Vec3 p : op.poly) b.add(p);
         pieces.push_back({&op, &f, b});
+        boxes.push_back(b);
       }
-  std::sort(pieces.begin(), pieces.end(), [](const Piece& a, const Piece& b) { return a.box.lo.x < b.box.lo.x; });
+  const BoxTree tree(std::move(boxes));
   const double scale = std::max({1.0, std::fabs(c.far_box.lo.x), std::fabs(c.far_box.hi.x), std::fabs(c.far_box.lo.y),
                                  std::fabs(c.far_box.hi.y), std::fabs(c.far_box.lo.z), std::fabs(c.far_box.hi.z)});
   const double tol = std::max(near, 1e-9 * scale);
@@ -56,23 +59,21 @@ inline std::vector<std::pair<size_t, size_t>> missing_triangles(const CellComple
       if (!(length(n) > 1e-20 * scale * scale)) continue;  // no area: dropped, with a warning
       const Vec3 g = (1.0 / 3) * (a + b + d);
       bool found = false;
-      for (const Piece& p : pieces) {
-        if (p.box.lo.x > g.x + tol) break;
-        if (!p.box.contains(g, tol) || std::fabs(p.face->plane.eval(g)) > tol) continue;
+      tree.visit_holding(g, tol, [&](uint32_t k) {
+        const Piece& p = pieces[k];
+        if (!p.box.contains(g, tol) || std::fabs(p.face->plane.eval(g)) > tol) return false;
         bool in = true;
         const auto& q = p.op->poly;
-        for (size_t k = 0; k < q.size() && in; ++k) {
+        for (size_t e = 0; e < q.size() && in; ++e) {
           // Two corners a rounding apart bound nothing: the edge between them has no
           // direction of its own, and may turn the rounded piece inward.
-          const Vec3 e = q[(k + 1) % q.size()] - q[k];
-          if (length(e) <= 1e-12 * scale) continue;
-          in = dot(cross(e, g - q[k]), p.face->plane.n) <= tol * length(e);
+          const Vec3 side = q[(e + 1) % q.size()] - q[e];
+          if (length(side) <= 1e-12 * scale) continue;
+          in = dot(cross(side, g - q[e]), p.face->plane.n) <= tol * length(side);
         }
-        if (in) {
-          found = true;
-          break;
-        }
-      }
+        found = in;
+        return found;
+      });
       if (!found) missing.emplace_back(mi, ti);
     }
   return missing;
