@@ -171,10 +171,11 @@ int run_cli(int argc, char** argv) {
   drawing->add_option("--samples", drawing_opt.samples, "pictures: the half-tone's samples per pixel, 1, 4 or 16")
       ->capture_default_str()
       ->check(samples_count());
-  drawing->add_option("-o,--output", drawing_opt.output,
+  drawing->add_option("-o,--output", drawing_opt.outputs,
                       "by extension: .svg .pdf .eps .dxf .hpgl .plt (vector) or .png .pgm .ppm .pbm (the half-tone "
-                      "with the drawing over it)")
+                      "with the drawing over it); repeat for several files of the one drawing")
       ->required()
+      ->allow_extra_args(false)
       ->type_name("FILE");
   drawing->add_option("--stats-json", drawing_opt.stats_json, "write visible cells, timings and the picture's frame as JSON")
       ->type_name("FILE");

@@ -146,10 +146,15 @@ int run_drawing(const DrawingOptions& opt) {
   const TraverseParams search = search_option(opt.search, kernel);
   if (search.hull_pieces)  // told before the plan is read
     throw std::runtime_error("--search hull is for walks and films; an architect's drawing takes merged or jones");
-  const bool picture = is_raster_path(opt.output);
-  if (!picture && !is_drawing_path(opt.output))
-    throw std::runtime_error("cannot write '" + opt.output + "': unknown format '" + lower_extension(opt.output) +
-                             "' (drawings: " + drawing_extensions() + "; pictures: " + raster_extensions() + ")");
+  // Every file's format, and that it can be written, known before the plan is read.
+  bool any_picture = false;
+  for (const std::string& out : opt.outputs) {
+    if (!is_raster_path(out) && !is_drawing_path(out))
+      throw std::runtime_error("cannot write '" + out + "': unknown format '" + lower_extension(out) +
+                               "' (drawings: " + drawing_extensions() + "; pictures: " + raster_extensions() + ")");
+    check_output_path(out);
+    any_picture = any_picture || is_raster_path(out);
+  }
   start_threads(0);  // the drawing's (and half-tone's) threads start while the plan is read
   LoadedPlan plan = load_plan_source(opt.plan, opt.import);
   const CellComplex& c = plan.complex;
@@ -160,25 +165,25 @@ int run_drawing(const DrawingOptions& opt) {
   const LineScene scene = prepare_line_scene(c);
   Drawing d = draw_architectural(c, scene, s.camera, s.cut, vs, s.options);
   d.title = c.plan_name + " — " + s.kind;
-  size_t lines = d.strokes.size();
+  const size_t lines = d.strokes.size();
   const double scale = parse_scale(opt.scale);
-  if (picture) {
-    // The half-tone of the same parallel view (the scanline renderer, fed by the same
-    // avenues), white where nothing is seen, and the drawing over it: the cut's poché and
-    // outlines, the lines beyond, the room names.
+  // The half-tone of the same parallel view (the scanline renderer, fed by the same
+  // avenues), white where nothing is seen, and the drawing over it: the cut's poché and
+  // outlines, the lines beyond, the room names. Made once for every picture asked for.
+  Image img;
+  if (any_picture) {
     HalftoneOptions ho;
     ho.samples = opt.samples;
     ho.background = {1, 1, 1};
-    const Image halftone = render_view(c, s.camera, vs, ho);
-    Image img;
-    raster_of_drawing(d, halftone, img);
-    write_image(img, opt.output);
-  } else {
-    PageOptions page;
-    page.margin_mm = kPageMarginMm;
-    page.width_mm = d.width / kPixelsPerPaperMm + 2 * kPageMarginMm;
-    lines = write_drawing(d, opt.output, page).lines;
+    raster_of_drawing(d, render_view(c, s.camera, vs, ho), img);
   }
+  PageOptions page;
+  page.margin_mm = kPageMarginMm;
+  page.width_mm = d.width / kPixelsPerPaperMm + 2 * kPageMarginMm;
+  std::vector<std::pair<std::string, std::string>> files;
+  for (const std::string& out : opt.outputs)
+    files.emplace_back(out, is_raster_path(out) ? encode_image(img, out) : encode_drawing(d, out, page).bytes);
+  write_files_atomically(files);  // all of them or none
   const double render_us = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
   size_t cut_strokes = 0;
   for (const Stroke& st : d.strokes) cut_strokes += st.layer == Layer::Cut;
@@ -186,6 +191,7 @@ int run_drawing(const DrawingOptions& opt) {
     nlohmann::json j;
     j["plan"] = plan.path;
     j["kind"] = s.kind;
+    j["outputs"] = opt.outputs;
     j["scale"] = opt.scale;
     j["kernel"] = to_string(kernel);
     j["size"] = {s.camera.width, s.camera.height};
@@ -205,7 +211,8 @@ int run_drawing(const DrawingOptions& opt) {
   }
   std::cout << s.kind << " of " << plan.path << " at 1:" << scale << ": " << vs.cut_cells.size() << " cells cut, "
             << vs.cells.size() << " visible through " << vs.avenues.size() << " avenues, " << vs.micros << " us ("
-            << to_string(kernel) << "); " << lines << " lines\nwrote " << opt.output << "\n";
+            << to_string(kernel) << "); " << lines << " lines\n";
+  for (const std::string& out : opt.outputs) std::cout << "wrote " << out << "\n";
   if (!opt.stats_json.empty()) std::cout << "wrote " << opt.stats_json << "\n";
   return 0;
 }

@@ -74,9 +74,11 @@ struct ViewOptions {
   double view_width = 0;               ///< [m] > 0 with a parallel projection: the picture's width
 };
 
-/// `avenues drawing PLAN (--plan STOREY | --section X1,Y1,X2,Y2 | --elevation DIR | --axonometric AZ,ALT) -o FILE`
+/// `avenues drawing PLAN (--plan STOREY | --section X1,Y1,X2,Y2 | --elevation DIR | --axonometric AZ,ALT) -o FILE
+/// [-o FILE ...]`: one drawing, in as many files and formats as asked.
 struct DrawingOptions {
-  std::string plan, output, stats_json;
+  std::string plan, stats_json;
+  std::vector<std::string> outputs;    ///< each -o: the drawing (vector) or the half-tone with it (picture)
   ImportOptions import;                ///< how a plan from elsewhere is understood
   std::string storey;                  ///< --plan: a storey's name or index
   std::string section;                 ///< "X1,Y1,X2,Y2"

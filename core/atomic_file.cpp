@@ -7,7 +7,9 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <mutex>
+#include <set>
 #include <stdexcept>
 #include <system_error>
 
@@ -164,14 +166,17 @@ void PendingTempFile::commit() {
   committed_ = true;
 }
 
-void write_file_atomically(const std::string& path, std::string_view bytes) {
+namespace {
+
+/// A temporary file beside `path` holding `bytes`, not yet renamed over it.
+std::unique_ptr<PendingTempFile> pending_with(const std::string& path, std::string_view bytes) {
   std::error_code ec;
   if (!path.empty() && std::filesystem::is_directory(path, ec)) fail(path, "is a directory", 0);
-  PendingTempFile tmp(path);
+  auto tmp = std::make_unique<PendingTempFile>(path);
   const char* p = bytes.data();
   size_t left = bytes.size();
   while (left > 0) {
-    const ssize_t n = ::write(tmp.fd(), p, left);
+    const ssize_t n = ::write(tmp->fd(), p, left);
     if (n < 0) {
       if (errno == EINTR) continue;
       fail(path, "write failed", errno);
@@ -179,7 +184,24 @@ void write_file_atomically(const std::string& path, std::string_view bytes) {
     p += n;
     left -= static_cast<size_t>(n);
   }
-  tmp.commit();
+  return tmp;
+}
+
+}  // namespace
+
+void write_file_atomically(const std::string& path, std::string_view bytes) { pending_with(path, bytes)->commit(); }
+
+void write_files_atomically(const std::vector<std::pair<std::string, std::string>>& files) {
+  std::set<std::filesystem::path> targets;
+  for (const auto& [path, bytes] : files) {
+    std::error_code ec;
+    const std::filesystem::path whole = std::filesystem::weakly_canonical(std::filesystem::absolute(path), ec);
+    if (!targets.insert(ec ? std::filesystem::path(path) : whole).second)
+      fail(path, "it is named twice among the files to write", 0);
+  }
+  std::vector<std::unique_ptr<PendingTempFile>> pending;
+  for (const auto& [path, bytes] : files) pending.push_back(pending_with(path, bytes));
+  for (auto& tmp : pending) tmp->commit();
 }
 
 }  // namespace avenues

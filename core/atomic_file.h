@@ -13,6 +13,8 @@
 
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace avenues {
 
@@ -20,6 +22,13 @@ namespace avenues {
 /// Throws std::runtime_error naming the file on failure (an empty name, a target that
 /// exists and is not a regular file, a failed write); the target is then untouched.
 void write_file_atomically(const std::string& path, std::string_view bytes);
+
+/// Writes several files all or none: each (path, bytes) goes to a temporary file beside its
+/// target, and only when every one is complete are they renamed over their targets. Throws
+/// std::runtime_error naming the file on failure (a missing directory, a full disk, two
+/// entries of one path); every target is then untouched, unless a rename itself fails
+/// (something not a regular file put in a target's place meanwhile) after others were made.
+void write_files_atomically(const std::vector<std::pair<std::string, std::string>>& files);
 
 /// Throws std::runtime_error naming `path` when a file cannot be written there at all: an
 /// empty name, or something other than a regular file (a directory, a device such as

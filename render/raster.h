@@ -75,6 +75,10 @@ bool is_raster_path(const std::string& path);
 /// extension or a failed write.
 void write_image(const Image& picture, const std::string& path, const ImageOptions& options = {});
 
+/// The bytes write_image() would write to `path`, without the write: for callers that must
+/// have several files ready before writing any (write_files_atomically). Throws as it does.
+std::string encode_image(const Image& picture, const std::string& path, const ImageOptions& options = {});
+
 /// Reads a PNG (any bit depth and colour type libpng reads, without alpha) or a binary
 /// Netpbm file (P4, P5, P6 of depth 255). A 1-bit file comes back bilevel. Throws
 /// std::runtime_error naming the file otherwise.

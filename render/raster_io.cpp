@@ -211,7 +211,7 @@ std::string raster_extensions() { return ".png, .pgm, .ppm, .pbm"; }
 
 bool is_raster_path(const std::string& path) { return format_of(path) != Format::Unknown; }
 
-void write_image(const Image& picture, const std::string& path, const ImageOptions& options) {
+std::string encode_image(const Image& picture, const std::string& path, const ImageOptions& options) {
   const Format f = format_of(path);
   if (f == Format::Unknown)
     throw std::runtime_error("cannot write " + path + ": unknown picture format '" + lower_extension(path) +
@@ -235,7 +235,11 @@ void write_image(const Image& picture, const std::string& path, const ImageOptio
   } catch (const std::runtime_error& e) {
     throw std::runtime_error("cannot write " + path + ": " + e.what());
   }
-  write_file_atomically(path, bytes);
+  return bytes;
+}
+
+void write_image(const Image& picture, const std::string& path, const ImageOptions& options) {
+  write_file_atomically(path, encode_image(picture, path, options));
 }
 
 Image read_image(const std::string& path) {

@@ -38,8 +38,7 @@ DrawingStats write_stereo_drawing(const Drawing& left, const Drawing& right, Ste
   }
   const auto paths = stereo_pair_paths(path);
   const EncodedDrawing l = encode_drawing(left, paths[0], page), r = encode_drawing(right, paths[1], page);
-  write_file_atomically(paths[0], l.bytes);
-  write_file_atomically(paths[1], r.bytes);
+  write_files_atomically({{paths[0], l.bytes}, {paths[1], r.bytes}});  // both or neither
   return {l.stats.lines + r.stats.lines, l.stats.penup_mm_before + r.stats.penup_mm_before,
           l.stats.penup_mm_after + r.stats.penup_mm_after};
 }

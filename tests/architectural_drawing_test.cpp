@@ -37,6 +37,8 @@ using avenues::testing::slurp;
 namespace {
 
 const std::string kSource = AVENUES_SOURCE_DIR;
+/// Every vector format and two of the pictures'.
+constexpr const char* kAllFormats[] = {".svg", ".pdf", ".eps", ".dxf", ".hpgl", ".png", ".pgm"};
 
 class ArchitecturalDrawing : public avenues::testing::AvenuesRun {
  protected:
@@ -132,16 +134,18 @@ TEST_F(ArchitecturalDrawing, EveryKindOfEveryBundledPlanInEveryFormatReadsBack) 
                                      {{"--section", section_across(c)}, true, false},
                                      {{"--elevation", "south"}, false, false},
                                      {{"--axonometric", "30,35", "--cut-height", "1.2"}, true, false}};
-    for (const Kind& k : kinds)
-      for (const char* ext : {".svg", ".pdf", ".eps", ".dxf", ".hpgl", ".png", ".pgm"}) {
-        const std::string out = path(std::string("drawing") + ext);
-        std::vector<std::string> args{"drawing", cells, "-o", out, "--scale", "1:100"};
-        args.insert(args.end(), k.args.begin(), k.args.end());
-        const Outcome r = run(args);
-        ASSERT_EQ(r.status, 0) << k.args[0] << " " << ext << ": " << r.err;
-        check_file(out, k.cut, k.labels);
-        fs::remove(out);
+    for (const Kind& k : kinds) {
+      // One run writes the drawing in every format (-o repeated).
+      std::vector<std::string> args{"drawing", cells, "--scale", "1:100"};
+      args.insert(args.end(), k.args.begin(), k.args.end());
+      for (const char* ext : kAllFormats) args.insert(args.end(), {"-o", path(std::string("drawing") + ext)});
+      const Outcome r = run(args);
+      ASSERT_EQ(r.status, 0) << k.args[0] << ": " << r.err;
+      for (const char* ext : kAllFormats) {
+        check_file(path(std::string("drawing") + ext), k.cut, k.labels);
+        fs::remove(path(std::string("drawing") + ext));
       }
+    }
   }
 }
 
@@ -167,16 +171,17 @@ TEST_F(ArchitecturalDrawing, EveryKindOfEverySweetHomeHomeInEveryFormatReadsBack
         {{"--section", section_across(c)}, true},
         {{"--elevation", "south"}, false},
         {{"--axonometric", "30,35", "--cut-height", "1.2"}, true}};
-    for (const auto& [args, cut] : kinds)
-      for (const char* ext : {".svg", ".pdf", ".eps", ".dxf", ".hpgl", ".png", ".pgm"}) {
-        const std::string out = path(std::string("drawing") + ext);
-        std::vector<std::string> argv{"drawing", cells, "-o", out, "--scale", "1:100"};
-        argv.insert(argv.end(), args.begin(), args.end());
-        const Outcome r = run(argv);
-        ASSERT_EQ(r.status, 0) << args[0] << " " << ext << ": " << r.err;
-        check_file(out, cut, args[0] == "--plan");
-        fs::remove(out);
+    for (const auto& [args, cut] : kinds) {
+      std::vector<std::string> argv{"drawing", cells, "--scale", "1:100"};
+      argv.insert(argv.end(), args.begin(), args.end());
+      for (const char* ext : kAllFormats) argv.insert(argv.end(), {"-o", path(std::string("drawing") + ext)});
+      const Outcome r = run(argv);
+      ASSERT_EQ(r.status, 0) << args[0] << ": " << r.err;
+      for (const char* ext : kAllFormats) {
+        check_file(path(std::string("drawing") + ext), cut, args[0] == "--plan");
+        fs::remove(path(std::string("drawing") + ext));
       }
+    }
   }
   EXPECT_EQ(tried, 9);
 }
@@ -500,4 +505,41 @@ TEST_F(ArchitecturalDrawing, BadOptionsAreNamedAndWriteNothing) {
   EXPECT_NE(v.err.find("--view-width"), std::string::npos) << v.err;
   EXPECT_EQ(run({"drawing", plan, "--plan", "0", "-o", path("x.doc")}).status, 2);
   EXPECT_FALSE(fs::exists(path("x.doc")));
+}
+
+// One run writing the drawing to several files (-o repeated) writes each file as a run of its
+// own would, byte for byte; the plan is read and the drawing made once. One file that cannot
+// be written (an unknown format, a file named twice, a missing folder) writes none of them.
+TEST_F(ArchitecturalDrawing, SeveralOutputsOfOneRunAreTheFilesOfSeparateRunsOrNoneAtAll) {
+  const std::string plan = kSource + "/plans/jones-house.toml";
+  const std::vector<std::string> kind{"--section", "-1,2.7,10,2.7", "--scale", "1:100"};
+  std::vector<std::string> together{"drawing", plan, "--stats-json", path("s.json")};
+  together.insert(together.end(), kind.begin(), kind.end());
+  for (const char* ext : {".svg", ".dxf", ".hpgl", ".png", ".pbm"}) together.insert(together.end(), {"-o", path(std::string("all") + ext)});
+  const Outcome all = run(together);
+  ASSERT_EQ(all.status, 0) << all.err;
+  EXPECT_EQ(stats("s.json")["outputs"].size(), 5u);
+  for (const char* ext : {".svg", ".dxf", ".hpgl", ".png", ".pbm"}) {
+    SCOPED_TRACE(ext);
+    EXPECT_NE(all.out.find("wrote " + path(std::string("all") + ext).string()), std::string::npos) << all.out;
+    std::vector<std::string> alone{"drawing", plan, "-o", path(std::string("one") + ext)};
+    alone.insert(alone.end(), kind.begin(), kind.end());
+    ASSERT_EQ(run(alone).status, 0);
+    EXPECT_TRUE(slurp(path(std::string("all") + ext)) == slurp(path(std::string("one") + ext)));
+  }
+  const std::vector<std::pair<std::vector<std::string>, std::string>> bad = {
+      {{"-o", path("b.svg"), "-o", path("b.doc")}, "b.doc"},
+      {{"-o", path("b.svg"), "-o", path("b.png"), "-o", path("./b.svg")}, "named twice"},
+      {{"-o", path("b.svg"), "-o", path("no-such-folder/b.png")}, "no-such-folder"},
+  };
+  for (const auto& [outs, named] : bad) {
+    std::vector<std::string> args{"drawing", plan};
+    args.insert(args.end(), kind.begin(), kind.end());
+    args.insert(args.end(), outs.begin(), outs.end());
+    const Outcome r = run(args);
+    EXPECT_EQ(r.status, 2) << named;
+    EXPECT_NE(r.err.find(named), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(path("b.svg"))) << named;
+    EXPECT_FALSE(fs::exists(path("b.png"))) << named;
+  }
 }
