@@ -42,21 +42,41 @@ class SegmentGrid {
         for (int64_t y = ix(lo.y); y <= ix(hi.y); ++y) add(key(x, y), i);
     }
   }
-  /// Calls f(index) once for each line binned in a cell the box [p - r, p + r] covers.
+  /// Calls f(index) once for each line binned in a cell the box [p - r, p + r] covers, in
+  /// the order of the cells (by x, then y), each cell's lines in the order they were added.
   template <class F>
   void near(Vec2 p, double r, F f) {
     ++stamp_;
     for (size_t i : everywhere_) f(i);
     if (!(std::fabs(p.x) < kFar && std::fabs(p.y) < kFar)) return;
-    for (int64_t x = ix(p.x - r); x <= ix(p.x + r); ++x)
-      for (int64_t y = ix(p.y - r); y <= ix(p.y + r); ++y) {
+    auto visit = [&](const std::vector<size_t>& bin) {
+      for (size_t i : bin) {
+        if (seen_[i] == stamp_) continue;
+        seen_[i] = stamp_;
+        f(i);
+      }
+    };
+    const int64_t x0 = ix(p.x - r), x1 = ix(p.x + r), y0 = ix(p.y - r), y1 = ix(p.y + r);
+    // A box over more cells than there are bins (a long line's neighbours, in a drawing a
+    // few kilometres across) looks through the bins instead: the same bins, in the same order.
+    if (double(x1 - x0 + 1) * double(y1 - y0 + 1) > 4.0 * double(bins_.size())) {
+      // A key holds x and y to 32 bits (key()): a bin is in the box when its x is one of the
+      // box's x to 32 bits, and so its y.
+      auto offset = [](uint64_t k, int64_t from) { return uint64_t(uint32_t(uint32_t(k) - uint32_t(from))); };
+      const uint64_t wide = uint64_t(x1 - x0), high = uint64_t(y1 - y0);
+      in_box_.clear();
+      for (const auto& [k, bin] : bins_) {
+        const uint64_t dx = offset(k >> 32, x0), dy = offset(k, y0);
+        if ((wide >= 0xffffffffu || dx <= wide) && (high >= 0xffffffffu || dy <= high)) in_box_.push_back({(dx << 32) | dy, &bin});
+      }
+      std::sort(in_box_.begin(), in_box_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      for (const auto& [order, bin] : in_box_) visit(*bin);
+      return;
+    }
+    for (int64_t x = x0; x <= x1; ++x)
+      for (int64_t y = y0; y <= y1; ++y) {
         auto it = bins_.find(key(x, y));
-        if (it == bins_.end()) continue;
-        for (size_t i : it->second) {
-          if (seen_[i] == stamp_) continue;
-          seen_[i] = stamp_;
-          f(i);
-        }
+        if (it != bins_.end()) visit(it->second);
       }
   }
 
@@ -72,6 +92,7 @@ class SegmentGrid {
   std::unordered_map<uint64_t, std::vector<size_t>> bins_;
   std::vector<uint64_t> seen_;
   std::vector<size_t> everywhere_;
+  std::vector<std::pair<uint64_t, const std::vector<size_t>*>> in_box_;  ///< near()'s bins, when it looks through them
   uint64_t stamp_ = 0;
 };
 
