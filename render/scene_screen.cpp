@@ -177,6 +177,10 @@ bool covers_a_sample_centre(const std::vector<FixedPoint>& outline, int width, i
 
 }  // namespace
 
+bool ScreenSceneBuilder::clip_holds_a_sample(int32_t clip) const {
+  return covers_a_sample_centre(out_.clips[size_t(clip)].outline, out_.raster.width, out_.raster.height);
+}
+
 bool ScreenSceneBuilder::add(const std::vector<Vec3>& points, Vec3 n, double d, const SurfaceShade& shade,
                              Placement where, const PolygonSource& source) {
   if (!(std::fabs(d) > 0)) return false;  // the plane passes through the eye: seen edge-on

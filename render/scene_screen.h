@@ -118,6 +118,10 @@ class ScreenSceneBuilder {
   /// A clip region from a convex picture-plane polygon, grown by `grow` samples on every
   /// side (by the Minkowski sum with a square). -1 if nothing of area is left.
   int32_t add_clip(const std::vector<Vec2>& picture_polygon, double grow);
+  /// Whether clip region `clip` holds the centre of some sample of the raster. A polygon
+  /// covers a sample only where the sample's centre is inside its clip region too, so what
+  /// is clipped to a region holding none colours nothing and decides no depth.
+  bool clip_holds_a_sample(int32_t clip) const;
   /// A planar convex polygon of a cell (world coordinates, on `plane`), lit as
   /// options.shading says (or by the plan's lights, options.lighting: `source` names the
   /// face). A flat shade is the one at `shade_at` (world), the centroid of the surface the

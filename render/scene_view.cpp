@@ -195,6 +195,11 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
     const std::vector<Vec2>& mask = mask_of(avenue);
     const int32_t clip = b.add_clip(mask, avenue.depth == 0 && roots == 1 ? 0 : kMaskGrowth);
     if (clip < 0) continue;
+    // A mask between sample centres (a far cell of a grazing view over thousands) shows
+    // nothing of its cell: its faces and the objects cut to it are not looked at. An object
+    // drawn whole within the masks of all its cells (resolved by depth) still is, below.
+    const bool shows = b.clip_holds_a_sample(clip);
+    if (!shows && !visible.conservative) continue;
     const Cell& cell = complex.cells[size_t(avenue.cell)];
     ScreenSceneBuilder::Placement where{clip, int32_t(i), avenue.depth, PolygonRole::Face};
     if (visible.conservative) where = {clip, 0, 0, PolygonRole::Object};  // one group: depth decides
@@ -202,7 +207,7 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
     source.kind = PolygonSource::Kind::Face;
     source.avenue = int(i);
     source.cell = avenue.cell;
-    for (size_t k = 0; k < cell.faces.size(); ++k) {
+    for (size_t k = 0; shows && k < cell.faces.size(); ++k) {
       const Face& face = cell.faces[k];
       if (face.opaque.empty() || !(face.plane.eval(camera.eye) < 0)) continue;
       source.face = int(k);
@@ -254,6 +259,7 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
         b.cull_outside(clip, 2);
         continue;
       }
+      if (!shows) continue;
       // Reaching beyond the cell, it is drawn here as its part inside the cell: nearer than
       // whatever the avenue sees beyond the cell's portals, as the scan takes it to be.
       const bool cut = entry & ObjectsByCell::kCut;
