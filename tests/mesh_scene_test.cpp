@@ -16,6 +16,7 @@
 #include "visibility/visible_set.h"
 #include "tests/test_files.h"
 #include "tests/test_meshes.h"
+#include "tests/test_plans.h"
 
 using namespace avenues;
 using avenues::testing::box_volume;
@@ -63,19 +64,7 @@ Cell box_cell(Vec3 lo, Vec3 hi) {
   return c;
 }
 
-/// A random point strictly inside a cell: a random convex combination of its vertices.
-Vec3 random_point_in(const Cell& cell, std::mt19937& rng) {
-  std::uniform_real_distribution<double> u(0.05, 1.0);
-  Vec3 p{0, 0, 0};
-  double sum = 0;
-  for (const Face& f : cell.faces)
-    for (Vec3 v : f.poly) {
-      const double w = u(rng);
-      p = p + w * v;
-      sum += w;
-    }
-  return (1.0 / sum) * p;
-}
+using avenues::testing::random_point_in;  // strictly inside a cell
 
 /// Random views from random cells, each checked against ray casting and the exact kernel.
 void expect_views_agree_with_rays(const CellComplex& c, int views, unsigned seed) {

@@ -95,52 +95,22 @@ class BoxTree {
   /// nearer boxes first; visit returns the segment's new end (t1 or less).
   template <class Visit>
   void visit(Vec3 o, Vec3 dir, double t1, Visit&& visit) const {
-    if (nodes_.empty()) return;
-    uint32_t stack[128];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-      const Node& n = nodes_[stack[--top]];
-      double at;
-      if (!enters(n.box, o, dir, t1, at)) continue;
-      if (n.count > 0) {
-        for (uint32_t k = n.first; k < n.first + n.count; ++k) {
-          double in;
-          if (enters(boxes_[order_[k]], o, dir, t1, in)) t1 = visit(order_[k]);
-        }
-        continue;
-      }
-      // The nearer child on top.
-      double a = 0, b = 0;
-      const bool ea = enters(nodes_[n.first].box, o, dir, t1, a), eb = enters(nodes_[n.first + 1].box, o, dir, t1, b);
-      if (ea && eb) {
-        stack[top++] = a <= b ? n.first + 1 : n.first;
-        stack[top++] = a <= b ? n.first : n.first + 1;
-      } else if (ea) {
-        stack[top++] = n.first;
-      } else if (eb) {
-        stack[top++] = n.first + 1;
-      }
-    }
+    descend([&](const Box3& box, double& at) { return enters(box, o, dir, t1, at); },
+            [&](uint32_t item) {
+              t1 = visit(item);
+              return false;
+            });
   }
 
   /// Calls visit(item) for each item whose box holds p within tol, until visit returns true.
   template <class Visit>
   void visit_holding(Vec3 p, double tol, Visit&& visit) const {
-    if (nodes_.empty()) return;
-    uint32_t stack[128];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-      const Node& n = nodes_[stack[--top]];
-      if (!n.box.contains(p, tol)) continue;
-      if (n.count == 0) {
-        stack[top++] = n.first, stack[top++] = n.first + 1;
-        continue;
-      }
-      for (uint32_t k = n.first; k < n.first + n.count; ++k)
-        if (boxes_[order_[k]].contains(p, tol) && visit(order_[k])) return;
-    }
+    descend(
+        [&](const Box3& box, double& at) {
+          at = 0;
+          return box.contains(p, tol);
+        },
+        visit);
   }
 
  private:
@@ -151,6 +121,36 @@ class BoxTree {
   };
 
   static double along(Vec3 v, int axis) { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; }
+
+  /// Calls visit(item) for each item whose box meets(box, at) holds, until visit returns
+  /// true; of two children, the one meets() puts at the lesser `at` first.
+  template <class Meets, class Visit>
+  void descend(Meets&& meets, Visit&& visit) const {
+    if (nodes_.empty()) return;
+    uint32_t stack[128];  // a median split halves the items: 128 levels are never reached
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& n = nodes_[stack[--top]];
+      double at = 0;
+      if (!meets(n.box, at)) continue;
+      if (n.count > 0) {
+        for (uint32_t k = n.first; k < n.first + n.count; ++k)
+          if (meets(boxes_[order_[k]], at) && visit(order_[k])) return;
+        continue;
+      }
+      double a = 0, b = 0;
+      const bool ea = meets(nodes_[n.first].box, a), eb = meets(nodes_[n.first + 1].box, b);
+      if (ea && eb) {
+        stack[top++] = a <= b ? n.first + 1 : n.first;  // the nearer on top
+        stack[top++] = a <= b ? n.first : n.first + 1;
+      } else if (ea) {
+        stack[top++] = n.first;
+      } else if (eb) {
+        stack[top++] = n.first + 1;
+      }
+    }
+  }
 
   /// Whether the segment o + t·dir, t in [0, t1], meets box b; `at` is where it enters.
   static bool enters(const Box3& b, Vec3 o, Vec3 dir, double t1, double& at) {

@@ -18,6 +18,7 @@
 #include "hull_checks.h"
 #include "ray_oracle.h"
 #include "test_files.h"
+#include "test_plans.h"
 #include "visibility/visible_set.h"
 
 namespace avenues::testing {
@@ -147,17 +148,9 @@ inline void expect_soup_views_agree_with_rays(const CellComplex& c, int views, u
   int needle_views = 0;
   std::mt19937 rng(seed);
   std::uniform_int_distribution<size_t> pick(0, c.cells.size() - 1);
-  std::uniform_real_distribution<double> yaw(0, 360), pitch(-60, 60), fov(40, 110), w(0.05, 1.0);
+  std::uniform_real_distribution<double> yaw(0, 360), pitch(-60, 60), fov(40, 110);
   for (int v = 0; v < views; ++v) {
-    const Cell& cell = c.cells[pick(rng)];
-    Vec3 eye{0, 0, 0};
-    double sum = 0;
-    for (const Face& f : cell.faces)
-      for (Vec3 p : f.poly) {
-        const double k = w(rng);
-        eye = eye + k * p, sum += k;
-      }
-    eye = (1.0 / sum) * eye;
+    const Vec3 eye = random_point_in(c.cells[pick(rng)], rng);
     const Location loc = c.locate(eye);
     ASSERT_EQ(loc.what, Location::What::Cell) << "view " << v;
     const double y = yaw(rng), p = pitch(rng), f = fov(rng);

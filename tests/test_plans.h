@@ -31,6 +31,20 @@ inline Wall wall(const std::string& name, std::vector<Vec2> centre, double thick
   return w;
 }
 
+/// A random point inside a convex cell: its faces' corners, each weighed by a random
+/// weight in [0.05, 1).
+inline Vec3 random_point_in(const Cell& cell, std::mt19937& rng) {
+  std::uniform_real_distribution<double> w(0.05, 1.0);
+  Vec3 p{0, 0, 0};
+  double sum = 0;
+  for (const Face& f : cell.faces)
+    for (Vec3 q : f.poly) {
+      const double k = w(rng);
+      p = p + k * q, sum += k;
+    }
+  return (1.0 / sum) * p;
+}
+
 /// A random eye inside a random room or outside cell, at a height within the cell.
 inline Vec3 random_eye(const CellComplex& c, std::mt19937& rng, CellId& cell) {
   std::uniform_int_distribution<size_t> pick(0, c.cells.size() - 1);
