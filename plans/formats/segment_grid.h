@@ -31,10 +31,15 @@ class SegmentGrid {
       }
       const int steps = std::max(1, int(std::ceil(len / cell)));
       if ((hi.x - lo.x) * (hi.y - lo.y) > 16 * double(steps) * cell * cell) {
-        for (int s = 0; s <= steps; ++s) {
-          const Vec2 p = a + (double(s) / steps) * (b - a);
-          for (int dx = -1; dx <= 1; ++dx)
-            for (int dy = -1; dy <= 1; ++dy) add(key(ix(p.x) + dx, ix(p.y) + dy), i);
+        // Piece by piece, each at most a cell long: the cells of each piece's box, grown
+        // by far more than the pieces' ends round by (two to four cells a piece).
+        const double grow = 1e-6 * cell;
+        Vec2 p = a;
+        for (int s = 1; s <= steps; ++s) {
+          const Vec2 q = s == steps ? b : a + (double(s) / steps) * (b - a);
+          for (int64_t x = ix(std::min(p.x, q.x) - grow); x <= ix(std::max(p.x, q.x) + grow); ++x)
+            for (int64_t y = ix(std::min(p.y, q.y) - grow); y <= ix(std::max(p.y, q.y) + grow); ++y) add(key(x, y), i);
+          p = q;
         }
         continue;
       }
