@@ -30,7 +30,9 @@ class SegmentGrid {
         continue;
       }
       const int steps = std::max(1, int(std::ceil(len / cell)));
-      if ((hi.x - lo.x) * (hi.y - lo.y) > 16 * double(steps) * cell * cell) {
+      // Its box's cells where they are few; else the cells along it.
+      const double box_cells = double(ix(hi.x) - ix(lo.x) + 1) * double(ix(hi.y) - ix(lo.y) + 1);
+      if (box_cells > 4 * double(steps)) {
         // Piece by piece, each at most a cell long: the cells of each piece's box, grown
         // by far more than the pieces' ends round by (two to four cells a piece).
         const double grow = 1e-6 * cell;
