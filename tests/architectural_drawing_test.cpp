@@ -44,6 +44,7 @@ class ArchitecturalDrawing : public avenues::testing::AvenuesRun {
  protected:
   nlohmann::json stats(const std::string& name) { return nlohmann::json::parse(slurp(path(name))); }
   void check_file(const std::string& file, bool cut, bool labels);
+  void draw_in_every_format(const std::string& cells, const std::vector<std::string>& kind, bool cut, bool labels);
 };
 
 std::vector<std::string> bundled_plans() {
@@ -116,6 +117,21 @@ void ArchitecturalDrawing::check_file(const std::string& file, bool cut, bool la
   }
 }
 
+/// One run of `drawing` of this kind writing every format (-o repeated), each file then
+/// read back by check_file.
+void ArchitecturalDrawing::draw_in_every_format(const std::string& cells, const std::vector<std::string>& kind, bool cut,
+                                                bool labels) {
+  std::vector<std::string> args{"drawing", cells, "--scale", "1:100"};
+  args.insert(args.end(), kind.begin(), kind.end());
+  for (const char* ext : kAllFormats) args.insert(args.end(), {"-o", path(std::string("drawing") + ext)});
+  const Outcome r = run(args);
+  ASSERT_EQ(r.status, 0) << kind[0] << ": " << r.err;
+  for (const char* ext : kAllFormats) {
+    check_file(path(std::string("drawing") + ext), cut, labels);
+    fs::remove(path(std::string("drawing") + ext));
+  }
+}
+
 }  // namespace
 
 // Every bundled plan, the four kinds, every format, read back. The plan is decomposed
@@ -135,16 +151,9 @@ TEST_F(ArchitecturalDrawing, EveryKindOfEveryBundledPlanInEveryFormatReadsBack) 
                                      {{"--elevation", "south"}, false, false},
                                      {{"--axonometric", "30,35", "--cut-height", "1.2"}, true, false}};
     for (const Kind& k : kinds) {
-      // One run writes the drawing in every format (-o repeated).
-      std::vector<std::string> args{"drawing", cells, "--scale", "1:100"};
-      args.insert(args.end(), k.args.begin(), k.args.end());
-      for (const char* ext : kAllFormats) args.insert(args.end(), {"-o", path(std::string("drawing") + ext)});
-      const Outcome r = run(args);
-      ASSERT_EQ(r.status, 0) << k.args[0] << ": " << r.err;
-      for (const char* ext : kAllFormats) {
-        check_file(path(std::string("drawing") + ext), k.cut, k.labels);
-        fs::remove(path(std::string("drawing") + ext));
-      }
+      SCOPED_TRACE(k.args[0]);
+      draw_in_every_format(cells, k.args, k.cut, k.labels);
+      if (HasFatalFailure()) return;
     }
   }
 }
@@ -172,15 +181,9 @@ TEST_F(ArchitecturalDrawing, EveryKindOfEverySweetHomeHomeInEveryFormatReadsBack
         {{"--elevation", "south"}, false},
         {{"--axonometric", "30,35", "--cut-height", "1.2"}, true}};
     for (const auto& [args, cut] : kinds) {
-      std::vector<std::string> argv{"drawing", cells, "--scale", "1:100"};
-      argv.insert(argv.end(), args.begin(), args.end());
-      for (const char* ext : kAllFormats) argv.insert(argv.end(), {"-o", path(std::string("drawing") + ext)});
-      const Outcome r = run(argv);
-      ASSERT_EQ(r.status, 0) << args[0] << ": " << r.err;
-      for (const char* ext : kAllFormats) {
-        check_file(path(std::string("drawing") + ext), cut, args[0] == "--plan");
-        fs::remove(path(std::string("drawing") + ext));
-      }
+      SCOPED_TRACE(args[0]);
+      draw_in_every_format(cells, args, cut, args[0] == "--plan");
+      if (HasFatalFailure()) return;
     }
   }
   EXPECT_EQ(tried, 9);

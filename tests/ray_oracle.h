@@ -219,12 +219,13 @@ class OracleIndex {
     return best;
   }
 
-  /// Calls f(cell) for each cell whose box the segment o + t·dir, t in [0, t1], meets: every
-  /// cell the segment runs inside for any length, and some it misses.
+  /// Calls f(cell) for each cell the segment o + t·dir, t in [0, t1], runs inside for more
+  /// than a micrometre (length_inside): the cells a ray crosses before its first hit. Only
+  /// the cells whose boxes the segment meets are tried.
   template <class F>
-  void cells_near(Vec3 o, Vec3 dir, double t1, F&& f) const {
+  void cells_crossed(Vec3 o, Vec3 dir, double t1, F&& f) const {
     cell_tree_.visit(o, dir, t1, [&](uint32_t k) {
-      f(CellId(k));
+      if (length_inside(c_.cells[k], o, dir, 0, t1) > 1e-6) f(CellId(k));
       return t1;
     });
   }
@@ -278,9 +279,7 @@ inline OracleResult check_visible_set(const CellComplex& c, const Camera& cam, c
       const Vec3 dir = cam.ray_through_raster({i + 0.5, j + 0.5});
       const double t = index.first_hit(cam.eye, dir);
       ++r.rays;
-      index.cells_near(cam.eye, dir, t, [&](CellId id) {
-        if (!visible[size_t(id)] && length_inside(c.cells[size_t(id)], cam.eye, dir, 0, t) > 1e-6) ++r.missing;
-      });
+      index.cells_crossed(cam.eye, dir, t, [&](CellId id) { r.missing += !visible[size_t(id)]; });
     }
   const double px2 = (cam.width / (2 * cam.half_width())) * (cam.height / (2 * cam.half_height()));
   for (const Avenue& a : vs.avenues) {
@@ -315,10 +314,9 @@ inline ParallelFrame frame_on_cut(const Camera& cam, const Plane& cut) {
 
 /// Parallel rays (one per pixel centre, every `step` pixels) from the frame: each cell a ray
 /// crosses before its first opaque hit must be in vs.cells (counted in `missing`).
-inline OracleResult check_parallel_rays(const CellComplex& c, const ParallelFrame& f, const std::vector<CellId>& cells,
-                                        int step = 1) {
+inline OracleResult check_parallel_rays(const CellComplex& c, const OracleIndex& index, const ParallelFrame& f,
+                                        const std::vector<CellId>& cells, int step = 1) {
   OracleResult r;
-  const OracleIndex index(c);
   std::vector<uint8_t> visible(c.cells.size(), 0);
   for (CellId id : cells) visible[size_t(id)] = 1;
   for (int j = step / 2; j < f.ny; j += step)
@@ -326,11 +324,13 @@ inline OracleResult check_parallel_rays(const CellComplex& c, const ParallelFram
       const Vec3 o = f.origin + ((i + 0.5) / f.nx) * f.right + ((j + 0.5) / f.ny) * f.up;
       const double t = index.first_hit(o, f.direction);
       ++r.rays;
-      index.cells_near(o, f.direction, t, [&](CellId id) {
-        if (!visible[size_t(id)] && length_inside(c.cells[size_t(id)], o, f.direction, 0, t) > 1e-6) ++r.missing;
-      });
+      index.cells_crossed(o, f.direction, t, [&](CellId id) { r.missing += !visible[size_t(id)]; });
     }
   return r;
+}
+inline OracleResult check_parallel_rays(const CellComplex& c, const ParallelFrame& f, const std::vector<CellId>& cells,
+                                        int step = 1) {
+  return check_parallel_rays(c, OracleIndex(c), f, cells, step);
 }
 
 /// check_parallel_rays for a parallel search from `cut`, and the converse: each avenue
@@ -338,7 +338,8 @@ inline OracleResult check_parallel_rays(const CellComplex& c, const ParallelFram
 /// through the mask's centroid (counted in `extra`).
 inline OracleResult check_parallel_visible_set(const CellComplex& c, const Camera& cam, const Plane& cut,
                                                const VisibleSet& vs, int step = 1) {
-  OracleResult r = check_parallel_rays(c, frame_on_cut(cam, cut), vs.cells, step);
+  const OracleIndex index(c);
+  OracleResult r = check_parallel_rays(c, index, frame_on_cut(cam, cut), vs.cells, step);
   const double px2 = (cam.width / (2 * cam.half_width())) * (cam.height / (2 * cam.half_height()));
   const double nf = dot(cut.n, cam.forward);
   for (const Avenue& a : vs.avenues) {
@@ -346,7 +347,7 @@ inline OracleResult check_parallel_visible_set(const CellComplex& c, const Camer
     const Vec2 mid = centroid(a.mask);  // core/geometry.h
     Vec3 o = cam.eye + mid.x * cam.right + mid.y * cam.up;
     o = o + (-cut.eval(o) / nf) * cam.forward;
-    if (!(length_inside(c.cells[size_t(a.cell)], o, cam.forward, 0, first_hit(c, o, cam.forward)) > 0)) ++r.extra;
+    if (!(length_inside(c.cells[size_t(a.cell)], o, cam.forward, 0, index.first_hit(o, cam.forward)) > 0)) ++r.extra;
   }
   return r;
 }

@@ -38,13 +38,11 @@ void expect_index_agrees(const CellComplex& c, unsigned seed, int rays) {
     const double brute = avenues::testing::first_hit(c, o, dir), boxed = index.first_hit(o, dir);
     ASSERT_EQ(brute, boxed);
     hits += std::isfinite(brute);
-    std::set<CellId> all, near;
+    std::set<CellId> all, crossed;
     for (CellId id = 0; id < CellId(c.cells.size()); ++id)
       if (avenues::testing::length_inside(c.cells[size_t(id)], o, dir, 0, brute) > 1e-6) all.insert(id);
-    index.cells_near(o, dir, brute, [&](CellId id) {
-      if (avenues::testing::length_inside(c.cells[size_t(id)], o, dir, 0, brute) > 1e-6) near.insert(id);
-    });
-    ASSERT_EQ(all, near);
+    index.cells_crossed(o, dir, brute, [&](CellId id) { crossed.insert(id); });
+    ASSERT_EQ(all, crossed);
     crossings += int(all.size());
   }
   EXPECT_GT(hits, rays / 2);  // most rays end on a surface (the far box is opaque)
