@@ -65,15 +65,15 @@ class Mask {
     return v;
   }
 
+  /// The bounds of a mask's vertices (floating point; exact number types: none needed).
+  struct Reach {
+    T lo_x{}, hi_x{}, lo_y{}, hi_y{};
+  };
   /// The vertices of one state of a mask, each computed once, with their bounds (floating
   /// point): for a mask narrowed by many portals in turn (every portal of a cell starts
   /// from the mask it was reached through), which would otherwise compute the same
   /// vertices again at each. They are the values vertex() gives, and only ever read, never
   /// fed into a construction.
-  /// The bounds of a mask's vertices (floating point; exact number types: none needed).
-  struct Reach {
-    T lo_x{}, hi_x{}, lo_y{}, hi_y{};
-  };
   struct Corners {
     std::vector<Point2T<T>> at;  ///< at[k] == vertex(k)
     Reach reach;                 ///< their bounds, as reach() gives them
