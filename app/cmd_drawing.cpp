@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "core/file_name.h"
 #include "render/line_raster.h"
 #include "core/atomic_file.h"
 #include "render/architectural_drawing.h"
@@ -129,12 +130,6 @@ nlohmann::json frame_json(const Camera& cam, const Plane& cut) {
   const Vec3 u = onto_cut(cam.eye + (cam.shift_x - hw) * cam.right + (cam.shift_y + hh) * cam.up) - o;
   auto arr = [](Vec3 v) { return nlohmann::json::array({v.x, v.y, v.z}); };
   return {{"origin", arr(o)}, {"right", arr(r)}, {"up", arr(u)}, {"direction", arr(cam.forward)}};
-}
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-  return ext;
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 
 #include "cells/build_cells.h"
 #include "cells/crow.h"
+#include "core/file_name.h"
 #include "plans/formats/doom_map.h"
 #include "plans/formats/ifc_building.h"
 #include "plans/assimp_reader.h"
@@ -80,11 +81,6 @@ std::string default_plan_path() {
 
 namespace {
 
-std::string lower(std::string s) {
-  for (char& ch : s) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-  return s;
-}
-
 /// The bytes of a file ("" when it cannot be read).
 std::string whole_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -142,7 +138,7 @@ PlanSpec parse_plan_spec(const std::string& plan) {
   std::error_code ec;
   if (colon != std::string::npos && colon > 0) {
     const std::string file = plan.substr(0, colon);
-    if ((colon > 4 && lower(plan.substr(colon - 4, 4)) == ".wad") ||
+    if ((colon > 4 && ascii_lower(plan.substr(colon - 4, 4)) == ".wad") ||
         (!fs::exists(plan, ec) && detect_format(file) == FileFormat::DoomWad)) {
       spec.file = file;
       spec.map = plan.substr(colon + 1);
@@ -154,7 +150,7 @@ PlanSpec parse_plan_spec(const std::string& plan) {
   // is gzip. Where the content says only that much, an extension Assimp reads decides.
   // So does a mesh told only by the look of its text (OBJ's "v" lines, an OFF header):
   // NFF's text is OBJ-like, and Assimp goes by the extension too.
-  const std::string ext = lower(fs::path(spec.file).extension().string());
+  const std::string ext = lower_extension(spec.file);
   const bool foreign_zip = spec.format == FileFormat::SweetHome && format_of_extension(spec.file) != FileFormat::SweetHome;
   const bool container = spec.format == FileFormat::Gzip || foreign_zip;
   if ((spec.format == FileFormat::Toml || spec.format == FileFormat::Unknown || container ||
@@ -194,11 +190,11 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
   bool foreign_text = false;
   // What the file's name says, for an error about a file Avenues does not know.
   auto what_the_name_says = [&p] {
-    if (lower(p.extension().string()) == ".xml") return std::string("it is XML with no <home> element, no Sweet Home 3D home");
+    if (lower_extension(p.string()) == ".xml") return std::string("it is XML with no <home> element, no Sweet Home 3D home");
     return p.extension().empty() ? std::string("its name has no extension")
                                  : "its extension '" + p.extension().string() + "' names no format Avenues reads";
   };
-  if ((spec.format == FileFormat::Toml || spec.format == FileFormat::Unknown) && lower(p.extension().string()) != ".toml") {
+  if ((spec.format == FileFormat::Toml || spec.format == FileFormat::Unknown) && lower_extension(p.string()) != ".toml") {
     // No telling signature: a few lines of content tell floor-plan annotations.
     if (looks_like_floorplan_vectors(file_head(spec.file, 4096))) spec.format = FileFormat::FloorplanVectors;
     // Text that is not TOML, under a name that says nothing: a model Assimp knows by its

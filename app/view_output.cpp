@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "core/file_name.h"
 #include "render/drawing.h"
 #include "render/effects.h"
 #include "render/halftone.h"
@@ -28,12 +29,6 @@
 namespace avenues::app {
 
 namespace {
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-  return ext;
-}
 
 bool is_drawing(const std::string& path) { return is_drawing_path(path); }
 

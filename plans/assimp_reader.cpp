@@ -23,6 +23,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/file_name.h"
 #include "core/stage_timer.h"
 #include "plans/image_colour.h"
 #include "plans/obj_materials.h"
@@ -30,12 +31,6 @@
 namespace avenues {
 
 namespace {
-
-/// s in lower case (ASCII): file names and extensions compared as systems that ignore case do.
-std::string lowercase(std::string s) {
-  for (char& ch : s) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-  return s;
-}
 
 /// The axes Assimp's output is in for this file, and what the file itself declared.
 struct OutputAxes {
@@ -166,7 +161,7 @@ std::optional<std::array<double, 3>> texture_colour(const aiScene& scene, const 
         fs::path next = at / part;
         if (!fs::exists(next, ec) && part != "." && part != "..")
           for (fs::directory_iterator it(at, ec), end; !ec && it != end; it.increment(ec))
-            if (lowercase(it->path().filename().string()) == lowercase(part.string())) {
+            if (ascii_lower(it->path().filename().string()) == ascii_lower(part.string())) {
               next = it->path();
               break;
             }
@@ -238,7 +233,7 @@ void collect(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent
 /// A binary glTF (its "glTF" magic and version 2) under a name Assimp does not take for one:
 /// Assimp's glTF reader goes by the extension alone. `bytes`, when given, gets the file.
 bool binary_gltf_by_content_only(const std::string& path, std::string* bytes = nullptr) {
-  const std::string ext = lowercase(std::filesystem::path(path).extension().string());
+  const std::string ext = lower_extension(path);
   if (ext == ".glb" || ext == ".gltf") return false;
   std::ifstream in(path, std::ios::binary);
   char head[8] = {};
@@ -294,7 +289,7 @@ ImportedScene import_scene(const std::string& path, const ImportOptions& options
         aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
     std::string bytes;
     if (!options.contents.empty()) {  // Assimp tells the format by the hint: the extension without its dot
-      std::string hint = lowercase(std::filesystem::path(path).extension().string());
+      std::string hint = lower_extension(path);
       if (!hint.empty()) hint.erase(0, 1);
       scene = importer.ReadFileFromMemory(options.contents.data(), options.contents.size(), kSteps, hint.c_str());
     }

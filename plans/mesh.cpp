@@ -1,5 +1,6 @@
 // Avenues — reading meshes with OpenMesh (see mesh.h).
 #include "plans/mesh.h"
+#include "core/file_name.h"
 #include "plans/assimp_reader.h"
 #include "plans/obj_materials.h"
 #include "plans/polygon_triangulation.h"
@@ -743,8 +744,7 @@ Mesh load_mesh(const std::string& path, const MeshAxes& axes, std::vector<std::s
   if (fs::is_directory(st)) throw std::runtime_error("cannot read mesh " + path + ": it is a directory, not a mesh");
   if (!fs::is_regular_file(st))
     throw std::runtime_error("cannot read mesh " + path + ": it is not a regular file (a device or FIFO?)");
-  std::string ext = fs::path(path).extension().string();
-  for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  const std::string ext = lower_extension(path);
   if (ext != ".off" && ext != ".obj" && ext != ".ply" && ext != ".stl") {
     // A name that says nothing (no extension, or one no reader has): the content may.
     if (!assimp_reads_extension(ext) && assimp_importer_by_content(path).empty())

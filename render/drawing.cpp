@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "core/atomic_file.h"
+#include "core/file_name.h"
 #include "render/drawing_formats.h"
 
 namespace avenues {
@@ -46,12 +47,6 @@ struct Extension {
 };
 constexpr Extension kExtensions[] = {{".svg", Format::Svg}, {".pdf", Format::Pdf},   {".eps", Format::Eps},
                                      {".dxf", Format::Dxf}, {".hpgl", Format::Hpgl}, {".plt", Format::Hpgl}};
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
-  return ext;
-}
 
 Format format_of(const std::string& path) {
   const std::string ext = lower_extension(path);

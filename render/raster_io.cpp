@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "core/atomic_file.h"
+#include "core/file_name.h"
 #include "render/raster.h"
 
 namespace avenues {
@@ -21,12 +22,6 @@ namespace avenues {
 namespace {
 
 enum class Format { Png, Pgm, Ppm, Pbm, Unknown };
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return ext;
-}
 
 Format format_of(const std::string& path) {
   const std::string ext = lower_extension(path);

@@ -1,6 +1,7 @@
 // Avenues — telling a file's format by its content (plans/formats/file_format.h).
 #include "plans/formats/file_format.h"
 
+#include "core/file_name.h"
 #include "plans/mesh.h"
 
 #include <cctype>
@@ -13,11 +14,6 @@
 
 namespace avenues {
 namespace {
-
-std::string lower(std::string s) {
-  for (char& ch : s) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-  return s;
-}
 
 bool starts_with(std::string_view s, std::string_view prefix) { return s.substr(0, prefix.size()) == prefix; }
 
@@ -109,7 +105,7 @@ bool is_mesh_format(FileFormat f) {
 }
 
 FileFormat format_of_extension(const std::string& path) {
-  const std::string ext = lower(std::filesystem::path(path).extension().string());
+  const std::string ext = lower_extension(path);
   if (ext == ".toml") return FileFormat::Toml;
   if (ext == ".cells") return FileFormat::Cells;
   if (ext == ".wad") return FileFormat::DoomWad;

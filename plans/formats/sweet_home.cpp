@@ -26,6 +26,7 @@
 // odd but readable data (NaN, zero-length walls, a window in no wall, a wall or piece
 // without its coordinates or size) is repaired or dropped with a line in Plan::warnings.
 #include "plans/formats/sweet_home.h"
+#include "core/file_name.h"
 #include "plans/formats/zip_salvage.h"
 #include "plans/formats/home_tree.h"
 #include "core/number_format.h"
@@ -120,9 +121,7 @@ bool looks_like_zip(const std::string& b) {
 }
 
 bool has_sh3d_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".sh3d";
+  return lower_extension(path) == ".sh3d";
 }
 
 /// A .sh3d archive held in memory (libzip), for its Home.xml and the models beside it.
@@ -1546,8 +1545,7 @@ std::shared_ptr<const Mesh> HomeReader::model_of(const PieceIn& p) {
   if (p.model.empty() || p.width <= 0 || p.depth <= 0 || p.height <= 0) return nullptr;
   auto [it, fresh] = models_read_.try_emplace(p.model);
   if (fresh) {
-    std::string ext = std::filesystem::path(p.model).extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    std::string ext = lower_extension(p.model);
     std::optional<std::string> bytes = models_ ? models_(p.model) : std::nullopt;
     // Sweet Home tells a model by its content: an entry "28" may well be an OBJ file.
     if (bytes && ext != ".obj" && looks_like_obj(*bytes)) ext = ".obj";
