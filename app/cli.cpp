@@ -116,10 +116,12 @@ int run_cli(int argc, char** argv) {
   view->add_option("--search", view_opt.search, kSearchHelp)->capture_default_str()->check(search_name());
   view->add_option("--stats-json", view_opt.stats_json, "write the view's statistics as JSON")->type_name("FILE")->check(file_name());
   view->add_option("--overlay", view_opt.overlay, "draw masks, plan and avenue tree as SVG")->type_name("FILE.svg")->check(file_name());
-  view->add_option("-o,--output", view_opt.output,
+  view->add_option("-o,--output", view_opt.outputs,
                    "the picture of the view, by extension: .svg .pdf .eps .dxf .hpgl .plt (hidden-line drawing) or "
-                   ".png .pgm .ppm .pbm (half-tone picture)")
-      ->type_name("FILE")->check(file_name());
+                   ".png .pgm .ppm .pbm (half-tone picture); repeat for several files of the one view")
+      ->allow_extra_args(false)
+      ->type_name("FILE")
+      ->check(file_name());
   view->add_option("--stereo", view_opt.stereo,
                    "a stereo pair: parallel or cross (side by side), pair (two drawings) or anaglyph (pictures)");
   view->add_option("--samples", view_opt.samples, "half-tone: samples per pixel, 1, 4 or 16")->capture_default_str()->check(samples_count());

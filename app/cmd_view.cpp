@@ -8,16 +8,22 @@
 // Jones's traversal in the chosen kernel, and writes what was asked for: the statistics
 // as one JSON object, and the overlay (masks, plan and avenue tree) as SVG. --explain lists
 // the effects the scene calls for (render/effects.h) before anything is drawn.
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
+#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
 #include "core/atomic_file.h"
+#include "core/file_name.h"
+#include "render/drawing.h"
 #include "render/overlay_drawing.h"
 #include "render/raster.h"
+#include "render/stereo_drawing.h"
 #include "render/thread_arena.h"
 #include "visibility/viewpoint.h"
 #include "visibility/visible_set.h"
@@ -40,6 +46,38 @@ std::string str(Vec3 v) {
   std::ostringstream o;
   o << "(" << v.x << ", " << v.y << ", " << v.z << ")";
   return o.str();
+}
+
+/// Every -o known before the plan is read: its format (and, with --stereo, a layout that
+/// format takes), a place it can be written, and no file named twice. So a run asked for
+/// several files does not write some and then refuse the next.
+void check_view_outputs(const ViewOptions& opt) {
+  std::set<std::filesystem::path> named;
+  for (const std::string& out : opt.outputs) {
+    const bool picture = is_raster_path(out);
+    if (!picture && !is_drawing_path(out))
+      throw std::runtime_error("cannot write '" + out + "': unknown picture format '" + lower_extension(out) +
+                               "' (drawings: " + drawing_extensions() + "; half-tone pictures: " + raster_extensions() +
+                               ")");
+    if (!opt.stereo.empty()) {
+      StereoComposite composite;
+      StereoLayout layout;
+      if (picture && !parse_stereo_composite(opt.stereo, composite))
+        throw std::runtime_error("--stereo wants anaglyph, parallel or cross for pictures, not '" + opt.stereo +
+                                 "' (" + out + ")");
+      if (!picture && !parse_stereo_layout(opt.stereo, layout))
+        throw std::runtime_error("--stereo wants parallel, cross or pair for drawings, not '" + opt.stereo + "' (" +
+                                 out + ")");
+    }
+    check_output_path(out);
+    std::error_code ec;
+    const std::filesystem::path folder = std::filesystem::path(out).parent_path();
+    if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
+      throw std::runtime_error("cannot write '" + out + "': there is no folder " + folder.string());
+    const std::filesystem::path whole = std::filesystem::weakly_canonical(std::filesystem::absolute(out), ec);
+    if (!named.insert(ec ? std::filesystem::path(out) : whole).second)
+      throw std::runtime_error("cannot write '" + out + "': it is named twice among the files to write");
+  }
 }
 
 }  // namespace
@@ -115,9 +153,11 @@ int run_view(const ViewOptions& opt) {
   lights_option(opt.lights);  // refused before the work
   object_shadows_option(opt.object_shadows);
   if (!std::isfinite(opt.falloff)) throw std::runtime_error("--falloff wants a distance in metres");
-  for (const std::string& f : {opt.output, opt.stats_json, opt.overlay})
+  for (const std::string& f : {opt.stats_json, opt.overlay})
     if (!f.empty()) check_output_path(f);  // a device or FIFO there: refused before the work
-  if (is_raster_path(opt.output)) start_threads(0);  // the picture's threads start while the plan is read
+  check_view_outputs(opt);
+  if (std::any_of(opt.outputs.begin(), opt.outputs.end(), is_raster_path))
+    start_threads(0);  // the picture's threads start while the plan is read
   LoadedPlan plan = load_plan_source(opt.plan, opt.import);
   ViewSetup v = set_up_view(plan, opt);
   if (v.camera.is_parallel()) {
@@ -127,22 +167,39 @@ int run_view(const ViewOptions& opt) {
   VisibleSet vs = find_visible(plan.complex, v.camera, v.eye_cell, v.search);
   nlohmann::json stats = view_stats(plan, v, vs);
   if (!opt.overlay.empty()) write_overlay_svg(plan.complex, v.camera, vs, opt.overlay);
-  if ((opt.frames > 0 || !opt.stereo.empty()) && opt.output.empty())
+  if ((opt.frames > 0 || !opt.stereo.empty()) && opt.outputs.empty())
     throw std::runtime_error("--stereo and --frames need -o FILE");
   if (opt.frames > 0 && (opt.to_eye.empty() || opt.to_look.empty()))
     throw std::runtime_error("--frames needs --to-eye X,Y,Z and --to-look X,Y,Z");
   if (opt.explain) std::cout << "effects:\n" << explain_view_effects(plan, opt);
-  if (!opt.output.empty()) write_view_output(plan, v, vs, opt, stats);
+  // Each file as a run of its own would write it; with several, each one's figures under "outputs".
+  std::vector<std::string> wrote;
+  if (opt.outputs.size() == 1) write_view_output(plan, v, vs, opt, opt.outputs[0], stats);
+  if (opt.outputs.size() > 1) {
+    nlohmann::json each = nlohmann::json::array();
+    for (const std::string& out : opt.outputs) {
+      nlohmann::json one;
+      one["file"] = out;
+      write_view_output(plan, v, vs, opt, out, one);
+      each.push_back(std::move(one));
+    }
+    stats["outputs"] = std::move(each);
+  }
+  for (size_t k = 0; k < opt.outputs.size(); ++k) {
+    const nlohmann::json& one = opt.outputs.size() == 1 ? stats : stats["outputs"][k];
+    const std::string& out = opt.outputs[k];
+    if (opt.frames > 0) wrote.push_back(one["first_frame"].get<std::string>() + " and the next " + std::to_string(opt.frames - 1));
+    else if (opt.stereo == "pair") wrote.push_back("the pair " + out + " (-left, -right)");
+    else wrote.push_back(out);
+  }
   if (!opt.stats_json.empty()) write_file_atomically(opt.stats_json, stats.dump(2) + "\n");
   std::cout << "eye in cell " << vs.eye_cell << " (" << stats["eye_room"].get<std::string>() << "): "
             << vs.cells.size() << " cells visible through " << vs.avenues.size() << " avenues, "
             << vs.portals_tested << " portals tested, depth " << vs.max_depth << ", " << vs.micros << " us ("
             << to_string(v.kernel) << ", " << search_label(v.search) << ")\n";
-  std::string picture = opt.output;
-  if (opt.frames > 0) picture = stats["first_frame"].get<std::string>() + " and the next " + std::to_string(opt.frames - 1);
-  if (opt.stereo == "pair") picture = "the pair " + opt.output + " (-left, -right)";
-  for (const std::string& f : {opt.overlay, picture, opt.stats_json})
-    if (!f.empty()) std::cout << "wrote " << f << "\n";
+  if (!opt.overlay.empty()) std::cout << "wrote " << opt.overlay << "\n";
+  for (const std::string& f : wrote) std::cout << "wrote " << f << "\n";
+  if (!opt.stats_json.empty()) std::cout << "wrote " << opt.stats_json << "\n";
   return 0;
 }
 

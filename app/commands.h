@@ -56,7 +56,8 @@ struct ViewOptions {
   std::string size = "1920x1080";
   std::string kernel = "double";
   std::string search = "merged";       ///< merged, hull or jones (TraverseParams::merge_pieces, hull_pieces)
-  std::string stats_json, overlay, output;
+  std::string stats_json, overlay;
+  std::vector<std::string> outputs;    ///< each -o: a drawing or a picture of the one view, by extension
   std::string stereo;                  ///< "", parallel, cross or pair
   double interocular = 0.065;          ///< [m]
   double converge = 2.0;               ///< [m]
@@ -180,12 +181,12 @@ struct ViewSetup {
 ViewSetup set_up_view(const LoadedPlan& plan, const ViewOptions& opt);
 nlohmann::json view_stats(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs);
 int run_view(const ViewOptions& opt);
-/// Writes the view's picture to opt.output by its extension (stereo, walk frames as asked);
-/// adds what it measured to `stats`.
+/// Writes the view's picture to `path` by its extension (stereo, walk frames as asked by
+/// `opt`); adds what it measured to `stats`.
 void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs, const ViewOptions& opt,
-                       nlohmann::json& stats);
+                       const std::string& path, nlohmann::json& stats);
 /// With --explain: each effect of the half-tone on or off and why (render/effects.h), one
-/// per line, and for a drawing whether shadow outlines are drawn.
+/// per line, and for drawings among opt.outputs whether shadow outlines are drawn.
 std::string explain_view_effects(const LoadedPlan& plan, const ViewOptions& opt);
 /// "X,Y,Z" → Vec3; throws std::runtime_error naming the option otherwise.
 Vec3 parse_vec3(const std::string& s, const char* option);

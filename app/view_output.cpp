@@ -7,6 +7,7 @@
 // with --stereo (drawings: parallel, cross, pair; pictures: anaglyph, parallel, cross; two
 // eyes, off-axis, never toe-in) and --frames N (a straight walk to --to-eye/--to-look,
 // one numbered file per frame).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -63,7 +64,7 @@ void add_render_stats(nlohmann::json& stats, const RenderStats& rs) {
 
 /// The half-tone picture(s): one view, a stereo composite, or walk frames.
 void write_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs, const ViewOptions& opt,
-                   nlohmann::json& stats) {
+                   const std::string& path, nlohmann::json& stats) {
   const CellComplex& c = plan.complex;
   const HalftoneOptions o = halftone_options(opt);
   std::vector<std::string> said;  // what reading the objects' meshes let pass
@@ -80,12 +81,12 @@ void write_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet&
       VisibleSet fv = find_visible(c, frames[k].camera, frames[k].cell, v.search);
       RenderStats rs;
       render_view(c, objects, effects, frames[k].camera, fv, o, frame, storage, &rs);
-      write_image(frame, frame_path(opt.output, int(k), int(frames.size())));
+      write_image(frame, frame_path(path, int(k), int(frames.size())));
       total.add(rs);
     }
     add_render_stats(stats, total);
     stats["frames"] = frames.size();
-    stats["first_frame"] = frame_path(opt.output, 0, int(frames.size()));
+    stats["first_frame"] = frame_path(path, 0, int(frames.size()));
     return;
   }
   if (!opt.stereo.empty()) {
@@ -96,7 +97,7 @@ void write_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet&
     if (rig.problem != StereoRig::Problem::None) throw std::runtime_error(rig.message());
     RenderStats rs;
     Image picture = render_stereo_view(c, objects, rig.left, rig.right, composite, o, &rs, v.search);
-    write_image(picture, opt.output);
+    write_image(picture, path);
     add_render_stats(stats, rs);
     stats["stereo"] = {{"layout", opt.stereo}, {"interocular", opt.interocular}, {"converge", opt.converge},
                        {"left_cell", rig.left_at.cell}, {"right_cell", rig.right_at.cell}};
@@ -105,7 +106,7 @@ void write_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet&
   RenderStats rs;
   Image picture;
   render_view(c, objects, v.camera, vs, o, picture, &rs);
-  write_image(picture, opt.output);
+  write_image(picture, path);
   add_render_stats(stats, rs);
 }
 
@@ -115,7 +116,7 @@ std::string explain_view_effects(const LoadedPlan& plan, const ViewOptions& opt)
   const CellComplex& c = plan.complex;
   const HalftoneOptions o = halftone_options(opt);
   std::string out = explain_effects(prepare_effects(c, place_objects(c), o).plan);
-  if (!opt.output.empty() && is_drawing(opt.output))
+  if (std::any_of(opt.outputs.begin(), opt.outputs.end(), is_drawing))
     out += std::string("shadow outlines: ") + (opt.shadow_lines ? "on" : "off") + " \u2014 " +
            (opt.shadow_lines ? (c.lights.empty() ? "asked for, but the plan has no light to cast them"
                                                  : "asked for (--shadow-lines)")
@@ -125,10 +126,9 @@ std::string explain_view_effects(const LoadedPlan& plan, const ViewOptions& opt)
 }
 
 void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs, const ViewOptions& opt,
-                       nlohmann::json& stats) {
-  const std::string& path = opt.output;
+                       const std::string& path, nlohmann::json& stats) {
   const CellComplex& c = plan.complex;
-  if (is_raster_path(path)) return write_picture(plan, v, vs, opt, stats);
+  if (is_raster_path(path)) return write_picture(plan, v, vs, opt, path, stats);
   if (!is_drawing(path))
     throw std::runtime_error("cannot write '" + path + "': unknown picture format '" + lower_extension(path) +
                              "' (drawings: " + drawing_extensions() + "; half-tone pictures: " + raster_extensions() +

@@ -57,14 +57,14 @@ std::string WalkExports::view(const ViewSetup& v, const std::string& ext, const 
   const std::string tag = stereo.empty() ? "" : "-stereo";
   const std::string path = next({tag + ext, tag + "-left" + ext, tag + "-right" + ext}) + tag + ext;
   ViewOptions o;
-  o.output = path;
+  o.outputs = {path};
   o.stereo = stereo;
   o.samples = opt_.samples;
   o.shading = opt_.shading;
   o.interocular = opt_.interocular;
   o.converge = opt_.converge;
   nlohmann::json stats;
-  write_view_output(plan_, v, find_visible(plan_.complex, v.camera, v.eye_cell, v.search), o, stats);
+  write_view_output(plan_, v, find_visible(plan_.complex, v.camera, v.eye_cell, v.search), o, path, stats);
   return "wrote " + (stereo == "pair" ? stereo_pair_names(path) : path);
 }
 

@@ -502,6 +502,46 @@ TEST_F(Cli, ViewWritesTheDrawingInEveryFormatWithItsStats) {
   EXPECT_FALSE(fs::exists(path("v.xyz")));
 }
 
+TEST_F(Cli, SeveralOutputsOfOneViewAreTheFilesOfSeparateRunsOrNoneAtAll) {
+  const std::vector<std::string> exts{".svg", ".dxf", ".png", ".pgm"};
+  std::vector<std::string> together{"view", kPlan, "--size", "320x200", "--stats-json", "s.json"};
+  for (const std::string& ext : exts) together.insert(together.end(), {"-o", "all" + ext});
+  const Outcome all = run(together);
+  ASSERT_EQ(all.status, 0) << all.err;
+  const json j = json::parse(slurp(path("s.json")));
+  ASSERT_EQ(j["outputs"].size(), exts.size());
+  EXPECT_GT(j["outputs"][0]["lines"].get<int>(), 0);  // each file's own figures
+  EXPECT_TRUE(j["outputs"][2].contains("polygons"));
+  for (size_t k = 0; k < exts.size(); ++k) {
+    SCOPED_TRACE(exts[k]);
+    EXPECT_EQ(j["outputs"][k]["file"], "all" + exts[k]);
+    EXPECT_NE(all.out.find("wrote all" + exts[k]), std::string::npos) << all.out;
+    ASSERT_EQ(run({"view", kPlan, "--size", "320x200", "-o", "one" + exts[k]}).status, 0);
+    EXPECT_TRUE(slurp(path("all" + exts[k])) == slurp(path("one" + exts[k])));
+  }
+  // Walk frames, one numbered set per file asked for.
+  ASSERT_EQ(run({"view", kPlan, "--size", "160x100", "-o", "w.svg", "-o", "w.png", "--frames", "2", "--to-eye",
+                 "7,4.5,1.6", "--to-look", "8,5,1.5"})
+                .status,
+            0);
+  for (const char* f : {"w-0001.svg", "w-0002.svg", "w-0001.png", "w-0002.png"}) EXPECT_TRUE(fs::exists(path(f))) << f;
+  // Every file is checked before any is written: a bad one anywhere writes none.
+  const std::vector<std::pair<std::vector<std::string>, std::string>> bad = {
+      {{"-o", "b.svg", "-o", "b.doc"}, "b.doc"},
+      {{"-o", "b.svg", "-o", "b.png", "-o", "./b.svg"}, "named twice"},
+      {{"-o", "b.svg", "-o", "no-such-folder/b.png"}, "no-such-folder"},
+      {{"-o", "b.svg", "-o", "b.png", "--stereo", "pair"}, "b.png"},
+  };
+  for (const auto& [outs, named] : bad) {
+    std::vector<std::string> args{"view", kPlan, "--size", "160x100"};
+    args.insert(args.end(), outs.begin(), outs.end());
+    const Outcome r = run(args);
+    EXPECT_EQ(r.status, 2) << named;
+    EXPECT_NE(r.err.find(named), std::string::npos) << r.err;
+    for (const char* f : {"b.svg", "b.png", "b-left.svg", "b-right.svg"}) EXPECT_FALSE(fs::exists(path(f))) << named << ": " << f;
+  }
+}
+
 TEST_F(Cli, ViewStereoAndWalkFrames) {
   ASSERT_EQ(run({"view", kPlan, "-o", "s.svg", "--stereo", "cross", "--stats-json", "s.json"}).status, 0);
   EXPECT_TRUE(json::parse(slurp(path("s.json"))).contains("stereo"));
