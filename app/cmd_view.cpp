@@ -54,6 +54,7 @@ std::string str(Vec3 v) {
 void check_view_outputs(const ViewOptions& opt) {
   std::set<std::filesystem::path> named;
   for (const std::string& out : opt.outputs) {
+    check_output_path(out);  // a device or FIFO there: told first, whatever its name
     const bool picture = is_raster_path(out);
     if (!picture && !is_drawing_path(out))
       throw std::runtime_error("cannot write '" + out + "': unknown picture format '" + lower_extension(out) +
@@ -69,7 +70,6 @@ void check_view_outputs(const ViewOptions& opt) {
         throw std::runtime_error("--stereo wants parallel, cross or pair for drawings, not '" + opt.stereo + "' (" +
                                  out + ")");
     }
-    check_output_path(out);
     std::error_code ec;
     const std::filesystem::path folder = std::filesystem::path(out).parent_path();
     if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
