@@ -49,10 +49,19 @@ std::string str(Vec3 v) {
 }
 
 /// Every -o known before the plan is read: its format (and, with --stereo, a layout that
-/// format takes), a place it can be written, and no file named twice. So a run asked for
-/// several files does not write some and then refuse the next.
+/// format takes), a place it can be written, and no file named twice, among the outputs or
+/// as the overlay or the stats. So a run asked for several files does not write some and
+/// then refuse the next, nor write one over another.
 void check_view_outputs(const ViewOptions& opt) {
   std::set<std::filesystem::path> named;
+  auto name_once = [&named](const std::string& out) {
+    std::error_code ec;
+    const std::filesystem::path whole = std::filesystem::weakly_canonical(std::filesystem::absolute(out), ec);
+    if (!named.insert(ec ? std::filesystem::path(out) : whole).second)
+      throw std::runtime_error("cannot write '" + out + "': it is named twice among the files to write");
+  };
+  for (const std::string& f : {opt.overlay, opt.stats_json})
+    if (!f.empty()) name_once(f);
   for (const std::string& out : opt.outputs) {
     check_output_path(out);  // a device or FIFO there: told first, whatever its name
     const bool picture = is_raster_path(out);
@@ -74,9 +83,7 @@ void check_view_outputs(const ViewOptions& opt) {
     const std::filesystem::path folder = std::filesystem::path(out).parent_path();
     if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
       throw std::runtime_error("cannot write '" + out + "': there is no folder " + folder.string());
-    const std::filesystem::path whole = std::filesystem::weakly_canonical(std::filesystem::absolute(out), ec);
-    if (!named.insert(ec ? std::filesystem::path(out) : whole).second)
-      throw std::runtime_error("cannot write '" + out + "': it is named twice among the files to write");
+    name_once(out);
   }
 }
 

@@ -531,6 +531,7 @@ TEST_F(Cli, SeveralOutputsOfOneViewAreTheFilesOfSeparateRunsOrNoneAtAll) {
       {{"-o", "b.svg", "-o", "b.png", "-o", "./b.svg"}, "named twice"},
       {{"-o", "b.svg", "-o", "no-such-folder/b.png"}, "no-such-folder"},
       {{"-o", "b.svg", "-o", "b.png", "--stereo", "pair"}, "b.png"},
+      {{"-o", "b.svg", "-o", "b.png", "--stats-json", "b.png"}, "named twice"},
   };
   for (const auto& [outs, named] : bad) {
     std::vector<std::string> args{"view", kPlan, "--size", "160x100"};
