@@ -150,6 +150,9 @@ int run_drawing(const DrawingOptions& opt) {
     check_output_path(out);
     any_picture = any_picture || is_raster_path(out);
   }
+  std::vector<std::string> named = opt.outputs;
+  named.push_back(opt.stats_json);
+  check_named_once(named);  // no file twice, nor the stats over a drawing
   start_threads(0);  // the drawing's (and half-tone's) threads start while the plan is read
   LoadedPlan plan = load_plan_source(opt.plan, opt.import);
   const CellComplex& c = plan.complex;

@@ -53,15 +53,9 @@ std::string str(Vec3 v) {
 /// as the overlay or the stats. So a run asked for several files does not write some and
 /// then refuse the next, nor write one over another.
 void check_view_outputs(const ViewOptions& opt) {
-  std::set<std::filesystem::path> named;
-  auto name_once = [&named](const std::string& out) {
-    std::error_code ec;
-    const std::filesystem::path whole = std::filesystem::weakly_canonical(std::filesystem::absolute(out), ec);
-    if (!named.insert(ec ? std::filesystem::path(out) : whole).second)
-      throw std::runtime_error("cannot write '" + out + "': it is named twice among the files to write");
-  };
-  for (const std::string& f : {opt.overlay, opt.stats_json})
-    if (!f.empty()) name_once(f);
+  std::vector<std::string> files{opt.overlay, opt.stats_json};
+  files.insert(files.end(), opt.outputs.begin(), opt.outputs.end());
+  check_named_once(files);
   for (const std::string& out : opt.outputs) {
     check_output_path(out);  // a device or FIFO there: told first, whatever its name
     const bool picture = is_raster_path(out);
@@ -83,7 +77,6 @@ void check_view_outputs(const ViewOptions& opt) {
     const std::filesystem::path folder = std::filesystem::path(out).parent_path();
     if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
       throw std::runtime_error("cannot write '" + out + "': there is no folder " + folder.string());
-    name_once(out);
   }
 }
 

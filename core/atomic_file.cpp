@@ -191,14 +191,21 @@ std::unique_ptr<PendingTempFile> pending_with(const std::string& path, std::stri
 
 void write_file_atomically(const std::string& path, std::string_view bytes) { pending_with(path, bytes)->commit(); }
 
-void write_files_atomically(const std::vector<std::pair<std::string, std::string>>& files) {
+void check_named_once(const std::vector<std::string>& paths) {
   std::set<std::filesystem::path> targets;
-  for (const auto& [path, bytes] : files) {
+  for (const std::string& path : paths) {
+    if (path.empty()) continue;
     std::error_code ec;
     const std::filesystem::path whole = std::filesystem::weakly_canonical(std::filesystem::absolute(path), ec);
     if (!targets.insert(ec ? std::filesystem::path(path) : whole).second)
       fail(path, "it is named twice among the files to write", 0);
   }
+}
+
+void write_files_atomically(const std::vector<std::pair<std::string, std::string>>& files) {
+  std::vector<std::string> paths;
+  for (const auto& [path, bytes] : files) paths.push_back(path);
+  check_named_once(paths);
   std::vector<std::unique_ptr<PendingTempFile>> pending;
   for (const auto& [path, bytes] : files) pending.push_back(pending_with(path, bytes));
   for (auto& tmp : pending) tmp->commit();

@@ -36,6 +36,11 @@ void write_files_atomically(const std::vector<std::pair<std::string, std::string
 /// before spending time on them.
 void check_output_path(const std::string& path);
 
+/// Throws std::runtime_error naming the second of two `paths` that name one file
+/// ("./a.svg" and "a.svg", or through a link to its folder); empty ones are skipped. A
+/// command writing several files checks them all (its outputs, its stats) before the work.
+void check_named_once(const std::vector<std::string>& paths);
+
 /// A temporary file beside a target, removed when the process is stopped by SIGINT,
 /// SIGTERM or SIGHUP while it exists (a fixed-size registry of pending paths and an
 /// async-signal-safe handler that unlinks them, then dies of the signal as it would have).

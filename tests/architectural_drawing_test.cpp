@@ -534,6 +534,7 @@ TEST_F(ArchitecturalDrawing, SeveralOutputsOfOneRunAreTheFilesOfSeparateRunsOrNo
       {{"-o", path("b.svg"), "-o", path("b.doc")}, "b.doc"},
       {{"-o", path("b.svg"), "-o", path("b.png"), "-o", path("./b.svg")}, "named twice"},
       {{"-o", path("b.svg"), "-o", path("no-such-folder/b.png")}, "no-such-folder"},
+      {{"-o", path("b.svg"), "-o", path("b.png"), "--stats-json", path("b.png")}, "named twice"},
   };
   for (const auto& [outs, named] : bad) {
     std::vector<std::string> args{"drawing", plan};
