@@ -91,7 +91,7 @@ std::string dxf_bytes(const Drawing& d, const Page& page) {
       dxf.writeLayer(dw, DL_LayerData(to_string(layer), 0), DL_Attributes("", DL_Codes::black, -3, "CONTINUOUS", 1.0));
     dw.tableEnd();
     dw.tableStyle(1);
-    dxf.writeStyle(dw, DL_StyleData("standard", 0, 2.5, 1.0, 0.0, 0, 2.5, "txt", ""));
+    dxf.writeStyle(dw, DL_StyleData("Standard", 0, 2.5, 1.0, 0.0, 0, 2.5, "txt", ""));
     dw.tableEnd();
     dxf.writeView(dw);
     dxf.writeUcs(dw);
@@ -119,7 +119,7 @@ std::string dxf_bytes(const Drawing& d, const Page& page) {
     for (const Label& l : d.labels) {  // middle-centred (72 = 1, 73 = 2)
       const Vec2 p = page.from_raster_y_up(l.at);
       const double h = page.mm(l.height);
-      dxf.writeText(dw, DL_TextData(p.x, p.y, 0.0, p.x, p.y, 0.0, h, 1.0, 0, 1, 2, l.text, "standard", 0.0),
+      dxf.writeText(dw, DL_TextData(p.x, p.y, 0.0, p.x, p.y, 0.0, h, 1.0, 0, 1, 2, l.text, "Standard", 0.0),
                     DL_Attributes(to_string(Layer::Annotation), 256, nearest_lineweight(page.crease), "BYLAYER", 1.0));
     }
     dw.sectionEnd();
