@@ -174,16 +174,7 @@ int run_view(const ViewOptions& opt) {
   // Each file as a run of its own would write it; with several, each one's figures under "outputs".
   std::vector<std::string> wrote;
   if (opt.outputs.size() == 1) write_view_output(plan, v, vs, opt, opt.outputs[0], stats);
-  if (opt.outputs.size() > 1) {
-    nlohmann::json each = nlohmann::json::array();
-    for (const std::string& out : opt.outputs) {
-      nlohmann::json one;
-      one["file"] = out;
-      write_view_output(plan, v, vs, opt, out, one);
-      each.push_back(std::move(one));
-    }
-    stats["outputs"] = std::move(each);
-  }
+  if (opt.outputs.size() > 1) stats["outputs"] = write_view_outputs(plan, v, vs, opt);
   for (size_t k = 0; k < opt.outputs.size(); ++k) {
     const nlohmann::json& one = opt.outputs.size() == 1 ? stats : stats["outputs"][k];
     const std::string& out = opt.outputs[k];

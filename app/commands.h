@@ -185,6 +185,12 @@ int run_view(const ViewOptions& opt);
 /// `opt`); adds what it measured to `stats`.
 void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs, const ViewOptions& opt,
                        const std::string& path, nlohmann::json& stats);
+/// Writes the view to every file of opt.outputs, each as write_view_output() would alone;
+/// returns each file's figures ({"file": path, ...}). One view (no stereo, no frames): its
+/// picture rendered and its drawing drawn once, whatever the files, and the files written
+/// all or none.
+nlohmann::json write_view_outputs(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs,
+                                  const ViewOptions& opt);
 /// With --explain: each effect of the half-tone on or off and why (render/effects.h), one
 /// per line, and for drawings among opt.outputs whether shadow outlines are drawn.
 std::string explain_view_effects(const LoadedPlan& plan, const ViewOptions& opt);

@@ -12,10 +12,12 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "core/atomic_file.h"
 #include "core/file_name.h"
 #include "render/drawing.h"
 #include "render/effects.h"
@@ -62,9 +64,41 @@ void add_render_stats(nlohmann::json& stats, const RenderStats& rs) {
   for (const auto& [key, value] : rs.fields()) stats[key] = value;
 }
 
+/// One view's half-tone picture (no stereo, no frames), its counters into `rs`.
+Image view_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs, const ViewOptions& opt,
+                   RenderStats& rs) {
+  std::vector<std::string> said;  // what reading the objects' meshes let pass
+  const std::vector<PlacedObject> objects = place_objects(plan.complex, &said);
+  print_warnings(plan.path, said);
+  Image picture;
+  render_view(plan.complex, objects, v.camera, vs, halftone_options(opt), picture, &rs);
+  return picture;
+}
+
+/// One view's hidden-line drawing (no stereo, no frames); [µs] its time into `render_us`.
+Drawing view_drawing(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs, const ViewOptions& opt,
+                     double& render_us) {
+  const CellComplex& c = plan.complex;
+  LineOptions line_options;
+  line_options.shadows = opt.shadow_lines;
+  const LineScene scene = prepare_line_scene(c, line_options);
+  auto t0 = std::chrono::steady_clock::now();
+  // Lines need exact masks: a view searched by hull (for half-tones) is searched again.
+  const VisibleSet exact = vs.conservative ? find_visible(c, v.camera, v.eye_cell, exact_masks(v.search)) : VisibleSet{};
+  Drawing d = draw_view(c, scene, v.camera, vs.conservative ? exact : vs, line_options);
+  render_us = micros_since(t0);
+  return d;
+}
+
 /// The half-tone picture(s): one view, a stereo composite, or walk frames.
 void write_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs, const ViewOptions& opt,
                    const std::string& path, nlohmann::json& stats) {
+  if (opt.frames == 0 && opt.stereo.empty()) {
+    RenderStats rs;
+    write_image(view_picture(plan, v, vs, opt, rs), path);
+    add_render_stats(stats, rs);
+    return;
+  }
   const CellComplex& c = plan.complex;
   const HalftoneOptions o = halftone_options(opt);
   std::vector<std::string> said;  // what reading the objects' meshes let pass
@@ -103,11 +137,7 @@ void write_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet&
                        {"left_cell", rig.left_at.cell}, {"right_cell", rig.right_at.cell}};
     return;
   }
-  RenderStats rs;
-  Image picture;
-  render_view(c, objects, v.camera, vs, o, picture, &rs);
-  write_image(picture, path);
-  add_render_stats(stats, rs);
+  throw std::logic_error("write_picture: neither frames, stereo nor one view");
 }
 
 }  // namespace
@@ -133,6 +163,12 @@ void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const Visible
     throw std::runtime_error("cannot write '" + path + "': unknown picture format '" + lower_extension(path) +
                              "' (drawings: " + drawing_extensions() + "; half-tone pictures: " + raster_extensions() +
                              ")");
+  if (opt.frames == 0 && opt.stereo.empty()) {
+    double render_us = 0;
+    const Drawing d = view_drawing(plan, v, vs, opt, render_us);
+    add_drawing_stats(stats, write_drawing(d, path), render_us, path);
+    return;
+  }
   LineOptions line_options;
   line_options.shadows = opt.shadow_lines;
   const LineScene scene = prepare_line_scene(c, line_options);
@@ -181,13 +217,44 @@ void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const Visible
                 << "); each sees through its own avenues\n";
     return;
   }
+  throw std::logic_error("write_view_output: neither frames, stereo nor one view");
+}
 
-  auto t0 = std::chrono::steady_clock::now();
-  // Lines need exact masks: a view searched by hull (for half-tones) is searched again.
-  const VisibleSet exact = vs.conservative ? find_visible(c, v.camera, v.eye_cell, exact_masks(v.search)) : VisibleSet{};
-  Drawing d = draw_view(c, scene, v.camera, vs.conservative ? exact : vs, line_options);
-  const double render_us = micros_since(t0);
-  add_drawing_stats(stats, write_drawing(d, path), render_us, path);
+nlohmann::json write_view_outputs(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs,
+                                  const ViewOptions& opt) {
+  nlohmann::json each = nlohmann::json::array();
+  if (opt.frames > 0 || !opt.stereo.empty()) {  // file by file, each as a run of its own
+    for (const std::string& out : opt.outputs) {
+      nlohmann::json one;
+      one["file"] = out;
+      write_view_output(plan, v, vs, opt, out, one);
+      each.push_back(std::move(one));
+    }
+    return each;
+  }
+  // One picture and one drawing, however many files of each kind; then every file or none.
+  RenderStats rs;
+  Image picture;
+  if (std::any_of(opt.outputs.begin(), opt.outputs.end(), is_raster_path)) picture = view_picture(plan, v, vs, opt, rs);
+  double render_us = 0;
+  Drawing drawing;
+  if (std::any_of(opt.outputs.begin(), opt.outputs.end(), is_drawing)) drawing = view_drawing(plan, v, vs, opt, render_us);
+  std::vector<std::pair<std::string, std::string>> files;
+  for (const std::string& out : opt.outputs) {
+    nlohmann::json one;
+    one["file"] = out;
+    if (is_raster_path(out)) {
+      files.emplace_back(out, encode_image(picture, out));
+      add_render_stats(one, rs);
+    } else {
+      EncodedDrawing e = encode_drawing(drawing, out);
+      add_drawing_stats(one, e.stats, render_us, out);
+      files.emplace_back(out, std::move(e.bytes));
+    }
+    each.push_back(std::move(one));
+  }
+  write_files_atomically(files);  // all of them or none
+  return each;
 }
 
 }  // namespace avenues::app
