@@ -104,6 +104,35 @@ TEST(AtomicFile, WritesWholeOrLeavesTheTargetAlone) {
   EXPECT_EQ(files, 1u);  // no temporary left behind
 }
 
+TEST(AtomicFile, SeveralFilesAreWrittenAllOrNoneAndNoneIsNamedTwice) {
+  namespace fs = std::filesystem;
+  const avenues::testing::TempDir scratch("avenues-core-several");
+  const fs::path& dir = scratch.path();
+  const std::string a = (dir / "a.txt").string(), b = (dir / "b.txt").string();
+  const std::string a_again = (dir / "." / "sub" / ".." / "a.txt").string();
+  fs::create_directory(dir / "sub");
+  // One file by two names: the second is named, before anything is written.
+  EXPECT_NO_THROW(check_named_once({a, b, "", ""}));  // empty names (no stats file asked for) are skipped
+  try {
+    check_named_once({a, b, a_again});
+    FAIL() << "no throw";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(a_again), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("named twice"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(write_files_atomically({{a, "1"}, {a_again, "2"}}), std::runtime_error);
+  EXPECT_FALSE(fs::exists(a));
+  // A file that cannot be made (its folder missing) leaves the others unwritten too.
+  EXPECT_THROW(write_files_atomically({{a, "1"}, {(dir / "missing" / "c.txt").string(), "3"}}), std::runtime_error);
+  EXPECT_FALSE(fs::exists(a));
+  write_files_atomically({{a, "1"}, {b, "2"}});
+  std::ifstream in_a(a), in_b(b);
+  std::stringstream ta, tb;
+  ta << in_a.rdbuf(), tb << in_b.rdbuf();
+  EXPECT_EQ(ta.str(), "1");
+  EXPECT_EQ(tb.str(), "2");
+}
+
 TEST(Check, AFailedCheckNamesWhatAndWhere) {
   try {
     AVENUES_CHECK(1 + 1 == 3, std::string("arithmetic holds"));
