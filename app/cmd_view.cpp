@@ -47,11 +47,13 @@ std::string str(Vec3 v) {
   return o.str();
 }
 
-/// Every -o known before the plan is read: its format (and, with --stereo, a layout that
-/// format takes), a place it can be written, and no file named twice, among the outputs or
-/// as the overlay or the stats. So a run asked for several files does not write some and
-/// then refuse the next, nor write one over another.
+/// Every file asked for, known before the plan is read: no device or FIFO in its place,
+/// and no file named twice (the stats and the overlay among them); each -o's format (and,
+/// with --stereo, a layout that format takes) and its folder. So a run asked for several
+/// files does not write some and then refuse the next, nor write one over another.
 void check_view_outputs(const ViewOptions& opt) {
+  for (const std::string& f : {opt.stats_json, opt.overlay})
+    if (!f.empty()) check_output_path(f);
   std::vector<std::string> files{opt.overlay, opt.stats_json};
   files.insert(files.end(), opt.outputs.begin(), opt.outputs.end());
   check_named_once(files);
@@ -152,9 +154,7 @@ int run_view(const ViewOptions& opt) {
   lights_option(opt.lights);  // refused before the work
   object_shadows_option(opt.object_shadows);
   if (!std::isfinite(opt.falloff)) throw std::runtime_error("--falloff wants a distance in metres");
-  for (const std::string& f : {opt.stats_json, opt.overlay})
-    if (!f.empty()) check_output_path(f);  // a device or FIFO there: refused before the work
-  check_view_outputs(opt);
+  check_view_outputs(opt);  // a device or FIFO there, a file named twice: refused before the work
   if (std::any_of(opt.outputs.begin(), opt.outputs.end(), is_raster_path))
     start_threads(0);  // the picture's threads start while the plan is read
   LoadedPlan plan = load_plan_source(opt.plan, opt.import);

@@ -64,14 +64,19 @@ void add_render_stats(nlohmann::json& stats, const RenderStats& rs) {
   for (const auto& [key, value] : rs.fields()) stats[key] = value;
 }
 
+/// The plan's objects placed, what reading their meshes let pass told once.
+std::vector<PlacedObject> objects_of(const LoadedPlan& plan) {
+  std::vector<std::string> said;
+  std::vector<PlacedObject> objects = place_objects(plan.complex, &said);
+  print_warnings(plan.path, said);
+  return objects;
+}
+
 /// One view's half-tone picture (no stereo, no frames), its counters into `rs`.
 Image view_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs, const ViewOptions& opt,
                    RenderStats& rs) {
-  std::vector<std::string> said;  // what reading the objects' meshes let pass
-  const std::vector<PlacedObject> objects = place_objects(plan.complex, &said);
-  print_warnings(plan.path, said);
   Image picture;
-  render_view(plan.complex, objects, v.camera, vs, halftone_options(opt), picture, &rs);
+  render_view(plan.complex, objects_of(plan), v.camera, vs, halftone_options(opt), picture, &rs);
   return picture;
 }
 
@@ -101,9 +106,7 @@ void write_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet&
   }
   const CellComplex& c = plan.complex;
   const HalftoneOptions o = halftone_options(opt);
-  std::vector<std::string> said;  // what reading the objects' meshes let pass
-  const std::vector<PlacedObject> objects = place_objects(c, &said);
-  print_warnings(plan.path, said);
+  const std::vector<PlacedObject> objects = objects_of(plan);
   if (opt.frames > 0) {
     const auto frames = walk_frames(c, v.viewpoint.eye, v.viewpoint.look, parse_vec3(opt.to_eye, "--to-eye"),
                                     parse_vec3(opt.to_look, "--to-look"), opt.frames, v.camera);
@@ -123,21 +126,18 @@ void write_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet&
     stats["first_frame"] = frame_path(path, 0, int(frames.size()));
     return;
   }
-  if (!opt.stereo.empty()) {
-    StereoComposite composite;
-    if (!parse_stereo_composite(opt.stereo, composite))
-      throw std::runtime_error("--stereo wants anaglyph, parallel or cross for pictures, not '" + opt.stereo + "'");
-    StereoRig rig = stereo_rig(c, v.camera, {opt.interocular, opt.converge});
-    if (rig.problem != StereoRig::Problem::None) throw std::runtime_error(rig.message());
-    RenderStats rs;
-    Image picture = render_stereo_view(c, objects, rig.left, rig.right, composite, o, &rs, v.search);
-    write_image(picture, path);
-    add_render_stats(stats, rs);
-    stats["stereo"] = {{"layout", opt.stereo}, {"interocular", opt.interocular}, {"converge", opt.converge},
-                       {"left_cell", rig.left_at.cell}, {"right_cell", rig.right_at.cell}};
-    return;
-  }
-  throw std::logic_error("write_picture: neither frames, stereo nor one view");
+  // A stereo pair.
+  StereoComposite composite;
+  if (!parse_stereo_composite(opt.stereo, composite))
+    throw std::runtime_error("--stereo wants anaglyph, parallel or cross for pictures, not '" + opt.stereo + "'");
+  StereoRig rig = stereo_rig(c, v.camera, {opt.interocular, opt.converge});
+  if (rig.problem != StereoRig::Problem::None) throw std::runtime_error(rig.message());
+  RenderStats rs;
+  Image picture = render_stereo_view(c, objects, rig.left, rig.right, composite, o, &rs, v.search);
+  write_image(picture, path);
+  add_render_stats(stats, rs);
+  stats["stereo"] = {{"layout", opt.stereo}, {"interocular", opt.interocular}, {"converge", opt.converge},
+                     {"left_cell", rig.left_at.cell}, {"right_cell", rig.right_at.cell}};
 }
 
 }  // namespace
@@ -193,31 +193,27 @@ void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const Visible
     return;
   }
 
-  if (!opt.stereo.empty()) {
-    StereoLayout layout;
-    if (!parse_stereo_layout(opt.stereo, layout))
-      throw std::runtime_error("--stereo wants parallel, cross or pair for drawings, not '" + opt.stereo + "'");
-    StereoRig rig = stereo_rig(c, v.camera, {opt.interocular, opt.converge});
-    if (rig.problem != StereoRig::Problem::None) throw std::runtime_error(rig.message());
-    auto t0 = std::chrono::steady_clock::now();
-    VisibleSet lv = find_visible(c, rig.left, rig.left_at.cell, exact_masks(v.search));
-    VisibleSet rv = find_visible(c, rig.right, rig.right_at.cell, exact_masks(v.search));
-    Drawing left = draw_view(c, scene, rig.left, lv, line_options),
-            right = draw_view(c, scene, rig.right, rv, line_options);
-    const double render_us = micros_since(t0);
-    add_drawing_stats(stats, write_stereo_drawing(left, right, layout, path), render_us, path);
-    stats["stereo"] = {{"layout", to_string(layout)},
-                       {"interocular", opt.interocular},
-                       {"converge", opt.converge},
-                       {"left_cell", rig.left_at.cell},
-                       {"right_cell", rig.right_at.cell},
-                       {"eyes_apart", rig.eyes_apart()}};
-    if (rig.eyes_apart())
-      std::cout << "note: the two eyes stand in different cells (" << rig.left_at.cell << " and " << rig.right_at.cell
-                << "); each sees through its own avenues\n";
-    return;
-  }
-  throw std::logic_error("write_view_output: neither frames, stereo nor one view");
+  // A stereo pair.
+  StereoLayout layout;
+  if (!parse_stereo_layout(opt.stereo, layout))
+    throw std::runtime_error("--stereo wants parallel, cross or pair for drawings, not '" + opt.stereo + "'");
+  StereoRig rig = stereo_rig(c, v.camera, {opt.interocular, opt.converge});
+  if (rig.problem != StereoRig::Problem::None) throw std::runtime_error(rig.message());
+  auto t0 = std::chrono::steady_clock::now();
+  VisibleSet lv = find_visible(c, rig.left, rig.left_at.cell, exact_masks(v.search));
+  VisibleSet rv = find_visible(c, rig.right, rig.right_at.cell, exact_masks(v.search));
+  Drawing left = draw_view(c, scene, rig.left, lv, line_options), right = draw_view(c, scene, rig.right, rv, line_options);
+  const double render_us = micros_since(t0);
+  add_drawing_stats(stats, write_stereo_drawing(left, right, layout, path), render_us, path);
+  stats["stereo"] = {{"layout", to_string(layout)},
+                     {"interocular", opt.interocular},
+                     {"converge", opt.converge},
+                     {"left_cell", rig.left_at.cell},
+                     {"right_cell", rig.right_at.cell},
+                     {"eyes_apart", rig.eyes_apart()}};
+  if (rig.eyes_apart())
+    std::cout << "note: the two eyes stand in different cells (" << rig.left_at.cell << " and " << rig.right_at.cell
+              << "); each sees through its own avenues\n";
 }
 
 nlohmann::json write_view_outputs(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs,
