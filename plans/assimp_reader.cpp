@@ -197,8 +197,11 @@ void collect(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent
     n.name = node.mName.C_Str();
     n.parent = parent;
     for (unsigned k = 0; k < node.mNumMeshes; ++k) {
-      if (node.mMeshes[k] >= scene.mNumMeshes) continue;
+      // Read without Assimp's validation (import_scene's retry), a scene can hold a mesh that
+      // is missing or holds no points: such a mesh has nothing to keep.
+      if (!node.mMeshes || node.mMeshes[k] >= scene.mNumMeshes || !scene.mMeshes[node.mMeshes[k]]) continue;
       const aiMesh& mesh = *scene.mMeshes[node.mMeshes[k]];
+      if (!mesh.mVertices || !mesh.mFaces) continue;
       const int material = mesh.mMaterialIndex < out.materials.size() ? int(mesh.mMaterialIndex) : -1;
       if (!n.coloured && material >= 0) {
         n.colour = out.materials[size_t(material)].colour;
@@ -213,7 +216,7 @@ void collect(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent
       }
       for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
         const aiFace& face = mesh.mFaces[f];
-        if (face.mNumIndices != 3) continue;  // points and lines have no surface
+        if (face.mNumIndices != 3 || !face.mIndices) continue;  // points and lines have no surface
         const unsigned a = face.mIndices[0], b = face.mIndices[1], c = face.mIndices[2];
         if (a >= mesh.mNumVertices || b >= mesh.mNumVertices || c >= mesh.mNumVertices ||
             !finite[a] || !finite[b] || !finite[c]) {
@@ -226,8 +229,35 @@ void collect(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent
       }
     }
   }
-  for (unsigned c = 0; c < node.mNumChildren; ++c)
+  for (unsigned c = 0; node.mChildren && c < node.mNumChildren; ++c)
     if (node.mChildren[c]) collect(scene, *node.mChildren[c], world, self, axes, metres, out, dropped, depth + 1);
+}
+
+/// Drops what Assimp's check of a scene may fail on and Avenues does not use: lights, cameras
+/// and animations (Avenues lights a plan by its own lights), and empty slots among a node's
+/// children.
+void repair_scene(aiScene& scene) {
+  auto drop = [](auto**& items, unsigned& count) {
+    for (unsigned k = 0; items && k < count; ++k) delete items[k];
+    delete[] items;
+    items = nullptr;
+    count = 0;
+  };
+  drop(scene.mLights, scene.mNumLights);
+  drop(scene.mCameras, scene.mNumCameras);
+  drop(scene.mAnimations, scene.mNumAnimations);
+  std::vector<aiNode*> stack;
+  if (scene.mRootNode) stack.push_back(scene.mRootNode);
+  for (size_t guard = 0; !stack.empty() && guard < 1'000'000; ++guard) {
+    aiNode* n = stack.back();
+    stack.pop_back();
+    if (!n->mChildren) n->mNumChildren = 0;
+    unsigned kept = 0;
+    for (unsigned c = 0; c < n->mNumChildren; ++c)
+      if (n->mChildren[c]) n->mChildren[kept++] = n->mChildren[c];
+    n->mNumChildren = kept;
+    for (unsigned c = 0; c < kept; ++c) stack.push_back(n->mChildren[c]);
+  }
 }
 
 /// A binary glTF (its "glTF" magic and version 2) under a name Assimp does not take for one:
@@ -276,33 +306,58 @@ std::string assimp_importer_by_content(const std::string& path) {
 ImportedScene import_scene(const std::string& path, const ImportOptions& options) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw std::runtime_error("cannot read model " + path + ": no such file");
-  Assimp::Importer importer;
-  importer.SetPropertyBool(AI_CONFIG_IMPORT_IFC_SKIP_SPACE_REPRESENTATIONS, !options.ifc_spaces);
-  // Only triangles are kept: drop points and lines at the source.
-  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  // The second importer reads a file again (below): Assimp's readers keep state from one
+  // read to the next (its OpenGEX reader crashes reading a file twice).
+  Assimp::Importer importers[2];
+  for (Assimp::Importer& importer : importers) {
+    importer.SetPropertyBool(AI_CONFIG_IMPORT_IFC_SKIP_SPACE_REPRESENTATIONS, !options.ifc_spaces);
+    // Only triangles are kept: drop points and lines at the source.
+    importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  }
+  Assimp::Importer* importer = &importers[0];
   ImportedScene out;
   out.path = path;
   const auto t0 = std::chrono::steady_clock::now();
   const aiScene* scene = nullptr;
-  try {
-    constexpr unsigned kSteps =
-        aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
-    std::string bytes;
-    if (!options.contents.empty()) {  // Assimp tells the format by the hint: the extension without its dot
-      std::string hint = lower_extension(path);
-      if (!hint.empty()) hint.erase(0, 1);
-      scene = importer.ReadFileFromMemory(options.contents.data(), options.contents.size(), kSteps, hint.c_str());
+  constexpr unsigned kSteps = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType;
+  std::string bytes;
+  auto read = [&](unsigned steps) {
+    try {
+      if (!options.contents.empty()) {  // Assimp tells the format by the hint: the extension without its dot
+        std::string hint = lower_extension(path);
+        if (!hint.empty()) hint.erase(0, 1);
+        return importer->ReadFileFromMemory(options.contents.data(), options.contents.size(), steps, hint.c_str());
+      }
+      if (!bytes.empty() || binary_gltf_by_content_only(path, &bytes))  // whole in one file: read from memory, told it is GLB
+        return importer->ReadFileFromMemory(bytes.data(), bytes.size(), steps, "glb");
+      return importer->ReadFile(path, steps);
+    } catch (const std::exception& e) {  // Assimp catches its own; anything else is a reading failure too
+      throw std::runtime_error("cannot read model " + path + ": " + e.what());
     }
-    else if (binary_gltf_by_content_only(path, &bytes))  // whole in one file: read from memory, told it is GLB
-      scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), kSteps, "glb");
-    else
-      scene = importer.ReadFile(path, kSteps);
-  } catch (const std::exception& e) {  // Assimp catches its own; anything else is a reading failure too
-    throw std::runtime_error("cannot read model " + path + ": " + e.what());
+  };
+  scene = read(kSteps | aiProcess_ValidateDataStructure);
+  // Assimp's check of the scene it made fails for things Avenues does not use as well as for
+  // things it does: a light or a camera with no node (OpenGEX), an empty slot among a node's
+  // children (RAW). The format's own tools show such a file. So it is read again as it
+  // stands, those parts are dropped, and the rest is checked and processed as before.
+  if (!scene && std::string_view(importer->GetErrorString()).starts_with("Validation failed")) {
+    const std::string complaint = importer->GetErrorString();
+    importer = &importers[1];
+    if (const aiScene* raw = read(0)) {
+      repair_scene(*const_cast<aiScene*>(raw));  // the importer's own scene, not processed yet
+      scene = importer->ApplyPostProcessing(kSteps | aiProcess_ValidateDataStructure);
+    }
+    if (!scene) {
+      std::string again = importer->GetErrorString();
+      throw std::runtime_error("cannot read model " + path + ": " + complaint +
+                               (again.empty() || again == complaint ? "" : "; without its lights, cameras and animations: " + again));
+    }
+    out.warnings.push_back("Assimp's check of the scene failed (" + complaint +
+                           "): its lights, cameras, animations and empty nodes were dropped");
   }
   out.import_seconds = seconds_since(t0);
   if (!scene) {
-    std::string why = importer.GetErrorString();
+    std::string why = importer->GetErrorString();
     if (why.empty()) why = "Assimp gives no reason";
     // Points and lines are dropped as they are read (AI_CONFIG_PP_SBP_REMOVE): a file of
     // nothing else is left with no mesh, which Assimp words for itself.
@@ -321,7 +376,7 @@ ImportedScene import_scene(const std::string& path, const ImportOptions& options
   // beside a texture that replaces it, as an OBJ's Kd beside its map_Kd.
   const bool factor_times_texture = out.format.find("glTF") != std::string::npos;
   std::vector<std::string> untextured;  // materials whose texture gave no colour, and why
-  for (unsigned m = 0; m < scene->mNumMaterials; ++m) {
+  for (unsigned m = 0; scene->mMaterials && m < scene->mNumMaterials; ++m) {
     ImportedMaterial im;
     im.colour = diffuse_of(*scene, m, im.coloured);
     aiString name;
