@@ -59,6 +59,7 @@
 #include <string_view>
 #include <tuple>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace avenues {
 namespace {
@@ -268,8 +269,12 @@ struct LevelIn {
   std::string id, name;
   double elevation = 0, floor = 0, height = 0;
   int index = 0;  ///< elevationIndex: order among levels of one elevation
+  bool viewable = true;  ///< false: hidden in Sweet Home's plan and 3D view (Plan > Make level unviewable)
   const HomeElement* node = nullptr;
 };
+
+/// storey_of's answer for an element on a level that is not viewable: it is left out.
+constexpr StoreyId kHiddenLevel = -2;
 
 /// A wall on its way into the plan: one <wall> or several joined end to end.
 struct Draft {
@@ -494,6 +499,7 @@ class HomeReader {
   bool has_levels_ = false;
   StoreyId default_storey_ = 0;
   std::unordered_map<std::string, StoreyId> storey_of_level_;
+  std::unordered_set<std::string> hidden_levels_;  ///< ids of levels that are not viewable
   std::vector<Draft> drafts_;
   std::vector<PieceIn> pieces_;
   std::vector<std::vector<Hole>> holes_;  ///< per draft: the doors and windows found in it
@@ -507,6 +513,7 @@ StoreyId HomeReader::storey_of(const HomeElement& n, const std::string& element,
   std::string id = n.text("level");
   if (id.empty()) id = inherited;
   if (id.empty()) return default_storey_;
+  if (hidden_levels_.count(id)) return kHiddenLevel;
   auto it = storey_of_level_.find(id);
   if (it == storey_of_level_.end())
     fail(n, element, element + " is on level '" + id + "', which the home does not define");
@@ -530,6 +537,7 @@ void HomeReader::read_levels(const HomeElement& home) {
     l.height = need(n, "height", element);
     const double index = number(n, "elevationIndex", element).value_or(0);
     l.index = std::isfinite(index) ? int(std::clamp(index, -1e6, 1e6)) : 0;
+    l.viewable = std::string_view(n.text("viewable")) != "false";
     l.node = &n;
     if (!sane(l.elevation) || !sane(l.floor) || !sane(l.height) || l.height <= 0 || l.floor < 0)
       fail(n, element, element + " has an elevation, floorThickness or height that makes no sense (" +
@@ -537,6 +545,18 @@ void HomeReader::read_levels(const HomeElement& home) {
     l.elevation *= kCm, l.floor *= kCm, l.height *= kCm;
     levels.push_back(l);
   }
+  // A level made unviewable is hidden in Sweet Home's plan and 3D view, and in its virtual
+  // visit: left out here too, with what stands on it. (Unless every level is: then the
+  // home would be empty, and all are kept.)
+  if (std::any_of(levels.begin(), levels.end(), [](const LevelIn& l) { return l.viewable; }))
+    std::erase_if(levels, [&](const LevelIn& l) {
+      if (l.viewable) return false;
+      hidden_levels_.insert(l.id);
+      warn(*l.node, "level '" + l.name + "'",
+           "level '" + l.name + "' is not viewable in Sweet Home 3D (hidden in its plan and 3D view): left out, "
+           "with the walls, rooms and furniture on it");
+      return true;
+    });
   has_levels_ = !levels.empty();
   if (!has_levels_) {  // one storey, as tall as the home's walls
     Storey s;
@@ -614,6 +634,7 @@ void HomeReader::read_walls(const HomeElement& home) {
     d.wall.name = d.ids.front();
     d.wall.where = loc(n, element);
     d.wall.storey = storey_of(n, element);
+    if (d.wall.storey == kHiddenLevel) continue;
     // Sweet Home cannot draw a wall without these: the wall is dropped, not the home.
     const char* missing = nullptr;
     for (const char* attr : {"xStart", "yStart", "xEnd", "yEnd", "thickness"})
@@ -897,6 +918,7 @@ void HomeReader::collect_pieces(const HomeElement& home) {
     if (p.name.empty()) p.name = std::string(kind) + " " + std::to_string(piece_count_);
     p.where = loc(n, element);
     p.storey = storey_of(n, element, level.c_str());
+    if (p.storey == kHiddenLevel) continue;
     // Sweet Home cannot place a piece without these: the piece is dropped, not the home.
     const char* missing = nullptr;
     for (const char* attr : {"x", "y", "width", "depth", "height"})
@@ -1306,6 +1328,7 @@ std::vector<HomeReader::RoomIn> HomeReader::collect_rooms(const HomeElement& hom
     r.room.name = r.named ? name : "room " + std::to_string(count);
     r.room.where = loc(n, element);
     r.room.storey = storey_of(n, element);
+    if (r.room.storey == kHiddenLevel) continue;
     r.room.floor = surface_material(n, "floorColor", "floorTexture", element);
     r.room.ceiling = surface_material(n, "ceilingColor", "ceilingTexture", element);
     bool ok = true;

@@ -43,10 +43,20 @@ class Mapper {
     number(root, "wallHeight", home, "wallHeight");
     // Ids first: walls name each other and their levels.
     const std::vector<Value> levels = list(home, "levels"), walls = list(home, "walls");
+    // A home saved since Sweet Home 3D 6.4 gives each object its id (HomeObject's `id`), as
+    // its Home.xml does: walls are named by it either way. Older homes have none, nor a
+    // Home.xml: their walls are numbered, as Sweet Home numbers them in Home.xml.
+    std::unordered_set<std::string> taken;
+    auto name = [&](const Value& v, const char* kind, size_t i) {
+      const Object* o = s_.object(v);
+      std::string id = o ? s_.string_field(*o, "id") : std::string();
+      if (id.empty() || !taken.insert(id).second) id = kind + std::to_string(i);
+      ids_.emplace(v.object, id);
+    };
     for (size_t i = 0; i < levels.size(); ++i)
-      if (levels[i].is_object()) ids_.emplace(levels[i].object, "level" + std::to_string(i));
+      if (levels[i].is_object()) name(levels[i], "level", i);
     for (size_t i = 0; i < walls.size(); ++i)
-      if (walls[i].is_object()) ids_.emplace(walls[i].object, "wall" + std::to_string(i));
+      if (walls[i].is_object()) name(walls[i], "wall", i);
     for (const Value& v : levels)
       if (const Object* o = instance_of(v, "Level")) level(root, *o);
     for (const Value& v : walls)
@@ -76,6 +86,9 @@ class Mapper {
       if (!o->annotations.empty()) return s_.annotation_objects(*o);
       const Value* inner = s_.field(*o, "list");
       if (!inner) inner = s_.field(*o, "c");
+      if (!inner) inner = s_.field(*o, "a");  // Arrays.asList's java.util.Arrays$ArrayList: its array
+      if (!inner && s_.is_a(*o, "java.util.Collections$SingletonList"))
+        if (const Value* one = s_.field(*o, "element")) return {*one};
       o = inner ? s_.object(*inner) : nullptr;
     }
     return {};
@@ -147,6 +160,7 @@ class Mapper {
     number(e, "floorThickness", o, "floorThickness");
     number(e, "height", o, "height");
     number(e, "elevationIndex", o, "elevationIndex");
+    flag(e, "viewable", o, "viewable", false);
   }
 
   void wall(size_t root, const Object& o) {
