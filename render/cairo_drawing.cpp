@@ -33,8 +33,12 @@ std::string cairo_bytes(const Drawing& d, const Page& page, bool eps, const std:
   if (eps) {
     cairo_ps_surface_set_eps(surface.get(), 1);
     if (!d.title.empty()) cairo_ps_surface_dsc_comment(surface.get(), ("%%Title: " + d.title).c_str());
-  } else if (!d.title.empty()) {
-    cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_TITLE, d.title.c_str());
+  } else {
+    if (!d.title.empty()) cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_TITLE, d.title.c_str());
+    // No creation date: the same drawing is the same bytes from run to run (as its SVG and
+    // DXF are), so that a drawing kept under version control or compared changes only when
+    // what it shows does. An empty date leaves Cairo's /CreationDate out.
+    cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATE_DATE, "");
   }
   {
     std::unique_ptr<cairo_t, decltype(&cairo_destroy)> cr(cairo_create(surface.get()), cairo_destroy);
@@ -81,6 +85,16 @@ std::string cairo_bytes(const Drawing& d, const Page& page, bool eps, const std:
   if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS)
     throw std::runtime_error("cannot write drawing " + path + ": " +
                              cairo_status_to_string(cairo_surface_status(surface.get())));
+  // Cairo 1.16 dates every PostScript header and has no setting to leave it out: the
+  // header's %%CreationDate comment (optional in DSC) is dropped, for the reason above.
+  if (eps) {
+    const size_t end = bytes.find("%%EndComments");
+    const size_t at = bytes.find("%%CreationDate:");
+    if (at != std::string::npos && at < end) {
+      const size_t eol = bytes.find('\n', at);
+      bytes.erase(at, eol == std::string::npos ? std::string::npos : eol + 1 - at);
+    }
+  }
   return bytes;
 }
 

@@ -503,7 +503,7 @@ TEST_F(Cli, ViewWritesTheDrawingInEveryFormatWithItsStats) {
 }
 
 TEST_F(Cli, SeveralOutputsOfOneViewAreTheFilesOfSeparateRunsOrNoneAtAll) {
-  const std::vector<std::string> exts{".svg", ".dxf", ".png", ".pgm"};
+  const std::vector<std::string> exts{".svg", ".dxf", ".png", ".pgm", ".pdf", ".eps"};  // PDF and EPS carry no date
   std::vector<std::string> together{"view", kPlan, "--size", "320x200", "--stats-json", "s.json"};
   for (const std::string& ext : exts) together.insert(together.end(), {"-o", "all" + ext});
   const Outcome all = run(together);
@@ -519,6 +519,10 @@ TEST_F(Cli, SeveralOutputsOfOneViewAreTheFilesOfSeparateRunsOrNoneAtAll) {
     ASSERT_EQ(run({"view", kPlan, "--size", "320x200", "-o", "one" + exts[k]}).status, 0);
     EXPECT_TRUE(slurp(path("all" + exts[k])) == slurp(path("one" + exts[k])));
   }
+  // Runs a second apart would differ by the date Cairo puts in: none is there.
+  EXPECT_EQ(slurp(path("all.pdf")).find("/CreationDate"), std::string::npos);
+  EXPECT_EQ(slurp(path("all.eps")).find("%%CreationDate"), std::string::npos);
+  EXPECT_EQ(slurp(path("all.eps")).rfind("%!PS-Adobe-3.0 EPSF-3.0", 0), 0u);
   // Walk frames, one numbered set per file asked for.
   ASSERT_EQ(run({"view", kPlan, "--size", "160x100", "-o", "w.svg", "-o", "w.png", "--frames", "2", "--to-eye",
                  "7,4.5,1.6", "--to-look", "8,5,1.5"})
