@@ -6,7 +6,9 @@
 // opening ... a convex polygon, ... shared by two adjacent cells."
 //
 // A plan's cells are vertical prisms: a convex footprint (counter-clockwise, seen from
-// above) between two heights; a mesh scene's are general convex polyhedra (Cell::prism). Plain structs linked by typed
+// above) between two heights, except over a sloped wall, whose top is the floor of the
+// cells above it; those, and a mesh scene's cells, are general convex polyhedra
+// (Cell::prism). Plain structs linked by typed
 // indices (Recast/Godot style); the CellComplex owns every array, cells never point
 // at each other. All coordinates are doubles in metres, rounded once from the exact
 // CGAL construction (cells/triangulate.cpp for plans, cells/mesh_scene.cpp for meshes).

@@ -393,7 +393,8 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
   // each stepped along a slope where it overlaps the other) are one class, so that their
   // triangles merge into one cell where the union is convex. (SpaceClass::wall serves the
   // choice of opening below and nothing after.)
-  std::map<std::tuple<int, PortalKind, Intervals>, int32_t> doorway_class;
+  // A sloped class's last interval is keyed from 0: its lower bound is the plane's.
+  std::map<std::tuple<int, PortalKind, Intervals, std::optional<Slope>>, int32_t> doorway_class;
 
   C.of.assign(C.bands.size(), std::vector<int32_t>(size_t(n), -1));
   C.wall_of.assign(C.bands.size() * size_t(n), -1);
@@ -454,18 +455,44 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
                                .subspan(size_t(T.region_start[size_t(t)]),
                                         size_t(T.region_start[size_t(t) + 1] - T.region_start[size_t(t)]));
           if (closed_gap && regions.empty()) open.clear();  // (a gap walled in by gaps alone)
+          // A sloped wall's interval from its top up stands for the plane by its height at
+          // the triangle's middle; the strips are cut so that no other height lies between
+          // the plane's heights over the triangle, so the intervals come out as they would
+          // at every point of it, and the one that starts at such a height is sloped.
+          const auto& tv = T.tri[size_t(t)];
+          const Vec2 centre = (1.0 / 3) * (T.vert[size_t(tv[0])] + T.vert[size_t(tv[1])] + T.vert[size_t(tv[2])]);
+          std::optional<Slope> top;
+          std::vector<std::pair<double, const Slope*>> stand_ins;
           for (const int32_t r : regions) {
             const Region& reg = outline.regions[size_t(r)];
             if (reg.storey != s) continue;
             keys.push_back(r);
-            open = intersect(open, reg.open);
+            if (reg.top && !reg.open.empty()) {
+              Intervals own = reg.open;
+              own.back().first = std::clamp((*reg.top)(centre), own.back().first, own.back().second);
+              stand_ins.push_back({own.back().first, &*reg.top});
+              open = intersect(open, own);
+            } else {
+              open = intersect(open, reg.open);
+            }
             if (C.wall_of[b * size_t(n) + size_t(t)] < 0) C.wall_of[b * size_t(n) + size_t(t)] = reg.wall;
           }
           // Open over less than kGap (a sill a rounding above the wall's top): not open.
           open.erase(std::remove_if(open.begin(), open.end(), [](auto iv) { return iv.second - iv.first < kGap; }),
                      open.end());
           if (open.empty()) { of[size_t(t)] = -1; break; }
-          auto it = region_class.find(keys);
+          for (auto [z, plane] : stand_ins)
+            if (open.back().first == z) top = *plane;
+          double least = HUGE_VAL;  // the sloped top's least height over the triangle
+          if (top) {
+            for (int32_t v : tv) least = std::min(least, (*top)(T.vert[size_t(v)]));
+            least = std::max(least, open.size() > 1 ? open[open.size() - 2].second : band.z0);
+            open.back().first = 0;  // keyed from 0 (below)
+          }
+          // (Where an overlap leaves the top level, the same walls key another class.)
+          std::vector<int32_t> key = keys;
+          if (top) key.push_back(-1);
+          auto it = region_class.find(key);
           if (it == region_class.end()) {
             SpaceClass c;
             c.kind = CellKind::Doorway;
@@ -491,11 +518,19 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
                          : k == OpeningKind::Hatch  ? PortalKind::Hatch
                                                     : PortalKind::Gap;
             }
-            auto [alike, fresh] = doorway_class.try_emplace({c.opening, c.portal, c.open}, -1);
-            if (fresh) alike->second = add_class(c);
-            it = region_class.emplace(keys, alike->second).first;
+            c.top = top;
+            auto [alike, fresh] = doorway_class.try_emplace({c.opening, c.portal, c.open, c.top}, -1);
+            if (fresh) {
+              if (c.top) c.open.back().first = HUGE_VAL;  // the least over its triangles, below
+              alike->second = add_class(c);
+            }
+            it = region_class.emplace(key, alike->second).first;
           }
           of[size_t(t)] = it->second;
+          if (top) {
+            Intervals& iv = C.classes[size_t(it->second)].open;
+            iv.back().first = std::min(iv.back().first, least);
+          }
           break;
         }
       }

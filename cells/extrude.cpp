@@ -57,6 +57,25 @@ Outline2 footprint_of(const Triangulation& T, const std::vector<int32_t>& bounda
 
 Vec3 at(Vec2 p, double z) { return {p.x, p.y, z}; }
 
+/// A height along a cell's side: level, or a sloped wall's top (then `z` is unused).
+struct Level {
+  double z = 0;
+  const Slope* plane = nullptr;
+  double operator()(Vec2 p) const { return plane ? (*plane)(p) : z; }
+  bool same(const Level& o) const {
+    return plane || o.plane ? plane && o.plane && *plane == *o.plane : std::fabs(z - o.z) < kZTol;
+  }
+};
+
+/// The polygon p0 → p1 between heights lo and hi at each end, without the corners where
+/// lo meets hi (a wedge's tip): {(p0, lo0), (p1, lo1), (p1, hi1), (p0, hi0)}.
+std::vector<Vec3> band_polygon(Vec2 p0, Vec2 p1, double lo0, double lo1, double hi0, double hi1) {
+  std::vector<Vec3> poly{at(p0, lo0), at(p1, lo1)};
+  if (hi1 > lo1 + kZTol) poly.push_back(at(p1, hi1));
+  if (hi0 > lo0 + kZTol) poly.push_back(at(p0, hi0));
+  return poly;
+}
+
 /// The material of the side of `wall` that a cell's side from a to b faces (the cell on
 /// its left, counter-clockwise): the wall's left side (Wall::material) when the cell lies
 /// left of the centre line's nearest segment, else its right side (Wall::right_material,
@@ -134,8 +153,22 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
       // A sliver left by nearly coincident input points (below any built size) stays solid.
       if (o.poly.size() < 3 || signed_area(o.poly) <= kMinArea) continue;
       Intervals iv{{band.z0, band.z1}};
-      if (!sc.open.empty()) iv = intersect(iv, sc.open);
+      if (sc.top) {  // the sloped interval on its own: it may touch an opening's head
+        iv = intersect(iv, Intervals(sc.open.begin(), sc.open.end() - 1));
+        const auto [lo, hi] = sc.open.back();
+        if (std::min(hi, band.z1) > std::max(lo, band.z0)) iv.push_back({std::max(lo, band.z0), std::min(hi, band.z1)});
+      } else if (!sc.open.empty()) {
+        iv = intersect(iv, sc.open);
+      }
       for (auto [z0, z1] : iv) {
+        // Over a sloped wall, the interval up to the ceiling has the wall's top for a floor.
+        std::optional<Slope> floor;
+        if (sc.top && z1 >= sc.open.back().second - kZTol) {
+          floor = sc.top;
+          z0 = HUGE_VAL;
+          for (Vec2 v : o.poly) z0 = std::min(z0, std::clamp((*floor)(v), band.z0, z1));
+          if (!(z1 > z0 + kZTol)) continue;
+        }
         Cell c;
         c.kind = sc.kind;
         c.room = sc.room;
@@ -146,7 +179,9 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
         c.footprint = o.poly;
         c.z0 = z0;
         c.z1 = z1;
+        c.prism = !floor;
         L.cells_of[b][p].push_back(CellId(out.cells.size()));
+        L.floor_plane.push_back(floor);
         out.cells.push_back(std::move(c));
         band_of.push_back(b);
         band_last.push_back(b);
@@ -155,8 +190,21 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
     }
   }
 
+  // The floor of each cell along its sides: its z0, or a sloped wall's top (held within
+  // the cell's heights: a wedge's tip meets its ceiling).
+  auto floor_of = [&](CellId id) {
+    const auto& f = L.floor_plane[size_t(id)];
+    return f ? Level{0, &*f} : Level{out.cells[size_t(id)].z0, nullptr};
+  };
+  auto height = [&](CellId id, const Level& l, Vec2 p) {
+    const Cell& c = out.cells[size_t(id)];
+    return std::clamp(l(p), c.z0, c.z1);
+  };
+
   // --- 5b. faces: sides, bottom, top (whole, before portals are cut out).
-  for (Cell& c : out.cells) {
+  for (CellId id = 0; id < CellId(out.cells.size()); ++id) {
+    Cell& c = out.cells[size_t(id)];
+    const Level floor = floor_of(id);
     const size_t m = c.footprint.size();
     for (size_t k = 0; k < m; ++k) {
       Vec2 a = c.footprint[k], b = c.footprint[(k + 1) % m];
@@ -165,13 +213,27 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
       Face f;
       f.plane.n = {d.y / len, -d.x / len, 0};
       f.plane.d = -dot(f.plane.n, at(a, 0));
-      f.poly = {at(a, c.z0), at(a, c.z1), at(b, c.z1), at(b, c.z0)};
+      const double za = height(id, floor, a), zb = height(id, floor, b);
+      f.poly = {at(a, za), at(a, c.z1), at(b, c.z1), at(b, zb)};
+      if (floor.plane) {  // without a corner at a wedge's tip
+        f.poly.clear();
+        if (za < c.z1 - kZTol) f.poly.push_back(at(a, za));
+        f.poly.push_back(at(a, c.z1));
+        f.poly.push_back(at(b, c.z1));
+        if (zb < c.z1 - kZTol) f.poly.push_back(at(b, zb));
+      }
       c.faces.push_back(std::move(f));
     }
     Face bottom, top;
     bottom.plane = {{0, 0, -1}, c.z0};
+    if (floor.plane) {  // the wall's top, facing down and along the slope
+      const Slope& s = *floor.plane;
+      const Vec3 down = Vec3{s.grad.x, s.grad.y, -1};
+      bottom.plane.n = (1.0 / length(down)) * down;
+      bottom.plane.d = -dot(bottom.plane.n, at(s.at, s.z0));
+    }
     top.plane = {{0, 0, 1}, -c.z1};
-    for (Vec2 p : c.footprint) bottom.poly.push_back(at(p, c.z0));
+    for (Vec2 p : c.footprint) bottom.poly.push_back(at(p, height(id, floor, p)));
     for (size_t k = m; k-- > 0;) top.poly.push_back(at(c.footprint[k], c.z1));
     c.faces.push_back(std::move(bottom));
     c.faces.push_back(std::move(top));
@@ -203,18 +265,21 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
     return PortalKind::Open;
   };
 
-  // --- 5c. side portals and opaque side rectangles.
-  struct Rect { double s0, s1, lo, hi; };
+  // --- 5c. side portals and opaque side pieces.
+  // A portal's or an opaque piece's bottom and top along a side are Levels: flat, or along
+  // a sloped wall's top (a cell over the wall, or the room beside it seeing over it).
+  struct Rect { double s0, s1; Level lo, hi; };
   for (CellId ci = 0; ci < CellId(out.cells.size()); ++ci) {
     const Outline2& o = shape[size_t(ci)];
     Cell& c = out.cells[size_t(ci)];
+    const Level own_floor = floor_of(ci);
     const size_t nsides = c.footprint.size();
-    std::vector<std::vector<Rect>> open(nsides);       // portal rects per side, in side coords
+    std::vector<std::vector<Rect>> open(nsides);       // portal pieces per side, in side coords
     // A side is one material: the one that bounds most of its length (an outside cell's
     // side runs past the corners of the walls beside the one it faces).
     std::vector<std::map<MaterialId, double>> side_materials(nsides);
-    // Runs of equal (neighbour, lo, hi) along consecutive half-edges of one side.
-    struct Run { CellId d; double lo, hi, s0, s1; int sheet_opening; int side; };
+    // Runs of equal (neighbour, lo, hi) along consecutive pieces of one side.
+    struct Run { CellId d; Level lo; double hi, s0, s1; int sheet_opening; int side; };
     std::vector<Run> active, next, done;
     // Runs end here; they become portals once every band the cell spans has been walked
     // (a tall outside cell meets a tall neighbour in one portal, not one per band).
@@ -227,14 +292,14 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
     };
     auto emit = [&]() {
       std::sort(done.begin(), done.end(), [](const Run& x, const Run& y) {
-        return std::tie(x.side, x.d, x.s0, x.s1, x.sheet_opening, x.lo) < std::tie(y.side, y.d, y.s0, y.s1, y.sheet_opening, y.lo);
+        return std::tie(x.side, x.d, x.s0, x.s1, x.sheet_opening, x.lo.z) < std::tie(y.side, y.d, y.s0, y.s1, y.sheet_opening, y.lo.z);
       });
       std::vector<Run> merged;
       for (const Run& r : done) {
         if (!merged.empty()) {
           Run& m = merged.back();
           if (m.side == r.side && m.d == r.d && m.sheet_opening == r.sheet_opening && std::fabs(m.s0 - r.s0) < 1e-9 &&
-              std::fabs(m.s1 - r.s1) < 1e-9 && std::fabs(m.hi - r.lo) < kZTol) {
+              std::fabs(m.s1 - r.s1) < 1e-9 && !r.lo.plane && std::fabs(m.hi - r.lo.z) < kZTol) {
             m.hi = r.hi;
             continue;
           }
@@ -244,11 +309,13 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
       for (const Run& r : merged) {
         const int side = r.side;
         if (r.s1 - r.s0 < kMinWidth) continue;
-        open[size_t(side)].push_back({r.s0, r.s1, r.lo, r.hi});
+        Vec2 a = c.footprint[size_t(side)], e = c.footprint[(size_t(side) + 1) % nsides];
+        Vec2 dir = (1.0 / length(e - a)) * (e - a);
+        Vec2 p0 = a + r.s0 * dir, p1 = a + r.s1 * dir;
+        const double lo0 = std::min(r.lo(p0), r.hi), lo1 = std::min(r.lo(p1), r.hi);
+        if (!(r.hi > lo0 + kZTol) && !(r.hi > lo1 + kZTol)) continue;  // no height anywhere along it
+        open[size_t(side)].push_back({r.s0, r.s1, r.lo, Level{r.hi, nullptr}});
         if (ci < r.d) {
-          Vec2 a = c.footprint[size_t(side)], e = c.footprint[(size_t(side) + 1) % nsides];
-          Vec2 dir = (1.0 / length(e - a)) * (e - a);
-          Vec2 p0 = a + r.s0 * dir, p1 = a + r.s1 * dir;
           int opening = -1;
           PortalKind kind = kind_between(c, out.cells[size_t(r.d)], opening);
           if (r.sheet_opening >= 0) {  // an opening in a wall of no thickness
@@ -258,7 +325,7 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
             kind = ok == OpeningKind::Door ? PortalKind::Door : ok == OpeningKind::Window ? PortalKind::Window
                    : ok == OpeningKind::Hatch ? PortalKind::Hatch : PortalKind::Gap;
           }
-          PortalId pid = add_portal(ci, r.d, {at(p0, r.lo), at(p1, r.lo), at(p1, r.hi), at(p0, r.hi)},
+          PortalId pid = add_portal(ci, r.d, band_polygon(p0, p1, lo0, lo1, r.hi, r.hi),
                                     c.faces[size_t(side)].plane.n, kind, opening);
           c.faces[size_t(side)].portals.push_back(pid);
           c.portals.push_back(pid);
@@ -276,6 +343,8 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
         }
       }
     };
+    // The pieces of [s0, s1] along which one of the floors (levels) stays the highest.
+    std::vector<double> breaks;
     for (size_t b = band_of[size_t(ci)]; b <= band_last[size_t(ci)]; ++b) {
     const Band& band = C.bands[b];
     const double zlo = std::max(c.z0, band.z0), zhi = std::min(c.z1, band.z1);
@@ -300,29 +369,58 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
           if (outline.regions[size_t(r)].opening >= 0) sheet_opening = r;
         });
       }
-      next.clear();
-      if (u >= 0 && L.pieces[b].of[size_t(u)] >= 0) {
-        for (CellId d : L.cells_of[b][size_t(L.pieces[b].of[size_t(u)])]) {
+      const std::vector<CellId> none;
+      const std::vector<CellId>& far =
+          u >= 0 && L.pieces[b].of[size_t(u)] >= 0 ? L.cells_of[b][size_t(L.pieces[b].of[size_t(u)])] : none;
+      // Where a sloped floor, this cell's or a neighbour's, overtakes another floor or a
+      // bound of the reach along the half-edge, the shared heights change how they are
+      // bounded: the half-edge is walked in pieces between such points.
+      breaks.assign({s0, s1});
+      {
+        std::vector<Level> floors{own_floor};
+        for (CellId d : far) floors.push_back(floor_of(d));
+        for (auto [lo, hi] : reach) floors.push_back({lo, nullptr}), floors.push_back({hi, nullptr});
+        const Vec2 pa = a + s0 * dir, pb = a + s1 * dir;
+        for (size_t x = 0; x < floors.size(); ++x)
+          for (size_t y = x + 1; y < floors.size(); ++y) {
+            if (!floors[x].plane && !floors[y].plane) continue;
+            const double fa = floors[x](pa) - floors[y](pa), fb = floors[x](pb) - floors[y](pb);
+            if ((fa > kZTol && fb < -kZTol) || (fa < -kZTol && fb > kZTol)) breaks.push_back(s0 + (s1 - s0) * fa / (fa - fb));
+          }
+        std::sort(breaks.begin(), breaks.end());
+      }
+      for (size_t piece = 0; piece + 1 < breaks.size(); ++piece) {
+        const double t0 = breaks[piece], t1 = breaks[piece + 1];
+        if (t1 - t0 <= 1e-12 && breaks.size() > 2) continue;
+        const Vec2 mid = a + (0.5 * (t0 + t1)) * dir;
+        next.clear();
+        for (CellId d : far) {
           const Cell& dc = out.cells[size_t(d)];
+          const Level dfloor = floor_of(d);
           for (auto [lo, hi] : intersect(reach, {{dc.z0, dc.z1}})) {
+            // The floor here: the highest of the interval's bound and the sloped floors.
+            Level floor{lo, nullptr};
+            for (const Level& f : {own_floor, dfloor})
+              if (f.plane && f(mid) > floor(mid)) floor = f;
+            if (!(hi > floor(mid) + kZTol)) continue;
             auto same = std::find_if(active.begin(), active.end(), [&](const Run& r) {
-              return r.d == d && std::fabs(r.lo - lo) < kZTol && std::fabs(r.hi - hi) < kZTol &&
-                     std::fabs(r.s1 - s0) < 1e-9 && r.sheet_opening == sheet_opening;
+              return r.d == d && r.lo.same(floor) && std::fabs(r.hi - hi) < kZTol && std::fabs(r.s1 - t0) < 1e-9 &&
+                     r.sheet_opening == sheet_opening;
             });
             if (same != active.end()) {
               Run r = *same;
-              r.s1 = s1;
+              r.s1 = t1;
               next.push_back(r);
               active.erase(same);
             } else {
-              next.push_back({d, lo, hi, s0, s1, sheet_opening, -1});
+              next.push_back({d, floor, hi, t0, t1, sheet_opening, -1});
             }
           }
         }
+        // Runs that did not continue end here.
+        flush(active, side);
+        active.swap(next);
       }
-      // Runs that did not continue end here.
-      flush(active, side);
-      active.swap(next);
       {
         MaterialId mat = -2;  // -2: nothing opaque across this half-edge
         const Vec2 ha = T.edge_from(h / 3, h % 3), hb = T.edge_to(h / 3, h % 3);
@@ -339,7 +437,8 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
     }
     emit();
 
-    // Opaque = side rectangle minus portal rectangles, as rectangles (sweep along s).
+    // Opaque = the side from the cell's floor to its ceiling minus its portals, as convex
+    // pieces (a sweep along s: between consecutive ends of portals, what no portal covers).
     for (size_t k = 0; k < nsides; ++k) {
       const Vec2 a = c.footprint[k], e = c.footprint[(k + 1) % nsides];
       const double len = length(e - a);
@@ -348,25 +447,29 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
       for (const Rect& r : open[k]) cuts.push_back(r.s0), cuts.push_back(r.s1);
       std::sort(cuts.begin(), cuts.end());
       std::vector<Rect> rects;
+      const Level ceiling{c.z1, nullptr};
       for (size_t j = 0; j + 1 < cuts.size(); ++j) {
         double s0 = cuts[j], s1 = cuts[j + 1];
         if (s1 - s0 <= 1e-12) continue;
-        double sm = (s0 + s1) / 2;
-        Intervals covered;
+        const Vec2 pm = a + (0.5 * (s0 + s1)) * dir;
+        std::vector<const Rect*> covering;
         for (const Rect& r : open[k])
-          if (r.s0 < sm && sm < r.s1) covered.push_back({r.lo, r.hi});
-        covered = unite(covered);
-        double z = c.z0;
-        Intervals solid;
-        for (auto [lo, hi] : covered) {
-          if (lo > z + kZTol) solid.push_back({z, lo});
-          z = std::max(z, hi);
+          if (r.s0 < s0 + 0.5 * (s1 - s0) && s0 + 0.5 * (s1 - s0) < r.s1) covering.push_back(&r);
+        std::sort(covering.begin(), covering.end(), [&](const Rect* x, const Rect* y) { return x->lo(pm) < y->lo(pm); });
+        Level z = own_floor;
+        std::vector<std::pair<Level, Level>> solid;
+        for (const Rect* r : covering) {
+          if (r->lo(pm) > z(pm) + kZTol) solid.push_back({z, r->lo});
+          if (r->hi(pm) > z(pm)) z = r->hi;
         }
-        if (c.z1 > z + kZTol) solid.push_back({z, c.z1});
+        if (c.z1 > z(pm) + kZTol) solid.push_back({z, ceiling});
         for (auto [lo, hi] : solid) {
-          // Extend a rectangle of the previous s-interval with the same heights.
+          // Extend a piece of the previous s-interval between the same levels.
           auto prev = std::find_if(rects.begin(), rects.end(), [&](const Rect& r) {
-            return std::fabs(r.s1 - s0) < 1e-12 && r.lo == lo && r.hi == hi;
+            auto identical = [](const Level& x, const Level& y) {
+              return x.plane || y.plane ? x.plane && y.plane && *x.plane == *y.plane : x.z == y.z;
+            };
+            return std::fabs(r.s1 - s0) < 1e-12 && identical(r.lo, lo) && identical(r.hi, hi);
           });
           if (prev != rects.end()) prev->s1 = s1;
           else rects.push_back({s0, s1, lo, hi});
@@ -378,7 +481,14 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
         if (area > most) most = area, mat = m;
       for (const Rect& r : rects) {
         Vec2 p0 = a + r.s0 * dir, p1 = a + r.s1 * dir;
-        c.faces[k].opaque.push_back({{at(p0, r.lo), at(p0, r.hi), at(p1, r.hi), at(p1, r.lo)}, mat});
+        const double lo0 = height(ci, r.lo, p0), lo1 = height(ci, r.lo, p1);
+        const double hi0 = std::max(lo0, height(ci, r.hi, p0)), hi1 = std::max(lo1, height(ci, r.hi, p1));
+        if (!(hi0 > lo0 + kZTol) && !(hi1 > lo1 + kZTol)) continue;
+        std::vector<Vec3> poly{at(p0, lo0)};
+        if (hi0 > lo0 + kZTol) poly.push_back(at(p0, hi0));
+        poly.push_back(at(p1, hi1));
+        if (hi1 > lo1 + kZTol) poly.push_back(at(p1, lo1));
+        c.faces[k].opaque.push_back({std::move(poly), mat});
       }
     }
   }
@@ -412,7 +522,7 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
         int32_t p = L.pieces[b].of[size_t(t)];
         if (p >= 0)
           for (CellId id : L.cells_of[b][size_t(p)])
-            if (std::fabs(out.cells[size_t(id)].z0 - z) < kZTol) above = id;
+            if (std::fabs(out.cells[size_t(id)].z0 - z) < kZTol && !L.floor_plane[size_t(id)]) above = id;
       }
       if (below == kNoCell && above == kNoCell) continue;
       auto [it, fresh] = pair_id.emplace(std::make_pair(below, above), int32_t(pairs.size()));
@@ -457,7 +567,7 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
     Cell& c = out.cells[ci];
     const Band& band = C.bands[band_of[ci]];
     const bool room = c.kind == CellKind::Room && c.room >= 0 && c.room < int(plan.rooms.size());
-    if (c.z0 > band.z0 + kZTol)
+    if (c.z0 > band.z0 + kZTol || L.floor_plane[ci])  // (a sloped floor is its wall's top)
       c.faces[c.faces.size() - 2].opaque.push_back({c.faces[c.faces.size() - 2].poly, room ? floor_material(c, c.z0) : -1});
     if (c.z1 < band.z1 - kZTol) c.faces.back().opaque.push_back({c.faces.back().poly, room ? ceiling_material(c) : -1});
   }
@@ -486,6 +596,16 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
         reach = std::max(reach, s1);
       }
     }
+
+  // A cell over a sloped wall that rises to its ceiling (a gable's ridge) is a wedge: its
+  // side there has no height, and is no face.
+  for (size_t ci = 0; ci < out.cells.size(); ++ci) {
+    if (!L.floor_plane[ci]) continue;
+    auto& faces = out.cells[ci].faces;
+    faces.erase(std::remove_if(faces.begin(), faces.end(),
+                               [](const Face& f) { return f.poly.size() < 3 && f.portals.empty() && f.opaque.empty(); }),
+                faces.end());
+  }
 
   // Room floor areas.
   for (const Cell& c : out.cells)

@@ -67,6 +67,110 @@ double distance(Vec2 p, Vec2 a, Vec2 b) {
   return length(p - (a + t * d));
 }
 
+/// Cuts every convex polygon of `pieces` where the linear function f(p) = c + dot(g, p)
+/// changes sign inside it, into its parts with f >= 0 and f <= 0.
+void split_where(std::vector<std::vector<Vec2>>& pieces, double c, Vec2 g) {
+  const double gg = dot(g, g);
+  if (!(gg > 1e-24)) return;
+  std::vector<std::vector<Vec2>> out;
+  for (auto& poly : pieces) {
+    double lo = HUGE_VAL, hi = -HUGE_VAL;
+    for (Vec2 p : poly) lo = std::min(lo, c + dot(g, p)), hi = std::max(hi, c + dot(g, p));
+    const double tol = 1e-9 * std::sqrt(gg);  // a nanometre of plan: nothing built is thinner
+    if (!(lo < -tol && hi > tol)) {
+      out.push_back(std::move(poly));
+      continue;
+    }
+    const Vec2 o = (-c / gg) * g;  // a point where f = 0
+    for (Vec2 n : {g, -1.0 * g}) {
+      std::vector<Vec2> part = clip(poly, o, n);
+      if (part.size() >= 3 && signed_area(part) > 1e-18) out.push_back(std::move(part));
+    }
+  }
+  pieces.swap(out);
+}
+
+/// Regions over sloped walls (Region::top) cut where the wall's top passes a height that
+/// matters: the floor and ceiling of its storey, the sill and head of its own opening, and
+/// every height at which a wall overlapping it opens or closes; and where it passes the top
+/// of another sloped wall it overlaps. Each part then says exactly what it is open over:
+/// nothing where the top is above the ceiling, all the storey where it is below the floor,
+/// else its opening's heights and, from the top up, the sloped interval (or one interval
+/// from the sill up where the opening reaches the top).
+void settle_slopes(Outline& out, const Plan& plan) {
+  bool any = false;
+  for (const Region& r : out.regions) any |= r.top.has_value();
+  if (!any) return;
+  struct Box { Vec2 lo, hi; };
+  std::vector<Box> box(out.regions.size());
+  for (size_t i = 0; i < out.regions.size(); ++i) {
+    Box b{{HUGE_VAL, HUGE_VAL}, {-HUGE_VAL, -HUGE_VAL}};
+    for (Vec2 p : out.regions[i].poly)
+      b.lo = {std::min(b.lo.x, p.x), std::min(b.lo.y, p.y)}, b.hi = {std::max(b.hi.x, p.x), std::max(b.hi.y, p.y)};
+    box[i] = b;
+  }
+  std::vector<Region> settled;
+  settled.reserve(out.regions.size());
+  for (size_t i = 0; i < out.regions.size(); ++i) {
+    const Region& r = out.regions[i];
+    if (!r.top) {
+      settled.push_back(r);
+      continue;
+    }
+    const Slope top = *r.top;
+    const Storey& st = plan.storeys[size_t(r.storey)];
+    const double floor = st.elevation, ceiling = st.elevation + st.height;
+    std::vector<double> heights{floor, ceiling};
+    for (auto [a, b] : r.open) heights.push_back(a), heights.push_back(b);  // its opening's sill and head
+    std::vector<Slope> others;
+    for (size_t j = 0; j < out.regions.size(); ++j) {
+      const Region& q = out.regions[j];
+      if (j == i || q.storey != r.storey) continue;
+      if (box[j].lo.x > box[i].hi.x + 1e-9 || box[j].hi.x < box[i].lo.x - 1e-9 || box[j].lo.y > box[i].hi.y + 1e-9 ||
+          box[j].hi.y < box[i].lo.y - 1e-9)
+        continue;
+      for (size_t k = 0; k < q.open.size(); ++k) {
+        if (!(q.top && k + 1 == q.open.size())) heights.push_back(q.open[k].first);  // a sloped bound is no height
+        heights.push_back(q.open[k].second);
+      }
+      if (q.top && !(*q.top == top)) others.push_back(*q.top);
+      if (q.top) heights.push_back(ceiling);
+    }
+    std::vector<std::vector<Vec2>> pieces{r.poly};
+    for (double h : heights) split_where(pieces, top.z0 - h - dot(top.grad, top.at), top.grad);
+    for (const Slope& o : others)
+      split_where(pieces, top.z0 - dot(top.grad, top.at) - (o.z0 - dot(o.grad, o.at)), top.grad - o.grad);
+    for (auto& poly : pieces) {
+      Region part = r;
+      part.poly = std::move(poly);
+      double lo = HUGE_VAL, hi = -HUGE_VAL;
+      Vec2 mid{0, 0};
+      for (Vec2 p : part.poly) lo = std::min(lo, top(p)), hi = std::max(hi, top(p)), mid = mid + p;
+      mid = (1.0 / double(part.poly.size())) * mid;
+      constexpr double tol = 1e-9;
+      part.top.reset();
+      if (hi <= floor + tol) {
+        part.open.push_back({floor, ceiling});  // the top below the floor: no wall here
+      } else if (lo < ceiling - tol) {
+        // The sloped interval, stood for by its height at the part's middle while it is
+        // united with the opening's: it stays sloped unless the opening reaches over it.
+        const double at_mid = std::clamp(top(mid), floor, ceiling);
+        part.open.push_back({at_mid, ceiling});
+        part.open = unite(part.open);
+        if (!part.open.empty() && part.open.back().first == at_mid) {
+          // (Not united again: the opening's head may touch the top at a corner.)
+          part.open.back().first = std::max(lo, floor);
+          part.top = top;
+        }
+      } else {
+        part.open = unite(part.open);
+      }
+      settled.push_back(std::move(part));
+    }
+  }
+  out.regions.swap(settled);
+}
+
 }  // namespace
 
 Outline make_outline(const Plan& plan) {
@@ -101,13 +205,17 @@ Outline make_outline(const Plan& plan) {
     const Wall& w = plan.walls[size_t(wi)];
     const Storey& st = plan.storeys[size_t(w.storey)];
     const double floor = st.elevation, ceiling = st.elevation + st.height;
-    // A low wall is open from its top to the ceiling, along its whole length.
-    Intervals always;
-    if (w.height >= 0 && w.height < st.height) always.push_back({floor + w.height, ceiling});
     const auto& c = w.centre;
     const size_t nseg = c.size() - 1;
     const bool closed = c.size() > 2 && c.front() == c.back();
     const double h = w.thickness / 2;
+    // A sloped wall's top is a plane over each segment (settle_slopes cuts its regions).
+    const bool sloped = h > 0 && w.height >= 0 && w.height_at_end >= 0 && w.height_at_end != w.height;
+    double wall_length = 0;
+    for (size_t k = 0; sloped && k + 1 < c.size(); ++k) wall_length += length(c[k + 1] - c[k]);
+    // A low wall is open from its top to the ceiling, along its whole length.
+    Intervals always;
+    if (!sloped && w.height >= 0 && w.height < st.height) always.push_back({floor + w.height, ceiling});
 
     // Does a wall end touch another wall of the storey? Then cap it square by h so
     // that L and T junctions of separate walls close (the cap stays inside the other wall).
@@ -151,6 +259,7 @@ Outline make_outline(const Plan& plan) {
       end[i] = square(i, c[i + 1]);
     }
     std::vector<std::vector<Vec2>> fillers;
+    std::vector<size_t> filler_segment;  // the segment whose top a filler takes
     auto join = [&](size_t a, size_t b) {  // segment a ends where b starts
       Vec2 p = c[a + 1];
       double cosang = dot(dir[a], dir[b]);
@@ -167,7 +276,7 @@ Outline make_outline(const Plan& plan) {
         Vec2 o2 = left_turn ? start[b].right : start[b].left;
         std::vector<Vec2> tri{p, o1, o2};
         if (signed_area(tri) < 0) std::reverse(tri.begin(), tri.end());
-        if (std::fabs(signed_area(tri)) > 0) fillers.push_back(tri);
+        if (std::fabs(signed_area(tri)) > 0) fillers.push_back(tri), filler_segment.push_back(a);
       }
     };
     for (size_t i = 0; i + 1 < nseg; ++i) join(i, i + 1);
@@ -178,6 +287,13 @@ Outline make_outline(const Plan& plan) {
     }
 
     double along = 0;  // distance along the centre line to the segment's start
+    std::vector<Slope> top_of(nseg);
+    for (size_t i = 0; sloped && i < nseg; ++i) {
+      const double rise = (w.height_at_end - w.height) / wall_length;
+      top_of[i] = {c[i], rise * dir[i], floor + w.height + rise * along};
+      along += length(c[i + 1] - c[i]);
+    }
+    along = 0;
     for (size_t i = 0; i < nseg; ++i) {
       const double len = length(c[i + 1] - c[i]);
       // Strips of this segment along s in [0, len]: solid between openings.
@@ -217,6 +333,7 @@ Outline make_outline(const Plan& plan) {
           r.open.push_back({floor + o.sill, floor + o.head});
         }
         r.open = unite(r.open);
+        if (sloped) r.top = top_of[i];
         // At the segment's ends, its very corners (c[i] + len * dir[i] is not c[i + 1] in doubles).
         const Vec2 a = sp.s0 > 0 ? c[i] + sp.s0 * dir[i] : c[i], b = sp.s1 < len ? c[i] + sp.s1 * dir[i] : c[i + 1];
         if (h == 0) {
@@ -232,15 +349,17 @@ Outline make_outline(const Plan& plan) {
       }
       along += len;
     }
-    for (auto& f : fillers) {
+    for (size_t k = 0; k < fillers.size(); ++k) {
       Region r;
       r.storey = w.storey;
       r.wall = wi;
-      r.poly = f;
+      r.poly = fillers[k];
       r.open = unite(always);
+      if (sloped) r.top = top_of[filler_segment[k]];
       out.regions.push_back(std::move(r));
     }
   }
+  settle_slopes(out, plan);
   for (const FloorOpening& f : plan.floor_openings) out.holes.push_back(f.outline);
   // Snap every outline vertex to the nearest nanometre (a decimal grid, coarser only
   // where a double cannot hold nanometres, beyond 4,500 km): points meant to coincide

@@ -8,7 +8,9 @@
 // exact work starts in triangulate.
 #pragma once
 
+#include <optional>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -30,6 +32,18 @@ using Intervals = std::vector<std::pair<double, double>>;
 Intervals intersect(const Intervals& a, const Intervals& b);
 Intervals unite(Intervals a);
 
+/// A wall's sloped top (Wall::height_at_end) as a plane over the plan: the height [m,
+/// absolute] z(p) = z0 + dot(grad, p - at). Compared exactly: the regions of one wall
+/// segment share one.
+struct Slope {
+  Vec2 at, grad;
+  double z0 = 0;
+  double operator()(Vec2 p) const { return z0 + dot(grad, p - at); }
+  auto key() const { return std::tuple(at.x, at.y, grad.x, grad.y, z0); }
+  bool operator==(const Slope& o) const { return key() == o.key(); }
+  bool operator<(const Slope& o) const { return key() < o.key(); }
+};
+
 /// A convex piece of a thick wall, or a strip of a wall of no thickness.
 struct Region {
   StoreyId storey = 0;
@@ -38,6 +52,12 @@ struct Region {
   bool sheet = false;        ///< zero thickness: `poly` holds the segment's two ends
   std::vector<Vec2> poly;    ///< convex, counter-clockwise (or the sheet's 2 ends)
   Intervals open;            ///< heights [m, absolute] at which the strip is open
+  /// Set over a sloped wall: the last interval of `open` (the one up to the ceiling) starts
+  /// at this plane, the wall's top, not at its stored lower bound (the plane's least
+  /// height over `poly`). No height of the strip's own or of an overlapping wall's
+  /// intervals lies strictly between the plane's least and greatest over `poly`: the
+  /// strip is cut where one would (settle_slopes, outline.cpp).
+  std::optional<Slope> top;
 };
 
 struct Outline {

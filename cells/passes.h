@@ -27,6 +27,9 @@ struct SpaceClass {
   PortalKind portal = PortalKind::Transparent;  ///< kind of portal leading into it from a room
   int wall = -1;           ///< the wall a doorway is cut through
   Intervals open;          ///< heights [m] at which it is free (one cell per interval)
+  /// Over a sloped wall: the last interval of `open` starts at this plane (the wall's top),
+  /// not at its stored lower bound, the plane's least height over the class's triangles.
+  std::optional<Slope> top;
 };
 
 /// Pass 3's result: per band, per triangle, a class index or -1 for solid.
@@ -86,6 +89,9 @@ Pieces merge_convex(const Triangulation& tri, const std::vector<int32_t>& label,
 struct Layout {
   std::vector<Pieces> pieces;                             ///< per band
   std::vector<std::vector<std::vector<CellId>>> cells_of; ///< per band, per piece: its cells, bottom up
+  /// Per cell: the sloped floor of a cell over a sloped wall (the wall's top), else none.
+  /// Such a cell is no prism: Cell::z0 is its floor's least height.
+  std::vector<std::optional<Slope>> floor_plane;
   /// The cell of band b over triangle t that is free at height z (strictly inside), or -1.
   CellId cell_at(const CellComplex& c, size_t b, int t, double z) const;
 };

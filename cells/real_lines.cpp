@@ -40,6 +40,11 @@ void real_lines(const Outline& outline, const Triangulation& T, const Classes& C
     for (auto [lo, hi] : c.open) S.z.push_back(lo), S.z.push_back(hi);
   for (const Region& r : outline.regions)
     for (auto [lo, hi] : r.open) S.z.push_back(lo), S.z.push_back(hi);
+  // A sloped floor (a wall's top) at each corner of its cell: where the vertical line at
+  // that corner starts.
+  for (size_t id = 0; id < out.cells.size(); ++id)
+    if (const auto& f = L.floor_plane[id])
+      for (Vec2 v : out.cells[id].footprint) S.z.push_back(std::clamp((*f)(v), out.cells[id].z0, out.cells[id].z1));
   std::sort(S.z.begin(), S.z.end());
   S.z.erase(std::unique(S.z.begin(), S.z.end(), [](double a, double b) { return std::fabs(a - b) < 1e-9; }), S.z.end());
   const int ns = int(S.z.size()) - 1;
@@ -55,8 +60,16 @@ void real_lines(const Outline& outline, const Triangulation& T, const Classes& C
   std::vector<std::vector<CellId>> free_at(size_t(ns), std::vector<CellId>(size_t(n), kNoCell));
   for (int j = 0; j < ns; ++j)
     for (int t = 0; t < n; ++t) free_at[size_t(j)][size_t(t)] = L.cell_at(out, S.band[size_t(j)], t, mid(j));
-  auto cell = [&](int j, int t) -> CellId {
-    return (j < 0 || j >= ns || t < 0) ? kNoCell : free_at[size_t(j)][size_t(t)];
+  // The cell free in slice j over triangle t at point p of it and height z in the slice
+  // (or at its bottom, or top): a cell over a sloped wall is free only above the wall's
+  // top at p. `z` above the top by `lift`: so that at a slice's bottom (lift 0+) a top
+  // meeting it counts as below.
+  auto cell = [&](int j, int t, Vec2 p, double z, bool at_or_above) -> CellId {
+    if (j < 0 || j >= ns || t < 0) return kNoCell;
+    const CellId id = free_at[size_t(j)][size_t(t)];
+    if (id == kNoCell || !L.floor_plane[size_t(id)]) return id;
+    const double top = (*L.floor_plane[size_t(id)])(p);
+    return (at_or_above ? z >= top : z > top) ? id : kNoCell;
   };
   // A wall of no thickness standing (opaque) on half-edge h in slice j.
   auto sheet = [&](int j, int32_t h) {
@@ -89,7 +102,10 @@ void real_lines(const Outline& outline, const Triangulation& T, const Classes& C
         const int u = T.nbr[size_t(t)][size_t(i)];
         if (u >= 0 && u < t) continue;
         const int32_t h = 3 * t + i;
-        CellId lb = cell(k - 1, t), la = cell(k, t), rb = cell(k - 1, u), ra = cell(k, u);
+        const Vec2 m = 0.5 * (T.edge_from(t, i) + T.edge_to(t, i));
+        // Just below z and just above it, at the edge's middle.
+        CellId lb = cell(k - 1, t, m, z, false), la = cell(k, t, m, z, true), rb = cell(k - 1, u, m, z, false),
+               ra = cell(k, u, m, z, true);
         bool Lb = lb == kNoCell, La = la == kNoCell, Rb = rb == kNoCell, Ra = ra == kNoCell;
         int solid = Lb + La + Rb + Ra;
         bool sb = !Lb && !Rb && sheet(k - 1, h), sa = !La && !Ra && sheet(k, h);
@@ -158,7 +174,7 @@ void real_lines(const Outline& outline, const Triangulation& T, const Classes& C
       // Boundary before fan triangle f: free and solid meet there, or a sheet stands there
       // between two free sides, or (open fan) the far box's rim.
       std::vector<CellId> here(m);
-      for (size_t f = 0; f < m; ++f) here[f] = cell(j, fan[f].first);
+      for (size_t f = 0; f < m; ++f) here[f] = cell(j, fan[f].first, pv, mid(j), false);
       std::vector<uint8_t> boundary(m + 1, 0), sheet_before(m + 1, 0);
       for (size_t f = 0; f < m; ++f) {
         if (f == 0 && open_fan) { boundary[0] = here[0] != kNoCell; continue; }
@@ -210,6 +226,67 @@ void real_lines(const Outline& outline, const Triangulation& T, const Classes& C
     }
   }
 
+  // --- sloped pieces: the edges of a sloped wall's top along which it rises (the slice
+  // pieces above take the level ones). Where a portal leads off the top to a cell of
+  // another floor, the edge is the wall's convex edge, seen from there; where the side is
+  // opaque, the top meets a face rising from it, a crease; where the cell beyond has the
+  // same top, the top runs on and there is no line.
+  for (size_t id = 0; id < out.cells.size(); ++id) {
+    if (!L.floor_plane[id]) continue;
+    const Slope& top = *L.floor_plane[id];
+    const Cell& c = out.cells[id];
+    const size_t m = c.footprint.size();
+    for (size_t k = 0; k < m; ++k) {
+      const Vec2 a = c.footprint[k], b = c.footprint[(k + 1) % m];
+      const double za = std::clamp(top(a), c.z0, c.z1), zb = std::clamp(top(b), c.z0, c.z1);
+      if (std::fabs(za - zb) <= 1e-9 || (za >= c.z1 - 1e-9 && zb >= c.z1 - 1e-9)) continue;
+      const double len = length(b - a);
+      const Vec2 dir = (1.0 / len) * (b - a);
+      const Vec3 out_n{dir.y, -dir.x, 0};  // the side's outward normal
+      // The portals of this side that reach down to the top: their spans along it.
+      struct Span { double s0, s1; CellId beyond; };
+      std::vector<Span> spans;
+      for (PortalId pid : c.portals) {
+        const Portal& p = out.portals[size_t(pid)];
+        if (std::fabs(std::fabs(dot(p.plane.n, out_n)) - 1) > 1e-9 || std::fabs(dot(p.poly[0] - Vec3{a.x, a.y, 0}, out_n)) > 1e-9)
+          continue;
+        // Its span, and whether its bottom is the top at both ends of it (a portal over a
+        // sloped top has it for a bottom all along, or none of it).
+        double s0 = HUGE_VAL, s1 = -HUGE_VAL;
+        for (Vec3 v : p.poly) {
+          const double sv = dot(Vec2{v.x, v.y} - a, dir);
+          s0 = std::min(s0, sv), s1 = std::max(s1, sv);
+        }
+        bool low = s1 > s0;
+        for (double end : {s0, s1}) {
+          double bottom = HUGE_VAL;
+          for (Vec3 v : p.poly)
+            if (std::fabs(dot(Vec2{v.x, v.y} - a, dir) - end) <= 1e-9) bottom = std::min(bottom, v.z);
+          const Vec2 q = a + end * dir;
+          low = low && std::fabs(bottom - std::clamp(top(q), c.z0, c.z1)) <= 1e-9;
+        }
+        if (low) spans.push_back({std::max(0.0, s0), std::min(len, s1), p.other(CellId(id))});
+      }
+      std::sort(spans.begin(), spans.end(), [](const Span& x, const Span& y) { return x.s0 < y.s0; });
+      auto add = [&](double s0, double s1, LineKind kind, CellId beyond) {
+        if (s1 - s0 <= 1e-9) return;
+        const Vec2 p0 = a + s0 * dir, p1 = a + s1 * dir;
+        Piece p{{p0.x, p0.y, std::clamp(top(p0), c.z0, c.z1)}, {p1.x, p1.y, std::clamp(top(p1), c.z0, c.z1)}, kind, {}};
+        add_cells(p.cells, CellId(id));
+        add_cells(p.cells, beyond);
+        pieces.push_back(std::move(p));
+      };
+      double s = 0;
+      for (const Span& sp : spans) {
+        add(s, sp.s0, LineKind::Concave, kNoCell);
+        const auto& beyond = L.floor_plane[size_t(sp.beyond)];
+        if (!(beyond && *beyond == top)) add(std::max(s, sp.s0), sp.s1, LineKind::Convex, sp.beyond);
+        s = std::max(s, sp.s1);
+      }
+      add(s, len, LineKind::Concave, kNoCell);
+    }
+  }
+
   // --- chain collinear touching pieces of one kind into lines (union-find on shared ends).
   std::vector<int32_t> parent(pieces.size());
   std::iota(parent.begin(), parent.end(), 0);
@@ -233,9 +310,11 @@ void real_lines(const Outline& outline, const Triangulation& T, const Classes& C
           Vec3 dp = (P.a == here ? P.b : P.a) - here, dq = (Q.a == here ? Q.b : Q.a) - here;
           // Opposite directions, exactly collinear: for vertical pieces trivially; for
           // horizontal ones (same z) by the exact planar orientation.
-          bool collinear = dp.z != 0 ? (dq.z != 0 && dp.x == 0 && dq.x == 0 && dp.y == 0 && dq.y == 0)
-                                     : (dq.z == 0 && orientation({here.x + dp.x, here.y + dp.y}, {here.x, here.y},
-                                                                 {here.x + dq.x, here.y + dq.y}) == 0);
+          const bool vertical = dp.x == 0 && dp.y == 0, sloped = dp.z != 0 && !vertical;
+          bool collinear = sloped ? length(cross(dp, dq)) <= 1e-12 * length(dp) * length(dq)
+                           : dp.z != 0 ? (dq.z != 0 && dp.x == 0 && dq.x == 0 && dp.y == 0 && dq.y == 0)
+                                       : (dq.z == 0 && orientation({here.x + dp.x, here.y + dp.y}, {here.x, here.y},
+                                                                   {here.x + dq.x, here.y + dq.y}) == 0);
           if (collinear && dot(dp, dq) < 0) parent[size_t(find(ids[x]))] = find(ids[y]);
         }
     }

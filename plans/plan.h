@@ -82,6 +82,11 @@ struct Wall {
   StoreyId storey = 0;
   double thickness = 0.2;       ///< [m] >= 0; 0 is Jones's wall of no thickness
   double height = -1;           ///< [m] above floor; < 0 means "up to the ceiling"
+  /// [m] >= 0 for a sloped top (a gable wall): the top rises or falls linearly along the
+  /// centre line, from `height` at centre.front() to this at centre.back(); where it
+  /// passes the storey's ceiling the wall stands up to the ceiling. < 0: level at
+  /// `height`. Needs `height`, a thickness and no `footprint`.
+  double height_at_end = -1;
   std::vector<Vec2> centre;     ///< [m] straight centre line after tessellation, >= 2 points
   std::vector<bool> from_arc;   ///< per segment (centre.size()-1): tessellated from an arc
   std::vector<Opening> openings;

@@ -518,7 +518,8 @@ void Reader::read_walls(const toml::table& root) {
 void Reader::read_wall(const toml::table& t, int index) {
   auto given = Element(*this, t, element_name("wall", {}, index)).name_key();
   Element e(*this, t, element_name("wall", given, index));
-  e.allow({"name", "storey", "thickness", "height", "material", "right_material", "path", "footprint", "opening"});
+  e.allow({"name", "storey", "thickness", "height", "height_at_end", "material", "right_material", "path", "footprint",
+           "opening"});
   Wall w;
   w.name = given.value_or("wall " + std::to_string(index + 1));
   w.where = e.loc();
@@ -528,12 +529,20 @@ void Reader::read_wall(const toml::table& t, int index) {
     if (*th < 0) e.fail("thickness", "'thickness' must be >= 0, not " + len(*th));
     w.thickness = *th;
   }
+  const auto end_height = e.length("height_at_end");
   if (auto h = e.length("height")) {
-    if (*h <= 0) e.fail("height", "'height' must be > 0, not " + len(*h));
-    if (*h > st.height + kSlack)
+    // A sloped wall may rise through the ceiling (a gable under the roof): cut there.
+    if (end_height ? *h < 0 : *h <= 0) e.fail("height", "'height' must be > 0, not " + len(*h));
+    if (*h > st.height + kSlack && !end_height)
       e.fail("height", "'height' " + len(*h) + " is above the ceiling of storey '" + st.name + "' (" +
                            len(st.height) + "); leave it out for a wall up to the ceiling");
     w.height = *h;
+  }
+  if (end_height) {
+    if (w.height < 0) e.fail("height_at_end", "'height_at_end' needs 'height', the wall's height at its start");
+    if (*end_height < 0) e.fail("height_at_end", "'height_at_end' must be >= 0, not " + len(*end_height));
+    if (w.height == 0 && *end_height == 0) e.fail("height_at_end", "a wall of height 0 at both ends is no wall");
+    w.height_at_end = *end_height;
   }
   w.material = material(e, "material");
   w.right_material = material(e, "right_material");
@@ -620,6 +629,9 @@ void Reader::read_wall(const toml::table& t, int index) {
     if (w.centre.size() != 2) e.fail("footprint", "a wall with a 'footprint' has a 'path' of 2 points (its axis)");
     if (!is_convex_ccw(w.footprint)) e.fail("footprint", "'footprint' must be a convex polygon, counter-clockwise");
   }
+
+  if (w.height_at_end >= 0 && w.thickness == 0)
+    e.fail("height_at_end", "a wall of no thickness has no top to slope: give it a 'thickness' or leave out 'height_at_end'");
 
   plan_.walls.push_back(std::move(w));
   read_openings(e, plan_.walls.back(), pieces);
