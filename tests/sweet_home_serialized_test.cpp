@@ -239,7 +239,7 @@ TEST(SweetHomeSerialized, BothEntriesOfAHomeSavedBySweetHome3D7GiveTheSamePlan) 
     // Walls are named by their ids, which Sweet Home makes UUIDs.
     int by_uuid = 0;
     for (const Wall& w : p->walls) by_uuid += w.name.starts_with("wall-") && w.name.size() > 30;
-    EXPECT_GE(by_uuid, 4);
+    EXPECT_GE(by_uuid, 3);  // the curved, the sloped and the one on the level at the basement's elevation
     // Every piece of both groups is there, the nested ones too: as many pieces as Home.xml
     // has pieceOfFurniture, doorOrWindow and light elements outside walls' openings.
     EXPECT_GT(p->objects.size(), 100u);

@@ -343,47 +343,43 @@ TEST(SweetHome, ArcWallIsTessellatedWithinTheTolerance) {
   EXPECT_NEAR(bottom, -std::tan(std::numbers::pi / 8), p.arc_tolerance);
 }
 
-TEST(SweetHome, SlopedWallIsSteppedIntoPiecesOfConstantHeight) {
+TEST(SweetHome, SlopedWallKeepsItsSlopeAndSlopesUnderTheCellsAboveIt) {
   TempDir dir;
-  // 4 m long, 2.5 m high at its start, 0.5 m at its end; a door 1 m from the start.
+  // 4 m long, 2.5 m high at its start (the ceiling), 0.5 m at its end; a door 1 m from the start.
   const Plan p = read_sweet_home(dir.write("Home.xml", R"(<home wallHeight='250'>
   <wall id='slope' xStart='0' yStart='0' xEnd='400' yEnd='0' height='250' heightAtEnd='50' thickness='10'/>
   <doorOrWindow name='Low door' x='145' y='0' width='90' depth='10' height='150'/>
 </home>)"));
-  // 2 m of rise in steps of at most 5 cm: 40 pieces of 10 cm, but no step inside the
-  // door: its nine pieces are one.
-  ASSERT_EQ(p.walls.size(), 32u);
-  double along = 0, last_h = HUGE_VAL;
-  int with_door = 0;
-  for (size_t k = 0; k < p.walls.size(); ++k) {
-    const Wall& w = p.walls[k];
-    ASSERT_EQ(w.centre.size(), 2u);
-    EXPECT_NEAR(w.centre[0].x, along, 1e-9) << "pieces follow each other";
-    const double len = w.centre[1].x - w.centre[0].x;
-    along += len;
-    // Constant height: the sloped top's mean over the piece, below the ceiling.
-    const double mid = (w.centre[0].x + w.centre[1].x) / 2;
-    EXPECT_NEAR(w.height, 2.5 - 2.0 * mid / 4, 1e-9);
-    EXPECT_LT(w.height, last_h);
-    if (w.openings.empty()) {
-      EXPECT_NEAR(len, 0.1, 1e-9);
-    }
-    if (k > 0 && w.openings.empty() && p.walls[k - 1].openings.empty()) {
-      EXPECT_LE(last_h - w.height, 0.05 + 1e-9);
-    }
-    last_h = w.height;
-    with_door += int(w.openings.size());
-    if (!w.openings.empty()) {
-      EXPECT_NEAR(w.centre[0].x + w.openings[0].at, 1.0, 1e-6);
-      EXPECT_NEAR(w.openings[0].width, 0.9, 1e-6);
-    }
+  ASSERT_EQ(p.walls.size(), 1u);
+  const Wall& w = p.walls[0];
+  EXPECT_NEAR(w.height, 2.5, 1e-9);
+  EXPECT_NEAR(w.height_at_end, 0.5, 1e-9);
+  ASSERT_EQ(w.openings.size(), 1u);
+  EXPECT_NEAR(w.openings[0].at, 1.0, 1e-6);
+  for (const std::string& warning : p.warnings) EXPECT_FALSE(contains(warning, "stepped")) << warning;
+  const CellComplex c = build_cells(p);
+  ASSERT_EQ(cells_are_valid(c), "");
+  // Over the wall, cells whose floor is its top: they fill the wall's footprint from its
+  // top up to the ceiling, 0.1 m × ∫(2.5 − top) along it (the door is lower than the top
+  // everywhere along it: its cell is another, a prism).
+  double volume = 0;
+  int sloped = 0;
+  for (const Cell& cell : c.cells) {
+    if (cell.kind != CellKind::Doorway || cell.prism) continue;  // (the door's cell is a prism)
+    ++sloped;
+    volume += cell.volume();
   }
-  EXPECT_NEAR(along, 4, 1e-9);
-  EXPECT_EQ(with_door, 1);
+  EXPECT_GE(sloped, 1);
+  EXPECT_NEAR(volume, 0.1 * (2.0 * 4 / 2), 1e-9);  // the wall's top falls 2 m along 4 m: a triangle
+  // A wall of no thickness has no top to slope: it is stepped, and says so.
+  const Plan sheet = read_sweet_home(dir.write("Home.xml", R"(<home wallHeight='250'>
+  <wall id='slope' xStart='0' yStart='0' xEnd='400' yEnd='0' height='250' heightAtEnd='50' thickness='0'/>
+</home>)"));
+  EXPECT_GT(sheet.walls.size(), 10u);
   bool said = false;
-  for (const std::string& w : p.warnings) said |= contains(w, "1 sloped wall(s) (heightAtEnd) stepped into 32 pieces");
+  for (const std::string& warning : sheet.warnings) said |= contains(warning, "of no thickness (heightAtEnd) stepped into");
   EXPECT_TRUE(said);
-  EXPECT_EQ(cells_are_valid(build_cells(p)), "");
+  EXPECT_EQ(cells_are_valid(build_cells(sheet)), "");
 }
 
 TEST(SweetHome, LevelsStackAsStoreysAndAStaircaseCutsTheFloorAbove) {

@@ -1215,8 +1215,21 @@ void HomeReader::finish_walls() {
       plan_.walls.push_back(std::move(d.wall));
       continue;
     }
-    // Cells are vertical prisms: a sloped top becomes steps of constant height (the mean
-    // over the piece), at most kStep apart, never cut inside an opening.
+    // A sloped top stands as it is (Wall::height_at_end), cut at the ceiling where it
+    // rises through it; a wall lower than kMinOpening all along stands nowhere.
+    if (d.wall.thickness > 0) {
+      if (std::max(d.h0, d.h1) < kMinOpening) continue;
+      if (std::min(d.h0, d.h1) >= st.height - 1e-9) {
+        d.wall.height = -1;
+      } else {
+        d.wall.height = d.h0;
+        d.wall.height_at_end = d.h1;
+      }
+      plan_.walls.push_back(std::move(d.wall));
+      continue;
+    }
+    // A wall of no thickness has no top to slope: its top becomes steps of constant height
+    // (the mean over the piece), at most kStep apart, never cut inside an opening.
     const double len = polyline_length(d.wall.centre);
     const double rise = d.h1 - d.h0;
     const double most = std::clamp(std::floor(len / kMinStepPiece), 1.0, 1000.0);  // pieces
@@ -1806,9 +1819,9 @@ Plan HomeReader::read() {
     plan_.warnings.push_back(file_ + ": " + std::to_string(walls_cut_) +
                              " wall(s) taller than their storey cut to its ceiling");
   if (sloped_ > 0)
-    plan_.warnings.push_back(file_ + ": " + std::to_string(sloped_) + " sloped wall(s) (heightAtEnd) stepped into " +
-                             std::to_string(steps_) + " pieces of constant height, steps of at most " +
-                             format_number(kStep * 100) + " cm: cells are vertical prisms");
+    plan_.warnings.push_back(file_ + ": " + std::to_string(sloped_) + " sloped wall(s) of no thickness (heightAtEnd) " +
+                             "stepped into " + std::to_string(steps_) + " pieces of constant height, steps of at most " +
+                             format_number(kStep * 100) + " cm: a wall of no thickness has no top to slope");
   return std::move(plan_);
 }
 
