@@ -377,8 +377,8 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
       // bounded: the half-edge is walked in pieces between such points.
       breaks.assign({s0, s1});
       {
-        std::vector<Level> floors{own_floor};
-        for (CellId d : far) floors.push_back(floor_of(d));
+        std::vector<Level> floors{own_floor, {c.z1, nullptr}};
+        for (CellId d : far) floors.push_back(floor_of(d)), floors.push_back({out.cells[size_t(d)].z1, nullptr});
         for (auto [lo, hi] : reach) floors.push_back({lo, nullptr}), floors.push_back({hi, nullptr});
         const Vec2 pa = a + s0 * dir, pb = a + s1 * dir;
         for (size_t x = 0; x < floors.size(); ++x)

@@ -40,11 +40,17 @@ void real_lines(const Outline& outline, const Triangulation& T, const Classes& C
     for (auto [lo, hi] : c.open) S.z.push_back(lo), S.z.push_back(hi);
   for (const Region& r : outline.regions)
     for (auto [lo, hi] : r.open) S.z.push_back(lo), S.z.push_back(hi);
-  // A sloped floor (a wall's top) at each corner of its cell: where the vertical line at
-  // that corner starts.
-  for (size_t id = 0; id < out.cells.size(); ++id)
-    if (const auto& f = L.floor_plane[id])
-      for (Vec2 v : out.cells[id].footprint) S.z.push_back(std::clamp((*f)(v), out.cells[id].z0, out.cells[id].z1));
+  // A sloped floor (a wall's top) at every vertex under its cell (its corners, and points
+  // on its sides where a neighbour's edge ends): where a vertical line there starts.
+  for (size_t b = 0; b < L.pieces.size(); ++b)
+    for (int t = 0; t < n; ++t) {
+      const int32_t p = L.pieces[b].of[size_t(t)];
+      if (p < 0) continue;
+      for (CellId id : L.cells_of[b][size_t(p)])
+        if (const auto& f = L.floor_plane[size_t(id)])
+          for (int32_t v : T.tri[size_t(t)])
+            S.z.push_back(std::clamp((*f)(T.vert[size_t(v)]), out.cells[size_t(id)].z0, out.cells[size_t(id)].z1));
+    }
   std::sort(S.z.begin(), S.z.end());
   S.z.erase(std::unique(S.z.begin(), S.z.end(), [](double a, double b) { return std::fabs(a - b) < 1e-9; }), S.z.end());
   const int ns = int(S.z.size()) - 1;
@@ -95,6 +101,7 @@ void real_lines(const Outline& outline, const Triangulation& T, const Classes& C
   };
 
   // --- horizontal pieces at every breakpoint, on every edge (once per edge).
+  std::vector<double> cuts;
   for (int k = 0; k <= ns; ++k) {
     const double z = S.z[size_t(k)];
     for (int t = 0; t < n; ++t)
@@ -102,27 +109,45 @@ void real_lines(const Outline& outline, const Triangulation& T, const Classes& C
         const int u = T.nbr[size_t(t)][size_t(i)];
         if (u >= 0 && u < t) continue;
         const int32_t h = 3 * t + i;
-        const Vec2 m = 0.5 * (T.edge_from(t, i) + T.edge_to(t, i));
-        // Just below z and just above it, at the edge's middle.
-        CellId lb = cell(k - 1, t, m, z, false), la = cell(k, t, m, z, true), rb = cell(k - 1, u, m, z, false),
-               ra = cell(k, u, m, z, true);
-        bool Lb = lb == kNoCell, La = la == kNoCell, Rb = rb == kNoCell, Ra = ra == kNoCell;
-        int solid = Lb + La + Rb + Ra;
-        bool sb = !Lb && !Rb && sheet(k - 1, h), sa = !La && !Ra && sheet(k, h);
-        bool line = false;
-        LineKind kind = LineKind::Concave;
-        if (solid == 1) line = true, kind = LineKind::Convex;
-        else if (solid == 3) line = true, kind = LineKind::Concave;
-        else if (solid == 2 && Lb == Ra && La == Rb) line = true, kind = LineKind::Convex;  // two edges meet
-        else if (solid == 2 && Lb == Rb && La == Ra) line = sa || sb, kind = LineKind::Concave;  // a sheet on a floor
-        else if (solid == 0) line = sa != sb, kind = LineKind::Sheet;  // top or bottom edge of a sheet
-        if (!line) continue;
-        Piece p{{T.edge_from(t, i).x, T.edge_from(t, i).y, z}, {T.edge_to(t, i).x, T.edge_to(t, i).y, z}, kind, {}};
+        const Vec2 ea = T.edge_from(t, i), eb = T.edge_to(t, i);
         // An edge between points that rounded to one, or to points a rounding apart: no
         // line (a piece 1e-16 m long at a line's end has no length in the line's parameter).
-        if (rounding_apart(T.edge_from(t, i), T.edge_to(t, i))) continue;
-        for (CellId c : {lb, la, rb, ra}) add_cells(p.cells, c);
-        pieces.push_back(std::move(p));
+        if (rounding_apart(ea, eb)) continue;
+        // Where a sloped top beside the edge passes z along it, what lies just below and
+        // just above z changes there: the edge is judged in parts between such points.
+        cuts.assign({0.0, 1.0});
+        for (int below = 0; below < 2; ++below)
+          for (int tri : {t, u}) {
+            if (tri < 0 || k - below < 0 || k - below >= ns) continue;
+            const CellId id = free_at[size_t(k - below)][size_t(tri)];
+            if (id == kNoCell || !L.floor_plane[size_t(id)]) continue;
+            const double fa = (*L.floor_plane[size_t(id)])(ea) - z, fb = (*L.floor_plane[size_t(id)])(eb) - z;
+            if ((fa > 1e-12 && fb < -1e-12) || (fa < -1e-12 && fb > 1e-12)) cuts.push_back(fa / (fa - fb));
+          }
+        std::sort(cuts.begin(), cuts.end());
+        for (size_t part = 0; part + 1 < cuts.size(); ++part) {
+          const Vec2 pa = ea + cuts[part] * (eb - ea), pb = ea + cuts[part + 1] * (eb - ea);
+          if (cuts.size() > 2 && (cuts[part + 1] - cuts[part] < 1e-9 || rounding_apart(pa, pb))) continue;
+          const Vec2 m = 0.5 * (pa + pb);
+          // Just below z and just above it, at the part's middle.
+          CellId lb = cell(k - 1, t, m, z, false), la = cell(k, t, m, z, true), rb = cell(k - 1, u, m, z, false),
+                 ra = cell(k, u, m, z, true);
+          bool Lb = lb == kNoCell, La = la == kNoCell, Rb = rb == kNoCell, Ra = ra == kNoCell;
+          int solid = Lb + La + Rb + Ra;
+          bool sb = !Lb && !Rb && sheet(k - 1, h), sa = !La && !Ra && sheet(k, h);
+          bool line = false;
+          LineKind kind = LineKind::Concave;
+          if (solid == 1) line = true, kind = LineKind::Convex;
+          else if (solid == 3) line = true, kind = LineKind::Concave;
+          else if (solid == 2 && Lb == Ra && La == Rb) line = true, kind = LineKind::Convex;  // two edges meet
+          else if (solid == 2 && Lb == Rb && La == Ra) line = sa || sb, kind = LineKind::Concave;  // a sheet on a floor
+          else if (solid == 0) line = sa != sb, kind = LineKind::Sheet;  // top or bottom edge of a sheet
+          if (!line) continue;
+          Piece p{{pa.x, pa.y, z}, {pb.x, pb.y, z}, kind, {}};
+          if (cuts.size() == 2) p.a = {ea.x, ea.y, z}, p.b = {eb.x, eb.y, z};  // (the edge's own ends, exactly)
+          for (CellId c : {lb, la, rb, ra}) add_cells(p.cells, c);
+          pieces.push_back(std::move(p));
+        }
       }
   }
 
@@ -242,14 +267,21 @@ void real_lines(const Outline& outline, const Triangulation& T, const Classes& C
       if (std::fabs(za - zb) <= 1e-9 || (za >= c.z1 - 1e-9 && zb >= c.z1 - 1e-9)) continue;
       const double len = length(b - a);
       const Vec2 dir = (1.0 / len) * (b - a);
-      const Vec3 out_n{dir.y, -dir.x, 0};  // the side's outward normal
+      // The side's face: the upright face whose plane passes nearest both ends of the edge
+      // (a sliver's two long sides are nearly one plane; its own is exact to a rounding).
+      const Face* side = nullptr;
+      double nearest = 1e-9;
+      for (const Face& f : c.faces) {
+        if (std::fabs(f.plane.n.z) >= 1e-12) continue;
+        const double off = std::max(std::fabs(f.plane.eval({a.x, a.y, 0})), std::fabs(f.plane.eval({b.x, b.y, 0})));
+        if (off <= nearest) nearest = off, side = &f;
+      }
+      if (!side) continue;
       // The portals of this side that reach down to the top: their spans along it.
       struct Span { double s0, s1; CellId beyond; };
       std::vector<Span> spans;
-      for (PortalId pid : c.portals) {
+      for (PortalId pid : side->portals) {
         const Portal& p = out.portals[size_t(pid)];
-        if (std::fabs(std::fabs(dot(p.plane.n, out_n)) - 1) > 1e-9 || std::fabs(dot(p.poly[0] - Vec3{a.x, a.y, 0}, out_n)) > 1e-9)
-          continue;
         // Its span, and whether its bottom is the top at both ends of it (a portal over a
         // sloped top has it for a bottom all along, or none of it).
         double s0 = HUGE_VAL, s1 = -HUGE_VAL;

@@ -9,8 +9,8 @@
 //   <level>            into storeys, stacked by elevation (levels at one elevation merged),
 //   <wall>             into walls: joined walls of one thickness and height become one
 //                      mitred centre line, arcs (arcExtent) are tessellated within
-//                      Plan::arc_tolerance, sloped tops (heightAtEnd) are stepped into
-//                      pieces of constant height (cells are vertical prisms),
+//                      Plan::arc_tolerance, sloped tops (heightAtEnd) kept as they are
+//                      (Wall::height_at_end; stepped only on a wall of no thickness),
 //   <doorOrWindow>     into openings of the wall they sit in (also inside furniture groups):
 //                      where they cross its whole thickness, or Sweet Home cuts both sides
 //                      (wallCutOutOnBothSides); a piece reaching only partly in (a shutter
