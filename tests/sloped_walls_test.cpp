@@ -153,30 +153,27 @@ TEST(SlopedWalls, HardCasesAgreeWithRaysAndLocateAsTheSlopeSays) {
     p.walls[1].openings.push_back(window(1.0, 1.2, 0.2, 1.3));  // the top passes 1.3 m at y = 1.6
     expect_sound(p, "a window's head under the slope");
   }
-  {
+  // A wall from the gable east to the outer wall at y = 2, cutting the east room in two.
+  auto with_t = [](Wall w) {
     Plan p = attic(0.5, 2.5);
-    Wall low = wall("low", {{4, 2}, {8, 2}}, 0.1);
-    low.height = 1.5;  // the gable's top passes 1.5 m at y = 2, inside their overlap
-    p.walls.push_back(low);
+    p.walls.push_back(std::move(w));
     Room ne;
     ne.name = "north-east";
     ne.label = Vec2{6, 3};
     p.rooms[1].label = Vec2{6, 1};
     p.rooms.push_back(ne);
-    expect_sound(p, "a low wall at a T");
+    return p;
+  };
+  {
+    Wall low = wall("low", {{4, 2}, {8, 2}}, 0.1);
+    low.height = 1.5;  // the gable's top passes 1.5 m at y = 2, inside their overlap
+    expect_sound(with_t(low), "a low wall at a T");
   }
   {
-    Plan p = attic(0.5, 2.5);
     Wall other = wall("other gable", {{4, 2}, {8, 2}}, 0.2);
     other.height = 2.0;
     other.height_at_end = 0.3;
-    p.walls.push_back(other);
-    Room ne;
-    ne.name = "north-east";
-    ne.label = Vec2{6, 3};
-    p.rooms[1].label = Vec2{6, 1};
-    p.rooms.push_back(ne);
-    expect_sound(p, "two sloped walls at a T");
+    expect_sound(with_t(other), "two sloped walls at a T");
   }
   {
     Plan p = attic(0.5, 2.5);
