@@ -95,6 +95,62 @@ Drawing view_drawing(const LoadedPlan& plan, const ViewSetup& v, const VisibleSe
   return d;
 }
 
+/// A straight walk's half-tone frames, each rendered once and written to every one of
+/// `paths` (PATH-0001.png, ...), as a run of its own for each would write them; each
+/// file's figures into its `stats`.
+void write_picture_frames(const LoadedPlan& plan, const ViewSetup& v, const ViewOptions& opt,
+                          const std::vector<std::string>& paths, const std::vector<nlohmann::json*>& stats) {
+  const CellComplex& c = plan.complex;
+  const HalftoneOptions o = halftone_options(opt);
+  const std::vector<PlacedObject> objects = objects_of(plan);
+  const auto frames = walk_frames(c, v.viewpoint.eye, v.viewpoint.look, parse_vec3(opt.to_eye, "--to-eye"),
+                                  parse_vec3(opt.to_look, "--to-look"), opt.frames, v.camera);
+  RenderStats total;
+  Image frame;
+  FrameStorage storage;  // the half-tone's arrays, kept from frame to frame
+  const SceneEffects effects = prepare_effects(c, objects, o, v.kernel);  // once for every frame
+  for (size_t k = 0; k < frames.size(); ++k) {
+    VisibleSet fv = find_visible(c, frames[k].camera, frames[k].cell, v.search);
+    RenderStats rs;
+    render_view(c, objects, effects, frames[k].camera, fv, o, frame, storage, &rs);
+    for (const std::string& path : paths) write_image(frame, frame_path(path, int(k), int(frames.size())));
+    total.add(rs);
+  }
+  for (size_t i = 0; i < paths.size(); ++i) {
+    add_render_stats(*stats[i], total);
+    (*stats[i])["frames"] = frames.size();
+    (*stats[i])["first_frame"] = frame_path(paths[i], 0, int(frames.size()));
+  }
+}
+
+/// A straight walk's hidden-line frames, each drawn once and written to every one of
+/// `paths`, as a run of its own for each would write them; each file's figures into its
+/// `stats`. Every frame's eye is checked before any is written.
+void write_drawing_frames(const LoadedPlan& plan, const ViewSetup& v, const ViewOptions& opt,
+                          const std::vector<std::string>& paths, const std::vector<nlohmann::json*>& stats) {
+  const CellComplex& c = plan.complex;
+  LineOptions line_options;
+  line_options.shadows = opt.shadow_lines;
+  const LineScene scene = prepare_line_scene(c, line_options);
+  const auto frames = walk_frames(c, v.viewpoint.eye, v.viewpoint.look, parse_vec3(opt.to_eye, "--to-eye"),
+                                  parse_vec3(opt.to_look, "--to-look"), opt.frames, v.camera);
+  std::vector<size_t> lines(paths.size(), 0);
+  double render_us = 0;
+  for (size_t k = 0; k < frames.size(); ++k) {
+    auto t0 = std::chrono::steady_clock::now();
+    VisibleSet fv = find_visible(c, frames[k].camera, frames[k].cell, exact_masks(v.search));
+    Drawing d = draw_view(c, scene, frames[k].camera, fv, line_options);
+    render_us += micros_since(t0);
+    for (size_t i = 0; i < paths.size(); ++i) lines[i] += write_drawing(d, frame_path(paths[i], int(k), int(frames.size()))).lines;
+  }
+  for (size_t i = 0; i < paths.size(); ++i) {
+    (*stats[i])["frames"] = frames.size();
+    (*stats[i])["lines"] = lines[i];
+    (*stats[i])["render_us"] = render_us;
+    (*stats[i])["first_frame"] = frame_path(paths[i], 0, int(frames.size()));
+  }
+}
+
 /// The half-tone picture(s): one view, a stereo composite, or walk frames.
 void write_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs, const ViewOptions& opt,
                    const std::string& path, nlohmann::json& stats) {
@@ -104,28 +160,14 @@ void write_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet&
     add_render_stats(stats, rs);
     return;
   }
+  if (opt.frames > 0) {
+    std::vector<nlohmann::json*> each{&stats};
+    write_picture_frames(plan, v, opt, {path}, each);
+    return;
+  }
   const CellComplex& c = plan.complex;
   const HalftoneOptions o = halftone_options(opt);
   const std::vector<PlacedObject> objects = objects_of(plan);
-  if (opt.frames > 0) {
-    const auto frames = walk_frames(c, v.viewpoint.eye, v.viewpoint.look, parse_vec3(opt.to_eye, "--to-eye"),
-                                    parse_vec3(opt.to_look, "--to-look"), opt.frames, v.camera);
-    RenderStats total;
-    Image frame;
-    FrameStorage storage;  // the half-tone's arrays, kept from frame to frame
-    const SceneEffects effects = prepare_effects(c, objects, o, v.kernel);  // once for every frame
-    for (size_t k = 0; k < frames.size(); ++k) {
-      VisibleSet fv = find_visible(c, frames[k].camera, frames[k].cell, v.search);
-      RenderStats rs;
-      render_view(c, objects, effects, frames[k].camera, fv, o, frame, storage, &rs);
-      write_image(frame, frame_path(path, int(k), int(frames.size())));
-      total.add(rs);
-    }
-    add_render_stats(stats, total);
-    stats["frames"] = frames.size();
-    stats["first_frame"] = frame_path(path, 0, int(frames.size()));
-    return;
-  }
   // A stereo pair.
   StereoComposite composite;
   if (!parse_stereo_composite(opt.stereo, composite))
@@ -169,29 +211,14 @@ void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const Visible
     add_drawing_stats(stats, write_drawing(d, path), render_us, path);
     return;
   }
+  if (opt.frames > 0) {
+    std::vector<nlohmann::json*> each{&stats};
+    write_drawing_frames(plan, v, opt, {path}, each);
+    return;
+  }
   LineOptions line_options;
   line_options.shadows = opt.shadow_lines;
   const LineScene scene = prepare_line_scene(c, line_options);
-
-  if (opt.frames > 0) {
-    // A straight walk, one drawing per frame; every frame's eye is checked before any is written.
-    const auto frames = walk_frames(c, v.viewpoint.eye, v.viewpoint.look, parse_vec3(opt.to_eye, "--to-eye"),
-                                    parse_vec3(opt.to_look, "--to-look"), opt.frames, v.camera);
-    size_t lines = 0;
-    double render_us = 0;
-    for (size_t k = 0; k < frames.size(); ++k) {
-      auto t0 = std::chrono::steady_clock::now();
-      VisibleSet fv = find_visible(c, frames[k].camera, frames[k].cell, exact_masks(v.search));
-      Drawing d = draw_view(c, scene, frames[k].camera, fv, line_options);
-      render_us += micros_since(t0);
-      lines += write_drawing(d, frame_path(path, int(k), int(frames.size()))).lines;
-    }
-    stats["frames"] = frames.size();
-    stats["lines"] = lines;
-    stats["render_us"] = render_us;
-    stats["first_frame"] = frame_path(path, 0, int(frames.size()));
-    return;
-  }
 
   // A stereo pair.
   StereoLayout layout;
@@ -219,7 +246,22 @@ void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const Visible
 nlohmann::json write_view_outputs(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs,
                                   const ViewOptions& opt) {
   nlohmann::json each = nlohmann::json::array();
-  if (opt.frames > 0 || !opt.stereo.empty()) {  // file by file, each as a run of its own
+  if (opt.frames > 0) {  // each frame rendered once and drawn once, whatever the files of each kind
+    std::vector<nlohmann::json> one(opt.outputs.size());
+    std::vector<std::string> pictures, drawings;
+    std::vector<nlohmann::json*> picture_stats, drawing_stats;
+    for (size_t i = 0; i < opt.outputs.size(); ++i) {
+      one[i]["file"] = opt.outputs[i];
+      const bool raster = is_raster_path(opt.outputs[i]);
+      (raster ? pictures : drawings).push_back(opt.outputs[i]);
+      (raster ? picture_stats : drawing_stats).push_back(&one[i]);
+    }
+    if (!pictures.empty()) write_picture_frames(plan, v, opt, pictures, picture_stats);
+    if (!drawings.empty()) write_drawing_frames(plan, v, opt, drawings, drawing_stats);
+    for (nlohmann::json& j : one) each.push_back(std::move(j));
+    return each;
+  }
+  if (!opt.stereo.empty()) {  // file by file, each as a run of its own (a pair is two views)
     for (const std::string& out : opt.outputs) {
       nlohmann::json one;
       one["file"] = out;

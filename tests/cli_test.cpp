@@ -523,12 +523,23 @@ TEST_F(Cli, SeveralOutputsOfOneViewAreTheFilesOfSeparateRunsOrNoneAtAll) {
   EXPECT_EQ(slurp(path("all.pdf")).find("/CreationDate"), std::string::npos);
   EXPECT_EQ(slurp(path("all.eps")).find("%%CreationDate"), std::string::npos);
   EXPECT_EQ(slurp(path("all.eps")).rfind("%!PS-Adobe-3.0 EPSF-3.0", 0), 0u);
-  // Walk frames, one numbered set per file asked for.
-  ASSERT_EQ(run({"view", kPlan, "--size", "160x100", "-o", "w.svg", "-o", "w.png", "--frames", "2", "--to-eye",
-                 "7,4.5,1.6", "--to-look", "8,5,1.5"})
-                .status,
-            0);
-  for (const char* f : {"w-0001.svg", "w-0002.svg", "w-0001.png", "w-0002.png"}) EXPECT_TRUE(fs::exists(path(f))) << f;
+  // Walk frames, one numbered set per file asked for (each frame rendered and drawn once),
+  // each file the one a separate run writes.
+  const std::vector<std::string> walk{"--size", "160x100", "--frames", "2", "--to-eye", "7,4.5,1.6", "--to-look", "8,5,1.5"};
+  auto view_walk = [&](std::vector<std::string> files) {
+    std::vector<std::string> args{"view", kPlan};
+    for (const std::string& f : files) args.insert(args.end(), {"-o", f});
+    args.insert(args.end(), walk.begin(), walk.end());
+    return run(args).status;
+  };
+  ASSERT_EQ(view_walk({"w.svg", "w.png", "w2.png"}), 0);
+  ASSERT_EQ(view_walk({"alone.svg"}), 0);
+  ASSERT_EQ(view_walk({"alone.png"}), 0);
+  for (const char* k : {"-0001", "-0002"}) {
+    EXPECT_TRUE(slurp(path(std::string("w") + k + ".svg")) == slurp(path(std::string("alone") + k + ".svg"))) << k;
+    EXPECT_TRUE(slurp(path(std::string("w") + k + ".png")) == slurp(path(std::string("alone") + k + ".png"))) << k;
+    EXPECT_TRUE(slurp(path(std::string("w2") + k + ".png")) == slurp(path(std::string("alone") + k + ".png"))) << k;
+  }
   // Every file is checked before any is written: a bad one anywhere writes none.
   const std::vector<std::pair<std::vector<std::string>, std::string>> bad = {
       {{"-o", "b.svg", "-o", "b.doc"}, "b.doc"},
