@@ -188,8 +188,8 @@ void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const Visible
 /// Writes the view to every file of opt.outputs, each as write_view_output() would alone;
 /// returns each file's figures ({"file": path, ...}). One view (no stereo, no frames): its
 /// picture rendered and its drawing drawn once, whatever the files, and the files written
-/// all or none. Walk frames: each frame rendered once and drawn once, and written to every
-/// file of its kind (frames are written as they are made, not all or none).
+/// all or none. Walk frames and stereo pairs: each frame or pair rendered once and drawn
+/// once, and written to every file of its kind (frames as they are made, not all or none).
 nlohmann::json write_view_outputs(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs,
                                   const ViewOptions& opt);
 /// With --explain: each effect of the half-tone on or off and why (render/effects.h), one

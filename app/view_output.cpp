@@ -151,6 +151,60 @@ void write_drawing_frames(const LoadedPlan& plan, const ViewSetup& v, const View
   }
 }
 
+/// A stereo pair's half-tone composite, rendered once and written to every one of `paths`,
+/// as a run of its own for each would write it; each file's figures into its `stats`.
+void write_stereo_pictures(const LoadedPlan& plan, const ViewSetup& v, const ViewOptions& opt,
+                           const std::vector<std::string>& paths, const std::vector<nlohmann::json*>& stats) {
+  const CellComplex& c = plan.complex;
+  StereoComposite composite;
+  if (!parse_stereo_composite(opt.stereo, composite))
+    throw std::runtime_error("--stereo wants anaglyph, parallel or cross for pictures, not '" + opt.stereo + "'");
+  StereoRig rig = stereo_rig(c, v.camera, {opt.interocular, opt.converge});
+  if (rig.problem != StereoRig::Problem::None) throw std::runtime_error(rig.message());
+  RenderStats rs;
+  const Image picture =
+      render_stereo_view(c, objects_of(plan), rig.left, rig.right, composite, halftone_options(opt), &rs, v.search);
+  for (size_t i = 0; i < paths.size(); ++i) {
+    write_image(picture, paths[i]);
+    add_render_stats(*stats[i], rs);
+    (*stats[i])["stereo"] = {{"layout", opt.stereo}, {"interocular", opt.interocular}, {"converge", opt.converge},
+                             {"left_cell", rig.left_at.cell}, {"right_cell", rig.right_at.cell}};
+  }
+}
+
+/// A stereo pair's hidden-line drawings, drawn once and laid out into every one of
+/// `paths`, as a run of its own for each would write them; each file's figures into its
+/// `stats`.
+void write_stereo_drawings(const LoadedPlan& plan, const ViewSetup& v, const ViewOptions& opt,
+                           const std::vector<std::string>& paths, const std::vector<nlohmann::json*>& stats) {
+  const CellComplex& c = plan.complex;
+  LineOptions line_options;
+  line_options.shadows = opt.shadow_lines;
+  const LineScene scene = prepare_line_scene(c, line_options);
+  StereoLayout layout;
+  if (!parse_stereo_layout(opt.stereo, layout))
+    throw std::runtime_error("--stereo wants parallel, cross or pair for drawings, not '" + opt.stereo + "'");
+  StereoRig rig = stereo_rig(c, v.camera, {opt.interocular, opt.converge});
+  if (rig.problem != StereoRig::Problem::None) throw std::runtime_error(rig.message());
+  auto t0 = std::chrono::steady_clock::now();
+  VisibleSet lv = find_visible(c, rig.left, rig.left_at.cell, exact_masks(v.search));
+  VisibleSet rv = find_visible(c, rig.right, rig.right_at.cell, exact_masks(v.search));
+  Drawing left = draw_view(c, scene, rig.left, lv, line_options), right = draw_view(c, scene, rig.right, rv, line_options);
+  const double render_us = micros_since(t0);
+  for (size_t i = 0; i < paths.size(); ++i) {
+    add_drawing_stats(*stats[i], write_stereo_drawing(left, right, layout, paths[i]), render_us, paths[i]);
+    (*stats[i])["stereo"] = {{"layout", to_string(layout)},
+                             {"interocular", opt.interocular},
+                             {"converge", opt.converge},
+                             {"left_cell", rig.left_at.cell},
+                             {"right_cell", rig.right_at.cell},
+                             {"eyes_apart", rig.eyes_apart()}};
+  }
+  if (rig.eyes_apart())
+    std::cout << "note: the two eyes stand in different cells (" << rig.left_at.cell << " and " << rig.right_at.cell
+              << "); each sees through its own avenues\n";
+}
+
 /// The half-tone picture(s): one view, a stereo composite, or walk frames.
 void write_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs, const ViewOptions& opt,
                    const std::string& path, nlohmann::json& stats) {
@@ -160,26 +214,8 @@ void write_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet&
     add_render_stats(stats, rs);
     return;
   }
-  if (opt.frames > 0) {
-    std::vector<nlohmann::json*> each{&stats};
-    write_picture_frames(plan, v, opt, {path}, each);
-    return;
-  }
-  const CellComplex& c = plan.complex;
-  const HalftoneOptions o = halftone_options(opt);
-  const std::vector<PlacedObject> objects = objects_of(plan);
-  // A stereo pair.
-  StereoComposite composite;
-  if (!parse_stereo_composite(opt.stereo, composite))
-    throw std::runtime_error("--stereo wants anaglyph, parallel or cross for pictures, not '" + opt.stereo + "'");
-  StereoRig rig = stereo_rig(c, v.camera, {opt.interocular, opt.converge});
-  if (rig.problem != StereoRig::Problem::None) throw std::runtime_error(rig.message());
-  RenderStats rs;
-  Image picture = render_stereo_view(c, objects, rig.left, rig.right, composite, o, &rs, v.search);
-  write_image(picture, path);
-  add_render_stats(stats, rs);
-  stats["stereo"] = {{"layout", opt.stereo}, {"interocular", opt.interocular}, {"converge", opt.converge},
-                     {"left_cell", rig.left_at.cell}, {"right_cell", rig.right_at.cell}};
+  const std::vector<nlohmann::json*> each{&stats};
+  (opt.frames > 0 ? write_picture_frames : write_stereo_pictures)(plan, v, opt, {path}, each);
 }
 
 }  // namespace
@@ -199,7 +235,6 @@ std::string explain_view_effects(const LoadedPlan& plan, const ViewOptions& opt)
 
 void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs, const ViewOptions& opt,
                        const std::string& path, nlohmann::json& stats) {
-  const CellComplex& c = plan.complex;
   if (is_raster_path(path)) return write_picture(plan, v, vs, opt, path, stats);
   if (!is_drawing(path))
     throw std::runtime_error("cannot write '" + path + "': unknown picture format '" + lower_extension(path) +
@@ -211,42 +246,14 @@ void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const Visible
     add_drawing_stats(stats, write_drawing(d, path), render_us, path);
     return;
   }
-  if (opt.frames > 0) {
-    std::vector<nlohmann::json*> each{&stats};
-    write_drawing_frames(plan, v, opt, {path}, each);
-    return;
-  }
-  LineOptions line_options;
-  line_options.shadows = opt.shadow_lines;
-  const LineScene scene = prepare_line_scene(c, line_options);
-
-  // A stereo pair.
-  StereoLayout layout;
-  if (!parse_stereo_layout(opt.stereo, layout))
-    throw std::runtime_error("--stereo wants parallel, cross or pair for drawings, not '" + opt.stereo + "'");
-  StereoRig rig = stereo_rig(c, v.camera, {opt.interocular, opt.converge});
-  if (rig.problem != StereoRig::Problem::None) throw std::runtime_error(rig.message());
-  auto t0 = std::chrono::steady_clock::now();
-  VisibleSet lv = find_visible(c, rig.left, rig.left_at.cell, exact_masks(v.search));
-  VisibleSet rv = find_visible(c, rig.right, rig.right_at.cell, exact_masks(v.search));
-  Drawing left = draw_view(c, scene, rig.left, lv, line_options), right = draw_view(c, scene, rig.right, rv, line_options);
-  const double render_us = micros_since(t0);
-  add_drawing_stats(stats, write_stereo_drawing(left, right, layout, path), render_us, path);
-  stats["stereo"] = {{"layout", to_string(layout)},
-                     {"interocular", opt.interocular},
-                     {"converge", opt.converge},
-                     {"left_cell", rig.left_at.cell},
-                     {"right_cell", rig.right_at.cell},
-                     {"eyes_apart", rig.eyes_apart()}};
-  if (rig.eyes_apart())
-    std::cout << "note: the two eyes stand in different cells (" << rig.left_at.cell << " and " << rig.right_at.cell
-              << "); each sees through its own avenues\n";
+  const std::vector<nlohmann::json*> each{&stats};
+  (opt.frames > 0 ? write_drawing_frames : write_stereo_drawings)(plan, v, opt, {path}, each);
 }
 
 nlohmann::json write_view_outputs(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs,
                                   const ViewOptions& opt) {
   nlohmann::json each = nlohmann::json::array();
-  if (opt.frames > 0) {  // each frame rendered once and drawn once, whatever the files of each kind
+  if (opt.frames > 0 || !opt.stereo.empty()) {  // each frame or pair made once, whatever the files of each kind
     std::vector<nlohmann::json> one(opt.outputs.size());
     std::vector<std::string> pictures, drawings;
     std::vector<nlohmann::json*> picture_stats, drawing_stats;
@@ -256,18 +263,11 @@ nlohmann::json write_view_outputs(const LoadedPlan& plan, const ViewSetup& v, co
       (raster ? pictures : drawings).push_back(opt.outputs[i]);
       (raster ? picture_stats : drawing_stats).push_back(&one[i]);
     }
-    if (!pictures.empty()) write_picture_frames(plan, v, opt, pictures, picture_stats);
-    if (!drawings.empty()) write_drawing_frames(plan, v, opt, drawings, drawing_stats);
+    if (!pictures.empty())
+      (opt.frames > 0 ? write_picture_frames : write_stereo_pictures)(plan, v, opt, pictures, picture_stats);
+    if (!drawings.empty())
+      (opt.frames > 0 ? write_drawing_frames : write_stereo_drawings)(plan, v, opt, drawings, drawing_stats);
     for (nlohmann::json& j : one) each.push_back(std::move(j));
-    return each;
-  }
-  if (!opt.stereo.empty()) {  // file by file, each as a run of its own (a pair is two views)
-    for (const std::string& out : opt.outputs) {
-      nlohmann::json one;
-      one["file"] = out;
-      write_view_output(plan, v, vs, opt, out, one);
-      each.push_back(std::move(one));
-    }
     return each;
   }
   // One picture and one drawing, however many files of each kind; then every file or none.

@@ -540,6 +540,13 @@ TEST_F(Cli, SeveralOutputsOfOneViewAreTheFilesOfSeparateRunsOrNoneAtAll) {
     EXPECT_TRUE(slurp(path(std::string("w") + k + ".png")) == slurp(path(std::string("alone") + k + ".png"))) << k;
     EXPECT_TRUE(slurp(path(std::string("w2") + k + ".png")) == slurp(path(std::string("alone") + k + ".png"))) << k;
   }
+  // A stereo pair (side by side suits both kinds), made once for the files of each kind.
+  ASSERT_EQ(run({"view", kPlan, "--size", "160x100", "--stereo", "parallel", "-o", "p.svg", "-o", "p.png", "-o", "p2.png"}).status, 0);
+  for (const char* ext : {".svg", ".png"}) {
+    ASSERT_EQ(run({"view", kPlan, "--size", "160x100", "--stereo", "parallel", "-o", std::string("pa") + ext}).status, 0);
+    EXPECT_TRUE(slurp(path(std::string("p") + ext)) == slurp(path(std::string("pa") + ext))) << ext;
+  }
+  EXPECT_TRUE(slurp(path("p2.png")) == slurp(path("pa.png")));
   // Every file is checked before any is written: a bad one anywhere writes none.
   const std::vector<std::pair<std::vector<std::string>, std::string>> bad = {
       {{"-o", "b.svg", "-o", "b.doc"}, "b.doc"},
