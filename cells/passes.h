@@ -92,7 +92,9 @@ struct Layout {
   /// Per cell: the sloped floor of a cell over a sloped wall (the wall's top), else none.
   /// Such a cell is no prism: Cell::z0 is its floor's least height.
   std::vector<std::optional<Slope>> floor_plane;
-  /// The cell of band b over triangle t that is free at height z (strictly inside), or -1.
+  /// The cell of band b over triangle t whose heights hold z (strictly inside), or -1. A
+  /// cell with a sloped floor holds every z above its least height: the caller judges z
+  /// against floor_plane at the point it looks at.
   CellId cell_at(const CellComplex& c, size_t b, int t, double z) const;
 };
 
