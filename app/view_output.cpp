@@ -80,12 +80,18 @@ Image view_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet&
   return picture;
 }
 
+/// What the hidden-line drawings of `view` draw: shadow outlines when asked for.
+LineOptions line_options_of(const ViewOptions& opt) {
+  LineOptions o;
+  o.shadows = opt.shadow_lines;
+  return o;
+}
+
 /// One view's hidden-line drawing (no stereo, no frames); [µs] its time into `render_us`.
 Drawing view_drawing(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs, const ViewOptions& opt,
                      double& render_us) {
   const CellComplex& c = plan.complex;
-  LineOptions line_options;
-  line_options.shadows = opt.shadow_lines;
+  const LineOptions line_options = line_options_of(opt);
   const LineScene scene = prepare_line_scene(c, line_options);
   auto t0 = std::chrono::steady_clock::now();
   // Lines need exact masks: a view searched by hull (for half-tones) is searched again.
@@ -129,8 +135,7 @@ void write_picture_frames(const LoadedPlan& plan, const ViewSetup& v, const View
 void write_drawing_frames(const LoadedPlan& plan, const ViewSetup& v, const ViewOptions& opt,
                           const std::vector<std::string>& paths, const std::vector<nlohmann::json*>& stats) {
   const CellComplex& c = plan.complex;
-  LineOptions line_options;
-  line_options.shadows = opt.shadow_lines;
+  const LineOptions line_options = line_options_of(opt);
   const LineScene scene = prepare_line_scene(c, line_options);
   const auto frames = walk_frames(c, v.viewpoint.eye, v.viewpoint.look, parse_vec3(opt.to_eye, "--to-eye"),
                                   parse_vec3(opt.to_look, "--to-look"), opt.frames, v.camera);
@@ -178,8 +183,7 @@ void write_stereo_pictures(const LoadedPlan& plan, const ViewSetup& v, const Vie
 void write_stereo_drawings(const LoadedPlan& plan, const ViewSetup& v, const ViewOptions& opt,
                            const std::vector<std::string>& paths, const std::vector<nlohmann::json*>& stats) {
   const CellComplex& c = plan.complex;
-  LineOptions line_options;
-  line_options.shadows = opt.shadow_lines;
+  const LineOptions line_options = line_options_of(opt);
   const LineScene scene = prepare_line_scene(c, line_options);
   StereoLayout layout;
   if (!parse_stereo_layout(opt.stereo, layout))
