@@ -18,11 +18,8 @@
 
 #include "app/commands.h"
 #include "core/atomic_file.h"
-#include "core/file_name.h"
-#include "render/drawing.h"
 #include "render/overlay_drawing.h"
 #include "render/raster.h"
-#include "render/stereo_drawing.h"
 #include "render/thread_arena.h"
 #include "visibility/viewpoint.h"
 #include "visibility/visible_set.h"
@@ -59,21 +56,7 @@ void check_view_outputs(const ViewOptions& opt) {
   check_named_once(files);
   for (const std::string& out : opt.outputs) {
     check_output_path(out);  // a device or FIFO there: told first, whatever its name
-    const bool picture = is_raster_path(out);
-    if (!picture && !is_drawing_path(out))
-      throw std::runtime_error("cannot write '" + out + "': unknown picture format '" + lower_extension(out) +
-                               "' (drawings: " + drawing_extensions() + "; half-tone pictures: " + raster_extensions() +
-                               ")");
-    if (!opt.stereo.empty()) {
-      StereoComposite composite;
-      StereoLayout layout;
-      if (picture && !parse_stereo_composite(opt.stereo, composite))
-        throw std::runtime_error("--stereo wants anaglyph, parallel or cross for pictures, not '" + opt.stereo +
-                                 "' (" + out + ")");
-      if (!picture && !parse_stereo_layout(opt.stereo, layout))
-        throw std::runtime_error("--stereo wants parallel, cross or pair for drawings, not '" + opt.stereo + "' (" +
-                                 out + ")");
-    }
+    check_view_output(out, opt.stereo);
     std::error_code ec;
     const std::filesystem::path folder = std::filesystem::path(out).parent_path();
     if (!folder.empty() && !std::filesystem::is_directory(folder, ec))

@@ -181,6 +181,9 @@ struct ViewSetup {
 ViewSetup set_up_view(const LoadedPlan& plan, const ViewOptions& opt);
 nlohmann::json view_stats(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs);
 int run_view(const ViewOptions& opt);
+/// Throws naming `path` when its extension is neither a drawing's nor a picture's, or when
+/// `stereo` (--stereo; "" for none) is not a layout its kind takes.
+void check_view_output(const std::string& path, const std::string& stereo);
 /// Writes the view's picture to `path` by its extension (stereo, walk frames as asked by
 /// `opt`); adds what it measured to `stats`.
 void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs, const ViewOptions& opt,

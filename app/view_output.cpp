@@ -35,6 +35,22 @@ namespace {
 
 bool is_drawing(const std::string& path) { return is_drawing_path(path); }
 
+/// The composite a stereo picture takes (--stereo), or an error naming the file.
+StereoComposite composite_of(const std::string& stereo, const std::string& path) {
+  StereoComposite composite;
+  if (!parse_stereo_composite(stereo, composite))
+    throw std::runtime_error("--stereo wants anaglyph, parallel or cross for pictures, not '" + stereo + "' (" + path + ")");
+  return composite;
+}
+
+/// The layout a stereo drawing takes (--stereo), or an error naming the file.
+StereoLayout layout_of(const std::string& stereo, const std::string& path) {
+  StereoLayout layout;
+  if (!parse_stereo_layout(stereo, layout))
+    throw std::runtime_error("--stereo wants parallel, cross or pair for drawings, not '" + stereo + "' (" + path + ")");
+  return layout;
+}
+
 double micros_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -161,9 +177,7 @@ void write_drawing_frames(const LoadedPlan& plan, const ViewSetup& v, const View
 void write_stereo_pictures(const LoadedPlan& plan, const ViewSetup& v, const ViewOptions& opt,
                            const std::vector<std::string>& paths, const std::vector<nlohmann::json*>& stats) {
   const CellComplex& c = plan.complex;
-  StereoComposite composite;
-  if (!parse_stereo_composite(opt.stereo, composite))
-    throw std::runtime_error("--stereo wants anaglyph, parallel or cross for pictures, not '" + opt.stereo + "'");
+  const StereoComposite composite = composite_of(opt.stereo, paths.front());
   StereoRig rig = stereo_rig(c, v.camera, {opt.interocular, opt.converge});
   if (rig.problem != StereoRig::Problem::None) throw std::runtime_error(rig.message());
   RenderStats rs;
@@ -185,9 +199,7 @@ void write_stereo_drawings(const LoadedPlan& plan, const ViewSetup& v, const Vie
   const CellComplex& c = plan.complex;
   const LineOptions line_options = line_options_of(opt);
   const LineScene scene = prepare_line_scene(c, line_options);
-  StereoLayout layout;
-  if (!parse_stereo_layout(opt.stereo, layout))
-    throw std::runtime_error("--stereo wants parallel, cross or pair for drawings, not '" + opt.stereo + "'");
+  const StereoLayout layout = layout_of(opt.stereo, paths.front());
   StereoRig rig = stereo_rig(c, v.camera, {opt.interocular, opt.converge});
   if (rig.problem != StereoRig::Problem::None) throw std::runtime_error(rig.message());
   auto t0 = std::chrono::steady_clock::now();
@@ -224,6 +236,17 @@ void write_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet&
 
 }  // namespace
 
+void check_view_output(const std::string& path, const std::string& stereo) {
+  const bool picture = is_raster_path(path);
+  if (!picture && !is_drawing(path))
+    throw std::runtime_error("cannot write '" + path + "': unknown picture format '" + lower_extension(path) +
+                             "' (drawings: " + drawing_extensions() + "; half-tone pictures: " + raster_extensions() +
+                             ")");
+  if (stereo.empty()) return;
+  if (picture) composite_of(stereo, path);
+  else layout_of(stereo, path);
+}
+
 std::string explain_view_effects(const LoadedPlan& plan, const ViewOptions& opt) {
   const CellComplex& c = plan.complex;
   const HalftoneOptions o = halftone_options(opt);
@@ -239,11 +262,8 @@ std::string explain_view_effects(const LoadedPlan& plan, const ViewOptions& opt)
 
 void write_view_output(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs, const ViewOptions& opt,
                        const std::string& path, nlohmann::json& stats) {
+  check_view_output(path, "");
   if (is_raster_path(path)) return write_picture(plan, v, vs, opt, path, stats);
-  if (!is_drawing(path))
-    throw std::runtime_error("cannot write '" + path + "': unknown picture format '" + lower_extension(path) +
-                             "' (drawings: " + drawing_extensions() + "; half-tone pictures: " + raster_extensions() +
-                             ")");
   if (opt.frames == 0 && opt.stereo.empty()) {
     double render_us = 0;
     const Drawing d = view_drawing(plan, v, vs, opt, render_us);
