@@ -306,15 +306,17 @@ std::string assimp_importer_by_content(const std::string& path) {
 ImportedScene import_scene(const std::string& path, const ImportOptions& options) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw std::runtime_error("cannot read model " + path + ": no such file");
-  // The second importer reads a file again (below): Assimp's readers keep state from one
-  // read to the next (its OpenGEX reader crashes reading a file twice).
-  Assimp::Importer importers[2];
-  for (Assimp::Importer& importer : importers) {
+  // A second importer, made only to read a file again (below): Assimp's readers keep state
+  // from one read to the next (its OpenGEX reader crashes reading a file twice).
+  std::optional<Assimp::Importer> importers[2];
+  auto fresh_importer = [&](int k) {
+    Assimp::Importer& importer = importers[k].emplace();
     importer.SetPropertyBool(AI_CONFIG_IMPORT_IFC_SKIP_SPACE_REPRESENTATIONS, !options.ifc_spaces);
     // Only triangles are kept: drop points and lines at the source.
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  }
-  Assimp::Importer* importer = &importers[0];
+    return &importer;
+  };
+  Assimp::Importer* importer = fresh_importer(0);
   ImportedScene out;
   out.path = path;
   const auto t0 = std::chrono::steady_clock::now();
@@ -342,7 +344,7 @@ ImportedScene import_scene(const std::string& path, const ImportOptions& options
   // stands, those parts are dropped, and the rest is checked and processed as before.
   if (!scene && std::string_view(importer->GetErrorString()).starts_with("Validation failed")) {
     const std::string complaint = importer->GetErrorString();
-    importer = &importers[1];
+    importer = fresh_importer(1);
     if (const aiScene* raw = read(0)) {
       repair_scene(*const_cast<aiScene*>(raw));  // the importer's own scene, not processed yet
       scene = importer->ApplyPostProcessing(kSteps | aiProcess_ValidateDataStructure);
