@@ -62,9 +62,12 @@ struct Level {
   double z = 0;
   const Slope* plane = nullptr;
   double operator()(Vec2 p) const { return plane ? (*plane)(p) : z; }
+  /// The same level: one plane, or heights within kZTol.
   bool same(const Level& o) const {
     return plane || o.plane ? plane && o.plane && *plane == *o.plane : std::fabs(z - o.z) < kZTol;
   }
+  /// The same level exactly: one plane, or one height.
+  bool identical(const Level& o) const { return plane || o.plane ? plane && o.plane && *plane == *o.plane : z == o.z; }
 };
 
 /// The polygon p0 → p1 between heights lo and hi at each end, without the corners where
@@ -213,15 +216,12 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
       Face f;
       f.plane.n = {d.y / len, -d.x / len, 0};
       f.plane.d = -dot(f.plane.n, at(a, 0));
+      // From the floor to the ceiling at each end; without a corner at a wedge's tip.
       const double za = height(id, floor, a), zb = height(id, floor, b);
-      f.poly = {at(a, za), at(a, c.z1), at(b, c.z1), at(b, zb)};
-      if (floor.plane) {  // without a corner at a wedge's tip
-        f.poly.clear();
-        if (za < c.z1 - kZTol) f.poly.push_back(at(a, za));
-        f.poly.push_back(at(a, c.z1));
-        f.poly.push_back(at(b, c.z1));
-        if (zb < c.z1 - kZTol) f.poly.push_back(at(b, zb));
-      }
+      if (za < c.z1 - kZTol) f.poly.push_back(at(a, za));
+      f.poly.push_back(at(a, c.z1));
+      f.poly.push_back(at(b, c.z1));
+      if (zb < c.z1 - kZTol) f.poly.push_back(at(b, zb));
       c.faces.push_back(std::move(f));
     }
     Face bottom, top;
@@ -466,10 +466,7 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
         for (auto [lo, hi] : solid) {
           // Extend a piece of the previous s-interval between the same levels.
           auto prev = std::find_if(rects.begin(), rects.end(), [&](const Rect& r) {
-            auto identical = [](const Level& x, const Level& y) {
-              return x.plane || y.plane ? x.plane && y.plane && *x.plane == *y.plane : x.z == y.z;
-            };
-            return std::fabs(r.s1 - s0) < 1e-12 && identical(r.lo, lo) && identical(r.hi, hi);
+            return std::fabs(r.s1 - s0) < 1e-12 && r.lo.identical(lo) && r.hi.identical(hi);
           });
           if (prev != rects.end()) prev->s1 = s1;
           else rects.push_back({s0, s1, lo, hi});

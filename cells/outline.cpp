@@ -101,14 +101,9 @@ void settle_slopes(Outline& out, const Plan& plan) {
   bool any = false;
   for (const Region& r : out.regions) any |= r.top.has_value();
   if (!any) return;
-  struct Box { Vec2 lo, hi; };
-  std::vector<Box> box(out.regions.size());
-  for (size_t i = 0; i < out.regions.size(); ++i) {
-    Box b{{HUGE_VAL, HUGE_VAL}, {-HUGE_VAL, -HUGE_VAL}};
-    for (Vec2 p : out.regions[i].poly)
-      b.lo = {std::min(b.lo.x, p.x), std::min(b.lo.y, p.y)}, b.hi = {std::max(b.hi.x, p.x), std::max(b.hi.y, p.y)};
-    box[i] = b;
-  }
+  std::vector<Box3> box(out.regions.size());  // in plan (z = 0)
+  for (size_t i = 0; i < out.regions.size(); ++i)
+    for (Vec2 p : out.regions[i].poly) box[i].add({p.x, p.y, 0});
   std::vector<Region> settled;
   settled.reserve(out.regions.size());
   for (size_t i = 0; i < out.regions.size(); ++i) {
@@ -125,16 +120,12 @@ void settle_slopes(Outline& out, const Plan& plan) {
     std::vector<Slope> others;
     for (size_t j = 0; j < out.regions.size(); ++j) {
       const Region& q = out.regions[j];
-      if (j == i || q.storey != r.storey) continue;
-      if (box[j].lo.x > box[i].hi.x + 1e-9 || box[j].hi.x < box[i].lo.x - 1e-9 || box[j].lo.y > box[i].hi.y + 1e-9 ||
-          box[j].hi.y < box[i].lo.y - 1e-9)
-        continue;
+      if (j == i || q.storey != r.storey || !box[j].meets(box[i], 1e-9)) continue;
       for (size_t k = 0; k < q.open.size(); ++k) {
         if (!(q.top && k + 1 == q.open.size())) heights.push_back(q.open[k].first);  // a sloped bound is no height
         heights.push_back(q.open[k].second);
       }
       if (q.top && !(*q.top == top)) others.push_back(*q.top);
-      if (q.top) heights.push_back(ceiling);
     }
     std::vector<std::vector<Vec2>> pieces{r.poly};
     for (double h : heights) split_where(pieces, top.z0 - h - dot(top.grad, top.at), top.grad);
@@ -287,13 +278,14 @@ Outline make_outline(const Plan& plan) {
     }
 
     double along = 0;  // distance along the centre line to the segment's start
+    // Per segment, the top's plane: its height rises linearly with the distance along.
     std::vector<Slope> top_of(nseg);
+    double from = 0;  // the segment's start, along the centre line
     for (size_t i = 0; sloped && i < nseg; ++i) {
       const double rise = (w.height_at_end - w.height) / wall_length;
-      top_of[i] = {c[i], rise * dir[i], floor + w.height + rise * along};
-      along += length(c[i + 1] - c[i]);
+      top_of[i] = {c[i], rise * dir[i], floor + w.height + rise * from};
+      from += length(c[i + 1] - c[i]);
     }
-    along = 0;
     for (size_t i = 0; i < nseg; ++i) {
       const double len = length(c[i + 1] - c[i]);
       // Strips of this segment along s in [0, len]: solid between openings.

@@ -68,8 +68,8 @@ void real_lines(const Outline& outline, const Triangulation& T, const Classes& C
     for (int t = 0; t < n; ++t) free_at[size_t(j)][size_t(t)] = L.cell_at(out, S.band[size_t(j)], t, mid(j));
   // The cell free in slice j over triangle t at point p of it and height z in the slice
   // (or at its bottom, or top): a cell over a sloped wall is free only above the wall's
-  // top at p. `z` above the top by `lift`: so that at a slice's bottom (lift 0+) a top
-  // meeting it counts as below.
+  // top at p. `at_or_above`: z itself counts when the top meets it (the slice just above
+  // a height looked at from it).
   auto cell = [&](int j, int t, Vec2 p, double z, bool at_or_above) -> CellId {
     if (j < 0 || j >= ns || t < 0) return kNoCell;
     const CellId id = free_at[size_t(j)][size_t(t)];
@@ -260,10 +260,11 @@ void real_lines(const Outline& outline, const Triangulation& T, const Classes& C
     if (!L.floor_plane[id]) continue;
     const Slope& top = *L.floor_plane[id];
     const Cell& c = out.cells[id];
+    auto top_at = [&](Vec2 p) { return std::clamp(top(p), c.z0, c.z1); };  // as extrude made the floor
     const size_t m = c.footprint.size();
     for (size_t k = 0; k < m; ++k) {
       const Vec2 a = c.footprint[k], b = c.footprint[(k + 1) % m];
-      const double za = std::clamp(top(a), c.z0, c.z1), zb = std::clamp(top(b), c.z0, c.z1);
+      const double za = top_at(a), zb = top_at(b);
       if (std::fabs(za - zb) <= 1e-9 || (za >= c.z1 - 1e-9 && zb >= c.z1 - 1e-9)) continue;
       const double len = length(b - a);
       const Vec2 dir = (1.0 / len) * (b - a);
@@ -295,7 +296,7 @@ void real_lines(const Outline& outline, const Triangulation& T, const Classes& C
           for (Vec3 v : p.poly)
             if (std::fabs(dot(Vec2{v.x, v.y} - a, dir) - end) <= 1e-9) bottom = std::min(bottom, v.z);
           const Vec2 q = a + end * dir;
-          low = low && std::fabs(bottom - std::clamp(top(q), c.z0, c.z1)) <= 1e-9;
+          low = low && std::fabs(bottom - top_at(q)) <= 1e-9;
         }
         if (low) spans.push_back({std::max(0.0, s0), std::min(len, s1), p.other(CellId(id))});
       }
@@ -303,7 +304,7 @@ void real_lines(const Outline& outline, const Triangulation& T, const Classes& C
       auto add = [&](double s0, double s1, LineKind kind, CellId beyond) {
         if (s1 - s0 <= 1e-9) return;
         const Vec2 p0 = a + s0 * dir, p1 = a + s1 * dir;
-        Piece p{{p0.x, p0.y, std::clamp(top(p0), c.z0, c.z1)}, {p1.x, p1.y, std::clamp(top(p1), c.z0, c.z1)}, kind, {}};
+        Piece p{{p0.x, p0.y, top_at(p0)}, {p1.x, p1.y, top_at(p1)}, kind, {}};
         add_cells(p.cells, CellId(id));
         add_cells(p.cells, beyond);
         pieces.push_back(std::move(p));
@@ -341,7 +342,8 @@ void real_lines(const Outline& outline, const Triangulation& T, const Classes& C
           if (P.kind != Q.kind) continue;
           Vec3 dp = (P.a == here ? P.b : P.a) - here, dq = (Q.a == here ? Q.b : Q.a) - here;
           // Opposite directions, exactly collinear: for vertical pieces trivially; for
-          // horizontal ones (same z) by the exact planar orientation.
+          // horizontal ones (same z) by the exact planar orientation; for sloped ones (a
+          // wall's top) within a rounding.
           const bool vertical = dp.x == 0 && dp.y == 0, sloped = dp.z != 0 && !vertical;
           bool collinear = sloped ? length(cross(dp, dq)) <= 1e-12 * length(dp) * length(dq)
                            : dp.z != 0 ? (dq.z != 0 && dp.x == 0 && dq.x == 0 && dp.y == 0 && dq.y == 0)

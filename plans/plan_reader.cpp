@@ -532,7 +532,8 @@ void Reader::read_wall(const toml::table& t, int index) {
   const auto end_height = e.length("height_at_end");
   if (auto h = e.length("height")) {
     // A sloped wall may rise through the ceiling (a gable under the roof): cut there.
-    if (end_height ? *h < 0 : *h <= 0) e.fail("height", "'height' must be > 0, not " + len(*h));
+    if (end_height ? *h < 0 : *h <= 0)
+      e.fail("height", std::string("'height' must be ") + (end_height ? ">= 0" : "> 0") + ", not " + len(*h));
     if (*h > st.height + kSlack && !end_height)
       e.fail("height", "'height' " + len(*h) + " is above the ceiling of storey '" + st.name + "' (" +
                            len(st.height) + "); leave it out for a wall up to the ceiling");
