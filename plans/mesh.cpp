@@ -27,6 +27,7 @@
 #include <string_view>
 #include <vector>
 #include <map>
+#include <optional>
 #include <unordered_map>
 #include <stdexcept>
 
@@ -325,6 +326,103 @@ PlyHeader check_ply(const std::string& path) {
     bad("it holds " + std::to_string(elements.front().count) +
         " points and no faces (a point cloud): Avenues needs surfaces, polygons joining the points");
   return h;
+}
+
+/// An ASCII PLY's data, checked before OpenMesh reads it, value by value as its reader
+/// will (OpenMesh 9.0, _PLYReader_::read_ascii): a coordinate or normal is read with the
+/// stream's >> into a float, a colour into an int (a float where its type is), a face's
+/// vertex count and indices into unsigned ints; anything else, a list too, is one word
+/// skipped. Its reader stops after the first face element. Those variables are not set
+/// first: once one value is not read whole ("nan", a stray byte, "1.5" for a count) or the
+/// data ends early, the stream fails and every later >> leaves its variable as it was, so a
+/// face's vertex count is whatever an earlier call left on the stack, often a part of an
+/// address: OpenMesh then pushes billions of vertex handles (found by fuzzing; it depended
+/// on the file read before and on the address layout). A count read whole can be as bad
+/// ("-3" reads as 4294967293). So each value it reads must be there, up to the end of the
+/// first face element, and be one its >> reads whole and keeps.
+void check_ply_ascii_data(std::string_view data, const PlyHeader& h, const std::string& path) {
+  enum Kind { Skip, Float, Int, Index };
+  size_t at = 0;
+  auto word = [&]() -> std::optional<std::string_view> {
+    auto space = [](char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r'; };
+    while (at < data.size() && space(data[at])) ++at;
+    if (at == data.size()) return std::nullopt;
+    const size_t from = at;
+    while (at < data.size() && !space(data[at])) ++at;
+    return data.substr(from, at - from);
+  };
+  // The value as >> reads it: all of the word, within the type's range.
+  auto read_whole = [](std::string_view w, Kind k) {
+    size_t i = 0;
+    const bool sign = !w.empty() && (w[0] == '+' || w[0] == '-');
+    if (k == Index && sign && w[0] == '-') return false;  // >> reads "-3" as 4294967293
+    i += sign;
+    const auto digits = [&] {
+      const size_t from = i;
+      while (i < w.size() && w[i] >= '0' && w[i] <= '9') ++i;
+      return i - from;
+    };
+    size_t n = digits();
+    if (k != Float) {
+      if (n == 0 || i != w.size()) return false;  // strtoll saturates beyond long long
+      const long long v = std::strtoll(std::string(w).c_str(), nullptr, 10);
+      return k == Index ? v <= 4294967295LL : v >= -2147483648LL && v <= 2147483647LL;
+    }
+    if (i < w.size() && w[i] == '.') {
+      ++i;
+      n += digits();
+    }
+    if (n == 0) return false;
+    if (i < w.size() && (w[i] == 'e' || w[i] == 'E')) {
+      ++i;
+      if (i < w.size() && (w[i] == '+' || w[i] == '-')) ++i;
+      if (digits() == 0) return false;
+    }
+    return i == w.size() && std::isfinite(std::strtof(std::string(w).c_str(), nullptr));
+  };
+  long long face_count = 0;  // OpenMesh reads the first face element as many times as the last says
+  for (const PlyHeader::Element& e : h.elements)
+    if (e.name == "face") face_count = e.count;
+  auto kind = [](const std::string& element, const PlyHeader::Property& p) {
+    static const std::vector<std::string> coordinates = {"x", "y", "z", "nx", "ny", "nz", "u", "s", "v", "t"};
+    static const std::vector<std::string> colours = {"red", "green", "blue", "alpha"};
+    static const std::vector<std::string> vertex_colours = {"diffuse_red", "diffuse_green", "diffuse_blue"};
+    const auto in = [&](const std::vector<std::string>& names) { return std::find(names.begin(), names.end(), p.name) != names.end(); };
+    const bool floating = p.type == "float" || p.type == "float32";
+    if (element == "face" && p.type == "list") return p.name == "vertex_indices" || p.name == "vertex_index" ? Index : Skip;
+    if (p.type == "list" || (element != "vertex" && element != "face")) return Skip;
+    if (element == "vertex" && in(coordinates)) return Float;
+    if (in(colours) || (element == "vertex" && in(vertex_colours))) return floating ? Float : Int;
+    return Skip;
+  };
+  static const char* const what[] = {"", "a number in a float's range", "a whole number in an int's range",
+                                     "a vertex count or index (a whole number from 0 to 4294967295)"};
+  for (const PlyHeader::Element& e : h.elements) {
+    const long long records = e.properties.empty() ? 0 : e.name == "face" ? face_count : e.count;
+    for (long long r = 0; r < records; ++r) {
+      const std::string where = e.name + " " + std::to_string(r + 1) + " (of " + std::to_string(records) + ")";
+      auto value = [&](Kind k) {
+        const std::optional<std::string_view> w = word();
+        if (!w) throw std::runtime_error("cannot read mesh " + path + ": its data ends within " + where);
+        if (k == Skip || read_whole(*w, k)) return *w;
+        std::string shown(w->substr(0, 24));
+        for (char& c : shown)
+          if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
+        throw std::runtime_error("cannot read mesh " + path + ": " + where + ": '" + shown + (w->size() > 24 ? "...'" : "'") +
+                                 " is not " + what[k]);
+      };
+      for (const PlyHeader::Property& p : e.properties) {
+        const Kind k = kind(e.name, p);
+        if (k != Index) {
+          value(k);
+          continue;
+        }
+        const std::string_view n = value(Index);
+        for (long long i = std::strtoll(std::string(n).c_str(), nullptr, 10); i > 0; --i) value(Index);
+      }
+    }
+    if (e.name == "face") break;  // OpenMesh reads no further
+  }
 }
 
 /// A binary STL's triangle count against the file's size (a file cut short is refused),
@@ -762,6 +860,7 @@ Mesh load_mesh(const std::string& path, const MeshAxes& axes, std::vector<std::s
     ply = header.text();
     const size_t data_at = ply.size();
     ply.append(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (header.format == "ascii") check_ply_ascii_data(std::string_view(ply).substr(data_at), header, path);
     exact = ply_vertices_in_double(std::string_view(ply).substr(data_at), header);
   }
   std::vector<std::string> stl_dropped;

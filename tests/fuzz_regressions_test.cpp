@@ -45,6 +45,42 @@ TEST(FuzzRegressions, MeshesThatRanOpenMeshOutOfMemoryAreRefusedOrReadNamingTheF
   }
 }
 
+// OpenMesh's ASCII PLY reader reads each number with the stream's >>, a face's vertex count
+// into a variable it does not set first: once a value is not read whole (ply-vertex-not-a-
+// number.ply: a stray byte in a coordinate), the stream fails and the count is whatever an
+// earlier call left on the stack. fuzz.mesh ran out of memory (billions of vertex handles)
+// when that file followed others (nan-vertex.obj), not alone. A count read whole can be as
+// bad: "-3" reads as 4294967293 (ply-negative-face-size.ply). In one process, after
+// whatever came before, each is refused naming the value, and a good PLY still reads.
+TEST(FuzzRegressions, PlyValuesOpenMeshCannotReadAreRefusedWhateverWasReadBefore) {
+  const fs::path dir = fs::path(AVENUES_SOURCE_DIR) / "tests" / "fuzz" / "regressions" / "mesh";
+  const std::string not_a_number = (dir / "ply-vertex-not-a-number.ply").string();
+  const std::string negative = (dir / "ply-negative-face-size.ply").string();
+  const std::string good = (fs::path(AVENUES_SOURCE_DIR) / "tests" / "fuzz" / "corpus" / "mesh" / "site-coordinates-double.ply").string();
+  auto refusal = [](const std::string& path) -> std::string {
+    try {
+      (void)avenues::load_mesh(path);
+    } catch (const std::runtime_error& e) {
+      return e.what();
+    }
+    return "read";
+  };
+  for (int round = 0; round < 3; ++round) {
+    std::vector<std::string> warnings;
+    try {
+      (void)avenues::load_mesh((dir / "nan-vertex.obj").string(), {}, &warnings);
+    } catch (const std::runtime_error&) {
+    }
+    EXPECT_EQ(refusal(not_a_number),
+              "cannot read mesh " + not_a_number + ": vertex 2 (of 3): '51?\?\?\?' is not a number in a float's range");
+    EXPECT_EQ(refusal(negative), "cannot read mesh " + negative +
+                                     ": face 1 (of 1): '-3' is not a vertex count or index (a whole number from 0 to 4294967295)");
+    const avenues::Mesh m = avenues::load_mesh(good);
+    EXPECT_EQ(m.vertices.size(), 3u);
+    EXPECT_EQ(m.triangles.size(), 1u);
+  }
+}
+
 TEST(FuzzRegressions, WellFormedOffFilesStillRead) {
   // The checks in front of OpenMesh must not refuse what every OFF writer writes:
   // comments, blank lines, colours after a face.
