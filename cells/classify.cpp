@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <map>
 #include <span>
 #include <tuple>
@@ -483,6 +484,19 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
           if (open.empty()) { of[size_t(t)] = -1; break; }
           for (auto [z, plane] : stand_ins)
             if (open.back().first == z) top = *plane;
+          bool levelled = false;  // a sloped gap stood level (below)
+          if (top && closed_gap) {
+            levelled = true;
+            // A gap closed between walls is no wall's region, so nothing cut it where the
+            // slope passes a height: it may reach past where its plane meets the ceiling. It
+            // stands level at the plane's highest over it (the gap is thinner than kGap).
+            double hi = -HUGE_VAL;
+            for (int32_t v : tv) hi = std::max(hi, (*top)(T.vert[size_t(v)]));
+            open.back().first = std::clamp(hi, open.back().first, open.back().second);
+            top.reset();
+            if (open.back().second - open.back().first < kGap) open.pop_back();
+            if (open.empty()) { of[size_t(t)] = -1; break; }
+          }
           double least = HUGE_VAL;  // the sloped top's least height over the triangle
           if (top) {
             for (int32_t v : tv) least = std::min(least, (*top)(T.vert[size_t(v)]));
@@ -492,6 +506,11 @@ Classes classify(const Plan& plan, const Outline& outline, const Triangulation& 
           // (Where an overlap leaves the top level, the same walls key another class.)
           std::vector<int32_t> key = keys;
           if (top) key.push_back(-1);
+          if (levelled) {  // the same walls key one class per level
+            uint64_t bits;
+            std::memcpy(&bits, &open.back().first, sizeof bits);
+            key.insert(key.end(), {-2, int32_t(bits >> 32), int32_t(bits & 0xffffffffu)});
+          }
           auto it = region_class.find(key);
           if (it == region_class.end()) {
             SpaceClass c;

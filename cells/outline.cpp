@@ -201,9 +201,15 @@ Outline make_outline(const Plan& plan) {
     const bool closed = c.size() > 2 && c.front() == c.back();
     const double h = w.thickness / 2;
     // A sloped wall's top is a plane over each segment (settle_slopes cuts its regions).
-    const bool sloped = h > 0 && w.height >= 0 && w.height_at_end >= 0 && w.height_at_end != w.height;
-    double wall_length = 0;
-    for (size_t k = 0; sloped && k + 1 < c.size(); ++k) wall_length += length(c[k + 1] - c[k]);
+    const bool sloped = h > 0 && w.sloped();
+    // The top's straight pieces along the centre line: from brk[k] to brk[k + 1] it runs
+    // from top_z[k] to top_z[k + 1] above the floor (Wall::top_bends).
+    std::vector<double> brk{0}, top_z{w.height};
+    if (sloped) {
+      for (Vec2 b : w.top_bends) brk.push_back(b.x), top_z.push_back(b.y);
+      brk.push_back(w.length());
+      top_z.push_back(w.height_at_end);
+    }
     // A low wall is open from its top to the ceiling, along its whole length.
     Intervals always;
     if (!sloped && w.height >= 0 && w.height < st.height) always.push_back({floor + w.height, ceiling});
@@ -250,7 +256,7 @@ Outline make_outline(const Plan& plan) {
       end[i] = square(i, c[i + 1]);
     }
     std::vector<std::vector<Vec2>> fillers;
-    std::vector<size_t> filler_segment;  // the segment whose top a filler takes
+    std::vector<size_t> filler_segment;  // the segment whose top (at its end) a filler takes
     auto join = [&](size_t a, size_t b) {  // segment a ends where b starts
       Vec2 p = c[a + 1];
       double cosang = dot(dir[a], dir[b]);
@@ -277,15 +283,26 @@ Outline make_outline(const Plan& plan) {
       if (touches_other(c.back(), dir[nseg - 1])) end[nseg - 1] = square(nseg - 1, c.back() + h * dir[nseg - 1]);
     }
 
+    // The piece of the top over the point `at` along the centre line (a bend belongs to the
+    // piece after it unless `before`): its plane over segment i, or none where it is level
+    // (then the wall is open from that height up, as a low wall is).
+    struct TopPiece { std::optional<Slope> slope; double level = 0; };
+    auto top_piece = [&](size_t i, double along_i, double at) {
+      size_t k = 0;
+      while (k + 2 < brk.size() && brk[k + 1] <= at) ++k;
+      const double rise = (top_z[k + 1] - top_z[k]) / (brk[k + 1] - brk[k]);
+      TopPiece piece;
+      if (rise == 0) piece.level = top_z[k];
+      else piece.slope = Slope{c[i], rise * dir[i], floor + top_z[k] + rise * (along_i - brk[k])};
+      return piece;
+    };
+    auto put_top = [&](Region& r, const TopPiece& piece) {
+      if (piece.slope) r.top = piece.slope;
+      else if (piece.level < st.height) r.open.push_back({floor + piece.level, ceiling});
+    };
     double along = 0;  // distance along the centre line to the segment's start
-    // Per segment, the top's plane: its height rises linearly with the distance along.
-    std::vector<Slope> top_of(nseg);
-    double from = 0;  // the segment's start, along the centre line
-    for (size_t i = 0; sloped && i < nseg; ++i) {
-      const double rise = (w.height_at_end - w.height) / wall_length;
-      top_of[i] = {c[i], rise * dir[i], floor + w.height + rise * from};
-      from += length(c[i + 1] - c[i]);
-    }
+    std::vector<double> seg_start(nseg + 1, 0);
+    for (size_t i = 0; i < nseg; ++i) seg_start[i + 1] = seg_start[i] + length(c[i + 1] - c[i]);
     for (size_t i = 0; i < nseg; ++i) {
       const double len = length(c[i + 1] - c[i]);
       // Strips of this segment along s in [0, len]: solid between openings.
@@ -310,6 +327,17 @@ Outline make_outline(const Plan& plan) {
         s = b;
       }
       if (s < len) strips.push_back({s, len, -1});
+      // A sloped top's bends cut the strips they fall in: each part lies under one plane.
+      for (size_t k = 1; sloped && k + 1 < brk.size(); ++k) {
+        const double b = brk[k] - along;
+        if (b <= 1e-9 || b >= len - 1e-9) continue;
+        for (size_t j = 0; j < strips.size(); ++j)
+          if (strips[j].s0 < b && b < strips[j].s1) {
+            strips.insert(strips.begin() + std::ptrdiff_t(j) + 1, {b, strips[j].s1, strips[j].opening});
+            strips[j].s1 = b;
+            break;
+          }
+      }
 
       // A wall with a footprint of its own (one segment) stands on it instead of its quad.
       std::vector<Vec2> quad{start[i].right, end[i].right, end[i].left, start[i].left};
@@ -324,8 +352,8 @@ Outline make_outline(const Plan& plan) {
           const Opening& o = w.openings[size_t(sp.opening)];
           r.open.push_back({floor + o.sill, floor + o.head});
         }
+        if (sloped) put_top(r, top_piece(i, along, along + 0.5 * (sp.s0 + sp.s1)));
         r.open = unite(r.open);
-        if (sloped) r.top = top_of[i];
         // At the segment's ends, its very corners (c[i] + len * dir[i] is not c[i + 1] in doubles).
         const Vec2 a = sp.s0 > 0 ? c[i] + sp.s0 * dir[i] : c[i], b = sp.s1 < len ? c[i] + sp.s1 * dir[i] : c[i + 1];
         if (h == 0) {
@@ -346,8 +374,16 @@ Outline make_outline(const Plan& plan) {
       r.storey = w.storey;
       r.wall = wi;
       r.poly = fillers[k];
-      r.open = unite(always);
-      if (sloped) r.top = top_of[filler_segment[k]];
+      r.open = always;
+      if (sloped) {
+        // The top at the segment's end: the last piece of it before the joint.
+        const size_t a = filler_segment[k];
+        const double joint = seg_start[a + 1];
+        size_t piece = 0;
+        while (piece + 2 < brk.size() && brk[piece + 1] < joint) ++piece;
+        put_top(r, top_piece(a, seg_start[a], 0.5 * (std::max(brk[piece], seg_start[a]) + joint)));
+      }
+      r.open = unite(r.open);
       out.regions.push_back(std::move(r));
     }
   }

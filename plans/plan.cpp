@@ -86,6 +86,33 @@ const char* to_string(OpeningKind k) {
   return "?";
 }
 
+double Wall::length() const {
+  double total = 0;
+  for (size_t i = 0; i + 1 < centre.size(); ++i) total += avenues::length(centre[i + 1] - centre[i]);
+  return total;
+}
+
+bool Wall::sloped() const {
+  if (height < 0 || height_at_end < 0) return false;
+  double last = height;
+  for (Vec2 b : top_bends) {
+    if (b.y != last) return true;
+    last = b.y;
+  }
+  return height_at_end != last;
+}
+
+double Wall::top_at(double along) const {
+  if (height < 0 || height_at_end < 0) return height;
+  double s0 = 0, z0 = height;
+  auto between = [&](double s1, double z1) { return s1 > s0 ? z0 + (z1 - z0) * (along - s0) / (s1 - s0) : z1; };
+  for (Vec2 b : top_bends) {
+    if (along <= b.x) return between(b.x, b.y);
+    s0 = b.x, z0 = b.y;
+  }
+  return between(length(), height_at_end);
+}
+
 Plan moved(Plan p, Vec2 by) {
   for (Wall& w : p.walls)
     for (Vec2& v : w.centre) v = v + by;

@@ -87,6 +87,12 @@ struct Wall {
   /// passes the storey's ceiling the wall stands up to the ceiling. < 0: level at
   /// `height`. Needs `height`, a thickness and no `footprint`.
   double height_at_end = -1;
+  /// Where a sloped top bends between its ends (a gable wall's ridge, under a roof of
+  /// several pitches): {distance along the centre line from centre.front() [m], strictly
+  /// increasing inside (0, its length); the top's height there above the floor [m], >= 0}.
+  /// The top runs straight between `height`, these and `height_at_end`. Needs
+  /// `height_at_end`.
+  std::vector<Vec2> top_bends;
   std::vector<Vec2> centre;     ///< [m] straight centre line after tessellation, >= 2 points
   std::vector<bool> from_arc;   ///< per segment (centre.size()-1): tessellated from an arc
   std::vector<Opening> openings;
@@ -103,6 +109,14 @@ struct Wall {
   /// long axis and width; openings are measured along that axis and cut across it.
   std::vector<Vec2> footprint;
   SourceLoc where;
+
+  /// [m] the centre line's length.
+  double length() const;
+  /// Whether the top slopes somewhere (height_at_end set, and some piece of the top rises).
+  bool sloped() const;
+  /// [m] the top's height above the floor at distance `along` from centre.front(): straight
+  /// between `height`, `top_bends` and `height_at_end` (`height` when level).
+  double top_at(double along) const;
 };
 
 /// A hole in a storey's floor slab (a stairwell): joins this storey to the one below.

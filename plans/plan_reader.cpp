@@ -518,8 +518,8 @@ void Reader::read_walls(const toml::table& root) {
 void Reader::read_wall(const toml::table& t, int index) {
   auto given = Element(*this, t, element_name("wall", {}, index)).name_key();
   Element e(*this, t, element_name("wall", given, index));
-  e.allow({"name", "storey", "thickness", "height", "height_at_end", "material", "right_material", "path", "footprint",
-           "opening"});
+  e.allow({"name", "storey", "thickness", "height", "height_at_end", "top_bends", "material", "right_material", "path",
+           "footprint", "opening"});
   Wall w;
   w.name = given.value_or("wall " + std::to_string(index + 1));
   w.where = e.loc();
@@ -633,6 +633,28 @@ void Reader::read_wall(const toml::table& t, int index) {
 
   if (w.height_at_end >= 0 && w.thickness == 0)
     e.fail("height_at_end", "a wall of no thickness has no top to slope: give it a 'thickness' or leave out 'height_at_end'");
+
+  // Where a sloped top bends (a gable's ridge): [along, height] pairs, in order along the
+  // centre line, strictly inside it.
+  if (t.contains("top_bends")) {
+    if (w.height_at_end < 0) e.fail("top_bends", "'top_bends' needs 'height' and 'height_at_end', the top's ends");
+    const toml::node& bn = e.need("top_bends");
+    auto* bends = bn.as_array();
+    if (!bends || bends->empty()) e.fail("top_bends", "'top_bends' must be an array of [along, height] pairs");
+    const double total = w.length();
+    double last = 0;
+    for (size_t i = 0; i < bends->size(); ++i) {
+      const std::string label = "bend " + std::to_string(i + 1) + " of 'top_bends'";
+      const Vec2 b = e.point2_of(*bends->get(i), label);
+      if (b.x <= last || b.x >= total)
+        e.fail_at(*bends->get(i), label + " lies at " + len(b.x) + " along the wall: it must lie after " +
+                                      (i == 0 ? "the start" : "the bend before it") + " (" + len(last) +
+                                      ") and before the end (" + len(total) + ")");
+      if (b.y < 0) e.fail_at(*bends->get(i), label + ": the height must be >= 0, not " + len(b.y));
+      w.top_bends.push_back(b);
+      last = b.x;
+    }
+  }
 
   plan_.walls.push_back(std::move(w));
   read_openings(e, plan_.walls.back(), pieces);

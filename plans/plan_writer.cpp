@@ -73,6 +73,11 @@ std::string plan_as_toml(const Plan& plan, const std::vector<std::string>& model
     t.insert("thickness", w.thickness);
     if (w.height >= 0) t.insert("height", w.height);
     if (w.height >= 0 && w.height_at_end >= 0) t.insert("height_at_end", w.height_at_end);
+    if (w.height >= 0 && w.height_at_end >= 0 && !w.top_bends.empty()) {
+      toml::array bends;
+      for (Vec2 b : w.top_bends) bends.push_back(point(b));
+      t.insert("top_bends", std::move(bends));
+    }
     if (w.material >= 0) t.insert("material", material(w.material));
     if (w.right_material >= 0) t.insert("right_material", material(w.right_material));
     toml::array path;

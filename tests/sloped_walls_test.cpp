@@ -95,7 +95,8 @@ void expect_sound(const Plan& plan, const std::string& what, int views = 24) {
         const Vec2 p = w.centre[i] + f * (w.centre[i + 1] - w.centre[i]);
         const Vec2 from = plan.walls[0].centre[0];  // not inside the attic's outer wall
         if (std::min({p.x - from.x, p.y - from.y, from.x + 8 - p.x, from.y + 4 - p.y}) < 0.25) continue;
-        const double top = w.height + (w.height_at_end - w.height) * s / total;
+        const double top = w.top_at(s);
+        EXPECT_NEAR(total, w.length(), 1e-9);
         if (top > 0.02 && top < st.height + 0.01) {
           EXPECT_EQ(c.locate({p.x, p.y, st.elevation + top - 0.01}).what, Location::What::Solid) << "below the top at " << s;
         }
@@ -199,6 +200,69 @@ TEST(SlopedWalls, HardCasesAgreeWithRaysAndLocateAsTheSlopeSays) {
   }
 }
 
+// A gable that is one wall (Wall::top_bends): from 0.5 m at y = 0 up to its ridge, 3.5 m at
+// y = 2 (through the 2.5 m ceiling), and down to 1.0 m at y = 4. The free space over it is
+// the integral of what each slope leaves under the ceiling, its rising edges are the only
+// sloped lines (two per face on each side of the ridge's cut), and the bent tops' hard
+// cases agree with the rays: a bend under the ceiling, a level piece between two slopes,
+// an opening across a bend, two bends on a wall of two segments, and all of it 5,400 km out.
+TEST(SlopedWalls, AWallsTopBendsAtItsRidgeAndEachPieceIsAPlane) {
+  Plan p = attic(0.5, 1.0);
+  p.walls[1].top_bends = {{2, 3.5}};
+  EXPECT_NEAR(p.walls[1].top_at(1), 2.0, 1e-12);
+  EXPECT_NEAR(p.walls[1].top_at(3), 2.25, 1e-12);
+  const CellComplex c = build_cells(p);
+  ASSERT_EQ(cells_are_valid(c), "");
+  // Free over y in [0.15, 3.85] under the 2.5 m ceiling: rising 1.5 m a metre from 0.5 m,
+  // it meets the ceiling at y = 4/3; falling 1.25 m a metre to 1.0 m, it leaves it at y = 2.8.
+  auto gap_rising = [](double y) { return 2.5 * y - (0.5 * y + 0.75 * y * y); };     // ∫ (2.5 − top)
+  auto gap_falling = [](double y) { return 2.5 * y - (6.0 * y - 0.625 * y * y); };   // top = 6 − 1.25 y
+  const double expected =
+      0.2 * ((gap_rising(4.0 / 3) - gap_rising(0.15)) + (gap_falling(3.85) - gap_falling(2.8)));
+  double volume = 0;
+  for (const Cell& cell : c.cells)
+    if (cell.kind == CellKind::Doorway) volume += cell.volume();
+  EXPECT_NEAR(volume, expected, 1e-9);
+  int sloped_lines = 0;
+  for (const RealLine& l : c.lines) {
+    const Vec3 d = l.b - l.a;
+    if (d.z == 0 || (d.x == 0 && d.y == 0)) continue;
+    ++sloped_lines;
+    EXPECT_NEAR(std::fabs(l.a.x - 4), 0.1, 1e-9);
+    EXPECT_TRUE(std::fabs(std::fabs(d.z / d.y) - 1.5) < 1e-9 || std::fabs(std::fabs(d.z / d.y) - 1.25) < 1e-9)
+        << d.z / d.y;
+  }
+  EXPECT_EQ(sloped_lines, 4);
+  expect_sound(p, "a ridge through the ceiling");
+  {
+    Plan q = attic(0.5, 0.3);
+    q.walls[1].top_bends = {{1.5, 2.0}};  // a ridge under the ceiling
+    q.walls[1].openings.push_back(window(1.0, 1.0, 0.2, 1.1));  // across the bend
+    expect_sound(q, "a ridge under the ceiling, a window across it");
+  }
+  {
+    Plan q = attic(0.2, 0.4);
+    q.walls[1].top_bends = {{1.0, 1.8}, {3.0, 1.8}};  // level between two slopes
+    expect_sound(q, "a level piece between slopes");
+  }
+  {
+    Plan q = attic(0.5, 1.0);
+    q.walls[1] = wall("bent", {{4, 0}, {4, 2}, {6, 4}}, 0.2);  // 2 + 2.83 m
+    q.walls[1].height = 0.5;
+    q.walls[1].height_at_end = 1.0;
+    q.walls[1].top_bends = {{1.0, 2.0}, {3.0, 1.2}};  // one on each segment
+    q.rooms[1].label = Vec2{7, 1};
+    expect_sound(q, "bends on two segments");
+  }
+  {
+    Plan q = p;
+    for (Wall& w : q.walls)
+      for (Vec2& v : w.centre) v = v + Vec2{5.4e6, 5.4e6};
+    for (Room& r : q.rooms) r.label = *r.label + Vec2{5.4e6, 5.4e6};
+    expect_sound(q, "a ridge 5,400 km from the origin", 12);
+  }
+}
+
 // The plan format: `height_at_end` reads, writes and reads back; without `height`, below
 // zero or on a wall of no thickness it is an error naming the wall.
 TEST(SlopedWalls, ThePlanFormatReadsAndWritesThem) {
@@ -217,7 +281,16 @@ path = [[0, 0], [4, 0]]
   const Plan again = parse_plan(plan_as_toml(p), "again.toml");
   EXPECT_EQ(again.walls[0].height, 0.5);
   EXPECT_EQ(again.walls[0].height_at_end, 3);
+  const Plan bent = parse_plan(base + "height = 0.5\nheight_at_end = 1\ntop_bends = [[1.5, 3], [2.5, 2.75]]\n", "g.toml");
+  ASSERT_EQ(bent.walls[0].top_bends.size(), 2u);
+  EXPECT_EQ(bent.walls[0].top_bends[1], (Vec2{2.5, 2.75}));
+  EXPECT_EQ(parse_plan(plan_as_toml(bent), "again.toml").walls[0].top_bends, bent.walls[0].top_bends);
   for (const auto& [extra, says] : std::vector<std::pair<std::string, std::string>>{
+           {"height = 1\nheight_at_end = 1\ntop_bends = [[4, 2]]\n", "before the end"},
+           {"height = 1\nheight_at_end = 1\ntop_bends = [[2, 2], [1, 2]]\n", "after the bend before it"},
+           {"height = 1\nheight_at_end = 1\ntop_bends = [[2, -2]]\n", "must be >= 0"},
+           {"height = 1\ntop_bends = [[2, 2]]\n", "needs 'height' and 'height_at_end'"},
+           {"height = 1\nheight_at_end = 1\ntop_bends = []\n", "[along, height] pairs"},
            {"height_at_end = 1\n", "needs 'height'"},
            {"height = 1\nheight_at_end = -1\n", "must be >= 0"},
            {"height = 1\nheight_at_end = 2\nthickness = 0\n", "no thickness"},
