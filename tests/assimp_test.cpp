@@ -704,6 +704,54 @@ TEST(Ifc, EveryWallOfTheModelsStands) {
   EXPECT_GE(low, 4);
 }
 
+// Gable walls under a pitched roof (IfcOpenHouse's east and west walls, FZK-Haus's attic
+// walls, each one IFC wall clipped by the roof's planes) stand as their tops run: rising to
+// the ridge and falling again, one wall with a bend (Wall::top_bends) where the profile
+// seen from its side turns, the space over each slope free. Where such walls rise to the top
+// storey's ceiling the roof is that storey's top, not a flat slab at the ridge.
+TEST(Ifc, GableWallsSlopeToTheirRidgeAndTheRoofIsTheTopStoreysTop) {
+  struct Gabled {
+    std::string path;
+    size_t gables;
+    double eaves, ridge;  // [m] above the top storey's floor
+  };
+  const std::vector<Gabled> models = {{(kIfc / "IfcOpenHouse_IFC4.ifc").string(), 2, 3.0, 5.5},
+                                      {(kModels / "IFC/AC14-FZK-Haus.ifc").string(), 2, 0.5, 3.3868}};
+  int read = 0;
+  for (const Gabled& g : models) {
+    if (!fs::exists(g.path)) continue;
+    SCOPED_TRACE(g.path);
+    ++read;
+    const IfcModel& m = ifc_model(g.path);
+    const Storey& top = m.plan.storeys.back();
+    EXPECT_EQ(top.slab, 0);
+    size_t gables = 0;
+    for (const Wall& w : m.plan.walls) {
+      if (size_t(w.storey) + 1 != m.plan.storeys.size() || !w.sloped()) continue;
+      SCOPED_TRACE(w.name);
+      // A gable: its ends at the eaves, one bend at its middle, the ridge.
+      if (w.top_bends.size() != 1 || std::fabs(w.top_bends[0].x - w.length() / 2) > 0.01) continue;
+      ++gables;
+      EXPECT_NEAR(w.height, g.eaves, 0.01);
+      EXPECT_NEAR(w.height_at_end, g.eaves, 0.01);
+      EXPECT_NEAR(w.top_bends[0].y, g.ridge, 0.01);
+      // Solid 5 cm under its top and free 5 cm over it, a quarter and three quarters along.
+      for (double f : {0.25, 0.75}) {
+        const Vec2 p = w.centre[0] + f * (w.centre[1] - w.centre[0]);
+        const double z = top.elevation + w.top_at(f * w.length());
+        EXPECT_EQ(m.cells.locate({p.x, p.y, z - 0.05}).what, Location::What::Solid) << f;
+        EXPECT_EQ(m.cells.locate({p.x, p.y, z + 0.05}).what, Location::What::Cell) << f;
+      }
+    }
+    EXPECT_EQ(gables, g.gables);
+  }
+  if (read == 0) GTEST_SKIP() << "neither model is here";
+  // The duplex has no gables: its roof storey keeps its slab.
+  if (fs::exists(duplex())) {
+    EXPECT_GT(ifc_model(duplex()).plan.storeys.back().slab, 0);
+  }
+}
+
 // A wall standing on no floor (Office A's partitions hung 2.6 m up on Level 2) is a wall of
 // its storey with a gap beneath it along its whole length, up to its foot: cut out of the
 // free space, so a walker passes under it and an eye flying at its height is stopped.

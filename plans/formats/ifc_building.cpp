@@ -32,6 +32,7 @@ constexpr double kMinWall = 0.05;       ///< [m] a footprint shorter than this i
 constexpr double kMinOpening = 0.2;     ///< [m] narrower or lower than this is no opening
 constexpr double kDoorReach = 0.25;     ///< [m] a door's centre may lie this far outside its wall's faces
 constexpr double kOnFloor = 0.1;        ///< [m] a wall whose foot is this near a storey's floor stands on it
+constexpr double kSnapPerMetre = 1e4;   ///< walls' centre lines and thicknesses within a rounding of this grid are read on it
 constexpr double kMinFill = 0.7;        ///< a wall's hull fills at least this share of its rectangle
 constexpr double kEyeHeight = 1.6;      ///< [m] above the floor
 constexpr size_t kWarningsListed = 40;
@@ -343,6 +344,82 @@ std::vector<WallPiece> wall_pieces(const Element& e, const Rect& rect) {
   return out;
 }
 
+/// A wall's top seen from its side: over each place along its rectangle (from the end at
+/// centre − length/2 · along), the highest point of its mesh, as a polyline {along, z}
+/// through its mesh's corners, simplified to kTopTolerance. Empty when the mesh is too
+/// large to sweep (then its top is taken as level).
+std::vector<Vec2> top_profile(const Element& e, const Rect& r) {
+  constexpr double kTopTolerance = 0.01;  // [m]
+  const Vec2 o = r.centre - (r.length / 2) * r.along;
+  std::vector<Vec2> side(e.vertices.size());  // {along, z}
+  for (size_t i = 0; i < e.vertices.size(); ++i)
+    side[i] = {std::clamp(dot(Vec2{e.vertices[i].x, e.vertices[i].y} - o, r.along), 0.0, r.length), e.vertices[i].z};
+  std::vector<double> at{0, r.length};
+  for (Vec2 p : side) at.push_back(p.x);
+  std::sort(at.begin(), at.end());
+  at.erase(std::unique(at.begin(), at.end(), [](double a, double b) { return b - a < 1e-4; }), at.end());
+  at.back() = r.length;
+  if (double(at.size()) * double(e.triangles.size()) > 4e6) return {};
+  // Between two corners the top is straight unless two edges cross there: the midpoints
+  // find such a crossing's hump.
+  const size_t corners = at.size();
+  for (size_t i = 0; i + 1 < corners; ++i) at.push_back(0.5 * (at[i] + at[i + 1]));
+  std::sort(at.begin(), at.end());
+  auto highest = [&](double s) {
+    double z = -HUGE_VAL;
+    for (const auto& t : e.triangles)
+      for (int k = 0; k < 3; ++k) {
+        const Vec2 a = side[size_t(t[size_t(k)])], b = side[size_t(t[size_t((k + 1) % 3)])];
+        // (Within a micrometre: corners a rounding apart along the wall are one place.)
+        const double lo = std::min(a.x, b.x), hi = std::max(a.x, b.x);
+        if (s < lo - 1e-6 || s > hi + 1e-6) continue;
+        const double c = std::clamp(s, lo, hi);
+        z = std::max(z, hi - lo > 1e-6 ? a.y + (b.y - a.y) * (c - a.x) / (b.x - a.x) : std::max(a.y, b.y));
+      }
+    return z;
+  };
+  std::vector<Vec2> line;
+  for (double s : at) line.push_back({s, highest(s)});
+  // Douglas–Peucker, by height: the points whose height the straight between the kept ones
+  // misses by more than the tolerance are kept.
+  std::vector<bool> keep(line.size(), false);
+  keep.front() = keep.back() = true;
+  std::vector<std::pair<size_t, size_t>> todo{{0, line.size() - 1}};
+  while (!todo.empty()) {
+    const auto [i, j] = todo.back();
+    todo.pop_back();
+    double worst = kTopTolerance;
+    size_t at_worst = 0;
+    for (size_t k = i + 1; k < j; ++k) {
+      const double z = line[i].y + (line[j].y - line[i].y) * (line[k].x - line[i].x) / (line[j].x - line[i].x);
+      if (std::fabs(line[k].y - z) > worst) worst = std::fabs(line[k].y - z), at_worst = k;
+    }
+    if (at_worst == 0) continue;
+    keep[at_worst] = true;
+    todo.push_back({i, at_worst});
+    todo.push_back({at_worst, j});
+  }
+  std::vector<Vec2> out;
+  for (size_t k = 0; k < line.size(); ++k)
+    if (keep[k]) out.push_back(line[k]);
+  return out;
+}
+
+/// Whether a wall's top profile slopes: it falls more than kOnFloor below its highest point
+/// somewhere, and climbs nowhere steeper than a step (a wall with a lower part, a notch,
+/// stands level at its highest, as before).
+bool slopes(const std::vector<Vec2>& profile) {
+  if (profile.size() < 2) return false;
+  double lo = HUGE_VAL, hi = -HUGE_VAL;
+  for (Vec2 p : profile) lo = std::min(lo, p.y), hi = std::max(hi, p.y);
+  if (hi - lo <= kOnFloor) return false;
+  for (size_t k = 0; k + 1 < profile.size(); ++k) {
+    const double run = profile[k + 1].x - profile[k].x, rise = std::fabs(profile[k + 1].y - profile[k].y);
+    if (rise > 10 * run) return false;  // steeper than 84°
+  }
+  return true;
+}
+
 class Builder {
  public:
   explicit Builder(const std::string& path) : path_(path) {}
@@ -632,6 +709,7 @@ class Builder {
   /// passes under it only where a person could. Any other is an object: drawn, opaque, not
   /// cut out of the free space.
   void make_walls() {
+    on_grid_ = drawn_on_grid();
     for (size_t i = 0; i < elements_.size(); ++i) {
       Element& e = elements_[i];
       if (e.role != Role::Wall) continue;
@@ -652,6 +730,10 @@ class Builder {
         e.as_object = true;
         continue;
       }
+      // A single straight piece may slope on top (a gable wall under a pitched roof).
+      std::vector<Vec2> profile;
+      if (pieces.size() == 1 && pieces[0].footprint.empty()) profile = top_profile(e, pieces[0].rect);
+      if (!slopes(profile)) profile.clear();
       bool placed = false;
       for (size_t s = 0; s < plan_.storeys.size(); ++s) {
         const Storey& st = plan_.storeys[s];
@@ -662,29 +744,86 @@ class Builder {
         if (!spans && !stands) continue;
         for (size_t k = 0; k < pieces.size(); ++k) {
           wall_shape_.push_back({i, pieces[k].rect, z0, z1});
-          plan_.walls.push_back(wall_of_piece(e, pieces, k, s));
+          plan_.walls.push_back(wall_of_piece(e, pieces, k, s, profile));
         }
         placed = true;
       }
       if (!placed && !hung_wall(i, pieces)) e.as_object = true;
     }
+    // The top storey's top: where its walls slope up to its ceiling (gables under a pitched
+    // roof, the storey as high as their ridge), the roof is its top, not a flat slab.
+    if (!plan_.storeys.empty()) {
+      Storey& top = plan_.storeys.back();
+      for (const Wall& w : plan_.walls)
+        if (w.storey == StoreyId(plan_.storeys.size() - 1) && w.sloped() && highest_top(w) >= top.height - kOnFloor) {
+          top.slab = 0;
+          break;
+        }
+    }
+  }
+
+  /// Whether the model's walls are drawn on a 0.1 mm grid (a metric model, as BIM tools
+  /// draw them): three in four of their corners' coordinates lie within a single-precision
+  /// rounding of it. A model drawn in feet and inches (an eighth of an inch is 3.175 mm)
+  /// is not, and is read as it is.
+  bool drawn_on_grid() const {
+    size_t near = 0, all = 0;
+    for (const Element& e : elements_) {
+      if (e.role != Role::Wall) continue;
+      for (Vec3 v : e.vertices)
+        for (double c : {v.x, v.y}) {
+          ++all;
+          near += std::fabs(c - std::round(c * kSnapPerMetre) / kSnapPerMetre) <= std::max(2e-6, 2e-7 * std::fabs(c));
+        }
+    }
+    return all > 0 && near >= 0.75 * double(all);
+  }
+
+  /// [m] above its floor: the highest point of a sloped wall's top.
+  static double highest_top(const Wall& w) {
+    double hi = std::max(w.height, w.height_at_end);
+    for (Vec2 b : w.top_bends) hi = std::max(hi, b.y);
+    return hi;
   }
 
   /// Piece k of element e's footprint as a wall of storey s, up to the ceiling when the
-  /// element reaches it (within 5 cm), else to its top.
-  Wall wall_of_piece(const Element& e, const std::vector<WallPiece>& pieces, size_t k, size_t s) {
+  /// element reaches it (within 5 cm), else to its top: level, or along `profile` (its top
+  /// seen from the side, {along, z}; empty: level) where that falls below the ceiling.
+  Wall wall_of_piece(const Element& e, const std::vector<WallPiece>& pieces, size_t k, size_t s,
+                     const std::vector<Vec2>& profile = {}) {
     const WallPiece& piece = pieces[k];
     const Storey& st = plan_.storeys[s];
     Wall w;
     w.name = e.name.empty() ? e.guid : e.name;
     if (pieces.size() > 1) w.name += " (" + std::to_string(k + 1) + "/" + std::to_string(pieces.size()) + ")";
     w.storey = StoreyId(s);
-    w.thickness = piece.rect.width;
+    // A wall drawn on a millimetre grid, as BIM tools draw them, read back on it: its
+    // coordinates come out of Assimp in single precision, a rounding off the grid, and
+    // walls drawn to meet would miss each other by that in slivers of space. Only what lies
+    // within such a rounding of a 0.1 mm grid point is moved (a model in feet keeps its
+    // own), so no wall's end moves away from another.
+    auto snap = [&](double v) {
+      const double on = std::round(v * kSnapPerMetre) / kSnapPerMetre;  // (the nearest double to it)
+      return on_grid_ && std::fabs(v - on) <= std::max(2e-6, 2e-7 * std::fabs(v)) ? on : v;
+    };
+    w.thickness = snap(piece.rect.width);
     const Vec2 half = (piece.rect.length / 2) * piece.rect.along;
     w.centre = {piece.rect.centre - half, piece.rect.centre + half};
+    for (Vec2& p : w.centre) p = {snap(p.x), snap(p.y)};
     w.from_arc = {false};
     w.footprint = piece.footprint;
     w.height = e.box.hi.z >= st.elevation + st.height - 0.05 ? -1 : e.box.hi.z - st.elevation;
+    double lowest = HUGE_VAL;
+    for (Vec2 p : profile) lowest = std::min(lowest, p.y);
+    if (!profile.empty() && lowest < st.elevation + st.height - 0.05) {
+      auto above_floor = [&](double z) { return std::max(0.0, z - st.elevation); };
+      w.height = above_floor(profile.front().y);
+      w.height_at_end = above_floor(profile.back().y);
+      for (size_t i = 1; i + 1 < profile.size(); ++i)
+        if (profile[i].x > 1e-3 && profile[i].x < piece.rect.length - 1e-3)
+          w.top_bends.push_back({snap(profile[i].x), above_floor(profile[i].y)});
+      if (!w.sloped()) w.height_at_end = -1, w.top_bends.clear();
+    }
     w.material = material_of(e);
     w.where = {path_, 0, 0, e.label()};
     return w;
@@ -708,7 +847,7 @@ class Builder {
       gap.name = "beneath " + w.name;
       gap.kind = OpeningKind::Gap;
       gap.at = 0;
-      gap.width = piece.rect.length;
+      gap.width = w.length();
       gap.sill = 0;
       gap.head = foot;
       gap.where = w.where;
@@ -753,7 +892,7 @@ class Builder {
         t0 = std::min(t0, t), t1 = std::max(t1, t);
       }
       t0 = std::max(t0, 0.0), t1 = std::min(t1, len);
-      const double top = wall.height < 0 ? st.height : std::min(st.height, wall.height);
+      const double top = wall.height < 0 ? st.height : std::min(st.height, wall.sloped() ? highest_top(wall) : wall.height);
       Opening o;
       o.name = e.name.empty() ? e.guid : e.name;
       o.kind = e.role == Role::Door ? OpeningKind::Door : OpeningKind::Window;
@@ -1013,6 +1152,7 @@ class Builder {
   std::vector<Element> elements_;
   std::vector<std::string> storey_names_;  ///< per IfcBuildingStorey node, in file order
   std::vector<int> storey_index_;          ///< per node storey: its Plan storey
+  bool on_grid_ = false;                   ///< the walls are drawn on a 0.1 mm grid (drawn_on_grid)
   std::vector<WallShape> wall_shape_;      ///< per Plan wall
   std::vector<double> room_area_;          ///< per Plan room [m²]
   std::vector<std::string> dropped_;
