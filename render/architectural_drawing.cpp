@@ -183,8 +183,7 @@ bool cut_segment(const std::vector<Vec3>& poly, const Plane& cut, Vec3& a, Vec3&
 Drawing draw_architectural(const CellComplex& c, const LineScene& scene, const Camera& cam, const Plane& cut,
                            const VisibleSet& vs, const ArchitecturalOptions& options) {
   LineOptions lo;
-  lo.cut = cut;
-  lo.furniture = false;
+  lo.cut = cut;  // the objects beyond it are drawn, and hide the lines behind them
   lo.merge = !options.cut;  // with the cut, merged once below
   lo.threads = options.threads;
   Drawing d = draw_view(c, scene, cam, vs, lo);

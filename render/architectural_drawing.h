@@ -11,7 +11,9 @@
 //                  outline (a door's gap where the plane crosses the doorway). The fill is
 //                  the window less every cut cell's cross-section, by the even-odd rule;
 //   Layer::Beyond  the real lines beyond the plane, clipped to the avenues' masks exactly as
-//                  a perspective's are (view_lines.h), outlines heavier than creases;
+//                  a perspective's are (view_lines.h), outlines heavier than creases, less
+//                  what the plan's objects beyond the plane hide; and those objects' edges
+//                  (Layer::Furniture), a roof's or a table's outline;
 //   Layer::Annotation  on a plan, each named room's name and area at its largest cell.
 // An elevation's plane stands outside the building and cuts nothing: it has no cut layer.
 #pragma once

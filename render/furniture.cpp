@@ -115,50 +115,93 @@ bool edge_is_seen(const FurnitureEdge& e, const std::vector<uint8_t>& facing, do
   return f0 && e.dihedral_deg > crease_deg;  // both away: hidden by the closed mesh itself
 }
 
+std::vector<uint8_t> polygons_facing(const FurniturePiece& p, const Camera& cam) {
+  if (!cam.is_parallel()) return polygons_facing(p, cam.eye);
+  std::vector<uint8_t> facing(p.polygon_normal.size());
+  for (size_t k = 0; k < facing.size(); ++k) facing[k] = dot(p.polygon_normal[k], cam.forward) < 0;
+  return facing;
+}
+
+namespace {
+
+/// A point of camera space as the sides of an occluder's cone take it: itself (a cone from
+/// the eye at the origin), or in a parallel projection its place on the picture plane, (x, y, 1)
+/// (a prism along z).
+Vec3 for_sides(Vec3 p, bool parallel) { return parallel ? Vec3{p.x, p.y, 1} : p; }
+
+/// The occluder of a camera-space triangle, or false when it hides nothing.
+bool occluder_of(const Vec3 (&P)[3], bool parallel, Occluder& o) {
+  if (!parallel && P[0].z <= 0 && P[1].z <= 0 && P[2].z <= 0) return false;  // wholly behind the eye: hides nothing drawn
+  o.n = unit(cross(P[1] - P[0], P[2] - P[0]));
+  o.d = -dot(o.n, P[0]);
+  if (parallel) {
+    if (o.n.z > 0) o.n = -1.0 * o.n, o.d = -o.d;  // the viewer (far along -z) on the positive side
+    if (!(-o.n.z > 1e-9)) return false;            // seen edge-on: hides nothing
+  } else {
+    if (o.d < 0) o.n = -1.0 * o.n, o.d = -o.d;  // the eye (the origin) on the positive side
+    if (!(o.d > kBehind)) return false;         // seen edge-on: hides nothing
+  }
+  // The cone's sides, each turned to hold the third corner. A sliver (a corner less than
+  // 1e-9 radians off the plane through the eye and the other two) hides nothing that
+  // could be drawn, and its sides' rounding could turn its cone to hold points nowhere
+  // near it: it is no occluder.
+  const Vec3 Q[3] = {for_sides(P[0], parallel), for_sides(P[1], parallel), for_sides(P[2], parallel)};
+  for (int k = 0; k < 3; ++k) {
+    o.side[k] = cross(Q[k], Q[(k + 1) % 3]);
+    const Vec3 third = Q[(k + 2) % 3];
+    const double s = dot(o.side[k], third);
+    if (!(std::fabs(s) > 1e-9 * length(o.side[k]) * length(third))) return false;
+    if (s < 0) o.side[k] = -1.0 * o.side[k];
+  }
+  const double inf = std::numeric_limits<double>::infinity();
+  o.lo = {inf, inf};
+  o.hi = {-inf, -inf};
+  if (Q[0].z > 0 && Q[1].z > 0 && Q[2].z > 0) {
+    for (const Vec3& q : Q) {
+      const Vec2 xy{q.x / q.z, q.y / q.z};
+      o.lo = {std::min(o.lo.x, xy.x), std::min(o.lo.y, xy.y)};
+      o.hi = {std::max(o.hi.x, xy.x), std::max(o.hi.y, xy.y)};
+    }
+    // Less than 1e-7 across on the picture plane (a ten-thousandth of a pixel at any
+    // size a picture is drawn): it hides nothing that could be drawn, and its sides,
+    // found from corners a rounding apart, may point anywhere.
+    if (!(o.hi.x - o.lo.x > 1e-7 || o.hi.y - o.lo.y > 1e-7)) return false;
+  } else {
+    o.lo = {-inf, -inf};
+    o.hi = {inf, inf};
+  }
+  return true;
+}
+
+}  // namespace
+
 void add_occluders(const FurniturePiece& p, const std::vector<uint8_t>& facing, const Camera& cam,
-                   std::vector<Occluder>& out) {
+                   std::vector<Occluder>& out, const Plane* beyond) {
   const Mesh& m = p.mesh;
+  const bool parallel = cam.is_parallel();
+  if (!parallel) beyond = nullptr;
   for (size_t t = 0; t < m.triangles.size(); ++t) {
     if (m.closed && !facing[size_t(m.polygon_of[t])]) continue;
-    Vec3 P[3];
-    for (int k = 0; k < 3; ++k) P[k] = cam.camera_from_world(m.vertices[size_t(m.triangles[t][size_t(k)])]);
-    if (P[0].z <= 0 && P[1].z <= 0 && P[2].z <= 0) continue;  // wholly behind the eye: hides nothing drawn
-    Occluder o;
-    o.n = unit(cross(P[1] - P[0], P[2] - P[0]));
-    o.d = -dot(o.n, P[0]);
-    if (o.d < 0) o.n = -1.0 * o.n, o.d = -o.d;  // the eye (the origin) on the positive side
-    if (!(o.d > kBehind)) continue;             // seen edge-on: hides nothing
-    // The cone's sides, each turned to hold the third corner. A sliver (a corner less than
-    // 1e-9 radians off the plane through the eye and the other two) hides nothing that
-    // could be drawn, and its sides' rounding could turn its cone to hold points nowhere
-    // near it: it is no occluder.
-    bool sliver = false;
+    // The triangle, or what lies of it beyond the plane the rays start from (at most four
+    // corners, a fan of two triangles).
+    Vec3 W[4];
+    int n = 0;
     for (int k = 0; k < 3; ++k) {
-      o.side[k] = cross(P[k], P[(k + 1) % 3]);
-      const Vec3 third = P[(k + 2) % 3];
-      const double s = dot(o.side[k], third);
-      sliver |= !(std::fabs(s) > 1e-9 * length(o.side[k]) * length(third));
-      if (s < 0) o.side[k] = -1.0 * o.side[k];
-    }
-    if (sliver) continue;
-    const double inf = std::numeric_limits<double>::infinity();
-    o.lo = {inf, inf};
-    o.hi = {-inf, -inf};
-    if (P[0].z > 0 && P[1].z > 0 && P[2].z > 0) {
-      for (const Vec3& q : P) {
-        const Vec2 xy{q.x / q.z, q.y / q.z};
-        o.lo = {std::min(o.lo.x, xy.x), std::min(o.lo.y, xy.y)};
-        o.hi = {std::max(o.hi.x, xy.x), std::max(o.hi.y, xy.y)};
+      const Vec3 a = m.vertices[size_t(m.triangles[t][size_t(k)])];
+      if (!beyond) {
+        W[n++] = a;
+        continue;
       }
-      // Less than 1e-7 across on the picture plane (a ten-thousandth of a pixel at any
-      // size a picture is drawn): it hides nothing that could be drawn, and its sides,
-      // found from corners a rounding apart, may point anywhere.
-      if (!(o.hi.x - o.lo.x > 1e-7 || o.hi.y - o.lo.y > 1e-7)) continue;
-    } else {
-      o.lo = {-inf, -inf};
-      o.hi = {inf, inf};
+      const Vec3 b = m.vertices[size_t(m.triangles[t][size_t((k + 1) % 3)])];
+      const double ea = beyond->eval(a), eb = beyond->eval(b);
+      if (ea >= 0) W[n++] = a;
+      if ((ea < 0 && eb > 0) || (ea > 0 && eb < 0)) W[n++] = a + (ea / (ea - eb)) * (b - a);
     }
-    out.push_back(o);
+    for (int k = 1; k + 1 < n; ++k) {
+      const Vec3 P[3] = {cam.camera_from_world(W[0]), cam.camera_from_world(W[k]), cam.camera_from_world(W[k + 1])};
+      Occluder o;
+      if (occluder_of(P, parallel, o)) out.push_back(o);
+    }
   }
 }
 
@@ -181,27 +224,30 @@ PictureStretch picture_stretch(Vec3 p0, Vec3 p1, const std::vector<detail::Inter
 /// Subtracts what occluder o hides of the intervals (a set difference: in any order of
 /// occluders, the same intervals), which lay within [first, last] and
 /// within the box [lo, hi] at the start; false once nothing is left.
-bool hide_behind_one(const Occluder& o, Vec3 p0, Vec3 p1, double first, double last, Vec2 lo, Vec2 hi,
-                     std::vector<detail::Interval>& intervals) {
+bool hide_behind_one(const Occluder& o, Vec3 p0, Vec3 p1, Vec3 q0, Vec3 q1, double first, double last, Vec2 lo,
+                     Vec2 hi, std::vector<detail::Interval>& intervals) {
   if (o.hi.x < lo.x || hi.x < o.lo.x || o.hi.y < lo.y || hi.y < o.lo.y) return true;
   detail::Interval h{first, last};
   bool alive = detail::clip_interval(h, -(dot(o.n, p0) + o.d) - kBehind, -(dot(o.n, p1) + o.d) - kBehind);
-  for (int k = 0; k < 3 && alive; ++k) alive = detail::clip_interval(h, dot(o.side[k], p0), dot(o.side[k], p1));
+  for (int k = 0; k < 3 && alive; ++k) alive = detail::clip_interval(h, dot(o.side[k], q0), dot(o.side[k], q1));
   if (alive) detail::subtract_interval(intervals, h);
   return !intervals.empty();
 }
 
 }  // namespace
 
-void hide_behind(const std::vector<Occluder>& occluders, Vec3 p0, Vec3 p1, std::vector<detail::Interval>& intervals) {
+void hide_behind(const std::vector<Occluder>& occluders, Vec3 p0, Vec3 p1, std::vector<detail::Interval>& intervals,
+                 bool parallel) {
   if (intervals.empty()) return;
   const double first = intervals.front().t0, last = intervals.back().t1;
-  const PictureStretch s = picture_stretch(p0, p1, intervals);
+  const Vec3 q0 = for_sides(p0, parallel), q1 = for_sides(p1, parallel);
+  const PictureStretch s = picture_stretch(q0, q1, intervals);
   for (const Occluder& o : occluders)
-    if (!hide_behind_one(o, p0, p1, first, last, s.lo, s.hi, intervals)) return;
+    if (!hide_behind_one(o, p0, p1, q0, q1, first, last, s.lo, s.hi, intervals)) return;
 }
 
-OccluderGrid::OccluderGrid(std::vector<Occluder> occluders) : occluders_(std::move(occluders)) {
+OccluderGrid::OccluderGrid(std::vector<Occluder> occluders, bool parallel)
+    : occluders_(std::move(occluders)), parallel_(parallel) {
   // An occluder reaching behind the eye has no box on the picture plane.
   auto bounded = [](const Occluder& o) {
     return std::isfinite(o.lo.x) && std::isfinite(o.hi.x) && std::isfinite(o.lo.y) && std::isfinite(o.hi.y);
@@ -278,11 +324,12 @@ void OccluderGrid::near(Vec2 a, Vec2 b, std::vector<int32_t>& out) const {
 void hide_behind(const OccluderGrid& occluders, Vec3 p0, Vec3 p1, std::vector<detail::Interval>& intervals) {
   if (intervals.empty()) return;
   const double first = intervals.front().t0, last = intervals.back().t1;
-  const PictureStretch s = picture_stretch(p0, p1, intervals);
+  const Vec3 q0 = for_sides(p0, occluders.parallel()), q1 = for_sides(p1, occluders.parallel());
+  const PictureStretch s = picture_stretch(q0, q1, intervals);
   thread_local std::vector<int32_t> candidates;
   occluders.near(s.a, s.b, candidates);
   for (const int32_t i : candidates)
-    if (!hide_behind_one(occluders.all()[size_t(i)], p0, p1, first, last, s.lo, s.hi, intervals)) return;
+    if (!hide_behind_one(occluders.all()[size_t(i)], p0, p1, q0, q1, first, last, s.lo, s.hi, intervals)) return;
 }
 
 }  // namespace avenues

@@ -55,23 +55,29 @@ Furniture furniture_of(const std::vector<PlacedObject>& placed);
 
 /// Crow's back-face test: 1 for each polygon of `piece` that faces `eye`.
 std::vector<uint8_t> polygons_facing(const FurniturePiece& piece, Vec3 eye);
+/// The same for a camera: facing its eye, or a parallel camera's viewer (against its forward).
+std::vector<uint8_t> polygons_facing(const FurniturePiece& piece, const Camera& camera);
 
 /// Whether `edge` is drawn, given which polygons face the eye, and how heavy.
 bool edge_is_seen(const FurnitureEdge& edge, const std::vector<uint8_t>& facing, double crease_deg, Weight& weight);
 
 /// A triangle of a polygon facing the eye, in camera space: the points it hides are those
-/// inside the cone from the eye over the triangle and strictly behind its plane.
+/// inside the cone from the eye over the triangle and strictly behind its plane. In a
+/// parallel projection the cone is the prism along the direction of view over the triangle,
+/// and the eye is the viewer, infinitely far before the picture plane.
 struct Occluder {
-  Vec3 side[3];   ///< the cone's sides: side·P >= 0 inside (planes through the eye)
+  Vec3 side[3];   ///< the cone's sides: side·P >= 0 inside (planes through the eye); parallel: side·(x, y, 1) >= 0
   Vec3 n;         ///< unit normal of the triangle's plane, the eye on its positive side
   double d = 0;   ///< n·P + d: [m] signed distance of P from the plane
   Vec2 lo, hi;    ///< bounding box on the picture plane (infinite when a corner is behind the eye)
 };
 
 /// Appends the occluders of `piece`: the triangles of its polygons facing the eye (every
-/// triangle of an open mesh, which is seen from both sides).
+/// triangle of an open mesh, which is seen from both sides). A parallel camera's occluders
+/// are what lies of them beyond `beyond` (eval >= 0: the plane its rays start from, which
+/// cuts away what stands before it), when given.
 void add_occluders(const FurniturePiece& piece, const std::vector<uint8_t>& facing, const Camera& camera,
-                   std::vector<Occluder>& out);
+                   std::vector<Occluder>& out, const Plane* beyond = nullptr);
 
 /// The occluders of one view, binned on the picture plane: a grid over the extent of their
 /// boxes, each listing the occluders whose box meets it (those whose box is unbounded, or
@@ -82,8 +88,10 @@ void add_occluders(const FurniturePiece& piece, const std::vector<uint8_t>& faci
 class OccluderGrid {
  public:
   OccluderGrid() = default;
-  explicit OccluderGrid(std::vector<Occluder> occluders);
+  /// `parallel`: the occluders of a parallel camera (add_occluders).
+  explicit OccluderGrid(std::vector<Occluder> occluders, bool parallel = false);
   const std::vector<Occluder>& all() const { return occluders_; }
+  bool parallel() const { return parallel_; }
   /// Replaces `out` with the occluders binned where the picture-plane segment from a to b
   /// passes (a bin either side of it, for rounding), and those listed apart, each once:
   /// every occluder that can hide a point of it.
@@ -91,6 +99,7 @@ class OccluderGrid {
 
  private:
   std::vector<Occluder> occluders_;
+  bool parallel_ = false;
   std::vector<int32_t> everywhere_;  ///< ascending
   Vec2 lo_, size_;                   ///< the grid's corner and the size of one bin
   int n_ = 0;                        ///< n × n bins
@@ -98,8 +107,9 @@ class OccluderGrid {
 };
 
 /// Removes from `intervals` (sorted, disjoint parameters along the camera-space segment
-/// P(t) = p0 + t·(p1 − p0), all with Z > 0) what the occluders hide.
-void hide_behind(const std::vector<Occluder>& occluders, Vec3 p0, Vec3 p1, std::vector<detail::Interval>& intervals);
+/// P(t) = p0 + t·(p1 − p0), all with Z > 0 unless `parallel`) what the occluders hide.
+void hide_behind(const std::vector<Occluder>& occluders, Vec3 p0, Vec3 p1, std::vector<detail::Interval>& intervals,
+                 bool parallel = false);
 /// The same, testing only the occluders binned where the segment lies: the same result.
 void hide_behind(const OccluderGrid& occluders, Vec3 p0, Vec3 p1, std::vector<detail::Interval>& intervals);
 

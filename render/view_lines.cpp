@@ -184,12 +184,13 @@ Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& ca
   d.height = cam.height;
   d.title = c.plan_name;
 
-  // Furniture in a visible cell: the edges it shows from this eye, and the triangles that hide.
+  // Furniture in a visible cell: the edges it shows from this eye, and the triangles that hide
+  // (in a parallel projection what of them lies beyond the cut).
   std::vector<SeenEdge> seen;
   std::vector<int32_t> seen_start;  // per piece, into `seen`; empty unless drawn
   std::map<CellId, std::vector<int32_t>> drawn_in;  // per visible cell: its pieces with edges seen, ascending
   OccluderGrid occluders;
-  if (options.furniture && !cam.is_parallel()) {
+  if (options.furniture) {
     const auto& pieces = scene.furniture.pieces;
     seen_start.assign(pieces.size() + 1, 0);
     std::vector<Occluder> hiding;
@@ -200,17 +201,17 @@ Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& ca
         return std::binary_search(vs.cells.begin(), vs.cells.end(), id);
       });
       if (!visible) continue;
-      const std::vector<uint8_t> facing = polygons_facing(p, cam.eye);
+      const std::vector<uint8_t> facing = polygons_facing(p, cam);
       for (size_t e = 0; e < p.edges.size(); ++e) {
         Weight w;
         if (edge_is_seen(p.edges[e], facing, options.crease_deg, w)) seen.push_back({int32_t(i), int32_t(e), w});
       }
       if (seen_start[i] != int32_t(seen.size()))
         for (CellId id : p.cells) drawn_in[id].push_back(int32_t(i));
-      add_occluders(p, facing, cam, hiding);
+      add_occluders(p, facing, cam, hiding, &pr.beyond);
     }
     seen_start[pieces.size()] = int32_t(seen.size());
-    occluders = OccluderGrid(std::move(hiding));
+    occluders = OccluderGrid(std::move(hiding), cam.is_parallel());
   }
 
   // A line seen end-on in a parallel projection (a wall's vertical edge in a plan) is a
@@ -289,7 +290,7 @@ Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& ca
       for_each_line(lines.data() + first, lines.data() + last, pieces, [&](int32_t id, std::vector<Interval>& s) {
         const RealLine& l = c.lines[size_t(id)];
         const Vec3 p0 = pr.picture(l.a), p1 = pr.picture(l.b);
-        if (!cam.is_parallel()) hide_behind(occluders, p0, p1, s);
+        hide_behind(occluders, cam.camera_from_world(l.a), cam.camera_from_world(l.b), s);
         const Weight w = cam.is_parallel() ? line_weight_along(c, scene.faces, id, cam.forward)
                                            : line_weight(c, scene.faces, id, cam.eye);
         add_strokes(to_raster, p0, p1, s, w, Layer::Architecture, parts[chunk]);
@@ -302,10 +303,9 @@ Drawing draw_view(const CellComplex& c, const LineScene& scene, const Camera& ca
     const SeenEdge& se = seen[size_t(k)];
     const FurniturePiece& p = scene.furniture.pieces[size_t(se.piece)];
     const FurnitureEdge& e = p.edges[size_t(se.edge)];
-    const Vec3 p0 = cam.camera_from_world(p.mesh.vertices[size_t(e.v[0])]);
-    const Vec3 p1 = cam.camera_from_world(p.mesh.vertices[size_t(e.v[1])]);
-    hide_behind(occluders, p0, p1, s);
-    add_strokes(to_raster, p0, p1, s, se.weight, Layer::Furniture, d.strokes);
+    const Vec3 w0 = p.mesh.vertices[size_t(e.v[0])], w1 = p.mesh.vertices[size_t(e.v[1])];
+    hide_behind(occluders, cam.camera_from_world(w0), cam.camera_from_world(w1), s);
+    add_strokes(to_raster, pr.picture(w0), pr.picture(w1), s, se.weight, Layer::Furniture, d.strokes);
   });
   if (options.merge) merge_collinear(d.strokes, options.threads);
   if (options.shadows && !cam.is_parallel()) draw_shadow_outlines(c, scene, cam, vs, occluders, d.strokes);

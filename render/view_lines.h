@@ -16,7 +16,8 @@
 // line of the picture are merged or trimmed so that none overlaps another (stroke_merge.h).
 // Weights follow line_weight.h (architecture) and furniture.h (objects).
 // A parallel projection (camera.h) draws the same way, its strokes clipped to the cut plane
-// instead of the near plane, its weights from the direction of view.
+// instead of the near plane, its weights from the direction of view; its furniture is what
+// lies beyond the cut, facing the viewer along the direction of view.
 // Edges of artificial transparent faces are never drawn: they are not real lines, and the
 // cell complex lists only real lines.
 #pragma once
@@ -36,13 +37,15 @@ namespace avenues {
 
 struct LineOptions {
   double crease_deg = 30;  ///< [deg] in [0, 180): furniture edges whose polygons differ by more are creases
-  bool furniture = true;   ///< draw the plan's objects (and let them hide what is behind them)
+  /// Draw the plan's objects and let them hide what is behind them (in a parallel
+  /// projection, what of them lies beyond `cut`).
+  bool furniture = true;
   /// Outline the shadows the plan's point lights cast on the faces of cells (Layer::Shadows;
   /// shadow_outline.h). Needs a LineScene prepared with this option.
   bool shadows = false;
   /// Parallel projection only: draw what lies beyond this plane (the cut the visible set was
-  /// searched from, find_visible_from_cut); none: beyond the picture plane. Furniture and
-  /// shadow outlines are drawn in perspective only.
+  /// searched from, find_visible_from_cut); none: beyond the picture plane. Shadow
+  /// outlines are drawn in perspective only.
   std::optional<Plane> cut;
   /// Merge collinear strokes (merge_collinear) before returning. A caller adding strokes of
   /// its own turns this off and merges once, after.

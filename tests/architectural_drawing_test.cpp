@@ -28,6 +28,7 @@
 #include "tests/drawing_readers.h"
 #include "tests/ray_oracle.h"
 #include "tests/test_files.h"
+#include "tests/test_meshes.h"
 
 namespace fs = std::filesystem;
 using namespace avenues;
@@ -478,6 +479,100 @@ TEST(ArchitecturalHalftone, EachSampleShowsTheFaceARayFromTheCutMeetsFirst) {
       // Samples whose centre lies on an edge between two faces may take either.
       EXPECT_LE(wrong, tested / 500) << wrong << " of " << tested;
     }
+  }
+}
+
+// The lines beyond are drawn over the half-tone, which shows the plan's objects: an object
+// between the cut and a line hides it there, as a wall would. A room of low walls under a
+// storey much higher (open above them, as a house's attic is under its roof) is covered by
+// a slab given as an object, tilted toward the viewer as a roof's near half is; seen in an
+// axonometric from above, no stroke of the room lies where a parallel ray from the cut meets
+// the slab first (and its neighbours a pixel away do too), while the lines the slab does
+// not cover are still drawn, and so is the slab's outline.
+TEST(ArchitecturalDrawingObjects, AnObjectHidesTheLinesBeyondItAndIsOutlined) {
+  Plan plan = parse_plan(R"(
+name = "slab over low walls"
+[[storey]]
+name = "ground"
+height = 3.5
+[[wall]]
+thickness = 0.2
+height = 2.0
+path = [[0, 0], [6, 0], [6, 4], [0, 4], [0, 0]]
+[[room]]
+name = "room"
+at = [3, 2]
+)",
+                         "slab.toml");
+  // 15 cm thick, over the walls and 30 cm beyond them: 3.2 m high at the south edge, 2.2 m at
+  // the north one (its top turned north and up, toward a viewer in the north-east).
+  const double x0 = -0.3, x1 = 6.3, ys = -0.3, yn = 4.3, zs = 3.05, zn = 2.05, t = 0.15;
+  Object slab;
+  slab.name = slab.mesh = "slab";
+  slab.model = std::make_shared<const Mesh>(avenues::testing::mesh_from(
+      {{x0, ys, zs}, {x1, ys, zs}, {x1, yn, zn}, {x0, yn, zn},
+       {x0, ys, zs + t}, {x1, ys, zs + t}, {x1, yn, zn + t}, {x0, yn, zn + t}},
+      {{4, 5, 6, 7}, {0, 3, 2, 1}, {0, 1, 5, 4}, {2, 3, 7, 6}, {1, 2, 6, 5}, {3, 0, 4, 7}}));
+  plan.objects = {slab};
+  const CellComplex c = build_cells(plan);
+  const std::vector<PlacedObject> placed = place_objects(c);
+  ASSERT_EQ(placed.size(), 1u);
+  const std::vector<Mesh> meshes = {placed[0].mesh};
+  const LineScene scene = prepare_line_scene(c, placed);
+  for (const double altitude : {30.0, 60.0}) {
+    SCOPED_TRACE("altitude " + std::to_string(altitude));
+    const ArchitecturalView v = axonometric_view(c, 60, altitude, std::nullopt, 40);
+    const Camera& cam = v.camera;
+    TraverseParams params;
+    params.merge_pieces = true;  // as `avenues drawing` searches
+    const VisibleSet vs = find_visible_from_cut(c, cam, v.cut, params);
+    const Drawing d = draw_architectural(c, scene, cam, v.cut, vs, v.options);
+    const double along = dot(v.cut.n, cam.forward);
+    auto from_cut = [&](Vec2 px) {  // where the ray through raster point px starts
+      const Vec3 o = cam.ray_origin_at_raster(px);
+      return o + (-v.cut.eval(o) / along) * cam.forward;
+    };
+    // The slab nearer than every face along the ray, by more than its own thickness.
+    auto slab_first = [&](Vec2 px) {
+      const Vec3 o = from_cut(px);
+      return avenues::testing::nearest_triangle(meshes, o, cam.forward) <
+             avenues::testing::first_hit(c, o, cam.forward) - 0.2;
+    };
+    auto on_slab = [&](Vec2 px) {
+      return std::isfinite(avenues::testing::nearest_triangle(meshes, from_cut(px), cam.forward));
+    };
+    int tested = 0, clear = 0, wrong = 0;
+    for (const Stroke& s : d.strokes) {
+      if (s.layer != Layer::Beyond) continue;
+      const double len = length(s.b - s.a);
+      for (double at = 1; at + 1 < len; at += 1) {  // a pixel apart, the ends left out
+        const Vec2 px = s.a + (at / len) * (s.b - s.a);
+        ++tested;
+        if (!on_slab(px)) {
+          ++clear;
+          continue;
+        }
+        const bool inside = on_slab(px + Vec2{1, 0}) && on_slab(px - Vec2{1, 0}) && on_slab(px + Vec2{0, 1}) &&
+                            on_slab(px - Vec2{0, 1});
+        if (inside && slab_first(px)) {
+          if (++wrong <= 5) ADD_FAILURE() << "a line beyond at " << px.x << "," << px.y << " lies behind the slab";
+        }
+      }
+    }
+    EXPECT_GT(clear, 500) << "the walls' outer lines, which the slab does not cover";
+    EXPECT_EQ(wrong, 0) << wrong << " of " << tested << " points of lines beyond lie behind the slab";
+    // The slab's own edges are drawn (its outline, as a roof's): every point of them lies on
+    // the slab or a pixel from it, and together they run at least its near side's length.
+    double edges = 0;
+    for (const Stroke& s : d.strokes) {
+      if (s.layer != Layer::Furniture) continue;
+      edges += length(s.b - s.a);
+      const Vec2 mid = 0.5 * (s.a + s.b);
+      EXPECT_TRUE(on_slab(mid) || on_slab(mid + Vec2{1, 0}) || on_slab(mid - Vec2{1, 0}) || on_slab(mid + Vec2{0, 1}) ||
+                  on_slab(mid - Vec2{0, 1}))
+          << "an edge of the slab off it at " << mid.x << "," << mid.y;
+    }
+    EXPECT_GT(edges, 100) << "the slab's outline";
   }
 }
 
