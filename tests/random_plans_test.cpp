@@ -637,3 +637,8 @@ TEST(RandomPlans, Seed1869SlopedEdgeOfASliver) { check_stored(1869); }
 // plane's highest over it.
 TEST(RandomPlans, Seed1191GapClosedPastWhereItsSlopeMeetsTheCeiling) { check_stored(1191); }
 TEST(RandomPlans, Seed3179GapClosedUnderASlopeTurnsItsFloor) { check_stored(3179); }
+// An eye 1.7 nm inside three faces of a sliver over a bent sloped top stands on them; the
+// search roots the cells on their other sides, and a ray leaving between the planes ran
+// 13 µm inside the sliver (the ray oracle now holds the eye's own cell seen, as it does for
+// its avenues) (5743).
+TEST(RandomPlans, Seed5743EyeOnThreeFacesOfASliver) { check_stored(5743); }
