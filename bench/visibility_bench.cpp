@@ -209,10 +209,12 @@ int register_all() {
       const std::string wad = "/usr/share/games/doom/" + m.substr(0, m.find(':'));
       if (fs::exists(wad)) plans.push_back({m, "wad:" + wad + m.substr(m.find(':'))});
     }
-    for (const char* model : {"duplex", "Office_A_20110811"}) {
+    for (const char* model : {"duplex", "Office_A_20110811", "IfcOpenHouse_IFC4"}) {
       const fs::path ifc = fs::path(AVENUES_OUTSIDE_DIR) / "ifc" / (std::string(model) + ".ifc");
       if (fs::exists(ifc)) plans.push_back({model, "ifc:" + ifc.string()});
     }
+    if (const fs::path fzk = "/usr/share/assimp/models/IFC/AC14-FZK-Haus.ifc"; fs::exists(fzk))
+      plans.push_back({"AC14-FZK-Haus", "ifc:" + fzk.string()});  // assimp-testmodels: a gabled house
     for (const char* mesh : {"meshes/viking-room/viking_room.obj", "meshes/alpine-cabin/house.obj"}) {
       const fs::path file = fs::path(AVENUES_OUTSIDE_DIR) / mesh;
       if (fs::exists(file)) plans.push_back({file.stem().string(), "mesh:" + file.string()});
