@@ -321,6 +321,7 @@ Outline make_outline(const Plan& plan) {
         const Opening& o = w.openings[size_t(oi)];
         double a = std::max(0.0, o.at - along), b = std::min(len, a + o.width);
         if (a < 1e-9) a = 0;          // at the segment's start: its mitre, not a clip a hair past it
+        if (std::fabs(a - s) < 1e-9) a = s;  // touching the opening before (strips of one arched window)
         if (b > len - 1e-9) b = len;  // likewise at its end
         if (a > s) strips.push_back({s, a, -1});
         strips.push_back({a, b, oi});

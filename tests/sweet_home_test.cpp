@@ -26,6 +26,7 @@
 
 #include "cells/build_cells.h"
 #include "plans/formats/sweet_home.h"
+#include "plans/formats/svg_path.h"
 #include "plans/java3d_materials.h"
 #include "tests/test_files.h"
 #include "plans/mesh.h"
@@ -341,6 +342,100 @@ TEST(SweetHome, ArcWallIsTessellatedWithinTheTolerance) {
   for (Vec2 v : q.walls[0].centre) bottom = std::min(bottom, v.y);
   // Quarter circle on a 2 m chord: sagitta (chord/2)·tan(extent/4) = tan(π/8).
   EXPECT_NEAR(bottom, -std::tan(std::numbers::pi / 8), p.arc_tolerance);
+}
+
+namespace {
+/// Whether p lies inside the polygon (crossings of a ray to +x, even-odd).
+bool inside_polygon(const std::vector<Vec2>& poly, Vec2 p) {
+  bool in = false;
+  for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++)
+    if ((poly[i].y > p.y) != (poly[j].y > p.y) &&
+        p.x < poly[j].x + (p.y - poly[j].y) * (poly[i].x - poly[j].x) / (poly[i].y - poly[j].y))
+      in = !in;
+  return in;
+}
+}  // namespace
+
+// Doors and windows that are not rectangles (cutOutShape, as Sweet Home 3D's arched and round
+// windows give it): the wall is cut in strips across the window, each open over what the
+// shape opens all across it. No strip opens the wall where the shape leaves it standing,
+// and together they open most of the shape; free space under the crown, wall in
+// the rectangle's corners beside it. A round window likewise, and an arched door drawn
+// against the wall's direction (angle π) the same.
+TEST(SweetHome, ArchedAndRoundWindowsCutTheirShapeInStrips) {
+  TempDir dir;
+  const std::string arch = "M0,1 v-0.788 a0.5,0.2 0 1,1 1,0 v0.788 z";
+  const std::string round = "M0,0.5 a0.5,0.5 0 1,0 1,0 a0.5,0.5 0 1,0 -1,0 z";
+  const Plan p = read_sweet_home(dir.write("Home.xml", small_home(
+      "<doorOrWindow name='Arched' x='200' y='0' elevation='80' width='100' depth='20' height='150' cutOutShape='" + arch +
+      "'/>\n<doorOrWindow name='Round' x='600' y='200' angle='1.5707964' elevation='100' width='60' depth='20' height='60' "
+      "cutOutShape='" + round + "'/>\n<doorOrWindow name='Arched door' x='500' y='400' angle='3.1415927' width='80' "
+      "depth='20' height='200' cutOutShape='" + arch + "'/>\n")));
+  const CellComplex c = build_cells(p);
+  ASSERT_EQ(cells_are_valid(c), "");
+  const auto shape_of = [&](const std::string& path) { return *svg_path_polygons(path); };
+  struct Case {
+    const char* name;
+    std::string path;
+    double bottom, height, width;
+    Vec2 centre;  // [m] in plan
+  };
+  // Along a wall's centre line (a polyline, the box's walls joined into one): the distance
+  // to the point nearest p, and the point at a distance.
+  auto along_of = [](const Wall& w, Vec2 q) {
+    double best = HUGE_VAL, at = 0, cum = 0;
+    for (size_t i = 0; i + 1 < w.centre.size(); ++i) {
+      const Vec2 a = w.centre[i], b = w.centre[i + 1];
+      const double len = length(b - a), t = std::clamp(dot(q - a, b - a) / (len * len), 0.0, 1.0);
+      if (const double dd = length(a + t * (b - a) - q); dd < best) best = dd, at = cum + t * len;
+      cum += len;
+    }
+    return at;
+  };
+  auto point_at = [](const Wall& w, double at) {
+    for (size_t i = 0; i + 1 < w.centre.size(); ++i) {
+      const double len = length(w.centre[i + 1] - w.centre[i]);
+      if (at <= len) return w.centre[i] + (at / len) * (w.centre[i + 1] - w.centre[i]);
+      at -= len;
+    }
+    return w.centre.back();
+  };
+  for (const Case& k : {Case{"Arched", arch, 0.8, 1.5, 1.0, {2, 0}}, Case{"Round", round, 1.0, 0.6, 0.6, {6, -2}},
+                        Case{"Arched door", arch, 0.0, 2.0, 0.8, {5, -4}}}) {
+    SCOPED_TRACE(k.name);
+    const std::vector<Vec2> shape = shape_of(k.path).front();
+    std::vector<const Opening*> strips;
+    const Wall* in = nullptr;
+    for (const Wall& w : p.walls)
+      for (const Opening& o : w.openings)
+        if (o.name.rfind(std::string(k.name) + " (strip", 0) == 0) strips.push_back(&o), in = &w;
+    ASSERT_GE(strips.size(), 3u);
+    ASSERT_LE(strips.size(), 12u);
+    const double left = along_of(*in, k.centre) - k.width / 2, right = left + k.width;
+    double opened = 0;
+    for (const Opening* o : strips) {
+      EXPECT_GE(o->at, left - 1e-6);
+      EXPECT_LE(o->at + o->width, right + 1e-6);
+    }
+    for (const Opening* o : strips) {
+      opened += o->width * (o->head - o->sill);
+      // Each strip's corners (a hair inside) lie in the shape (x along the wall; the shape
+      // is symmetric, so either way along).
+      for (double fx : {0.001, 0.999})
+        for (double fz : {0.001, 0.999}) {
+          const double x = (o->at + fx * o->width - left) / (right - left);
+          const double y = 1 - (o->sill + fz * (o->head - o->sill) - k.bottom) / k.height;
+          EXPECT_TRUE(inside_polygon(shape, {x, y})) << o->name << " opens the wall outside its shape at " << x << "," << y;
+        }
+    }
+    const double shape_area = std::fabs(signed_area(shape)) * k.width * k.height;
+    EXPECT_GT(opened, 0.8 * shape_area);  // (a 60 cm circle in 4 cm steps: 82 %)
+    EXPECT_LE(opened, shape_area + 1e-9);
+    // Under the crown free, in the square's top corners wall (in the wall's middle plane).
+    const Vec2 mid = point_at(*in, 0.5 * (left + right)), corner = point_at(*in, left + 0.02 * k.width);
+    EXPECT_EQ(c.locate({mid.x, mid.y, k.bottom + 0.9 * k.height}).what, Location::What::Cell);
+    EXPECT_EQ(c.locate({corner.x, corner.y, k.bottom + 0.98 * k.height}).what, Location::What::Solid);
+  }
 }
 
 TEST(SweetHome, SlopedWallKeepsItsSlopeAndSlopesUnderTheCellsAboveIt) {

@@ -26,6 +26,7 @@
 // odd but readable data (NaN, zero-length walls, a window in no wall, a wall or piece
 // without its coordinates or size) is repaired or dropped with a line in Plan::warnings.
 #include "plans/formats/sweet_home.h"
+#include "plans/formats/svg_path.h"
 #include "core/file_name.h"
 #include "plans/formats/zip_salvage.h"
 #include "plans/formats/home_tree.h"
@@ -308,6 +309,7 @@ struct PieceIn {
   bool in_no_wall = false;
   bool cut_both_sides = false;  ///< wallCutOutOnBothSides: Sweet Home cuts its wall through, however deep it is
   std::string cut_out;    ///< a staircase's staircaseCutOutShape (SVG path in the unit square)
+  std::string wall_cut_out;  ///< a door's or window's cutOutShape: the hole it cuts (SVG path in the unit square of its face)
   bool mirrored = false;
   std::string model;      ///< its model: an entry of the .sh3d archive, or a catalogue path
   std::array<double, 9> model_rotation{1, 0, 0, 0, 1, 0, 0, 0, 1};  ///< row-major, applied to the model first
@@ -330,6 +332,12 @@ struct PieceIn {
 struct Hole {
   double a0 = 0, a1 = 0;  ///< [m] its span along the wall's centre line (as read, before straightening)
   Opening o;              ///< name, kind, sill, head, where (at and width set last)
+  /// Not a rectangle (an arched or a round window): its cut-out, in the unit square of its
+  /// face, x along the wall's centre line from a0 to a1, y down from its top; and the
+  /// piece's bottom and height [m] above the floor, which that square spans.
+  std::vector<Vec2> shape;
+  double bottom = 0, height = 0;
+  int pieces = 1;  ///< how many doors and windows drawn into each other it holds
 };
 
 class HomeReader {
@@ -945,6 +953,7 @@ void HomeReader::collect_pieces(const HomeElement& home) {
     const std::string both = n.text("wallCutOutOnBothSides");
     p.cut_both_sides = !both.empty() && std::strchr("1tTyY", both[0]) != nullptr;
     p.cut_out = n.text("staircaseCutOutShape");
+    if (p.door_or_window) p.wall_cut_out = n.text("cutOutShape");
     const std::string mirrored = n.text("modelMirrored");  // a boolean as pugixml reads one
     p.mirrored = !mirrored.empty() && std::strchr("1tTyY", mirrored[0]) != nullptr;
     p.model = n.text("model");
@@ -996,6 +1005,73 @@ void HomeReader::read_light_sources(const HomeElement& n, const std::string& ele
   }
 }
 
+/// A door's or window's cutOutShape (an SVG path in the unit square of its face, y down)
+/// as the polygon it cuts, x turned end for end when `flip` (the piece's width runs against
+/// the wall's centre line, or its model is mirrored); empty for a rectangle filling the
+/// square, or a path that does not parse or encloses nothing (then the whole square is cut,
+/// as the shape's bounds are).
+std::vector<Vec2> wall_cut_out_shape(const std::string& path, bool flip) {
+  const auto polys = svg_path_polygons(path);
+  if (!polys) return {};
+  const std::vector<Vec2>* best = nullptr;
+  for (const auto& poly : *polys)
+    if (poly.size() >= 3 && (!best || std::fabs(signed_area(poly)) > std::fabs(signed_area(*best)))) best = &poly;
+  if (!best || std::fabs(signed_area(*best)) < 1e-6) return {};
+  std::vector<Vec2> out;
+  for (Vec2 u : *best) out.push_back({flip ? 1 - u.x : u.x, u.y});
+  if (std::fabs(std::fabs(signed_area(out)) - 1) < 1e-6) return {};  // the square itself
+  return out;
+}
+
+/// A strip across a cut-out: from u0 to u1 of its width, open from y0 down to y1 (unit
+/// square, y down from the top).
+struct CutOutStrip {
+  double u0, u1, y0, y1;
+};
+
+/// The cut-out as strips side by side across its width, each open over what the shape opens
+/// all across it (no more: a wall is never cut where Sweet Home leaves it standing). Samples
+/// 1 cm apart; a strip runs on while its top and bottom stay within 4 cm of their extremes
+/// (`height` and `width` [m], the face's), and is at least 4 cm and a twelfth of the width
+/// wide: an arch is a few strips, each a doorway cell, stepped 4 cm where it is flat.
+std::vector<CutOutStrip> cut_out_strips(const std::vector<Vec2>& shape, double height, double width) {
+  constexpr double kStep = 0.04;  // [m]
+  const int n = std::clamp(int(std::ceil(width / 0.01)), 12, 600);
+  const int least = std::max(1, int(std::ceil(n * std::max(0.04 / width, 1.0 / 12))));  // samples a strip spans
+  // The shape's open extent down a vertical line at u: the span between the first and last
+  // crossings (a cut-out is one hole).
+  auto extent = [&](double u) {
+    double lo = HUGE_VAL, hi = -HUGE_VAL;
+    for (size_t k = 0; k < shape.size(); ++k) {
+      const Vec2 a = shape[k], b = shape[(k + 1) % shape.size()];
+      if ((a.x < u) == (b.x < u) && a.x != u) continue;
+      const double y = a.x == b.x ? std::min(a.y, b.y) : a.y + (b.y - a.y) * (u - a.x) / (b.x - a.x);
+      const double y2 = a.x == b.x ? std::max(a.y, b.y) : y;
+      lo = std::min(lo, y), hi = std::max(hi, y2);
+    }
+    return std::pair{lo, hi};
+  };
+  std::vector<std::pair<double, double>> at(size_t(n) + 1);
+  for (int k = 0; k <= n; ++k) at[size_t(k)] = extent(std::clamp(double(k) / n, 1e-9, 1 - 1e-9));
+  std::vector<CutOutStrip> out;
+  int from = 0;
+  while (from < n) {
+    double top_lo = at[size_t(from)].first, top_hi = top_lo, bot_lo = at[size_t(from)].second, bot_hi = bot_lo;
+    int to = from + 1;
+    for (; to <= n; ++to) {
+      const auto [t, b] = at[size_t(to)];
+      const double tl = std::min(top_lo, t), th = std::max(top_hi, t), bl = std::min(bot_lo, b), bh = std::max(bot_hi, b);
+      if (to > from + least && ((th - tl) * height > kStep || (bh - bl) * height > kStep)) break;
+      top_lo = tl, top_hi = th, bot_lo = bl, bot_hi = bh;
+    }
+    to = std::min(to - 1, n);
+    if (to == from) to = from + 1;
+    out.push_back({double(from) / n, double(to) / n, std::max(0.0, top_hi), std::min(1.0, bot_lo)});
+    from = to;
+  }
+  return out;
+}
+
 /// Finds the wall a door or window sits in, as Sweet Home 3D's Wall3D cuts it: the wall of
 /// its storey, running parallel to its width, whose volume its footprint enters (an area
 /// of their intersection, not a touch); of several, the one whose centre line passes
@@ -1010,6 +1086,7 @@ void HomeReader::find_wall(PieceIn& p) {
   const Vec2 axis{std::cos(p.angle), std::sin(p.angle)};
   long best_wall = -1, niche_wall = -1;
   double best_score = HUGE_VAL, best_s = 0, niche_reach = 0;
+  bool best_forward = true;  // the piece's width axis runs along the wall's centre line
   for (size_t i = 0; i < drafts_.size(); ++i) {
     const Wall& w = drafts_[i].wall;
     if (w.storey != p.storey) continue;
@@ -1030,7 +1107,9 @@ void HomeReader::find_wall(PieceIn& p) {
       if (sin_turn <= kParallelSin && meets && beyond <= p.width / 2) {
         if (p.cut_both_sides || reach >= w.thickness - kJoinGap) {
           const double score = std::fabs(off) + beyond;
-          if (score < best_score) best_score = score, best_wall = long(i), best_s = along + std::clamp(t, 0.0, len);
+          if (score < best_score)
+            best_score = score, best_wall = long(i), best_s = along + std::clamp(t, 0.0, len),
+            best_forward = dot(d, axis) > 0;
         } else if (reach > niche_reach) {
           niche_reach = reach, niche_wall = long(i);
         }
@@ -1068,6 +1147,13 @@ void HomeReader::find_wall(PieceIn& p) {
     plan_.warnings.push_back(p.where.str() + ": no part of it lies within wall '" + w.name + "' and below the ceiling " +
                              "of its storey: no opening cut");
     return;
+  }
+  // An arched or round window: its cut-out along the wall (x from a0 to a1), unless the
+  // wall's end clips it.
+  if (!p.wall_cut_out.empty() && h.a0 <= best_s - p.width / 2 + 1e-9 && h.a1 >= best_s + p.width / 2 - 1e-9) {
+    h.shape = wall_cut_out_shape(p.wall_cut_out, p.mirrored != !best_forward);
+    h.bottom = p.elevation;
+    h.height = p.height;
   }
   holes_.resize(drafts_.size());
   holes_[size_t(best_wall)].push_back(h);
@@ -1127,6 +1213,7 @@ void HomeReader::cut_openings() {
         plan_.warnings.push_back(h.o.where.str() + ": overlaps " + m.o.where.element + " (line " +
                                  std::to_string(m.o.where.line) + ") in wall '" + w.name + "': one opening cut for both");
         m.a1 = std::max(m.a1, h.a1);
+        m.shape.clear();  // two shapes drawn into each other: their union's bounding rectangle
         m.o.sill = std::min(m.o.sill, h.o.sill);
         m.o.head = std::max(m.o.head, h.o.head);
         if (h.o.kind == OpeningKind::Door) m.o.kind = OpeningKind::Door;
@@ -1195,6 +1282,31 @@ void HomeReader::cut_openings() {
         part.at = k == 0 ? 0.0 : cum[k] + 1e-11;
         part.width = cum[k + 1] + 5e-10 - part.at;
         if (part.width >= kMinOpening || v1 == v0 + 1) parts.push_back(part);
+      }
+      // An arched or round window on one straight piece: strips across it, each open over
+      // what the shape opens all across the strip.
+      if (!merged[j].shape.empty() && parts.size() == 1) {
+        const Hole& h = merged[j];
+        const Opening whole = parts[0];
+        const Storey& st = plan_.storeys[size_t(w.storey)];
+        parts.clear();
+        const std::vector<CutOutStrip> strips = cut_out_strips(h.shape, h.height, whole.width);
+        for (size_t k = 0; k < strips.size(); ++k) {
+          Opening part = whole;
+          part.at = k == 0 ? whole.at : parts.back().at + parts.back().width;
+          part.width = k + 1 == strips.size() ? whole.at + whole.width - part.at : strips[k].u1 * whole.width - (part.at - whole.at);
+          part.sill = std::max(0.0, h.bottom + h.height * (1 - strips[k].y1));
+          part.head = std::min(st.height, h.bottom + h.height * (1 - strips[k].y0));
+          if (part.head - part.sill < kMinOpening) {  // shut here: the wall stands
+            part.sill = part.head = -1;
+          }
+          part.name += " (strip " + std::to_string(k + 1) + " of " + std::to_string(strips.size()) + ")";
+          parts.push_back(part);
+        }
+        parts.erase(std::remove_if(parts.begin(), parts.end(), [](const Opening& o) { return o.head < 0; }),
+                    parts.end());
+        w.openings.insert(w.openings.end(), parts.begin(), parts.end());
+        continue;
       }
       for (size_t k = 0; k < parts.size() && parts.size() > 1; ++k)
         parts[k].name += " (part " + std::to_string(k + 1) + " of " + std::to_string(parts.size()) + ")";
@@ -1436,52 +1548,14 @@ void HomeReader::read_rooms(std::vector<RoomIn> rooms) {
 // --- furniture, staircases, the camera --------------------------------------------------------
 
 /// A staircase's cut-out (an SVG path in the piece's unit square, x along its width, y along
-/// its depth, y down) as a polygon in plan. Straight commands only (M L H V Z, either case);
-/// anything else is taken as the whole footprint.
+/// its depth, y down) as a polygon in plan: its largest subpath (curves flattened); a path
+/// that does not parse, or encloses nothing, is taken as the whole footprint.
 std::vector<Vec2> cut_out_outline(const PieceIn& p) {
   std::vector<Vec2> unit;
-  const std::string& s = p.cut_out;
-  size_t i = 0;
-  char cmd = 0;
-  Vec2 cur{0, 0};
-  bool ok = true;
-  auto skip = [&] { while (i < s.size() && (std::isspace(static_cast<unsigned char>(s[i])) || s[i] == ',')) ++i; };
-  auto num = [&](double& v) {
-    skip();
-    const char* b = s.data() + i;
-    const auto [e, ec] = std::from_chars(b, s.data() + s.size(), v);
-    if (ec != std::errc()) return false;
-    i += size_t(e - b);
-    return true;
-  };
-  while (ok) {
-    skip();
-    if (i >= s.size()) break;
-    if (std::isalpha(static_cast<unsigned char>(s[i]))) cmd = s[i++];
-    const bool rel = std::islower(static_cast<unsigned char>(cmd));
-    double x = 0, y = 0;
-    switch (std::toupper(static_cast<unsigned char>(cmd))) {
-      case 'M': case 'L':
-        ok = num(x) && num(y);
-        cur = rel ? cur + Vec2{x, y} : Vec2{x, y};
-        break;
-      case 'H':
-        ok = num(x);
-        cur.x = rel ? cur.x + x : x;
-        break;
-      case 'V':
-        ok = num(y);
-        cur.y = rel ? cur.y + y : y;
-        break;
-      case 'Z':
-        continue;
-      default:
-        ok = false;
-    }
-    if (ok) unit.push_back(cur);
-  }
-  while (unit.size() > 1 && length(unit.front() - unit.back()) < 1e-9) unit.pop_back();
-  if (!ok || unit.size() < 3 || std::fabs(signed_area(unit)) < 1e-9) unit = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
+  if (const auto polys = svg_path_polygons(p.cut_out))
+    for (const auto& poly : *polys)
+      if (poly.size() >= 3 && std::fabs(signed_area(poly)) > std::fabs(signed_area(unit))) unit = poly;
+  if (unit.size() < 3 || std::fabs(signed_area(unit)) < 1e-9) unit = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
   // Unit square → piece (screen axes: x along the width, y along the depth, both in the
   // y-down plane the angle turns clockwise in) → plan.
   const Vec2 ax{std::cos(p.angle), std::sin(p.angle)};  // width axis, in plan

@@ -14,7 +14,10 @@
 //   <doorOrWindow>     into openings of the wall they sit in (also inside furniture groups):
 //                      where they cross its whole thickness, or Sweet Home cuts both sides
 //                      (wallCutOutOnBothSides); a piece reaching only partly in (a shutter
-//                      on the façade) is a niche in Sweet Home, not a hole: none is cut,
+//                      on the façade) is a niche in Sweet Home, not a hole: none is cut;
+//                      one whose cutOutShape is no rectangle (an arched or round window,
+//                      an SVG path: svg_path.h) is cut in strips across it, each open over
+//                      what the shape opens all across it, stepped 4 cm at most where flat,
 //   <room>             into rooms labelled at a point well inside their polygon; a home of
 //                      rooms and no walls (Sweet Home shows floors in the open) gets a wall
 //                      of no thickness along each room edge, open its whole length and
@@ -22,7 +25,8 @@
 //   <pieceOfFurniture> into objects: the piece's OBJ model (an entry of the .sh3d, or
 //                      beside a bare Home.xml at the path it names) fitted to the
 //                      piece as Sweet Home fits it, else a box of its size with a
-//                      warning; a staircase's cut-out into holes in the floors it climbs through,
+//                      warning; a staircase's cut-out (its curves flattened) into holes
+//                      in the floors it climbs through,
 //   <observerCamera>   into the plan's viewpoint;
 //   colours, textures  into materials (linear light): each side of a wall its own
 //                      (left/rightSideTexture, else left/rightSideColor; walls whose

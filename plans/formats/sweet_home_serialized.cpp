@@ -240,6 +240,7 @@ class Mapper {
       flag(e, "modelMirrored", *o, "modelMirrored", true);
       flag(e, "wallCutOutOnBothSides", *o, "wallCutOutOnBothSides", true);
       text(e, "staircaseCutOutShape", *o, "staircaseCutOutShape");
+      text(e, "cutOutShape", *o, "cutOutShape");  // HomeDoorOrWindow's (4.2)
       colour(e, "color", *o, "color");
       texture(e, *o, "texture", false);
       // modelMaterials, a HomeMaterial[]: <material name key color> children, a texture inside.
