@@ -366,7 +366,7 @@ std::vector<Vec2> top_profile(const Element& e, const Rect& r) {
   for (size_t i = 0; i + 1 < corners; ++i) at.push_back(0.5 * (at[i] + at[i + 1]));
   std::sort(at.begin(), at.end());
   auto highest = [&](double s) {
-    double z = -HUGE_VAL;
+    double z = e.box.lo.z;  // (a place no triangle spans, between two parts of a wall: its foot)
     for (const auto& t : e.triangles)
       for (int k = 0; k < 3; ++k) {
         const Vec2 a = side[size_t(t[size_t(k)])], b = side[size_t(t[size_t((k + 1) % 3)])];
