@@ -284,8 +284,8 @@ Outline make_outline(const Plan& plan) {
     }
 
     // The piece of the top over the point `at` along the centre line (a bend belongs to the
-    // piece after it unless `before`): its plane over segment i, or none where it is level
-    // (then the wall is open from that height up, as a low wall is).
+    // piece after it): its plane over segment i, which starts `along_i` along, or none where
+    // it is level (then the wall is open from that height up, as a low wall is).
     struct TopPiece { std::optional<Slope> slope; double level = 0; };
     auto top_piece = [&](size_t i, double along_i, double at) {
       size_t k = 0;
@@ -300,11 +300,10 @@ Outline make_outline(const Plan& plan) {
       if (piece.slope) r.top = piece.slope;
       else if (piece.level < st.height) r.open.push_back({floor + piece.level, ceiling});
     };
-    double along = 0;  // distance along the centre line to the segment's start
-    std::vector<double> seg_start(nseg + 1, 0);
+    std::vector<double> seg_start(nseg + 1, 0);  // distance along the centre line to each segment's start
     for (size_t i = 0; i < nseg; ++i) seg_start[i + 1] = seg_start[i] + length(c[i + 1] - c[i]);
     for (size_t i = 0; i < nseg; ++i) {
-      const double len = length(c[i + 1] - c[i]);
+      const double len = length(c[i + 1] - c[i]), along = seg_start[i];
       // Strips of this segment along s in [0, len]: solid between openings.
       struct Strip { double s0, s1; int opening; };
       std::vector<Strip> strips;
@@ -368,7 +367,6 @@ Outline make_outline(const Plan& plan) {
         }
         out.regions.push_back(std::move(r));
       }
-      along += len;
     }
     for (size_t k = 0; k < fillers.size(); ++k) {
       Region r;
