@@ -405,6 +405,14 @@ std::vector<Vec2> top_profile(const Element& e, const Rect& r) {
   return out;
 }
 
+/// The point of the 0.1 mm grid a coordinate [m] lies within a single-precision rounding
+/// of (as the nearest double to it), or none.
+std::optional<double> on_grid(double v) {
+  const double g = std::round(v * kSnapPerMetre) / kSnapPerMetre;
+  if (std::fabs(v - g) <= std::max(2e-6, 2e-7 * std::fabs(v))) return g;
+  return std::nullopt;
+}
+
 /// Whether a wall's top profile slopes: it falls more than kOnFloor below its highest point
 /// somewhere, and climbs nowhere steeper than a step (a wall with a lower part, a notch,
 /// stands level at its highest, as before).
@@ -773,7 +781,7 @@ class Builder {
       for (Vec3 v : e.vertices)
         for (double c : {v.x, v.y}) {
           ++all;
-          near += std::fabs(c - std::round(c * kSnapPerMetre) / kSnapPerMetre) <= std::max(2e-6, 2e-7 * std::fabs(c));
+          near += on_grid(c).has_value();
         }
     }
     return all > 0 && near >= 0.75 * double(all);
@@ -800,12 +808,10 @@ class Builder {
     // A wall drawn on a millimetre grid, as BIM tools draw them, read back on it: its
     // coordinates come out of Assimp in single precision, a rounding off the grid, and
     // walls drawn to meet would miss each other by that in slivers of space. Only what lies
-    // within such a rounding of a 0.1 mm grid point is moved (a model in feet keeps its
-    // own), so no wall's end moves away from another.
-    auto snap = [&](double v) {
-      const double on = std::round(v * kSnapPerMetre) / kSnapPerMetre;  // (the nearest double to it)
-      return on_grid_ && std::fabs(v - on) <= std::max(2e-6, 2e-7 * std::fabs(v)) ? on : v;
-    };
+    // within such a rounding of a 0.1 mm grid point is moved, and only in a model drawn on
+    // the grid (drawn_on_grid: one in feet keeps its own), so no wall's end moves away from
+    // another.
+    auto snap = [&](double v) { return on_grid_ ? on_grid(v).value_or(v) : v; };
     w.thickness = snap(piece.rect.width);
     const Vec2 half = (piece.rect.length / 2) * piece.rect.along;
     w.centre = {piece.rect.centre - half, piece.rect.centre + half};
