@@ -337,7 +337,6 @@ struct Hole {
   /// piece's bottom and height [m] above the floor, which that square spans.
   std::vector<Vec2> shape;
   double bottom = 0, height = 0;
-  int pieces = 1;  ///< how many doors and windows drawn into each other it holds
 };
 
 class HomeReader {
