@@ -91,6 +91,17 @@ inline double signed_area(const std::vector<Vec2>& p) {
   return a / 2;
 }
 
+/// Whether p lies inside the polygon (even–odd: a ray to +x crosses its edges an odd number
+/// of times); either orientation, any simple or self-touching polygon.
+inline bool inside_polygon(const std::vector<Vec2>& poly, Vec2 p) {
+  bool in = false;
+  for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const Vec2 a = poly[i], b = poly[j];
+    if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x)) in = !in;
+  }
+  return in;
+}
+
 /// The convex hull of points, counter-clockwise (Andrew's monotone chain); collinear
 /// points dropped. Fewer than three distinct points come back as they are, sorted.
 inline std::vector<Vec2> convex_hull(std::vector<Vec2> p) {

@@ -79,15 +79,6 @@ struct GenWall {
   bool upper = false;     ///< on the upper storey (when the plan has one)
 };
 
-bool inside_polygon(Vec2 p, const std::vector<Vec2>& poly) {
-  bool in = false;
-  for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++)
-    if ((poly[i].y > p.y) != (poly[j].y > p.y) &&
-        p.x < poly[j].x + (p.y - poly[j].y) * (poly[i].x - poly[j].x) / (poly[i].y - poly[j].y))
-      in = !in;
-  return in;
-}
-
 std::string num(double x) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.17g", x);
@@ -250,7 +241,7 @@ std::string random_plan(uint32_t seed) {
   const int tries = dice.below(4);
   for (int k = 0; k < tries; ++k) {
     const Vec2 p{dice.length(0.3, W - 0.3), dice.length(0.3, H - 0.3)};
-    bool clear = inside_polygon(p, outline);
+    bool clear = inside_polygon(outline, p);
     for (const GenWall& w : walls)
       for (size_t s = 0; s + 1 < w.path.size() && clear; ++s) {
         const double reach = w.arc_through[s] >= 0 ? length(w.path[s + 1] - w.path[s]) : 0;  // arcs: keep well away

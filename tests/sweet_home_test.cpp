@@ -344,18 +344,6 @@ TEST(SweetHome, ArcWallIsTessellatedWithinTheTolerance) {
   EXPECT_NEAR(bottom, -std::tan(std::numbers::pi / 8), p.arc_tolerance);
 }
 
-namespace {
-/// Whether p lies inside the polygon (crossings of a ray to +x, even-odd).
-bool inside_polygon(const std::vector<Vec2>& poly, Vec2 p) {
-  bool in = false;
-  for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++)
-    if ((poly[i].y > p.y) != (poly[j].y > p.y) &&
-        p.x < poly[j].x + (p.y - poly[j].y) * (poly[i].x - poly[j].x) / (poly[i].y - poly[j].y))
-      in = !in;
-  return in;
-}
-}  // namespace
-
 // Doors and windows that are not rectangles (cutOutShape, as Sweet Home 3D's arched and round
 // windows give it): the wall is cut in strips across the window, each open over what the
 // shape opens all across it. No strip opens the wall where the shape leaves it standing,

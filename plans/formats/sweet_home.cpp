@@ -83,16 +83,6 @@ double polyline_length(const std::vector<Vec2>& c) {
   return l;
 }
 
-/// Even–odd point in polygon.
-bool inside_polygon(const std::vector<Vec2>& poly, Vec2 p) {
-  bool in = false;
-  for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
-    const Vec2 a = poly[i], b = poly[j];
-    if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x)) in = !in;
-  }
-  return in;
-}
-
 /// A Sweet Home colour ("FF8080C0": ARGB in hex, as HomeXMLExporter writes it; alpha
 /// ignored) as linear RGB; nullopt when it is not one.
 std::optional<std::array<double, 3>> colour_of(const std::string& hex) {
