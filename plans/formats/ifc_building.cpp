@@ -759,8 +759,9 @@ class Builder {
       if (!placed && !hung_wall(i, pieces)) e.as_object = true;
     }
     // The top storey's top: where its walls slope up to its ceiling (gables under a pitched
-    // roof, the storey as high as their ridge), the roof is its top, not a flat slab.
-    if (!plan_.storeys.empty()) {
+    // roof, the storey as high as their ridge) and a roof covers it, the roof is its top,
+    // not a flat slab. (A model without its roof, Office A's, keeps the slab.)
+    if (!plan_.storeys.empty() && roof_over_top_storey()) {
       Storey& top = plan_.storeys.back();
       for (const Wall& w : plan_.walls)
         if (w.storey == StoreyId(plan_.storeys.size() - 1) && w.sloped() && highest_top(w) >= top.height - kOnFloor) {
@@ -768,6 +769,26 @@ class Builder {
           break;
         }
     }
+  }
+
+  /// Whether a roof covers the top storey: elements other than walls, spaces, doors and
+  /// windows (an IfcRoof, roof slabs) standing in its band and reaching its ceiling, whose
+  /// extents seen from above cover at least half of the walls'.
+  bool roof_over_top_storey() const {
+    const Storey& top = plan_.storeys.back();
+    Box3 walls;
+    for (const Element& e : elements_)
+      if (e.role == Role::Wall && !e.triangles.empty()) walls.add(e.box.lo), walls.add(e.box.hi);
+    const double ceiling = top.elevation + top.height;
+    double covered = 0;
+    for (const Element& e : elements_) {
+      if (e.triangles.empty() || (e.role != Role::Surface && e.role != Role::Object)) continue;
+      if (e.box.lo.z < top.elevation - kOnFloor || e.box.hi.z < ceiling - 3 * kOnFloor) continue;
+      const double dx = std::min(e.box.hi.x, walls.hi.x) - std::max(e.box.lo.x, walls.lo.x);
+      const double dy = std::min(e.box.hi.y, walls.hi.y) - std::max(e.box.lo.y, walls.lo.y);
+      if (dx > 0 && dy > 0) covered += dx * dy;
+    }
+    return covered >= 0.5 * (walls.hi.x - walls.lo.x) * (walls.hi.y - walls.lo.y);
   }
 
   /// Whether the model's walls are drawn on a 0.1 mm grid (a metric model, as BIM tools
