@@ -426,6 +426,39 @@ TEST(SweetHome, ArchedAndRoundWindowsCutTheirShapeInStrips) {
   }
 }
 
+// A door under a half-round fanlight (a window drawn into it, just above it): one opening
+// is cut for both, their union, not the rectangle around them: the door's full width up to
+// its head, and the fanlight's arch above, in strips.
+TEST(SweetHome, ADoorUnderAFanlightCutsTheirUnion) {
+  TempDir dir;
+  const Plan p = read_sweet_home(dir.write("Home.xml", small_home(
+      "<doorOrWindow name='Front door' x='500' y='0' width='80' depth='20' height='200'/>\n"
+      "<doorOrWindow name='Fanlight' x='500' y='0' elevation='200' width='80' depth='20' height='30' "
+      "cutOutShape='M0,1 a0.5,1 0 1,1 1,0 z'/>\n")));
+  const CellComplex c = build_cells(p);
+  ASSERT_EQ(cells_are_valid(c), "");
+  std::vector<const Opening*> strips;
+  for (const Wall& w : p.walls)
+    for (const Opening& o : w.openings)
+      if (o.name.rfind("Front door + Fanlight (strip", 0) == 0) strips.push_back(&o);
+  ASSERT_GE(strips.size(), 3u);
+  double width = 0, highest = 0;
+  for (const Opening* o : strips) {
+    EXPECT_EQ(o->sill, 0);
+    EXPECT_GE(o->head, 2.0 - 1e-9);  // the door's head all across
+    EXPECT_LE(o->head, 2.3 + 1e-9);  // the fanlight's crown at most
+    width += o->width;
+    highest = std::max(highest, o->head);
+  }
+  EXPECT_NEAR(width, 0.8, 1e-6);
+  EXPECT_GT(highest, 2.25);
+  // The door is 4.6 … 5.4 m along the north wall, at y = 0: free under the crown, wall in
+  // the fanlight square's corner, free in the door's corner below it.
+  EXPECT_EQ(c.locate({5.0, 0, 2.2}).what, Location::What::Cell);
+  EXPECT_EQ(c.locate({4.61, 0, 2.25}).what, Location::What::Solid);
+  EXPECT_EQ(c.locate({4.61, 0, 1.95}).what, Location::What::Cell);
+}
+
 TEST(SweetHome, SlopedWallKeepsItsSlopeAndSlopesUnderTheCellsAboveIt) {
   TempDir dir;
   // 4 m long, 2.5 m high at its start (the ceiling), 0.5 m at its end; a door 1 m from the start.

@@ -318,15 +318,24 @@ struct PieceIn {
   double screen_angle = 0;  ///< [rad] clockwise on screen, as written
 };
 
+/// What one door or window opens of its wall: its span along the wall's centre line [m]
+/// (as read, before straightening), and from `sill` up to `head` [m] above the floor; or,
+/// not a rectangle (an arched or a round window), its cut-out, in the unit square of its
+/// face, x along the wall's centre line from a0 to a1, y down from its top, the square
+/// spanning `bottom` to `bottom + height` [m].
+struct HoleShape {
+  double a0 = 0, a1 = 0, sill = 0, head = 0;
+  std::vector<Vec2> shape;
+  double bottom = 0, height = 0;
+};
+
 /// A door or window on its way into the wall it sits in.
 struct Hole {
   double a0 = 0, a1 = 0;  ///< [m] its span along the wall's centre line (as read, before straightening)
   Opening o;              ///< name, kind, sill, head, where (at and width set last)
-  /// Not a rectangle (an arched or a round window): its cut-out, in the unit square of its
-  /// face, x along the wall's centre line from a0 to a1, y down from its top; and the
-  /// piece's bottom and height [m] above the floor, which that square spans.
-  std::vector<Vec2> shape;
-  double bottom = 0, height = 0;
+  /// What each door or window drawn into the others opens (one, where none overlaps it):
+  /// the opening cut is their union, in strips where it is no rectangle.
+  std::vector<HoleShape> shapes;
 };
 
 class HomeReader {
@@ -1061,6 +1070,65 @@ std::vector<CutOutStrip> cut_out_strips(const std::vector<Vec2>& shape, double h
   return out;
 }
 
+/// The openings a hole cuts on one straight piece of wall, where `whole` spans it: strips
+/// across it, between the ends of its doors and windows and their shapes' strips; each open
+/// over the union of what they open all across it (where that is not one interval, from
+/// the lowest to the highest, as one opening cut for both); neighbours open alike made one;
+/// none where all is shut. Heights are clipped to the storey's `ceiling` [m].
+std::vector<Opening> union_strips(const Hole& hole, const Opening& whole, double ceiling) {
+  struct Strip {
+    double u0, u1, sill, head;  // u: 0 … 1 across the hole
+  };
+  const double span = hole.a1 - hole.a0;
+  std::vector<Strip> own;
+  std::vector<double> cuts{0, 1};
+  for (const HoleShape& m : hole.shapes) {
+    const double u0 = (m.a0 - hole.a0) / span, u1 = (m.a1 - hole.a0) / span;
+    if (m.shape.empty()) {
+      own.push_back({u0, u1, m.sill, m.head});
+    } else {
+      for (const CutOutStrip& c : cut_out_strips(m.shape, m.height, (u1 - u0) * whole.width))
+        own.push_back({u0 + c.u0 * (u1 - u0), u0 + c.u1 * (u1 - u0), m.bottom + m.height * (1 - c.y1),
+                       m.bottom + m.height * (1 - c.y0)});
+    }
+  }
+  for (const Strip& o : own) cuts.push_back(o.u0), cuts.push_back(o.u1);
+  std::sort(cuts.begin(), cuts.end());
+  cuts.erase(std::unique(cuts.begin(), cuts.end(), [](double a, double b) { return b - a < 1e-9; }), cuts.end());
+  std::vector<Strip> out;
+  for (size_t k = 0; k + 1 < cuts.size(); ++k) {
+    const double u0 = cuts[k], u1 = cuts[k + 1];
+    std::vector<std::pair<double, double>> open;
+    for (const Strip& o : own)
+      if (o.u0 <= u0 + 1e-9 && o.u1 >= u1 - 1e-9 && o.head - o.sill >= kMinOpening)
+        open.push_back({std::max(0.0, o.sill), std::min(ceiling, o.head)});
+    Strip s{u0, u1, -1, -1};
+    if (!open.empty()) {
+      std::sort(open.begin(), open.end());
+      s.sill = open.front().first;
+      s.head = open.front().second;
+      for (const auto& [lo, hi] : open) s.head = std::max(s.head, hi);  // one interval, or their hull
+      if (s.head - s.sill < kMinOpening) s.sill = s.head = -1;
+    }
+    if (!out.empty() && out.back().sill == s.sill && out.back().head == s.head) out.back().u1 = u1;
+    else out.push_back(s);
+  }
+  out.erase(std::remove_if(out.begin(), out.end(), [](const Strip& s) { return s.head < 0; }), out.end());
+  std::vector<Opening> parts;
+  for (size_t k = 0; k < out.size(); ++k) {
+    Opening part = whole;
+    // Strips that touch share their end exactly; the last ends where the whole does.
+    part.at = k > 0 && out[k - 1].u1 == out[k].u0 ? parts.back().at + parts.back().width
+                                                   : whole.at + out[k].u0 * whole.width;
+    part.width = out[k].u1 == 1 ? whole.at + whole.width - part.at : whole.at + out[k].u1 * whole.width - part.at;
+    part.sill = out[k].sill;
+    part.head = out[k].head;
+    if (out.size() > 1) part.name += " (strip " + std::to_string(k + 1) + " of " + std::to_string(out.size()) + ")";
+    parts.push_back(part);
+  }
+  return parts;
+}
+
 /// Finds the wall a door or window sits in, as Sweet Home 3D's Wall3D cuts it: the wall of
 /// its storey, running parallel to its width, whose volume its footprint enters (an area
 /// of their intersection, not a touch); of several, the one whose centre line passes
@@ -1137,13 +1205,12 @@ void HomeReader::find_wall(PieceIn& p) {
                              "of its storey: no opening cut");
     return;
   }
+  HoleShape own{h.a0, h.a1, h.o.sill, h.o.head, {}, p.elevation, p.height};
   // An arched or round window: its cut-out along the wall (x from a0 to a1), unless the
   // wall's end clips it.
-  if (!p.wall_cut_out.empty() && h.a0 <= best_s - p.width / 2 + 1e-9 && h.a1 >= best_s + p.width / 2 - 1e-9) {
-    h.shape = wall_cut_out_shape(p.wall_cut_out, p.mirrored != !best_forward);
-    h.bottom = p.elevation;
-    h.height = p.height;
-  }
+  if (!p.wall_cut_out.empty() && h.a0 <= best_s - p.width / 2 + 1e-9 && h.a1 >= best_s + p.width / 2 - 1e-9)
+    own.shape = wall_cut_out_shape(p.wall_cut_out, p.mirrored != !best_forward);
+  h.shapes = {own};
   holes_.resize(drafts_.size());
   holes_[size_t(best_wall)].push_back(h);
 }
@@ -1202,7 +1269,7 @@ void HomeReader::cut_openings() {
         plan_.warnings.push_back(h.o.where.str() + ": overlaps " + m.o.where.element + " (line " +
                                  std::to_string(m.o.where.line) + ") in wall '" + w.name + "': one opening cut for both");
         m.a1 = std::max(m.a1, h.a1);
-        m.shape.clear();  // two shapes drawn into each other: their union's bounding rectangle
+        m.shapes.insert(m.shapes.end(), h.shapes.begin(), h.shapes.end());
         m.o.sill = std::min(m.o.sill, h.o.sill);
         m.o.head = std::max(m.o.head, h.o.head);
         if (h.o.kind == OpeningKind::Door) m.o.kind = OpeningKind::Door;
@@ -1272,28 +1339,11 @@ void HomeReader::cut_openings() {
         part.width = cum[k + 1] + 5e-10 - part.at;
         if (part.width >= kMinOpening || v1 == v0 + 1) parts.push_back(part);
       }
-      // An arched or round window on one straight piece: strips across it, each open over
-      // what the shape opens all across the strip.
-      if (!merged[j].shape.empty() && parts.size() == 1) {
-        const Hole& h = merged[j];
-        const Opening whole = parts[0];
+      // An arched or round window, or doors and windows drawn into each other, on one
+      // straight piece: strips across it, each open over what their union opens all across it.
+      if (parts.size() == 1 && (merged[j].shapes.size() > 1 || !merged[j].shapes[0].shape.empty())) {
         const Storey& st = plan_.storeys[size_t(w.storey)];
-        parts.clear();
-        const std::vector<CutOutStrip> strips = cut_out_strips(h.shape, h.height, whole.width);
-        for (size_t k = 0; k < strips.size(); ++k) {
-          Opening part = whole;
-          part.at = k == 0 ? whole.at : parts.back().at + parts.back().width;
-          part.width = k + 1 == strips.size() ? whole.at + whole.width - part.at : strips[k].u1 * whole.width - (part.at - whole.at);
-          part.sill = std::max(0.0, h.bottom + h.height * (1 - strips[k].y1));
-          part.head = std::min(st.height, h.bottom + h.height * (1 - strips[k].y0));
-          if (part.head - part.sill < kMinOpening) {  // shut here: the wall stands
-            part.sill = part.head = -1;
-          }
-          part.name += " (strip " + std::to_string(k + 1) + " of " + std::to_string(strips.size()) + ")";
-          parts.push_back(part);
-        }
-        parts.erase(std::remove_if(parts.begin(), parts.end(), [](const Opening& o) { return o.head < 0; }),
-                    parts.end());
+        parts = union_strips(merged[j], parts[0], st.height);
         w.openings.insert(w.openings.end(), parts.begin(), parts.end());
         continue;
       }

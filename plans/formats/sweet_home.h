@@ -17,7 +17,9 @@
 //                      on the façade) is a niche in Sweet Home, not a hole: none is cut;
 //                      one whose cutOutShape is no rectangle (an arched or round window,
 //                      an SVG path: svg_path.h) is cut in strips across it, each open over
-//                      what the shape opens all across it, stepped 4 cm at most where flat,
+//                      what the shape opens all across it, stepped 4 cm at most where flat;
+//                      doors and windows drawn into each other (a door under its fanlight)
+//                      are one opening, their union, in strips where it is no rectangle,
 //   <room>             into rooms labelled at a point well inside their polygon; a home of
 //                      rooms and no walls (Sweet Home shows floors in the open) gets a wall
 //                      of no thickness along each room edge, open its whole length and
