@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "plans/formats/ifc_building.h"
+#include "plans/formats/sweet_home.h"
 #include "plans/mesh.h"
 #include "tests/test_files.h"
 
@@ -103,6 +104,20 @@ TEST(FuzzRegressions, IfcInputsAreReadOrRefusedNamingTheFile) {
   for (const fs::path& f : files) {
     try {
       (void)avenues::read_ifc_building(f.string());
+    } catch (const avenues::PlanError& e) {
+      EXPECT_NE(std::string(e.what()).find(f.string()), std::string::npos) << e.what();
+    }
+  }
+}
+
+// Homes that once hung the Sweet Home reader (a cut-out's SVG path with numbers after a
+// closepath looped in place): each is now read, or refused naming the file, in no time.
+TEST(FuzzRegressions, HomesThatHungTheReaderAreReadOrRefusedNamingTheFile) {
+  const auto files = regressions("home");
+  ASSERT_GE(files.size(), 1u);
+  for (const fs::path& f : files) {
+    try {
+      (void)avenues::read_sweet_home(f.string());
     } catch (const avenues::PlanError& e) {
       EXPECT_NE(std::string(e.what()).find(f.string()), std::string::npos) << e.what();
     }

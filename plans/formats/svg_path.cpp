@@ -48,7 +48,9 @@ std::optional<std::vector<std::vector<Vec2>>> svg_path_polygons(std::string_view
   while (true) {
     skip();
     if (i >= d.size()) break;
+    const size_t at = i;
     if (std::isalpha(static_cast<unsigned char>(d[i]))) cmd = d[i++];
+    else if (std::toupper(static_cast<unsigned char>(cmd)) == 'Z') return std::nullopt;  // numbers after a closepath
     else if (cmd == 0) return std::nullopt;  // numbers before any command
     const bool rel = std::islower(static_cast<unsigned char>(cmd)) != 0;
     const Vec2 base = rel ? cur : Vec2{0, 0};
@@ -152,6 +154,7 @@ std::optional<std::vector<std::vector<Vec2>>> svg_path_polygons(std::string_view
       default:
         return std::nullopt;
     }
+    if (i == at) return std::nullopt;  // (every command reads something: no loop in place)
     last = up;
   }
   finish();
