@@ -24,6 +24,21 @@ std::vector<fs::path> regressions(const std::string& target) {
     for (const auto& e : fs::directory_iterator(dir)) out.push_back(e.path());
   return out;
 }
+
+/// Every regression input of `target` is read by `read`, or refused with a PlanError
+/// naming the file.
+template <class Read>
+void read_or_refused(const std::string& target, Read&& read) {
+  const auto files = regressions(target);
+  ASSERT_GE(files.size(), 1u);
+  for (const fs::path& f : files) {
+    try {
+      read(f.string());
+    } catch (const avenues::PlanError& e) {
+      EXPECT_NE(std::string(e.what()).find(f.string()), std::string::npos) << e.what();
+    }
+  }
+}
 }  // namespace
 
 // Each of these once ran OpenMesh out of memory. Each is now refused naming the file, or,
@@ -99,27 +114,11 @@ TEST(FuzzRegressions, WellFormedOffFilesStillRead) {
 }
 
 TEST(FuzzRegressions, IfcInputsAreReadOrRefusedNamingTheFile) {
-  const auto files = regressions("ifc");
-  ASSERT_GE(files.size(), 1u);
-  for (const fs::path& f : files) {
-    try {
-      (void)avenues::read_ifc_building(f.string());
-    } catch (const avenues::PlanError& e) {
-      EXPECT_NE(std::string(e.what()).find(f.string()), std::string::npos) << e.what();
-    }
-  }
+  read_or_refused("ifc", [](const std::string& f) { (void)avenues::read_ifc_building(f); });
 }
 
 // Homes that once hung the Sweet Home reader (a cut-out's SVG path with numbers after a
 // closepath looped in place): each is now read, or refused naming the file, in no time.
 TEST(FuzzRegressions, HomesThatHungTheReaderAreReadOrRefusedNamingTheFile) {
-  const auto files = regressions("home");
-  ASSERT_GE(files.size(), 1u);
-  for (const fs::path& f : files) {
-    try {
-      (void)avenues::read_sweet_home(f.string());
-    } catch (const avenues::PlanError& e) {
-      EXPECT_NE(std::string(e.what()).find(f.string()), std::string::npos) << e.what();
-    }
-  }
+  read_or_refused("home", [](const std::string& f) { (void)avenues::read_sweet_home(f); });
 }
