@@ -758,6 +758,20 @@ TEST(Ifc, GableWallsSlopeToTheirRidgeAndTheRoofIsTheTopStoreysTop) {
     for (const Wall& w : p.walls) gables += size_t(w.storey) + 1 == p.storeys.size() && w.sloped();
     EXPECT_EQ(gables, 2);
     EXPECT_GT(p.storeys.back().slab, 0);
+    // Those gables rise 4.6 m above its band: what is above stands as objects of the top
+    // storey, from the band's top to the ridge, not lost.
+    const Storey& top = p.storeys.back();
+    int above = 0;
+    for (const Object& o : p.objects) {
+      if (o.name.find("(above the top storey)") == std::string::npos) continue;
+      ++above;
+      ASSERT_TRUE(o.model);
+      double lo = HUGE_VAL, hi = -HUGE_VAL;
+      for (Vec3 v : o.model->vertices) lo = std::min(lo, v.z), hi = std::max(hi, v.z);
+      EXPECT_NEAR(lo, top.height + top.slab, 1e-6);
+      EXPECT_NEAR(hi, 6.892, 0.01);
+    }
+    EXPECT_EQ(above, 2);
   }
 }
 

@@ -84,6 +84,9 @@ struct Element {
   bool coloured = false;
   Box3 box;
   bool as_object = false;  ///< a wall or surface drawn as an object (it stands on no floor, lies on none)
+  /// [m] A wall of the top storey rising above its band (a gable over a flat ceiling, an
+  /// attic no space claims): what of it lies above this height is drawn as an object.
+  double above = HUGE_VAL;
   std::string kind;  ///< the file's own kind where Assimp read it as another (IFC4's "IfcSanitaryTerminal"), else empty
   std::string label() const { return (kind.empty() ? type : kind) + " '" + (name.empty() ? guid : name) + "'"; }
 };
@@ -769,6 +772,18 @@ class Builder {
           break;
         }
     }
+    // What of the top storey's walls rises above its band (its ceiling and slab) stands no
+    // storey's band: it is drawn as an object there, not lost.
+    if (!plan_.storeys.empty()) {
+      const Storey& top = plan_.storeys.back();
+      const double band_top = top.elevation + top.height + top.slab;
+      std::vector<uint8_t> on_top(elements_.size(), 0);
+      for (size_t k = 0; k < plan_.walls.size(); ++k)
+        if (size_t(plan_.walls[k].storey) + 1 == plan_.storeys.size()) on_top[wall_shape_[k].element] = 1;
+      for (size_t i = 0; i < elements_.size(); ++i)
+        if (on_top[i] && !elements_[i].as_object && elements_[i].box.hi.z > band_top + kOnFloor)
+          elements_[i].above = band_top;
+    }
   }
 
   /// Whether a roof covers the top storey: elements other than walls, spaces, doors and
@@ -1110,6 +1125,7 @@ class Builder {
   /// Everything else with a surface: an object with its own mesh, standing on its storey.
   void make_objects() {
     for (const Element& e : elements_) {
+      if (e.above < HUGE_VAL) add_part_above(e);
       if ((e.role != Role::Object && !e.as_object) || e.triangles.empty()) continue;
       const int s = storey_at(e.box.lo.z + 0.01);
       const double floor = plan_.storeys[size_t(s)].elevation;
@@ -1127,6 +1143,54 @@ class Builder {
       o.where = {path_, 0, 0, e.label()};
       plan_.objects.push_back(std::move(o));
     }
+  }
+
+  /// The part of wall e above e.above (the top storey's band), cut there, as an object of
+  /// the top storey.
+  void add_part_above(const Element& e) {
+    const double cut = e.above;
+    const int s = int(plan_.storeys.size()) - 1;
+    const double floor = plan_.storeys[size_t(s)].elevation;
+    // Corners shared as the element shares them, and each cut edge's point made once (from
+    // its ends in one order), so the part is as closed as the wall was.
+    std::vector<Vec3> v;
+    std::vector<int> kept(e.vertices.size(), -1);
+    std::map<std::pair<int, int>, int> cut_at;
+    auto corner = [&](int i) {
+      if (kept[size_t(i)] < 0) kept[size_t(i)] = int(v.size()), v.push_back(e.vertices[size_t(i)]);
+      return kept[size_t(i)];
+    };
+    auto crossing = [&](int i, int j) {
+      if (i > j) std::swap(i, j);
+      auto [it, fresh] = cut_at.try_emplace({i, j}, int(v.size()));
+      if (fresh) {
+        const Vec3 a = e.vertices[size_t(i)], b = e.vertices[size_t(j)];
+        const double f = (cut - a.z) / (b.z - a.z);
+        v.push_back({a.x + f * (b.x - a.x), a.y + f * (b.y - a.y), cut});
+      }
+      return it->second;
+    };
+    std::vector<std::vector<int>> polygons;
+    for (const auto& t : e.triangles) {
+      std::vector<int> poly;
+      for (int k = 0; k < 3; ++k) {
+        const int i = t[size_t(k)], j = t[size_t((k + 1) % 3)];
+        const double za = e.vertices[size_t(i)].z, zb = e.vertices[size_t(j)].z;
+        if (za >= cut) poly.push_back(corner(i));
+        if ((za < cut) != (zb < cut)) poly.push_back(crossing(i, j));
+      }
+      if (poly.size() >= 3) polygons.push_back(std::move(poly));
+    }
+    if (polygons.empty()) return;
+    for (Vec3& p : v) p.z -= floor;
+    Object o;
+    o.name = (e.name.empty() ? e.guid : e.name) + " (above the top storey)";
+    o.mesh = path_ + ":" + e.guid + ":above";
+    o.storey = s;
+    o.model = std::make_shared<const Mesh>(mesh_of_polygons(o.mesh, std::move(v), std::move(polygons)));
+    o.material = material_of(e);
+    o.where = {path_, 0, 0, e.label()};
+    plan_.objects.push_back(std::move(o));
   }
 
   /// The first view: at eye height in the largest named space of the entrance storey (the
