@@ -161,4 +161,12 @@ std::optional<std::vector<std::vector<Vec2>>> svg_path_polygons(std::string_view
   return out;
 }
 
+std::vector<Vec2> svg_path_outline(std::string_view d) {
+  std::vector<Vec2> best;
+  if (const auto polys = svg_path_polygons(d))
+    for (const auto& poly : *polys)
+      if (poly.size() >= 3 && std::fabs(signed_area(poly)) > std::fabs(signed_area(best))) best = poly;
+  return best;
+}
+
 }  // namespace avenues

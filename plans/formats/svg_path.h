@@ -21,4 +21,8 @@ namespace avenues {
 /// path does not follow the grammar (an unknown command, a number missing or not finite).
 std::optional<std::vector<std::vector<Vec2>>> svg_path_polygons(std::string_view d, int pieces = 16);
 
+/// The path's outline: its subpath enclosing the largest area (a cut-out is one hole);
+/// empty when the path does not parse or no subpath encloses any area.
+std::vector<Vec2> svg_path_outline(std::string_view d);
+
 }  // namespace avenues

@@ -77,12 +77,6 @@ constexpr double kTouch = 0.001;        ///< [m] a door or window entering a wal
 constexpr double kMinOpening = 0.01;    ///< [m] narrower or lower openings (and lower walls) are dropped
 constexpr double kDefaultSlab = 0.12;   ///< [m] Sweet Home's default floor thickness
 
-double polyline_length(const std::vector<Vec2>& c) {
-  double l = 0;
-  for (size_t i = 0; i + 1 < c.size(); ++i) l += length(c[i + 1] - c[i]);
-  return l;
-}
-
 /// A Sweet Home colour ("FF8080C0": ARGB in hex, as HomeXMLExporter writes it; alpha
 /// ignored) as linear RGB; nullopt when it is not one.
 std::optional<std::array<double, 3>> colour_of(const std::string& hex) {
@@ -1009,14 +1003,10 @@ void HomeReader::read_light_sources(const HomeElement& n, const std::string& ele
 /// square, or a path that does not parse or encloses nothing (then the whole square is cut,
 /// as the shape's bounds are).
 std::vector<Vec2> wall_cut_out_shape(const std::string& path, bool flip) {
-  const auto polys = svg_path_polygons(path);
-  if (!polys) return {};
-  const std::vector<Vec2>* best = nullptr;
-  for (const auto& poly : *polys)
-    if (poly.size() >= 3 && (!best || std::fabs(signed_area(poly)) > std::fabs(signed_area(*best)))) best = &poly;
-  if (!best || std::fabs(signed_area(*best)) < 1e-6) return {};
+  const std::vector<Vec2> outline = svg_path_outline(path);
+  if (std::fabs(signed_area(outline)) < 1e-6) return {};
   std::vector<Vec2> out;
-  for (Vec2 u : *best) out.push_back({flip ? 1 - u.x : u.x, u.y});
+  for (Vec2 u : outline) out.push_back({flip ? 1 - u.x : u.x, u.y});
   if (std::fabs(std::fabs(signed_area(out)) - 1) < 1e-6) return {};  // the square itself
   return out;
 }
@@ -1191,7 +1181,7 @@ void HomeReader::find_wall(PieceIn& p) {
   }
   const Wall& w = drafts_[size_t(best_wall)].wall;
   const Storey& st = plan_.storeys[size_t(w.storey)];
-  const double total = polyline_length(w.centre);
+  const double total = w.length();
   Hole h;
   h.a0 = std::max(0.0, best_s - p.width / 2);
   h.a1 = std::min(total, best_s + p.width / 2);
@@ -1381,7 +1371,7 @@ void HomeReader::finish_walls() {
     }
     // A wall of no thickness has no top to slope: its top becomes steps of constant height
     // (the mean over the piece), at most kStep apart, never cut inside an opening.
-    const double len = polyline_length(d.wall.centre);
+    const double len = d.wall.length();
     const double rise = d.h1 - d.h0;
     const double most = std::clamp(std::floor(len / kMinStepPiece), 1.0, 1000.0);  // pieces
     const int n = int(std::clamp(std::ceil(std::fabs(rise) / kStep - 1e-9), 1.0, most));
@@ -1590,11 +1580,8 @@ void HomeReader::read_rooms(std::vector<RoomIn> rooms) {
 /// its depth, y down) as a polygon in plan: its largest subpath (curves flattened); a path
 /// that does not parse, or encloses nothing, is taken as the whole footprint.
 std::vector<Vec2> cut_out_outline(const PieceIn& p) {
-  std::vector<Vec2> unit;
-  if (const auto polys = svg_path_polygons(p.cut_out))
-    for (const auto& poly : *polys)
-      if (poly.size() >= 3 && std::fabs(signed_area(poly)) > std::fabs(signed_area(unit))) unit = poly;
-  if (unit.size() < 3 || std::fabs(signed_area(unit)) < 1e-9) unit = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
+  std::vector<Vec2> unit = svg_path_outline(p.cut_out);
+  if (std::fabs(signed_area(unit)) < 1e-9) unit = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
   // Unit square → piece (screen axes: x along the width, y along the depth, both in the
   // y-down plane the angle turns clockwise in) → plan.
   const Vec2 ax{std::cos(p.angle), std::sin(p.angle)};  // width axis, in plan
