@@ -1127,30 +1127,33 @@ class Builder {
     for (const Element& e : elements_) {
       if (e.above < HUGE_VAL) add_part_above(e);
       if ((e.role != Role::Object && !e.as_object) || e.triangles.empty()) continue;
-      const int s = storey_at(e.box.lo.z + 0.01);
-      const double floor = plan_.storeys[size_t(s)].elevation;
-      std::vector<Vec3> v = e.vertices;
-      for (Vec3& p : v) p.z -= floor;
       std::vector<std::vector<int>> polygons;
       polygons.reserve(e.triangles.size());
       for (const auto& t : e.triangles) polygons.push_back({t[0], t[1], t[2]});
-      Object o;
-      o.name = e.name.empty() ? e.guid : e.name;
-      o.mesh = path_ + ":" + e.guid;
-      o.storey = s;
-      o.model = std::make_shared<const Mesh>(mesh_of_polygons(o.mesh, std::move(v), std::move(polygons)));
-      o.material = material_of(e);
-      o.where = {path_, 0, 0, e.label()};
-      plan_.objects.push_back(std::move(o));
+      add_object(e, "", storey_at(e.box.lo.z + 0.01), e.vertices, std::move(polygons));
     }
+  }
+
+  /// Element e's polygons over vertices v (world [m]) as an object of storey s, its name
+  /// and mesh key marked with `part` ("" for the whole element).
+  void add_object(const Element& e, const std::string& part, int s, std::vector<Vec3> v,
+                  std::vector<std::vector<int>> polygons) {
+    const double floor = plan_.storeys[size_t(s)].elevation;
+    for (Vec3& p : v) p.z -= floor;
+    Object o;
+    o.name = (e.name.empty() ? e.guid : e.name) + (part.empty() ? "" : " (" + part + ")");
+    o.mesh = path_ + ":" + e.guid + (part.empty() ? "" : ":" + part);
+    o.storey = s;
+    o.model = std::make_shared<const Mesh>(mesh_of_polygons(o.mesh, std::move(v), std::move(polygons)));
+    o.material = material_of(e);
+    o.where = {path_, 0, 0, e.label()};
+    plan_.objects.push_back(std::move(o));
   }
 
   /// The part of wall e above e.above (the top storey's band), cut there, as an object of
   /// the top storey.
   void add_part_above(const Element& e) {
     const double cut = e.above;
-    const int s = int(plan_.storeys.size()) - 1;
-    const double floor = plan_.storeys[size_t(s)].elevation;
     // Corners shared as the element shares them, and each cut edge's point made once (from
     // its ends in one order), so the part is as closed as the wall was.
     std::vector<Vec3> v;
@@ -1181,16 +1184,8 @@ class Builder {
       }
       if (poly.size() >= 3) polygons.push_back(std::move(poly));
     }
-    if (polygons.empty()) return;
-    for (Vec3& p : v) p.z -= floor;
-    Object o;
-    o.name = (e.name.empty() ? e.guid : e.name) + " (above the top storey)";
-    o.mesh = path_ + ":" + e.guid + ":above";
-    o.storey = s;
-    o.model = std::make_shared<const Mesh>(mesh_of_polygons(o.mesh, std::move(v), std::move(polygons)));
-    o.material = material_of(e);
-    o.where = {path_, 0, 0, e.label()};
-    plan_.objects.push_back(std::move(o));
+    if (!polygons.empty())
+      add_object(e, "above the top storey", int(plan_.storeys.size()) - 1, std::move(v), std::move(polygons));
   }
 
   /// The first view: at eye height in the largest named space of the entrance storey (the
