@@ -101,6 +101,9 @@ struct DistantEye {
   double scale = 1;  ///< parallel picture-plane coordinates [m] to the distant camera's
 };
 
+/// [m] the nearest a picture's near plane comes to the eye (an eye on a face of its cell).
+constexpr double kNearest = 1e-5;
+
 DistantEye distant_eye(const Camera& cam, const Box3& far_box, int per_side) {
   double reach = 1;  // [m] how far the far box lies beyond (or before) the picture plane
   for (int k = 0; k < 8; ++k) {
@@ -136,7 +139,17 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
   out.clear();
   const bool parallel = view_camera.is_parallel();
   const DistantEye distant = parallel ? distant_eye(view_camera, complex.far_box, view_options.per_side) : DistantEye{};
-  const Camera& camera = parallel ? distant.camera : view_camera;
+  // Perspective: the near plane no farther than half the eye's way to its cell's nearest
+  // face. An eye a few millimetres from a wall would otherwise cut the wall away: a
+  // picture cut at its masks then shows nothing there, and one resolved by depth (the
+  // hull search's) whatever lies behind the wall.
+  Camera near_camera = view_camera;
+  if (!parallel && visible.eye_cell >= 0 && size_t(visible.eye_cell) < complex.cells.size())
+    for (const Face& f : complex.cells[size_t(visible.eye_cell)].faces) {
+      const double clearance = std::fabs(f.plane.eval(view_camera.eye)) / length(f.plane.n);
+      near_camera.near = std::min(near_camera.near, std::max(0.5 * clearance, kNearest));
+    }
+  const Camera& camera = parallel ? distant.camera : near_camera;
   SceneOptions options = view_options;
   if (parallel && visible.cut) options.cut = visible.cut;
   ScreenSceneBuilder b(camera, options, out);

@@ -16,7 +16,9 @@
 #include "render/raster_srgb.h"
 #include "app/paper_bench.h"
 #include "render/scenes.h"
+#include "render/scene_objects.h"
 #include "visibility/viewpoint.h"
+#include "visibility/visible_set.h"
 
 namespace fs = std::filesystem;
 using namespace avenues;
@@ -414,4 +416,74 @@ TEST(PaperScenes, TheTableRunsEveryScene) {
   const std::string table = papers_table(rows);
   EXPECT_NE(table.find("ripple-torus"), std::string::npos);
   EXPECT_NE(table.find("77,776"), std::string::npos);  // Bouknight's depth sorts beside ours
+}
+
+// An eye 3 mm from a pier 6 mm wide between two doorways, looking straight at it, a crate
+// beyond the wall seen through both doorways. The near plane (1 cm) once cut the pier
+// away: the picture cut at its masks then showed nothing there, and the one resolved by
+// depth (the hull search's, the walkthrough's: the crate's room is searched through the
+// hull of its two pieces of view, which spans the pier) showed the crate through the
+// pier. Now the near plane comes no farther than half the eye's way to its cell's nearest
+// face, and both pictures show the pier.
+TEST(Halftone, AnEyeMillimetresFromAPierSeesThePierNotWhatLiesBehindIt) {
+  Plan p;
+  p.name = "a pier before the eye";
+  p.far_margin = 3;
+  p.storeys.push_back({"ground", 0, 2.5, 0.3, {}});
+  auto wall = [](const std::string& name, std::vector<Vec2> centre) {
+    Wall w;
+    w.name = name;
+    w.centre = std::move(centre);
+    w.thickness = 0.2;
+    return w;
+  };
+  auto doorway = [](const std::string& name, double at, double width) {
+    Opening o;
+    o.name = name;
+    o.kind = OpeningKind::Door;
+    o.at = at, o.width = width, o.sill = 0, o.head = 2.1;
+    return o;
+  };
+  Wall middle = wall("middle", {{4, 0}, {4, 4}});
+  middle.openings = {doorway("south", 1.0, 0.997), doorway("north", 2.003, 0.997)};  // the pier: y 1.997–2.003
+  p.walls = {wall("box", {{0, 0}, {8, 0}, {8, 4}, {0, 4}, {0, 0}}), middle};
+  Room west, east;
+  west.name = "west", west.label = Vec2{2, 2};
+  east.name = "east", east.label = Vec2{6, 2};
+  p.rooms = {west, east};
+  Object crate;
+  crate.name = "crate";
+  crate.box = {2, 3, 2};
+  crate.position = {6, 2, 0};
+  p.objects = {crate};
+  const CellComplex c = build_cells(p);
+  const std::vector<PlacedObject> objects = place_objects(c);
+  ASSERT_EQ(objects.size(), 1u);
+  const Camera cam = Camera::look_at({3.897, 2, 1.2}, {5, 2, 1.2}, 120, 96, 64);
+  const CellId eye_cell = c.locate(cam.eye).cell;
+  ASSERT_NE(eye_cell, kNoCell);
+  HalftoneOptions o;
+  o.threads = 1;
+  Image masked, by_depth;
+  for (const bool hull : {false, true}) {
+    TraverseParams params;
+    params.merge_pieces = true;
+    params.hull_pieces = hull;
+    render_view(c, objects, cam, find_visible(c, cam, eye_cell, params), o, hull ? by_depth : masked);
+  }
+  ASSERT_EQ(masked.data.size(), by_depth.data.size());
+  // The pier fills the middle half of the picture; the two agree but along its edges.
+  int differ = 0;
+  for (size_t i = 0; i < masked.data.size(); i += 3)
+    differ += !std::equal(&masked.data[i], &masked.data[i] + 3, &by_depth.data[i]);
+  EXPECT_LE(differ, 2 * 64) << "the pictures differ in " << differ << " pixels";
+  // Straight ahead, the pier's shade in both, not the crate's.
+  const size_t mid = (size_t(32) * 96 + 48) * 3;
+  Image bare;
+  const std::vector<PlacedObject> none;
+  TraverseParams params;
+  params.merge_pieces = params.hull_pieces = true;
+  render_view(c, none, cam, find_visible(c, cam, eye_cell, params), o, bare);
+  EXPECT_TRUE(std::equal(&by_depth.data[mid], &by_depth.data[mid] + 3, &bare.data[mid]));
+  EXPECT_TRUE(std::equal(&masked.data[mid], &masked.data[mid] + 3, &bare.data[mid]));
 }
