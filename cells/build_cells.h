@@ -9,8 +9,12 @@
 //                  exact intersections) of every outline of every storey and the far box;
 //   3. classify  — each triangle, per height band, is solid, or free space of one
 //                  room / doorway / stairwell / the outside;
+//   3b. cut      — each band's free regions triangulated again from their own
+//                  boundaries; where that parts them into fewer convex pieces, its
+//                  diagonals are added to the one triangulation as that band's cuts
+//                  (band_cuts.cpp);
 //   4. merge     — Hertel–Mehlhorn: adjacent free triangles of one class are merged
-//                  while convex, giving convex footprints;
+//                  while convex (never across a cut of the band), giving convex footprints;
 //   5. extrude   — footprints become prisms; shared edges become portals, stacked
 //                  footprints horizontal portals, the rest opaque faces;
 //   6. lines     — the real lines of the architecture, assigned to the cells they bound.

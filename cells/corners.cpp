@@ -17,7 +17,7 @@ bool rounding_apart(Vec2 a, Vec2 b) {
   return std::fabs(a.x - b.x) + std::fabs(a.y - b.y) <= 1e-12 * (1 + std::fabs(a.x) + std::fabs(a.y));
 }
 
-void corners_of(const std::vector<Vec2>& ring, std::vector<Corner>& out) {
+void corners_of(const std::vector<Vec2>& ring, std::vector<Corner>& out, const std::vector<uint8_t>* made) {
   const size_t m = ring.size();
   out.assign(m, Corner::Repeat);
   // The nearest point before or after k that is not a rounding from ring[k].
@@ -31,14 +31,21 @@ void corners_of(const std::vector<Vec2>& ring, std::vector<Corner>& out) {
   for (size_t k = 0; k < m; ++k) {
     if (rounding_apart(ring[k], ring[(k + m - 1) % m])) continue;  // a repeat: its run's first stands for it
     const Vec2 a = distinct(k, false), b = ring[k], c = distinct(k, true);
-    const int turn = orientation(a, b, c);
+    int turn = orientation(a, b, c);
+    // Where a cut crossed an edge the point lies on both exactly: a turn there within its
+    // rounding (far below a nanometre) is none.
+    if (turn != 0 && made && (*made)[k] && dot(b - a, c - b) > 0) {
+      const double off = std::fabs(cross(c - a, b - a)) / length(c - a);
+      if (off <= 64 * 2.220446049250313e-16 * (1 + std::fabs(b.x) + std::fabs(b.y))) turn = 0;
+    }
     out[k] = turn > 0 ? Corner::Left : turn < 0 ? Corner::Right
              : dot(b - a, c - b) < 0 ? Corner::Reversal : Corner::Straight;
   }
 }
 
-bool convex_footprint(const std::vector<Vec2>& ring, std::vector<Corner>& corners, std::vector<Vec2>& points) {
-  corners_of(ring, corners);
+bool convex_footprint(const std::vector<Vec2>& ring, std::vector<Corner>& corners, std::vector<Vec2>& points,
+                      const std::vector<uint8_t>* made) {
+  corners_of(ring, corners, made);
   points.clear();
   for (size_t k = 0; k < ring.size(); ++k) {
     if (corners[k] == Corner::Right || corners[k] == Corner::Reversal) return false;

@@ -38,8 +38,11 @@ Outline2 footprint_of(const Triangulation& T, const std::vector<int32_t>& bounda
   // corner is judged against its nearest distinct neighbours (corners_of), as merging judged it.
   std::vector<Vec2> ring(m);
   for (size_t k = 0; k < m; ++k) ring[k] = from(boundary[k]);
+  std::vector<uint8_t> made;
+  if (!T.cut_made.empty())
+    for (size_t k = 0; k < m; ++k) made.push_back(T.cut_made[size_t(T.tri[size_t(boundary[k] / 3)][size_t((boundary[k] % 3 + 1) % 3)])]);
   std::vector<Corner> corner;
-  corners_of(ring, corner);
+  corners_of(ring, corner, made.empty() ? nullptr : &made);
   std::vector<uint8_t> keep(m);
   for (size_t k = 0; k < m; ++k) keep[k] = corner[k] == Corner::Left || corner[k] == Corner::Right;
   size_t first = 0;
@@ -123,12 +126,7 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
   // --- 4. merge, per band; 5a. one cell per piece and open interval.
   for (size_t b = 0; b < C.bands.size(); ++b) {
     const Band& band = C.bands[b];
-    std::vector<uint8_t> barrier;
-    if (band.kind == Band::Kind::Storey) {
-      barrier.assign(size_t(3 * n), 0);
-      for (int32_t h = 0; h < 3 * n; ++h) barrier[size_t(h)] = has_sheet_of_storey(outline, T, h, band.storey);
-    }
-    L.pieces.push_back(merge_convex(T, C.of[b], barrier));
+    L.pieces.push_back(merge_convex(T, C.of[b], band_barrier(outline, T, band, b)));
     const Pieces& P = L.pieces.back();
     L.cells_of.emplace_back(P.boundary.size());
     for (size_t p = 0; p < P.boundary.size(); ++p) {

@@ -46,11 +46,15 @@ Pieces merge_convex(const Triangulation& T, const std::vector<int32_t>& label, c
   // (a pinch: the piece would be two) or to points a rounding apart, whose side's direction
   // is noise (a corner judged against it can turn right once the noise is dropped).
   std::vector<Vec2> ring, points;
+  std::vector<uint8_t> made;
   std::vector<Corner> corners;
   auto convex = [&](const std::vector<int32_t>& cycle) {
     ring.clear();
+    made.clear();
     for (int32_t e : cycle) ring.push_back(T.vert[size_t(from(e))]);
-    return convex_footprint(ring, corners, points);
+    if (T.cut_made.empty()) return convex_footprint(ring, corners, points);
+    for (int32_t e : cycle) made.push_back(T.cut_made[size_t(from(e))]);
+    return convex_footprint(ring, corners, points, &made);
   };
 
   // Fast path: a connected region of one label whose whole boundary is one convex cycle

@@ -58,6 +58,22 @@ inline bool has_sheet_of_storey(const Outline& o, const Triangulation& T, int h,
   return false;
 }
 
+/// Whether a cut of band b lies on half-edge h.
+inline bool has_cut_of_band(const Triangulation& T, int h, size_t b) {
+  if (T.cut_start.empty()) return false;
+  for (int32_t k = T.cut_start[size_t(h)]; k < T.cut_start[size_t(h) + 1]; ++k)
+    if (size_t(T.cut_items[size_t(k)]) == b) return true;
+  return false;
+}
+
+/// Per half-edge, whether band b's pieces may not be merged across it: a sheet of the
+/// band's storey, or one of the band's cuts. Empty where nothing bars merging.
+std::vector<uint8_t> band_barrier(const Outline& outline, const Triangulation& T, const Band& band, size_t b);
+
+/// Pass 3b: where the triangulation of every storey's outlines parts a band's free space
+/// into more pieces than that space needs, the cuts that part it well (cells/band_cuts.cpp).
+std::vector<Cut> band_cuts(const Outline& outline, const Triangulation& T, const Classes& C);
+
 /// Points a rounding apart: distinct in the exact triangulation, within a few ulps once
 /// rounded (or equal). A footprint takes them as one point: the turn between them is noise.
 bool rounding_apart(Vec2 a, Vec2 b);
@@ -67,11 +83,13 @@ bool rounding_apart(Vec2 a, Vec2 b);
 /// turn it makes between its nearest neighbours that are not a rounding from it
 /// (cells/corners.cpp).
 enum class Corner : uint8_t { Repeat, Straight, Left, Right, Reversal };
-void corners_of(const std::vector<Vec2>& ring, std::vector<Corner>& out);
+/// `made` (may be null): per point of the ring, whether a cut made it (Triangulation::cut_made).
+void corners_of(const std::vector<Vec2>& ring, std::vector<Corner>& out, const std::vector<uint8_t>* made = nullptr);
 
 /// Whether a closed boundary's footprint is convex: no corner turns right or back on
 /// itself, and the boundary winds once. `corners` and `points` are scratch.
-bool convex_footprint(const std::vector<Vec2>& ring, std::vector<Corner>& corners, std::vector<Vec2>& points);
+bool convex_footprint(const std::vector<Vec2>& ring, std::vector<Corner>& corners, std::vector<Vec2>& points,
+                      const std::vector<uint8_t>* made = nullptr);
 
 /// Pass 4: Hertel–Mehlhorn merging. Triangles with equal label >= 0 are merged across
 /// edges not marked as barriers while the union stays convex. Returns a piece index per

@@ -9,6 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
+#include <unordered_set>
 
 #include "cells/triangulation.h"
 
@@ -67,30 +69,24 @@ int orientation(Vec2 a, Vec2 b, Vec2 c) {
   return int(CGAL::orientation(Ik::Point_2(a.x, a.y), Ik::Point_2(b.x, b.y), Ik::Point_2(c.x, c.y)));
 }
 
-Triangulation triangulate(const Outline& outline, const std::vector<Vec2>& points) {
-  // Every outline edge becomes a constraint; exact intersections split crossing ones.
-  std::vector<Point> pts;
-  std::vector<std::pair<size_t, size_t>> segs;
-  auto add_loop = [&](const std::vector<Vec2>& loop, bool closed) {
-    size_t base = pts.size();
-    for (Vec2 v : loop) pts.push_back(P(v));
-    size_t n = loop.size();
-    for (size_t i = 0; i + (closed ? 0 : 1) < n; ++i) segs.push_back({base + i, base + (i + 1) % n});
-  };
-  add_loop({outline.lo, {outline.hi.x, outline.lo.y}, outline.hi, {outline.lo.x, outline.hi.y}}, true);
-  for (const Region& r : outline.regions) add_loop(r.poly, !r.sheet);
-  for (const auto& h : outline.holes) add_loop(h, true);
-  // Drop zero-length constraints (coincident points), which CGAL rejects.
-  segs.erase(std::remove_if(segs.begin(), segs.end(), [&](auto s) { return pts[s.first] == pts[s.second]; }),
-             segs.end());
-
+struct ExactTriangulation::Exact {
   CDT cdt;
-  cdt.insert_constraints(pts.begin(), pts.end(), segs.begin(), segs.end());
+  std::vector<CDT::Vertex_handle> handle;  ///< per vertex of the rounded triangulation
+};
 
+namespace {
+
+/// The CDT rounded once: vertices, triangles, neighbours, and what covers each triangle
+/// and lies on each edge (regions, holes, sheets, and the cuts given).
+Triangulation round_off(CDT& cdt, std::vector<CDT::Vertex_handle>& handle, const Outline& outline,
+                        const std::vector<Vec2>& points, const std::vector<std::array<Point, 2>>& cut_segments,
+                        const std::vector<int32_t>& cut_bands) {
   Triangulation T;
+  handle.clear();
   for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
     v->info() = int32_t(T.vert.size());
     T.vert.push_back({CGAL::to_double(v->point().x()), CGAL::to_double(v->point().y())});
+    handle.push_back(v);
   }
   int32_t nf = 0;
   for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) f->info() = nf++;
@@ -122,9 +118,14 @@ Triangulation triangulate(const Outline& outline, const std::vector<Vec2>& point
     for (Vec2 v : outline.holes[h]) exact_holes.back().push_back(P(v));
     hole_grid.add(int32_t(h), outline.holes[h]);
   }
+  Grid cut_grid(outline.lo, outline.hi, cut_segments.size());
+  for (size_t k = 0; k < cut_segments.size(); ++k)
+    cut_grid.add(int32_t(k), {{CGAL::to_double(cut_segments[k][0].x()), CGAL::to_double(cut_segments[k][0].y())},
+                              {CGAL::to_double(cut_segments[k][1].x()), CGAL::to_double(cut_segments[k][1].y())}});
   T.region_start.assign(1, 0);
   T.hole_start.assign(1, 0);
   T.sheet_start.assign(1, 0);
+  if (!cut_segments.empty()) T.cut_start.assign(1, 0);
   for (int t = 0; t < nf; ++t) {
     auto f = faces[size_t(t)];
     Point c = CGAL::centroid(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
@@ -139,7 +140,8 @@ Triangulation triangulate(const Outline& outline, const std::vector<Vec2>& point
           CGAL::ON_BOUNDED_SIDE)
         T.hole_items.push_back(h);
     T.hole_start.push_back(int32_t(T.hole_items.size()));
-    // Sheets (walls of no thickness) lying on each constrained edge: its midpoint on the sheet.
+    // Sheets (walls of no thickness) lying on each constrained edge: its midpoint on the
+    // sheet; likewise the cuts.
     for (int i = 0; i < 3; ++i) {
       if (f->is_constrained(i)) {
         const Point& a = f->vertex((i + 1) % 3)->point();
@@ -153,8 +155,17 @@ Triangulation triangulate(const Outline& outline, const std::vector<Vec2>& point
           if (CGAL::collinear(s[0], s[1], mid) && CGAL::collinear_are_ordered_along_line(s[0], mid, s[1]))
             T.sheet_items.push_back(r);
         }
+        if (!cut_segments.empty())
+          for (int32_t k : cut_grid.at(md)) {
+            const auto& s = cut_segments[size_t(k)];
+            if (CGAL::collinear(s[0], s[1], mid) && CGAL::collinear_are_ordered_along_line(s[0], mid, s[1]) &&
+                std::find(T.cut_items.begin() + T.cut_start.back(), T.cut_items.end(), cut_bands[size_t(k)]) ==
+                    T.cut_items.end())
+              T.cut_items.push_back(cut_bands[size_t(k)]);
+          }
       }
       T.sheet_start.push_back(int32_t(T.sheet_items.size()));
+      if (!cut_segments.empty()) T.cut_start.push_back(int32_t(T.cut_items.size()));
     }
   }
   // Locate query points (room labels).
@@ -163,6 +174,119 @@ Triangulation triangulate(const Outline& outline, const std::vector<Vec2>& point
     T.label_tri.push_back(f == nullptr || cdt.is_infinite(f) ? -1 : f->info());
   }
   return T;
+}
+
+}  // namespace
+
+ExactTriangulation::ExactTriangulation(const Outline& outline, const std::vector<Vec2>& points)
+    : exact_(std::make_unique<Exact>()), outline_(outline), points_(points) {
+  // Every outline edge becomes a constraint; exact intersections split crossing ones.
+  std::vector<Point> pts;
+  std::vector<std::pair<size_t, size_t>> segs;
+  auto add_loop = [&](const std::vector<Vec2>& loop, bool closed) {
+    size_t base = pts.size();
+    for (Vec2 v : loop) pts.push_back(P(v));
+    size_t n = loop.size();
+    for (size_t i = 0; i + (closed ? 0 : 1) < n; ++i) segs.push_back({base + i, base + (i + 1) % n});
+  };
+  add_loop({outline.lo, {outline.hi.x, outline.lo.y}, outline.hi, {outline.lo.x, outline.hi.y}}, true);
+  for (const Region& r : outline.regions) add_loop(r.poly, !r.sheet);
+  for (const auto& h : outline.holes) add_loop(h, true);
+  // Drop zero-length constraints (coincident points), which CGAL rejects.
+  segs.erase(std::remove_if(segs.begin(), segs.end(), [&](auto s) { return pts[s.first] == pts[s.second]; }),
+             segs.end());
+  exact_->cdt.insert_constraints(pts.begin(), pts.end(), segs.begin(), segs.end());
+  rounded_ = round_off(exact_->cdt, exact_->handle, outline_, points_, {}, {});
+}
+
+ExactTriangulation::~ExactTriangulation() = default;
+
+std::vector<int32_t> ExactTriangulation::cut(const std::vector<Cut>& cuts, const std::vector<uint8_t>& keep) {
+  CDT& cdt = exact_->cdt;
+  // The edges to keep become constraints, so that no triangle after straddles one: each
+  // lies where the triangles before it agree (the caller keeps every edge between
+  // triangles it tells apart).
+  const Triangulation& T = rounded_;
+  for (int t = 0; t < T.size(); ++t)
+    for (int i = 0; i < 3; ++i) {
+      const int32_t u = T.nbr[size_t(t)][size_t(i)];
+      if (!keep[3 * size_t(t) + size_t(i)] || u < 0 || u < t) continue;
+      const auto a = exact_->handle[size_t(T.tri[size_t(t)][size_t((i + 1) % 3)])];
+      const auto b = exact_->handle[size_t(T.tri[size_t(t)][size_t((i + 2) % 3)])];
+      CDT::Face_handle f;
+      int j = 0;
+      if (cdt.is_edge(a, b, f, j) && !cdt.is_constrained({f, j})) cdt.insert_constraint(a, b);
+    }
+  const CDT before = cdt;
+  std::vector<CDT::Vertex_handle> before_vertex(T.vert.size());
+  for (auto v = before.finite_vertices_begin(); v != before.finite_vertices_end(); ++v) before_vertex[size_t(v->info())] = v;
+  std::unordered_set<const void*> known;
+  for (const auto& v : exact_->handle) known.insert(&*v);
+  std::vector<std::array<Point, 2>> segments;
+  std::vector<int32_t> bands;
+  for (const Cut& c : cuts) {
+    const auto a = exact_->handle[size_t(c.a)], b = exact_->handle[size_t(c.b)];
+    if (a == b) continue;
+    segments.push_back({a->point(), b->point()});
+    bands.push_back(c.band);
+    cdt.insert_constraint(a, b);
+  }
+  // Each triangle after: the triangle before that holds its centroid, looked for from a
+  // corner it shares with the triangulation before (its vertex's index is still the old one).
+  std::unordered_map<const void*, int32_t> parent_of;
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+    CDT::Face_handle hint;
+    for (int k = 0; k < 3 && hint == CDT::Face_handle(); ++k)
+      if (known.count(&*f->vertex(k))) hint = before_vertex[size_t(f->vertex(k)->info())]->face();
+    const Point c = CGAL::centroid(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
+    const CDT::Face_handle in = before.locate(c, hint);
+    parent_of[&*f] = before.is_infinite(in) ? -1 : in->info();
+  }
+  rounded_ = round_off(cdt, exact_->handle, outline_, points_, segments, bands);
+  rounded_.cut_made.assign(rounded_.vert.size(), 0);
+  for (size_t v = 0; v < exact_->handle.size(); ++v) rounded_.cut_made[v] = !known.count(&*exact_->handle[v]);
+  std::vector<int32_t> parent(rounded_.tri.size(), -1);
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) parent[size_t(f->info())] = parent_of.at(&*f);
+  return parent;
+}
+
+SegmentTriangulation triangulate_segments(const std::vector<Vec2>& points,
+                                          const std::vector<std::array<int32_t, 2>>& segments) {
+  CDT cdt;
+  std::vector<CDT::Vertex_handle> vh;
+  vh.reserve(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    vh.push_back(cdt.insert(P(points[i])));
+    vh.back()->info() = int32_t(i);
+  }
+  for (auto [a, b] : segments)
+    if (vh[size_t(a)] != vh[size_t(b)]) cdt.insert_constraint(vh[size_t(a)], vh[size_t(b)]);
+  SegmentTriangulation out;
+  Triangulation& T = out.T;
+  T.vert = points;
+  std::unordered_set<const void*> known;
+  for (const auto& v : vh) known.insert(&*v);
+  for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
+    if (known.count(&*v)) continue;
+    out.crossed = true;
+    v->info() = int32_t(T.vert.size());
+    T.vert.push_back({CGAL::to_double(v->point().x()), CGAL::to_double(v->point().y())});
+  }
+  int32_t nf = 0;
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) f->info() = nf++;
+  T.tri.resize(size_t(nf));
+  T.nbr.resize(size_t(nf));
+  out.constrained.assign(3 * size_t(nf), 0);
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+    const int t = f->info();
+    for (int i = 0; i < 3; ++i) {
+      T.tri[size_t(t)][size_t(i)] = f->vertex(i)->info();
+      auto g = f->neighbor(i);
+      T.nbr[size_t(t)][size_t(i)] = cdt.is_infinite(g) ? -1 : g->info();
+      out.constrained[3 * size_t(t) + size_t(i)] = f->is_constrained(i);
+    }
+  }
+  return out;
 }
 
 }  // namespace avenues::detail

@@ -529,3 +529,56 @@ ceiling_at = 2.6
     }
   EXPECT_THROW(parse_plan(std::string(text).replace(text.find("0.4"), 3, "3.5"), "platform.toml"), PlanError);
 }
+
+// Pass 3b (cells/band_cuts.cpp): a storey's free space is cut as its own outline needs,
+// whatever the storeys above and below it hold. An L-shaped upper floor over four rooms
+// was cut along the walls of the rooms below it and at their corners (their points lie
+// inside it in the one triangulation of every storey; merging takes a region whole only
+// where its outline is convex): 6 cells. Its L needs 2, one diagonal from its reflex
+// corner (Hertel–Mehlhorn merging of its own triangulation alone kept two there: 3). The
+// same 5,400 km from the origin, where the cuts cross the walls below at points whose
+// rounding is far larger.
+TEST(Cells, AnLShapedUpperFloorOverRoomsIsCutAsItsOwnOutlineNeeds) {
+  for (const Vec2 origin : {Vec2{0, 0}, Vec2{5.4e6, -3.1e6}}) {
+    SCOPED_TRACE("origin " + std::to_string(origin.x) + ", " + std::to_string(origin.y));
+    auto at = [&](std::vector<Vec2> pts) {
+      for (Vec2& v : pts) v = v + origin;
+      return pts;
+    };
+    Plan p;
+    p.name = "L-shaped upper floor";
+    p.far_margin = 4;
+    p.storeys.push_back({"ground", 0, 2.5, 0.3, {}});
+    p.storeys.push_back({"upper", 2.8, 2.4, 0.3, {}});
+    p.walls.push_back(wall("ground box", at({{0, 0}, {8, 0}, {8, 6}, {0, 6}, {0, 0}}), 0.3));
+    // Inner walls meeting off the middle, and one cranked: corners everywhere below.
+    p.walls.push_back(wall("north-south", at({{3.1, 0}, {3.1, 2.7}, {3.6, 3.2}, {3.6, 6}}), 0.12));
+    p.walls.push_back(wall("west", at({{0, 2.45}, {3.1, 2.45}}), 0.12));
+    p.walls.push_back(wall("east", at({{3.6, 3.9}, {8, 3.9}}), 0.12));
+    Wall upper = wall("upper L", at({{0, 0}, {8, 0}, {8, 6}, {5, 6}, {5, 3}, {0, 3}, {0, 0}}), 0.3);
+    upper.storey = 1;
+    p.walls.push_back(upper);
+    p.rooms = {room("south-west", origin + Vec2{1.5, 1}), room("north-west", origin + Vec2{1.5, 4.5}),
+               room("south-east", origin + Vec2{6, 1.5}), room("north-east", origin + Vec2{6, 5}),
+               room("upper", origin + Vec2{2, 1.5}, 1)};
+    const CellComplex c = build_cells(p);
+    ASSERT_EQ(cells_are_valid(c), "");
+    int upper_cells = 0;
+    double upper_area = 0;
+    for (const Cell& cell : c.cells) {
+      if (cell.kind != CellKind::Room || cell.room != 4) continue;
+      ++upper_cells;
+      std::vector<Vec2> local = cell.footprint;
+      for (Vec2& v : local) v = v - origin;
+      upper_area += signed_area(local);
+    }
+    EXPECT_EQ(upper_cells, 2);
+    EXPECT_NEAR(upper_area, 7.7 * 2.7 + 2.7 * 3.0, 1e-6);
+    // Below, each room keeps its own few pieces: the north-south wall's crank makes two
+    // of them notched, but none is cut by the floor above.
+    int ground_room_cells = 0;
+    for (const Cell& cell : c.cells) ground_room_cells += cell.kind == CellKind::Room && cell.room < 4;
+    EXPECT_LE(ground_room_cells, 8);
+  }
+}
+
