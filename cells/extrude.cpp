@@ -266,16 +266,22 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
   // --- 5c. side portals and opaque side pieces.
   // A portal's or an opaque piece's bottom and top along a side are Levels: flat, or along
   // a sloped wall's top (a cell over the wall, or the room beside it seeing over it).
-  struct Rect { double s0, s1; Level lo, hi; };
+  struct Rect { double s0, s1; Level lo, hi; MaterialId material = -1; };
   for (CellId ci = 0; ci < CellId(out.cells.size()); ++ci) {
     const Outline2& o = shape[size_t(ci)];
     Cell& c = out.cells[size_t(ci)];
     const Level own_floor = floor_of(ci);
     const size_t nsides = c.footprint.size();
     std::vector<std::vector<Rect>> open(nsides);       // portal pieces per side, in side coords
-    // A side is one material: the one that bounds most of its length (an outside cell's
-    // side runs past the corners of the walls beside the one it faces).
+    // A side's material where nothing opaque lies behind a stretch of it: the one that
+    // bounds most of its length (an outside cell's side runs past the corners of the walls
+    // beside the one it faces).
     std::vector<std::map<MaterialId, double>> side_materials(nsides);
+    // And which material lies behind each stretch of a side (s0, s1 along it): a side may
+    // run past several walls (a bathroom's tiles, then the hall's plaster, in one line),
+    // and each opaque piece takes the material behind it, the side's where none is.
+    struct Span { double s0, s1, height; MaterialId material; };
+    std::vector<std::vector<Span>> side_spans(nsides);
     // Runs of equal (neighbour, lo, hi) along consecutive pieces of one side.
     struct Run { CellId d; Level lo; double hi, s0, s1; int sheet_opening; int side; };
     std::vector<Run> active, next, done;
@@ -428,6 +434,7 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
         if (mat != -2) {
           if (mat < 0 && c.kind == CellKind::Room && c.room < int(plan.rooms.size())) mat = plan.rooms[size_t(c.room)].walls;
           side_materials[size_t(side)][mat] += (zhi - zlo) * length(hb - ha);
+          side_spans[size_t(side)].push_back({std::min(s0, s1), std::max(s0, s1), zhi - zlo, mat});
         }
       }
     }
@@ -441,9 +448,27 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
       const Vec2 a = c.footprint[k], e = c.footprint[(k + 1) % nsides];
       const double len = length(e - a);
       const Vec2 dir = (1.0 / len) * (e - a);
+      MaterialId side_material = -1;
+      double most = 0;
+      for (const auto& [m, area] : side_materials[k])
+        if (area > most) most = area, side_material = m;
       std::vector<double> cuts{0, len};
       for (const Rect& r : open[k]) cuts.push_back(r.s0), cuts.push_back(r.s1);
+      for (const Span& sp : side_spans[k])
+        if (sp.material != side_material) cuts.push_back(std::clamp(sp.s0, 0.0, len)), cuts.push_back(std::clamp(sp.s1, 0.0, len));
       std::sort(cuts.begin(), cuts.end());
+      // (A tall cell's side may have walls of several storeys behind one stretch: the one
+      // that covers most of its height there.)
+      auto material_at = [&](double s) {
+        std::map<MaterialId, double> here;
+        for (const Span& sp : side_spans[k])
+          if (sp.s0 <= s && s <= sp.s1) here[sp.material] += sp.height;
+        MaterialId m = side_material;
+        double tallest = 0;
+        for (const auto& [id, h] : here)
+          if (h > tallest) tallest = h, m = id;
+        return m;
+      };
       std::vector<Rect> rects;
       const Level ceiling{c.z1, nullptr};
       for (size_t j = 0; j + 1 < cuts.size(); ++j) {
@@ -461,19 +486,16 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
           if (r->hi(pm) > z(pm)) z = r->hi;
         }
         if (c.z1 > z(pm) + kZTol) solid.push_back({z, ceiling});
+        const MaterialId mat = material_at(0.5 * (s0 + s1));
         for (auto [lo, hi] : solid) {
-          // Extend a piece of the previous s-interval between the same levels.
+          // Extend a piece of the previous s-interval between the same levels, of one material.
           auto prev = std::find_if(rects.begin(), rects.end(), [&](const Rect& r) {
-            return std::fabs(r.s1 - s0) < 1e-12 && r.lo.identical(lo) && r.hi.identical(hi);
+            return std::fabs(r.s1 - s0) < 1e-12 && r.lo.identical(lo) && r.hi.identical(hi) && r.material == mat;
           });
           if (prev != rects.end()) prev->s1 = s1;
-          else rects.push_back({s0, s1, lo, hi});
+          else rects.push_back({s0, s1, lo, hi, mat});
         }
       }
-      MaterialId mat = -1;
-      double most = 0;
-      for (const auto& [m, area] : side_materials[k])
-        if (area > most) most = area, mat = m;
       for (const Rect& r : rects) {
         Vec2 p0 = a + r.s0 * dir, p1 = a + r.s1 * dir;
         const double lo0 = height(ci, r.lo, p0), lo1 = height(ci, r.lo, p1);
@@ -483,7 +505,7 @@ Layout extrude(const Plan& plan, const Outline& outline, const Triangulation& T,
         if (hi0 > lo0 + kZTol) poly.push_back(at(p0, hi0));
         poly.push_back(at(p1, hi1));
         if (hi1 > lo1 + kZTol) poly.push_back(at(p1, lo1));
-        c.faces[k].opaque.push_back({std::move(poly), mat});
+        c.faces[k].opaque.push_back({std::move(poly), r.material});
       }
     }
   }

@@ -582,3 +582,38 @@ TEST(Cells, AnLShapedUpperFloorOverRoomsIsCutAsItsOwnOutlineNeeds) {
   }
 }
 
+// A room's side may run along several walls in one line; each opaque piece of it takes the
+// material of the wall behind it. (It took the side's commonest: once a band's free space
+// was cut as its own outline needs, cells grew along whole rows of walls, and a bathroom's
+// tiles ran on into the hall's plaster.)
+TEST(Cells, ASideAlongTwoWallsInLineTakesEachWallsMaterial) {
+  Plan p;
+  p.name = "two walls in line";
+  p.far_margin = 2;
+  p.storeys.push_back({"ground", 0, 2.5, 0.3, {}});
+  p.materials = {Material{"tiles", 0.6, {0.2, 0.6, 0.7}, {}}, Material{"plaster", 0.8, {0.9, 0.9, 0.85}, {}}};
+  Wall tiles = wall("tiled", {{0, 0}, {3, 0}}, 0.2), plaster = wall("plastered", {{3, 0}, {8, 0}, {8, 4}, {0, 4}, {0, 0}}, 0.2);
+  tiles.material = 0, plaster.material = 1;
+  p.walls = {tiles, plaster};
+  p.rooms = {room("room", {4, 2})};
+  const CellComplex c = build_cells(p);
+  ASSERT_EQ(cells_are_valid(c), "");
+  double tiled = 0, plastered = 0;
+  for (const Cell& cell : c.cells) {
+    if (cell.kind != CellKind::Room) continue;
+    for (const Face& f : cell.faces)
+      for (const OpaquePoly& o : f.opaque) {
+        if (!(std::fabs(f.plane.n.y + 1) < 1e-9)) continue;  // the south side: its normal points south, out of the room
+        double x0 = HUGE_VAL, x1 = -HUGE_VAL;
+        for (Vec3 v : o.poly) x0 = std::min(x0, v.x), x1 = std::max(x1, v.x);
+        (o.material == 0 ? tiled : plastered) += x1 - x0;
+        if (o.material == 0) {
+          EXPECT_LE(x1, 3 + 1e-9) << "tiles beyond the tiled wall";
+        } else {
+          EXPECT_GE(x0, 3 - 1e-9) << "plaster on the tiled wall";
+        }
+      }
+  }
+  EXPECT_NEAR(tiled, 3 - 0.1, 1e-9);
+  EXPECT_NEAR(plastered, 5 - 0.1, 1e-9);
+}
