@@ -91,6 +91,9 @@ bool decompose(const std::vector<Vec2>& points, const std::vector<std::array<int
 /// search below tries every corner against every other and every side).
 constexpr size_t kMostCornersForDiagonals = 600;
 
+/// [rad] the least angle a diagonal makes with the sides at its ends.
+constexpr double kLeastAngle = 1e-3;
+
 /// Diagonals that take away the region's reflex corners (Chazelle's and Greene's remedy,
 /// greedily): first between two reflex corners where one diagonal leaves both convex,
 /// then one from each reflex corner left, the one leaving its two angles most even. A
@@ -146,8 +149,12 @@ std::vector<std::array<int32_t, 2>> reflex_diagonals(const std::vector<Vec2>& po
   };
   auto valid = [&](size_t v, size_t w) {
     if (v == w || next[v] == int32_t(w) || prev[v] == int32_t(w)) return false;
+    // Into the region at both ends, and not along a side there: a diagonal a rounding off
+    // a side (two corners of a sloped wall's side, each reflex by its rounding) would part
+    // a sliver off the region (random plan 3668).
     const double av = angle_from(v, points[w] - points[v]), aw = angle_from(w, points[v] - points[w]);
-    if (!(av > 0 && av < interior(v)) || !(aw > 0 && aw < interior(w))) return false;
+    if (!(av > kLeastAngle && av < interior(v) - kLeastAngle) || !(aw > kLeastAngle && aw < interior(w) - kLeastAngle))
+      return false;
     const Vec2 a = points[v], b = points[w];
     for (auto [c, d] : segments) {
       if (size_t(c) == v || size_t(d) == v || size_t(c) == w || size_t(d) == w) {

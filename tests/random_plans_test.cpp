@@ -633,3 +633,10 @@ TEST(RandomPlans, Seed3179GapClosedUnderASlopeTurnsItsFloor) { check_stored(3179
 // 13 µm inside the sliver (the ray oracle now holds the eye's own cell seen, as it does for
 // its avenues) (5743).
 TEST(RandomPlans, Seed5743EyeOnThreeFacesOfASliver) { check_stored(5743); }
+
+// Each band's free space cut afresh (cells/band_cuts.cpp), its first random plans: two
+// corners of a sloped wall's side, each reflex by its rounding (2.5e-9 rad), were joined by
+// a diagonal along the side, which parted two slivers 0.1 nm wide off the room; a ray from
+// an eye in one crossed the other for 2 µm, which no avenue reached (3668). A diagonal now
+// makes at least a milliradian with the sides at its ends.
+TEST(RandomPlans, Seed3668DiagonalAlongASlopedWallsSide) { check_stored(3668); }
