@@ -204,6 +204,23 @@ int register_all() {
                              "3BedroomHouseWithMezzanine", "4BedroomHouse", "Studio"})
       if (fs::exists(homes / (std::string(home) + ".xml")))
         plans.push_back({home, "sh3d:" + (homes / (std::string(home) + ".xml")).string()});
+    // The homes from outside that open (some are damaged on purpose: they are skipped).
+    const fs::path outside_homes = fs::path(AVENUES_OUTSIDE_DIR) / "sweethome";
+    if (fs::is_directory(outside_homes)) {
+      std::vector<fs::path> files;
+      for (const auto& e : fs::directory_iterator(outside_homes))
+        if (e.path().extension() == ".sh3d") files.push_back(e.path());
+      std::sort(files.begin(), files.end());
+      for (const fs::path& f : files) {
+        const std::string key = "sh3d:" + f.string();
+        try {
+          complex_of(key);
+        } catch (const std::exception&) {
+          continue;
+        }
+        plans.push_back({f.stem().string(), key});
+      }
+    }
     for (const char* map : {"freedoom2.wad:MAP01", "freedoom1.wad:E1M1", "freedoom2.wad:MAP12"}) {
       const std::string m(map);
       const std::string wad = "/usr/share/games/doom/" + m.substr(0, m.find(':'));
