@@ -210,16 +210,16 @@ std::vector<std::array<int32_t, 2>> reflex_diagonals(const std::vector<Vec2>& po
 
 /// The diagonals of a fresh decomposition of one region (bounded by the half-edges
 /// `boundary` of T, the region on their left), as pairs of T's vertices; none when that
-/// decomposition would have more than `pieces_now` pieces, or cannot be had from T's own
-/// points (rounded, the region's sides cross).
+/// decomposition would have more than `pieces_now` pieces (`fresh`: how many it has), or
+/// cannot be had from T's own points (rounded, the region's sides cross).
 std::vector<std::array<int32_t, 2>> fresh_diagonals(const Triangulation& T, const std::vector<int32_t>& boundary,
-                                                    size_t pieces_now) {
+                                                    size_t pieces_now, size_t& fresh) {
   std::vector<Vec2> points;
   std::vector<int32_t> vertex_of;  // local point -> T's vertex
   std::unordered_map<int32_t, int32_t> local;
   auto at = [&](int32_t v) {
-    auto [it, fresh] = local.emplace(v, int32_t(points.size()));
-    if (fresh) points.push_back(T.vert[size_t(v)]), vertex_of.push_back(v);
+    auto [it, added] = local.emplace(v, int32_t(points.size()));
+    if (added) points.push_back(T.vert[size_t(v)]), vertex_of.push_back(v);
     return it->second;
   };
   std::vector<std::array<int32_t, 2>> segments;
@@ -243,7 +243,8 @@ std::vector<std::array<int32_t, 2>> fresh_diagonals(const Triangulation& T, cons
     if (decompose(points, with, segments.size(), other) && other.pieces.boundary.size() < best.pieces.boundary.size())
       best = std::move(other);
   }
-  if (best.pieces.boundary.size() > pieces_now) return {};
+  fresh = best.pieces.boundary.size();
+  if (fresh > pieces_now) return {};
   const Triangulation& F = best.S.T;
   std::vector<std::array<int32_t, 2>> out;
   for (int f = 0; f < F.size(); ++f) {
@@ -262,7 +263,16 @@ std::vector<std::array<int32_t, 2>> fresh_diagonals(const Triangulation& T, cons
 
 std::vector<Cut> band_cuts(const Outline& outline, const Triangulation& T, const Classes& C) {
   const int n = T.size();
+  // Regions cut afresh into fewer pieces than they have now need their cuts. Those cut
+  // into as many keep theirs only where another band's needed cut may cross them (over
+  // the box of the region): crossed, merging could part them further.
+  struct Region {
+    std::vector<std::array<int32_t, 2>> diagonals;
+    int32_t band;
+    std::array<double, 4> box;  ///< x0, y0, x1, y1
+  };
   std::vector<Cut> cuts;
+  std::vector<Region> equal;
   std::vector<int32_t> region_of(static_cast<size_t>(n));
   std::vector<int32_t> region, boundary, stack;
   for (size_t b = 0; b < C.bands.size(); ++b) {
@@ -297,8 +307,39 @@ std::vector<Cut> band_cuts(const Outline& outline, const Triangulation& T, const
       std::sort(pieces.begin(), pieces.end());
       const size_t pieces_now = size_t(std::unique(pieces.begin(), pieces.end()) - pieces.begin());
       if (pieces_now <= 1) continue;  // (cuts of other bands crossing it leave it whole: merging's fast path)
-      for (auto [a, c] : fresh_diagonals(T, boundary, pieces_now)) cuts.push_back({a, c, int32_t(b)});
+      size_t fresh = 0;
+      std::vector<std::array<int32_t, 2>> diagonals = fresh_diagonals(T, boundary, pieces_now, fresh);
+      if (diagonals.empty()) continue;
+      if (fresh < pieces_now) {
+        for (auto [a, c] : diagonals) cuts.push_back({a, c, int32_t(b)});
+        continue;
+      }
+      Region r{std::move(diagonals), int32_t(b), {HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL}};
+      for (int t : region)
+        for (int32_t v : T.tri[size_t(t)]) {
+          const Vec2 p = T.vert[size_t(v)];
+          r.box = {std::min(r.box[0], p.x), std::min(r.box[1], p.y), std::max(r.box[2], p.x), std::max(r.box[3], p.y)};
+        }
+      equal.push_back(std::move(r));
     }
+  }
+  if (cuts.empty()) return cuts;
+  // The needed cuts' boxes, sorted by their left sides, to find those over a region's box.
+  std::vector<std::pair<std::array<double, 4>, int32_t>> boxes;
+  double widest = 0;
+  for (const Cut& c : cuts) {
+    const Vec2 p = T.vert[size_t(c.a)], q = T.vert[size_t(c.b)];
+    boxes.push_back({{std::min(p.x, q.x), std::min(p.y, q.y), std::max(p.x, q.x), std::max(p.y, q.y)}, c.band});
+    widest = std::max(widest, std::fabs(q.x - p.x));
+  }
+  std::sort(boxes.begin(), boxes.end());
+  for (const Region& r : equal) {
+    bool crossed = false;
+    for (auto it = std::lower_bound(boxes.begin(), boxes.end(), std::make_pair(std::array<double, 4>{r.box[0] - widest, -HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, INT32_MIN));
+         it != boxes.end() && it->first[0] <= r.box[2] && !crossed; ++it)
+      crossed = it->second != r.band && it->first[2] >= r.box[0] && it->first[1] <= r.box[3] && it->first[3] >= r.box[1];
+    if (crossed)
+      for (auto [a, c] : r.diagonals) cuts.push_back({a, c, r.band});
   }
   return cuts;
 }

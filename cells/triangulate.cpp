@@ -252,26 +252,34 @@ std::vector<int32_t> ExactTriangulation::cut(const std::vector<Cut>& cuts, const
 
 SegmentTriangulation triangulate_segments(const std::vector<Vec2>& points,
                                           const std::vector<std::array<int32_t, 2>>& segments) {
-  CDT cdt;
-  std::vector<CDT::Vertex_handle> vh;
+  // Its points are the given doubles and no others: exact predicates suffice, and a
+  // crossing of two segments (which would need a constructed point) ends it.
+  using Ik = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using IVb = CGAL::Triangulation_vertex_base_with_info_2<int32_t, Ik>;
+  using IFb = CGAL::Constrained_triangulation_face_base_2<Ik, CGAL::Triangulation_face_base_with_info_2<int, Ik>>;
+  using ICdt = CGAL::Constrained_Delaunay_triangulation_2<Ik, CGAL::Triangulation_data_structure_2<IVb, IFb>,
+                                                          CGAL::No_constraint_intersection_requiring_constructions_tag>;
+  SegmentTriangulation out;
+  ICdt cdt;
+  std::vector<ICdt::Vertex_handle> vh;
   vh.reserve(points.size());
   for (size_t i = 0; i < points.size(); ++i) {
-    vh.push_back(cdt.insert(P(points[i])));
+    vh.push_back(cdt.insert(Ik::Point_2(points[i].x, points[i].y)));
     vh.back()->info() = int32_t(i);
   }
-  for (auto [a, b] : segments)
-    if (vh[size_t(a)] != vh[size_t(b)]) cdt.insert_constraint(vh[size_t(a)], vh[size_t(b)]);
-  SegmentTriangulation out;
+  if (cdt.number_of_vertices() != points.size()) {  // two points one
+    out.crossed = true;
+    return out;
+  }
+  try {
+    for (auto [a, b] : segments)
+      if (vh[size_t(a)] != vh[size_t(b)]) cdt.insert_constraint(vh[size_t(a)], vh[size_t(b)]);
+  } catch (const ICdt::Intersection_of_constraints_exception&) {
+    out.crossed = true;
+    return out;
+  }
   Triangulation& T = out.T;
   T.vert = points;
-  std::unordered_set<const void*> known;
-  for (const auto& v : vh) known.insert(&*v);
-  for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v) {
-    if (known.count(&*v)) continue;
-    out.crossed = true;
-    v->info() = int32_t(T.vert.size());
-    T.vert.push_back({CGAL::to_double(v->point().x()), CGAL::to_double(v->point().y())});
-  }
   int32_t nf = 0;
   for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) f->info() = nf++;
   T.tri.resize(size_t(nf));

@@ -81,8 +81,9 @@ class ExactTriangulation {
 };
 
 /// A constrained triangulation of segments between given points and nothing else (the
-/// free space of one region of one band, cut afresh): vert[i] is points[i]; points where
-/// segments cross, if any, follow (`crossed`); per half-edge, whether it lies on a segment.
+/// free space of one region of one band, cut afresh): vert[i] is points[i]; per half-edge,
+/// whether it lies on a segment. `crossed` (and nothing else) where two segments cross or
+/// two points are one: that would need points of its own.
 struct SegmentTriangulation {
   Triangulation T;
   std::vector<uint8_t> constrained;
