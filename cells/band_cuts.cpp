@@ -89,7 +89,7 @@ bool decompose(const std::vector<Vec2>& points, const std::vector<std::array<int
 
 /// Regions with more corners than this are left to Hertel–Mehlhorn merging alone (the
 /// search below tries every corner against every other and every side).
-constexpr size_t kMostCornersForDiagonals = 600;
+constexpr size_t kMostCornersForDiagonals = 300;
 
 /// [rad] the least angle a diagonal makes with the sides at its ends.
 constexpr double kLeastAngle = 1e-3;
