@@ -138,8 +138,10 @@ int run_view(const ViewOptions& opt) {
   object_shadows_option(opt.object_shadows);
   if (!std::isfinite(opt.falloff)) throw std::runtime_error("--falloff wants a distance in metres");
   check_view_outputs(opt);  // a device or FIFO there, a file named twice: refused before the work
-  if (std::any_of(opt.outputs.begin(), opt.outputs.end(), is_raster_path))
-    start_threads(0);  // the picture's threads start while the plan is read
+  if (std::any_of(opt.outputs.begin(), opt.outputs.end(), is_raster_path)) {
+    start_threads(0);        // the picture's threads start while the plan is read,
+    warm_view_picture(opt);  // and its pages are touched
+  }
   LoadedPlan plan = load_plan_source(opt.plan, opt.import);
   ViewSetup v = set_up_view(plan, opt);
   if (v.camera.is_parallel()) {

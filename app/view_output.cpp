@@ -11,12 +11,14 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <future>
 #include <iostream>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "app/option_checks.h"
 #include "core/atomic_file.h"
 #include "core/file_name.h"
 #include "render/drawing.h"
@@ -88,10 +90,16 @@ std::vector<PlacedObject> objects_of(const LoadedPlan& plan) {
   return objects;
 }
 
+/// The picture warm_view_picture() started, if any (taken once).
+std::future<Image>& warm_picture() {
+  static std::future<Image> warm;
+  return warm;
+}
+
 /// One view's half-tone picture (no stereo, no frames), its counters into `rs`.
 Image view_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet& vs, const ViewOptions& opt,
                    RenderStats& rs) {
-  Image picture;
+  Image picture = warm_picture().valid() ? warm_picture().get() : Image{};  // its storage, kept by render_view
   render_view(plan.complex, objects_of(plan), v.camera, vs, halftone_options(opt), picture, &rs);
   return picture;
 }
@@ -235,6 +243,17 @@ void write_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet&
 }
 
 }  // namespace
+
+void warm_view_picture(const ViewOptions& opt) {
+  int w = 0, h = 0;
+  if (!opt.stereo.empty() || opt.frames > 0 || !parse_size(opt.size, w, h)) return;
+  if (std::none_of(opt.outputs.begin(), opt.outputs.end(), is_raster_path)) return;
+  warm_picture() = std::async(std::launch::async, [w, h] {
+    Image picture;
+    picture.resize(w, h, 3);  // touched (zeroed) here; a grey picture takes a third of it
+    return picture;
+  });
+}
 
 void check_view_output(const std::string& path, const std::string& stereo) {
   const bool picture = is_raster_path(path);
