@@ -12,10 +12,12 @@
 // So each connected region of one class in each band is decomposed again from its own
 // boundary only (triangulate_segments): Hertel–Mehlhorn merging of its own triangulation,
 // or diagonals that take away its reflex corners (reflex_diagonals), whichever gives fewer
-// pieces. Where that is no more pieces than the region has now, its diagonals become cuts:
-// constraints added to the one triangulation (every edge kept, so its triangles only
-// split), across which that band's pieces are not merged. (No more, not only fewer: the
-// cuts of other bands cross this region too, and its own keep its pieces whole.) The
+// pieces. Where that is fewer pieces than the region has now, its diagonals become cuts:
+// constraints added to the one triangulation, across which that band's pieces are not
+// merged. The edges between triangles of different classes are kept, so each triangle
+// after lies where those before it agree, and takes their class. (A region cut into as
+// many pieces keeps its cuts too where another band's cut may cross it, which could part
+// it further.) The
 // pieces between a band's cuts are each one convex region of triangles, which merging
 // takes whole. Where a cut crosses an edge it makes a point on both, exactly, rounded
 // once; a corner there within that rounding is straight (Triangulation::cut_made,
@@ -118,7 +120,9 @@ std::vector<std::array<int32_t, 2>> reflex_diagonals(const std::vector<Vec2>& po
     double t = std::atan2(cross(u, d), dot(u, d));
     return t < 0 ? t + 2 * M_PI : t;
   };
-  auto interior = [&](size_t v) { return angle_from(v, points[size_t(prev[v])] - points[v]); };
+  std::vector<double> interior_angle(n);
+  for (size_t v = 0; v < n; ++v) interior_angle[v] = angle_from(v, points[size_t(prev[v])] - points[v]);
+  auto interior = [&](size_t v) { return interior_angle[v]; };
   std::vector<uint8_t> reflex(n, 0);
   for (size_t v = 0; v < n; ++v) {
     const int turn = orientation(points[size_t(prev[v])], points[v], points[size_t(next[v])]);
@@ -227,14 +231,7 @@ std::vector<std::array<int32_t, 2>> fresh_diagonals(const Triangulation& T, cons
     const int t = h / 3, i = h % 3;
     segments.push_back({at(T.tri[size_t(t)][size_t((i + 1) % 3)]), at(T.tri[size_t(t)][size_t((i + 2) % 3)])});
   }
-  // Two of T's points that round to one would be one point here.
-  {
-    std::vector<Vec2> sorted = points;
-    std::sort(sorted.begin(), sorted.end(), [](Vec2 a, Vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
-    for (size_t k = 1; k < sorted.size(); ++k)
-      if (sorted[k].x == sorted[k - 1].x && sorted[k].y == sorted[k - 1].y) return {};
-  }
-  Fresh best;
+  Fresh best;  // (two of T's points that round to one are refused by triangulate_segments)
   if (!decompose(points, segments, segments.size(), best)) return {};
   if (const auto diagonals = reflex_diagonals(points, segments); !diagonals.empty()) {
     std::vector<std::array<int32_t, 2>> with = segments;
@@ -259,8 +256,7 @@ std::vector<std::array<int32_t, 2>> fresh_diagonals(const Triangulation& T, cons
   return out;
 }
 
-}  // namespace
-
+/// The cuts of every band (see the top of this file).
 std::vector<Cut> band_cuts(const Outline& outline, const Triangulation& T, const Classes& C) {
   const int n = T.size();
   // Regions cut afresh into fewer pieces than they have now need their cuts. Those cut
@@ -342,6 +338,36 @@ std::vector<Cut> band_cuts(const Outline& outline, const Triangulation& T, const
       for (auto [a, c] : r.diagonals) cuts.push_back({a, c, r.band});
   }
   return cuts;
+}
+
+}  // namespace
+
+void cut_bands(const Outline& outline, ExactTriangulation& exact, Classes& C) {
+  const std::vector<Cut> cuts = band_cuts(outline, exact.rounded(), C);
+  if (cuts.empty()) return;
+  // The classes of the triangles after are their parents'; so the edges between triangles
+  // of different classes (or walls) in any band are kept.
+  const Triangulation& T = exact.rounded();
+  const size_t before = size_t(T.size());
+  std::vector<uint8_t> keep(3 * before, 0);
+  for (size_t t = 0; t < before; ++t)
+    for (size_t i = 0; i < 3; ++i) {
+      const int32_t u = T.nbr[t][i];
+      if (u < 0) continue;
+      for (size_t b = 0; b < C.bands.size() && !keep[3 * t + i]; ++b)
+        keep[3 * t + i] = C.of[b][t] != C.of[b][size_t(u)] || C.wall_of[b * before + t] != C.wall_of[b * before + size_t(u)];
+    }
+  const std::vector<int32_t> parent = exact.cut(cuts, keep);
+  for (auto& of : C.of) {
+    std::vector<int32_t> now(parent.size());
+    for (size_t t = 0; t < parent.size(); ++t) now[t] = parent[t] < 0 ? -1 : of[size_t(parent[t])];
+    of.swap(now);
+  }
+  std::vector<int32_t> wall_of(C.bands.size() * parent.size(), -1);
+  for (size_t b = 0; b < C.bands.size(); ++b)
+    for (size_t t = 0; t < parent.size(); ++t)
+      if (parent[t] >= 0) wall_of[b * parent.size() + t] = C.wall_of[b * before + size_t(parent[t])];
+  C.wall_of.swap(wall_of);
 }
 
 }  // namespace avenues::detail

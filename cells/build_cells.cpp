@@ -42,34 +42,8 @@ CellComplex build_cells(const Plan& plan, const CellParams&) {
     out.warnings.insert(out.warnings.end(), cls.warnings.begin(), cls.warnings.end());
   }
   {
-    ScopedStageTimer timer(out.timings, "cut");
-    const std::vector<Cut> cuts = band_cuts(outline, exact->rounded(), cls);
-    if (!cuts.empty()) {
-      // The classes of the triangles after are their parents'; so the edges between
-      // triangles of different classes (or walls) in any band are kept.
-      const Triangulation& T = exact->rounded();
-      const size_t before = size_t(T.size());
-      std::vector<uint8_t> keep(3 * before, 0);
-      for (size_t t = 0; t < before; ++t)
-        for (size_t i = 0; i < 3; ++i) {
-          const int32_t u = T.nbr[t][i];
-          if (u < 0) continue;
-          for (size_t b = 0; b < cls.bands.size() && !keep[3 * t + i]; ++b)
-            keep[3 * t + i] = cls.of[b][t] != cls.of[b][size_t(u)] ||
-                              cls.wall_of[b * before + t] != cls.wall_of[b * before + size_t(u)];
-        }
-      const std::vector<int32_t> parent = exact->cut(cuts, keep);
-      for (auto& of : cls.of) {
-        std::vector<int32_t> now(parent.size());
-        for (size_t t = 0; t < parent.size(); ++t) now[t] = parent[t] < 0 ? -1 : of[size_t(parent[t])];
-        of.swap(now);
-      }
-      std::vector<int32_t> wall_of(cls.bands.size() * parent.size(), -1);
-      for (size_t b = 0; b < cls.bands.size(); ++b)
-        for (size_t t = 0; t < parent.size(); ++t)
-          if (parent[t] >= 0) wall_of[b * parent.size() + t] = cls.wall_of[b * before + size_t(parent[t])];
-      cls.wall_of.swap(wall_of);
-    }
+    ScopedStageTimer t(out.timings, "cut");
+    cut_bands(outline, *exact, cls);
   }
   const Triangulation& tri = exact->rounded();
   Layout layout;

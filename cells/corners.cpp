@@ -8,6 +8,7 @@
 // on it once accepted a corner that turned right once the noise was dropped (random plan
 // 30396: a 1 mm wall bent back at 24°).
 #include <cmath>
+#include <limits>
 
 #include "cells/passes.h"
 
@@ -36,11 +37,21 @@ void corners_of(const std::vector<Vec2>& ring, std::vector<Corner>& out, const s
     // rounding (far below a nanometre) is none.
     if (turn != 0 && made && (*made)[k] && dot(b - a, c - b) > 0) {
       const double off = std::fabs(cross(c - a, b - a)) / length(c - a);
-      if (off <= 64 * 2.220446049250313e-16 * (1 + std::fabs(b.x) + std::fabs(b.y))) turn = 0;
+      if (off <= 64 * std::numeric_limits<double>::epsilon() * (1 + std::fabs(b.x) + std::fabs(b.y))) turn = 0;
     }
     out[k] = turn > 0 ? Corner::Left : turn < 0 ? Corner::Right
              : dot(b - a, c - b) < 0 ? Corner::Reversal : Corner::Straight;
   }
+}
+
+const std::vector<uint8_t>* ring_of(const Triangulation& T, const std::vector<int32_t>& half_edges,
+                                    std::vector<Vec2>& ring, std::vector<uint8_t>& made) {
+  ring.clear();
+  made.clear();
+  for (int32_t h : half_edges) ring.push_back(T.edge_from(h / 3, h % 3));
+  if (T.cut_made.empty()) return nullptr;
+  for (int32_t h : half_edges) made.push_back(T.cut_made[size_t(T.tri[size_t(h / 3)][size_t((h % 3 + 1) % 3)])]);
+  return &made;
 }
 
 bool convex_footprint(const std::vector<Vec2>& ring, std::vector<Corner>& corners, std::vector<Vec2>& points,

@@ -32,17 +32,13 @@ struct Outline2 {
 
 Outline2 footprint_of(const Triangulation& T, const std::vector<int32_t>& boundary) {
   const size_t m = boundary.size();
-  auto from = [&](int32_t h) { return T.vert[size_t(T.tri[size_t(h / 3)][size_t((h % 3 + 1) % 3)])]; };
   // Points that rounded to one (a wall top whose corners lie within rounding of each other),
   // or to points a rounding apart, count as one: the first of a run stands for it, and a
   // corner is judged against its nearest distinct neighbours (corners_of), as merging judged it.
-  std::vector<Vec2> ring(m);
-  for (size_t k = 0; k < m; ++k) ring[k] = from(boundary[k]);
+  std::vector<Vec2> ring;
   std::vector<uint8_t> made;
-  if (!T.cut_made.empty())
-    for (size_t k = 0; k < m; ++k) made.push_back(T.cut_made[size_t(T.tri[size_t(boundary[k] / 3)][size_t((boundary[k] % 3 + 1) % 3)])]);
   std::vector<Corner> corner;
-  corners_of(ring, corner, made.empty() ? nullptr : &made);
+  corners_of(ring, corner, ring_of(T, boundary, ring, made));
   std::vector<uint8_t> keep(m);
   for (size_t k = 0; k < m; ++k) keep[k] = corner[k] == Corner::Left || corner[k] == Corner::Right;
   size_t first = 0;
@@ -51,7 +47,7 @@ Outline2 footprint_of(const Triangulation& T, const std::vector<int32_t>& bounda
   if (first == m) return o;  // degenerate (all collinear): no footprint
   for (size_t j = 0; j < m; ++j) {
     size_t k = (first + j) % m;
-    if (keep[k]) o.poly.push_back(from(boundary[k]));
+    if (keep[k]) o.poly.push_back(ring[k]);
     o.half_edges.push_back(boundary[k]);
     o.side.push_back(int32_t(o.poly.size()) - 1);
   }

@@ -49,12 +49,7 @@ Pieces merge_convex(const Triangulation& T, const std::vector<int32_t>& label, c
   std::vector<uint8_t> made;
   std::vector<Corner> corners;
   auto convex = [&](const std::vector<int32_t>& cycle) {
-    ring.clear();
-    made.clear();
-    for (int32_t e : cycle) ring.push_back(T.vert[size_t(from(e))]);
-    if (T.cut_made.empty()) return convex_footprint(ring, corners, points);
-    for (int32_t e : cycle) made.push_back(T.cut_made[size_t(from(e))]);
-    return convex_footprint(ring, corners, points, &made);
+    return convex_footprint(ring, corners, points, ring_of(T, cycle, ring, made));
   };
 
   // Fast path: a connected region of one label whose whole boundary is one convex cycle

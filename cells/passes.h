@@ -71,8 +71,10 @@ inline bool has_cut_of_band(const Triangulation& T, int h, size_t b) {
 std::vector<uint8_t> band_barrier(const Outline& outline, const Triangulation& T, const Band& band, size_t b);
 
 /// Pass 3b: where the triangulation of every storey's outlines parts a band's free space
-/// into more pieces than that space needs, the cuts that part it well (cells/band_cuts.cpp).
-std::vector<Cut> band_cuts(const Outline& outline, const Triangulation& T, const Classes& C);
+/// into more pieces than that space needs, cuts `exact` where it parts it well, and hands
+/// each triangle's class (and wall) in `C` on to the triangles it splits into
+/// (cells/band_cuts.cpp).
+void cut_bands(const Outline& outline, ExactTriangulation& exact, Classes& C);
 
 /// Points a rounding apart: distinct in the exact triangulation, within a few ulps once
 /// rounded (or equal). A footprint takes them as one point: the turn between them is noise.
@@ -85,6 +87,12 @@ bool rounding_apart(Vec2 a, Vec2 b);
 enum class Corner : uint8_t { Repeat, Straight, Left, Right, Reversal };
 /// `made` (may be null): per point of the ring, whether a cut made it (Triangulation::cut_made).
 void corners_of(const std::vector<Vec2>& ring, std::vector<Corner>& out, const std::vector<uint8_t>* made = nullptr);
+
+/// The ring of points a piece's boundary (half-edges of T, each from its start) goes
+/// through, and, where T was cut, which of them a cut made (else `made` is left empty):
+/// what corners_of() judges. Returns `made`, or null where it is empty.
+const std::vector<uint8_t>* ring_of(const Triangulation& T, const std::vector<int32_t>& half_edges,
+                                    std::vector<Vec2>& ring, std::vector<uint8_t>& made);
 
 /// Whether a closed boundary's footprint is convex: no corner turns right or back on
 /// itself, and the boundary winds once. `corners` and `points` are scratch.

@@ -62,6 +62,27 @@ bool strictly_inside_convex(const std::vector<Point>& poly, const Point& c) {
   return true;
 }
 
+/// Numbers the CDT's finite faces 0.. (their info) and fills T's triangles (by the
+/// vertices' info) and neighbours; returns the faces in that order.
+template <class Cdt>
+std::vector<typename Cdt::Face_handle> number_faces(Cdt& cdt, Triangulation& T) {
+  int32_t nf = 0;
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) f->info() = nf++;
+  T.tri.resize(size_t(nf));
+  T.nbr.resize(size_t(nf));
+  std::vector<typename Cdt::Face_handle> faces(static_cast<size_t>(nf));
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+    const int t = f->info();
+    faces[size_t(t)] = f;
+    for (int i = 0; i < 3; ++i) {
+      T.tri[size_t(t)][size_t(i)] = f->vertex(i)->info();
+      auto g = f->neighbor(i);
+      T.nbr[size_t(t)][size_t(i)] = cdt.is_infinite(g) ? -1 : g->info();
+    }
+  }
+  return faces;
+}
+
 }  // namespace
 
 int orientation(Vec2 a, Vec2 b, Vec2 c) {
@@ -88,20 +109,8 @@ Triangulation round_off(CDT& cdt, std::vector<CDT::Vertex_handle>& handle, const
     T.vert.push_back({CGAL::to_double(v->point().x()), CGAL::to_double(v->point().y())});
     handle.push_back(v);
   }
-  int32_t nf = 0;
-  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) f->info() = nf++;
-  T.tri.resize(size_t(nf));
-  T.nbr.resize(size_t(nf));
-  std::vector<CDT::Face_handle> faces(static_cast<size_t>(nf));
-  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
-    int t = f->info();
-    faces[size_t(t)] = f;
-    for (int i = 0; i < 3; ++i) {
-      T.tri[size_t(t)][size_t(i)] = f->vertex(i)->info();
-      auto g = f->neighbor(i);
-      T.nbr[size_t(t)][size_t(i)] = cdt.is_infinite(g) ? -1 : g->info();
-    }
-  }
+  const std::vector<CDT::Face_handle> faces = number_faces(cdt, T);
+  const int nf = T.size();
 
   // Which thick-wall regions cover each triangle: its centroid, exactly, in the convex region.
   std::vector<std::vector<Point>> exact_regions(outline.regions.size());
@@ -280,20 +289,10 @@ SegmentTriangulation triangulate_segments(const std::vector<Vec2>& points,
   }
   Triangulation& T = out.T;
   T.vert = points;
-  int32_t nf = 0;
-  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) f->info() = nf++;
-  T.tri.resize(size_t(nf));
-  T.nbr.resize(size_t(nf));
-  out.constrained.assign(3 * size_t(nf), 0);
-  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
-    const int t = f->info();
-    for (int i = 0; i < 3; ++i) {
-      T.tri[size_t(t)][size_t(i)] = f->vertex(i)->info();
-      auto g = f->neighbor(i);
-      T.nbr[size_t(t)][size_t(i)] = cdt.is_infinite(g) ? -1 : g->info();
-      out.constrained[3 * size_t(t) + size_t(i)] = f->is_constrained(i);
-    }
-  }
+  const std::vector<ICdt::Face_handle> faces = number_faces(cdt, T);
+  out.constrained.resize(3 * faces.size());
+  for (size_t t = 0; t < faces.size(); ++t)
+    for (int i = 0; i < 3; ++i) out.constrained[3 * t + size_t(i)] = faces[t]->is_constrained(i);
   return out;
 }
 
