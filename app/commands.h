@@ -183,7 +183,8 @@ nlohmann::json view_stats(const LoadedPlan& plan, const ViewSetup& v, const Visi
 int run_view(const ViewOptions& opt);
 /// A one-shot view's picture (no stereo, no frames) is rendered into a buffer whose pages
 /// were first touched on a thread of its own while the plan was read: a new 6 MB picture's
-/// page faults cost a 1920 × 1080 frame about 2 ms, three times its scan. Starts that.
+/// page faults cost a 1920 × 1080 frame about 2 ms, three times its scan. Starts that
+/// (run_view calls it where a picture is among the outputs).
 void warm_view_picture(const ViewOptions& opt);
 /// Throws naming `path` when its extension is neither a drawing's nor a picture's, or when
 /// `stereo` (--stereo; "" for none) is not a layout its kind takes.

@@ -247,7 +247,6 @@ void write_picture(const LoadedPlan& plan, const ViewSetup& v, const VisibleSet&
 void warm_view_picture(const ViewOptions& opt) {
   int w = 0, h = 0;
   if (!opt.stereo.empty() || opt.frames > 0 || !parse_size(opt.size, w, h)) return;
-  if (std::none_of(opt.outputs.begin(), opt.outputs.end(), is_raster_path)) return;
   warm_picture() = std::async(std::launch::async, [w, h] {
     Image picture;
     picture.resize(w, h, 3);  // touched (zeroed) here; a grey picture takes a third of it
