@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "render/effects.h"
+#include "render/pixel_fill.h"
 #include "render/raster_srgb.h"
 #include "render/scanline.h"
 #include "render/thread_arena.h"
@@ -29,24 +30,6 @@ constexpr int kBandRows = 24;
 using Clock = std::chrono::steady_clock;
 double micros_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
-}
-
-/// Fills n pixels of `channels` bytes with one encoded colour, a block at a time; the last
-/// block is written flush with the span's end, over part of the one before (the same bytes).
-void fill_pixels(uint8_t* dst, size_t n, const std::array<uint8_t, 3>& code, int channels) {
-  if (channels == 1) {
-    std::memset(dst, code[0], n);
-    return;
-  }
-  constexpr size_t kBlock = 16;  // pixels per copied block
-  uint8_t block[3 * kBlock];
-  for (size_t i = 0; i < kBlock; ++i) std::memcpy(block + 3 * i, code.data(), 3);
-  if (n < kBlock) {
-    for (size_t i = 0; i < n; ++i) std::memcpy(dst + 3 * i, block, 3);
-    return;
-  }
-  for (size_t i = 0; i + kBlock <= n; i += kBlock) std::memcpy(dst + 3 * i, block, sizeof block);
-  std::memcpy(dst + 3 * (n - kBlock), block, sizeof block);
 }
 
 /// What the shading of a polygon's span needs, prepared once per picture.

@@ -12,6 +12,7 @@
 
 #include "cells/build_cells.h"
 #include "render/halftone.h"
+#include "render/pixel_fill.h"
 #include "render/raster.h"
 #include "render/raster_srgb.h"
 #include "app/paper_bench.h"
@@ -225,6 +226,28 @@ TEST(Halftone, AViewIsCoveredAndCounted) {
 }
 
 // --- dithering ---------------------------------------------------------------------------
+
+TEST(Halftone, ARunOfPixelsIsWrittenWhateverItsLengthAndAlignment) {
+  // fill_pixels writes 16-byte vectors on the 16-byte grid, and its first and last flush
+  // with the run's ends: every length and every start within a cache line, and nothing
+  // written outside the run.
+  const std::array<uint8_t, 3> colour{7, 200, 33};
+  std::vector<uint8_t> buffer(1024);
+  long wrong = 0;
+  for (int channels : {1, 3})
+    for (size_t n = 0; n <= 200; ++n)
+      for (size_t start = 0; start < 64; ++start) {
+        std::fill(buffer.begin(), buffer.end(), uint8_t(0xab));
+        uint8_t* run = buffer.data() + 64 + start;
+        fill_pixels(run, n, colour, channels);
+        for (size_t i = 0; i < buffer.size(); ++i) {
+          const ptrdiff_t at = buffer.data() + i - run;
+          const bool inside = at >= 0 && at < ptrdiff_t(n) * channels;
+          wrong += buffer[i] != (inside ? colour[size_t(at % channels)] : uint8_t(0xab));
+        }
+      }
+  EXPECT_EQ(wrong, 0);
+}
 
 TEST(Dither, KeepsTheMeanGreyLevel) {
   const Image grey = ramp(256, 64);
