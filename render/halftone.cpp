@@ -122,33 +122,79 @@ class BandPainter {
     return intensity_.data();
   }
 
-  /// A flat Lit shade (every light's term constant): the span cut into runs lit alike (the
-  /// masks do not change within a run), each of one colour: f(from, to, linear colour).
+  /// A flat Lit shade (every light's term constant): the span cut into runs lit alike,
+  /// each of one colour: f(from, to, linear colour). The runs are found from the pieces'
+  /// spans themselves, not sample by sample: each piece's ends, sorted, are where some
+  /// light may begin or cease to reach, and between two ends every light's state is fixed
+  /// (lit: the whole polygon or within a lit piece, and within no shadow piece). The
+  /// states are bits, 64 terms a word.
   template <class F>
   void lit_runs(const Span& sp, const PolygonLook& look, F f) {
     const SurfaceShade& shade = scene_->shades[size_t(sp.polygon)];
-    const LightTerm* terms = mask_lights(sp, shade);
-    const int n = sp.x1 - sp.x0;
-    for (int i = 0; i < n;) {
-      // The run ends where some mask first changes: masks hold 0 or 1, so at the first
-      // sample holding the other value (memchr: many samples a step, not one).
-      int j = n;
-      for (int t = 0; t < shade.terms; ++t) {
-        const uint8_t* mask = masks_[size_t(t)];
-        if (!mask || i + 1 >= j) continue;
-        const void* other = std::memchr(mask + i + 1, mask[i] ^ 1, size_t(j - i - 1));
-        if (other) j = int(static_cast<const uint8_t*>(other) - mask);
+    const LightTerm* terms = scene_->light_terms.data() + shade.first_term;
+    const size_t words = (size_t(shade.terms) + 63) / 64;
+    // Per word of terms: lit everywhere (no scan needed), lit but where shadowed (whole),
+    // within some lit piece, within some shadow piece; then the run's state and the next.
+    bits_.assign(6 * words, 0);
+    uint64_t *always = bits_.data(), *whole = always + words, *in_lit = whole + words, *in_shadow = in_lit + words;
+    uint64_t *run = in_shadow + words, *next = run + words;
+    ends_.clear();
+    for (int t = 0; t < shade.terms; ++t) {
+      const LightTerm& term = terms[t];
+      const uint64_t bit = uint64_t(1) << (t % 64);
+      if (!term.needs_scan()) {
+        always[t / 64] |= bit;
+        continue;
       }
+      if (term.whole) whole[t / 64] |= bit;
+      const int32_t shadows = term.first_piece + term.lit_pieces;
+      for (int32_t i = term.first_piece; i < shadows + term.shadow_pieces; ++i) {
+        const Span c = secondary_->span_of(i);
+        const int32_t from = std::max(c.x0, sp.x0), to = std::min(c.x1, sp.x1);
+        if (from >= to) continue;
+        const int32_t counter = 2 * t + (i >= shadows);
+        ends_.push_back({from, counter, 1});
+        ends_.push_back({to, counter, -1});
+      }
+    }
+    auto state = [&](uint64_t* out) {
+      for (size_t w = 0; w < words; ++w) out[w] = always[w] | ((whole[w] | in_lit[w]) & ~in_shadow[w]);
+    };
+    auto colour = [&](const uint64_t* lit) {
       std::array<float, 3> light = shade.lit_ambient;
       for (int t = 0; t < shade.terms; ++t)
-        if (!masks_[size_t(t)] || masks_[size_t(t)][i])
+        if (lit[t / 64] >> (t % 64) & 1)
           for (size_t c = 0; c < 3; ++c) light[c] += terms[t].diffuse * terms[t].colour[c];
       std::array<float, 3> linear{};
-      for (size_t c = 0; c < 3; ++c)
-        linear[c] = look.colour[c] * std::min(light[look.light_channels == 3 ? c : 0], 1.0f);
-      f(sp.x0 + i, sp.x0 + j, linear);
-      i = j;
+      for (size_t c = 0; c < 3; ++c) linear[c] = look.colour[c] * std::min(light[look.light_channels == 3 ? c : 0], 1.0f);
+      return linear;
+    };
+    if (ends_.empty()) {  // no piece on this row's span: one run
+      state(run);
+      return f(sp.x0, sp.x1, colour(run));
     }
+    std::sort(ends_.begin(), ends_.end(), [](const PieceEnd& a, const PieceEnd& b) { return a.x < b.x; });
+    inside_.assign(2 * size_t(shade.terms), 0);  // per term: the lit pieces, then the shadow pieces, a run is in
+    // A run goes on while no light's state changes: the same runs as sample by sample.
+    int32_t run_from = sp.x0;
+    size_t e = 0;
+    for (int32_t x = sp.x0; x < sp.x1;) {
+      for (; e < ends_.size() && ends_[e].x <= x; ++e) {
+        const PieceEnd& end = ends_[e];
+        int32_t& count = inside_[size_t(end.counter)];
+        const bool was = count > 0;
+        count += end.step;
+        if (was != (count > 0)) (end.counter % 2 ? in_shadow : in_lit)[end.counter / 128] ^= uint64_t(1) << (end.counter / 2 % 64);
+      }
+      state(next);
+      if (x > sp.x0 && !std::equal(next, next + words, run)) {
+        f(run_from, x, colour(run));
+        run_from = x;
+      }
+      std::swap(run, next);
+      x = e < ends_.size() ? ends_[e].x : sp.x1;
+    }
+    f(run_from, sp.x1, colour(run));
   }
 
   /// Per light term of the span's shade, which of its samples the light reaches (masks_;
@@ -256,6 +302,14 @@ class BandPainter {
   std::vector<float> intensity_, sum_;
   std::vector<const uint8_t*> masks_;  ///< per light term of the span's shade: lit samples (nullptr: all)
   std::vector<uint8_t> mask_buffer_;
+  /// lit_runs: where a piece's span begins (step +1) or ends (−1) within the span, and the
+  /// counter it steps (2·term, + 1 for a shadow piece); the counters.
+  struct PieceEnd {
+    int32_t x, counter, step;
+  };
+  std::vector<PieceEnd> ends_;
+  std::vector<int32_t> inside_;
+  std::vector<uint64_t> bits_;  ///< lit_runs: the terms' states, 64 a word
   long pixels_ = 0;
 };
 
