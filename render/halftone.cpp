@@ -153,8 +153,8 @@ class BandPainter {
         const int32_t from = std::max(c.x0, sp.x0), to = std::min(c.x1, sp.x1);
         if (from >= to) continue;
         const int32_t counter = 2 * t + (i >= shadows);
-        ends_.push_back({from, counter, 1});
-        ends_.push_back({to, counter, -1});
+        ends_.push_back(piece_end(from, counter, true));
+        ends_.push_back(piece_end(to, counter, false));
       }
     }
     auto state = [&](uint64_t* out) {
@@ -173,26 +173,27 @@ class BandPainter {
       state(run);
       return f(sp.x0, sp.x1, colour(run));
     }
-    std::sort(ends_.begin(), ends_.end(), [](const PieceEnd& a, const PieceEnd& b) { return a.x < b.x; });
+    std::sort(ends_.begin(), ends_.end());  // by x
     inside_.assign(2 * size_t(shade.terms), 0);  // per term: the lit pieces, then the shadow pieces, a run is in
     // A run goes on while no light's state changes: the same runs as sample by sample.
+    auto step = [&](uint64_t end) {
+      const uint32_t counter = uint32_t(end) >> 1;
+      int32_t& count = inside_[counter];
+      const bool was = count > 0;
+      count += end & 1 ? 1 : -1;
+      if (was != (count > 0)) (counter % 2 ? in_shadow : in_lit)[counter / 128] ^= uint64_t(1) << (counter / 2 % 64);
+    };
     int32_t run_from = sp.x0;
     size_t e = 0;
     for (int32_t x = sp.x0; x < sp.x1;) {
-      for (; e < ends_.size() && ends_[e].x <= x; ++e) {
-        const PieceEnd& end = ends_[e];
-        int32_t& count = inside_[size_t(end.counter)];
-        const bool was = count > 0;
-        count += end.step;
-        if (was != (count > 0)) (end.counter % 2 ? in_shadow : in_lit)[end.counter / 128] ^= uint64_t(1) << (end.counter / 2 % 64);
-      }
+      for (; e < ends_.size() && end_x(ends_[e]) <= x; ++e) step(ends_[e]);
       state(next);
       if (x > sp.x0 && !std::equal(next, next + words, run)) {
         f(run_from, x, colour(run));
         run_from = x;
       }
       std::swap(run, next);
-      x = e < ends_.size() ? ends_[e].x : sp.x1;
+      x = e < ends_.size() ? end_x(ends_[e]) : sp.x1;
     }
     f(run_from, sp.x1, colour(run));
   }
@@ -230,12 +231,12 @@ class BandPainter {
     const PolygonLook& look = look_of(sp.polygon);
     if (sp.polygon >= 0) pixels_ += sp.x1 - sp.x0;
     uint8_t* at = dst + size_t(sp.x0) * size_t(ch_);
-    if (look.constant) return fill_pixels(at, size_t(sp.x1 - sp.x0), look.code, ch_);
+    if (look.constant) return fills_.of(look.code).fill(at, size_t(sp.x1 - sp.x0), ch_);
     if (look.piecewise)
       return lit_runs(sp, look, [&](int from, int to, const std::array<float, 3>& linear) {
         std::array<uint8_t, 3> code{};
         for (size_t c = 0; c < 3; ++c) code[c] = encoder_(linear[c]);
-        fill_pixels(dst + size_t(from) * size_t(ch_), size_t(to - from), code, ch_);
+        fills_.of(code).fill(dst + size_t(from) * size_t(ch_), size_t(to - from), ch_);
       });
     const float* in = light(sp, row);
     if (look.light_channels == 3) {
@@ -298,16 +299,20 @@ class BandPainter {
   Image* out_ = nullptr;
   std::vector<int32_t>* items_ = nullptr;
   const SrgbEncoder& encoder_ = srgb_encoder();
+  FillColours fills_;  ///< the colours of the spans filled lately, ready to fill with
   std::vector<Span> spans_;
   std::vector<float> intensity_, sum_;
   std::vector<const uint8_t*> masks_;  ///< per light term of the span's shade: lit samples (nullptr: all)
   std::vector<uint8_t> mask_buffer_;
-  /// lit_runs: where a piece's span begins (step +1) or ends (−1) within the span, and the
-  /// counter it steps (2·term, + 1 for a shadow piece); the counters.
-  struct PieceEnd {
-    int32_t x, counter, step;
-  };
-  std::vector<PieceEnd> ends_;
+  /// lit_runs: where a piece's span begins or ends within the span (x >= 0), and the
+  /// counter it steps (2·term, + 1 for a shadow piece), as one word (x, counter, begins):
+  /// sorted by x as words, and read back whole (a struct's fields stored one by one and
+  /// loaded together would wait for the stores).
+  static uint64_t piece_end(int32_t x, int32_t counter, bool begins) {
+    return uint64_t(uint32_t(x)) << 32 | uint64_t(uint32_t(counter)) << 1 | uint64_t(begins);
+  }
+  static int32_t end_x(uint64_t end) { return int32_t(end >> 32); }
+  std::vector<uint64_t> ends_;
   std::vector<int32_t> inside_;
   std::vector<uint64_t> bits_;  ///< lit_runs: the terms' states, 64 a word
   long pixels_ = 0;

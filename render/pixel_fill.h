@@ -8,6 +8,10 @@
 // grid, three registers taking turns, then its last vector flush with its end. So no
 // store but the first and the last crosses a cache line: one that does costs two, and
 // 16-byte stores at the pixels' own 3-byte steps make one in four such.
+//
+// The vectors of a colour, from each of a pixel's three bytes on, are made once
+// (FillColour) and kept for the colour's next runs (FillColours): made afresh for every
+// run, they cost as much as a short run's stores.
 #pragma once
 
 #include <array>
@@ -16,8 +20,42 @@
 
 namespace avenues {
 
+/// One colour ready to fill runs with: 16 pixels (48 bytes) of it from each byte of a
+/// pixel on.
+class FillColour {
+ public:
+  FillColour() = default;
+  explicit FillColour(const std::array<uint8_t, 3>& colour);
+  const std::array<uint8_t, 3>& colour() const { return colour_; }
+  /// Writes n pixels of `channels` bytes (1: colour()[0]; or 3) at dst. Touches no byte
+  /// outside [dst, dst + n·channels).
+  void fill(uint8_t* dst, size_t n, int channels) const;
+
+ private:
+  std::array<uint8_t, 3> colour_{};
+  alignas(16) uint64_t phases_[3][6] = {};  ///< bytes from byte k of a pixel on, per k
+};
+
+/// The colours last filled with, kept (64 of them, by a hash of the colour): most
+/// pictures have few colours, and a flat frame the same ones from row to row.
+class FillColours {
+ public:
+  FillColours();
+  const FillColour& of(const std::array<uint8_t, 3>& colour) {
+    FillColour& slot = slots_[(colour[0] * 7u + colour[1] * 131u + colour[2] * 31u) % kSlots];
+    if (slot.colour() != colour) slot = FillColour(colour);
+    return slot;
+  }
+
+ private:
+  static constexpr size_t kSlots = 64;
+  std::array<FillColour, kSlots> slots_;
+};
+
 /// Writes n pixels of `channels` bytes (1 or 3) at dst, each `colour` (its first
 /// `channels` bytes). Touches no byte outside [dst, dst + n·channels).
-void fill_pixels(uint8_t* dst, size_t n, const std::array<uint8_t, 3>& colour, int channels);
+inline void fill_pixels(uint8_t* dst, size_t n, const std::array<uint8_t, 3>& colour, int channels) {
+  FillColour(colour).fill(dst, n, channels);
+}
 
 }  // namespace avenues

@@ -249,6 +249,20 @@ TEST(Halftone, ARunOfPixelsIsWrittenWhateverItsLengthAndAlignment) {
   EXPECT_EQ(wrong, 0);
 }
 
+TEST(Halftone, ColoursKeptForFillingAreTheColoursAskedFor) {
+  // FillColours keeps 64 colours by a hash: colours that share a slot take turns in it.
+  FillColours kept;
+  std::vector<uint8_t> run(3 * 40);
+  long wrong = 0;
+  for (int round = 0; round < 3; ++round)
+    for (int k = 0; k < 300; ++k) {
+      const std::array<uint8_t, 3> colour{uint8_t(k * 37), uint8_t(k * 11 + round), uint8_t(255 - k)};
+      kept.of(colour).fill(run.data(), 40, 3);
+      for (size_t i = 0; i < run.size(); ++i) wrong += run[i] != colour[i % 3];
+    }
+  EXPECT_EQ(wrong, 0);
+}
+
 TEST(Dither, KeepsTheMeanGreyLevel) {
   const Image grey = ramp(256, 64);
   const double want = mean_linear(grey);
