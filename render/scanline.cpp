@@ -334,6 +334,15 @@ void ScanlineEngine::spans_of_polygons(bool sort) {
   sort_by(by_right_, span_right_);
 }
 
+inline void ScanlineEngine::emit(int32_t x0, int32_t x1, int32_t polygon) {
+  if (x0 >= x1) return;
+  if (!out_->empty() && out_->back().polygon == polygon && out_->back().x1 == x0) {
+    out_->back().x1 = x1;
+    return;
+  }
+  out_->push_back({x0, x1, polygon});
+}
+
 void ScanlineEngine::walk() {
   // Left to right through the span ends: at equal x, polygons left before polygons entered.
   // Between two ends the set of polygons the ray is in is fixed: resolve it there.
@@ -358,7 +367,9 @@ void ScanlineEngine::walk() {
     int32_t next = width;
     if (leaves < by_right_.size()) next = std::min(next, span_right_[size_t(by_right_[leaves])]);
     if (enters < by_left_.size()) next = std::min(next, span_left_[size_t(by_left_[enters])]);
-    resolve(x, next);
+    // One polygon or none: nothing to resolve (most runs), and no call.
+    if (inside_.size() <= 1) emit(x, next, inside_.empty() ? -1 : inside_[0]);
+    else resolve(x, next);
     x = next;
   }
   for (int32_t p : inside_) inside_at_[size_t(p)] = -1;
@@ -368,19 +379,18 @@ void ScanlineEngine::walk() {
 void ScanlineEngine::next_row() {
   // Down a row: drop the edges that end, step the others exactly, let the new ones in;
   // the same for the polygons.
+  // Stepped in place: only the crossing and its remainder change. An edge is moved
+  // down the list only when one before it has ended.
   size_t kept = 0;
-  for (const ActiveEdge& a : active_) {
+  const size_t n = active_.size();
+  for (size_t i = 0; i < n; ++i) {
+    ActiveEdge& a = active_[i];
     if (a.end_row <= row_ + 1) continue;
-    ActiveEdge b = a;  // stepped in registers, stored once
-    b.crossing += b.step_q;
-    const int64_t over = b.step_r - b.remainder;
-    if (over > 0) {
-      b.crossing += 1;
-      b.remainder = b.den - over;
-    } else {
-      b.remainder = -over;
-    }
-    active_[kept++] = b;
+    const int64_t over = a.step_r - a.remainder;
+    a.crossing += a.step_q + (over > 0);
+    a.remainder = over > 0 ? a.den - over : -over;
+    if (kept != i) active_[kept] = a;
+    ++kept;
   }
   active_.resize(kept);
   ++row_;
@@ -399,15 +409,6 @@ void ScanlineEngine::next_row() {
     enter_polygon(table_->polygon_order_[size_t(i)]);
 }
 
-void ScanlineEngine::emit(int32_t x0, int32_t x1, int32_t polygon) {
-  if (x0 >= x1) return;
-  if (!out_->empty() && out_->back().polygon == polygon && out_->back().x1 == x0) {
-    out_->back().x1 = x1;
-    return;
-  }
-  out_->push_back({x0, x1, polygon});
-}
-
 namespace {
 
 /// Among faces, the deepest avenue's is seen; ties (only where rounding lets two avenues
@@ -423,8 +424,6 @@ bool deeper_face(const std::vector<ScreenPolygon>& polys, int32_t p, int32_t q) 
 }  // namespace
 
 void ScanlineEngine::resolve(int32_t x0, int32_t x1) {
-  if (inside_.empty()) return emit(x0, x1, -1);
-  if (inside_.size() == 1) return emit(x0, x1, inside_[0]);
   int32_t deepest_face = -1;
   objects_.clear();
   for (int32_t p : inside_) {

@@ -213,6 +213,7 @@ class ScanlineEngine {
   void spans_of_polygons(bool sort);
   void walk();
   void next_row();
+  /// The visible polygon of samples [x0, x1), where the ray is in two or more (inside_).
   void resolve(int32_t x0, int32_t x1);
   void resolve_groups(int32_t x0, int32_t x1, size_t first, int32_t deepest_face, int level);
   void emit(int32_t x0, int32_t x1, int32_t polygon);
