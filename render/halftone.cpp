@@ -300,10 +300,11 @@ class BandPainter {
   std::vector<int32_t>* items_ = nullptr;
   const SrgbEncoder& encoder_ = srgb_encoder();
   FillColours fills_;  ///< the colours of the spans filled lately, ready to fill with
-  std::vector<Span> spans_;
-  std::vector<float> intensity_, sum_;
-  std::vector<const uint8_t*> masks_;  ///< per light term of the span's shade: lit samples (nullptr: all)
-  std::vector<uint8_t> mask_buffer_;
+  // Written by this painter's thread alone: in lines of their own (core/cache_lines.h).
+  SpanRow spans_;
+  OwnLines<float> intensity_, sum_;
+  OwnLines<const uint8_t*> masks_;  ///< per light term of the span's shade: lit samples (nullptr: all)
+  OwnLines<uint8_t> mask_buffer_;
   /// lit_runs: where a piece's span begins or ends within the span (x >= 0), and the
   /// counter it steps (2·term, + 1 for a shadow piece), as one word (x, counter, begins):
   /// sorted by x as words, and read back whole (a struct's fields stored one by one and
@@ -312,9 +313,9 @@ class BandPainter {
     return uint64_t(uint32_t(x)) << 32 | uint64_t(uint32_t(counter)) << 1 | uint64_t(begins);
   }
   static int32_t end_x(uint64_t end) { return int32_t(end >> 32); }
-  std::vector<uint64_t> ends_;
-  std::vector<int32_t> inside_;
-  std::vector<uint64_t> bits_;  ///< lit_runs: the terms' states, 64 a word
+  OwnLines<uint64_t> ends_;
+  OwnLines<int32_t> inside_;
+  OwnLines<uint64_t> bits_;  ///< lit_runs: the terms' states, 64 a word
   long pixels_ = 0;
 };
 

@@ -238,7 +238,7 @@ void ScanlineEngine::touch(Extent& x, const ActiveEdge& a) {
   }
 }
 
-void ScanlineEngine::scan(std::vector<Span>& out) {
+void ScanlineEngine::scan(SpanRow& out) {
   out.clear();
   out_ = &out;
   extents_of_row();
@@ -305,10 +305,10 @@ void ScanlineEngine::spans_of_polygons(bool sort) {
   // polygon, its clip region and the window is convex, so each polygon's span begins and
   // ends once, but where thousands of spans do, inserting each one by one would be
   // quadratic. A row whose order changed a lot (a bound on the shifts) is sorted afresh.
-  auto order = [](const std::vector<int32_t>& key) {
+  auto order = [](const OwnLines<int32_t>& key) {
     return [&key](int32_t p, int32_t q) { return key[size_t(p)] < key[size_t(q)] || (key[size_t(p)] == key[size_t(q)] && p < q); };
   };
-  auto sort_by = [&](std::vector<int32_t>& list, const std::vector<int32_t>& key) {
+  auto sort_by = [&](OwnLines<int32_t>& list, const OwnLines<int32_t>& key) {
     list.erase(std::remove_if(list.begin(), list.end(), [&](int32_t p) { return key[size_t(p)] == kNoSpan; }), list.end());
     const auto before = order(key);
     size_t shifts = 0;
@@ -448,7 +448,7 @@ void ScanlineEngine::resolve_groups(int32_t x0, int32_t x1, size_t first, int32_
   size_t last = first;
   while (last < objects_.size() && (*polygons_)[size_t(objects_[last])].group == group) ++last;
   // The candidates: this avenue's objects and its face (the depth bound of its cell).
-  std::vector<int32_t>& cands = candidates_[size_t(level)];
+  OwnLines<int32_t>& cands = candidates_[size_t(level)];
   cands.assign(objects_.begin() + std::ptrdiff_t(first), objects_.begin() + std::ptrdiff_t(last));
   int32_t face = -1;
   for (int32_t p : inside_) {
@@ -504,7 +504,7 @@ double ScanlineEngine::nearer_by(int32_t p, int32_t q, int32_t x) const {
   return (a.a - b.a) * (x + 0.5) + ((a.b - b.b) * row_centre_ + (a.c - b.c));
 }
 
-int32_t ScanlineEngine::nearest(const std::vector<int32_t>& cands, int32_t x) {
+int32_t ScanlineEngine::nearest(const OwnLines<int32_t>& cands, int32_t x) {
   ++counters_.depth_sorts;
   int32_t best = cands[0];
   for (size_t i = 1; i < cands.size(); ++i) {

@@ -62,6 +62,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/cache_lines.h"
 #include "render/raster_map.h"
 
 namespace avenues {
@@ -100,6 +101,9 @@ struct Span {
   int32_t x0 = 0, x1 = 0;
   int32_t polygon = -1;
 };
+
+/// The spans of one row, in storage of the scanning thread's own (core/cache_lines.h).
+using SpanRow = OwnLines<Span>;
 
 /// What the scan did, in Bouknight's terms.
 struct ScanCounters {
@@ -181,14 +185,14 @@ class ScanlineEngine {
   /// Places the scan at `row`: the edges already crossing it enter the active list.
   void start(int row);
   /// The spans of the current row, left to right, tiling [0, width); then moves down a row.
-  void scan(std::vector<Span>& out);
+  void scan(SpanRow& out);
   /// Only each polygon's own span on the current row (coverage()), no hidden surfaces; then
   /// moves down a row. The secondary scan's step.
   void scan_coverage();
   const ScanCounters& counters() const { return counters_; }
   /// Each polygon's own span on the row last scanned, before hidden surfaces were
   /// resolved (for checking coverage: the fill rule's "exactly once").
-  const std::vector<Span>& coverage() const { return coverage_; }
+  const SpanRow& coverage() const { return coverage_; }
 
  private:
   struct ActiveEdge {
@@ -217,25 +221,26 @@ class ScanlineEngine {
   void resolve(int32_t x0, int32_t x1);
   void resolve_groups(int32_t x0, int32_t x1, size_t first, int32_t deepest_face, int level);
   void emit(int32_t x0, int32_t x1, int32_t polygon);
-  int32_t nearest(const std::vector<int32_t>& candidates, int32_t x);
+  int32_t nearest(const OwnLines<int32_t>& candidates, int32_t x);
   double nearer_by(int32_t p, int32_t q, int32_t x) const;
   int32_t first_nearer(int32_t q, int32_t cur, int32_t from, int32_t last) const;
 
   const EdgeTable* table_ = nullptr;
   const std::vector<ScreenPolygon>* polygons_ = nullptr;
   int row_ = 0;
-  std::vector<ActiveEdge> active_;                 ///< the active edge list
-  std::vector<Extent> polygon_extent_, clip_extent_;
-  std::vector<int32_t> span_left_, span_right_;    ///< per polygon, its span on this row (kNoSpan: none)
-  std::vector<int32_t> on_row_;                    ///< the polygons whose rows include this one, in entry order
-  std::vector<int32_t> by_left_, by_right_;        ///< the polygons with a span on this row, by its start and by its end
-  std::vector<int32_t> entering_, merged_;         ///< spans_of_polygons: spans new on this row; a merge's output
-  std::vector<Span> coverage_;
-  std::vector<int32_t> inside_;       ///< polygons the scan ray is in
-  std::vector<int32_t> inside_at_;    ///< per polygon, its index in inside_ (-1: not in)
-  std::vector<int32_t> objects_;      ///< resolve: the objects inside, nearest groups first
-  std::vector<std::vector<int32_t>> candidates_;  ///< resolve: per level of groups
-  std::vector<Span>* out_ = nullptr;
+  // Written on every row, by this engine's thread alone: in lines of their own.
+  OwnLines<ActiveEdge> active_;                 ///< the active edge list
+  OwnLines<Extent> polygon_extent_, clip_extent_;
+  OwnLines<int32_t> span_left_, span_right_;    ///< per polygon, its span on this row (kNoSpan: none)
+  OwnLines<int32_t> on_row_;                    ///< the polygons whose rows include this one, in entry order
+  OwnLines<int32_t> by_left_, by_right_;        ///< the polygons with a span on this row, by its start and by its end
+  OwnLines<int32_t> entering_, merged_;         ///< spans_of_polygons: spans new on this row; a merge's output
+  SpanRow coverage_;
+  OwnLines<int32_t> inside_;       ///< polygons the scan ray is in
+  OwnLines<int32_t> inside_at_;    ///< per polygon, its index in inside_ (-1: not in)
+  OwnLines<int32_t> objects_;      ///< resolve: the objects inside, nearest groups first
+  std::vector<OwnLines<int32_t>> candidates_;  ///< resolve: per level of groups
+  SpanRow* out_ = nullptr;
   double row_centre_ = 0.5;
   bool implicit_lines_ = true;
   ScanCounters counters_;
@@ -265,8 +270,8 @@ class SecondaryScan {
 
  private:
   ScanlineEngine engine_;
-  std::vector<Span> spans_;      ///< per piece, its span on row row_of_[piece]
-  std::vector<int32_t> row_of_;  ///< per piece, the row its span belongs to
+  OwnLines<Span> spans_;      ///< per piece, its span on row row_of_[piece]
+  OwnLines<int32_t> row_of_;  ///< per piece, the row its span belongs to
   int32_t row_ = -1;             ///< the row last scanned
   int32_t next_ = 0;             ///< the row scan() does next
 };

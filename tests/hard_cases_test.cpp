@@ -627,7 +627,7 @@ std::vector<int> engine_coverage(int w, int h, const std::vector<ScreenPolygon>&
   ScanlineEngine engine(table);
   engine.start(0);
   std::vector<int> count(size_t(w) * size_t(h), 0);
-  std::vector<Span> spans;
+  SpanRow spans;
   for (int y = 0; y < h; ++y) {
     engine.scan(spans);
     for (const Span& s : engine.coverage())

@@ -42,7 +42,7 @@ std::vector<int> coverage_counts(int w, int h, const std::vector<ScreenPolygon>&
   ScanlineEngine engine(table);
   engine.start(0);
   std::vector<int> count(size_t(w) * size_t(h), 0);
-  std::vector<Span> spans;
+  SpanRow spans;
   for (int y = 0; y < h; ++y) {
     engine.scan(spans);
     for (const Span& s : engine.coverage())
@@ -150,7 +150,7 @@ TEST(FillRule, TiesGoToTheLeftAndTopEdges) {
   EdgeTable table(40, 30, polys, {});
   ScanlineEngine engine(table);
   engine.start(0);
-  std::vector<Span> spans;
+  SpanRow spans;
   for (int y = 0; y < 30; ++y) {
     engine.scan(spans);
     for (const Span& s : engine.coverage()) {
@@ -177,12 +177,12 @@ TEST(Scanline, ABandStartedMidPictureScansWhatAFullScanDoes) {
   EdgeTable table(300, 220, polys, {});
   ScanlineEngine full(table);
   full.start(0);
-  std::vector<std::vector<Span>> rows(220);
+  std::vector<SpanRow> rows(220);
   for (auto& r : rows) full.scan(r);
   for (int start : {1, 37, 101, 150, 219}) {
     ScanlineEngine band(table);
     band.start(start);
-    std::vector<Span> spans;
+    SpanRow spans;
     for (int y = start; y < std::min(220, start + 20); ++y) {
       band.scan(spans);
       ASSERT_EQ(spans.size(), rows[size_t(y)].size()) << "row " << y;
@@ -203,7 +203,7 @@ TEST(Scanline, SpansTileEachRowAndMergeRunsOfOnePolygon) {
   EdgeTable table(40, 30, polys, {});
   ScanlineEngine engine(table);
   engine.start(0);
-  std::vector<Span> spans;
+  SpanRow spans;
   for (int y = 0; y < 30; ++y) {
     engine.scan(spans);
     ASSERT_FALSE(spans.empty());
@@ -259,7 +259,7 @@ TEST(Scanline, ThousandsOfSpansThatBeginEndAndCrossSeeTheNearestOnEveryRow) {
   EdgeTable table(w, h, polys, clips);
   ScanlineEngine engine(table);
   engine.start(0);
-  std::vector<Span> spans;
+  SpanRow spans;
   long wrong = 0, seen = 0;
   for (int row = 0; row < h; ++row) {
     engine.scan(spans);
