@@ -41,7 +41,23 @@ struct PolygonLook {
   bool lit = false;                ///< a Lit shade lit per sample (lit_samples)
   bool piecewise = false;          ///< lit, every term constant: one colour per run lit alike (lit_runs)
   int light_channels = 1;          ///< lit: intensities per sample, 1 or 3 (coloured light)
+  std::array<float, 3> unpieced{};  ///< piecewise: the linear colour where no piece meets a span
 };
+
+/// The linear colour of a flat Lit shade (every term Constant) where the terms t for which
+/// lit(t) holds reach: the ambient plus those terms, each channel at most 1, times the
+/// material's `colour`. One function for the runs and for the looks: the same sums.
+template <class Lit>
+std::array<float, 3> lit_colour(const SurfaceShade& shade, const LightTerm* terms, const std::array<float, 3>& colour,
+                                int light_channels, Lit lit) {
+  std::array<float, 3> light = shade.lit_ambient;
+  for (int t = 0; t < shade.terms; ++t)
+    if (lit(t))
+      for (size_t c = 0; c < 3; ++c) light[c] += terms[t].diffuse * terms[t].colour[c];
+  std::array<float, 3> linear{};
+  for (size_t c = 0; c < 3; ++c) linear[c] = colour[c] * std::min(light[light_channels == 3 ? c : 0], 1.0f);
+  return linear;
+}
 
 /// Scans bands of rows into the picture; one per thread, reused from band to band (its
 /// counters add up over the bands it painted).
@@ -132,21 +148,10 @@ class BandPainter {
   void lit_runs(const Span& sp, const PolygonLook& look, F f) {
     const SurfaceShade& shade = scene_->shades[size_t(sp.polygon)];
     const LightTerm* terms = scene_->light_terms.data() + shade.first_term;
-    const size_t words = (size_t(shade.terms) + 63) / 64;
-    // Per word of terms: lit everywhere (no scan needed), lit but where shadowed (whole),
-    // within some lit piece, within some shadow piece; then the run's state and the next.
-    bits_.assign(6 * words, 0);
-    uint64_t *always = bits_.data(), *whole = always + words, *in_lit = whole + words, *in_shadow = in_lit + words;
-    uint64_t *run = in_shadow + words, *next = run + words;
     ends_.clear();
     for (int t = 0; t < shade.terms; ++t) {
       const LightTerm& term = terms[t];
-      const uint64_t bit = uint64_t(1) << (t % 64);
-      if (!term.needs_scan()) {
-        always[t / 64] |= bit;
-        continue;
-      }
-      if (term.whole) whole[t / 64] |= bit;
+      if (!term.needs_scan()) continue;
       const int32_t shadows = term.first_piece + term.lit_pieces;
       for (int32_t i = term.first_piece; i < shadows + term.shadow_pieces; ++i) {
         const Span c = secondary_->span_of(i);
@@ -157,22 +162,24 @@ class BandPainter {
         ends_.push_back(piece_end(to, counter, false));
       }
     }
+    if (ends_.empty()) return f(sp.x0, sp.x1, look.unpieced);  // no piece on this row's span: one run
+    // Per word of terms: lit everywhere (no scan needed), lit but where shadowed (whole),
+    // within some lit piece, within some shadow piece; then the run's state and the next.
+    const size_t words = (size_t(shade.terms) + 63) / 64;
+    bits_.assign(6 * words, 0);
+    uint64_t *always = bits_.data(), *whole = always + words, *in_lit = whole + words, *in_shadow = in_lit + words;
+    uint64_t *run = in_shadow + words, *next = run + words;
+    for (int t = 0; t < shade.terms; ++t) {
+      const uint64_t bit = uint64_t(1) << (t % 64);
+      if (!terms[t].needs_scan()) always[t / 64] |= bit;
+      else if (terms[t].whole) whole[t / 64] |= bit;
+    }
     auto state = [&](uint64_t* out) {
       for (size_t w = 0; w < words; ++w) out[w] = always[w] | ((whole[w] | in_lit[w]) & ~in_shadow[w]);
     };
     auto colour = [&](const uint64_t* lit) {
-      std::array<float, 3> light = shade.lit_ambient;
-      for (int t = 0; t < shade.terms; ++t)
-        if (lit[t / 64] >> (t % 64) & 1)
-          for (size_t c = 0; c < 3; ++c) light[c] += terms[t].diffuse * terms[t].colour[c];
-      std::array<float, 3> linear{};
-      for (size_t c = 0; c < 3; ++c) linear[c] = look.colour[c] * std::min(light[look.light_channels == 3 ? c : 0], 1.0f);
-      return linear;
+      return lit_colour(shade, terms, look.colour, look.light_channels, [&](int t) { return lit[t / 64] >> (t % 64) & 1; });
     };
-    if (ends_.empty()) {  // no piece on this row's span: one run
-      state(run);
-      return f(sp.x0, sp.x1, colour(run));
-    }
     std::sort(ends_.begin(), ends_.end());  // by x
     inside_.assign(2 * size_t(shade.terms), 0);  // per term: the lit pieces, then the shadow pieces, a run is in
     // A run goes on while no light's state changes: the same runs as sample by sample.
@@ -188,7 +195,9 @@ class BandPainter {
     for (int32_t x = sp.x0; x < sp.x1;) {
       for (; e < ends_.size() && end_x(ends_[e]) <= x; ++e) step(ends_[e]);
       state(next);
-      if (x > sp.x0 && !std::equal(next, next + words, run)) {
+      bool changed = false;  // (a loop, not std::equal: that is a call to memcmp)
+      for (size_t w = 0; w < words; ++w) changed |= next[w] != run[w];
+      if (x > sp.x0 && changed) {
         f(run_from, x, colour(run));
         run_from = x;
       }
@@ -345,6 +354,11 @@ PolygonLook look_of(const SurfaceShade& shade, const std::vector<LightTerm>& ter
   for (size_t c = 0; c < 3; ++c) {
     look.linear[c] = look.colour[c] * intensity[c];
     look.code[c] = enc(look.linear[c]);
+  }
+  if (look.piecewise) {
+    const LightTerm* own = terms.data() + shade.first_term;
+    look.unpieced = lit_colour(shade, own, look.colour, look.light_channels,
+                               [&](int t) { return !own[t].needs_scan() || own[t].whole; });
   }
   return look;
 }
