@@ -168,8 +168,7 @@ void ScanlineEngine::reset(const EdgeTable& table, bool implicit_lines) {
   row_ = 0;
   active_.clear();
   on_row_.clear();
-  by_left_.clear();
-  by_right_.clear();
+  ends_.clear();
   coverage_.clear();
   inside_.clear();
   objects_.clear();
@@ -207,8 +206,7 @@ void ScanlineEngine::start(int row) {
   active_.clear();
   for (int32_t p : on_row_) span_left_[size_t(p)] = span_right_[size_t(p)] = kNoSpan;
   on_row_.clear();
-  by_left_.clear();
-  by_right_.clear();
+  ends_.clear();
   row_ = row;
   if (row < 0 || row >= table_->height_) return;
   // Bouknight's bin of lines starting below the window, generalised to any first row:
@@ -297,41 +295,47 @@ void ScanlineEngine::spans_of_polygons(bool sort) {
     }
   }
   if (!sort) return;
-  // The span ends in scan order: by (end, polygon), a total order, so the lists are the same
-  // however they are sorted. Both were in order on the row above and spans move little from
-  // row to row, so an insertion sort of the spans that go on has next to nothing to do
-  // (Bouknight sorts his active list anew each scanline; coherence makes it cheap). Spans
-  // new on this row are sorted among themselves and merged in: the intersection of a
-  // polygon, its clip region and the window is convex, so each polygon's span begins and
-  // ends once, but where thousands of spans do, inserting each one by one would be
-  // quadratic. A row whose order changed a lot (a bound on the shifts) is sorted afresh.
-  auto order = [](const OwnLines<int32_t>& key) {
-    return [&key](int32_t p, int32_t q) { return key[size_t(p)] < key[size_t(q)] || (key[size_t(p)] == key[size_t(q)] && p < q); };
-  };
-  auto sort_by = [&](OwnLines<int32_t>& list, const OwnLines<int32_t>& key) {
-    list.erase(std::remove_if(list.begin(), list.end(), [&](int32_t p) { return key[size_t(p)] == kNoSpan; }), list.end());
-    const auto before = order(key);
-    size_t shifts = 0;
-    const size_t shift_limit = 4 * list.size() + 64;
-    for (size_t i = 1; i < list.size(); ++i) {
-      const int32_t p = list[i];
-      size_t j = i;
-      for (; j > 0 && before(p, list[j - 1]); --j) list[j] = list[j - 1];
-      list[j] = p;
-      shifts += i - j;
-      if (shifts > shift_limit) {
-        std::sort(list.begin(), list.end(), before);
-        break;
-      }
+  // The span ends in scan order, as one list of words (x, leaves before enters, polygon):
+  // a total order, so the list is the same however it is sorted, and at equal x a polygon
+  // left comes before one entered (Bouknight). The list was in order on the row above and
+  // spans move little from row to row, so an insertion sort of the ends that go on, each
+  // at its new x, has next to nothing to do (Bouknight sorts his active list anew each
+  // scanline; coherence makes it cheap). Ends new on this row are sorted among themselves
+  // and merged in: the intersection of a polygon, its clip region and the window is convex,
+  // so each polygon's span begins and ends once, but where thousands of spans do, inserting
+  // each one by one would be quadratic. A row whose order changed a lot (a bound on the
+  // shifts) is sorted afresh.
+  size_t kept = 0;
+  for (const uint64_t end : ends_) {
+    const int32_t p = end_polygon(end);
+    if (span_left_[size_t(p)] == kNoSpan) continue;  // no span on this row
+    const bool enters = end_enters(end);
+    ends_[kept++] = span_end(enters ? span_left_[size_t(p)] : span_right_[size_t(p)], enters, p);
+  }
+  ends_.resize(kept);
+  size_t shifts = 0;
+  const size_t shift_limit = 4 * ends_.size() + 64;
+  for (size_t i = 1; i < ends_.size(); ++i) {
+    const uint64_t end = ends_[i];
+    size_t j = i;
+    for (; j > 0 && end < ends_[j - 1]; --j) ends_[j] = ends_[j - 1];
+    ends_[j] = end;
+    shifts += i - j;
+    if (shifts > shift_limit) {
+      std::sort(ends_.begin(), ends_.end());
+      break;
     }
-    if (entering_.empty()) return;
-    std::sort(entering_.begin(), entering_.end(), before);
-    merged_.resize(list.size() + entering_.size());
-    std::merge(list.begin(), list.end(), entering_.begin(), entering_.end(), merged_.begin(), before);
-    list.swap(merged_);
-  };
-  sort_by(by_left_, span_left_);
-  sort_by(by_right_, span_right_);
+  }
+  if (entering_.empty()) return;
+  entering_ends_.clear();
+  for (const int32_t p : entering_) {
+    entering_ends_.push_back(span_end(span_left_[size_t(p)], true, p));
+    entering_ends_.push_back(span_end(span_right_[size_t(p)], false, p));
+  }
+  std::sort(entering_ends_.begin(), entering_ends_.end());
+  merged_.resize(ends_.size() + entering_ends_.size());
+  std::merge(ends_.begin(), ends_.end(), entering_ends_.begin(), entering_ends_.end(), merged_.begin());
+  ends_.swap(merged_);
 }
 
 inline void ScanlineEngine::emit(int32_t x0, int32_t x1, int32_t polygon) {
@@ -344,29 +348,29 @@ inline void ScanlineEngine::emit(int32_t x0, int32_t x1, int32_t polygon) {
 }
 
 void ScanlineEngine::walk() {
-  // Left to right through the span ends: at equal x, polygons left before polygons entered.
-  // Between two ends the set of polygons the ray is in is fixed: resolve it there.
+  // Left to right through the span ends (in order: at equal x, polygons left before
+  // polygons entered). Between two ends the set of polygons the ray is in is fixed:
+  // resolve it there.
   const int32_t width = table_->width_;
-  size_t enters = 0, leaves = 0;
+  const size_t n = ends_.size();
+  size_t i = 0;
   int32_t x = 0;
   while (x < width) {
-    for (; leaves < by_right_.size() && span_right_[size_t(by_right_[leaves])] <= x; ++leaves) {
-      const int32_t p = by_right_[leaves];
-      const int32_t i = inside_at_[size_t(p)];
-      const int32_t last = inside_.back();
-      inside_[size_t(i)] = last;
-      inside_at_[size_t(last)] = i;
-      inside_.pop_back();
-      inside_at_[size_t(p)] = -1;
+    for (; i < n && end_x(ends_[i]) <= x; ++i) {
+      const int32_t p = end_polygon(ends_[i]);
+      if (end_enters(ends_[i])) {
+        inside_at_[size_t(p)] = int32_t(inside_.size());
+        inside_.push_back(p);
+      } else {
+        const int32_t at = inside_at_[size_t(p)];
+        const int32_t last = inside_.back();
+        inside_[size_t(at)] = last;
+        inside_at_[size_t(last)] = at;
+        inside_.pop_back();
+        inside_at_[size_t(p)] = -1;
+      }
     }
-    for (; enters < by_left_.size() && span_left_[size_t(by_left_[enters])] <= x; ++enters) {
-      const int32_t p = by_left_[enters];
-      inside_at_[size_t(p)] = int32_t(inside_.size());
-      inside_.push_back(p);
-    }
-    int32_t next = width;
-    if (leaves < by_right_.size()) next = std::min(next, span_right_[size_t(by_right_[leaves])]);
-    if (enters < by_left_.size()) next = std::min(next, span_left_[size_t(by_left_[enters])]);
+    const int32_t next = i < n ? std::min(end_x(ends_[i]), width) : width;
     // One polygon or none: nothing to resolve (most runs), and no call.
     if (inside_.size() <= 1) emit(x, next, inside_.empty() ? -1 : inside_[0]);
     else resolve(x, next);

@@ -233,8 +233,17 @@ class ScanlineEngine {
   OwnLines<Extent> polygon_extent_, clip_extent_;
   OwnLines<int32_t> span_left_, span_right_;    ///< per polygon, its span on this row (kNoSpan: none)
   OwnLines<int32_t> on_row_;                    ///< the polygons whose rows include this one, in entry order
-  OwnLines<int32_t> by_left_, by_right_;        ///< the polygons with a span on this row, by its start and by its end
-  OwnLines<int32_t> entering_, merged_;         ///< spans_of_polygons: spans new on this row; a merge's output
+  /// The ends of the spans on this row in scan order, each a word: x (32 bits), whether
+  /// the ray enters there (1) or leaves (0), the polygon (31 bits).
+  OwnLines<uint64_t> ends_;
+  static uint64_t span_end(int32_t x, bool enters, int32_t polygon) {
+    return uint64_t(uint32_t(x)) << 32 | uint64_t(enters) << 31 | uint64_t(uint32_t(polygon));
+  }
+  static int32_t end_x(uint64_t end) { return int32_t(end >> 32); }
+  static bool end_enters(uint64_t end) { return (end >> 31) & 1; }
+  static int32_t end_polygon(uint64_t end) { return int32_t(end & 0x7fffffff); }
+  OwnLines<int32_t> entering_;                  ///< spans_of_polygons: the polygons whose spans are new on this row
+  OwnLines<uint64_t> entering_ends_, merged_;   ///< their ends; a merge's output
   SpanRow coverage_;
   OwnLines<int32_t> inside_;       ///< polygons the scan ray is in
   OwnLines<int32_t> inside_at_;    ///< per polygon, its index in inside_ (-1: not in)
