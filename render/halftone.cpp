@@ -97,7 +97,21 @@ class BandPainter {
       if (s_ == 1) {
         engine_.scan(spans_);
         if (secondary_) secondary_->scan();
+        // The same spans (and pieces of light) as the row above, each of one colour or of
+        // runs lit alike: the same pixels.
+        if (y > y0 && row_alike_ && engine_.repeated() && (!secondary_ || secondary_->repeated())) {
+          std::memcpy(dst, out_->row(y - 1), size_t(out_->width) * size_t(ch_));
+          pixels_ += row_pixels_;
+          if (items_) {
+            const size_t w = size_t(scene_->raster.width);
+            std::memcpy(items_->data() + size_t(y) * w, items_->data() + size_t(y - 1) * w, w * sizeof(int32_t));
+          }
+          continue;
+        }
+        const long before = pixels_;
+        row_alike_ = true;
         for (const Span& sp : spans_) write_span(dst, sp, y);
+        row_pixels_ = pixels_ - before;
         keep_items(y);
         continue;
       }
@@ -247,6 +261,7 @@ class BandPainter {
         for (size_t c = 0; c < 3; ++c) code[c] = encoder_(linear[c]);
         fills_.of(code).fill(dst + size_t(from) * size_t(ch_), size_t(to - from), ch_);
       });
+    row_alike_ = false;  // lit sample by sample: another row, other samples
     const float* in = light(sp, row);
     if (look.light_channels == 3) {
       for (int i = 0; i < sp.x1 - sp.x0; ++i)
@@ -326,6 +341,8 @@ class BandPainter {
   OwnLines<int32_t> inside_;
   OwnLines<uint64_t> bits_;  ///< lit_runs: the terms' states, 64 a word
   long pixels_ = 0;
+  bool row_alike_ = false;  ///< the row last painted is a row of its spans alone (no sample lit by its place)
+  long row_pixels_ = 0;     ///< its pixels counted
 };
 
 PolygonLook look_of(const SurfaceShade& shade, const std::vector<LightTerm>& terms, bool colour,

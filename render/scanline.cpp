@@ -173,7 +173,9 @@ void ScanlineEngine::reset(const EdgeTable& table, bool implicit_lines) {
   inside_.clear();
   objects_.clear();
   out_ = nullptr;
+  row_spans_.clear();
   row_centre_ = 0.5;
+  repeats_ = repeated_ = depth_free_ = false;
   counters_ = {};
 }
 
@@ -208,6 +210,7 @@ void ScanlineEngine::start(int row) {
   on_row_.clear();
   ends_.clear();
   row_ = row;
+  repeats_ = repeated_ = depth_free_ = false;
   if (row < 0 || row >= table_->height_) return;
   // Bouknight's bin of lines starting below the window, generalised to any first row:
   // every edge (and polygon) that began above this row and still crosses it, then this
@@ -237,28 +240,46 @@ void ScanlineEngine::touch(Extent& x, const ActiveEdge& a) {
 }
 
 void ScanlineEngine::scan(SpanRow& out) {
-  out.clear();
-  out_ = &out;
-  extents_of_row();
-  spans_of_polygons(true);
-  walk();
+  repeated_ = repeats_;
+  if (repeated_) {  // the row above again: its spans, kept in row_spans_
+    count_row();
+  } else {
+    row_spans_.clear();
+    out_ = &row_spans_;
+    extents_of_row();
+    spans_of_polygons(true);
+    const long sorts = counters_.depth_sorts;
+    walk();
+    depth_free_ = counters_.depth_sorts == sorts;
+  }
+  out.assign(row_spans_.begin(), row_spans_.end());
   counters_.spans += long(out.size());
   next_row();
 }
 
 void ScanlineEngine::scan_coverage() {
+  repeated_ = repeats_;
+  if (repeated_) {
+    count_row();
+    next_row();
+    return;
+  }
   extents_of_row();
   spans_of_polygons(false);
+  depth_free_ = true;
   next_row();
+}
+
+void ScanlineEngine::count_row() {
+  if (active_.empty()) return;
+  ++counters_.scanlines;
+  counters_.intersections += long(active_.size());
+  counters_.active_max = std::max(counters_.active_max, int(active_.size()));
 }
 
 void ScanlineEngine::extents_of_row() {
   row_centre_ = row_ + 0.5;
-  if (!active_.empty()) {
-    ++counters_.scanlines;
-    counters_.intersections += long(active_.size());
-    counters_.active_max = std::max(counters_.active_max, int(active_.size()));
-  }
+  count_row();
   for (const ActiveEdge& a : active_) touch(a.clip ? clip_extent_[size_t(a.owner)] : polygon_extent_[size_t(a.owner)], a);
 }
 
@@ -385,20 +406,27 @@ void ScanlineEngine::next_row() {
   // the same for the polygons.
   // Stepped in place: only the crossing and its remainder change. An edge is moved
   // down the list only when one before it has ended.
+  // Whether anything moves: if no edge ends, begins or steps to another sample, no polygon
+  // ends or begins, and the row was resolved without depth, the next row is this one again.
   size_t kept = 0;
   const size_t n = active_.size();
+  int64_t moved = 0;
   for (size_t i = 0; i < n; ++i) {
     ActiveEdge& a = active_[i];
     if (a.end_row <= row_ + 1) continue;
     const int64_t over = a.step_r - a.remainder;
-    a.crossing += a.step_q + (over > 0);
+    const int64_t step = a.step_q + (over > 0);
+    a.crossing += step;
     a.remainder = over > 0 ? a.den - over : -over;
+    moved |= step;
     if (kept != i) active_[kept] = a;
     ++kept;
   }
+  bool changed = moved != 0 || kept != n;
   active_.resize(kept);
   ++row_;
   if (row_ <= table_->height_ && table_->polygons_ending_[size_t(row_)] > 0) {
+    changed = true;
     auto ended = [&](int32_t p) {
       if (table_->polygon_rows_[size_t(p)].end > row_) return false;
       span_left_[size_t(p)] = span_right_[size_t(p)] = kNoSpan;  // out of the sorted lists on the next row
@@ -406,11 +434,13 @@ void ScanlineEngine::next_row() {
     };
     on_row_.erase(std::remove_if(on_row_.begin(), on_row_.end(), ended), on_row_.end());
   }
+  repeats_ = false;
   if (row_ >= table_->height_) return;
-  for (int32_t i = table_->row_start_[size_t(row_)]; i < table_->row_start_[size_t(row_) + 1]; ++i)
-    enter(table_->edges_[size_t(i)], row_);
-  for (int32_t i = table_->polygon_row_start_[size_t(row_)]; i < table_->polygon_row_start_[size_t(row_) + 1]; ++i)
-    enter_polygon(table_->polygon_order_[size_t(i)]);
+  const int32_t edges = table_->row_start_[size_t(row_)], edges_end = table_->row_start_[size_t(row_) + 1];
+  const int32_t polys = table_->polygon_row_start_[size_t(row_)], polys_end = table_->polygon_row_start_[size_t(row_) + 1];
+  repeats_ = !changed && edges == edges_end && polys == polys_end && depth_free_;
+  for (int32_t i = edges; i < edges_end; ++i) enter(table_->edges_[size_t(i)], row_);
+  for (int32_t i = polys; i < polys_end; ++i) enter_polygon(table_->polygon_order_[size_t(i)]);
 }
 
 namespace {

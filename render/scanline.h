@@ -190,6 +190,12 @@ class ScanlineEngine {
   /// moves down a row. The secondary scan's step.
   void scan_coverage();
   const ScanCounters& counters() const { return counters_; }
+  /// Whether the row last scanned was the one before it again: no edge began, ended or
+  /// stepped to another sample, no polygon began or ended, and the row before was resolved
+  /// without depth (which changes from row to row), so its spans are the same; they were
+  /// not looked for again. (A level eye sees walls' edges upright, and the rows between the
+  /// lowest ceiling edge and the highest floor edge are often all alike.)
+  bool repeated() const { return repeated_; }
   /// Each polygon's own span on the row last scanned, before hidden surfaces were
   /// resolved (for checking coverage: the fill rule's "exactly once").
   const SpanRow& coverage() const { return coverage_; }
@@ -212,6 +218,8 @@ class ScanlineEngine {
   void enter(const EdgeTable::Edge& e, int row);
   void enter_polygon(int32_t p);
   void touch(Extent& x, const ActiveEdge& a);
+  /// This row's counters.
+  void count_row();
   /// This row's counters, and each polygon's and clip region's extent from its active edges.
   void extents_of_row();
   void spans_of_polygons(bool sort);
@@ -249,9 +257,13 @@ class ScanlineEngine {
   OwnLines<int32_t> inside_at_;    ///< per polygon, its index in inside_ (-1: not in)
   OwnLines<int32_t> objects_;      ///< resolve: the objects inside, nearest groups first
   std::vector<OwnLines<int32_t>> candidates_;  ///< resolve: per level of groups
+  SpanRow row_spans_;  ///< the spans of the row last scanned, handed out again for a row repeated
   SpanRow* out_ = nullptr;
   double row_centre_ = 0.5;
   bool implicit_lines_ = true;
+  bool depth_free_ = false;  ///< the row last resolved was resolved without depth
+  bool repeats_ = false;     ///< next_row(): the row coming is the row last scanned again
+  bool repeated_ = false;    ///< repeated()
   ScanCounters counters_;
 };
 
@@ -272,6 +284,8 @@ class SecondaryScan {
   void start(int row);
   /// Finds each piece's samples on the current row, then moves down a row.
   void scan();
+  /// Whether the row last scanned was the one before it again (ScanlineEngine::repeated).
+  bool repeated() const { return engine_.repeated(); }
   /// The samples [x0, x1) of piece `piece` on the row last scanned (x0 >= x1: none).
   Span span_of(int32_t piece) const {
     return row_of_[size_t(piece)] == row_ ? spans_[size_t(piece)] : Span{0, 0, piece};

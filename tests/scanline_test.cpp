@@ -2,6 +2,7 @@
 // implicitly defined lines — against independent references (brute-force ray casting).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <functional>
@@ -192,6 +193,60 @@ TEST(Scanline, ABandStartedMidPictureScansWhatAFullScanDoes) {
       }
     }
   }
+}
+
+TEST(Scanline, ARowLikeTheOneAboveIsRepeatedNotScannedAgain) {
+  // Upright rectangles (walls seen by a level eye), one of them a deeper avenue's face cut
+  // by a clip region; a triangle over rows 40-59 whose sloped edges step every row; and two
+  // objects over rows 70-89 resolved by depth, whose implicit line slants. Scanned from the
+  // top, rows alike are repeated; each row scanned by an engine started there is not. The
+  // spans are the same either way.
+  auto face = [](std::vector<FixedPoint> outline, int32_t group, int32_t rank, int32_t clip = -1) {
+    ScreenPolygon p = polygon(std::move(outline));
+    p.role = PolygonRole::Face;
+    p.group = group;
+    p.rank = rank;
+    p.clip = clip;
+    return p;
+  };
+  std::vector<ScreenPolygon> polys{
+      face({fixed(0, 0), fixed(120, 0), fixed(120, 100), fixed(0, 100)}, 0, 0),
+      face({fixed(30.3, 10.2), fixed(90.7, 10.2), fixed(90.7, 95.1), fixed(30.3, 95.1)}, 1, 1, 0),
+      face({fixed(50, 40.5), fixed(80, 59.5), fixed(40, 59.5)}, 2, 2)};
+  ScreenPolygon a = polygon({fixed(10, 70), fixed(60, 70), fixed(60, 90), fixed(10, 90)}, {0.01, 0.002, 0.5});
+  ScreenPolygon b = polygon({fixed(20, 70), fixed(70, 70), fixed(70, 90), fixed(20, 90)}, {-0.01, 0.001, 0.9});
+  a.group = b.group = 1, a.rank = b.rank = 1;
+  polys.push_back(a);
+  polys.push_back(b);
+  const std::vector<ClipRegion> clips{{{fixed(25.5, 5.5), fixed(100.5, 5.5), fixed(100.5, 97.5), fixed(25.5, 97.5)}}};
+  EdgeTable table(120, 100, polys, clips);
+  ScanlineEngine one(table);
+  one.start(0);
+  SpanRow spans;
+  std::vector<int> repeated;
+  ScanCounters fresh_counters;
+  for (int y = 0; y < 100; ++y) {
+    ScanlineEngine fresh(table);
+    fresh.start(y);
+    SpanRow own;
+    fresh.scan(own);
+    EXPECT_FALSE(fresh.repeated());
+    fresh_counters.add(fresh.counters());
+    one.scan(spans);
+    if (one.repeated()) repeated.push_back(y);
+    ASSERT_EQ(spans.size(), own.size()) << "row " << y;
+    for (size_t k = 0; k < own.size(); ++k) {
+      EXPECT_EQ(spans[k].x0, own[k].x0) << "row " << y;
+      EXPECT_EQ(spans[k].x1, own[k].x1) << "row " << y;
+      EXPECT_EQ(spans[k].polygon, own[k].polygon) << "row " << y;
+    }
+  }
+  auto repeats = [&](int y) { return std::find(repeated.begin(), repeated.end(), y) != repeated.end(); };
+  for (int y : {20, 30, 65, 99}) EXPECT_TRUE(repeats(y)) << "row " << y << " is the row above again";
+  for (int y = 41; y < 60; ++y) EXPECT_FALSE(repeats(y)) << "the triangle's edges step on row " << y;
+  for (int y = 71; y < 90; ++y) EXPECT_FALSE(repeats(y)) << "row " << y << " is resolved by depth";
+  EXPECT_EQ(one.counters().spans, fresh_counters.spans);
+  EXPECT_EQ(one.counters().intersections, fresh_counters.intersections);
 }
 
 TEST(Scanline, SpansTileEachRowAndMergeRunsOfOnePolygon) {
