@@ -180,9 +180,10 @@ class BandPainter {
     // Per word of terms: lit everywhere (no scan needed), lit but where shadowed (whole),
     // within some lit piece, within some shadow piece; then the run's state and the next.
     const size_t words = (size_t(shade.terms) + 63) / 64;
-    bits_.assign(6 * words, 0);
+    if (bits_.size() < 6 * words) bits_.resize(6 * words);
     uint64_t *always = bits_.data(), *whole = always + words, *in_lit = whole + words, *in_shadow = in_lit + words;
     uint64_t *run = in_shadow + words, *next = run + words;
+    for (size_t w = 0; w < 4 * words; ++w) always[w] = 0;  // (a loop: for a word or two, memset is a call)
     for (int t = 0; t < shade.terms; ++t) {
       const uint64_t bit = uint64_t(1) << (t % 64);
       if (!terms[t].needs_scan()) always[t / 64] |= bit;
@@ -194,8 +195,15 @@ class BandPainter {
     auto colour = [&](const uint64_t* lit) {
       return lit_colour(shade, terms, look.colour, look.light_channels, [&](int t) { return lit[t / 64] >> (t % 64) & 1; });
     };
-    std::sort(ends_.begin(), ends_.end());  // by x
-    inside_.assign(2 * size_t(shade.terms), 0);  // per term: the lit pieces, then the shadow pieces, a run is in
+    // By x: a few ends (most spans) by insertion.
+    if (ends_.size() > 16) std::sort(ends_.begin(), ends_.end());
+    else
+      for (size_t i = 1; i < ends_.size(); ++i)
+        for (size_t j = i; j > 0 && ends_[j] < ends_[j - 1]; --j) std::swap(ends_[j], ends_[j - 1]);
+    // Per term, the lit pieces and the shadow pieces the samples are in: only those the
+    // ends step are read, so only they are cleared.
+    if (inside_.size() < 2 * size_t(shade.terms)) inside_.resize(2 * size_t(shade.terms));
+    for (const uint64_t end : ends_) inside_[uint32_t(end) >> 1] = 0;
     // A run goes on while no light's state changes: the same runs as sample by sample.
     auto step = [&](uint64_t end) {
       const uint32_t counter = uint32_t(end) >> 1;

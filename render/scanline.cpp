@@ -175,7 +175,7 @@ void ScanlineEngine::reset(const EdgeTable& table, bool implicit_lines) {
   out_ = nullptr;
   row_spans_.clear();
   row_centre_ = 0.5;
-  repeats_ = repeated_ = depth_free_ = false;
+  repeats_ = repeated_ = depth_free_ = seen_known_ = same_order_ = false;
   counters_ = {};
 }
 
@@ -210,7 +210,7 @@ void ScanlineEngine::start(int row) {
   on_row_.clear();
   ends_.clear();
   row_ = row;
-  repeats_ = repeated_ = depth_free_ = false;
+  repeats_ = repeated_ = depth_free_ = seen_known_ = same_order_ = false;
   if (row < 0 || row >= table_->height_) return;
   // Bouknight's bin of lines starting below the window, generalised to any first row:
   // every edge (and polygon) that began above this row and still crosses it, then this
@@ -251,6 +251,7 @@ void ScanlineEngine::scan(SpanRow& out) {
     const long sorts = counters_.depth_sorts;
     walk();
     depth_free_ = counters_.depth_sorts == sorts;
+    seen_known_ = depth_free_;
   }
   out.assign(row_spans_.begin(), row_spans_.end());
   counters_.spans += long(out.size());
@@ -333,6 +334,7 @@ void ScanlineEngine::spans_of_polygons(bool sort) {
     const bool enters = end_enters(end);
     ends_[kept++] = span_end(enters ? span_left_[size_t(p)] : span_right_[size_t(p)], enters, p);
   }
+  same_order_ = kept == ends_.size() && entering_.empty();
   ends_.resize(kept);
   size_t shifts = 0;
   const size_t shift_limit = 4 * ends_.size() + 64;
@@ -347,6 +349,7 @@ void ScanlineEngine::spans_of_polygons(bool sort) {
       break;
     }
   }
+  same_order_ = same_order_ && shifts == 0;
   if (entering_.empty()) return;
   entering_ends_.clear();
   for (const int32_t p : entering_) {
@@ -374,6 +377,26 @@ void ScanlineEngine::walk() {
   // resolve it there.
   const int32_t width = table_->width_;
   const size_t n = ends_.size();
+  // The ends in the order of the row before, which was resolved without depth: the ray is
+  // in the same polygons after each end as it was there, so the same one is seen. Where
+  // an end begins a run that was empty on the row before, it was not resolved: walk.
+  if (same_order_ && seen_known_) {
+    size_t i = 0;
+    int32_t x = 0;
+    bool known = true;
+    while (x < width && known) {
+      for (; i < n && end_x(ends_[i]) <= x; ++i) {
+      }
+      const int32_t next = i < n ? std::min(end_x(ends_[i]), width) : width;
+      const int32_t seen = i == 0 ? -1 : seen_after_[i - 1];
+      known = seen != kUnresolved;
+      if (known) emit(x, next, seen);
+      x = next;
+    }
+    if (known) return;
+    out_->clear();
+  }
+  seen_after_.assign(n, kUnresolved);
   size_t i = 0;
   int32_t x = 0;
   while (x < width) {
@@ -395,6 +418,7 @@ void ScanlineEngine::walk() {
     // One polygon or none: nothing to resolve (most runs), and no call.
     if (inside_.size() <= 1) emit(x, next, inside_.empty() ? -1 : inside_[0]);
     else resolve(x, next);
+    if (i > 0) seen_after_[i - 1] = out_->back().polygon;  // (resolved with depth: not kept, below)
     x = next;
   }
   for (int32_t p : inside_) inside_at_[size_t(p)] = -1;

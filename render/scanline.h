@@ -262,6 +262,12 @@ class ScanlineEngine {
   double row_centre_ = 0.5;
   bool implicit_lines_ = true;
   bool depth_free_ = false;  ///< the row last resolved was resolved without depth
+  /// walk(): per end, the polygon seen from it to the next end on the row last resolved
+  /// (kUnresolved: that run was empty there); known when that row was resolved without depth.
+  OwnLines<int32_t> seen_after_;
+  static constexpr int32_t kUnresolved = -2;
+  bool seen_known_ = false;
+  bool same_order_ = false;  ///< spans_of_polygons(): the same ends as on the row before, in the same order
   bool repeats_ = false;     ///< next_row(): the row coming is the row last scanned again
   bool repeated_ = false;    ///< repeated()
   ScanCounters counters_;

@@ -199,8 +199,9 @@ TEST(Scanline, ARowLikeTheOneAboveIsRepeatedNotScannedAgain) {
   // Upright rectangles (walls seen by a level eye), one of them a deeper avenue's face cut
   // by a clip region; a triangle over rows 40-59 whose sloped edges step every row; and two
   // objects over rows 70-89 resolved by depth, whose implicit line slants. Scanned from the
-  // top, rows alike are repeated; each row scanned by an engine started there is not. The
-  // spans are the same either way.
+  // top, rows alike are repeated, and the triangle's rows, whose span ends keep their order,
+  // are seen as the row before saw them; each row scanned by an engine started there is
+  // neither. The spans are the same either way.
   auto face = [](std::vector<FixedPoint> outline, int32_t group, int32_t rank, int32_t clip = -1) {
     ScreenPolygon p = polygon(std::move(outline));
     p.role = PolygonRole::Face;
