@@ -81,6 +81,10 @@ class BandPainter {
     items_ = items;
     intensity_.resize(size_t(scene.raster.width) * (scene.light_terms.empty() ? 1 : 3));
     sum_.resize(per_side > 1 ? size_t(out.width) * size_t(channels) : 0);
+    if (pieces) {  // (lit in runs only where there are pieces of light)
+      painted_on_.assign(scene.polygons.size(), -2);
+      painted_.resize(scene.polygons.size());
+    }
     if (!pieces) secondary_.reset();
     else if (secondary_) secondary_->reset(*pieces);
     else secondary_.emplace(*pieces);
@@ -257,12 +261,35 @@ class BandPainter {
     return terms;
   }
 
+  /// Whether every piece of light or shadow of the shade's lights is on this row as on the
+  /// row before.
+  bool pieces_unmoved(const SurfaceShade& shade) const {
+    const LightTerm* terms = scene_->light_terms.data() + shade.first_term;
+    for (int t = 0; t < shade.terms; ++t) {
+      const LightTerm& term = terms[t];
+      if (!term.needs_scan()) continue;
+      for (int32_t i = term.first_piece; i < term.first_piece + term.lit_pieces + term.shadow_pieces; ++i)
+        if (!secondary_->unmoved(i)) return false;
+    }
+    return true;
+  }
+
   /// One sample per pixel: straight into the picture.
   void write_span(uint8_t* dst, const Span& sp, int row) {
     const PolygonLook& look = look_of(sp.polygon);
     if (sp.polygon >= 0) pixels_ += sp.x1 - sp.x0;
     uint8_t* at = dst + size_t(sp.x0) * size_t(ch_);
     if (look.constant) return fills_.of(look.code).fill(at, size_t(sp.x1 - sp.x0), ch_);
+    if (look.piecewise) {
+      // The polygon's span as on the row above, under pieces of light and shadow as there:
+      // the same runs, the same pixels.
+      const size_t p = size_t(sp.polygon);
+      const bool again = painted_on_[p] == row - 1 && painted_[p].x0 == sp.x0 && painted_[p].x1 == sp.x1 &&
+                         pieces_unmoved(scene_->shades[p]);
+      painted_on_[p] = row;
+      painted_[p] = sp;
+      if (again) return void(std::memcpy(at, out_->row(row - 1) + size_t(sp.x0) * size_t(ch_), size_t(sp.x1 - sp.x0) * size_t(ch_)));
+    }
     if (look.piecewise)
       return lit_runs(sp, look, [&](int from, int to, const std::array<float, 3>& linear) {
         std::array<uint8_t, 3> code{};
@@ -349,6 +376,8 @@ class BandPainter {
   OwnLines<int32_t> inside_;
   OwnLines<uint64_t> bits_;  ///< lit_runs: the terms' states, 64 a word
   long pixels_ = 0;
+  OwnLines<int32_t> painted_on_;  ///< per polygon lit in runs: the row its span was last painted on
+  SpanRow painted_;               ///< that span
   bool row_alike_ = false;  ///< the row last painted is a row of its spans alone (no sample lit by its place)
   long row_pixels_ = 0;     ///< its pixels counted
 };

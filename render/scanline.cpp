@@ -597,6 +597,7 @@ void SecondaryScan::reset(const EdgeTable& pieces) {
   engine_.reset(pieces);
   spans_.assign(pieces.polygons_->size(), Span{});
   row_of_.assign(spans_.size(), -1);
+  moved_on_.assign(spans_.size(), -1);
   row_ = -1;
   next_ = 0;
 }
@@ -610,9 +611,17 @@ void SecondaryScan::scan() {
   engine_.scan_coverage();
   row_ = next_++;
   for (const Span& sp : engine_.coverage()) {
-    spans_[size_t(sp.polygon)] = sp;
-    row_of_[size_t(sp.polygon)] = row_;
+    const size_t i = size_t(sp.polygon);
+    if (row_of_[i] != row_ - 1 || spans_[i].x0 != sp.x0 || spans_[i].x1 != sp.x1) moved_on_[i] = row_;
+    spans_[i] = sp;
+    row_of_[i] = row_;
   }
+}
+
+bool SecondaryScan::unmoved(int32_t piece) const {
+  const size_t i = size_t(piece);
+  if (row_of_[i] == row_) return moved_on_[i] != row_;  // on this row: as on the row before?
+  return row_of_[i] != row_ - 1;                        // not on this row, nor on the row before
 }
 
 }  // namespace avenues

@@ -292,6 +292,9 @@ class SecondaryScan {
   void scan();
   /// Whether the row last scanned was the one before it again (ScanlineEngine::repeated).
   bool repeated() const { return engine_.repeated(); }
+  /// Whether piece `piece` has the same samples on the row last scanned as on the row
+  /// before it (none on both counts), this scan having scanned both.
+  bool unmoved(int32_t piece) const;
   /// The samples [x0, x1) of piece `piece` on the row last scanned (x0 >= x1: none).
   Span span_of(int32_t piece) const {
     return row_of_[size_t(piece)] == row_ ? spans_[size_t(piece)] : Span{0, 0, piece};
@@ -301,6 +304,7 @@ class SecondaryScan {
   ScanlineEngine engine_;
   OwnLines<Span> spans_;      ///< per piece, its span on row row_of_[piece]
   OwnLines<int32_t> row_of_;  ///< per piece, the row its span belongs to
+  OwnLines<int32_t> moved_on_;  ///< per piece, the last row whose span was not its span on the row before
   int32_t row_ = -1;             ///< the row last scanned
   int32_t next_ = 0;             ///< the row scan() does next
 };
