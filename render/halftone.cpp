@@ -81,8 +81,8 @@ class BandPainter {
     items_ = items;
     intensity_.resize(size_t(scene.raster.width) * (scene.light_terms.empty() ? 1 : 3));
     sum_.resize(per_side > 1 ? size_t(out.width) * size_t(channels) : 0);
-    if (pieces) {  // (lit in runs only where there are pieces of light)
-      painted_on_.assign(scene.polygons.size(), -2);
+    if (pieces && painted_on_.size() < scene.polygons.size()) {  // (lit in runs only where there are pieces of light)
+      painted_on_.resize(scene.polygons.size(), 0);  // stamped with the picture: never cleared
       painted_.resize(scene.polygons.size());
     }
     if (!pieces) secondary_.reset();
@@ -284,9 +284,9 @@ class BandPainter {
       // The polygon's span as on the row above, under pieces of light and shadow as there:
       // the same runs, the same pixels.
       const size_t p = size_t(sp.polygon);
-      const bool again = painted_on_[p] == row - 1 && painted_[p].x0 == sp.x0 && painted_[p].x1 == sp.x1 &&
-                         pieces_unmoved(scene_->shades[p]);
-      painted_on_[p] = row;
+      const bool again = painted_on_[p] == painted_stamp(row - 1) && painted_[p].x0 == sp.x0 &&
+                         painted_[p].x1 == sp.x1 && pieces_unmoved(scene_->shades[p]);
+      painted_on_[p] = painted_stamp(row);
       painted_[p] = sp;
       if (again) return void(std::memcpy(at, out_->row(row - 1) + size_t(sp.x0) * size_t(ch_), size_t(sp.x1 - sp.x0) * size_t(ch_)));
     }
@@ -376,8 +376,11 @@ class BandPainter {
   OwnLines<int32_t> inside_;
   OwnLines<uint64_t> bits_;  ///< lit_runs: the terms' states, 64 a word
   long pixels_ = 0;
-  OwnLines<int32_t> painted_on_;  ///< per polygon lit in runs: the row its span was last painted on
-  SpanRow painted_;               ///< that span
+  /// Per polygon lit in runs: the picture and the row its span was last painted on
+  /// (painted_stamp), and that span.
+  OwnLines<uint64_t> painted_on_;
+  uint64_t painted_stamp(int row) const { return picture_ << 32 | uint64_t(uint32_t(row + 1)); }
+  SpanRow painted_;
   bool row_alike_ = false;  ///< the row last painted is a row of its spans alone (no sample lit by its place)
   long row_pixels_ = 0;     ///< its pixels counted
 };
