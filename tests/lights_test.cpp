@@ -309,6 +309,23 @@ TEST(Shadows, ABoxUnderALampShadowsItsProjectionOnTheFloor) {
   EXPECT_EQ(t.wrong, 0) << t.lit << " lit, " << t.dark << " in shadow, " << t.boundary << " on the outline";
 }
 
+TEST(Shadows, SeventyLampsInOnePlaceCastOneShadow) {
+  // The half-tone keeps each light's state as a bit, 64 lights a word: the 70 lamps' terms
+  // take two words. Every lamp's shadow is the box's one shadow, which none lights.
+  Plan p = box_under_a_light();
+  p.lights.clear();
+  for (int k = 0; k < 70; ++k) p.lights.push_back(point_light("lamp " + std::to_string(k), kLamp));
+  const CellComplex c = build_cells(p);
+  const std::vector<Vec2> shadow = analytic_box_shadow();
+  const Shot s = shoot(c, Camera::look_at({5.6, 5.6, 2.7}, {3.0, 3.0, 0.0}, 70, 200, 150));
+  const Tally t = compare(
+      c, s, [&](const PolygonSource& src) { return c.cells[size_t(src.cell)].faces[size_t(src.face)].plane.n.z < -0.99; },
+      [&](Vec3 at, const Plane&) { return !inside(shadow, {at.x, at.y}); });
+  EXPECT_GT(t.dark, 500) << "the shadow is in view";
+  EXPECT_GT(t.lit, 2000);
+  EXPECT_EQ(t.wrong, 0) << t.lit << " lit, " << t.dark << " in shadow, " << t.boundary << " on the outline";
+}
+
 TEST(Shadows, LightThroughADoorIsTheDoorwaysProjection) {
   const CellComplex c = build_cells(two_rooms(true));
   const RoomId east = room_named(c, "east");
