@@ -250,6 +250,45 @@ TEST(Scanline, ARowLikeTheOneAboveIsRepeatedNotScannedAgain) {
   EXPECT_EQ(one.counters().intersections, fresh_counters.intersections);
 }
 
+TEST(Scanline, OneEngineScanningBandsInAnyOrderScansWhatAFullScanDoes) {
+  // A painter's engine scans whatever bands its thread is handed, in any order: what it
+  // keeps from row to row (the row above's spans, the ends' order and what each end saw,
+  // the extents) must not outlive a band.
+  auto face = [](std::vector<FixedPoint> outline, int32_t group, int32_t rank, int32_t clip) {
+    ScreenPolygon p = polygon(std::move(outline));
+    p.role = PolygonRole::Face;
+    p.group = group;
+    p.rank = rank;
+    p.clip = clip;
+    return p;
+  };
+  std::vector<ScreenPolygon> polys = triangle_grid(12, 40.2, 30.7, 9, 7, 0.22, 11);
+  for (ScreenPolygon& p : polys) p.role = PolygonRole::Face, p.group = 2, p.rank = 2;
+  polys.push_back(face({fixed(0, 0), fixed(200, 0), fixed(200, 150), fixed(0, 150)}, 0, 0, -1));
+  polys.push_back(face({fixed(20.3, 10.2), fixed(170.7, 10.2), fixed(170.7, 140.1), fixed(20.3, 140.1)}, 1, 1, 0));
+  polys.push_back(face({fixed(150, 5.5), fixed(190, 60.5), fixed(150, 120.5)}, 3, 3, 1));
+  const std::vector<ClipRegion> clips{{{fixed(10.5, 5.5), fixed(180.5, 5.5), fixed(180.5, 147.5), fixed(10.5, 147.5)}},
+                                      {{fixed(140.5, 20.5), fixed(199.5, 20.5), fixed(199.5, 100.5), fixed(140.5, 100.5)}}};
+  EdgeTable table(200, 150, polys, clips);
+  ScanlineEngine full(table);
+  full.start(0);
+  std::vector<SpanRow> rows(150);
+  for (auto& r : rows) full.scan(r);
+  ScanlineEngine engine(table);
+  SpanRow spans;
+  for (int band : {5, 0, 20, 13, 1, 19, 7, 12, 2, 18, 9, 3, 14, 6, 17, 4, 11, 8, 15, 10, 16}) {
+    engine.start(band * 7);
+    for (int y = band * 7; y < std::min(150, band * 7 + 7); ++y) {
+      engine.scan(spans);
+      ASSERT_EQ(spans.size(), rows[size_t(y)].size()) << "row " << y;
+      for (size_t k = 0; k < spans.size(); ++k) {
+        EXPECT_EQ(spans[k].x0, rows[size_t(y)][k].x0) << "row " << y;
+        EXPECT_EQ(spans[k].polygon, rows[size_t(y)][k].polygon) << "row " << y;
+      }
+    }
+  }
+}
+
 TEST(Scanline, SpansTileEachRowAndMergeRunsOfOnePolygon) {
   // A square in front of a larger one: three spans on the middle rows, and no depth sort
   // outside the overlap.
