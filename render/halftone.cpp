@@ -156,6 +156,34 @@ class BandPainter {
     return intensity_.data();
   }
 
+  /// Calls f(t, piece, shadow) for each piece of light (shadow false) or of shadow of the
+  /// shade's lights that need a scan (t: the light's term), each light's lit pieces before
+  /// its shadow pieces, while f returns true. Returns whether it never returned false.
+  template <class F>
+  bool all_pieces(const SurfaceShade& shade, F f) const {
+    const LightTerm* terms = scene_->light_terms.data() + shade.first_term;
+    for (int t = 0; t < shade.terms; ++t) {
+      const LightTerm& term = terms[t];
+      if (!term.needs_scan()) continue;
+      const int32_t shadows = term.first_piece + term.lit_pieces;
+      for (int32_t i = term.first_piece; i < shadows + term.shadow_pieces; ++i)
+        if (!f(t, i, i >= shadows)) return false;
+    }
+    return true;
+  }
+
+  /// Calls f(t, from, to, shadow) for each piece, as all_pieces, that has samples [from, to)
+  /// within the span on this row.
+  template <class F>
+  void pieces_within(const Span& sp, const SurfaceShade& shade, F f) const {
+    all_pieces(shade, [&](int t, int32_t piece, bool shadow) {
+      const Span c = secondary_->span_of(piece);
+      const int32_t from = std::max(c.x0, sp.x0), to = std::min(c.x1, sp.x1);
+      if (from < to) f(t, from, to, shadow);
+      return true;
+    });
+  }
+
   /// A flat Lit shade (every light's term constant): the span cut into runs lit alike,
   /// each of one colour: f(from, to, linear colour). The runs are found from the pieces'
   /// spans themselves, not sample by sample: each piece's ends, sorted, are where some
@@ -167,19 +195,11 @@ class BandPainter {
     const SurfaceShade& shade = scene_->shades[size_t(sp.polygon)];
     const LightTerm* terms = scene_->light_terms.data() + shade.first_term;
     ends_.clear();
-    for (int t = 0; t < shade.terms; ++t) {
-      const LightTerm& term = terms[t];
-      if (!term.needs_scan()) continue;
-      const int32_t shadows = term.first_piece + term.lit_pieces;
-      for (int32_t i = term.first_piece; i < shadows + term.shadow_pieces; ++i) {
-        const Span c = secondary_->span_of(i);
-        const int32_t from = std::max(c.x0, sp.x0), to = std::min(c.x1, sp.x1);
-        if (from >= to) continue;
-        const int32_t counter = 2 * t + (i >= shadows);
-        ends_.push_back(piece_end(from, counter, true));
-        ends_.push_back(piece_end(to, counter, false));
-      }
-    }
+    pieces_within(sp, shade, [&](int t, int32_t from, int32_t to, bool shadow) {
+      const int32_t counter = 2 * t + shadow;
+      ends_.push_back(piece_end(from, counter, true));
+      ends_.push_back(piece_end(to, counter, false));
+    });
     if (ends_.empty()) return f(sp.x0, sp.x1, look.unpieced);  // no piece on this row's span: one run
     // Per word of terms: lit everywhere (no scan needed), lit but where shadowed (whole),
     // within some lit piece, within some shadow piece; then the run's state and the next.
@@ -187,7 +207,7 @@ class BandPainter {
     if (bits_.size() < 6 * words) bits_.resize(6 * words);
     uint64_t *always = bits_.data(), *whole = always + words, *in_lit = whole + words, *in_shadow = in_lit + words;
     uint64_t *run = in_shadow + words, *next = run + words;
-    for (size_t w = 0; w < 4 * words; ++w) always[w] = 0;  // (a loop: for a word or two, memset is a call)
+    std::fill(always, run, uint64_t(0));
     for (int t = 0; t < shade.terms; ++t) {
       const uint64_t bit = uint64_t(1) << (t % 64);
       if (!terms[t].needs_scan()) always[t / 64] |= bit;
@@ -249,29 +269,18 @@ class BandPainter {
       uint8_t* mask = mask_buffer_.data() + size_t(t) * size_t(n);
       masks_[size_t(t)] = mask;
       std::memset(mask, term.whole ? 1 : 0, size_t(n));
-      auto mark = [&](int32_t piece, uint8_t value) {
-        const Span c = secondary_->span_of(piece);
-        const int32_t a = std::max(c.x0, sp.x0), b = std::min(c.x1, sp.x1);
-        if (a < b) std::memset(mask + (a - sp.x0), value, size_t(b - a));
-      };
-      const int32_t shadows = term.first_piece + term.lit_pieces;
-      for (int32_t i = term.first_piece; i < shadows; ++i) mark(i, 1);
-      for (int32_t i = shadows; i < shadows + term.shadow_pieces; ++i) mark(i, 0);
     }
+    // Lit pieces set their samples, then shadow pieces clear theirs.
+    pieces_within(sp, shade, [&](int t, int32_t from, int32_t to, bool shadow) {
+      std::memset(mask_buffer_.data() + size_t(t) * size_t(n) + size_t(from - sp.x0), shadow ? 0 : 1, size_t(to - from));
+    });
     return terms;
   }
 
   /// Whether every piece of light or shadow of the shade's lights is on this row as on the
   /// row before.
   bool pieces_unmoved(const SurfaceShade& shade) const {
-    const LightTerm* terms = scene_->light_terms.data() + shade.first_term;
-    for (int t = 0; t < shade.terms; ++t) {
-      const LightTerm& term = terms[t];
-      if (!term.needs_scan()) continue;
-      for (int32_t i = term.first_piece; i < term.first_piece + term.lit_pieces + term.shadow_pieces; ++i)
-        if (!secondary_->unmoved(i)) return false;
-    }
-    return true;
+    return all_pieces(shade, [&](int, int32_t piece, bool) { return secondary_->unmoved(piece); });
   }
 
   /// One sample per pixel: straight into the picture.
