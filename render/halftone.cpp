@@ -99,7 +99,7 @@ class BandPainter {
     for (int y = y0; y < y1; ++y) {
       uint8_t* dst = out_->row(y);
       if (s_ == 1) {
-        engine_.scan(spans_);
+        const SpanRow& spans = engine_.scan();
         if (secondary_) secondary_->scan();
         // The same spans (and pieces of light) as the row above, each of one colour or of
         // runs lit alike: the same pixels.
@@ -114,18 +114,18 @@ class BandPainter {
         }
         const long before = pixels_;
         row_alike_ = true;
-        for (const Span& sp : spans_) write_span(dst, sp, y);
+        for (const Span& sp : spans) write_span(dst, sp, y);
         row_pixels_ = pixels_ - before;
-        keep_items(y);
+        keep_items(spans, y);
         continue;
       }
       std::fill(sum_.begin(), sum_.end(), 0.0f);
       for (int k = 0; k < s_; ++k) {
         const int row = y * s_ + k;
-        engine_.scan(spans_);
+        const SpanRow& spans = engine_.scan();
         if (secondary_) secondary_->scan();
-        for (const Span& sp : spans_) add_span(sp, row);
-        keep_items(row);
+        for (const Span& sp : spans) add_span(sp, row);
+        keep_items(spans, row);
       }
       const float mean = 1.0f / float(s_ * s_);
       for (size_t i = 0; i < sum_.size(); ++i) dst[i] = encoder_(sum_[i] * mean);
@@ -351,10 +351,10 @@ class BandPainter {
     }
   }
 
-  void keep_items(int row) {
+  void keep_items(const SpanRow& spans, int row) {
     if (!items_) return;
     int32_t* dst = items_->data() + size_t(row) * size_t(scene_->raster.width);
-    for (const Span& sp : spans_) std::fill(dst + sp.x0, dst + sp.x1, sp.polygon);
+    for (const Span& sp : spans) std::fill(dst + sp.x0, dst + sp.x1, sp.polygon);
   }
 
   uint64_t picture_ = 0;
@@ -369,7 +369,6 @@ class BandPainter {
   const SrgbEncoder& encoder_ = srgb_encoder();
   FillColours fills_;  ///< the colours of the spans filled lately, ready to fill with
   // Written by this painter's thread alone: in lines of their own (core/cache_lines.h).
-  SpanRow spans_;
   OwnLines<float> intensity_, sum_;
   OwnLines<const uint8_t*> masks_;  ///< per light term of the span's shade: lit samples (nullptr: all)
   OwnLines<uint8_t> mask_buffer_;

@@ -239,7 +239,7 @@ void ScanlineEngine::touch(Extent& x, const ActiveEdge& a) {
   }
 }
 
-void ScanlineEngine::scan(SpanRow& out) {
+const SpanRow& ScanlineEngine::scan() {
   repeated_ = repeats_;
   if (repeated_) {  // the row above again: its spans, kept in row_spans_
     count_row();
@@ -253,9 +253,9 @@ void ScanlineEngine::scan(SpanRow& out) {
     depth_free_ = counters_.depth_sorts == sorts;
     seen_known_ = depth_free_;
   }
-  out.assign(row_spans_.begin(), row_spans_.end());
-  counters_.spans += long(out.size());
+  counters_.spans += long(row_spans_.size());
   next_row();
+  return row_spans_;
 }
 
 void ScanlineEngine::scan_coverage() {
@@ -385,8 +385,7 @@ void ScanlineEngine::walk() {
     int32_t x = 0;
     bool known = true;
     while (x < width && known) {
-      for (; i < n && end_x(ends_[i]) <= x; ++i) {
-      }
+      while (i < n && end_x(ends_[i]) <= x) ++i;
       const int32_t next = i < n ? std::min(end_x(ends_[i]), width) : width;
       const int32_t seen = i == 0 ? -1 : seen_after_[i - 1];
       known = seen != kUnresolved;

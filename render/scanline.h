@@ -185,7 +185,8 @@ class ScanlineEngine {
   /// Places the scan at `row`: the edges already crossing it enter the active list.
   void start(int row);
   /// The spans of the current row, left to right, tiling [0, width); then moves down a row.
-  void scan(SpanRow& out);
+  /// The reference holds until the next scan or start.
+  const SpanRow& scan();
   /// Only each polygon's own span on the current row (coverage()), no hidden surfaces; then
   /// moves down a row. The secondary scan's step.
   void scan_coverage();

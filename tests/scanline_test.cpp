@@ -45,7 +45,7 @@ std::vector<int> coverage_counts(int w, int h, const std::vector<ScreenPolygon>&
   std::vector<int> count(size_t(w) * size_t(h), 0);
   SpanRow spans;
   for (int y = 0; y < h; ++y) {
-    engine.scan(spans);
+    spans = engine.scan();
     for (const Span& s : engine.coverage())
       for (int x = s.x0; x < s.x1; ++x) ++count[size_t(y) * size_t(w) + size_t(x)];
   }
@@ -153,7 +153,7 @@ TEST(FillRule, TiesGoToTheLeftAndTopEdges) {
   engine.start(0);
   SpanRow spans;
   for (int y = 0; y < 30; ++y) {
-    engine.scan(spans);
+    spans = engine.scan();
     for (const Span& s : engine.coverage()) {
       const int want_x0[] = {10, 20, 10}, want_x1[] = {20, 30, 30};
       EXPECT_EQ(s.x0, want_x0[s.polygon]);
@@ -179,13 +179,13 @@ TEST(Scanline, ABandStartedMidPictureScansWhatAFullScanDoes) {
   ScanlineEngine full(table);
   full.start(0);
   std::vector<SpanRow> rows(220);
-  for (auto& r : rows) full.scan(r);
+  for (auto& r : rows) r = full.scan();
   for (int start : {1, 37, 101, 150, 219}) {
     ScanlineEngine band(table);
     band.start(start);
     SpanRow spans;
     for (int y = start; y < std::min(220, start + 20); ++y) {
-      band.scan(spans);
+      spans = band.scan();
       ASSERT_EQ(spans.size(), rows[size_t(y)].size()) << "row " << y;
       for (size_t k = 0; k < spans.size(); ++k) {
         EXPECT_EQ(spans[k].x0, rows[size_t(y)][k].x0);
@@ -230,10 +230,10 @@ TEST(Scanline, ARowLikeTheOneAboveIsRepeatedNotScannedAgain) {
     ScanlineEngine fresh(table);
     fresh.start(y);
     SpanRow own;
-    fresh.scan(own);
+    own = fresh.scan();
     EXPECT_FALSE(fresh.repeated());
     fresh_counters.add(fresh.counters());
-    one.scan(spans);
+    spans = one.scan();
     if (one.repeated()) repeated.push_back(y);
     ASSERT_EQ(spans.size(), own.size()) << "row " << y;
     for (size_t k = 0; k < own.size(); ++k) {
@@ -273,13 +273,13 @@ TEST(Scanline, OneEngineScanningBandsInAnyOrderScansWhatAFullScanDoes) {
   ScanlineEngine full(table);
   full.start(0);
   std::vector<SpanRow> rows(150);
-  for (auto& r : rows) full.scan(r);
+  for (auto& r : rows) r = full.scan();
   ScanlineEngine engine(table);
   SpanRow spans;
   for (int band : {5, 0, 20, 13, 1, 19, 7, 12, 2, 18, 9, 3, 14, 6, 17, 4, 11, 8, 15, 10, 16}) {
     engine.start(band * 7);
     for (int y = band * 7; y < std::min(150, band * 7 + 7); ++y) {
-      engine.scan(spans);
+      spans = engine.scan();
       ASSERT_EQ(spans.size(), rows[size_t(y)].size()) << "row " << y;
       for (size_t k = 0; k < spans.size(); ++k) {
         EXPECT_EQ(spans[k].x0, rows[size_t(y)][k].x0) << "row " << y;
@@ -300,7 +300,7 @@ TEST(Scanline, SpansTileEachRowAndMergeRunsOfOnePolygon) {
   engine.start(0);
   SpanRow spans;
   for (int y = 0; y < 30; ++y) {
-    engine.scan(spans);
+    spans = engine.scan();
     ASSERT_FALSE(spans.empty());
     EXPECT_EQ(spans.front().x0, 0);
     EXPECT_EQ(spans.back().x1, 40);
@@ -357,7 +357,7 @@ TEST(Scanline, ThousandsOfSpansThatBeginEndAndCrossSeeTheNearestOnEveryRow) {
   SpanRow spans;
   long wrong = 0, seen = 0;
   for (int row = 0; row < h; ++row) {
-    engine.scan(spans);
+    spans = engine.scan();
     std::vector<int32_t> nearest(size_t(w), -1);
     for (const Span& c : engine.coverage())
       for (int s = c.x0; s < c.x1; ++s) {
