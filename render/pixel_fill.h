@@ -52,10 +52,4 @@ class FillColours {
   std::array<FillColour, kSlots> slots_;
 };
 
-/// Writes n pixels of `channels` bytes (1 or 3) at dst, each `colour` (its first
-/// `channels` bytes). Touches no byte outside [dst, dst + n·channels).
-inline void fill_pixels(uint8_t* dst, size_t n, const std::array<uint8_t, 3>& colour, int channels) {
-  FillColour(colour).fill(dst, n, channels);
-}
-
 }  // namespace avenues

@@ -228,7 +228,7 @@ TEST(Halftone, AViewIsCoveredAndCounted) {
 // --- dithering ---------------------------------------------------------------------------
 
 TEST(Halftone, ARunOfPixelsIsWrittenWhateverItsLengthAndAlignment) {
-  // fill_pixels writes 16-byte vectors on the 16-byte grid, and its first and last flush
+  // FillColour::fill writes 16-byte vectors on the 16-byte grid, and its first and last flush
   // with the run's ends: every length and every start within a cache line, and nothing
   // written outside the run.
   const std::array<uint8_t, 3> colour{7, 200, 33};
@@ -239,7 +239,7 @@ TEST(Halftone, ARunOfPixelsIsWrittenWhateverItsLengthAndAlignment) {
       for (size_t start = 0; start < 64; ++start) {
         std::fill(buffer.begin(), buffer.end(), uint8_t(0xab));
         uint8_t* run = buffer.data() + 64 + start;
-        fill_pixels(run, n, colour, channels);
+        FillColour(colour).fill(run, n, channels);
         for (size_t i = 0; i < buffer.size(); ++i) {
           const ptrdiff_t at = buffer.data() + i - run;
           const bool inside = at >= 0 && at < ptrdiff_t(n) * channels;
