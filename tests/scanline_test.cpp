@@ -37,6 +37,26 @@ ScreenPolygon polygon(std::vector<FixedPoint> outline, RasterPlane depth = {0, 0
   return p;
 }
 
+/// A face of avenue `group` at depth `rank`, cut by clip region `clip` (-1: none).
+ScreenPolygon face(std::vector<FixedPoint> outline, int32_t group, int32_t rank, int32_t clip = -1) {
+  ScreenPolygon p = polygon(std::move(outline));
+  p.role = PolygonRole::Face;
+  p.group = group;
+  p.rank = rank;
+  p.clip = clip;
+  return p;
+}
+
+/// Row y's spans as `want` has them.
+void expect_same_spans(const SpanRow& got, const SpanRow& want, int y) {
+  ASSERT_EQ(got.size(), want.size()) << "row " << y;
+  for (size_t k = 0; k < want.size(); ++k) {
+    EXPECT_EQ(got[k].x0, want[k].x0) << "row " << y;
+    EXPECT_EQ(got[k].x1, want[k].x1) << "row " << y;
+    EXPECT_EQ(got[k].polygon, want[k].polygon) << "row " << y;
+  }
+}
+
 /// How many polygons cover each sample (their own spans, before hiding), every row.
 std::vector<int> coverage_counts(int w, int h, const std::vector<ScreenPolygon>& polys) {
   EdgeTable table(w, h, polys, {});
@@ -183,15 +203,7 @@ TEST(Scanline, ABandStartedMidPictureScansWhatAFullScanDoes) {
   for (int start : {1, 37, 101, 150, 219}) {
     ScanlineEngine band(table);
     band.start(start);
-    SpanRow spans;
-    for (int y = start; y < std::min(220, start + 20); ++y) {
-      spans = band.scan();
-      ASSERT_EQ(spans.size(), rows[size_t(y)].size()) << "row " << y;
-      for (size_t k = 0; k < spans.size(); ++k) {
-        EXPECT_EQ(spans[k].x0, rows[size_t(y)][k].x0);
-        EXPECT_EQ(spans[k].polygon, rows[size_t(y)][k].polygon);
-      }
-    }
+    for (int y = start; y < std::min(220, start + 20); ++y) expect_same_spans(band.scan(), rows[size_t(y)], y);
   }
 }
 
@@ -202,14 +214,6 @@ TEST(Scanline, ARowLikeTheOneAboveIsRepeatedNotScannedAgain) {
   // top, rows alike are repeated, and the triangle's rows, whose span ends keep their order,
   // are seen as the row before saw them; each row scanned by an engine started there is
   // neither. The spans are the same either way.
-  auto face = [](std::vector<FixedPoint> outline, int32_t group, int32_t rank, int32_t clip = -1) {
-    ScreenPolygon p = polygon(std::move(outline));
-    p.role = PolygonRole::Face;
-    p.group = group;
-    p.rank = rank;
-    p.clip = clip;
-    return p;
-  };
   std::vector<ScreenPolygon> polys{
       face({fixed(0, 0), fixed(120, 0), fixed(120, 100), fixed(0, 100)}, 0, 0),
       face({fixed(30.3, 10.2), fixed(90.7, 10.2), fixed(90.7, 95.1), fixed(30.3, 95.1)}, 1, 1, 0),
@@ -223,24 +227,16 @@ TEST(Scanline, ARowLikeTheOneAboveIsRepeatedNotScannedAgain) {
   EdgeTable table(120, 100, polys, clips);
   ScanlineEngine one(table);
   one.start(0);
-  SpanRow spans;
   std::vector<int> repeated;
   ScanCounters fresh_counters;
   for (int y = 0; y < 100; ++y) {
     ScanlineEngine fresh(table);
     fresh.start(y);
-    SpanRow own;
-    own = fresh.scan();
+    const SpanRow& own = fresh.scan();
     EXPECT_FALSE(fresh.repeated());
     fresh_counters.add(fresh.counters());
-    spans = one.scan();
+    expect_same_spans(one.scan(), own, y);
     if (one.repeated()) repeated.push_back(y);
-    ASSERT_EQ(spans.size(), own.size()) << "row " << y;
-    for (size_t k = 0; k < own.size(); ++k) {
-      EXPECT_EQ(spans[k].x0, own[k].x0) << "row " << y;
-      EXPECT_EQ(spans[k].x1, own[k].x1) << "row " << y;
-      EXPECT_EQ(spans[k].polygon, own[k].polygon) << "row " << y;
-    }
   }
   auto repeats = [&](int y) { return std::find(repeated.begin(), repeated.end(), y) != repeated.end(); };
   for (int y : {20, 30, 65, 99}) EXPECT_TRUE(repeats(y)) << "row " << y << " is the row above again";
@@ -254,14 +250,6 @@ TEST(Scanline, OneEngineScanningBandsInAnyOrderScansWhatAFullScanDoes) {
   // A painter's engine scans whatever bands its thread is handed, in any order: what it
   // keeps from row to row (the row above's spans, the ends' order and what each end saw,
   // the extents) must not outlive a band.
-  auto face = [](std::vector<FixedPoint> outline, int32_t group, int32_t rank, int32_t clip) {
-    ScreenPolygon p = polygon(std::move(outline));
-    p.role = PolygonRole::Face;
-    p.group = group;
-    p.rank = rank;
-    p.clip = clip;
-    return p;
-  };
   std::vector<ScreenPolygon> polys = triangle_grid(12, 40.2, 30.7, 9, 7, 0.22, 11);
   for (ScreenPolygon& p : polys) p.role = PolygonRole::Face, p.group = 2, p.rank = 2;
   polys.push_back(face({fixed(0, 0), fixed(200, 0), fixed(200, 150), fixed(0, 150)}, 0, 0, -1));
@@ -275,17 +263,9 @@ TEST(Scanline, OneEngineScanningBandsInAnyOrderScansWhatAFullScanDoes) {
   std::vector<SpanRow> rows(150);
   for (auto& r : rows) r = full.scan();
   ScanlineEngine engine(table);
-  SpanRow spans;
   for (int band : {5, 0, 20, 13, 1, 19, 7, 12, 2, 18, 9, 3, 14, 6, 17, 4, 11, 8, 15, 10, 16}) {
     engine.start(band * 7);
-    for (int y = band * 7; y < std::min(150, band * 7 + 7); ++y) {
-      spans = engine.scan();
-      ASSERT_EQ(spans.size(), rows[size_t(y)].size()) << "row " << y;
-      for (size_t k = 0; k < spans.size(); ++k) {
-        EXPECT_EQ(spans[k].x0, rows[size_t(y)][k].x0) << "row " << y;
-        EXPECT_EQ(spans[k].polygon, rows[size_t(y)][k].polygon) << "row " << y;
-      }
-    }
+    for (int y = band * 7; y < std::min(150, band * 7 + 7); ++y) expect_same_spans(engine.scan(), rows[size_t(y)], y);
   }
 }
 
