@@ -1,14 +1,19 @@
 // Avenues — the walkthrough window: a GLFW window that shows pictures Avenues rendered.
 //
 // The picture is made by Avenues itself (the half-tone renderer, or the hidden-line drawing
-// rasterised); the window only shows it: the picture is uploaded as a texture and drawn
-// pixel for pixel (nearest texel, one texel per pixel) in the window's top-left corner, so
-// what the window shows is the picture exactly. Where the driver has framebuffer objects
-// (OpenGL 3.0, or ARB_framebuffer_object) the texture is copied with glBlitFramebuffer —
-// for a software driver such as Mesa's llvmpipe under Xvfb a plain copy, not a textured
-// quad run through its shader JIT; otherwise it is drawn as a textured quad with OpenGL
-// 1.1's fixed-function pipeline. Overlay panels (the status line, the help) are
-// premultiplied BGRA pictures blended on top, uploaded only when they change.
+// rasterised); the window only shows it. What the window shows is put together on the CPU
+// as one picture the window's size: the frame pixel for pixel in the top-left corner (or
+// each of its pixels as a block), black where it does not reach, the overlay panels (the
+// status line, the help: premultiplied BGRA) blended on top. It is made again only when
+// one of these changed, uploaded as BGRA (the layout drivers keep as it is given), and
+// copied to the window one texel per pixel. Where the driver has framebuffer objects
+// (OpenGL 3.0, or ARB_framebuffer_object) the copy is glBlitFramebuffer, asked to turn the
+// texture's rows (the picture's top first) over: OpenGL counts rows from the bottom, a
+// window's memory from the top, so a driver such as Mesa's llvmpipe under Xvfb then copies
+// memory (0.4 ms at 1280 × 720) where any other blit, a scaled one or one it must turn
+// over itself, runs a textured quad through its shader JIT (1.8–2.4 ms, on the cores the
+// renderer uses). Without framebuffer objects the picture is drawn as a textured quad with
+// OpenGL 1.1's fixed-function pipeline.
 #pragma once
 
 #include <cstdint>
@@ -70,13 +75,22 @@ class Viewer {
 
  private:
   Viewer();
-  struct Texture {
-    unsigned id = 0;
-    int width = 0, height = 0;
-    uint64_t version = ~uint64_t(0);
+  /// What the window's picture was last made of: it is made again when any of it changes.
+  struct Shown {
+    int window_w = 0, window_h = 0, scale = 0, frame_w = 0, frame_h = 0;
+    struct Panel {
+      const OverlayPanel* panel = nullptr;
+      uint64_t version = 0;
+      int x = 0, y = 0, width = 0, height = 0;
+      bool operator==(const Panel&) const = default;
+    };
+    std::vector<Panel> panels;
+    bool operator==(const Shown&) const = default;
   };
-  void upload(Texture& t, int w, int h, unsigned format, const uint8_t* pixels);
-  static void quad(const Texture& t, int x, int y, int scale = 1);
+  /// Puts the window's picture together in `picture_` (see the top of this file).
+  void compose(const Image& frame, const std::vector<const OverlayPanel*>& panels, int scale, int fw, int fh);
+  void upload(int w, int h);
+  void present(int fw, int fh);
   // GLFW's callbacks (the window's user pointer is the viewer).
   static void on_key(GLFWwindow* w, int key, int scancode, int action, int mods);
   static void on_focus(GLFWwindow* w, int focused);
@@ -87,9 +101,10 @@ class Viewer {
   std::unique_ptr<FramebufferApi> fbo_;
 
   GLFWwindow* window_ = nullptr;
-  Texture frame_tex_;
-  std::vector<uint8_t> bgra_;  ///< the frame as BGRA, the layout the driver takes without conversion
-  std::vector<Texture> panel_tex_;
+  unsigned texture_ = 0;
+  int texture_w_ = 0, texture_h_ = 0;
+  std::vector<uint32_t> picture_;  ///< the window's picture: BGRA pixels as 32-bit words, rows from the top
+  Shown shown_;
   bool captured_ = false;
   double last_x_ = 0, last_y_ = 0;
   bool have_last_ = false;
