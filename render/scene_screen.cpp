@@ -147,7 +147,14 @@ int32_t ScreenSceneBuilder::add_clip(const std::vector<Vec2>& picture_polygon, d
     out_.keep_outline(std::move(h));
     return -1;
   }
+  Vec2 lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
+  for (const FixedPoint& f : h) {
+    const Vec2 r{double(f.x) / double(kSubpixelOne), double(f.y) / double(kSubpixelOne)};
+    lo = {std::min(lo.x, r.x), std::min(lo.y, r.y)}, hi = {std::max(hi.x, r.x), std::max(hi.y, r.y)};
+  }
   out_.clips.push_back({std::move(h)});
+  clip_box_.resize(out_.clips.size());
+  clip_box_.back() = {lo, hi};
   return int32_t(out_.clips.size() - 1);
 }
 
@@ -267,8 +274,13 @@ RasterPlane ScreenSceneBuilder::raster_plane(Vec3 n, double d) const {
   return {-n.x * m.step / d, n.y * m.step / d, -(n.x * m.x0 + n.y * m.y0 + n.z) / d};
 }
 
-bool ScreenSceneBuilder::hidden(const std::vector<Vec2>& corners, Vec3 n, double d, Vec2 lo, Vec2 hi) {
+bool ScreenSceneBuilder::hidden(const std::vector<Vec2>& corners, Vec3 n, double d, Vec2 lo, Vec2 hi, int32_t clip) {
   if (!drop_hidden_ || !(std::fabs(d) > 0)) return false;
+  if (clip >= 0 && size_t(clip) < clip_box_.size()) {  // no sample outside the clip region's box is coloured
+    const auto& [clip_lo, clip_hi] = clip_box_[size_t(clip)];
+    lo = {std::max(lo.x, clip_lo.x), std::max(lo.y, clip_lo.y)};
+    hi = {std::min(hi.x, clip_hi.x), std::min(hi.y, clip_hi.y)};
+  }
   // The largest 1/Z the scan can give the polygon: the largest at a corner, plus the
   // plane's slope (1/Z per sample) over the 1/128 of a sample the rounded outline may reach
   // beyond the corners. Only for a plane the scan's arithmetic holds.
@@ -404,7 +416,7 @@ bool ScreenSceneBuilder::add_face(const std::vector<Vec3>& polygon, const Plane&
   const double d = plane.eval(camera_.eye);
   if (drop_hidden_) {
     Vec2 lo, hi;
-    if (on_raster(cam, polygon_raster_, lo, hi) && hidden(polygon_raster_, n, d, lo, hi)) return false;
+    if (on_raster(cam, polygon_raster_, lo, hi) && hidden(polygon_raster_, n, d, lo, hi, where.clip)) return false;
   }
   const bool smooth = options_.shading.model == ShadingModel::Smooth;  // Auto: a plane is flat
   if (lit()) {
@@ -537,7 +549,7 @@ void ScreenSceneBuilder::add_mesh_polygon(const Mesh& mesh, const std::vector<in
   const double d = -dot(nc, centroid);
   // Drawn on its own plane (flat, or smooth where it is planar: below), a polygon wholly
   // behind what is drawn already goes too.
-  auto behind = [&] { return in_front && hidden(raster, nc, d, lo, hi); };
+  auto behind = [&] { return in_front && hidden(raster, nc, d, lo, hi, where.clip); };
   // A piece of a polygon cut apart is lit from the whole polygon's centroid (Mesh::polygon_light).
   const Vec3 light_from = source.polygon >= 0 && size_t(source.polygon) < mesh.polygon_light.size()
                               ? camera_.camera_from_world(mesh.polygon_light[size_t(source.polygon)])

@@ -232,9 +232,11 @@ class ScreenSceneBuilder {
   /// the corners unfinished) if some corner lies before the near plane.
   bool on_raster(const std::vector<Vec3>& points, std::vector<Vec2>& corners, Vec2& lo, Vec2& hi) const;
   /// Whether a polygon drawn on the camera-space plane n·P + d = 0, with these corners on
-  /// the raster (every one beyond the near plane) and their box [lo, hi], lies behind what
-  /// is drawn wherever it could colour a sample (drop_hidden; false without).
-  bool hidden(const std::vector<Vec2>& corners, Vec3 n, double d, Vec2 lo, Vec2 hi);
+  /// the raster (every one beyond the near plane) and their box [lo, hi], cut to clip
+  /// region `clip` (-1: none), lies behind what is drawn wherever it could colour a sample
+  /// (drop_hidden; false without). Only the samples inside both boxes are looked at: the
+  /// scan colours none outside its clip region.
+  bool hidden(const std::vector<Vec2>& corners, Vec3 n, double d, Vec2 lo, Vec2 hi, int32_t clip);
   /// The polygon just added (the scene's last): remembered where it covers whole pixels.
   void remember_drawn();
   /// Whether points on the raster [samples] whose box is [lo, hi] lie wholly outside the
@@ -250,6 +252,7 @@ class ScreenSceneBuilder {
   bool drop_hidden_ = false;
   long tested_ = 0, dropped_ = 0;  ///< drop_hidden: polygons tested against what is drawn, and dropped
   Vec2 cull_lo_, cull_hi_;  ///< [samples] the cull region's box on the raster, grown by its margin
+  std::vector<std::pair<Vec2, Vec2>> clip_box_;  ///< [samples] each clip region's box on the raster, by number
   /// The cull region's sides as half-planes a·u + b·v + c >= 0 on the raster (a, b a unit
   /// normal pointing in; c taking in the margin).
   struct Side {
