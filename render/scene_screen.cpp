@@ -485,6 +485,57 @@ bool ScreenSceneBuilder::may_show(const Box3& box) const {
   return !(drop_hidden_ && out_.drawn.hides(lo, hi, (1 + 1e-3) / nearest));
 }
 
+bool ScreenSceneBuilder::cell_faces_hidden(const Cell& cell, const std::vector<Vec2>& picture_polygon, double grow) {
+  if (!drop_hidden_ || picture_polygon.empty()) return false;
+  // Where the pieces could colour a sample: inside the clip region's box (the polygon's,
+  // grown) and the box of the cell's projected box, whose corners' hull holds every piece.
+  Vec2 lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
+  for (Vec2 p : picture_polygon) {
+    const Vec2 r = out_.raster.raster_from_image(p);
+    lo = {std::min(lo.x, r.x), std::min(lo.y, r.y)}, hi = {std::max(hi.x, r.x), std::max(hi.y, r.y)};
+  }
+  const double reach = grow + 1.0 / 16;  // more than the clip region's rounding to the fixed point
+  lo = {lo.x - reach, lo.y - reach}, hi = {hi.x + reach, hi.y + reach};
+  const Box3 box = cell.bounds();
+  box_raster_.clear();
+  Vec2 box_lo{HUGE_VAL, HUGE_VAL}, box_hi{-HUGE_VAL, -HUGE_VAL};
+  double nearest = HUGE_VAL, farthest = 0;
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 w{k & 1 ? box.hi.x : box.lo.x, k & 2 ? box.hi.y : box.lo.y, k & 4 ? box.hi.z : box.lo.z};
+    const Vec3 c = camera_.camera_from_world(w);
+    if (!(c.z >= camera_.near)) return false;
+    nearest = std::min(nearest, c.z), farthest = std::max(farthest, c.z);
+    box_raster_.push_back(out_.raster.raster_from_image({c.x / c.z, c.y / c.z}));
+    box_lo = {std::min(box_lo.x, box_raster_.back().x), std::min(box_lo.y, box_raster_.back().y)};
+    box_hi = {std::max(box_hi.x, box_raster_.back().x), std::max(box_hi.y, box_raster_.back().y)};
+  }
+  lo = {std::max(lo.x, box_lo.x), std::max(lo.y, box_lo.y)}, hi = {std::min(hi.x, box_hi.x), std::min(hi.y, box_hi.y)};
+  // What hidden() would find for each piece, from its own corners on the raster (inside the
+  // hull of the box's):
+  //   - its plane's largest 1/Z at a corner is the corner's own, at most 1/nearest (up to a
+  //     rounding, the 1e-7 here), and to it the plane's slope over the 1/128 of a sample a
+  //     rounded outline reaches past the corners is added;
+  //   - its plane is trusted where |a·x| + |b·y| + |c| (convex: largest at a corner of the
+  //     box's hull) stays within 1e8 times its least 1/Z (at least 1/farthest): asked here
+  //     within half that.
+  double most = (1 + 1e-7) / nearest;
+  long pieces = 0;
+  for (const Face& face : cell.faces) {
+    const double d = face.plane.eval(camera_.eye);
+    if (face.opaque.empty() || !(d < 0)) continue;
+    const RasterPlane z = raster_plane(camera_dir(face.plane.n), d);
+    double size = 0;
+    for (Vec2 p : box_raster_) size = std::max(size, std::fabs(z.a * p.x) + std::fabs(z.b * p.y) + std::fabs(z.c));
+    if (!(size <= 0.5e8 / farthest)) return false;
+    most = std::max(most, (1 + 1e-7) / nearest + (std::fabs(z.a) + std::fabs(z.b)) / 128);
+    pieces += long(face.opaque.size());
+  }
+  if (pieces == 0) return true;  // nothing to add
+  if (!out_.drawn.hides(lo, hi, most)) return false;
+  tested_ += pieces, dropped_ += pieces;  // as add_face would have counted each
+  return true;
+}
+
 bool ScreenSceneBuilder::may_cover_a_sample(Vec2 lo, Vec2 hi) const {
   const RasterMap& m = out_.raster;
   // Grown by 1/16 of a sample: far more than the 1/512 that rounding to the fixed point

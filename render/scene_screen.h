@@ -162,6 +162,14 @@ class ScreenSceneBuilder {
   /// region's box or beyond one of its sides (cull_outside), or behind what is drawn
   /// (drop_hidden; with a margin of 1e-3 in 1/Z, see scene_screen.cpp).
   bool may_show(const Box3& box) const;
+  /// Resolved by depth (drop_hidden): whether every piece of `cell`'s faces that add_face
+  /// would be given (the opaque pieces of faces turned towards the eye), cut to the convex
+  /// picture-plane polygon grown by `grow` samples (its clip region), lies behind what is
+  /// drawn, so that add_face would drop each of them. One test for the whole cell, from
+  /// its box: never true where one of the per-piece tests would keep a piece, and it counts
+  /// them as those tests would have been counted. False when a corner of the box reaches the
+  /// near plane, or a piece's plane is seen too nearly edge-on for the test.
+  bool cell_faces_hidden(const Cell& cell, const std::vector<Vec2>& picture_polygon, double grow);
 
  private:
   /// Steps 2–5 for a polygon already in camera space on the plane n·P + d = 0.
@@ -260,6 +268,7 @@ class ScreenSceneBuilder {
   };
   std::vector<Side> cull_sides_;
   std::vector<Vec3> near_cut_, plane_cut_;
+  std::vector<Vec2> box_raster_;  ///< cell_faces_hidden: the corners of the cell's box on the raster
   std::vector<Vec3> face_cam_;       ///< add_face: the face in camera space (kept: a view adds thousands)
   std::vector<Vec3> mesh_cam_;       ///< add_mesh: the mesh's vertices in camera space, each transformed once
   std::vector<Vec2> mesh_raster_;    ///< and on the raster [samples] (NaN: before the near plane)

@@ -206,21 +206,28 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
     const Avenue& avenue = visible.avenues[i];
     if (avenue.mask.size() < 3) continue;
     const std::vector<Vec2>& mask = mask_of(avenue);
-    const int32_t clip = b.add_clip(mask, avenue.depth == 0 && roots == 1 ? 0 : kMaskGrowth);
+    const double growth = avenue.depth == 0 && roots == 1 ? 0 : kMaskGrowth;
+    const Cell& cell = complex.cells[size_t(avenue.cell)];
+    const std::span<const uint32_t> in_cell = by_cell.of(avenue.cell);
+    // Resolved by depth, a cell whose faces lie behind what is drawn within its mask (a far
+    // cell of a grazing view across an open scene) adds none of them: tested once, not
+    // piece by piece. Without objects, nothing of it is drawn.
+    const bool faces_hidden = visible.conservative && b.cell_faces_hidden(cell, mask, growth);
+    if (faces_hidden && in_cell.empty()) continue;
+    const int32_t clip = b.add_clip(mask, growth);
     if (clip < 0) continue;
     // A mask between sample centres (a far cell of a grazing view over thousands) shows
     // nothing of its cell: its faces and the objects cut to it are not looked at. An object
     // drawn whole within the masks of all its cells (resolved by depth) still is, below.
     const bool shows = b.clip_holds_a_sample(clip);
     if (!shows && !visible.conservative) continue;
-    const Cell& cell = complex.cells[size_t(avenue.cell)];
     ScreenSceneBuilder::Placement where{clip, int32_t(i), avenue.depth, PolygonRole::Face};
     if (visible.conservative) where = {clip, 0, 0, PolygonRole::Object};  // one group: depth decides
     PolygonSource source;
     source.kind = PolygonSource::Kind::Face;
     source.avenue = int(i);
     source.cell = avenue.cell;
-    for (size_t k = 0; shows && k < cell.faces.size(); ++k) {
+    for (size_t k = 0; shows && !faces_hidden && k < cell.faces.size(); ++k) {
       const Face& face = cell.faces[k];
       if (face.opaque.empty() || !(face.plane.eval(camera.eye) < 0)) continue;
       source.face = int(k);
@@ -246,7 +253,6 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
                      one_material ? whole : shade_point(complex, piece));
       }
     }
-    const std::span<const uint32_t> in_cell = by_cell.of(avenue.cell);
     if (in_cell.empty()) continue;
     where.role = PolygonRole::Object;
     source.kind = PolygonSource::Kind::Object;

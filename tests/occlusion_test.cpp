@@ -9,11 +9,13 @@
 #include <random>
 #include <vector>
 
+#include "cells/mesh_scene.h"
 #include "render/halftone.h"
 #include "render/occlusion_buffer.h"
 #include "render/scene_screen.h"
 #include "tests/test_meshes.h"
 #include "visibility/camera.h"
+#include "visibility/visible_set.h"
 
 using namespace avenues;
 
@@ -194,5 +196,64 @@ TEST(Occlusion, AWallDropsTheTrianglesBehindItAndThePictureStaysTheSame) {
     const Image b = render_meshes({m}, cam, every, &se);
     EXPECT_TRUE(a.data == b.data) << samples << " samples: dropping hidden triangles changed the picture";
     EXPECT_LT(sd.polygons, se.polygons - 50) << "few triangles behind the wall were dropped";
+  }
+}
+
+// ScreenSceneBuilder::cell_faces_hidden, which the picture of a hull search asks before it
+// adds a cell's pieces one by one: across a grid of open boxes from its corner at the height
+// of their walls, most cells lie behind the near walls. Every piece of a cell it calls hidden
+// must be one add_face drops, and it must count them as add_face does (the picture decides
+// from those counts whether remembering pays); the picture is then the same bytes with and
+// without what is hidden dropped.
+TEST(Occlusion, ACellWhoseFacesAreHiddenHasEveryPieceDroppedOneByOne) {
+  const CellComplex c = build_mesh_scene({avenues::testing::open_boxes(12)});
+  for (const int samples : {1, 4}) {
+    SCOPED_TRACE(std::to_string(samples) + " samples");
+    const Camera cam = Camera::yaw_pitch({-1.0, -0.3, 0.6}, 45, 0, 88, 322, 181);
+    TraverseParams p;
+    p.merge_pieces = p.hull_pieces = true;
+    const VisibleSet vs = find_visible(c, cam, c.locate(cam.eye).cell, p);
+    ASSERT_TRUE(vs.conservative);
+    ScreenScene scene;
+    SceneOptions o;
+    o.per_side = samples == 4 ? 2 : 1;
+    ScreenSceneBuilder b(cam, o, scene);
+    b.drop_hidden();
+    long hidden_cells = 0, kept_in_hidden = 0, dropped = 0, pieces = 0;
+    for (size_t i = 0; i < vs.avenues.size(); ++i) {
+      const Avenue& a = vs.avenues[i];
+      const double grow = a.depth == 0 ? 0 : 1.0 / 64;
+      const Cell& cell = c.cells[size_t(a.cell)];
+      const bool hidden = b.cell_faces_hidden(cell, a.mask, grow);
+      const int32_t clip = b.add_clip(a.mask, grow);
+      if (clip < 0) continue;
+      hidden_cells += hidden;
+      for (size_t k = 0; k < cell.faces.size(); ++k) {
+        const Face& f = cell.faces[k];
+        if (f.opaque.empty() || !(f.plane.eval(cam.eye) < 0)) continue;
+        PolygonSource source;
+        source.kind = PolygonSource::Kind::Face;
+        source.cell = a.cell;
+        source.face = int(k);
+        for (const OpaquePoly& piece : f.opaque) {
+          const bool added = b.add_face(piece.poly, f.plane, Material{}, {clip, 0, 0, PolygonRole::Object}, source);
+          ++pieces;
+          dropped += !added;
+          if (hidden && added) ++kept_in_hidden;
+        }
+      }
+    }
+    EXPECT_EQ(kept_in_hidden, 0) << "a piece of a cell called hidden was added";
+    EXPECT_GT(hidden_cells, long(vs.avenues.size()) / 3) << hidden_cells << " of " << vs.avenues.size() << " cells";
+    EXPECT_LT(long(scene.polygons.size()), pieces / 4);
+    // The picture of the view, with what is hidden dropped and without: the same bytes.
+    HalftoneOptions with, without;
+    with.threads = without.threads = 1;
+    with.samples = without.samples = samples;
+    without.drop_hidden = false;
+    Image pw, po;
+    render_view(c, {}, cam, vs, with, pw);
+    render_view(c, {}, cam, vs, without, po);
+    EXPECT_TRUE(pw.data == po.data);
   }
 }

@@ -1,6 +1,7 @@
 // Avenues tests — meshes made in a test, and a reference ray cast against them.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -38,6 +39,24 @@ inline double box_volume(const Box3& b) { return (b.hi.x - b.lo.x) * (b.hi.y - b
 /// readers make one (mesh_of_polygons: T-junctions joined, fans, corner normals).
 inline Mesh mesh_from(std::vector<Vec3> vertices, std::vector<std::vector<int>> polygons) {
   return mesh_of_polygons("test mesh", std::move(vertices), std::move(polygons));
+}
+
+/// k × k open boxes (a floor and four walls each, 1 m, open at the top) 2 m apart, as the
+/// soup benchmark makes them (bench/soup_bench.cpp).
+inline Mesh open_boxes(int k) {
+  std::vector<Vec3> v;
+  std::vector<std::vector<int>> polygons;
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k; ++j) {
+      const double x = 2.0 * i, y = 2.0 * j;
+      const int b = int(v.size());
+      v.insert(v.end(), {{x, y, 0}, {x + 1, y, 0}, {x + 1, y + 1, 0}, {x, y + 1, 0},
+                         {x, y, 1}, {x + 1, y, 1}, {x + 1, y + 1, 1}, {x, y + 1, 1}});
+      for (const auto& q : {std::array{0, 3, 2, 1}, std::array{0, 1, 5, 4}, std::array{1, 2, 6, 5},
+                            std::array{2, 3, 7, 6}, std::array{3, 0, 4, 7}})
+        polygons.push_back({b + q[0], b + q[1], b + q[2], b + q[3]});
+    }
+  return mesh_from(std::move(v), std::move(polygons));
 }
 
 /// Möller–Trumbore: the distance along dir to the nearest triangle of the meshes (or inf).
