@@ -398,33 +398,21 @@ PolygonLook look_of(const SurfaceShade& shade, const std::vector<LightTerm>& ter
   PolygonLook look;
   look.colour = colour ? shade.colour : std::array<float, 3>{luminance(shade.colour[0], shade.colour[1], shade.colour[2]), 0, 0};
   look.constant = shade.kind == SurfaceShade::Kind::Constant;
-  std::array<float, 3> intensity{shade.intensity, shade.intensity, shade.intensity};
+  for (size_t c = 0; c < 3; ++c) look.linear[c] = look.colour[c] * shade.intensity;
   if (shade.kind == SurfaceShade::Kind::Lit) {
     look.light_channels = shade.coloured ? 3 : 1;
-    // Lit alike everywhere (flat, no light partly cut off): a constant after all.
-    look.constant = true;
-    intensity = shade.lit_ambient;
-    for (int32_t t = shade.first_term; t < shade.first_term + shade.terms && look.constant; ++t) {
-      const LightTerm& term = terms[size_t(t)];
-      look.constant = term.kind == LightTerm::Kind::Constant && !term.needs_scan();
-      for (size_t c = 0; c < 3; ++c) intensity[c] += term.diffuse * term.colour[c];
-    }
-    for (float& i : intensity) i = std::min(i, 1.0f);
-    if (!shade.coloured) intensity[1] = intensity[2] = intensity[0];
-    look.lit = !look.constant;
-    look.piecewise = look.lit;
-    for (int32_t t = shade.first_term; t < shade.first_term + shade.terms; ++t)
-      look.piecewise &= terms[size_t(t)].kind == LightTerm::Kind::Constant;
-  }
-  for (size_t c = 0; c < 3; ++c) {
-    look.linear[c] = look.colour[c] * intensity[c];
-    look.code[c] = enc(look.linear[c]);
-  }
-  if (look.piecewise) {
     const LightTerm* own = terms.data() + shade.first_term;
-    look.unpieced = lit_colour(shade, own, look.colour, look.light_channels,
-                               [&](int t) { return !own[t].needs_scan() || own[t].whole; });
+    auto flat = [](const LightTerm& t) { return t.kind == LightTerm::Kind::Constant; };
+    // Lit alike everywhere (flat, no light partly cut off): a constant after all.
+    look.constant = std::all_of(own, own + shade.terms, [&](const LightTerm& t) { return flat(t) && !t.needs_scan(); });
+    look.lit = !look.constant;
+    look.piecewise = look.lit && std::all_of(own, own + shade.terms, flat);
+    if (look.constant) look.linear = lit_colour(shade, own, look.colour, look.light_channels, [](int) { return true; });
+    if (look.piecewise)
+      look.unpieced = lit_colour(shade, own, look.colour, look.light_channels,
+                                 [&](int t) { return !own[t].needs_scan() || own[t].whole; });
   }
+  for (size_t c = 0; c < 3; ++c) look.code[c] = enc(look.linear[c]);
   return look;
 }
 
