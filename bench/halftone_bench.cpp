@@ -107,6 +107,8 @@ BENCHMARK_CAPTURE(halftone_frame, curved_walls, "curved-walls.toml", ShadingMode
 BENCHMARK_CAPTURE(halftone_frame, two_storey_house, "two-storey-house.toml", ShadingModel::Flat, 1)->Apply(with_repetitions);
 BENCHMARK_CAPTURE(halftone_frame, office_corridor_smooth, "office-corridor.toml", ShadingModel::Smooth, 1)->Apply(with_repetitions);
 BENCHMARK_CAPTURE(halftone_frame, office_corridor_16_samples, "office-corridor.toml", ShadingModel::Flat, 16)->Apply(with_repetitions);
+BENCHMARK_CAPTURE(halftone_frame, two_storey_house_4_samples, "two-storey-house.toml", ShadingModel::Flat, 4)->Apply(with_repetitions);
+BENCHMARK_CAPTURE(halftone_frame, curved_walls_4_samples, "curved-walls.toml", ShadingModel::Flat, 4)->Apply(with_repetitions);
 BENCHMARK_CAPTURE(halftone_walk_frame, jones_house, "jones-house.toml")->Apply(with_repetitions);
 BENCHMARK_CAPTURE(halftone_walk_frame, office_corridor, "office-corridor.toml")->Apply(with_repetitions);
 BENCHMARK_CAPTURE(halftone_walk_frame, curved_walls, "curved-walls.toml")->Apply(with_repetitions);

@@ -119,14 +119,51 @@ class BandPainter {
         keep_items(spans, y);
         continue;
       }
-      std::fill(sum_.begin(), sum_.end(), 0.0f);
+      // Several samples a pixel. Where the row above is `uniform_` (its rows of samples all
+      // one row of spans, each of one colour) and every row of samples here repeats it, the
+      // pixels are summed by the same steps from the same spans: the row above is copied.
+      // Until a row of samples breaks that, none is summed; then the rows held back (the
+      // row above's spans, `held_`) are summed first, in their order.
+      bool held = y > y0 && uniform_;
+      int held_rows = 0;
+      bool uniform = true;
+      const long before = pixels_;
       for (int k = 0; k < s_; ++k) {
         const int row = y * s_ + k;
         const SpanRow& spans = engine_.scan();
         if (secondary_) secondary_->scan();
+        const bool repeated = engine_.repeated() && (!secondary_ || secondary_->repeated());
+        if (k > 0) uniform &= repeated;
+        if (held && repeated) {
+          ++held_rows;
+          continue;
+        }
+        if (k == 0 || held) {
+          std::fill(sum_.begin(), sum_.end(), 0.0f);
+          for (int j = 0; j < held_rows; ++j) {
+            for (const Span& sp : held_) add_span(sp, y * s_ + j);
+            keep_items(held_, y * s_ + j);
+          }
+          held = false;
+        }
         for (const Span& sp : spans) add_span(sp, row);
         keep_items(spans, row);
+        if (k == s_ - 1 && uniform) {
+          for (const Span& sp : spans) uniform &= look_of(sp.polygon).constant;
+          if (uniform) held_.assign(spans.begin(), spans.end());
+        }
       }
+      if (held) {  // every row of samples as the row above's
+        std::memcpy(dst, out_->row(y - 1), size_t(out_->width) * size_t(ch_));
+        pixels_ += row_pixels_;
+        if (items_) {
+          const size_t w = size_t(scene_->raster.width), n = w * size_t(s_);
+          std::memcpy(items_->data() + size_t(y) * n, items_->data() + size_t(y - 1) * n, n * sizeof(int32_t));
+        }
+        continue;
+      }
+      uniform_ = uniform;
+      row_pixels_ = pixels_ - before;
       const float mean = 1.0f / float(s_ * s_);
       for (size_t i = 0; i < sum_.size(); ++i) dst[i] = encoder_(sum_[i] * mean);
     }
@@ -391,6 +428,10 @@ class BandPainter {
   SpanRow painted_;
   bool row_alike_ = false;  ///< the row last painted is a row of its spans alone (no sample lit by its place)
   long row_pixels_ = 0;     ///< its pixels counted
+  /// Several samples a pixel: the row last painted had one row of spans, `held_`, for all
+  /// its rows of samples, each span of one colour (a Constant look).
+  bool uniform_ = false;
+  SpanRow held_;
 };
 
 PolygonLook look_of(const SurfaceShade& shade, const std::vector<LightTerm>& terms, bool colour,

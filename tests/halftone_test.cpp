@@ -172,6 +172,45 @@ TEST(Halftone, SupersamplingAveragesCoverageInLinearLight) {
   EXPECT_THROW(render_meshes({facing_square(1, half)}, cam, o), std::invalid_argument);
 }
 
+TEST(Halftone, RowsOfSamplesLikeTheRowAboveMakeItsPixelsAndNoOthers) {
+  // The same white square: its edges run through the centres of pixels 11 and 52, so at 4
+  // and 16 samples rows 12-51 are one row of samples over and over (the painter copies the
+  // pixels of such a row from the row above), and rows 11 and 52 are half covered. Every
+  // row must be what its own samples make: rows 12-51 alike, rows 11 and 52 alike and grey
+  // across the square (a copy of the black row above would leave them black), the rows
+  // above and below black.
+  HalftoneOptions o;
+  o.colour = false;
+  o.shading.back = 1;
+  o.threads = 1;
+  const Camera cam = camera_at_origin(64, 64);
+  const double half = 20.5 / 32 * std::tan(20 * 3.14159265358979323846 / 180);
+  MeshPaint white;
+  Material m;
+  m.colour = {1, 1, 1};
+  white.materials = {m};
+  for (int samples : {4, 16}) {
+    SCOPED_TRACE(std::to_string(samples) + " samples");
+    o.samples = samples;
+    const Image im = render_meshes({facing_square(1, half)}, {white}, cam, o);
+    ASSERT_EQ(im.width, 64);
+    ASSERT_EQ(im.channels, 1);
+    auto row = [&](int y) { return std::vector<uint8_t>(im.row(y), im.row(y) + 64); };
+    const std::vector<uint8_t> inside = row(32), edge = row(11);
+    for (int y = 12; y <= 51; ++y) EXPECT_EQ(row(y), inside) << "row " << y;
+    EXPECT_EQ(row(52), edge);
+    for (int y : {0, 10, 53, 63}) EXPECT_EQ(row(y), std::vector<uint8_t>(64, 0)) << "row " << y;
+    EXPECT_EQ(inside[11], edge[32]);  // half covered across or down
+    for (int x = 12; x <= 51; ++x) {
+      EXPECT_GT(edge[size_t(x)], 0) << "column " << x;
+      EXPECT_LT(edge[size_t(x)], inside[size_t(x)]) << "column " << x;
+      EXPECT_EQ(inside[size_t(x)], inside[32]);
+    }
+    EXPECT_GT(edge[11], 0);
+    EXPECT_LT(edge[11], edge[32]);  // a quarter covered
+  }
+}
+
 TEST(Halftone, OneAndTwoThreadsMakeTheSamePicture) {
   const CellComplex c = build_cells(read_plan(std::string(AVENUES_SOURCE_DIR) + "/plans/office-corridor.toml"));
   const Viewpoint vp = default_viewpoint(c);
