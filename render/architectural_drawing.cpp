@@ -38,6 +38,11 @@ bool clip_to_page(Vec2& a, Vec2& b, double w, double h) {
 /// The building: every cell inside it and every solid it names, or the far box's middle when it has none.
 }  // namespace
 
+DrawingTooLarge::DrawingTooLarge(double metres_across, double pixels)
+    : std::runtime_error("the drawing would be " + std::to_string(long(pixels)) + " pixels across, over the " +
+                         std::to_string(long(kMaxDrawingPixels)) + " a picture may have"),
+      metres(metres_across) {}
+
 Box3 building_bounds(const CellComplex& c) {
   Box3 b{{HUGE_VAL, HUGE_VAL, HUGE_VAL}, {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}};
   auto add = [&](Vec3 p) {
@@ -72,7 +77,7 @@ Camera fitted_camera(Vec3 forward, const Box3& box, Vec3 on_plane, double px_per
   }
   x0 -= kMargin, x1 += kMargin, y0 -= kMargin, y1 += kMargin;
   const double w = std::ceil((x1 - x0) * px_per_m), h = std::ceil((y1 - y0) * px_per_m);
-  if (w > 32768 || h > 32768) throw std::runtime_error("the drawing would be over 32768 pixels across: use a smaller scale");
+  if (w > kMaxDrawingPixels || h > kMaxDrawingPixels) throw DrawingTooLarge(std::max(x1 - x0, y1 - y0), std::max(w, h));
   cam.width = int(w), cam.height = int(h);
   cam.view_width = w / px_per_m;
   // The window's centre over the middle of the box (shifted in the picture plane, not along the rays).

@@ -19,6 +19,7 @@
 #pragma once
 
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "cells/cell_complex.h"
@@ -45,13 +46,20 @@ struct ArchitecturalView {
   std::string kind;  ///< plan, section, elevation or axonometric
 };
 
+/// A drawing that would be over kMaxDrawingPixels across at the resolution asked for.
+struct DrawingTooLarge : std::runtime_error {
+  double metres = 0;  ///< [m] the picture's longer side, its margins included
+  DrawingTooLarge(double metres_across, double pixels);
+};
+inline constexpr double kMaxDrawingPixels = 32768;
+
 /// The building: every cell inside it (not outside, not sky) and every solid it names.
 Box3 building_bounds(const CellComplex& complex);
 /// Storey `storey` cut `cut_height` [m] above its floor, looking down (north up), labelled;
 /// storey -1: the whole building (a scene of meshes, which has no storeys) cut that far above
 /// its lowest point, unlabelled.
 /// Every constructor takes the raster's resolution px_per_m [px per metre of the building]
-/// and throws std::runtime_error when the picture would be over 32768 px across.
+/// and throws DrawingTooLarge when the picture would be over kMaxDrawingPixels across.
 ArchitecturalView plan_view(const CellComplex& complex, StoreyId storey, double cut_height, double px_per_m);
 /// A vertical cut along p1→p2, looking to its left; the picture spans the line and the
 /// building's height.

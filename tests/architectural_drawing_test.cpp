@@ -14,6 +14,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "app/plan_source.h"
@@ -241,6 +242,33 @@ TEST_F(ArchitecturalDrawing, AMeshScenesPlanIsTheWholeModelCutAboveItsLowestPoin
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.err.find("has no storeys (a mesh scene); --plan 0 cuts the whole model"), std::string::npos) << bad.err;
   EXPECT_FALSE(fs::exists(path("q.svg")));
+}
+
+// A drawing too large for the page at its scale is refused, and the error says which of
+// the usual scales fits; where none does (a model in millimetres read as metres, say), it
+// says how large the model is and that a mesh's unit can be given. Nothing is written.
+TEST_F(ArchitecturalDrawing, ADrawingTooLargeForItsScaleNamesTheScaleThatFits) {
+  // A closed box, as a mesh: 600 m by 10 m by 3 m, and the same in kilometres.
+  auto box = [](double x, double y, double z) {
+    std::ostringstream obj;
+    for (int k = 0; k < 8; ++k) obj << "v " << (k & 1 ? x : 0) << " " << (k & 2 ? y : 0) << " " << (k & 4 ? z : 0) << "\n";
+    obj << "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
+    return obj.str();
+  };
+  const std::string long_shed = write("shed.obj", box(600, 10, 3)), far = write("far.obj", box(20000, 10, 3));
+  const Outcome r = run({"drawing", long_shed, "--plan", "0", "-o", path("shed.svg")});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--scale 1:50: the drawing would be"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("1:100 fits"), std::string::npos) << r.err;  // 602 m at 4 px a paper mm: 1:74 at least
+  EXPECT_FALSE(fs::exists(path("shed.svg")));
+  const Outcome fits = run({"drawing", long_shed, "--plan", "0", "--scale", "1:100", "-o", path("shed.svg")});
+  EXPECT_EQ(fits.status, 0) << fits.err;
+  EXPECT_TRUE(fs::exists(path("shed.svg")));
+  const Outcome none = run({"drawing", far, "--elevation", "south", "--scale", "1:500", "-o", path("far.svg")});
+  EXPECT_EQ(none.status, 2);
+  EXPECT_NE(none.err.find("not even 1:500 fits"), std::string::npos) << none.err;
+  EXPECT_NE(none.err.find("--unit"), std::string::npos) << none.err;
+  EXPECT_FALSE(fs::exists(path("far.svg")));
 }
 
 // Jones's house in section along x = 4, looking east through both doors of the living
