@@ -10,7 +10,9 @@
 #include <vector>
 
 #include "cells/build_cells.h"
+#include "cells/mesh_scene.h"
 #include "plans/formats/doom_map.h"
+#include "test_meshes.h"
 #include "test_plans.h"
 #include "visibility/viewpoint.h"
 #include "visibility/walker.h"
@@ -127,6 +129,32 @@ TEST(Walker, FallsToTheFloorAfterFlying) {
   // Walk mode refuses to go up where there is no stair.
   w.move({0, 0, 0.5}, 1.0 / 60);
   EXPECT_NEAR(w.eye().z, 1.6, 1e-9);
+}
+
+TEST(Walker, AroundAModelWithNoGroundTheEyeStandsAtItsFoot) {
+  // A grid of open boxes (floors 0.2 m up, walls to 1.2 m) as a scene of meshes, which has
+  // no ground of its own: beside the boxes nothing lies below but the far box's bottom. The
+  // eye walks at eye height above the model's lowest point; a plan's walker has no such
+  // ground (its floors and the outside's ground are faces).
+  Mesh m = avenues::testing::open_boxes(2);
+  for (Vec3& v : m.vertices) v.z += 0.2;
+  const CellComplex c = build_mesh_scene({m});
+  ASSERT_TRUE(c.storeys.empty());
+  ASSERT_LT(c.far_box.lo.z, -0.5);
+  Walker w(c, {-0.8, -0.8, 0.9});
+  EXPECT_NEAR(w.ground(), 0.2, 1e-9);
+  for (int i = 0; i < 120; ++i) w.move({}, 1.0 / 60);
+  EXPECT_NEAR(w.floor_below(), 0.2, 1e-9);
+  EXPECT_NEAR(w.eye().z, 0.2 + w.options().eye_height, 1e-9);
+  // Along the grid's edge and back: still at its foot.
+  for (int i = 0; i < 60; ++i) w.move({0.05, 0, 0}, 1.0 / 60);
+  EXPECT_NEAR(w.eye().z, 0.2 + w.options().eye_height, 1e-9);
+  // Flown below the model's foot, the eye falls to what lies below it, as before.
+  w.set_mode(MoveMode::Fly);
+  for (int i = 0; i < 40; ++i) w.move({0, 0, -0.05}, 1.0 / 60);
+  ASSERT_LT(w.eye().z, 0.2);
+  EXPECT_LT(w.floor_below(), c.far_box.lo.z + 1e-6);
+  EXPECT_EQ(Walker(two_storey(), {7, 2, 1.6}).ground(), -HUGE_VAL);
 }
 
 TEST(Walker, ClimbsTheStairwellAndComesDownAgain) {

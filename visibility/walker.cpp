@@ -96,6 +96,28 @@ Walker::Walker(const CellComplex& complex, Vec3 eye, const WalkerOptions& option
     throw std::runtime_error(at.what == Location::What::Solid ? "the eye is inside " + at.solid
                                                               : std::string("the eye is outside the far box"));
   cell_ = at.cell;
+  if (complex.storeys.empty()) {
+    // The lowest corner of an opaque piece that is not the far box's.
+    const Box3& far = complex.far_box;
+    const double tol = 1e-9 * (1 + std::max({std::fabs(far.lo.x), std::fabs(far.hi.x), std::fabs(far.lo.y),
+                                              std::fabs(far.hi.y), std::fabs(far.lo.z), std::fabs(far.hi.z)}));
+    auto on = [tol](double v, double bound) { return std::fabs(v - bound) <= tol; };
+    double lowest = HUGE_VAL;
+    for (const Cell& cell : complex.cells)
+      for (const Face& face : cell.faces)
+        for (const OpaquePoly& piece : face.opaque) {
+          if (piece.poly.empty()) continue;
+          bool far_face[6] = {true, true, true, true, true, true};
+          double low = HUGE_VAL;
+          for (Vec3 p : piece.poly) {
+            far_face[0] &= on(p.x, far.lo.x), far_face[1] &= on(p.x, far.hi.x), far_face[2] &= on(p.y, far.lo.y);
+            far_face[3] &= on(p.y, far.hi.y), far_face[4] &= on(p.z, far.lo.z), far_face[5] &= on(p.z, far.hi.z);
+            low = std::min(low, p.z);
+          }
+          if (std::none_of(far_face, far_face + 6, [](bool b) { return b; })) lowest = std::min(lowest, low);
+        }
+    if (lowest < HUGE_VAL) ground_ = lowest;
+  }
 }
 
 SegmentCast Walker::cast_from(Vec3 p, CellId hint, Vec3 q) const {
@@ -197,7 +219,8 @@ bool Walker::try_walk(Vec3 d, Vec3* blocked_normal) {
 double Walker::floor_below() const {
   const double depth = eye_.z - c_.far_box.lo.z + 1;
   const SegmentCast down = cast_segment(c_, cell_, eye_, eye_ - Vec3{0, 0, depth});
-  return eye_.z - down.t * depth;
+  const double floor = eye_.z - down.t * depth;
+  return eye_.z >= ground_ && ground_ > floor ? ground_ : floor;
 }
 
 bool Walker::on_stair() const {

@@ -22,6 +22,8 @@
 // stereo pair's eyes (a few centimetres either side) stay in free space too.
 #pragma once
 
+#include <cmath>
+
 #include <cstdint>
 
 #include "cells/cell_complex.h"
@@ -74,8 +76,14 @@ class Walker {
   /// fall_speed·dt). Returns how far the eye moved [m].
   double move(Vec3 delta, double dt);
 
-  /// Height of the floor under the eye [m] (the first opaque face straight below it).
+  /// Height of the floor under the eye [m]: the first opaque face straight below it, or in
+  /// a scene of meshes (no storeys) the ground the model stands on (its lowest point), where
+  /// that is higher and the eye above it. A model with no ground of its own (furniture, a
+  /// grid of open boxes) is walked around at its foot, not from the far box's bottom below it.
   double floor_below() const;
+  /// [m] The ground the eye stands on where no floor is below it: a scene of meshes' lowest
+  /// point; -inf for a plan (its storeys' floors and the outside's ground are faces).
+  double ground() const { return ground_; }
   /// True when the eye stands in a stairwell's column (a floor hole above or below it, with
   /// no floor between).
   bool on_stair() const;
@@ -99,6 +107,7 @@ class Walker {
   MoveMode mode_ = MoveMode::Walk;
   Vec3 eye_;
   CellId cell_ = kNoCell;
+  double ground_ = -HUGE_VAL;  ///< ground()
 };
 
 }  // namespace avenues
