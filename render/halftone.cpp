@@ -81,6 +81,7 @@ class BandPainter {
     items_ = items;
     intensity_.resize(size_t(scene.raster.width) * (scene.light_terms.empty() ? 1 : 3));
     sum_.resize(per_side > 1 ? size_t(out.width) * size_t(channels) : 0);
+    row_sum_.resize(sum_.size());
     if (pieces && painted_on_.size() < scene.polygons.size()) {  // (lit in runs only where there are pieces of light)
       painted_on_.resize(scene.polygons.size(), 0);  // stamped with the picture: never cleared
       painted_.resize(scene.polygons.size());
@@ -119,51 +120,40 @@ class BandPainter {
         keep_items(spans, y);
         continue;
       }
-      // Several samples a pixel. Where the row above is `uniform_` (its rows of samples all
-      // one row of spans, each of one colour) and every row of samples here repeats it, the
-      // pixels are summed by the same steps from the same spans: the row above is copied.
-      // Until a row of samples breaks that, none is summed; then the rows held back (the
-      // row above's spans, `held_`) are summed first, in their order.
-      bool held = y > y0 && uniform_;
-      int held_rows = 0;
+      // Several samples a pixel: each row of samples is summed on its own (row_sum_), then
+      // added to its pixels' sums. A row of samples like the one before it (the same spans
+      // and pieces of light, no sample lit by its own place: `row_alike_`) has the same sums:
+      // they are added again. A pixel row whose rows of samples are all the row above's last
+      // one, under a row above made of that one row over and over (`uniform_`), sums to the
+      // row above's pixels by the same steps: they are copied.
+      bool copy = y > y0 && uniform_;
       bool uniform = true;
-      const long before = pixels_;
       for (int k = 0; k < s_; ++k) {
         const int row = y * s_ + k;
         const SpanRow& spans = engine_.scan();
         if (secondary_) secondary_->scan();
-        const bool repeated = engine_.repeated() && (!secondary_ || secondary_->repeated());
-        if (k > 0) uniform &= repeated;
-        if (held && repeated) {
-          ++held_rows;
-          continue;
+        const bool same = (k > 0 || y > y0) && row_alike_ && engine_.repeated() && (!secondary_ || secondary_->repeated());
+        if (k > 0) uniform &= same;
+        copy &= same;
+        if (same) {
+          pixels_ += row_sum_pixels_;
+        } else {
+          std::fill(row_sum_.begin(), row_sum_.end(), 0.0f);
+          const long before = pixels_;
+          row_alike_ = true;
+          for (const Span& sp : spans) add_span(sp, row);
+          row_sum_pixels_ = pixels_ - before;
         }
-        if (k == 0 || held) {
-          std::fill(sum_.begin(), sum_.end(), 0.0f);
-          for (int j = 0; j < held_rows; ++j) {
-            for (const Span& sp : held_) add_span(sp, y * s_ + j);
-            keep_items(held_, y * s_ + j);
-          }
-          held = false;
-        }
-        for (const Span& sp : spans) add_span(sp, row);
         keep_items(spans, row);
-        if (k == s_ - 1 && uniform) {
-          for (const Span& sp : spans) uniform &= look_of(sp.polygon).constant;
-          if (uniform) held_.assign(spans.begin(), spans.end());
-        }
-      }
-      if (held) {  // every row of samples as the row above's
-        std::memcpy(dst, out_->row(y - 1), size_t(out_->width) * size_t(ch_));
-        pixels_ += row_pixels_;
-        if (items_) {
-          const size_t w = size_t(scene_->raster.width), n = w * size_t(s_);
-          std::memcpy(items_->data() + size_t(y) * n, items_->data() + size_t(y - 1) * n, n * sizeof(int32_t));
-        }
-        continue;
+        if (k == 0) std::copy(row_sum_.begin(), row_sum_.end(), sum_.begin());
+        else
+          for (size_t i = 0; i < sum_.size(); ++i) sum_[i] += row_sum_[i];
       }
       uniform_ = uniform;
-      row_pixels_ = pixels_ - before;
+      if (copy) {
+        std::memcpy(dst, out_->row(y - 1), size_t(out_->width) * size_t(ch_));
+        continue;
+      }
       const float mean = 1.0f / float(s_ * s_);
       for (size_t i = 0; i < sum_.size(); ++i) dst[i] = encoder_(sum_[i] * mean);
     }
@@ -362,14 +352,15 @@ class BandPainter {
       return lit_runs(sp, look, [&](int from, int to, const std::array<float, 3>& linear) {
         for (int px = from / s_; px * s_ < to; ++px) {
           const float k = float(std::min(to, (px + 1) * s_) - std::max(from, px * s_));
-          float* sum = &sum_[size_t(px) * size_t(ch_)];
+          float* sum = &row_sum_[size_t(px) * size_t(ch_)];
           for (int c = 0; c < ch_; ++c) sum[c] += k * linear[size_t(c)];
         }
       });
+    if (!look.constant) row_alike_ = false;  // lit sample by sample: another row, other samples
     const float* in = look.constant ? nullptr : light(sp, row);
     for (int px = sp.x0 / s_; px * s_ < sp.x1; ++px) {
       const int from = std::max(sp.x0, px * s_), to = std::min(sp.x1, (px + 1) * s_);
-      float* sum = &sum_[size_t(px) * size_t(ch_)];
+      float* sum = &row_sum_[size_t(px) * size_t(ch_)];
       if (look.constant) {
         for (int c = 0; c < ch_; ++c) sum[c] += float(to - from) * look.linear[size_t(c)];
         continue;
@@ -407,6 +398,8 @@ class BandPainter {
   FillColours fills_;  ///< the colours of the spans filled lately, ready to fill with
   // Written by this painter's thread alone: in lines of their own (core/cache_lines.h).
   OwnLines<float> intensity_, sum_;
+  OwnLines<float> row_sum_;    ///< several samples a pixel: the last row of samples' sums per pixel
+  long row_sum_pixels_ = 0;    ///< its pixels counted
   OwnLines<const uint8_t*> masks_;  ///< per light term of the span's shade: lit samples (nullptr: all)
   OwnLines<uint8_t> mask_buffer_;
   /// lit_runs: where a piece's span begins or ends within the span (x >= 0), and the
@@ -428,10 +421,8 @@ class BandPainter {
   SpanRow painted_;
   bool row_alike_ = false;  ///< the row last painted is a row of its spans alone (no sample lit by its place)
   long row_pixels_ = 0;     ///< its pixels counted
-  /// Several samples a pixel: the row last painted had one row of spans, `held_`, for all
-  /// its rows of samples, each span of one colour (a Constant look).
+  /// Several samples a pixel: the row last painted was one row of samples over and over.
   bool uniform_ = false;
-  SpanRow held_;
 };
 
 PolygonLook look_of(const SurfaceShade& shade, const std::vector<LightTerm>& terms, bool colour,
