@@ -167,8 +167,10 @@ class ScreenSceneBuilder {
   /// picture-plane polygon grown by `grow` samples (its clip region), lies behind what is
   /// drawn, so that add_face would drop each of them. One test for the whole cell, from
   /// its box: never true where one of the per-piece tests would keep a piece, and it counts
-  /// them as those tests would have been counted. False when a corner of the box reaches the
-  /// near plane, or a piece's plane is seen too nearly edge-on for the test.
+  /// each piece as tested and dropped, as add_face would (also where the clip region holds no
+  /// sample, so that add_face is never called: more dropped only keeps drop_hidden on, which
+  /// changes no picture). False when a corner of the box reaches the near plane, or a piece's
+  /// plane is seen too nearly edge-on for the test.
   bool cell_faces_hidden(const Cell& cell, const std::vector<Vec2>& picture_polygon, double grow);
 
  private:
