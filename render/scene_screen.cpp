@@ -434,12 +434,8 @@ void ScreenSceneBuilder::cull_outside(int32_t clip, double margin) {
   if (!cull_) return;
   const std::vector<FixedPoint>& h = out_.clips[size_t(clip)].outline;  // a convex hull, no three corners in line
   const double one = double(kSubpixelOne);
-  cull_lo_ = {HUGE_VAL, HUGE_VAL}, cull_hi_ = {-HUGE_VAL, -HUGE_VAL};
-  for (const FixedPoint& f : h) {
-    cull_lo_ = {std::min(cull_lo_.x, double(f.x) / one), std::min(cull_lo_.y, double(f.y) / one)};
-    cull_hi_ = {std::max(cull_hi_.x, double(f.x) / one), std::max(cull_hi_.y, double(f.y) / one)};
-  }
-  cull_lo_ = {cull_lo_.x - margin, cull_lo_.y - margin}, cull_hi_ = {cull_hi_.x + margin, cull_hi_.y + margin};
+  const auto& [lo, hi] = clip_box_[size_t(clip)];
+  cull_lo_ = {lo.x - margin, lo.y - margin}, cull_hi_ = {hi.x + margin, hi.y + margin};
   cull_sides_.clear();
   for (size_t i = 0; i < h.size(); ++i) {
     // hull() turns counter-clockwise in (x, y) as stored: the inside lies to each side's left.
@@ -459,30 +455,35 @@ bool ScreenSceneBuilder::outside_cull_region(std::span<const Vec2> points, Vec2 
   return false;
 }
 
-bool ScreenSceneBuilder::may_show(const Box3& box) const {
-  if (!(box.lo.x <= box.hi.x && box.lo.y <= box.hi.y && box.lo.z <= box.hi.z)) return true;
-  std::array<Vec2, 8> corners;
-  Vec2 lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
-  double nearest = HUGE_VAL;
+bool ScreenSceneBuilder::box_on_raster(const Box3& box, BoxOnRaster& out) const {
+  out.lo = {HUGE_VAL, HUGE_VAL}, out.hi = {-HUGE_VAL, -HUGE_VAL};
+  out.nearest = HUGE_VAL, out.farthest = 0;
   for (int k = 0; k < 8; ++k) {
     const Vec3 w{k & 1 ? box.hi.x : box.lo.x, k & 2 ? box.hi.y : box.lo.y, k & 4 ? box.hi.z : box.lo.z};
     const Vec3 c = camera_.camera_from_world(w);
-    if (!(c.z >= camera_.near)) return true;  // reaches the near plane: cannot tell here
+    if (!(c.z >= camera_.near)) return false;
     const Vec2 r = out_.raster.raster_from_image({c.x / c.z, c.y / c.z});
-    corners[size_t(k)] = r;
-    lo = {std::min(lo.x, r.x), std::min(lo.y, r.y)};
-    hi = {std::max(hi.x, r.x), std::max(hi.y, r.y)};
-    nearest = std::min(nearest, c.z);
+    out.corners[size_t(k)] = r;
+    out.lo = {std::min(out.lo.x, r.x), std::min(out.lo.y, r.y)};
+    out.hi = {std::max(out.hi.x, r.x), std::max(out.hi.y, r.y)};
+    out.nearest = std::min(out.nearest, c.z), out.farthest = std::max(out.farthest, c.z);
   }
+  return true;
+}
+
+bool ScreenSceneBuilder::may_show(const Box3& box) const {
+  if (!(box.lo.x <= box.hi.x && box.lo.y <= box.hi.y && box.lo.z <= box.hi.z)) return true;
+  BoxOnRaster r;
+  if (!box_on_raster(box, r)) return true;  // reaches the near plane: cannot tell here
   // What add_mesh_polygon would find of each polygon inside, found once for all of them.
-  if (!may_cover_a_sample(lo, hi) || outside_cull_region(corners, lo, hi)) return false;
+  if (!may_cover_a_sample(r.lo, r.hi) || outside_cull_region(r.corners, r.lo, r.hi)) return false;
   // Behind what is drawn: no point inside is nearer than 1/nearest. A polygon's rounded
   // outline may reach 1/128 of a sample past its corners, where its plane's 1/Z may exceed
   // that by its slope; 1e-3 of 1/Z covers every plane turned more than about 1/4 degree
   // from edge-on (a sample is 1/700 of the window's width; docs/ACCURACY.md). A plane
   // nearer edge-on than that, lying within 1e-3 of the depth of what is drawn in front of
   // it, may lose a sample that rounding alone would have shown through.
-  return !(drop_hidden_ && out_.drawn.hides(lo, hi, (1 + 1e-3) / nearest));
+  return !(drop_hidden_ && out_.drawn.hides(r.lo, r.hi, (1 + 1e-3) / r.nearest));
 }
 
 bool ScreenSceneBuilder::cell_faces_hidden(const Cell& cell, const std::vector<Vec2>& picture_polygon, double grow) {
@@ -496,20 +497,9 @@ bool ScreenSceneBuilder::cell_faces_hidden(const Cell& cell, const std::vector<V
   }
   const double reach = grow + 1.0 / 16;  // more than the clip region's rounding to the fixed point
   lo = {lo.x - reach, lo.y - reach}, hi = {hi.x + reach, hi.y + reach};
-  const Box3 box = cell.bounds();
-  box_raster_.clear();
-  Vec2 box_lo{HUGE_VAL, HUGE_VAL}, box_hi{-HUGE_VAL, -HUGE_VAL};
-  double nearest = HUGE_VAL, farthest = 0;
-  for (int k = 0; k < 8; ++k) {
-    const Vec3 w{k & 1 ? box.hi.x : box.lo.x, k & 2 ? box.hi.y : box.lo.y, k & 4 ? box.hi.z : box.lo.z};
-    const Vec3 c = camera_.camera_from_world(w);
-    if (!(c.z >= camera_.near)) return false;
-    nearest = std::min(nearest, c.z), farthest = std::max(farthest, c.z);
-    box_raster_.push_back(out_.raster.raster_from_image({c.x / c.z, c.y / c.z}));
-    box_lo = {std::min(box_lo.x, box_raster_.back().x), std::min(box_lo.y, box_raster_.back().y)};
-    box_hi = {std::max(box_hi.x, box_raster_.back().x), std::max(box_hi.y, box_raster_.back().y)};
-  }
-  lo = {std::max(lo.x, box_lo.x), std::max(lo.y, box_lo.y)}, hi = {std::min(hi.x, box_hi.x), std::min(hi.y, box_hi.y)};
+  BoxOnRaster box;
+  if (!box_on_raster(cell.bounds(), box)) return false;
+  lo = {std::max(lo.x, box.lo.x), std::max(lo.y, box.lo.y)}, hi = {std::min(hi.x, box.hi.x), std::min(hi.y, box.hi.y)};
   // What hidden() would find for each piece, from its own corners on the raster (inside the
   // hull of the box's):
   //   - its plane's largest 1/Z at a corner is the corner's own, at most 1/nearest (up to a
@@ -518,16 +508,16 @@ bool ScreenSceneBuilder::cell_faces_hidden(const Cell& cell, const std::vector<V
   //   - its plane is trusted where |a·x| + |b·y| + |c| (convex: largest at a corner of the
   //     box's hull) stays within 1e8 times its least 1/Z (at least 1/farthest): asked here
   //     within half that.
-  double most = (1 + 1e-7) / nearest;
+  double most = (1 + 1e-7) / box.nearest;
   long pieces = 0;
   for (const Face& face : cell.faces) {
     const double d = face.plane.eval(camera_.eye);
     if (face.opaque.empty() || !(d < 0)) continue;
     const RasterPlane z = raster_plane(camera_dir(face.plane.n), d);
     double size = 0;
-    for (Vec2 p : box_raster_) size = std::max(size, std::fabs(z.a * p.x) + std::fabs(z.b * p.y) + std::fabs(z.c));
-    if (!(size <= 0.5e8 / farthest)) return false;
-    most = std::max(most, (1 + 1e-7) / nearest + (std::fabs(z.a) + std::fabs(z.b)) / 128);
+    for (Vec2 p : box.corners) size = std::max(size, std::fabs(z.a * p.x) + std::fabs(z.b * p.y) + std::fabs(z.c));
+    if (!(size <= 0.5e8 / box.farthest)) return false;
+    most = std::max(most, (1 + 1e-7) / box.nearest + (std::fabs(z.a) + std::fabs(z.b)) / 128);
     pieces += long(face.opaque.size());
   }
   if (pieces == 0) return true;  // nothing to add

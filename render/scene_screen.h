@@ -17,6 +17,7 @@
 // Meshes alone (the papers' scenes) are one group of objects cut by the window only.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -249,6 +250,15 @@ class ScreenSceneBuilder {
   bool hidden(const std::vector<Vec2>& corners, Vec3 n, double d, Vec2 lo, Vec2 hi, int32_t clip);
   /// The polygon just added (the scene's last): remembered where it covers whole pixels.
   void remember_drawn();
+  /// A world box's corners on the raster [samples], their box, and the corners' least and
+  /// largest camera depth [m].
+  struct BoxOnRaster {
+    std::array<Vec2, 8> corners;
+    Vec2 lo, hi;
+    double nearest = 0, farthest = 0;
+  };
+  /// False (`out` unfinished) if some corner lies before the near plane.
+  bool box_on_raster(const Box3& box, BoxOnRaster& out) const;
   /// Whether points on the raster [samples] whose box is [lo, hi] lie wholly outside the
   /// cull region (cull_outside): outside its box, or all beyond one of its sides. False
   /// without one.
@@ -270,7 +280,6 @@ class ScreenSceneBuilder {
   };
   std::vector<Side> cull_sides_;
   std::vector<Vec3> near_cut_, plane_cut_;
-  std::vector<Vec2> box_raster_;  ///< cell_faces_hidden: the corners of the cell's box on the raster
   std::vector<Vec3> face_cam_;       ///< add_face: the face in camera space (kept: a view adds thousands)
   std::vector<Vec3> mesh_cam_;       ///< add_mesh: the mesh's vertices in camera space, each transformed once
   std::vector<Vec2> mesh_raster_;    ///< and on the raster [samples] (NaN: before the near plane)
