@@ -104,7 +104,7 @@ class BandPainter {
         if (secondary_) secondary_->scan();
         // The same spans (and pieces of light) as the row above, each of one colour or of
         // runs lit alike: the same pixels.
-        if (y > y0 && row_alike_ && engine_.repeated() && (!secondary_ || secondary_->repeated())) {
+        if (y > y0 && like_last_row()) {
           std::memcpy(dst, out_->row(y - 1), size_t(out_->width) * size_t(ch_));
           pixels_ += row_pixels_;
           if (items_) {
@@ -132,17 +132,17 @@ class BandPainter {
         const int row = y * s_ + k;
         const SpanRow& spans = engine_.scan();
         if (secondary_) secondary_->scan();
-        const bool same = (k > 0 || y > y0) && row_alike_ && engine_.repeated() && (!secondary_ || secondary_->repeated());
+        const bool same = (k > 0 || y > y0) && like_last_row();
         if (k > 0) uniform &= same;
         copy &= same;
         if (same) {
-          pixels_ += row_sum_pixels_;
+          pixels_ += row_pixels_;
         } else {
           std::fill(row_sum_.begin(), row_sum_.end(), 0.0f);
           const long before = pixels_;
           row_alike_ = true;
           for (const Span& sp : spans) add_span(sp, row);
-          row_sum_pixels_ = pixels_ - before;
+          row_pixels_ = pixels_ - before;
         }
         keep_items(spans, row);
         if (k == 0) std::copy(row_sum_.begin(), row_sum_.end(), sum_.begin());
@@ -163,6 +163,12 @@ class BandPainter {
 
  private:
   const PolygonLook& look_of(int32_t polygon) const { return polygon < 0 ? *background_ : (*looks_)[size_t(polygon)]; }
+
+  /// Whether the row of samples just scanned has the last one's spans and pieces of light,
+  /// the last one being lit alike along it (`row_alike_`): the same pixels or sums.
+  bool like_last_row() const {
+    return row_alike_ && engine_.repeated() && (!secondary_ || secondary_->repeated());
+  }
 
   /// Intensities of the span's samples into intensity_ (non-constant shades).
   const float* light(const Span& sp, int row) {
@@ -399,7 +405,6 @@ class BandPainter {
   // Written by this painter's thread alone: in lines of their own (core/cache_lines.h).
   OwnLines<float> intensity_, sum_;
   OwnLines<float> row_sum_;    ///< several samples a pixel: the last row of samples' sums per pixel
-  long row_sum_pixels_ = 0;    ///< its pixels counted
   OwnLines<const uint8_t*> masks_;  ///< per light term of the span's shade: lit samples (nullptr: all)
   OwnLines<uint8_t> mask_buffer_;
   /// lit_runs: where a piece's span begins or ends within the span (x >= 0), and the
@@ -419,7 +424,7 @@ class BandPainter {
   OwnLines<uint64_t> painted_on_;
   uint64_t painted_stamp(int row) const { return picture_ << 32 | uint64_t(uint32_t(row + 1)); }
   SpanRow painted_;
-  bool row_alike_ = false;  ///< the row last painted is a row of its spans alone (no sample lit by its place)
+  bool row_alike_ = false;  ///< the row of samples last painted or summed is of its spans alone (none lit by its place)
   long row_pixels_ = 0;     ///< its pixels counted
   /// Several samples a pixel: the row last painted was one row of samples over and over.
   bool uniform_ = false;
