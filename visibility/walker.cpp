@@ -199,10 +199,10 @@ bool Walker::try_walk(Vec3 d, Vec3* blocked_normal) {
   CellId cell = to.cell;
   if (side_room(p, cell) < std::min(options_.clearance, side_room(eye_, cell_)) - kTol) return false;
   // A floor up to a step higher: step up onto it (with the head clear).
-  const SegmentCast down = cast_segment(c_, cell, p, p - Vec3{0, 0, c_.far_box.hi.z - c_.far_box.lo.z});
-  const double floor = p.z - down.t * (c_.far_box.hi.z - c_.far_box.lo.z);
+  bool stairwell = false;
+  const double floor = face_under(p, cell, &stairwell);
   const double feet = eye_.z - options_.eye_height;
-  if (!down.stairwell && floor > feet + kTol) {
+  if (!stairwell && floor > feet + kTol) {
     if (floor > feet + options_.step_height + kTol) return false;
     const double target = floor + options_.eye_height;
     if (target > p.z) {
@@ -216,11 +216,16 @@ bool Walker::try_walk(Vec3 d, Vec3* blocked_normal) {
   return commit(p, cell);
 }
 
+double Walker::face_under(Vec3 p, CellId cell, bool* stairwell) const {
+  const double depth = p.z - c_.far_box.lo.z + 1;
+  const SegmentCast down = cast_segment(c_, cell, p, p - Vec3{0, 0, depth});
+  if (stairwell) *stairwell = down.stairwell;
+  return p.z - down.t * depth;
+}
+
 double Walker::floor_below() const {
-  const double depth = eye_.z - c_.far_box.lo.z + 1;
-  const SegmentCast down = cast_segment(c_, cell_, eye_, eye_ - Vec3{0, 0, depth});
-  const double floor = eye_.z - down.t * depth;
-  return eye_.z >= ground_ && ground_ > floor ? ground_ : floor;
+  const double face = face_under(eye_, cell_);
+  return eye_.z >= ground_ && ground_ > face ? ground_ : face;
 }
 
 bool Walker::on_stair() const {

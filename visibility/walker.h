@@ -94,6 +94,9 @@ class Walker {
   bool try_walk(Vec3 d, Vec3* blocked_normal);
   bool try_fly(Vec3 d, Vec3* blocked_normal);
   bool try_climb(double dz);
+  /// [m] The first opaque face straight below p, in `cell`, down to the far box's bottom;
+  /// `stairwell`: whether the way down crosses a stairwell.
+  double face_under(Vec3 p, CellId cell, bool* stairwell = nullptr) const;
   /// A segment from the eye's cell (or the cell holding p, found from it).
   SegmentCast cast_from(Vec3 p, CellId hint, Vec3 q) const;
   /// The shortest free distance from p along the four horizontal axes, up to clearance.
