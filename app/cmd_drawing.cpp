@@ -92,36 +92,7 @@ StoreyId find_storey(const CellComplex& c, const std::string& s) {
                            "; or give its index)");
 }
 
-ArchitecturalView fitted_drawing(const CellComplex& c, const DrawingOptions& opt);
-
-/// The view asked for; too large for the page at its scale, an error that says which
-/// scale would fit, or, where none would, how large the model is (a mesh in millimetres
-/// read as metres, say).
-ArchitecturalView set_up_drawing(const CellComplex& c, const DrawingOptions& opt) {
-  try {
-    return fitted_drawing(c, opt);
-  } catch (const DrawingTooLarge& e) {
-    const double fits = std::ceil(kPixelsPerPaperMm * 1000 * e.metres / kMaxDrawingPixels);  // the least N of 1:N
-    std::ostringstream why;
-    why << "--scale " << opt.scale << ": " << e.what() << " (" << std::fixed << std::setprecision(1) << e.metres
-        << " m across); ";
-    if (fits <= 500) {
-      // The first of the usual architect's scales that fits.
-      long usual = 500;
-      for (long n : {20, 25, 50, 100, 200, 250, 500})
-        if (double(n) >= fits) {
-          usual = n;
-          break;
-        }
-      why << "1:" << usual << " fits";
-    } else {
-      why << "not even 1:500 fits";
-      if (c.storeys.empty()) why << "; if the model's unit is not the metre, give it with --unit (mm, cm, in, ft)";
-    }
-    throw std::runtime_error(why.str());
-  }
-}
-
+/// The view asked for, its picture fitted around what it shows at --scale.
 ArchitecturalView fitted_drawing(const CellComplex& c, const DrawingOptions& opt) {
   const int kinds = !opt.storey.empty() + !opt.section.empty() + !opt.elevation.empty() + !opt.axonometric.empty();
   if (kinds != 1) throw std::runtime_error("give one of --plan, --section, --elevation or --axonometric");
@@ -149,6 +120,34 @@ ArchitecturalView fitted_drawing(const CellComplex& c, const DrawingOptions& opt
   std::optional<double> cut_z;
   if (opt.cut_height) cut_z = (c.storeys.empty() ? 0 : c.storeys[0].elevation) + *opt.cut_height;
   return axonometric_view(c, v[0], v[1], cut_z, px_per_m);
+}
+
+/// The view asked for; too large for the page at its scale, an error that says which
+/// scale would fit, or, where none would, how large the model is (a mesh in millimetres
+/// read as metres, say).
+ArchitecturalView set_up_drawing(const CellComplex& c, const DrawingOptions& opt) {
+  try {
+    return fitted_drawing(c, opt);
+  } catch (const DrawingTooLarge& e) {
+    const double fits = std::ceil(kPixelsPerPaperMm * 1000 * e.metres / kMaxDrawingPixels);  // the least N of 1:N
+    std::ostringstream why;
+    why << "--scale " << opt.scale << ": " << e.what() << " (" << std::fixed << std::setprecision(1) << e.metres
+        << " m across); ";
+    if (fits <= 500) {
+      // The first of the usual architect's scales that fits.
+      long usual = 500;
+      for (long n : {20, 25, 50, 100, 200, 250, 500})
+        if (double(n) >= fits) {
+          usual = n;
+          break;
+        }
+      why << "1:" << usual << " fits";
+    } else {
+      why << "not even 1:500 fits";
+      if (c.storeys.empty()) why << "; if the model's unit is not the metre, give it with --unit (mm, cm, in, ft)";
+    }
+    throw std::runtime_error(why.str());
+  }
 }
 
 /// The picture's frame on the cut plane: where the rays through its corners start.

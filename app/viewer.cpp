@@ -313,9 +313,7 @@ void Viewer::draw(const Image& frame, bool frame_changed, const std::vector<cons
   for (const OverlayPanel* p : panels)
     if (p->width > 0 && p->height > 0) now.panels.push_back({p, p->version, p->x, p->y, p->width, p->height});
   if (frame_changed || !(now == shown_) || !texture_) {
-    std::vector<const OverlayPanel*> shown_panels;
-    for (const Shown::Panel& p : now.panels) shown_panels.push_back(p.panel);
-    compose(frame, shown_panels, scale, fw, fh);
+    compose(frame, panels, scale, fw, fh);  // a panel of no size adds nothing
     upload(fw, fh);
     shown_ = std::move(now);
   }
