@@ -28,7 +28,7 @@
 #include "render/architectural_drawing.h"
 #include "render/halftone.h"
 #include "render/raster.h"
-#include "render/thread_arena.h"
+#include "core/thread_arena.h"
 
 namespace avenues::app {
 

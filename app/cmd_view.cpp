@@ -20,7 +20,7 @@
 #include "core/atomic_file.h"
 #include "render/overlay_drawing.h"
 #include "render/raster.h"
-#include "render/thread_arena.h"
+#include "core/thread_arena.h"
 #include "visibility/viewpoint.h"
 #include "visibility/visible_set.h"
 

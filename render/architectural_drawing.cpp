@@ -10,7 +10,7 @@
 #include "core/angles.h"
 #include "render/interval_clip.h"
 #include "render/stroke_merge.h"
-#include "render/thread_arena.h"
+#include "core/thread_arena.h"
 
 namespace avenues {
 

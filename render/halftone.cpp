@@ -17,7 +17,7 @@
 #include "render/pixel_fill.h"
 #include "render/raster_srgb.h"
 #include "render/scanline.h"
-#include "render/thread_arena.h"
+#include "core/thread_arena.h"
 
 namespace avenues {
 

@@ -7,7 +7,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "render/thread_arena.h"
+#include "core/thread_arena.h"
 
 namespace avenues {
 

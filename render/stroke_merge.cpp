@@ -7,7 +7,7 @@
 
 #include <boost/sort/spreadsort/float_sort.hpp>
 
-#include "render/thread_arena.h"
+#include "core/thread_arena.h"
 
 namespace avenues {
 

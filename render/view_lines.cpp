@@ -11,7 +11,7 @@
 #include "render/scene_objects.h"
 #include "render/shadow_outline.h"
 #include "render/stroke_merge.h"
-#include "render/thread_arena.h"
+#include "core/thread_arena.h"
 
 namespace avenues {
 

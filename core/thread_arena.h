@@ -1,6 +1,7 @@
 // Avenues — the TBB arena a piece of parallel work runs in, by thread count: a picture's
-// bands and a scene's lights keep to HalftoneOptions::threads (in an MPI job, a rank's share
-// of its machine's cores), not to every core TBB sees.
+// bands, a scene's lights and a search's strips keep to the threads asked for
+// (HalftoneOptions::threads; in an MPI job, a rank's share of its machine's cores), not to
+// every core TBB sees.
 #pragma once
 
 #include <tbb/parallel_for.h>

@@ -1,5 +1,5 @@
 // Avenues — one TBB arena per thread count (see thread_arena.h).
-#include "render/thread_arena.h"
+#include "core/thread_arena.h"
 
 #include <algorithm>
 #include <map>
