@@ -47,7 +47,7 @@ struct Tally {
 
 /// The run's figures, one line.
 void print_tally(const char* what, const Tally& t) {
-  std::printf("[ pruning  ] %s: %d views, %ld avenues unpruned, %ld pruned, %ld merged; hull %ld avenues into %ld cells (merged %ld cells), %d pictures compared, %ld of %ld pixels differ; hull pictures drew %ld polygons dropping the hidden, %ld all\n", what, t.views, t.avenues, t.pruned, t.merged_avenues, t.hull.hull_avenues, t.hull.hull_cells, t.hull.merged_cells, t.hull.pictures, t.hull.pixels_differ, t.hull.pixels, t.hull.polygons_dropping, t.hull.polygons_all);
+  std::printf("[ pruning  ] %s: %d views, %ld avenues unpruned, %ld pruned, %ld merged; hull %ld avenues into %ld cells (merged %ld cells), %d pictures compared, %ld of %ld pixels differ; hull pictures drew %ld polygons dropping the hidden, %ld all; the hull search in strips %ld avenues\n", what, t.views, t.avenues, t.pruned, t.merged_avenues, t.hull.hull_avenues, t.hull.hull_cells, t.hull.merged_cells, t.hull.pictures, t.hull.pixels_differ, t.hull.pixels, t.hull.polygons_dropping, t.hull.polygons_all, t.hull.strips_avenues);
 }
 
 VisibleSet search(const CellComplex& c, const Camera& cam, CellId cell, Kernel k, bool prune) {

@@ -19,6 +19,7 @@
 #include "ray_oracle.h"
 #include "render/halftone.h"
 #include "render/view_lines.h"
+#include "visibility/strips.h"
 #include "visibility/visible_set.h"
 
 namespace avenues::testing {
@@ -51,6 +52,8 @@ struct HullTally {
   /// Polygons the hull search's pictures put on the raster with what is hidden dropped
   /// (HalftoneOptions::drop_hidden), and without.
   long polygons_dropping = 0, polygons_all = 0;
+  /// The hull search in strips searched side by side (strips.h): its avenues.
+  long strips_avenues = 0;
 };
 
 /// The hull search from `cam` in kernel k against `merged` (the merged search from the same
@@ -139,6 +142,21 @@ inline void expect_hull_holds_merged(const CellComplex& c, const Camera& cam, Ce
   EXPECT_TRUE(by_depth.data == every.data) << "dropping hidden polygons changed the picture";
   EXPECT_LE(dropping.polygons, all.polygons);
   t.polygons_dropping += dropping.polygons, t.polygons_all += all.polygons;
+  // The window in strips searched side by side, cut evenly in two, and in three where the
+  // whole window's avenues lie: no ray's cell missing, and the same picture, byte for byte.
+  for (const std::vector<double>& edges : {strip_edges(cam, 2), strip_edges(cam, 3, &hull)}) {
+    SCOPED_TRACE("the window in " + std::to_string(edges.size() + 1) + " strips");
+    const VisibleSet strips = find_visible_in_strips(c, cam, cell, p, edges, 2);
+    EXPECT_TRUE(strips.conservative);
+    EXPECT_EQ(check_visible_set(c, cam, strips, 2).missing, 0);
+    for (size_t a = 0; a < strips.avenues.size(); ++a) EXPECT_LT(strips.avenues[a].parent, int(a));
+    t.strips_avenues += long(strips.avenues.size());
+    Image in_strips;
+    render_view(c, *objects, cam, strips, o, in_strips);
+    EXPECT_TRUE(in_strips.data == by_depth.data)
+        << "the picture of the search in strips differs from the whole window's in "
+        << compare_off_edges(by_depth, in_strips).differ << " pixels";
+  }
 }
 
 }  // namespace avenues::testing

@@ -59,12 +59,13 @@ VisibleSet traverse(const CellComplex& complex, const Camera& camera, CellId eye
   const detail::Join join = params.hull_pieces    ? detail::Join::Hull
                             : params.merge_pieces ? detail::Join::Convex
                                                   : detail::Join::None;
+  const TraverseParams::Strip* strip = params.strip && !camera.is_parallel() ? &*params.strip : nullptr;
   VisibleSet vs;
   switch (params.kernel) {
-    case Kernel::Float: vs = detail::traverse_with<float>(complex, camera, eye_cell, prune, cut, join); break;
-    case Kernel::Double: vs = detail::traverse_with<double>(complex, camera, eye_cell, prune, cut, join); break;
-    case Kernel::Filtered: vs = detail::traverse_filtered(complex, camera, eye_cell, prune, cut, join); break;
-    case Kernel::Exact: vs = detail::traverse_exact(complex, camera, eye_cell, prune, cut, join); break;
+    case Kernel::Float: vs = detail::traverse_with<float>(complex, camera, eye_cell, prune, cut, join, strip); break;
+    case Kernel::Double: vs = detail::traverse_with<double>(complex, camera, eye_cell, prune, cut, join, strip); break;
+    case Kernel::Filtered: vs = detail::traverse_filtered(complex, camera, eye_cell, prune, cut, join, strip); break;
+    case Kernel::Exact: vs = detail::traverse_exact(complex, camera, eye_cell, prune, cut, join, strip); break;
   }
   if (camera.is_parallel()) vs.cut = cut ? *cut : camera.picture_plane();
   return vs;

@@ -74,7 +74,9 @@ enum class Join : uint8_t { None, Convex, Hull };
 template <class T>
 class Traversal {
  public:
-  Traversal(const CellComplex& c, const Camera& cam, bool prune_covered, VisibleSet& out, Join join = Join::None)
+  /// `strip` (perspective): the search through that part of the window only.
+  Traversal(const CellComplex& c, const Camera& cam, bool prune_covered, VisibleSet& out, Join join = Join::None,
+            const TraverseParams::Strip* strip = nullptr)
       : c_(c), out_(out), prune_(prune_covered && join == Join::None), merge_(join != Join::None),
         hull_(join == Join::Hull) {
     eye_ = in(cam.eye);
@@ -85,7 +87,9 @@ class Traversal {
     eye_d_ = cam.eye;
     cam_ = cam;
     parallel_ = cam.is_parallel();
-    window_ = Mask<T>::window(T(cam.shift_x - hw), T(cam.shift_x + hw), T(cam.shift_y - hh), T(cam.shift_y + hh));
+    double x0 = cam.shift_x - hw, x1 = cam.shift_x + hw;
+    if (strip && !parallel_) x0 = std::max(x0, strip->x0), x1 = std::min(x1, strip->x1);
+    window_ = Mask<T>::window(T(x0), T(x1), T(cam.shift_y - hh), T(cam.shift_y + hh));
     // Cells on the current avenue. Every visit clears its mark on the way out, so the
     // buffer is all zero between traversals: keep it per thread, and never clear a
     // 100,000-cell array for a view that sees five cells.
@@ -843,7 +847,8 @@ class Traversal {
 /// one from the picture plane through the eye.
 template <class T>
 VisibleSet traverse_with(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered,
-                         const Plane* cut = nullptr, Join join = Join::None) {
+                         const Plane* cut = nullptr, Join join = Join::None,
+                         const TraverseParams::Strip* strip = nullptr) {
   VisibleSet out;
   out.eye_cell = eye_cell;
   out.conservative = join == Join::Hull;
@@ -851,15 +856,17 @@ VisibleSet traverse_with(const CellComplex& c, const Camera& cam, CellId eye_cel
   if (cam.is_parallel())
     Traversal<T>(c, cam, prune_covered, out, join).run_cut(cut ? *cut : cam.picture_plane());
   else
-    Traversal<T>(c, cam, prune_covered, out, join).run(eye_cell);
+    Traversal<T>(c, cam, prune_covered, out, join, strip).run(eye_cell);
   out.micros = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
   out.collect_cells();
   return out;
 }
 
 VisibleSet traverse_exact(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered,
-                          const Plane* cut = nullptr, Join join = Join::None);
+                          const Plane* cut = nullptr, Join join = Join::None,
+                          const TraverseParams::Strip* strip = nullptr);
 VisibleSet traverse_filtered(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered,
-                             const Plane* cut = nullptr, Join join = Join::None);
+                             const Plane* cut = nullptr, Join join = Join::None,
+                             const TraverseParams::Strip* strip = nullptr);
 
 }  // namespace avenues::detail

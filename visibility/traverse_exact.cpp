@@ -31,13 +31,13 @@ double to_double_of<Lazy>(const Lazy& x) {
 }
 
 VisibleSet traverse_exact(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered,
-                          const Plane* cut, Join join) {
-  return traverse_with<CGAL::Gmpq>(c, cam, eye_cell, prune_covered, cut, join);
+                          const Plane* cut, Join join, const TraverseParams::Strip* strip) {
+  return traverse_with<CGAL::Gmpq>(c, cam, eye_cell, prune_covered, cut, join, strip);
 }
 
 VisibleSet traverse_filtered(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered,
-                             const Plane* cut, Join join) {
-  return traverse_with<Lazy>(c, cam, eye_cell, prune_covered, cut, join);
+                             const Plane* cut, Join join, const TraverseParams::Strip* strip) {
+  return traverse_with<Lazy>(c, cam, eye_cell, prune_covered, cut, join, strip);
 }
 
 }  // namespace avenues::detail

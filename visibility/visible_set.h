@@ -78,6 +78,12 @@ struct TraverseParams {
   /// resolves depth among all the faces found (render_view does for such a set) is the same;
   /// a hidden-line drawing is not, so line drawings take the merged search. Implies merging.
   bool hull_pieces = false;
+  /// A perspective search through part of the window only: the picture-plane x from `x0`
+  /// to `x1` (a strip of it, searched on its own: strips.h). Unset: the whole window.
+  struct Strip {
+    double x0, x1;
+  };
+  std::optional<Strip> strip;
 };
 
 /// "jones", "merged" or "hull": the search's name on the command line.

@@ -1,0 +1,134 @@
+// Tests of visibility/strips.h: the hull search of one view with its window cut into strips
+// searched side by side. (The hull checks, hull_checks.h, also search every view of the
+// plans, homes and soups they try in strips, against the ray oracle and the picture.)
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "cells/build_cells.h"
+#include "cells/mesh_scene.h"
+#include "ray_oracle.h"
+#include "render/halftone.h"
+#include "test_meshes.h"
+#include "test_plans.h"
+#include "visibility/strips.h"
+
+using namespace avenues;
+using avenues::testing::check_visible_set;
+using avenues::testing::plan_path;
+
+namespace {
+
+TraverseParams hull_search() {
+  TraverseParams p;
+  p.merge_pieces = p.hull_pieces = true;
+  return p;
+}
+
+/// An avenue of no cell in particular whose mask is a small square about (x, 0).
+Avenue avenue_at(double x) {
+  Avenue a;
+  a.cell = 0;
+  a.mask = {{x - 0.01, -0.01}, {x + 0.01, -0.01}, {x + 0.01, 0.01}, {x - 0.01, 0.01}};
+  return a;
+}
+
+}  // namespace
+
+TEST(Strips, WithoutAViewBeforeTheWindowIsCutEvenly) {
+  const Camera cam = Camera::yaw_pitch({0, 0, 1.6}, 0, 0, 90, 640, 360);  // the window is x in [-1, 1]
+  const std::vector<double> three = strip_edges(cam, 3);
+  ASSERT_EQ(three.size(), 2u);
+  EXPECT_NEAR(three[0], -1.0 / 3, 1e-12);
+  EXPECT_NEAR(three[1], 1.0 / 3, 1e-12);
+  EXPECT_TRUE(strip_edges(cam, 1).empty());
+  EXPECT_TRUE(strip_edges(Camera::parallel({0, 0, 1.6}, {1, 0, 1.6}, 10, 640, 360), 2).empty());
+  // A view before with too few avenues to say where the work lies: evenly too.
+  VisibleSet few;
+  for (int k = 0; k < 5; ++k) few.avenues.push_back(avenue_at(0.9));
+  EXPECT_NEAR(strip_edges(cam, 2, &few)[0], 0.0, 1e-12);
+}
+
+TEST(Strips, TheCutsFollowWhereTheAvenuesOfTheViewBeforeLay) {
+  const Camera cam = Camera::yaw_pitch({0, 0, 1.6}, 0, 0, 90, 640, 360);
+  VisibleSet last;
+  for (int k = 0; k < 90; ++k) last.avenues.push_back(avenue_at(-0.8 + 0.001 * k));  // crowded on the left
+  for (int k = 0; k < 10; ++k) last.avenues.push_back(avenue_at(0.5));
+  const std::vector<double> two = strip_edges(cam, 2, &last);
+  ASSERT_EQ(two.size(), 1u);
+  EXPECT_NEAR(two[0], -0.8 + 0.001 * 50, 1e-9);  // half the avenues on each side
+  // All on one side: each strip still a tenth of its even width.
+  VisibleSet edge;
+  for (int k = 0; k < 100; ++k) edge.avenues.push_back(avenue_at(-1.5));  // beyond the window: at its edge
+  const std::vector<double> cuts = strip_edges(cam, 4, &edge);
+  ASSERT_EQ(cuts.size(), 3u);
+  EXPECT_NEAR(cuts[0], -1 + 0.05, 1e-12);
+  EXPECT_NEAR(cuts[1], -1 + 0.10, 1e-12);
+  EXPECT_NEAR(cuts[2], -1 + 0.15, 1e-12);
+}
+
+TEST(Strips, OnlyAPerspectiveHullSearchIsCut) {
+  const CellComplex c = build_cells(read_plan(plan_path("jones-house.toml")));
+  const Camera cam = Camera::look_at({1.0, 0.5, 1.2}, {6, 3, 1.2}, 100, 400, 300);
+  const CellId cell = c.locate(cam.eye).cell;
+  TraverseParams merged;
+  merged.merge_pieces = true;
+  const VisibleSet whole = find_visible(c, cam, cell, merged);
+  const VisibleSet cut = find_visible_in_strips(c, cam, cell, merged, strip_edges(cam, 2), 2);
+  ASSERT_EQ(cut.avenues.size(), whole.avenues.size());
+  for (size_t a = 0; a < whole.avenues.size(); ++a) {
+    EXPECT_EQ(cut.avenues[a].cell, whole.avenues[a].cell);
+    EXPECT_EQ(cut.avenues[a].mask, whole.avenues[a].mask);
+  }
+  EXPECT_FALSE(cut.conservative);
+  // Edges outside the window cut nothing.
+  const VisibleSet hull = find_visible(c, cam, cell, hull_search());
+  const VisibleSet outside = find_visible_in_strips(c, cam, cell, hull_search(), {-5.0, 7.0}, 2);
+  EXPECT_EQ(outside.avenues.size(), hull.avenues.size());
+  // Cut in two, the eye's cell is a root of each strip.
+  const VisibleSet two = find_visible_in_strips(c, cam, cell, hull_search(), strip_edges(cam, 2), 2);
+  int roots = 0;
+  for (const Avenue& a : two.avenues) roots += a.parent < 0;
+  EXPECT_EQ(roots, 2);
+  EXPECT_TRUE(two.conservative);
+}
+
+// Over a 12 × 12 grid of open boxes from its corner at the height of their walls' tops, as
+// the walk sees the grids: the strips, on one thread or two, join the same avenues in the
+// same order; no ray's cell is missing; and the picture is the whole window's, at one
+// sample a pixel and at four, wherever the window is cut.
+TEST(Strips, AGridOfOpenBoxesSearchedInStripsIsDrawnAsTheWholeWindowIs) {
+  const CellComplex c = build_mesh_scene({avenues::testing::open_boxes(12)});
+  const Camera cam = Camera::yaw_pitch({-1.0, -0.3, 1.6}, 40, -5, 70, 320, 180);
+  const CellId cell = c.locate(cam.eye).cell;
+  ASSERT_NE(cell, kNoCell);
+  const VisibleSet whole = find_visible(c, cam, cell, hull_search());
+  ASSERT_GT(whole.cells.size(), 200u);
+  const std::vector<PlacedObject> objects = place_objects(c);
+  for (int samples : {1, 4}) {
+    HalftoneOptions o;
+    o.samples = samples;
+    Image reference;
+    render_view(c, objects, cam, whole, o, reference);
+    for (const std::vector<double>& edges :
+         {strip_edges(cam, 2), strip_edges(cam, 2, &whole), strip_edges(cam, 5, &whole), std::vector<double>{-0.5}}) {
+      SCOPED_TRACE(std::to_string(samples) + " samples, " + std::to_string(edges.size() + 1) + " strips from " +
+                   std::to_string(edges[0]));
+      const VisibleSet two = find_visible_in_strips(c, cam, cell, hull_search(), edges, 2);
+      const VisibleSet one = find_visible_in_strips(c, cam, cell, hull_search(), edges, 1);
+      ASSERT_EQ(one.avenues.size(), two.avenues.size());
+      for (size_t a = 0; a < two.avenues.size(); ++a) {
+        EXPECT_EQ(one.avenues[a].cell, two.avenues[a].cell);
+        EXPECT_EQ(one.avenues[a].parent, two.avenues[a].parent);
+        EXPECT_EQ(one.avenues[a].mask, two.avenues[a].mask);
+        EXPECT_LT(two.avenues[a].parent, int(a));
+      }
+      if (samples == 1) {
+        EXPECT_EQ(check_visible_set(c, cam, two, 2).missing, 0);
+      }
+      Image in_strips;
+      render_view(c, objects, cam, two, o, in_strips);
+      EXPECT_TRUE(in_strips.data == reference.data);
+    }
+  }
+}

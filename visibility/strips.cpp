@@ -1,0 +1,94 @@
+// Avenues — the hull search of one view on several threads (see strips.h).
+#include "visibility/strips.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "core/check.h"
+#include "core/thread_arena.h"
+
+namespace avenues {
+
+std::vector<double> strip_edges(const Camera& camera, int strips, const VisibleSet* last) {
+  std::vector<double> edges;
+  const double hw = camera.half_width(), lo = camera.shift_x - hw, hi = camera.shift_x + hw;
+  if (strips < 2 || camera.is_parallel() || !(hi > lo)) return edges;
+  std::vector<double> centres;
+  if (last)
+    for (const Avenue& a : last->avenues) {
+      if (a.mask.empty()) continue;
+      double x = 0;
+      for (Vec2 m : a.mask) x += m.x;
+      x /= double(a.mask.size());
+      if (std::isfinite(x)) centres.push_back(std::clamp(x, lo, hi));
+    }
+  // A few avenues say little of where the work lies.
+  if (centres.size() >= size_t(8 * strips)) {
+    std::sort(centres.begin(), centres.end());
+    for (int k = 1; k < strips; ++k) edges.push_back(centres[centres.size() * size_t(k) / size_t(strips)]);
+  } else {
+    for (int k = 1; k < strips; ++k) edges.push_back(lo + (hi - lo) * k / strips);
+  }
+  // Each strip at least a tenth of its even width: from the left, then from the right.
+  const double least = 0.1 * (hi - lo) / strips;
+  double before = lo;
+  for (double& e : edges) before = e = std::max(e, before + least);
+  double after = hi;
+  for (auto e = edges.rbegin(); e != edges.rend(); ++e) after = *e = std::min(*e, after - least);
+  return edges;
+}
+
+VisibleSet find_visible_in_strips(const CellComplex& complex, const Camera& camera, CellId eye_cell,
+                                  const TraverseParams& params, const std::vector<double>& edges, int threads) {
+  const double hw = camera.half_width(), lo = camera.shift_x - hw, hi = camera.shift_x + hw;
+  std::vector<double> cuts;
+  for (double e : edges)
+    if (e > lo && e < hi && (cuts.empty() || e > cuts.back())) cuts.push_back(e);
+  if (!params.hull_pieces || camera.is_parallel() || cuts.empty()) return find_visible(complex, camera, eye_cell, params);
+
+  const auto t0 = std::chrono::steady_clock::now();
+  const size_t n = cuts.size() + 1;
+  std::vector<VisibleSet> parts(n);
+  for_each_chunk(threads, n, n, [&](size_t k, size_t, size_t) {
+    TraverseParams p = params;
+    p.strip = TraverseParams::Strip{k == 0 ? lo : cuts[k - 1], k + 1 == n ? hi : cuts[k]};
+    parts[k] = find_visible(complex, camera, eye_cell, p);
+  });
+
+  VisibleSet out;
+  out.eye_cell = eye_cell;
+  out.conservative = true;
+  size_t total = 0;
+  for (const VisibleSet& part : parts) {
+    total += part.avenues.size();
+    out.portals_tested += part.portals_tested;
+    out.avenues_pruned += part.avenues_pruned;
+    out.avenues_merged += part.avenues_merged;
+    out.masks_settled += part.masks_settled;
+  }
+  // Joined in order of depth, as one search's wave outwards from the eye (a picture that
+  // drops what lies behind what it has drawn wants the near first); each strip's own order
+  // is kept, so a parent comes before its children.
+  out.avenues.reserve(total);
+  std::vector<size_t> next(n, 0);
+  std::vector<std::vector<int>> joined_at(n);
+  for (size_t k = 0; k < n; ++k) joined_at[k].resize(parts[k].avenues.size());
+  while (out.avenues.size() < total) {
+    size_t best = n;
+    for (size_t k = 0; k < n; ++k)
+      if (next[k] < parts[k].avenues.size() &&
+          (best == n || parts[k].avenues[next[k]].depth < parts[best].avenues[next[best]].depth))
+        best = k;
+    Avenue a = std::move(parts[best].avenues[next[best]]);
+    AVENUES_CHECK(a.parent < int(next[best]), "a strip's avenue comes after its parent");
+    if (a.parent >= 0) a.parent = joined_at[best][size_t(a.parent)];
+    joined_at[best][next[best]++] = int(out.avenues.size());
+    out.avenues.push_back(std::move(a));
+  }
+  out.micros = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
+  out.collect_cells();
+  return out;
+}
+
+}  // namespace avenues
