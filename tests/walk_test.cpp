@@ -31,6 +31,7 @@
 #include "render/raster.h"
 #include "tests/avenues_run.h"
 #include "tests/test_files.h"
+#include "tests/test_meshes.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -246,6 +247,36 @@ TEST_F(WalkWindow, OverItsFrameBudgetTheWalkDropsDetailAndRestoresItWhenTheEyeSt
   const avenues::Image window = avenues::read_image(path("still.png").string());
   const avenues::Image picture = offline(plan("two-storey-house.toml"), still, "offline.png", {"--samples", "4"});
   EXPECT_EQ(differing(window, picture), 0) << "the still window and `avenues view " << still["view_options"] << "` differ";
+}
+
+// A long search (an open grid of 48 × 48 boxes seen over its walls: thousands of cells)
+// runs on both threads, the window in strips (visibility/strips.h), and the window still
+// shows the offline render of the same eye, which searches the whole window at once.
+TEST_F(WalkWindow, ALongSearchRunsInStripsOnEveryThreadAndShowsTheSamePicture) {
+  NEED_DISPLAY();
+  const avenues::Mesh boxes = avenues::testing::open_boxes(48);
+  std::ostringstream obj;
+  obj.precision(17);
+  for (const avenues::Vec3& v : boxes.vertices) obj << "v " << v.x << " " << v.y << " " << v.z << "\n";
+  for (const auto& t : boxes.triangles) obj << "f " << t[0] + 1 << " " << t[1] + 1 << " " << t[2] + 1 << "\n";
+  const std::string file = write("boxes.obj", obj.str());
+  write("look.txt", "0 down W\n3 up W\n10 screenshot still.png\n10 quit\n");
+  const Outcome r = run({"walk", file, "--eye", "-1,-0.3,1.6", "--look", "30,30,1.2", "--size", "320x180", "--no-hud",
+                         "--script", "look.txt", "--stats-json", "s.json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json s = read_json("s.json");
+  ASSERT_EQ(s["screenshots"].size(), 1u);
+  const json still = s["screenshots"][0];
+  EXPECT_GT(still["visible_cells"].get<long>(), 2000) << still.dump();
+  if (std::thread::hardware_concurrency() >= 2) {
+    EXPECT_GE(still["search_threads"].get<int>(), 2) << still.dump();
+  }
+  bool says = false;
+  for (const json& line : still["status"]) says |= line.get<std::string>().find("threads)") != std::string::npos;
+  EXPECT_EQ(says, still["search_threads"].get<int>() > 1) << still["status"].dump();
+  const avenues::Image window = avenues::read_image(path("still.png").string());
+  const avenues::Image picture = offline(file, still, "offline.png");
+  EXPECT_EQ(differing(window, picture), 0) << "the window and `avenues view " << still["view_options"] << "` differ";
 }
 
 // An IFC building walked for real: from one of the duplex's named spaces through a door
