@@ -33,8 +33,8 @@ std::vector<double> strip_edges(const Camera& camera, int strips, const VisibleS
 /// The search of `params` from `camera` in `eye_cell`, for a perspective hull search
 /// (TraverseParams::hull_pieces) with the window cut at picture-plane x `edges`
 /// (strip_edges) into strips searched side by side on up to `threads` threads
-/// (core/thread_arena.h), their avenues joined in order of depth, each strip's parents
-/// before their children. Any other search, or no edge inside the window: find_visible.
+/// (core/thread_arena.h), their avenues joined strip after strip from the left, each in its
+/// search's order. Any other search, or no edge inside the window: find_visible.
 /// `micros` is the time of the whole; the counters are the strips' summed.
 VisibleSet find_visible_in_strips(const CellComplex& complex, const Camera& camera, CellId eye_cell,
                                   const TraverseParams& params, const std::vector<double>& edges, int threads);
