@@ -471,6 +471,7 @@ SceneOptions scene_options(const HalftoneOptions& options) {
   s.cull_back_faces = options.cull_back_faces;
   s.detail_samples = options.detail_samples;
   s.drop_hidden = options.drop_hidden;
+  s.threads = options.threads;
   return s;
 }
 

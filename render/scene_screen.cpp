@@ -110,6 +110,28 @@ void ScreenScene::keep_outline(std::vector<FixedPoint>&& outline) {
   if (outline.capacity() > 0) spare_outlines.push_back(std::move(outline));
 }
 
+void ScreenScene::append(ScreenScene& part) {
+  const int32_t clips_before = int32_t(clips.size()), terms_before = int32_t(light_terms.size()),
+                pieces_before = int32_t(pieces.size());
+  for (ScreenPolygon& p : part.polygons) {
+    if (p.clip >= 0) p.clip += clips_before;
+    polygons.push_back(std::move(p));
+  }
+  for (SurfaceShade shade : part.shades) {
+    shade.first_term += terms_before;
+    shades.push_back(shade);
+  }
+  sources.insert(sources.end(), part.sources.begin(), part.sources.end());
+  for (ClipRegion& c : part.clips) clips.push_back(std::move(c));
+  for (LightTerm term : part.light_terms) {
+    term.first_piece += pieces_before;
+    light_terms.push_back(term);
+  }
+  for (ScreenPolygon& p : part.pieces) pieces.push_back(std::move(p));
+  part.polygons.clear(), part.shades.clear(), part.sources.clear(), part.clips.clear();
+  part.light_terms.clear(), part.pieces.clear();
+}
+
 void ScreenScene::drop_pieces_from(size_t first) {
   for (size_t i = first; i < pieces.size(); ++i) keep_outline(std::move(pieces[i].outline));
   pieces.resize(std::min(first, pieces.size()));

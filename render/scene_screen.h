@@ -66,6 +66,9 @@ struct ScreenScene {
   OcclusionBuffer drawn;
   /// Outlines the last picture used, emptied, for the next one's polygons (clear()).
   std::vector<std::vector<FixedPoint>> spare_outlines;
+  /// The scenes of a view's strips (VisibleSet::strips), built side by side and appended
+  /// to this one; kept for their storage.
+  std::vector<ScreenScene> parts;
 
   /// Empties the scene for the next picture, keeping every array's storage, the polygons'
   /// outlines included (spare_outlines). A walkthrough builds each frame's scene into the
@@ -77,6 +80,9 @@ struct ScreenScene {
   void keep_outline(std::vector<FixedPoint>&& outline);
   /// Drops the pieces from index `first` on, keeping their outlines.
   void drop_pieces_from(size_t first);
+  /// Moves another scene of the same raster in after this one's polygons, clip regions,
+  /// light terms and pieces, its indices into them moved on to match; `part` is left empty.
+  void append(ScreenScene& part);
 };
 
 struct SceneShadows;
@@ -104,6 +110,11 @@ struct SceneOptions {
   /// behind what is already drawn are not put on the raster (ScreenSceneBuilder::
   /// drop_hidden): the same picture. False: every polygon, the reference tests compare with.
   bool drop_hidden = true;
+  /// A conservative view searched in strips (VisibleSet::strips) with no object drawn whole
+  /// across cells: each strip's part of the scene is built on its own thread, up to this
+  /// many (0: as many as TBB offers), and the parts joined in order. The same picture: each
+  /// part drops only what lies behind what it has drawn itself.
+  int threads = 1;
 };
 
 /// Adds polygons to a ScreenScene (steps 1–5 above).
@@ -115,6 +126,8 @@ class ScreenSceneBuilder {
     PolygonRole role = PolygonRole::Object;
   };
   ScreenSceneBuilder(const Camera& camera, const SceneOptions& options, ScreenScene& out);
+  /// The raster the scene is drawn on.
+  const RasterMap& raster() const { return out_.raster; }
 
   /// A clip region from a convex picture-plane polygon, grown by `grow` samples on every
   /// side (by the Minkowski sum with a square). -1 if nothing of area is left.

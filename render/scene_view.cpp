@@ -28,6 +28,11 @@
 // There an object meeting several cells is drawn once, whole, cut to the convex hull of
 // the masks of its visible cells: wherever a part of it is the nearest surface, the cell
 // holding that part is seen there, and so is every surface in front of it.
+// A conservative view searched in strips of its window (visibility/strips.h) is built strip
+// by strip, side by side, each strip's avenues into a scene of their own, joined in order
+// (SceneOptions::threads), unless an object is drawn whole across cells: which avenue draws
+// it depends on every strip's. Each part drops only what lies behind what it has drawn
+// itself, which changes no picture.
 // A parallel view (an architect's drawing, `view --projection parallel`) is drawn as the
 // perspective from far behind its picture plane (distant_eye), cut where its rays start
 // (VisibleSet::cut): the whole pipeline (lights, shadows, smooth shading, objects) is the
@@ -36,11 +41,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <unordered_set>
 #include <utility>
 #include <vector>
 
 #include "core/angles.h"
+#include "core/thread_arena.h"
 
 namespace avenues {
 
@@ -133,6 +140,172 @@ ScreenScene screen_scene_of_view(const CellComplex& complex, const std::vector<P
   return out;
 }
 
+namespace {
+
+/// What each avenue of one view adds to its scene (the header of this file), made once
+/// for the whole view: one part of it after another, or the strips' parts side by side.
+struct ViewScene {
+  const CellComplex& complex;
+  const std::vector<PlacedObject>& objects;
+  const VisibleSet& visible;
+  const Camera& camera;
+  bool parallel;
+  const DistantEye& distant;
+  const ObjectsByCell& by_cell;
+  const SceneOptions& options;
+  size_t roots;  ///< avenues with no parent: several meet along lines, grown as deeper masks are
+
+  /// Avenues [first, last) into `b`'s scene.
+  void add(ScreenSceneBuilder& b, size_t first, size_t last) const {
+    std::vector<Vec2> scaled;
+    auto mask_of = [&](const Avenue& a) -> const std::vector<Vec2>& {
+      if (!parallel) return a.mask;
+      scaled.clear();
+      for (Vec2 m : a.mask) scaled.push_back(distant.scale * m);
+      return scaled;
+    };
+    // Object o in full, or its coarser version (detail_of), at `where`.
+    auto add_object = [&](uint32_t o, ScreenSceneBuilder::Placement where, PolygonSource source) {
+      source.kind = PolygonSource::Kind::Object;
+      source.face = -1;
+      source.mesh = int(o);
+      const PlacedObject& object = objects[o];
+      const int level = detail_of(object, camera, b.raster(), options.detail_samples);
+      const Mesh& mesh = level < 0 ? object.mesh : object.coarser[size_t(level)].mesh;
+      const std::vector<PolygonRuns>& runs = object.coarser_runs;
+      const PolygonRuns* of_mesh = level < 0 ? &object.runs : size_t(level) < runs.size() ? &runs[size_t(level)] : nullptr;
+      b.add_mesh(mesh, object.paint, where, source, level < 0, of_mesh);
+    };
+    // A conservative set: the objects meeting several cells drawn so far, and a clip region
+    // around the masks of every visible avenue into one of an object's cells.
+    std::unordered_set<uint32_t> drawn_whole;
+    std::vector<std::pair<CellId, uint32_t>> avenue_of_cell;  // (cell, avenue), sorted; made when first needed
+    std::vector<Vec2> mask_corners;
+    auto clip_around = [&](const PlacedObject& object) -> int32_t {
+      if (avenue_of_cell.empty()) {
+        for (size_t k = 0; k < visible.avenues.size(); ++k) avenue_of_cell.push_back({visible.avenues[k].cell, uint32_t(k)});
+        std::sort(avenue_of_cell.begin(), avenue_of_cell.end());
+      }
+      mask_corners.clear();
+      for (const ObjectCell& in : object.cells)
+        for (auto it = std::lower_bound(avenue_of_cell.begin(), avenue_of_cell.end(), std::pair{in.cell, uint32_t(0)});
+             it != avenue_of_cell.end() && it->first == in.cell; ++it) {
+          const Avenue& a = visible.avenues[it->second];
+          if (a.mask.size() < 3) continue;
+          for (Vec2 m : mask_of(a)) mask_corners.push_back(m);
+        }
+      const std::vector<Vec2> hull = convex_hull(mask_corners);
+      return hull.size() < 3 ? -1 : b.add_clip(hull, kMaskGrowth);
+    };
+    for (size_t i = first; i < last; ++i) {
+      const Avenue& avenue = visible.avenues[i];
+      if (avenue.mask.size() < 3) continue;
+      const std::vector<Vec2>& mask = mask_of(avenue);
+      const double growth = avenue.depth == 0 && roots == 1 ? 0 : kMaskGrowth;
+      const Cell& cell = complex.cells[size_t(avenue.cell)];
+      const std::span<const uint32_t> in_cell = by_cell.of(avenue.cell);
+      // Resolved by depth, a cell whose faces lie behind what is drawn within its mask (a far
+      // cell of a grazing view across an open scene) adds none of them: tested once, not
+      // piece by piece. Without objects, nothing of it is drawn.
+      const bool faces_hidden = visible.conservative && b.cell_faces_hidden(cell, mask, growth);
+      if (faces_hidden && in_cell.empty()) continue;
+      const int32_t clip = b.add_clip(mask, growth);
+      if (clip < 0) continue;
+      // A mask between sample centres (a far cell of a grazing view over thousands) shows
+      // nothing of its cell: its faces and the objects cut to it are not looked at. An object
+      // drawn whole within the masks of all its cells (resolved by depth) still is, below.
+      const bool shows = b.clip_holds_a_sample(clip);
+      if (!shows && !visible.conservative) continue;
+      ScreenSceneBuilder::Placement where{clip, int32_t(i), avenue.depth, PolygonRole::Face};
+      if (visible.conservative) where = {clip, 0, 0, PolygonRole::Object};  // one group: depth decides
+      PolygonSource source;
+      source.kind = PolygonSource::Kind::Face;
+      source.avenue = int(i);
+      source.cell = avenue.cell;
+      for (size_t k = 0; shows && !faces_hidden && k < cell.faces.size(); ++k) {
+        const Face& face = cell.faces[k];
+        if (face.opaque.empty() || !(face.plane.eval(camera.eye) < 0)) continue;
+        source.face = int(k);
+        bool one_material = true;
+        for (const OpaquePoly& piece : face.opaque) one_material &= piece.material == face.opaque[0].material;
+        // Resolved by depth, a face must not cover what its portals show, nor the pieces of
+        // its plane that bound other cells (which a mask would have cut away): its opaque
+        // pieces only, each lit as the whole face would be.
+        if (one_material && !visible.conservative) {
+          b.add_face(face.poly, face.plane, material_of(complex, face.opaque[0].material), where, source,
+                     shade_point(complex, face.opaque[0]));
+        } else {
+          // Lit as the whole face: at its first piece's surface, or without one at the
+          // centroid of the face's corners (add_face's own, for the whole face).
+          Vec3 corners{0, 0, 0};
+          const Vec3* whole = shade_point(complex, face.opaque[0]);
+          if (one_material && !whole) {
+            for (Vec3 p : face.poly) corners = corners + (1.0 / double(face.poly.size())) * p;
+            whole = &corners;
+          }
+          for (const OpaquePoly& piece : face.opaque)
+            b.add_face(piece.poly, face.plane, material_of(complex, piece.material), where, source,
+                       one_material ? whole : shade_point(complex, piece));
+        }
+      }
+      if (in_cell.empty()) continue;
+      where.role = PolygonRole::Object;
+      source.kind = PolygonSource::Kind::Object;
+      source.face = -1;
+      // The avenue's clip region, a little grown (two samples): what lies wholly outside it
+      // cannot show through this avenue.
+      b.cull_outside(clip, 2);
+      std::optional<Box3> cell_box;
+      for (const uint32_t entry : in_cell) {
+        const uint32_t o = entry & ~ObjectsByCell::kCut;
+        if (visible.conservative && objects[o].cells.size() > 1) {
+          // Resolved by depth, an object need not be cut: drawn once, whole, within the hull
+          // of the masks of every visible cell it meets (wherever it shows, a cell of its own
+          // is seen there, and whatever stands before it is drawn there too).
+          if (!drawn_whole.insert(o).second) continue;
+          const int32_t around = clip_around(objects[o]);
+          if (around < 0) continue;
+          b.cull_outside(around, 2);
+          if (b.may_show(objects[o].bounds)) {
+            b.cut_to(nullptr);
+            add_object(o, {around, 0, 0, PolygonRole::Object}, source);
+          }
+          b.cull_outside(clip, 2);
+          continue;
+        }
+        if (!shows) continue;
+        // Reaching beyond the cell, it is drawn here as its part inside the cell: nearer than
+        // whatever the avenue sees beyond the cell's portals, as the scan takes it to be.
+        const bool cut = entry & ObjectsByCell::kCut;
+        Box3 box = objects[o].bounds;
+        if (cut) {
+          if (!cell_box) cell_box = cell.bounds();
+          box = {{std::max(box.lo.x, cell_box->lo.x), std::max(box.lo.y, cell_box->lo.y), std::max(box.lo.z, cell_box->lo.z)},
+                 {std::min(box.hi.x, cell_box->hi.x), std::min(box.hi.y, cell_box->hi.y), std::min(box.hi.z, cell_box->hi.z)}};
+        }
+        if (!b.may_show(box)) continue;  // a cell seen through many avenues: not through this one
+        b.cut_to(cut ? &cell : nullptr);
+        add_object(o, where, source);
+      }
+      b.cut_to(nullptr);
+      b.no_cull();
+    }
+  }
+
+  /// Whether the view can be built strip by strip, side by side: a conservative view in
+  /// strips, with no object drawn whole across cells (drawn once, by the first avenue into
+  /// one of its cells, which one strip alone cannot tell).
+  bool in_strips() const {
+    if (!visible.conservative || visible.strips.size() < 2 || options.threads == 1 || parallel) return false;
+    for (const Avenue& a : visible.avenues)
+      for (const uint32_t entry : by_cell.of(a.cell))
+        if (objects[entry & ~ObjectsByCell::kCut].cells.size() > 1) return false;
+    return true;
+  }
+};
+
+}  // namespace
+
 void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedObject>& objects,
                           const Camera& view_camera, const VisibleSet& visible, const SceneOptions& view_options,
                           ScreenScene& out) {
@@ -152,149 +325,39 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
   const Camera& camera = parallel ? distant.camera : near_camera;
   SceneOptions options = view_options;
   if (parallel && visible.cut) options.cut = visible.cut;
-  ScreenSceneBuilder b(camera, options, out);
-  std::vector<Vec2> scaled;
-  auto mask_of = [&](const Avenue& a) -> const std::vector<Vec2>& {
-    if (!parallel) return a.mask;
-    scaled.clear();
-    for (Vec2 m : a.mask) scaled.push_back(distant.scale * m);
-    return scaled;
-  };
   std::optional<ObjectsByCell> made;
   if (!options.objects_by_cell) made = objects_by_cell(complex.cells.size(), objects);
   const ObjectsByCell& by_cell = options.objects_by_cell ? *options.objects_by_cell : *made;
-  // Resolved by depth alone, what lies behind polygons already drawn need not be drawn.
-  if (visible.conservative && options.drop_hidden) b.drop_hidden();
-  // An eye on its cell's boundary has several roots whose masks meet along lines: grow
-  // them as deeper masks are grown, so that no sample on a meeting line falls between.
+  // An eye on its cell's boundary has several roots whose masks meet along lines, and so
+  // has a view searched in strips: grow them as deeper masks are grown, so that no sample
+  // on a meeting line falls between.
   size_t roots = 0;
   for (const Avenue& a : visible.avenues) roots += a.parent < 0;
-  // Object o in full, or its coarser version (detail_of), at `where`.
-  auto add_object = [&](uint32_t o, ScreenSceneBuilder::Placement where, PolygonSource source) {
-    source.kind = PolygonSource::Kind::Object;
-    source.face = -1;
-    source.mesh = int(o);
-    const PlacedObject& object = objects[o];
-    const int level = detail_of(object, camera, out.raster, options.detail_samples);
-    const Mesh& mesh = level < 0 ? object.mesh : object.coarser[size_t(level)].mesh;
-    const std::vector<PolygonRuns>& runs = object.coarser_runs;
-    const PolygonRuns* of_mesh = level < 0 ? &object.runs : size_t(level) < runs.size() ? &runs[size_t(level)] : nullptr;
-    b.add_mesh(mesh, object.paint, where, source, level < 0, of_mesh);
-  };
-  // A conservative set: the objects meeting several cells drawn so far, and a clip region
-  // around the masks of every visible avenue into one of an object's cells.
-  std::unordered_set<uint32_t> drawn_whole;
-  std::vector<std::pair<CellId, uint32_t>> avenue_of_cell;  // (cell, avenue), sorted; made when first needed
-  std::vector<Vec2> mask_corners;
-  auto clip_around = [&](const PlacedObject& object) -> int32_t {
-    if (avenue_of_cell.empty()) {
-      for (size_t k = 0; k < visible.avenues.size(); ++k) avenue_of_cell.push_back({visible.avenues[k].cell, uint32_t(k)});
-      std::sort(avenue_of_cell.begin(), avenue_of_cell.end());
-    }
-    mask_corners.clear();
-    for (const ObjectCell& in : object.cells)
-      for (auto it = std::lower_bound(avenue_of_cell.begin(), avenue_of_cell.end(), std::pair{in.cell, uint32_t(0)});
-           it != avenue_of_cell.end() && it->first == in.cell; ++it) {
-        const Avenue& a = visible.avenues[it->second];
-        if (a.mask.size() < 3) continue;
-        for (Vec2 m : mask_of(a)) mask_corners.push_back(m);
-      }
-    const std::vector<Vec2> hull = convex_hull(mask_corners);
-    return hull.size() < 3 ? -1 : b.add_clip(hull, kMaskGrowth);
-  };
-  for (size_t i = 0; i < visible.avenues.size(); ++i) {
-    const Avenue& avenue = visible.avenues[i];
-    if (avenue.mask.size() < 3) continue;
-    const std::vector<Vec2>& mask = mask_of(avenue);
-    const double growth = avenue.depth == 0 && roots == 1 ? 0 : kMaskGrowth;
-    const Cell& cell = complex.cells[size_t(avenue.cell)];
-    const std::span<const uint32_t> in_cell = by_cell.of(avenue.cell);
-    // Resolved by depth, a cell whose faces lie behind what is drawn within its mask (a far
-    // cell of a grazing view across an open scene) adds none of them: tested once, not
-    // piece by piece. Without objects, nothing of it is drawn.
-    const bool faces_hidden = visible.conservative && b.cell_faces_hidden(cell, mask, growth);
-    if (faces_hidden && in_cell.empty()) continue;
-    const int32_t clip = b.add_clip(mask, growth);
-    if (clip < 0) continue;
-    // A mask between sample centres (a far cell of a grazing view over thousands) shows
-    // nothing of its cell: its faces and the objects cut to it are not looked at. An object
-    // drawn whole within the masks of all its cells (resolved by depth) still is, below.
-    const bool shows = b.clip_holds_a_sample(clip);
-    if (!shows && !visible.conservative) continue;
-    ScreenSceneBuilder::Placement where{clip, int32_t(i), avenue.depth, PolygonRole::Face};
-    if (visible.conservative) where = {clip, 0, 0, PolygonRole::Object};  // one group: depth decides
-    PolygonSource source;
-    source.kind = PolygonSource::Kind::Face;
-    source.avenue = int(i);
-    source.cell = avenue.cell;
-    for (size_t k = 0; shows && !faces_hidden && k < cell.faces.size(); ++k) {
-      const Face& face = cell.faces[k];
-      if (face.opaque.empty() || !(face.plane.eval(camera.eye) < 0)) continue;
-      source.face = int(k);
-      bool one_material = true;
-      for (const OpaquePoly& piece : face.opaque) one_material &= piece.material == face.opaque[0].material;
-      // Resolved by depth, a face must not cover what its portals show, nor the pieces of
-      // its plane that bound other cells (which a mask would have cut away): its opaque
-      // pieces only, each lit as the whole face would be.
-      if (one_material && !visible.conservative) {
-        b.add_face(face.poly, face.plane, material_of(complex, face.opaque[0].material), where, source,
-                   shade_point(complex, face.opaque[0]));
-      } else {
-        // Lit as the whole face: at its first piece's surface, or without one at the
-        // centroid of the face's corners (add_face's own, for the whole face).
-        Vec3 corners{0, 0, 0};
-        const Vec3* whole = shade_point(complex, face.opaque[0]);
-        if (one_material && !whole) {
-          for (Vec3 p : face.poly) corners = corners + (1.0 / double(face.poly.size())) * p;
-          whole = &corners;
-        }
-        for (const OpaquePoly& piece : face.opaque)
-          b.add_face(piece.poly, face.plane, material_of(complex, piece.material), where, source,
-                     one_material ? whole : shade_point(complex, piece));
-      }
-    }
-    if (in_cell.empty()) continue;
-    where.role = PolygonRole::Object;
-    source.kind = PolygonSource::Kind::Object;
-    source.face = -1;
-    // The avenue's clip region, a little grown (two samples): what lies wholly outside it
-    // cannot show through this avenue.
-    b.cull_outside(clip, 2);
-    std::optional<Box3> cell_box;
-    for (const uint32_t entry : in_cell) {
-      const uint32_t o = entry & ~ObjectsByCell::kCut;
-      if (visible.conservative && objects[o].cells.size() > 1) {
-        // Resolved by depth, an object need not be cut: drawn once, whole, within the hull
-        // of the masks of every visible cell it meets (wherever it shows, a cell of its own
-        // is seen there, and whatever stands before it is drawn there too).
-        if (!drawn_whole.insert(o).second) continue;
-        const int32_t around = clip_around(objects[o]);
-        if (around < 0) continue;
-        b.cull_outside(around, 2);
-        if (b.may_show(objects[o].bounds)) {
-          b.cut_to(nullptr);
-          add_object(o, {around, 0, 0, PolygonRole::Object}, source);
-        }
-        b.cull_outside(clip, 2);
-        continue;
-      }
-      if (!shows) continue;
-      // Reaching beyond the cell, it is drawn here as its part inside the cell: nearer than
-      // whatever the avenue sees beyond the cell's portals, as the scan takes it to be.
-      const bool cut = entry & ObjectsByCell::kCut;
-      Box3 box = objects[o].bounds;
-      if (cut) {
-        if (!cell_box) cell_box = cell.bounds();
-        box = {{std::max(box.lo.x, cell_box->lo.x), std::max(box.lo.y, cell_box->lo.y), std::max(box.lo.z, cell_box->lo.z)},
-               {std::min(box.hi.x, cell_box->hi.x), std::min(box.hi.y, cell_box->hi.y), std::min(box.hi.z, cell_box->hi.z)}};
-      }
-      if (!b.may_show(box)) continue;  // a cell seen through many avenues: not through this one
-      b.cut_to(cut ? &cell : nullptr);
-      add_object(o, where, source);
-    }
-    b.cut_to(nullptr);
-    b.no_cull();
+  const ViewScene view{complex, objects, visible, camera, parallel, distant, by_cell, options, roots};
+  // Resolved by depth alone, what lies behind polygons already drawn need not be drawn.
+  const bool drop_hidden = visible.conservative && options.drop_hidden;
+  if (!view.in_strips()) {
+    ScreenSceneBuilder b(camera, options, out);
+    if (drop_hidden) b.drop_hidden();
+    view.add(b, 0, visible.avenues.size());
+    return;
   }
+  // Each strip's part on its own, the outlines the last picture left shared among them.
+  const size_t n = visible.strips.size();
+  out.parts.resize(n);
+  for (size_t k = 0; !out.spare_outlines.empty(); k = (k + 1) % n) {
+    out.parts[k].spare_outlines.push_back(std::move(out.spare_outlines.back()));
+    out.spare_outlines.pop_back();
+  }
+  for_each_chunk(options.threads, n, n, [&](size_t k, size_t, size_t) {
+    ScreenScene& part = out.parts[k];
+    part.clear();
+    ScreenSceneBuilder b(camera, options, part);
+    if (drop_hidden) b.drop_hidden();
+    view.add(b, size_t(visible.strips[k]), k + 1 < n ? size_t(visible.strips[k + 1]) : visible.avenues.size());
+  });
+  out.raster = out.parts[0].raster;
+  for (ScreenScene& part : out.parts) out.append(part);
 }
 
 }  // namespace avenues

@@ -143,7 +143,8 @@ inline void expect_hull_holds_merged(const CellComplex& c, const Camera& cam, Ce
   EXPECT_LE(dropping.polygons, all.polygons);
   t.polygons_dropping += dropping.polygons, t.polygons_all += all.polygons;
   // The window in strips searched side by side, cut evenly in two, and in three where the
-  // whole window's avenues lie: no ray's cell missing, and the same picture, byte for byte.
+  // whole window's avenues lie: no ray's cell missing, and the same picture, byte for byte,
+  // its scene built strip by strip on two threads where it can be (SceneOptions::threads).
   for (const std::vector<double>& edges : {strip_edges(cam, 2), strip_edges(cam, 3, &hull)}) {
     SCOPED_TRACE("the window in " + std::to_string(edges.size() + 1) + " strips");
     const VisibleSet strips = find_visible_in_strips(c, cam, cell, p, edges, 2);
@@ -152,7 +153,9 @@ inline void expect_hull_holds_merged(const CellComplex& c, const Camera& cam, Ce
     for (size_t a = 0; a < strips.avenues.size(); ++a) EXPECT_LT(strips.avenues[a].parent, int(a));
     t.strips_avenues += long(strips.avenues.size());
     Image in_strips;
-    render_view(c, *objects, cam, strips, o, in_strips);
+    HalftoneOptions two = o;
+    two.threads = 2;
+    render_view(c, *objects, cam, strips, two, in_strips);
     EXPECT_TRUE(in_strips.data == by_depth.data)
         << "the picture of the search in strips differs from the whole window's in "
         << compare_off_edges(by_depth, in_strips).differ << " pixels";

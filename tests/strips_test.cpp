@@ -4,14 +4,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include "cells/build_cells.h"
 #include "cells/mesh_scene.h"
 #include "ray_oracle.h"
 #include "render/halftone.h"
+#include "render/scene_screen.h"
 #include "test_meshes.h"
 #include "test_plans.h"
 #include "visibility/strips.h"
+#include "visibility/viewpoint.h"
 
 using namespace avenues;
 using avenues::testing::check_visible_set;
@@ -131,4 +134,40 @@ TEST(Strips, AGridOfOpenBoxesSearchedInStripsIsDrawnAsTheWholeWindowIs) {
       EXPECT_TRUE(in_strips.data == reference.data);
     }
   }
+}
+
+// Every bundled plan from its own viewpoint, lit by its own lights where it has them (the
+// scene's light terms and their pieces of light joined from each strip's part), with its
+// objects: the hull search in strips, its scene built strip by strip on two threads where
+// no object is drawn whole across cells, draws the whole window's picture.
+TEST(Strips, EveryBundledPlanSearchedInStripsIsDrawnAsTheWholeWindowIs) {
+  int built_in_parts = 0, lit_in_parts = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(AVENUES_SOURCE_DIR) / "plans")) {
+    if (entry.path().extension() != ".toml") continue;
+    SCOPED_TRACE(entry.path().filename().string());
+    const CellComplex c = build_cells(read_plan(entry.path().string()));
+    const Viewpoint vp = default_viewpoint(c);
+    const Camera cam = Camera::look_at(vp.eye, vp.look, vp.fov_deg, 480, 270);
+    const CellId cell = c.locate(cam.eye).cell;
+    const std::vector<PlacedObject> objects = place_objects(c);
+    HalftoneOptions o;
+    o.threads = 2;
+    const VisibleSet whole = find_visible(c, cam, cell, hull_search());
+    Image reference;
+    render_view(c, objects, cam, whole, o, reference);
+    for (int strips : {2, 3}) {
+      const VisibleSet cut = find_visible_in_strips(c, cam, cell, hull_search(), strip_edges(cam, strips), 2);
+      ASSERT_EQ(cut.strips.size(), size_t(strips));
+      Image picture;
+      RenderStats stats;
+      render_view(c, objects, cam, cut, o, picture, &stats);
+      EXPECT_TRUE(picture.data == reference.data) << strips << " strips";
+      SceneOptions so = scene_options(o);
+      const ScreenScene scene = screen_scene_of_view(c, objects, cam, cut, so);
+      built_in_parts += !scene.parts.empty();
+      lit_in_parts += !scene.parts.empty() && stats.light_pieces > 0;
+    }
+  }
+  EXPECT_GE(built_in_parts, 4);  // the plans without objects across cells, in 2 and 3 strips
+  EXPECT_GE(lit_in_parts, 2);    // among them one lit by its own lamps, with their shadows
 }

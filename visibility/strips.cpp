@@ -74,6 +74,7 @@ VisibleSet find_visible_in_strips(const CellComplex& complex, const Camera& came
   out.avenues.reserve(total);
   for (VisibleSet& part : parts) {
     const int first = int(out.avenues.size());
+    out.strips.push_back(first);
     for (Avenue& a : part.avenues) {
       if (a.parent >= 0) a.parent += first;
       out.avenues.push_back(std::move(a));

@@ -34,7 +34,9 @@ std::vector<double> strip_edges(const Camera& camera, int strips, const VisibleS
 /// (TraverseParams::hull_pieces) with the window cut at picture-plane x `edges`
 /// (strip_edges) into strips searched side by side on up to `threads` threads
 /// (core/thread_arena.h), their avenues joined strip after strip from the left, each in its
-/// search's order. Any other search, or no edge inside the window: find_visible.
+/// search's order (VisibleSet::strips says where each begins: a picture can build each
+/// strip's part on its own thread too). Any other search, or no edge inside the window:
+/// find_visible.
 /// `micros` is the time of the whole; the counters are the strips' summed.
 VisibleSet find_visible_in_strips(const CellComplex& complex, const Camera& camera, CellId eye_cell,
                                   const TraverseParams& params, const std::vector<double>& edges, int threads);

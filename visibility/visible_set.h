@@ -47,6 +47,9 @@ struct VisibleSet {
   /// cell and the masks every ray of their cells, but may hold more (so what they show must
   /// be resolved by depth).
   bool conservative = false;
+  /// Searched in strips of the window (strips.h): the index of each strip's first avenue,
+  /// the strips from the left. Empty: one search of the whole window.
+  std::vector<int> strips;
   int max_depth = 0;
   double micros = 0;            ///< [µs] time of the traversal
   /// The avenue's portals from the eye outwards.
