@@ -42,6 +42,7 @@
 #include "render/stereo_drawing.h"
 #include "render/view_lines.h"
 #include "render/walkthrough.h"
+#include "visibility/strips.h"
 #include "visibility/route.h"
 #include "visibility/stereo.h"
 
@@ -281,7 +282,7 @@ class FrameWriter {
     return draw_view(c_, scene_, f.camera, find_visible(c_, f.camera, f.cell, exact_masks(s_.search)));
   }
   void render(const WalkFrame& f, Image& out) {
-    render_view(c_, objects_, *effects_, f.camera, find_visible(c_, f.camera, f.cell, s_.search), s_.halftone, out,
+    render_view(c_, objects_, *effects_, f.camera, searches_.find(c_, f.camera, f.cell, s_.search), s_.halftone, out,
                 storage_);
   }
 
@@ -295,6 +296,7 @@ class FrameWriter {
   std::optional<SceneEffects> effects_;
   Image picture_, second_;
   FrameStorage storage_;  ///< the half-tone's arrays, kept from frame to frame
+  FrameSearches searches_{s_.halftone.threads};  ///< side by side after a long search (strips.h)
 };
 
 /// Makes DIR this walk's: removes the frames, the film and the temporary files an earlier

@@ -45,7 +45,6 @@
 #include "app/walk_state.h"
 #include "app/walk_stats.h"
 #include "core/atomic_file.h"
-#include "core/thread_arena.h"
 #include "plans/formats/doom_map.h"
 #include "render/halftone.h"
 #include "render/raster.h"
@@ -92,7 +91,7 @@ class Session {
     halftone_.lights = lights_option(opt.lights);
     halftone_.object_shadows = object_shadows_option(opt.object_shadows);
     halftone_.detail_samples = opt.detail;
-    threads_ = std::clamp(arena_for(halftone_.threads).max_concurrency(), 1, 8);
+    searches_ = FrameSearches(halftone_.threads);
     if (opt.stereo == "mono") stereo_ = StereoMode::Mono;
     else if (opt.stereo == "side-by-side" || opt.stereo == "parallel") stereo_ = StereoMode::SideBySide;
     else if (opt.stereo == "anaglyph") stereo_ = StereoMode::Anaglyph;
@@ -339,21 +338,13 @@ class Session {
       }
       shown_mode_ = mode;
       const TraverseParams search = lines_ ? exact_masks(search_) : search_;  // lines need exact masks
-      // A long search last frame: this one on every thread the pictures use, the window
-      // in strips (where the last frame's avenues say the work lies), or a pair's two eyes
-      // side by side. Off again once the searches are short (half the mark: not every frame).
-      const double last_us = std::max(full_.micros, shown_mode_ == StereoMode::Mono ? 0.0 : right_.micros);
-      side_by_side_ = threads_ > 1 && last_us >= (side_by_side_ ? kSideBySideFrom / 2 : kSideBySideFrom);
+      // A long search last frame: this one on every thread the pictures use (strips.h).
       if (mode == StereoMode::Mono) {
         cam_ = state_.camera(w, h);
-        full_ = side_by_side_ ? find_visible_in_strips(c_, cam_, cell, search, strip_edges(cam_, threads_, &full_), threads_)
-                              : find_visible(c_, cam_, cell, search);
+        full_ = searches_.find(c_, cam_, cell, search);
       } else {
         cam_ = rig_.left;
-        for_each_chunk(side_by_side_ ? threads_ : 1, 2, 2, [&](size_t eye, size_t, size_t) {
-          if (eye == 0) full_ = find_visible(c_, rig_.left, rig_.left_at.cell, search);
-          else right_ = find_visible(c_, rig_.right, rig_.right_at.cell, search);
-        });
+        searches_.find_pair(c_, rig_.left, rig_.left_at.cell, rig_.right, rig_.right_at.cell, search, full_, right_);
       }
       shown_ = progressive_ ? std::min<size_t>(size_t(opt_.progressive_rate), full_.avenues.size()) : full_.avenues.size();
     } else {
@@ -381,8 +372,10 @@ class Session {
                       " ms): " + to_string(shown_detail_) + " while moving, full detail when the eye stops");
     lines.push_back("frame " + fixed(work_ms, 1) + " ms, render " + fixed(render_ms, 1) + " ms | " +
                     std::to_string(full_.cells.size()) +
-                    (full_.conservative ? side_by_side_ ? " cells (hull search on " + std::to_string(threads_) + " threads) through "
-                                                        : std::string(" cells (hull search) through ")
+                    (full_.conservative ? searches_.threads_used() > 1 ? " cells (hull search on " +
+                                                                             std::to_string(searches_.threads_used()) +
+                                                                             " threads) through "
+                                                                       : std::string(" cells (hull search) through ")
                                         : std::string(" cells seen through ")) +
                     std::to_string(full_.avenues.size()) + " avenues");
     const Vec3 e = state_.eye();
@@ -404,7 +397,7 @@ class Session {
     j["stereo"] = to_string(shown_mode_);
     j["visible_cells"] = full_.cells.size();
     j["avenues"] = full_.avenues.size();
-    j["search_threads"] = side_by_side_ ? threads_ : 1;
+    j["search_threads"] = searches_.threads_used();
     j["size"] = {frame_w_, frame_h_};
     j["detail"] = {{"samples", shown_detail_.samples}, {"scale", shown_detail_.scale}};
     j["status"] = status_;
@@ -477,11 +470,7 @@ class Session {
   Controls controls_;
   Kernel kernel_ = Kernel::Double;
   TraverseParams search_;
-  /// [µs] A search this long (the whole window's) is worth the threads: waking a second one
-  /// costs tens of µs, and a home's search takes 20–300 µs (visibility/strips.h).
-  static constexpr double kSideBySideFrom = 1000;
-  int threads_ = 1;             ///< threads a frame's search may take: the pictures' (HalftoneOptions::threads)
-  bool side_by_side_ = false;  ///< this frame's search on threads_ threads (its last was long)
+  FrameSearches searches_;  ///< the frames' searches, side by side when long; on the pictures' threads
   HalftoneOptions halftone_;
   SceneEffects effects_;
   std::optional<SceneEffects> effects_at_eye_;  ///< lit from the eye: the budget's cheaper frames in a plan with lamps

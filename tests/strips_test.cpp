@@ -171,3 +171,34 @@ TEST(Strips, EveryBundledPlanSearchedInStripsIsDrawnAsTheWholeWindowIs) {
   EXPECT_GE(built_in_parts, 4);  // the plans without objects across cells, in 2 and 3 strips
   EXPECT_GE(lit_in_parts, 2);    // among them one lit by its own lamps, with their shadows
 }
+
+// A walk's searches one after another (FrameSearches): the first whole; after one that took
+// at least the mark, on both threads in strips cut where its avenues lay, the same cells
+// seen; after short ones, whole again. A stereo pair's eyes likewise side by side.
+TEST(Strips, AWalksSearchesGoSideBySideAfterALongOne) {
+  const CellComplex c = build_mesh_scene({avenues::testing::open_boxes(12)});
+  const Camera cam = Camera::yaw_pitch({-1.0, -0.3, 1.6}, 40, -5, 70, 320, 180);
+  const CellId cell = c.locate(cam.eye).cell;
+  FrameSearches searches(2, 0);  // every search is long enough
+  const VisibleSet first = searches.find(c, cam, cell, hull_search());
+  EXPECT_EQ(searches.threads_used(), 1);
+  EXPECT_TRUE(first.strips.empty());
+  const VisibleSet second = searches.find(c, cam, cell, hull_search());
+  EXPECT_EQ(searches.threads_used(), 2);
+  EXPECT_EQ(second.strips.size(), 2u);
+  EXPECT_EQ(second.cells, find_visible_in_strips(c, cam, cell, hull_search(), strip_edges(cam, 2, &first), 2).cells);
+  // Lines take exact masks: the merged search is never cut.
+  TraverseParams merged;
+  merged.merge_pieces = true;
+  EXPECT_TRUE(searches.find(c, cam, cell, merged).strips.empty());
+  EXPECT_EQ(searches.threads_used(), 1);
+  VisibleSet left, right;
+  searches.find_pair(c, cam, cell, cam, cell, hull_search(), left, right);
+  EXPECT_EQ(searches.threads_used(), 2);
+  EXPECT_EQ(left.cells, right.cells);
+  // A mark no search reaches: whole, one after another.
+  FrameSearches quick(2, 1e12);
+  quick.find(c, cam, cell, hull_search());
+  EXPECT_TRUE(quick.find(c, cam, cell, hull_search()).strips.empty());
+  EXPECT_EQ(quick.threads_used(), 1);
+}

@@ -85,4 +85,36 @@ VisibleSet find_visible_in_strips(const CellComplex& complex, const Camera& came
   return out;
 }
 
+FrameSearches::FrameSearches(int threads, double from)
+    : threads_(std::clamp(arena_for(threads).max_concurrency(), 1, 8)), from_(from) {}
+
+void FrameSearches::judge(double micros) {
+  next_on_ = threads_ > 1 && micros >= (next_on_ ? from_ / 2 : from_);
+}
+
+VisibleSet FrameSearches::find(const CellComplex& complex, const Camera& camera, CellId eye_cell,
+                               const TraverseParams& params) {
+  const bool on = next_on_ && params.hull_pieces && !camera.is_parallel();
+  used_ = on ? threads_ : 1;
+  VisibleSet v = on ? find_visible_in_strips(complex, camera, eye_cell, params,
+                                              edges_.empty() ? strip_edges(camera, threads_) : edges_, threads_)
+                     : find_visible(complex, camera, eye_cell, params);
+  judge(v.micros);
+  edges_.clear();
+  if (next_on_) edges_ = strip_edges(camera, threads_, &v);
+  return v;
+}
+
+void FrameSearches::find_pair(const CellComplex& complex, const Camera& left, CellId left_cell, const Camera& right,
+                              CellId right_cell, const TraverseParams& params, VisibleSet& left_set,
+                              VisibleSet& right_set) {
+  used_ = next_on_ ? std::min(threads_, 2) : 1;
+  for_each_chunk(used_, 2, 2, [&](size_t eye, size_t, size_t) {
+    if (eye == 0) left_set = find_visible(complex, left, left_cell, params);
+    else right_set = find_visible(complex, right, right_cell, params);
+  });
+  judge(std::max(left_set.micros, right_set.micros));
+  edges_.clear();
+}
+
 }  // namespace avenues

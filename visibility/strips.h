@@ -41,4 +41,31 @@ std::vector<double> strip_edges(const Camera& camera, int strips, const VisibleS
 VisibleSet find_visible_in_strips(const CellComplex& complex, const Camera& camera, CellId eye_cell,
                                   const TraverseParams& params, const std::vector<double>& edges, int threads);
 
+/// The searches of a walk's frames, one after another from an eye that moves a little
+/// between them: each in strips side by side on `threads` threads when the search before
+/// it took kFrom or more (and again until one takes under half of it), cut where that
+/// search's avenues lay; otherwise find_visible. A search this long is worth the threads:
+/// waking a second one costs tens of µs, and a home's search takes 20–300 µs.
+class FrameSearches {
+ public:
+  static constexpr double kFrom = 1000;  ///< [µs]
+  /// `threads`: at most this many (0: as many as TBB offers; at most 8 strips). `from`
+  /// [µs]: the mark instead of kFrom.
+  explicit FrameSearches(int threads = 0, double from = kFrom);
+  VisibleSet find(const CellComplex& complex, const Camera& camera, CellId eye_cell, const TraverseParams& params);
+  /// A stereo pair's two eyes, side by side on two threads under the same rule (each whole).
+  void find_pair(const CellComplex& complex, const Camera& left, CellId left_cell, const Camera& right,
+                 CellId right_cell, const TraverseParams& params, VisibleSet& left_set, VisibleSet& right_set);
+  /// The threads the last search (or pair) ran on.
+  int threads_used() const { return used_; }
+
+ private:
+  void judge(double micros);  ///< after a search: whether the next goes side by side
+  int threads_ = 1;
+  double from_ = kFrom;
+  int used_ = 1;              ///< threads_used()
+  bool next_on_ = false;      ///< the next search goes side by side
+  std::vector<double> edges_;  ///< where the next is cut (strip_edges of the last)
+};
+
 }  // namespace avenues
