@@ -64,7 +64,14 @@ void EdgeTable::build(int width, int height, const std::vector<ScreenPolygon>& p
     int64_t x_lo, x_hi;
   };
   std::vector<Box> boxes(clips.size());
+  // A region no polygon refers to cuts nothing (a view resolved by depth drops every piece
+  // of a cell that lies behind what is drawn, but keeps its mask's region): its edges would
+  // only be stepped from row to row.
+  std::vector<uint8_t> cuts(clips.size(), 0);
+  for (const ScreenPolygon& poly : polygons)
+    if (poly.clip >= 0) cuts[size_t(poly.clip)] = 1;
   for (size_t k = 0; k < clips.size(); ++k) {
+    if (!cuts[k]) continue;
     boxes[k].rows = add_outline(clips[k].outline, int32_t(k), true, {0, height}, -kFar, kFar);
     boxes[k].x_lo = kFar;
     boxes[k].x_hi = -kFar;

@@ -125,7 +125,8 @@ struct ScanCounters {
 /// lying wholly left of the polygon's clip region (or of the window), or on the right
 /// while wholly right of it, since the region cuts the span tighter anyway. A polygon
 /// seen through a small mask then often has no edge at all, and costs the scan nothing but
-/// its entry in the polygon table; one wholly beside its region is left out altogether.
+/// its entry in the polygon table; one wholly beside its region is left out altogether. So
+/// is every edge of a clip region no polygon refers to.
 class EdgeTable {
  public:
   EdgeTable(int width, int height, const std::vector<ScreenPolygon>& polygons, const std::vector<ClipRegion>& clips);
