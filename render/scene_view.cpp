@@ -297,6 +297,11 @@ struct ViewScene {
   /// one of its cells, which one strip alone cannot tell).
   bool in_strips() const {
     if (!visible.conservative || visible.strips.size() < 2 || options.threads == 1 || parallel) return false;
+    // Each strip's first avenue, from the first on, ascending, within the set (a set cut
+    // short after its search, as the walk's progressive display does, drops them).
+    if (visible.strips.front() != 0 || !std::is_sorted(visible.strips.begin(), visible.strips.end()) ||
+        size_t(visible.strips.back()) > visible.avenues.size())
+      return false;
     for (const Avenue& a : visible.avenues)
       for (const uint32_t entry : by_cell.of(a.cell))
         if (objects[entry & ~ObjectsByCell::kCut].cells.size() > 1) return false;
