@@ -60,6 +60,15 @@ TEST(Strips, TheCutsFollowWhereTheAvenuesOfTheViewBeforeLay) {
   const std::vector<double> two = strip_edges(cam, 2, &last);
   ASSERT_EQ(two.size(), 1u);
   EXPECT_NEAR(two[0], -0.8 + 0.001 * 50, 1e-9);  // half the avenues on each side
+  // Searched in two strips, the left's avenues three times as costly as the right's: the
+  // cut moves left until each side holds half the cost.
+  VisibleSet timed;
+  for (int k = 0; k < 100; ++k) timed.avenues.push_back(avenue_at(-0.9 + 0.018 * k));
+  timed.strips = {0, 50};
+  timed.strip_micros = {300, 100};
+  const std::vector<double> weighed = strip_edges(cam, 2, &timed);
+  ASSERT_EQ(weighed.size(), 1u);
+  EXPECT_NEAR(weighed[0], -0.9 + 0.018 * 33, 1e-9);  // 33 avenues of weight 6 before it: 198 of 400
   // All on one side: each strip still a tenth of its even width.
   VisibleSet edge;
   for (int k = 0; k < 100; ++k) edge.avenues.push_back(avenue_at(-1.5));  // beyond the window: at its edge

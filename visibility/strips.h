@@ -26,8 +26,9 @@ namespace avenues {
 /// Where to cut `camera`'s window into `strips` vertical strips: the picture-plane x of
 /// the strips - 1 cuts, ascending, strictly inside the window. With `last` (the visible set
 /// of a nearby view: the walk's frame before), at the quantiles of its avenues' mask
-/// centres, so that each strip holds about as many of them; without it, or where they
-/// crowd at one side, evenly. Each strip is at least a tenth of its even width.
+/// centres, so that each strip holds about as many of them, each weighed by the time an
+/// avenue of its strip took when `last` was searched in strips; without it, or with few
+/// avenues, evenly. Each strip is at least a tenth of its even width.
 std::vector<double> strip_edges(const Camera& camera, int strips, const VisibleSet* last = nullptr);
 
 /// The search of `params` from `camera` in `eye_cell`, for a perspective hull search

@@ -50,6 +50,7 @@ struct VisibleSet {
   /// Searched in strips of the window (strips.h): the index of each strip's first avenue,
   /// the strips from the left. Empty: one search of the whole window.
   std::vector<int> strips;
+  std::vector<double> strip_micros;  ///< [µs] and each strip's search time
   int max_depth = 0;
   double micros = 0;            ///< [µs] time of the traversal
   /// The avenue's portals from the eye outwards.
