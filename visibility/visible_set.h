@@ -35,7 +35,7 @@ struct Avenue {
 
 struct VisibleSet {
   CellId eye_cell = kNoCell;
-  std::vector<Avenue> avenues;  ///< depth-first order; avenues[0] is the eye's cell; an eye on its cell's boundary: one root (parent -1) per cell holding it, each through the directions entering it (parallel: one root per cut cell)
+  std::vector<Avenue> avenues;  ///< depth-first order; avenues[0] is the eye's cell; an eye on its cell's boundary: one root (parent -1) per cell holding it, each through the directions entering it (parallel: one root per cut cell); searched in strips (strips.h): each strip's avenues in turn, its own roots first
   std::vector<CellId> cut_cells;  ///< parallel: the cells the cut plane crosses, ascending (the roots)
   std::optional<Plane> cut;       ///< parallel: the plane the rays start on (the cut, or the picture plane)
   std::vector<CellId> cells;    ///< distinct visible cells, ascending
