@@ -627,9 +627,8 @@ std::vector<int> engine_coverage(int w, int h, const std::vector<ScreenPolygon>&
   ScanlineEngine engine(table);
   engine.start(0);
   std::vector<int> count(size_t(w) * size_t(h), 0);
-  SpanRow spans;
   for (int y = 0; y < h; ++y) {
-    spans = engine.scan();
+    engine.scan();
     for (const Span& s : engine.coverage())
       for (int x = s.x0; x < s.x1; ++x) ++count[size_t(y) * size_t(w) + size_t(x)];
   }

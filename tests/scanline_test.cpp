@@ -63,9 +63,8 @@ std::vector<int> coverage_counts(int w, int h, const std::vector<ScreenPolygon>&
   ScanlineEngine engine(table);
   engine.start(0);
   std::vector<int> count(size_t(w) * size_t(h), 0);
-  SpanRow spans;
   for (int y = 0; y < h; ++y) {
-    spans = engine.scan();
+    engine.scan();
     for (const Span& s : engine.coverage())
       for (int x = s.x0; x < s.x1; ++x) ++count[size_t(y) * size_t(w) + size_t(x)];
   }
@@ -171,9 +170,8 @@ TEST(FillRule, TiesGoToTheLeftAndTopEdges) {
   EdgeTable table(40, 30, polys, {});
   ScanlineEngine engine(table);
   engine.start(0);
-  SpanRow spans;
   for (int y = 0; y < 30; ++y) {
-    spans = engine.scan();
+    engine.scan();
     for (const Span& s : engine.coverage()) {
       const int want_x0[] = {10, 20, 10}, want_x1[] = {20, 30, 30};
       EXPECT_EQ(s.x0, want_x0[s.polygon]);
@@ -278,9 +276,8 @@ TEST(Scanline, SpansTileEachRowAndMergeRunsOfOnePolygon) {
   EdgeTable table(40, 30, polys, {});
   ScanlineEngine engine(table);
   engine.start(0);
-  SpanRow spans;
   for (int y = 0; y < 30; ++y) {
-    spans = engine.scan();
+    const SpanRow& spans = engine.scan();
     ASSERT_FALSE(spans.empty());
     EXPECT_EQ(spans.front().x0, 0);
     EXPECT_EQ(spans.back().x1, 40);
@@ -334,10 +331,9 @@ TEST(Scanline, ThousandsOfSpansThatBeginEndAndCrossSeeTheNearestOnEveryRow) {
   EdgeTable table(w, h, polys, clips);
   ScanlineEngine engine(table);
   engine.start(0);
-  SpanRow spans;
   long wrong = 0, seen = 0;
   for (int row = 0; row < h; ++row) {
-    spans = engine.scan();
+    const SpanRow& spans = engine.scan();
     std::vector<int32_t> nearest(size_t(w), -1);
     for (const Span& c : engine.coverage())
       for (int s = c.x0; s < c.x1; ++s) {
