@@ -23,12 +23,12 @@
 
 #include "app/commands.h"
 #include "core/file_name.h"
+#include "core/thread_arena.h"
 #include "render/line_raster.h"
 #include "core/atomic_file.h"
 #include "render/architectural_drawing.h"
 #include "render/halftone.h"
 #include "render/raster.h"
-#include "core/thread_arena.h"
 
 namespace avenues::app {
 

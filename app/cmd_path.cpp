@@ -42,9 +42,9 @@
 #include "render/stereo_drawing.h"
 #include "render/view_lines.h"
 #include "render/walkthrough.h"
-#include "visibility/strips.h"
 #include "visibility/route.h"
 #include "visibility/stereo.h"
+#include "visibility/strips.h"
 
 namespace avenues::app {
 

@@ -18,9 +18,9 @@
 
 #include "app/commands.h"
 #include "core/atomic_file.h"
+#include "core/thread_arena.h"
 #include "render/overlay_drawing.h"
 #include "render/raster.h"
-#include "core/thread_arena.h"
 #include "visibility/viewpoint.h"
 #include "visibility/visible_set.h"
 

@@ -8,9 +8,9 @@
 #include <stdexcept>
 
 #include "core/angles.h"
+#include "core/thread_arena.h"
 #include "render/interval_clip.h"
 #include "render/stroke_merge.h"
-#include "core/thread_arena.h"
 
 namespace avenues {
 

@@ -13,11 +13,11 @@
 #include <optional>
 #include <stdexcept>
 
+#include "core/thread_arena.h"
 #include "render/effects.h"
 #include "render/pixel_fill.h"
 #include "render/raster_srgb.h"
 #include "render/scanline.h"
-#include "core/thread_arena.h"
 
 namespace avenues {
 

@@ -7,11 +7,11 @@
 #include <optional>
 #include <stdexcept>
 
+#include "core/thread_arena.h"
 #include "render/interval_clip.h"
 #include "render/scene_objects.h"
 #include "render/shadow_outline.h"
 #include "render/stroke_merge.h"
-#include "core/thread_arena.h"
 
 namespace avenues {
 

@@ -23,7 +23,6 @@
 #pragma once
 
 #include <cmath>
-
 #include <cstdint>
 
 #include "cells/cell_complex.h"
