@@ -54,7 +54,7 @@ void add_import_options(CLI::App* app, ImportOptions& o, bool with_scale = true)
       ->type_name("walls=NAME,...;doors=...;windows=...");
   // One --unit for every file that does not say its unit: a DXF drawing (overriding its
   // $INSUNITS) and a mesh scene in a format without one (OBJ, PLY, STL, OFF).
-  app->add_option("--unit", o.unit, "the file's length unit where it does not say: DXF (overrides $INSUNITS), OBJ, PLY, STL, OFF")
+  app->add_option("--unit", o.unit, "the file's length unit where it does not say: DXF (overrides $INSUNITS), OBJ, PLY, STL, OFF, Irrlicht's .irr and .irrmesh")
       ->check(CLI::IsMember({"m", "cm", "mm", "in", "ft"}));
   // How a mesh scene in a format that declares no axes (OBJ, PLY, STL, OFF) becomes z-up
   // metres; formats that declare theirs (glTF, COLLADA, FBX, 3DS, IFC) are read as they say.

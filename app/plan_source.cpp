@@ -302,7 +302,10 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
         } catch (const std::exception& e) {
           if (spec.content_reader.empty()) throw;
           throw std::runtime_error(spec.file + " is not a plan Avenues can read: " + what_the_name_says() +
-                                   ", and Assimp's " + spec.content_reader +
+                                   ", and " +
+                                   (spec.content_reader.starts_with("Irrlicht")  // Avenues' own (plans/irrlicht_scene.h)
+                                        ? "Avenues' " + spec.content_reader + " reader"
+                                        : "Assimp's " + spec.content_reader) +
                                    " took it by its content but could not read it (" + e.what() + ")");
         }
         break;

@@ -26,6 +26,7 @@
 #include "core/file_name.h"
 #include "core/stage_timer.h"
 #include "plans/image_colour.h"
+#include "plans/irrlicht_scene.h"
 #include "plans/obj_materials.h"
 
 namespace avenues {
@@ -288,6 +289,11 @@ std::string assimp_importer_by_content(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) return "";
   if (binary_gltf_by_content_only(path)) return "glTF 2 (binary)";
+  switch (irrlicht_file_kind(path)) {  // UTF-16 text, which Assimp's own tests miss
+    case IrrlichtFile::Scene: return "Irrlicht scene";
+    case IrrlichtFile::Mesh: return "Irrlicht mesh";
+    case IrrlichtFile::None: break;
+  }
   const Assimp::Importer importer;
   for (size_t i = 0; i < importer.GetImporterCount(); ++i) {
     const Assimp::BaseImporter* reader = importer.GetImporter(i);
@@ -306,6 +312,8 @@ std::string assimp_importer_by_content(const std::string& path) {
 ImportedScene import_scene(const std::string& path, const ImportOptions& options) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw std::runtime_error("cannot read model " + path + ": no such file");
+  // Irrlicht's XML, which Debian's Assimp refuses: read by Avenues (irrlicht_scene.h).
+  if (options.contents.empty() && irrlicht_file_kind(path) != IrrlichtFile::None) return read_irrlicht(path, options);
   // A second importer, made only to read a file again (below): Assimp's readers keep state
   // from one read to the next (its OpenGEX reader crashes reading a file twice).
   std::optional<Assimp::Importer> importers[2];

@@ -1,0 +1,708 @@
+// Avenues — Irrlicht's XML scenes and meshes (see irrlicht_scene.h).
+#include "plans/irrlicht_scene.h"
+
+#include <pugixml.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <stdexcept>
+#include <string_view>
+#include <vector>
+
+#include "core/file_name.h"
+#include "core/srgb.h"
+#include "plans/image_colour.h"
+
+namespace avenues {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::uintmax_t kMaxBytes = std::uintmax_t(1) << 28;
+
+/// Code point c appended to `out` as UTF-8.
+void append_utf8(std::string& out, uint32_t c) {
+  if (c < 0x80) {
+    out += char(c);
+  } else if (c < 0x800) {
+    out += char(0xC0 | (c >> 6)), out += char(0x80 | (c & 0x3F));
+  } else if (c < 0x10000) {
+    out += char(0xE0 | (c >> 12)), out += char(0x80 | ((c >> 6) & 0x3F)), out += char(0x80 | (c & 0x3F));
+  } else {
+    out += char(0xF0 | (c >> 18)), out += char(0x80 | ((c >> 12) & 0x3F)), out += char(0x80 | ((c >> 6) & 0x3F)),
+        out += char(0x80 | (c & 0x3F));
+  }
+}
+
+/// The file's bytes as UTF-8 text: UTF-16 (either byte order, told by its byte-order
+/// mark, as Irrlicht writes its XML) is converted, a UTF-8 byte-order mark dropped. A
+/// surrogate without its other half becomes U+FFFD. At most `limit` bytes are read.
+std::optional<std::string> utf8_text(const std::string& path, std::uintmax_t limit, std::string* why = nullptr) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) {
+    if (why) *why = "no such file";
+    return std::nullopt;
+  }
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (ec) {
+    if (why) *why = "its size cannot be read";
+    return std::nullopt;
+  }
+  if (size > kMaxBytes) {
+    if (why) *why = "larger than 256 MiB";
+    return std::nullopt;
+  }
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes(size_t(std::min(size, limit)), '\0');
+  in.read(bytes.data(), std::streamsize(bytes.size()));
+  bytes.resize(size_t(in.gcount()));
+  const auto b = [&bytes](size_t i) { return uint8_t(bytes[i]); };
+  if (bytes.size() >= 3 && b(0) == 0xEF && b(1) == 0xBB && b(2) == 0xBF) return bytes.substr(3);
+  if (bytes.size() < 2 || !((b(0) == 0xFF && b(1) == 0xFE) || (b(0) == 0xFE && b(1) == 0xFF))) return bytes;
+  const bool little = b(0) == 0xFF;
+  std::string out;
+  out.reserve(bytes.size() / 2);
+  for (size_t i = 2; i + 1 < bytes.size(); i += 2) {
+    uint32_t c = little ? b(i) | uint32_t(b(i + 1)) << 8 : uint32_t(b(i)) << 8 | b(i + 1);
+    if (c >= 0xD800 && c < 0xDC00 && i + 3 < bytes.size()) {
+      const uint32_t d = little ? b(i + 2) | uint32_t(b(i + 3)) << 8 : uint32_t(b(i + 2)) << 8 | b(i + 3);
+      if (d >= 0xDC00 && d < 0xE000) {
+        c = 0x10000 + ((c - 0xD800) << 10) + (d - 0xDC00);
+        i += 2;
+      } else {
+        c = 0xFFFD;
+      }
+    } else if (c >= 0xD800 && c < 0xE000) {
+      c = 0xFFFD;
+    }
+    append_utf8(out, c);
+  }
+  return out;
+}
+
+/// The name of the text's first element (after the declaration, comments and a DOCTYPE).
+std::string_view root_name(std::string_view text) {
+  for (size_t at = text.find('<'); at != std::string_view::npos; at = text.find('<', at + 1)) {
+    if (at + 1 >= text.size()) break;
+    const char next = text[at + 1];
+    if (next == '?' || next == '!') continue;
+    size_t end = at + 1;
+    while (end < text.size() && !std::isspace(uint8_t(text[end])) && text[end] != '>' && text[end] != '/') ++end;
+    return text.substr(at + 1, end - at - 1);
+  }
+  return {};
+}
+
+/// 1-based line of an offset into the text.
+size_t line_at(std::string_view text, ptrdiff_t offset) {
+  if (offset < 0) return 0;
+  const size_t end = std::min(text.size(), size_t(offset));
+  return 1 + size_t(std::count(text.begin(), text.begin() + ptrdiff_t(end), '\n'));
+}
+
+/// The lines of a text, for the line of an offset into it without counting from the start
+/// each time (a scene may hold thousands of nodes).
+class Lines {
+ public:
+  explicit Lines(std::string_view text) {
+    for (size_t i = 0; i < text.size(); ++i)
+      if (text[i] == '\n') ends_.push_back(i);
+  }
+  /// 1-based line of an offset (0: none, for a negative one).
+  size_t at(ptrdiff_t offset) const {
+    if (offset < 0) return 0;
+    return 1 + size_t(std::lower_bound(ends_.begin(), ends_.end(), size_t(offset)) - ends_.begin());
+  }
+
+ private:
+  std::vector<size_t> ends_;  ///< offsets of the '\n's
+};
+
+/// An affine map of Irrlicht's space: rows of a 3 × 4 matrix (linear part, then translation).
+struct Affine {
+  std::array<std::array<double, 4>, 3> m{{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}}};
+  Vec3 apply(Vec3 p) const {
+    return {m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3], m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
+            m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]};
+  }
+  Affine operator*(const Affine& o) const {
+    Affine r;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 4; ++j) {
+        double s = j == 3 ? m[i][3] : 0;
+        for (int k = 0; k < 3; ++k) s += m[i][k] * o.m[k][j];
+        r.m[i][j] = s;
+      }
+    return r;
+  }
+  /// Irrlicht's relative transformation: translate · rotate (degrees; the matrix
+  /// Rz·Ry·Rx, as matrix4::setRotationDegrees makes it) · scale.
+  static Affine placed(Vec3 t, Vec3 rotation_deg, Vec3 s) {
+    const double k = std::numbers::pi / 180;
+    const double cr = std::cos(rotation_deg.x * k), sr = std::sin(rotation_deg.x * k);
+    const double cp = std::cos(rotation_deg.y * k), sp = std::sin(rotation_deg.y * k);
+    const double cy = std::cos(rotation_deg.z * k), sy = std::sin(rotation_deg.z * k);
+    const double r[3][3] = {{cp * cy, sr * sp * cy - cr * sy, cr * sp * cy + sr * sy},
+                            {cp * sy, sr * sp * sy + cr * cy, cr * sp * sy - sr * cy},
+                            {-sp, sr * cp, cr * cp}};
+    Affine a;
+    const double scale[3] = {s.x, s.y, s.z};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) a.m[i][j] = r[i][j] * scale[j];
+    a.m[0][3] = t.x, a.m[1][3] = t.y, a.m[2][3] = t.z;
+    return a;
+  }
+};
+
+/// A material as far as Avenues uses it.
+struct IrrMaterial {
+  std::string name;
+  std::array<double, 3> colour{1, 1, 1};  ///< linear RGB
+};
+
+/// Geometry in Irrlicht's space: triangles as Irrlicht's front faces have them ((b − a) ×
+/// (c − a) towards the side they are seen from), each with a material of `materials`.
+struct IrrGeometry {
+  std::vector<Vec3> vertices;
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<int> material_of;  ///< per triangle, into `materials`
+  std::vector<IrrMaterial> materials;
+  /// Irrlicht's own meshes (.irrmesh, a cube, a sphere): a node's <materials> replace
+  /// these one for one. A model read through Assimp keeps its own.
+  bool materials_replaceable = false;
+};
+
+std::optional<double> number(std::string_view s) {
+  while (!s.empty() && std::isspace(uint8_t(s.front()))) s.remove_prefix(1);
+  while (!s.empty() && std::isspace(uint8_t(s.back()))) s.remove_suffix(1);
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  double v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || end != s.data() + s.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+/// Irrlicht's "aarrggbb" colour (sRGB) in linear light.
+std::optional<std::array<double, 3>> hex_colour(std::string_view s) {
+  uint32_t v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v, 16);
+  if (ec != std::errc() || end != s.data() + s.size() || s.size() > 8) return std::nullopt;
+  return linear_from_srgb(std::array<double, 3>{((v >> 16) & 0xFF) / 255.0, ((v >> 8) & 0xFF) / 255.0, (v & 0xFF) / 255.0});
+}
+
+class Reader {
+ public:
+  Reader(const std::string& path, const ImportOptions& options) : path_(path), options_(options) {}
+
+  ImportedScene read() {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::string why;
+    const std::optional<std::string> text = utf8_text(path_, kMaxBytes, &why);
+    if (!text) fail(0, why);
+    text_ = *text;
+    parse(doc_, text_, path_);
+    lines_.emplace(text_);
+    const pugi::xml_node root = doc_.document_element();
+    const std::string name = root ? root.name() : "";
+    out_.path = path_;
+    out_.nodes.push_back({});
+    out_.nodes[0].name = "root";
+    scale_ = options_.axes.metres_per_unit.value_or(1);
+    if (options_.axes.up && *options_.axes.up != 'y')
+      warn("up axis '" + std::string(1, *options_.axes.up) + "' ignored: Irrlicht's files are y up");
+    if (name == "irr_scene") {
+      out_.format = "Irrlicht scene (Avenues' reader)";
+      read_scene(root);
+    } else if (name == "mesh") {
+      out_.format = "Irrlicht mesh (Avenues' reader)";
+      IrrGeometry g = read_mesh(root, path_, *lines_);
+      add_node(fs::path(path_).stem().string(), 0, g, Affine{}, {});
+    } else {
+      fail(lines_->at(root ? root.offset_debug() : 0),
+           "not an Irrlicht scene or mesh: the root element is <" + name + ">, not <irr_scene> or <mesh>");
+    }
+    size_t triangles = 0;
+    for (const ImportedNode& n : out_.nodes) triangles += n.triangles.size();
+    if (triangles == 0) {
+      std::string gone;  // what was left out, as the warnings say it
+      for (const std::string& w : out_.warnings)
+        if (w.find("left out") != std::string::npos && gone.size() < 400) gone += "; " + w.substr(path_.size() + 2);
+      throw std::runtime_error("cannot read model " + path_ + ": it holds no triangle Avenues can draw" + gone);
+    }
+    out_.import_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return std::move(out_);
+  }
+
+ private:
+  /// Parses `text` into `doc`. Irrlicht's own XML reader passes over a tag that is not
+  /// well-formed (an attribute written value="="file.png" by a tool's slip): so does this one
+  /// where the tag stands alone on its line, which is blanked (with a warning naming it) and
+  /// the text parsed again, a few times at most. Anything else is refused naming the line.
+  void parse(pugi::xml_document& doc, std::string& text, const std::string& file) {
+    for (int tries = 0;; ++tries) {
+      const pugi::xml_parse_result parsed = doc.load_buffer(text.data(), text.size(), pugi::parse_default, pugi::encoding_utf8);
+      if (parsed) return;
+      const size_t line = line_at(text, parsed.offset);
+      const size_t at = std::min(text.size(), size_t(std::max<ptrdiff_t>(0, parsed.offset)));
+      const size_t begin = text.rfind('\n', at == 0 ? 0 : at - 1), start = begin == std::string::npos ? 0 : begin + 1;
+      size_t end = text.find('\n', at);
+      if (end == std::string::npos) end = text.size();
+      std::string_view l = std::string_view(text).substr(start, end - start);
+      while (!l.empty() && std::isspace(uint8_t(l.front()))) l.remove_prefix(1);
+      while (!l.empty() && std::isspace(uint8_t(l.back()))) l.remove_suffix(1);
+      const bool lone_tag = l.size() > 2 && l.front() == '<' && l.back() == '>' && l[1] != '/' &&
+                            std::count(l.begin(), l.end(), '<') == 1 && l.substr(l.size() - 2) == "/>";
+      if (!lone_tag || tries >= 16)
+        throw std::runtime_error("cannot read model " + file + ":" + std::to_string(line) + ": XML syntax error: " +
+                                 parsed.description());
+      warn("line " + std::to_string(line) + (file == path_ ? std::string() : " of " + file) + " is not well-formed XML (" +
+           parsed.description() + "): left out, as Irrlicht's own reader passes over it");
+      std::fill(text.begin() + ptrdiff_t(start), text.begin() + ptrdiff_t(end), ' ');
+    }
+  }
+
+  [[noreturn]] void fail(size_t line, const std::string& what) const {
+    throw std::runtime_error("cannot read model " + path_ + (line ? ":" + std::to_string(line) : std::string()) + ": " +
+                             what);
+  }
+  void warn(const std::string& what) { out_.warnings.push_back(path_ + ": " + what); }
+
+  /// `name` resolved beside `from` (a file), as written, else by a case-blind match of
+  /// each part of it (a scene written on Windows); empty when there is no such file.
+  static std::string beside(const std::string& from, std::string name) {
+    std::replace(name.begin(), name.end(), '\\', '/');
+    fs::path p = fs::path(name).is_absolute() ? fs::path(name) : fs::path(from).parent_path() / name;
+    std::error_code ec;
+    if (fs::is_regular_file(p, ec)) return p.string();
+    // "/../Obj/x.jpg": written as if from the root, meant from the file (Irrlicht's meshes).
+    if (p.is_absolute() && name.starts_with('/')) {
+      const std::string from_file = beside(from, name.substr(name.find_first_not_of('/') == std::string::npos ? name.size() : name.find_first_not_of('/')));
+      if (!from_file.empty()) return from_file;
+    }
+    fs::path at = p.root_path();
+    fs::path rel = p.relative_path();
+    if (at.empty()) at = ".";
+    for (const fs::path& part : rel) {
+      if (part == "." || part == "..") {
+        at /= part;
+        continue;
+      }
+      fs::path found;
+      if (fs::exists(at / part, ec)) {
+        found = at / part;
+      } else {
+        const std::string want = ascii_lower(part.string());
+        for (fs::directory_iterator it(at, ec), end; !ec && it != end; it.increment(ec))
+          if (ascii_lower(it->path().filename().string()) == want) {
+            found = it->path();
+            break;
+          }
+      }
+      if (found.empty()) return "";
+      at = found;
+    }
+    return fs::is_regular_file(at, ec) ? at.string() : "";
+  }
+
+  /// Named attributes of an <attributes> or <material> element: name → (element, value).
+  struct Attrs {
+    std::map<std::string, std::pair<std::string, std::string>, std::less<>> by_name;
+    std::optional<std::string> get(std::string_view name) const {
+      const auto it = by_name.find(name);
+      if (it == by_name.end()) return std::nullopt;
+      return it->second.second;
+    }
+    std::optional<double> real(std::string_view name) const {
+      const auto v = get(name);
+      return v ? number(*v) : std::nullopt;
+    }
+    /// Irrlicht's vector3d "x, y, z".
+    std::optional<Vec3> vec(std::string_view name) const {
+      const auto v = get(name);
+      if (!v) return std::nullopt;
+      double c[3];
+      std::string_view s = *v;
+      for (int k = 0; k < 3; ++k) {
+        const size_t comma = k < 2 ? s.find(',') : s.size();
+        if (comma == std::string_view::npos) return std::nullopt;
+        const auto x = number(s.substr(0, comma));
+        if (!x) return std::nullopt;
+        c[k] = *x;
+        s.remove_prefix(std::min(s.size(), comma + 1));
+      }
+      return Vec3{c[0], c[1], c[2]};
+    }
+  };
+  static Attrs attrs_of(pugi::xml_node e) {
+    Attrs a;
+    for (pugi::xml_node c : e.children())
+      if (c.type() == pugi::node_element && c.attribute("name"))
+        a.by_name[c.attribute("name").value()] = {c.name(), c.attribute("value").value()};
+    return a;
+  }
+
+  /// A material's colour: its first texture's mean, found beside `file`, else Diffuse.
+  IrrMaterial material_of(pugi::xml_node e, const std::string& file, const std::string& what) {
+    const Attrs a = attrs_of(e);
+    IrrMaterial m;
+    m.name = what;
+    if (const auto d = a.get("Diffuse"))
+      if (const auto c = hex_colour(*d)) m.colour = *c;
+    const std::string texture = a.get("Texture1").value_or("");
+    if (texture.empty()) return m;
+    const std::string at = beside(file, texture);
+    auto cached = textures_.find(at.empty() ? texture : at);
+    if (cached == textures_.end()) {
+      std::optional<std::array<double, 3>> colour;
+      if (at.empty()) {
+        warn("texture '" + texture + "' (" + what + ") is not beside " + file + ": its Diffuse colour stands");
+      } else if (const auto bytes = read_bytes(at)) {
+        try {
+          colour = mean_image_colour(*bytes, at);
+        } catch (const std::runtime_error& err) {
+          warn(std::string(err.what()) + ": its Diffuse colour stands");
+        }
+      }
+      cached = textures_.emplace(at.empty() ? texture : at, colour).first;
+    }
+    if (cached->second) m.colour = *cached->second;
+    return m;
+  }
+
+  static std::optional<std::string> read_bytes(const std::string& at) {
+    std::error_code ec;
+    const std::uintmax_t size = fs::file_size(at, ec);
+    if (ec || size > kMaxBytes) return std::nullopt;
+    std::ifstream in(at, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  }
+
+  /// An .irrmesh's <mesh>: its buffers' triangles (`text` is the file's, for lines).
+  IrrGeometry read_mesh(pugi::xml_node mesh, const std::string& file, const Lines& lines) {
+    IrrGeometry g;
+    g.materials_replaceable = true;
+    int buffer_number = 0;
+    for (pugi::xml_node buffer : mesh.children("buffer")) {
+      ++buffer_number;
+      const std::string which = "buffer " + std::to_string(buffer_number) + " of " + fs::path(file).filename().string();
+      const pugi::xml_node vertices = buffer.child("vertices"), indices = buffer.child("indices");
+      if (!vertices || !indices) {
+        warn(which + " (line " + std::to_string(lines.at(buffer.offset_debug())) + ") has no " + (vertices ? "<indices>" : "<vertices>") + ": left out");
+        continue;
+      }
+      const std::string type = vertices.attribute("type").value();
+      const size_t per = type == "standard" || type.empty() ? 9 : type == "2tcoords" ? 11 : type == "tangents" ? 15 : 0;
+      if (per == 0) {
+        warn(which + " has vertices of type '" + type + "', none of Irrlicht's (standard, 2tcoords, tangents): left out");
+        continue;
+      }
+      // Vertices: the position is the first three numbers of each record. (A word's line:
+      // that of the element's text, and the line ends before it there; pugixml's own copy
+      // of the text has one '\n' for each of the file's line ends.)
+      std::vector<std::string_view> words;
+      const std::string_view vtext = vertices.child_value();
+      const auto line_of = [&lines](pugi::xml_node element, std::string_view body, std::string_view word) {
+        return lines.at(element.first_child().offset_debug()) +
+               size_t(std::count(body.data(), word.data(), '\n'));
+      };
+      split(vtext, words);
+      const size_t declared = size_t(std::max(0LL, vertices.attribute("vertexCount").as_llong(0)));
+      const size_t count = words.size() / per;
+      if (count != declared)
+        warn(which + " holds " + std::to_string(count) + " whole vertices where it declares " + std::to_string(declared) +
+             " (line " + std::to_string(lines.at(vertices.offset_debug())) + "): those it holds are read");
+      const int base = int(g.vertices.size());
+      std::vector<char> usable(count, 1);
+      size_t unusable = 0, first_bad_line = 0;
+      for (size_t v = 0; v < count; ++v) {
+        const auto x = number(words[v * per]), y = number(words[v * per + 1]), z = number(words[v * per + 2]);
+        if (!x || !y || !z) {
+          usable[v] = 0;
+          if (unusable++ == 0) first_bad_line = line_of(vertices, vtext, words[v * per]);
+        }
+        g.vertices.push_back({x.value_or(0), y.value_or(0), z.value_or(0)});
+      }
+      // Triangles, three indices each.
+      const std::string_view itext = indices.child_value();
+      split(itext, words);
+      size_t dropped = 0, first_dropped_line = 0;
+      const int material = int(g.materials.size());
+      for (size_t t = 0; t + 3 <= words.size(); t += 3) {
+        std::array<int, 3> tri{};
+        bool ok = true;
+        for (int k = 0; k < 3 && ok; ++k) {
+          long long i = -1;
+          const std::string_view w = words[t + size_t(k)];
+          const auto [end, ec] = std::from_chars(w.data(), w.data() + w.size(), i);
+          ok = ec == std::errc() && end == w.data() + w.size() && i >= 0 && size_t(i) < count && usable[size_t(i)];
+          tri[size_t(k)] = base + int(ok ? i : 0);
+        }
+        if (!ok) {
+          if (dropped++ == 0) first_dropped_line = line_of(indices, itext, words[t]);
+          continue;
+        }
+        g.triangles.push_back(tri);
+        g.material_of.push_back(material);
+      }
+      if (words.size() % 3 != 0) warn(which + ": " + std::to_string(words.size() % 3) + " index(es) after its last whole triangle left out");
+      if (unusable > 0)
+        warn(which + ": " + std::to_string(unusable) + " vertex(es) whose position is not a number (the first on line " +
+             std::to_string(first_bad_line) + ") dropped, with their triangles");
+      if (dropped > 0)
+        warn(which + ": " + std::to_string(dropped) + " triangle(s) naming no usable vertex (the first on line " +
+             std::to_string(first_dropped_line) + ") dropped");
+      const pugi::xml_node m = buffer.child("material");
+      g.materials.push_back(m ? material_of(m, file, which) : IrrMaterial{which, {1, 1, 1}});
+    }
+    return g;
+  }
+
+  /// Whitespace-separated words of s (into `out`, which is cleared).
+  static void split(std::string_view s, std::vector<std::string_view>& out) {
+    out.clear();
+    size_t i = 0;
+    while (i < s.size()) {
+      while (i < s.size() && std::isspace(uint8_t(s[i]))) ++i;
+      const size_t start = i;
+      while (i < s.size() && !std::isspace(uint8_t(s[i]))) ++i;
+      if (i > start) out.push_back(s.substr(start, i - start));
+    }
+  }
+
+  /// Irrlicht's cube: `size` on a side, centred on its node; (b − a) × (c − a) outward.
+  static IrrGeometry cube(double size) {
+    IrrGeometry g;
+    g.materials_replaceable = true;
+    const double h = size / 2;
+    for (int c = 0; c < 8; ++c) g.vertices.push_back({c & 1 ? h : -h, c & 2 ? h : -h, c & 4 ? h : -h});
+    // Each face's corners counter-clockwise from outside, read right-handed: (b − a) × (c − a)
+    // points out, as Irrlicht's front faces have it.
+    const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto& f : faces) {
+      g.triangles.push_back({f[0], f[1], f[2]}), g.triangles.push_back({f[0], f[2], f[3]});
+      g.material_of.push_back(0), g.material_of.push_back(0);
+    }
+    g.materials.push_back({"cube", {1, 1, 1}});
+    return g;
+  }
+
+  /// Irrlicht's sphere: `radius`, `across` segments around and `down` from pole to pole.
+  static IrrGeometry sphere(double radius, int across, int down) {
+    IrrGeometry g;
+    g.materials_replaceable = true;
+    across = std::clamp(across, 3, 256), down = std::clamp(down, 2, 256);
+    const double pi = std::numbers::pi;
+    g.vertices.push_back({0, radius, 0});  // the top pole (y up)
+    for (int i = 1; i < down; ++i) {
+      const double a = pi * i / down;
+      for (int j = 0; j < across; ++j) {
+        const double b = 2 * pi * j / across;
+        g.vertices.push_back({radius * std::sin(a) * std::cos(b), radius * std::cos(a), radius * std::sin(a) * std::sin(b)});
+      }
+    }
+    const int bottom = int(g.vertices.size());
+    g.vertices.push_back({0, -radius, 0});
+    auto at = [&](int ring, int j) { return 1 + (ring - 1) * across + (j % across); };
+    // (b − a) × (c − a) outward, as in cube().
+    for (int j = 0; j < across; ++j) g.triangles.push_back({0, at(1, j + 1), at(1, j)});
+    for (int i = 1; i + 1 < down; ++i)
+      for (int j = 0; j < across; ++j) {
+        g.triangles.push_back({at(i, j), at(i, j + 1), at(i + 1, j + 1)});
+        g.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i + 1, j)});
+      }
+    for (int j = 0; j < across; ++j) g.triangles.push_back({bottom, at(down - 1, j), at(down - 1, j + 1)});
+    g.material_of.assign(g.triangles.size(), 0);
+    g.materials.push_back({"sphere", {1, 1, 1}});
+    return g;
+  }
+
+  /// The model a mesh node names, in Irrlicht's space; nullptr (said) when it cannot be read.
+  const IrrGeometry* model(const std::string& name, const std::string& node) {
+    const std::string at = beside(path_, name);
+    if (at.empty()) {
+      warn("node '" + node + "': its mesh '" + name + "' is not beside the scene: left out");
+      return nullptr;
+    }
+    const auto cached = models_.find(at);
+    if (cached != models_.end()) return cached->second ? &*cached->second : nullptr;
+    std::optional<IrrGeometry>& g = models_[at];
+    try {
+      const IrrlichtFile kind = irrlicht_file_kind(at);
+      if (kind == IrrlichtFile::Scene) {
+        warn("node '" + node + "': its mesh '" + name + "' is a scene, not a mesh: left out");
+      } else if (kind == IrrlichtFile::Mesh) {
+        std::string why;
+        std::optional<std::string> text = utf8_text(at, kMaxBytes, &why);
+        if (!text) throw std::runtime_error("cannot read model " + at + ": " + why);
+        pugi::xml_document doc;
+        parse(doc, *text, at);
+        g = read_mesh(doc.document_element(), at, Lines(*text));
+      } else {
+        // Through Assimp, y up as Irrlicht reads every model, then back into Irrlicht's
+        // space: Assimp's (a, b, c) is Avenues' (a, −c, b) = (p, q, r); Irrlicht's OBJ
+        // reader negates x, (−a, b, c) = (−p, r, −q); for the others Assimp's left-handed
+        // scene negates z, (a, b, −c) = (p, r, q).
+        ImportOptions o;
+        o.axes.up = 'y';
+        o.axes.metres_per_unit = 1;
+        const ImportedScene s = import_scene(at, o);
+        for (const std::string& w : s.warnings) warn(w);
+        const bool obj = lower_extension(at) == ".obj";
+        IrrGeometry m;
+        for (const ImportedMaterial& im : s.materials) m.materials.push_back({im.name, im.colour});
+        const int none = int(m.materials.size());
+        m.materials.push_back({"none", {1, 1, 1}});
+        for (const ImportedNode& n : s.nodes) {
+          const int base = int(m.vertices.size());
+          for (const Vec3& v : n.vertices) m.vertices.push_back(obj ? Vec3{-v.x, v.z, -v.y} : Vec3{v.x, v.z, v.y});
+          for (size_t t = 0; t < n.triangles.size(); ++t) {
+            // Mirrored into Irrlicht's space, turned over as its readers turn them.
+            m.triangles.push_back({base + n.triangles[t][0], base + n.triangles[t][2], base + n.triangles[t][1]});
+            const int mat = t < n.triangle_material.size() ? n.triangle_material[t] : -1;
+            m.material_of.push_back(mat >= 0 && mat < none ? mat : none);
+          }
+        }
+        g = std::move(m);
+      }
+    } catch (const std::runtime_error& e) {
+      warn("node '" + node + "': " + e.what() + ": left out");
+      g.reset();
+    }
+    return g ? &*g : nullptr;
+  }
+
+  void read_scene(pugi::xml_node root) {
+    struct Todo {
+      pugi::xml_node node;
+      Affine parent;
+      int parent_index;
+    };
+    std::vector<Todo> todo;
+    for (pugi::xml_node n : root.children("node")) todo.push_back({n, Affine{}, 0});
+    std::reverse(todo.begin(), todo.end());
+    std::map<std::string, int> left_out;  // type → nodes
+    int animators = 0;
+    while (!todo.empty()) {
+      const Todo t = todo.back();
+      todo.pop_back();
+      const std::string type = t.node.attribute("type").value();
+      const Attrs a = attrs_of(t.node.child("attributes"));
+      const std::string name = a.get("Name").value_or("") .empty() ? type : *a.get("Name");
+      const size_t line = lines_->at(t.node.offset_debug());
+      const std::string label = name + "' (" + type + ", line " + std::to_string(line);
+      if (a.get("Visible").value_or("true") == "false") {
+        warn("node '" + label + ") is hidden (Visible false): left out, with what it holds");
+        continue;
+      }
+      const Affine here = t.parent * Affine::placed(a.vec("Position").value_or(Vec3{0, 0, 0}),
+                                                    a.vec("Rotation").value_or(Vec3{0, 0, 0}),
+                                                    a.vec("Scale").value_or(Vec3{1, 1, 1}));
+      animators += int(std::distance(t.node.child("animators").children("attributes").begin(),
+                                     t.node.child("animators").children("attributes").end()));
+      std::optional<IrrGeometry> made;
+      const IrrGeometry* g = nullptr;
+      // The types by name in any case, as Assimp's reader takes them ("Mesh").
+      const std::string lower = ascii_lower(type);
+      if (lower == "mesh" || lower == "animatedmesh" || lower == "octtree") {
+        const std::string mesh = a.get("Mesh").value_or("");
+        if (mesh.empty()) warn("node '" + label + ") names no mesh: left out");
+        else g = model(mesh, name);
+      } else if (lower == "cube") {
+        g = &made.emplace(cube(a.real("Size").value_or(10)));
+      } else if (lower == "sphere") {
+        g = &made.emplace(sphere(a.real("Radius").value_or(5), int(a.real("PolyCountX").value_or(16)),
+                                 int(a.real("PolyCountY").value_or(16))));
+      } else if (lower != "empty" && lower != "dummytransformation") {
+        static const char* const kNotBuilding[] = {"light", "camera", "camerafps", "cameramaya", "skybox", "skydome", "billboard",
+                                                   "billboardtext", "particlesystem", "text", "terrain", "watersurface", "shadowvolume"};
+        const bool known = std::find(std::begin(kNotBuilding), std::end(kNotBuilding), lower) != std::end(kNotBuilding);
+        ++left_out[known ? type : "'" + type + "' (no type Irrlicht defines)"];
+      }
+      int index = t.parent_index;
+      if (g) {
+        std::vector<IrrMaterial> own;
+        int k = 0;
+        for (pugi::xml_node m : t.node.child("materials").children("attributes"))
+          own.push_back(material_of(m, path_, "material " + std::to_string(++k) + " of node '" + name + "'"));
+        index = add_node(name, t.parent_index, *g, here, own);
+      }
+      // Children, in the file's order.
+      const size_t mark = todo.size();
+      for (pugi::xml_node c : t.node.children("node")) todo.push_back({c, here, index});
+      std::reverse(todo.begin() + ptrdiff_t(mark), todo.end());
+    }
+    for (const auto& [type, n] : left_out)
+      warn(std::to_string(n) + " node(s) of type " + type + " left out: no surface of a building (their children are kept)");
+    if (animators > 0)
+      warn(std::to_string(animators) + " animator(s) not played: the scene is shown as placed");
+  }
+
+  /// Appends geometry g placed by `place` as a node of the scene; returns its index.
+  int add_node(const std::string& name, int parent, const IrrGeometry& g, const Affine& place,
+               const std::vector<IrrMaterial>& own) {
+    ImportedNode n;
+    n.name = name;
+    n.parent = parent;
+    n.vertices.reserve(g.vertices.size());
+    for (const Vec3& v : g.vertices) {
+      const Vec3 p = place.apply(v);
+      n.vertices.push_back({p.x * scale_, p.z * scale_, p.y * scale_});  // Irrlicht's (x, y, z) is Avenues' (x, z, y)
+    }
+    // Irrlicht's front faces have (b − a) × (c − a) towards the viewer in Irrlicht's
+    // coordinates; the mirror into Avenues' turns that normal inward, so each triangle's
+    // corners are reversed, unless the placement itself mirrors (a negative scale).
+    const double det = place.m[0][0] * (place.m[1][1] * place.m[2][2] - place.m[1][2] * place.m[2][1]) -
+                       place.m[0][1] * (place.m[1][0] * place.m[2][2] - place.m[1][2] * place.m[2][0]) +
+                       place.m[0][2] * (place.m[1][0] * place.m[2][1] - place.m[1][1] * place.m[2][0]);
+    n.triangles = g.triangles;
+    if (det >= 0)
+      for (auto& t : n.triangles) std::swap(t[1], t[2]);
+    const int first = int(out_.materials.size());
+    for (size_t m = 0; m < g.materials.size(); ++m) {
+      const IrrMaterial& im = g.materials_replaceable && m < own.size() ? own[m] : g.materials[m];
+      out_.materials.push_back({im.name, im.colour, true});
+    }
+    for (int m : g.material_of) n.triangle_material.push_back(first + m);
+    if (!g.materials.empty()) n.colour = out_.materials[size_t(first)].colour, n.coloured = true;
+    out_.nodes.push_back(std::move(n));
+    return int(out_.nodes.size()) - 1;
+  }
+
+  std::string path_;
+  ImportOptions options_;
+  std::string text_;
+  std::optional<Lines> lines_;  ///< text_'s
+  pugi::xml_document doc_;
+  ImportedScene out_;
+  double scale_ = 1;
+  std::map<std::string, std::optional<std::array<double, 3>>> textures_;
+  std::map<std::string, std::optional<IrrGeometry>> models_;
+};
+
+}  // namespace
+
+IrrlichtFile irrlicht_file_kind(const std::string& path) {
+  const std::optional<std::string> head = utf8_text(path, 8192);
+  if (!head) return IrrlichtFile::None;
+  const std::string_view root = root_name(*head);
+  if (root == "irr_scene") return IrrlichtFile::Scene;
+  if (root == "mesh" && (head->find("irrlicht") != std::string::npos || head->find("<buffer") != std::string::npos))
+    return IrrlichtFile::Mesh;
+  return IrrlichtFile::None;
+}
+
+ImportedScene read_irrlicht(const std::string& path, const ImportOptions& options) { return Reader(path, options).read(); }
+
+}  // namespace avenues
