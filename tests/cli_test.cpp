@@ -798,8 +798,8 @@ TEST_F(Cli, IfcModelIsABuildingAndBadUpOrUnitIsRefused) {
 }
 
 // An .xml file that is no Sweet Home home but a model in XML (COLLADA, XGL) opens as a
-// mesh scene; XML that nothing reads names its root element, and an Irrlicht mesh Assimp
-// takes but cannot read says so.
+// mesh scene; XML that nothing reads names its root element, and an Irrlicht mesh with no
+// triangle (Assimp's invalid/emptyIrrMesh.xml), taken by its content, says so.
 TEST_F(Cli, ModelsInXmlOpenAndOtherXmlNamesItsRoot) {
   const fs::path models = "/usr/share/assimp/models";
   if (!fs::exists(models / "Collada/AsXML.xml")) GTEST_SKIP() << "assimp-testmodels not installed (.ci/install-deps)";
@@ -815,6 +815,9 @@ TEST_F(Cli, ModelsInXmlOpenAndOtherXmlNamesItsRoot) {
   const Outcome irr = run({"cells", (models / "invalid/emptyIrrMesh.xml").string()});
   EXPECT_EQ(irr.status, 2);
   EXPECT_NE(irr.err.find("it is XML with no <home> element"), std::string::npos) << irr.err;
+  EXPECT_NE(irr.err.find("Avenues' Irrlicht mesh reader took it by its content but could not read it"), std::string::npos)
+      << irr.err;
+  EXPECT_NE(irr.err.find("it holds no triangle Avenues can draw"), std::string::npos) << irr.err;
 }
 
 // A 3D model saved as DXF (no wall layer, 3D faces) opens as a mesh scene, not as a

@@ -555,9 +555,10 @@ TEST(SoupBsp, NeedleMasksOfNearlyParallelPortalEdgesSeeNothing) {
 }
 
 /// Scenes of Assimp's test models, each read as its format's own tools read it (COLLADA,
-/// FBX, 3DS, glTF, Blender, DirectX, ASE): a house of walls and a foundation (regr01), a
-/// spider of thin legs, a rock, a textured room (test1.3ds), spheres, cubes that touch and
-/// a concave polygon. Each: cells valid, no face someone could see missing from the export
+/// FBX, 3DS, glTF, Blender, DirectX, ASE, Irrlicht's): a house of walls and a foundation
+/// (regr01), a spider of thin legs, a rock, a textured room (test1.3ds), spheres, cubes that
+/// touch, a concave polygon, a vaulted cellar, and the cellar with cubes and spheres placed
+/// by a scene's nodes. Each: cells valid, no face someone could see missing from the export
 /// (counted), and views from random cells agreeing with rays.
 TEST(SoupBsp, AssimpsTestModelsKeepTheirFacesAndAgreeWithRayCasting) {
   const std::filesystem::path models = "/usr/share/assimp/models";
@@ -566,7 +567,8 @@ TEST(SoupBsp, AssimpsTestModelsKeepTheirFacesAndAgreeWithRayCasting) {
   const char* const names[] = {"Collada/regr01.dae",       "FBX/spider.fbx",          "3DS/fels.3ds",
                                "3DS/test1.3ds",            "Collada/sphere.dae",      "ASE/ThreeCubesGreen.ASE",
                                "3DS/cubes_with_alpha.3DS", "Collada/ConcavePolygon.dae", "glTF2/BoxTextured-glTF/BoxTextured.gltf",
-                               "BLEND/box.blend",          "X/test.x",                "Collada/duck.dae"};
+                               "BLEND/box.blend",          "X/test.x",                "Collada/duck.dae",
+                               "IRRMesh/cellar.irrmesh",   "IRR/scenegraphAnim.irr"};
   unsigned seed = 2026;
   for (const char* name : names) {
     SCOPED_TRACE(name);
