@@ -25,6 +25,7 @@
 
 #include "core/file_name.h"
 #include "core/stage_timer.h"
+#include "core/text_encoding.h"
 #include "plans/image_colour.h"
 #include "plans/irrlicht_scene.h"
 #include "plans/obj_materials.h"
@@ -331,12 +332,27 @@ ImportedScene import_scene(const std::string& path, const ImportOptions& options
   const aiScene* scene = nullptr;
   constexpr unsigned kSteps = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType;
   std::string bytes;
+  // UTF-16 text (with its byte-order mark, as Windows tools save an AC3D or COLLADA file),
+  // which Assimp's text readers refuse: read as the UTF-8 it holds, from memory.
+  std::string_view contents = options.contents;
+  std::string utf8;
+  if (contents.empty()) {
+    std::ifstream in(path, std::ios::binary);
+    char mark[2] = {};
+    in.read(mark, 2);
+    if (in.gcount() == 2 && utf16_marked(std::string_view(mark, 2)) &&
+        std::filesystem::file_size(path, ec) < (std::uintmax_t(1) << 28)) {
+      in.seekg(0);
+      utf8 = utf8_of_text(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
+      contents = utf8;
+    }
+  }
   auto read = [&](unsigned steps) {
     try {
-      if (!options.contents.empty()) {  // Assimp tells the format by the hint: the extension without its dot
+      if (!contents.empty()) {  // Assimp tells the format by the hint: the extension without its dot
         std::string hint = lower_extension(path);
         if (!hint.empty()) hint.erase(0, 1);
-        return importer->ReadFileFromMemory(options.contents.data(), options.contents.size(), steps, hint.c_str());
+        return importer->ReadFileFromMemory(contents.data(), contents.size(), steps, hint.c_str());
       }
       if (!bytes.empty() || binary_gltf_by_content_only(path, &bytes))  // whole in one file: read from memory, told it is GLB
         return importer->ReadFileFromMemory(bytes.data(), bytes.size(), steps, "glb");

@@ -22,6 +22,7 @@
 
 #include "core/file_name.h"
 #include "core/srgb.h"
+#include "core/text_encoding.h"
 #include "plans/image_colour.h"
 
 namespace avenues {
@@ -32,23 +33,8 @@ namespace fs = std::filesystem;
 
 constexpr std::uintmax_t kMaxBytes = std::uintmax_t(1) << 28;
 
-/// Code point c appended to `out` as UTF-8.
-void append_utf8(std::string& out, uint32_t c) {
-  if (c < 0x80) {
-    out += char(c);
-  } else if (c < 0x800) {
-    out += char(0xC0 | (c >> 6)), out += char(0x80 | (c & 0x3F));
-  } else if (c < 0x10000) {
-    out += char(0xE0 | (c >> 12)), out += char(0x80 | ((c >> 6) & 0x3F)), out += char(0x80 | (c & 0x3F));
-  } else {
-    out += char(0xF0 | (c >> 18)), out += char(0x80 | ((c >> 12) & 0x3F)), out += char(0x80 | ((c >> 6) & 0x3F)),
-        out += char(0x80 | (c & 0x3F));
-  }
-}
-
-/// The file's bytes as UTF-8 text: UTF-16 (either byte order, told by its byte-order
-/// mark, as Irrlicht writes its XML) is converted, a UTF-8 byte-order mark dropped. A
-/// surrogate without its other half becomes U+FFFD. At most `limit` bytes are read.
+/// The file's bytes as UTF-8 text (core/text_encoding.h: Irrlicht writes UTF-16); at
+/// most `limit` bytes are read.
 std::optional<std::string> utf8_text(const std::string& path, std::uintmax_t limit, std::string* why = nullptr) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) {
@@ -68,28 +54,7 @@ std::optional<std::string> utf8_text(const std::string& path, std::uintmax_t lim
   std::string bytes(size_t(std::min(size, limit)), '\0');
   in.read(bytes.data(), std::streamsize(bytes.size()));
   bytes.resize(size_t(in.gcount()));
-  const auto b = [&bytes](size_t i) { return uint8_t(bytes[i]); };
-  if (bytes.size() >= 3 && b(0) == 0xEF && b(1) == 0xBB && b(2) == 0xBF) return bytes.substr(3);
-  if (bytes.size() < 2 || !((b(0) == 0xFF && b(1) == 0xFE) || (b(0) == 0xFE && b(1) == 0xFF))) return bytes;
-  const bool little = b(0) == 0xFF;
-  std::string out;
-  out.reserve(bytes.size() / 2);
-  for (size_t i = 2; i + 1 < bytes.size(); i += 2) {
-    uint32_t c = little ? b(i) | uint32_t(b(i + 1)) << 8 : uint32_t(b(i)) << 8 | b(i + 1);
-    if (c >= 0xD800 && c < 0xDC00 && i + 3 < bytes.size()) {
-      const uint32_t d = little ? b(i + 2) | uint32_t(b(i + 3)) << 8 : uint32_t(b(i + 2)) << 8 | b(i + 3);
-      if (d >= 0xDC00 && d < 0xE000) {
-        c = 0x10000 + ((c - 0xD800) << 10) + (d - 0xDC00);
-        i += 2;
-      } else {
-        c = 0xFFFD;
-      }
-    } else if (c >= 0xD800 && c < 0xE000) {
-      c = 0xFFFD;
-    }
-    append_utf8(out, c);
-  }
-  return out;
+  return utf8_of_text(bytes);
 }
 
 /// The name of the text's first element (after the declaration, comments and a DOCTYPE).

@@ -1,6 +1,7 @@
 // Avenues — reading meshes with OpenMesh (see mesh.h).
 #include "plans/mesh.h"
 #include "core/file_name.h"
+#include "core/text_encoding.h"
 #include "plans/assimp_reader.h"
 #include "plans/obj_materials.h"
 #include "plans/polygon_triangulation.h"
@@ -183,26 +184,20 @@ std::string said_dropped(const std::string& name, const std::vector<std::string>
 }
 
 /// An OBJ's text as bytes: UTF-16 (a byte-order mark, as some Windows tools write it) and a
-/// UTF-8 byte-order mark are read as the ASCII they hold; a NUL anywhere else is no OBJ.
+/// UTF-8 byte-order mark are read as the ASCII they hold (core/text_encoding.h); a NUL
+/// anywhere else is no OBJ.
 std::string obj_text(const std::string& bytes, const std::string& name) {
   auto bad = [&](const std::string& what) { throw std::runtime_error("cannot read mesh " + name + ": " + what); };
-  if (bytes.size() >= 2 && (bytes.compare(0, 2, "\xFF\xFE") == 0 || bytes.compare(0, 2, "\xFE\xFF") == 0)) {
-    const bool little = bytes[0] == '\xFF';
+  if (utf16_marked(bytes)) {
     if (bytes.size() % 2) bad("UTF-16 text of an odd number of bytes");
-    std::string ascii;
-    ascii.reserve(bytes.size() / 2);
-    for (size_t i = 2; i < bytes.size(); i += 2) {
-      const unsigned lo = static_cast<unsigned char>(bytes[i + (little ? 0 : 1)]);
-      const unsigned hi = static_cast<unsigned char>(bytes[i + (little ? 1 : 0)]);
-      const unsigned unit = hi << 8 | lo;
-      if (unit == 0 || unit > 0x7F)
-        bad("UTF-16 text with a character that is not ASCII at byte " + std::to_string(i) +
+    const std::string text = utf8_of_text(bytes);
+    for (size_t i = 0; i < text.size(); ++i)  // all ASCII before it: the character at byte 2 + 2i
+      if (text[i] == '\0' || uint8_t(text[i]) > 0x7F)
+        bad("UTF-16 text with a character that is not ASCII at byte " + std::to_string(2 + 2 * i) +
             " (OBJ's keywords and numbers are ASCII)");
-      ascii.push_back(char(unit));
-    }
-    return ascii;
+    return text;
   }
-  std::string text = bytes.compare(0, 3, "\xEF\xBB\xBF") == 0 ? bytes.substr(3) : bytes;
+  std::string text = utf8_of_text(bytes);
   if (text.find('\0') != std::string::npos) bad("an OBJ file holds no NUL bytes");
   return text;
 }

@@ -279,6 +279,23 @@ TEST(AssimpModels, ZippedAndGzippedModelsOpenByTheirExtension) {
   fs::remove_all(dir);
 }
 
+// Text saved as UTF-16 (with its byte-order mark, as Windows tools write it), which Assimp's
+// own readers refuse ("magic sequence not found", "malformed XML"), reads as the UTF-8 file
+// it is saved from: the same triangles, in the same places.
+TEST(AssimpModels, Utf16TextReadsAsItsUtf8Twin) {
+  if (!fs::exists(kModels / "AC/SphereWithLight_UTF16LE.ac")) GTEST_SKIP() << "assimp-testmodels not installed (.ci/install-deps)";
+  for (const auto& [utf16, twin] : {std::pair{"AC/SphereWithLight_UTF16LE.ac", "AC/SphereWithLight_UTF8BOM.ac"},
+                                    std::pair{"Collada/cube_UTF16LE.dae", "Collada/cube_UTF8BOM.dae"}}) {
+    SCOPED_TRACE(utf16);
+    const Mesh a = load_mesh((kModels / utf16).string()), b = load_mesh((kModels / twin).string());
+    ASSERT_EQ(a.triangles.size(), b.triangles.size());
+    EXPECT_GT(a.triangles.size(), 0u);
+    ASSERT_EQ(a.vertices.size(), b.vertices.size());
+    for (size_t v = 0; v < a.vertices.size(); ++v) EXPECT_EQ(length(a.vertices[v] - b.vertices[v]), 0) << v;
+    EXPECT_EQ(a.triangles, b.triangles);
+  }
+}
+
 // A model whose name says no format is told by its content, as Assimp's own tools tell it:
 // Assimp's "formatDetection" files (3DS's chunks, AC3D's and ASE's first keywords, a
 // DirectX "xof " header, HMP, LightWave's IFF, STL and OFF), a binary glTF and a 3MF
