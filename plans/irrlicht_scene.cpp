@@ -20,10 +20,12 @@
 #include <string_view>
 #include <vector>
 
+#include "core/affine.h"
 #include "core/file_name.h"
 #include "core/srgb.h"
 #include "core/text_encoding.h"
 #include "plans/image_colour.h"
+#include "plans/primitive_shapes.h"
 
 namespace avenues {
 
@@ -95,41 +97,14 @@ class Lines {
   std::vector<size_t> ends_;  ///< offsets of the '\n's
 };
 
-/// An affine map of Irrlicht's space: rows of a 3 × 4 matrix (linear part, then translation).
-struct Affine {
-  std::array<std::array<double, 4>, 3> m{{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}}};
-  Vec3 apply(Vec3 p) const {
-    return {m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3], m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
-            m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]};
-  }
-  Affine operator*(const Affine& o) const {
-    Affine r;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 4; ++j) {
-        double s = j == 3 ? m[i][3] : 0;
-        for (int k = 0; k < 3; ++k) s += m[i][k] * o.m[k][j];
-        r.m[i][j] = s;
-      }
-    return r;
-  }
-  /// Irrlicht's relative transformation: translate · rotate (degrees; the matrix
-  /// Rz·Ry·Rx, as matrix4::setRotationDegrees makes it) · scale.
-  static Affine placed(Vec3 t, Vec3 rotation_deg, Vec3 s) {
-    const double k = std::numbers::pi / 180;
-    const double cr = std::cos(rotation_deg.x * k), sr = std::sin(rotation_deg.x * k);
-    const double cp = std::cos(rotation_deg.y * k), sp = std::sin(rotation_deg.y * k);
-    const double cy = std::cos(rotation_deg.z * k), sy = std::sin(rotation_deg.z * k);
-    const double r[3][3] = {{cp * cy, sr * sp * cy - cr * sy, cr * sp * cy + sr * sy},
-                            {cp * sy, sr * sp * sy + cr * cy, cr * sp * sy - sr * cy},
-                            {-sp, sr * cp, cr * cp}};
-    Affine a;
-    const double scale[3] = {s.x, s.y, s.z};
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) a.m[i][j] = r[i][j] * scale[j];
-    a.m[0][3] = t.x, a.m[1][3] = t.y, a.m[2][3] = t.z;
-    return a;
-  }
-};
+/// Irrlicht's relative transformation of a node: translate · rotate (degrees; the matrix
+/// Rz·Ry·Rx, as matrix4::setRotationDegrees makes it) · scale.
+Affine3 placed(Vec3 t, Vec3 rotation_deg, Vec3 s) {
+  const double k = std::numbers::pi / 180;
+  return Affine3::translation(t) * Affine3::rotation({0, 0, 1}, rotation_deg.z * k) *
+         Affine3::rotation({0, 1, 0}, rotation_deg.y * k) * Affine3::rotation({1, 0, 0}, rotation_deg.x * k) *
+         Affine3::scaling(s);
+}
 
 /// A material as far as Avenues uses it.
 struct IrrMaterial {
@@ -193,7 +168,7 @@ class Reader {
     } else if (name == "mesh") {
       out_.format = "Irrlicht mesh (Avenues' reader)";
       IrrGeometry g = read_mesh(root, path_, *lines_);
-      add_node(fs::path(path_).stem().string(), 0, g, Affine{}, {});
+      add_node(fs::path(path_).stem().string(), 0, g, Affine3{}, {});
     } else {
       fail(lines_->at(root ? root.offset_debug() : 0),
            "not an Irrlicht scene or mesh: the root element is <" + name + ">, not <irr_scene> or <mesh>");
@@ -446,48 +421,21 @@ class Reader {
     }
   }
 
-  /// Irrlicht's cube: `size` on a side, centred on its node; (b − a) × (c − a) outward.
+  /// Irrlicht's cube, `size` on a side, and sphere (`across` segments around, `down` from
+  /// pole to pole), centred on their node (plans/primitive_shapes.h: outward, as Irrlicht's
+  /// front faces are).
   static IrrGeometry cube(double size) {
     IrrGeometry g;
     g.materials_replaceable = true;
-    const double h = size / 2;
-    for (int c = 0; c < 8; ++c) g.vertices.push_back({c & 1 ? h : -h, c & 2 ? h : -h, c & 4 ? h : -h});
-    // Each face's corners counter-clockwise from outside, read right-handed: (b − a) × (c − a)
-    // points out, as Irrlicht's front faces have it.
-    const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-    for (const auto& f : faces) {
-      g.triangles.push_back({f[0], f[1], f[2]}), g.triangles.push_back({f[0], f[2], f[3]});
-      g.material_of.push_back(0), g.material_of.push_back(0);
-    }
+    box_shape({size, size, size}, {g.vertices, g.triangles});
+    g.material_of.assign(g.triangles.size(), 0);
     g.materials.push_back({"cube", {1, 1, 1}});
     return g;
   }
-
-  /// Irrlicht's sphere: `radius`, `across` segments around and `down` from pole to pole.
   static IrrGeometry sphere(double radius, int across, int down) {
     IrrGeometry g;
     g.materials_replaceable = true;
-    across = std::clamp(across, 3, 256), down = std::clamp(down, 2, 256);
-    const double pi = std::numbers::pi;
-    g.vertices.push_back({0, radius, 0});  // the top pole (y up)
-    for (int i = 1; i < down; ++i) {
-      const double a = pi * i / down;
-      for (int j = 0; j < across; ++j) {
-        const double b = 2 * pi * j / across;
-        g.vertices.push_back({radius * std::sin(a) * std::cos(b), radius * std::cos(a), radius * std::sin(a) * std::sin(b)});
-      }
-    }
-    const int bottom = int(g.vertices.size());
-    g.vertices.push_back({0, -radius, 0});
-    auto at = [&](int ring, int j) { return 1 + (ring - 1) * across + (j % across); };
-    // (b − a) × (c − a) outward, as in cube().
-    for (int j = 0; j < across; ++j) g.triangles.push_back({0, at(1, j + 1), at(1, j)});
-    for (int i = 1; i + 1 < down; ++i)
-      for (int j = 0; j < across; ++j) {
-        g.triangles.push_back({at(i, j), at(i, j + 1), at(i + 1, j + 1)});
-        g.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i + 1, j)});
-      }
-    for (int j = 0; j < across; ++j) g.triangles.push_back({bottom, at(down - 1, j), at(down - 1, j + 1)});
+    sphere_shape(radius, across, down, {g.vertices, g.triangles});
     g.material_of.assign(g.triangles.size(), 0);
     g.materials.push_back({"sphere", {1, 1, 1}});
     return g;
@@ -551,11 +499,11 @@ class Reader {
   void read_scene(pugi::xml_node root) {
     struct Todo {
       pugi::xml_node node;
-      Affine parent;
+      Affine3 parent;
       int parent_index;
     };
     std::vector<Todo> todo;
-    for (pugi::xml_node n : root.children("node")) todo.push_back({n, Affine{}, 0});
+    for (pugi::xml_node n : root.children("node")) todo.push_back({n, Affine3{}, 0});
     std::reverse(todo.begin(), todo.end());
     std::map<std::string, int> left_out;  // type → nodes
     int animators = 0;
@@ -571,7 +519,7 @@ class Reader {
         warn("node '" + label + ") is hidden (Visible false): left out, with what it holds");
         continue;
       }
-      const Affine here = t.parent * Affine::placed(a.vec("Position").value_or(Vec3{0, 0, 0}),
+      const Affine3 here = t.parent * placed(a.vec("Position").value_or(Vec3{0, 0, 0}),
                                                     a.vec("Rotation").value_or(Vec3{0, 0, 0}),
                                                     a.vec("Scale").value_or(Vec3{1, 1, 1}));
       animators += int(std::distance(t.node.child("animators").children("attributes").begin(),
@@ -615,7 +563,7 @@ class Reader {
   }
 
   /// Appends geometry g placed by `place` as a node of the scene; returns its index.
-  int add_node(const std::string& name, int parent, const IrrGeometry& g, const Affine& place,
+  int add_node(const std::string& name, int parent, const IrrGeometry& g, const Affine3& place,
                const std::vector<IrrMaterial>& own) {
     ImportedNode n;
     n.name = name;
@@ -628,11 +576,8 @@ class Reader {
     // Irrlicht's front faces have (b − a) × (c − a) towards the viewer in Irrlicht's
     // coordinates; the mirror into Avenues' turns that normal inward, so each triangle's
     // corners are reversed, unless the placement itself mirrors (a negative scale).
-    const double det = place.m[0][0] * (place.m[1][1] * place.m[2][2] - place.m[1][2] * place.m[2][1]) -
-                       place.m[0][1] * (place.m[1][0] * place.m[2][2] - place.m[1][2] * place.m[2][0]) +
-                       place.m[0][2] * (place.m[1][0] * place.m[2][1] - place.m[1][1] * place.m[2][0]);
     n.triangles = g.triangles;
-    if (det >= 0)
+    if (place.det() >= 0)
       for (auto& t : n.triangles) std::swap(t[1], t[2]);
     const int first = int(out_.materials.size());
     for (size_t m = 0; m < g.materials.size(); ++m) {
