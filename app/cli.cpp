@@ -54,11 +54,11 @@ void add_import_options(CLI::App* app, ImportOptions& o, bool with_scale = true)
       ->type_name("walls=NAME,...;doors=...;windows=...");
   // One --unit for every file that does not say its unit: a DXF drawing (overriding its
   // $INSUNITS) and a mesh scene in a format without one (OBJ, PLY, STL, OFF).
-  app->add_option("--unit", o.unit, "the file's length unit where it does not say: DXF (overrides $INSUNITS), OBJ, PLY, STL, OFF, Irrlicht's .irr and .irrmesh")
+  app->add_option("--unit", o.unit, "the file's length unit where it does not say: DXF (overrides $INSUNITS), OBJ, PLY, STL, OFF, Irrlicht's .irr and .irrmesh, VRML97")
       ->check(CLI::IsMember({"m", "cm", "mm", "in", "ft"}));
   // How a mesh scene in a format that declares no axes (OBJ, PLY, STL, OFF) becomes z-up
   // metres; formats that declare theirs (glTF, COLLADA, FBX, 3DS, IFC) are read as they say.
-  app->add_option("--up", o.up, "mesh scenes: the file's up axis where its format has none (OBJ, PLY, STL, OFF)")
+  app->add_option("--up", o.up, "mesh scenes: the file's up axis where its format has none (OBJ, PLY, STL, OFF), or against VRML's y for a world that does not keep to it")
       ->check(CLI::IsMember({"x", "y", "z"}));
   app->add_option("--storey-height", o.storey_height, "[m] 2D drawings: floor to ceiling")
       ->check(CLI::PositiveNumber)->capture_default_str();

@@ -28,6 +28,7 @@
 #include "core/text_encoding.h"
 #include "plans/image_colour.h"
 #include "plans/irrlicht_scene.h"
+#include "plans/vrml_scene.h"
 #include "plans/obj_materials.h"
 
 namespace avenues {
@@ -295,6 +296,7 @@ std::string assimp_importer_by_content(const std::string& path) {
     case IrrlichtFile::Mesh: return "Irrlicht mesh";
     case IrrlichtFile::None: break;
   }
+  if (is_vrml(path)) return "VRML97";
   const Assimp::Importer importer;
   for (size_t i = 0; i < importer.GetImporterCount(); ++i) {
     const Assimp::BaseImporter* reader = importer.GetImporter(i);
@@ -313,8 +315,10 @@ std::string assimp_importer_by_content(const std::string& path) {
 ImportedScene import_scene(const std::string& path, const ImportOptions& options) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw std::runtime_error("cannot read model " + path + ": no such file");
-  // Irrlicht's XML, which Debian's Assimp refuses: read by Avenues (irrlicht_scene.h).
+  // Irrlicht's XML, which Debian's Assimp refuses, and VRML97, which it does not read: read
+  // by Avenues (irrlicht_scene.h, vrml_scene.h).
   if (options.contents.empty() && irrlicht_file_kind(path) != IrrlichtFile::None) return read_irrlicht(path, options);
+  if (options.contents.empty() && is_vrml(path)) return read_vrml(path, options);
   // A second importer, made only to read a file again (below): Assimp's readers keep state
   // from one read to the next (its OpenGEX reader crashes reading a file twice).
   std::optional<Assimp::Importer> importers[2];
