@@ -1,0 +1,216 @@
+// Avenues — VRML97 worlds (plans/vrml_scene.h), which Debian's Assimp does not read: every
+// face where the file puts it, right side out, in its colours; nodes it does not draw passed
+// over; broken files refused naming the line.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cells/build_cells.h"
+#include "cells/mesh_scene.h"
+#include "plans/assimp_reader.h"
+#include "plans/mesh.h"
+#include "plans/vrml_scene.h"
+#include "tests/avenues_run.h"
+#include "tests/soup_checks.h"
+#include "tests/test_files.h"
+
+namespace fs = std::filesystem;
+using namespace avenues;
+using avenues::testing::expect_soup_views_agree_with_rays;
+using avenues::testing::slurp;
+using avenues::testing::visible_triangles_missing_from_export;
+
+namespace {
+
+const fs::path kModels = "/usr/share/assimp/models";
+const fs::path kRoom = fs::path(AVENUES_SOURCE_DIR) / "tests" / "fuzz" / "corpus" / "vrml" / "room.wrl";
+
+Box3 bounds(const std::vector<Vec3>& vs) {
+  Box3 b;
+  for (Vec3 v : vs) b.add(v);
+  return b;
+}
+
+Vec3 middle(const Box3& b) { return 0.5 * (b.lo + b.hi); }
+
+double area(const ImportedNode& n) {
+  double a = 0;
+  for (const auto& t : n.triangles)
+    a += length(cross(n.vertices[size_t(t[1])] - n.vertices[size_t(t[0])], n.vertices[size_t(t[2])] - n.vertices[size_t(t[0])])) / 2;
+  return a;
+}
+
+/// Whether every triangle of n faces away from `inside`.
+bool outward(const ImportedNode& n, Vec3 inside) {
+  for (const auto& t : n.triangles) {
+    const Vec3 a = n.vertices[size_t(t[0])], b = n.vertices[size_t(t[1])], c = n.vertices[size_t(t[2])];
+    if (dot(cross(b - a, c - a), (1.0 / 3) * (a + b + c) - inside) <= 0) return false;
+  }
+  return true;
+}
+
+std::vector<const ImportedNode*> nodes_of(const ImportedScene& s, const std::string& geometry) {
+  std::vector<const ImportedNode*> out;
+  for (const ImportedNode& n : s.nodes)
+    if (n.name.rfind(geometry + " (", 0) == 0) out.push_back(&n);
+  return out;
+}
+
+bool said(const std::vector<std::string>& warnings, const std::string& what) {
+  return std::any_of(warnings.begin(), warnings.end(), [&](const std::string& w) { return w.find(what) != std::string::npos; });
+}
+
+class Vrml : public avenues::testing::AvenuesRun {};
+
+}  // namespace
+
+// The corpus' room, as CAD tools export one: its walls (one of them a U round a door, not
+// convex), a table turned on its Transform with a ball above it, a cylinder, a cone and a
+// ground grid; a viewpoint, a light in a PROTO, a sensor and a ROUTE passed over.
+TEST(VrmlWorld, ARoomStandsWhereItsTransformsPutItInItsColours) {
+  EXPECT_TRUE(is_vrml(kRoom.string()));
+  EXPECT_FALSE(is_vrml((fs::path(AVENUES_SOURCE_DIR) / "plans" / "jones-house.toml").string()));
+  EXPECT_EQ(assimp_importer_by_content(kRoom.string()), "VRML97");
+  const ImportedScene s = import_scene(kRoom.string());
+  EXPECT_EQ(s.format, "VRML97 (Avenues' reader)");
+  // The walls: VRML's (x, y, z) is Avenues' (x, −z, y): 4 m along x, 3 m along −y, 2.5 m up.
+  const auto walls = nodes_of(s, "IndexedFaceSet");
+  ASSERT_EQ(walls.size(), 1u);
+  const Box3 w = bounds(walls[0]->vertices);
+  EXPECT_EQ(w.lo.x, 0);
+  EXPECT_EQ(w.hi.x, 4);
+  EXPECT_EQ(w.lo.y, -3);
+  EXPECT_EQ(w.hi.y, 0);
+  EXPECT_EQ(w.lo.z, 0);
+  EXPECT_EQ(w.hi.z, 2.5);
+  // Floor 12 m², walls 10 + 7.5 + 7.5 m², the wall with the door 10 − 2.1 m²: the door's
+  // notch is left open by the triangulation, not covered by a fan.
+  EXPECT_NEAR(area(*walls[0]), 12 + 10 + 7.5 + 7.5 + 7.9, 1e-9);
+  const std::array<double, 3> plaster{0.9, 0.88, 0.8};
+  EXPECT_EQ(s.materials[size_t(walls[0]->triangle_material[0])].colour, plaster);
+  // The table, a box of 1.2 × 0.75 × 0.8 turned 0.5 rad about y, centred over (2, −1.5)
+  // with its top at 0.75 m; in the walls' material (USE); outward.
+  const auto boxes = nodes_of(s, "Box");
+  ASSERT_EQ(boxes.size(), 1u);
+  const Box3 table = bounds(boxes[0]->vertices);
+  EXPECT_NEAR(middle(table).x, 2, 1e-12);
+  EXPECT_NEAR(middle(table).y, -1.5, 1e-12);
+  EXPECT_NEAR(table.lo.z, 0, 1e-12);
+  EXPECT_NEAR(table.hi.z, 0.75, 1e-12);
+  EXPECT_GT(table.hi.x - table.lo.x, 1.2);  // turned: wider along x than its own width
+  EXPECT_TRUE(outward(*boxes[0], middle(table)));
+  EXPECT_EQ(s.materials[size_t(boxes[0]->triangle_material[0])].colour, plaster);
+  // The ball 0.5 m above the table's middle, radius 0.1, in no material (uncoloured).
+  const auto balls = nodes_of(s, "Sphere");
+  ASSERT_EQ(balls.size(), 1u);
+  const Box3 ball = bounds(balls[0]->vertices);
+  EXPECT_NEAR(middle(ball).x, 2, 1e-12);
+  EXPECT_NEAR(middle(ball).y, -1.5, 1e-12);
+  EXPECT_NEAR(middle(ball).z, 0.875, 1e-12);
+  EXPECT_NEAR(ball.hi.z - ball.lo.z, 0.2, 1e-12);
+  EXPECT_TRUE(outward(*balls[0], middle(ball)));
+  EXPECT_FALSE(balls[0]->coloured);
+  // The cylinder and the cone about VRML's y, Avenues' z, through the origin; outward.
+  for (const char* round : {"Cylinder", "Cone"}) {
+    const auto r = nodes_of(s, round);
+    ASSERT_EQ(r.size(), 1u) << round;
+    const Box3 b = bounds(r[0]->vertices);
+    EXPECT_NEAR(b.hi.z, -b.lo.z, 1e-12) << round;
+    EXPECT_NEAR(b.hi.z - b.lo.z, std::string(round) == "Cone" ? 0.3 : 1.2, 1e-12) << round;
+    // (The cone's apex triangles have no area there; the rest point out.)
+    ImportedNode with_area = *r[0];
+    std::erase_if(with_area.triangles, [&](const auto& t) {
+      return length(cross(with_area.vertices[size_t(t[1])] - with_area.vertices[size_t(t[0])],
+                          with_area.vertices[size_t(t[2])] - with_area.vertices[size_t(t[0])])) < 1e-12;
+    });
+    EXPECT_TRUE(outward(with_area, {0, 0, 0})) << round;
+  }
+  // The ground: 3 × 2 heights 2 m and 3 m apart, facing up.
+  const auto grid = nodes_of(s, "ElevationGrid");
+  ASSERT_EQ(grid.size(), 1u);
+  EXPECT_EQ(grid[0]->triangles.size(), 4u);
+  for (const auto& t : grid[0]->triangles)
+    EXPECT_GT(cross(grid[0]->vertices[size_t(t[1])] - grid[0]->vertices[size_t(t[0])],
+                    grid[0]->vertices[size_t(t[2])] - grid[0]->vertices[size_t(t[0])]).z, 0);
+  const Box3 ground = bounds(grid[0]->vertices);
+  EXPECT_EQ(ground.hi.x, 4);
+  EXPECT_EQ(ground.lo.y, -3);
+  EXPECT_NEAR(ground.hi.z, 0.1, 1e-12);
+  EXPECT_TRUE(said(s.warnings, "1 instance(s) of PROTO Lamp (PROTOs are not expanded) left out")) << s.warnings.size();
+  // --unit and --up: millimetres make it a thousandth; z up leaves its axes as written.
+  ImportOptions o;
+  o.axes.metres_per_unit = 0.001;
+  o.axes.up = 'z';
+  const Box3 small = bounds(nodes_of(read_vrml(kRoom.string(), o), "IndexedFaceSet")[0]->vertices);
+  EXPECT_NEAR(small.hi.y, 0.0025, 1e-15);
+  EXPECT_NEAR(small.hi.z, 0.003, 1e-15);
+  // As one mesh, in cells: sound, every face someone could see kept, views agreeing with
+  // rays, and an eye in the room in free space.
+  const std::vector<Mesh> meshes{load_mesh(kRoom.string())};
+  const CellComplex c = build_mesh_scene(meshes);
+  ASSERT_EQ(cells_are_valid(c), "");
+  EXPECT_EQ(visible_triangles_missing_from_export(c, meshes), 0);
+  expect_soup_views_agree_with_rays(c, 8, 2026, 96, 64, 8);
+  EXPECT_EQ(c.locate({1, -1, 1.6}).what, Location::What::Cell);
+}
+
+// Gzipped (.wrz), inlined worlds placed by the Transform round the Inline, and an Inline
+// that names the world holding it, said and left out.
+TEST_F(Vrml, GzippedAndInlinedWorldsAreRead) {
+  const std::string room = write("room.wrl", slurp(kRoom));
+  ASSERT_EQ(run_argv({"gzip", "-k", "-n", room}).status, 0);
+  fs::rename(path("room.wrl.gz"), path("room.wrz"));
+  EXPECT_TRUE(is_vrml(path("room.wrz").string()));
+  const ImportedScene plain = read_vrml(room), gz = read_vrml(path("room.wrz").string());
+  ASSERT_EQ(plain.nodes.size(), gz.nodes.size());
+  for (size_t k = 0; k < plain.nodes.size(); ++k) EXPECT_EQ(plain.nodes[k].vertices, gz.nodes[k].vertices) << k;
+  write("shed/shed.wrl", "#VRML V2.0 utf8\nShape { geometry Box { size 2 2 2 } }\nInline { url \"../site.wrl\" }\n");
+  const std::string site =
+      write("site.wrl", "#VRML V2.0 utf8\nTransform { translation 10 0 0 children [ Inline { url [ \"http://x/y.wrl\" \"shed/shed.wrl\" ] } ] }\n");
+  const ImportedScene s = read_vrml(site);
+  const auto boxes = nodes_of(s, "Box");
+  ASSERT_EQ(boxes.size(), 1u);
+  const Box3 b = bounds(boxes[0]->vertices);
+  EXPECT_EQ(b.lo.x, 9);
+  EXPECT_EQ(b.hi.x, 11);
+  EXPECT_TRUE(said(s.warnings, "Inline '../site.wrl' (line 3) names a world that holds it: left out"));
+}
+
+// What is not VRML97 and what is broken is refused naming the file and line.
+TEST_F(Vrml, BrokenWorldsAreRefusedNamingTheLine) {
+  auto refused = [&](const std::string& name, const std::string& text, const std::string& what) {
+    const std::string p = write(name, text);
+    try {
+      (void)read_vrml(p);
+      ADD_FAILURE() << name << " was read";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(p + what), std::string::npos) << e.what();
+    }
+  };
+  refused("old.wrl", "#VRML V1.0 ascii\nSeparator { Cube { } }\n", ":1: VRML 1.0 is not read");
+  refused("open.wrl", "#VRML V2.0 utf8\n\nShape {\n  geometry Box { size 1 1 1 }\n", ":3: node Shape begun here is never closed");
+  refused("use.wrl", "#VRML V2.0 utf8\nShape { appearance USE Paint geometry Box { } }\n", ":2: USE Paint: no node before it is DEF Paint");
+  refused("number.wrl", "#VRML V2.0 utf8\nShape { geometry Box { size 1 1.5e 1 } }\n", ":2: '1.5e 1 } }");
+  refused("empty.wrl", "#VRML V2.0 utf8\nViewpoint { position 0 1.6 5 }\n", ": it draws no triangle Avenues can use");
+  std::string deep = "#VRML V2.0 utf8\n";
+  for (int k = 0; k < 1100; ++k) deep += "Group { children [\n";
+  refused("deep.wrl", deep, ":1003: nodes nested more than 1000 deep");
+}
+
+// The command line: a world opens and is walked into; a broken one exits 2 naming its line.
+TEST_F(Vrml, TheCommandLineOpensAWorldAndRefusesABrokenOne) {
+  const avenues::testing::Outcome r =
+      run({"view", kRoom.string(), "--eye=1,-1,1.6", "--look=3,-2,1.2", "--size", "320x180", "-o", "room.png"});
+  ASSERT_EQ(r.status, 0) << r.output();
+  EXPECT_TRUE(fs::exists(path("room.png")));
+  write("noext", slurp(kRoom));  // told by its first line
+  EXPECT_EQ(run({"cells", "noext"}).status, 0);
+  write("broken.wrl", "#VRML V2.0 utf8\nShape { geometry IndexedFaceSet { coord Coordinate { point [ 0 0 0 ] }\n");
+  const avenues::testing::Outcome bad = run({"view", "broken.wrl", "-o", "broken.png"});
+  EXPECT_EQ(bad.status, 2) << bad.output();
+  EXPECT_NE(bad.err.find("broken.wrl:2: node IndexedFaceSet begun here is never closed"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(path("broken.png")));
+}
