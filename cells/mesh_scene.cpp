@@ -894,6 +894,17 @@ void add_real_lines(CellComplex& c, const std::vector<RealLine>& lines) {
 
 namespace {
 
+/// The scene's box grown to hold the eye of the first view the files keep
+/// (Mesh::viewpoint), so that the far box holds it too (view_of_files).
+void include_views_of_files(Box3& box, const std::vector<Mesh>& meshes) {
+  for (const Mesh& m : meshes)
+    if (m.viewpoint) {
+      if (std::isfinite(m.viewpoint->eye.x) && std::isfinite(m.viewpoint->eye.y) && std::isfinite(m.viewpoint->eye.z))
+        box.add(m.viewpoint->eye);
+      return;
+    }
+}
+
 /// The far box around `box` (the scene's contents) with margin m, and a first view from a
 /// corner of the margin (free, whatever the scene is), looking at the middle of the
 /// scene, wide enough to take in the sphere around it.
@@ -952,6 +963,17 @@ void view_inside_largest_region(CellComplex& out, const Box3& scene, const std::
   out.view = Viewpoint{eye, look, 70};
 }
 
+/// The first view the files keep (Mesh::viewpoint: a VRML Viewpoint, an Irrlicht camera),
+/// where its eye stands in free space: what the file's own viewer starts from.
+void view_of_files(CellComplex& out, const std::vector<Mesh>& meshes) {
+  for (const Mesh& m : meshes) {
+    if (!m.viewpoint) continue;
+    const Viewpoint& v = *m.viewpoint;
+    if (length(v.look - v.eye) > 0 && out.locate(v.eye).what == Location::What::Cell) out.view = v;
+    return;
+  }
+}
+
 /// The meshes with only the triangles `keep` says (numbered through all meshes in order).
 std::vector<Mesh> meshes_keeping(const std::vector<Mesh>& meshes, const std::vector<bool>& keep) {
   std::vector<Mesh> out;
@@ -996,6 +1018,7 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     }
   }
   if (!(box.lo.x <= box.hi.x)) throw std::invalid_argument("mesh scene: no triangles and nothing to include");
+  include_views_of_files(box, meshes);
   frame_scene(out, box, params.margin);
   const Vec3 extent = box.hi - box.lo;
   const double least_area = std::min(params.structural_area_cap,
@@ -1067,6 +1090,7 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
   }
   out.index();  // before the lines: add_real_lines takes its candidate cells from it
   view_inside_largest_region(out, box, what_cuts());
+  view_of_files(out, meshes);
   if (!detail.empty()) {
     ScopedStageTimer t(out.timings, "detail");
     const std::string source = meshes.size() == 1 && !meshes[0].path.empty() ? meshes[0].path : "the meshes";
@@ -1127,6 +1151,7 @@ CellComplex build_mesh_scene(const std::vector<Mesh>& meshes, const MeshScenePar
   for (const Solid& s : solids)
     for (Vec3 p : s.v) box.add(p);
   if (!(box.lo.x <= box.hi.x)) throw std::invalid_argument("mesh scene: no solids and nothing to include");
+  include_views_of_files(box, meshes);
   frame_scene(out, box, params.margin);
   {
     ScopedStageTimer t(out.timings, "free");
@@ -1174,6 +1199,7 @@ CellComplex build_mesh_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     }
     add_real_lines(out, lines);
   }
+  view_of_files(out, meshes);
   check_complex(out, "a mesh scene");
   return out;
 }

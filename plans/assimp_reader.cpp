@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <string_view>
@@ -455,6 +456,20 @@ ImportedScene import_scene(const std::string& path, const ImportOptions& options
   }
   if (dropped > 0)
     out.warnings.push_back(std::to_string(dropped) + " triangles dropped: they name missing or non-finite vertices");
+  // The file's first camera (glTF, COLLADA, FBX and 3DS keep them), placed by its node:
+  // where the file's own viewer starts. Assimp gives half its horizontal angle.
+  if (scene->mNumCameras > 0 && scene->mCameras && scene->mCameras[0] && scene->mRootNode) {
+    const aiCamera& cam = *scene->mCameras[0];
+    if (const aiNode* node = scene->mRootNode->FindNode(cam.mName)) {
+      aiMatrix4x4 world;
+      for (int up = 0; node && up < 256; node = node->mParent, ++up) world = node->mTransformation * world;
+      const Vec3 eye = axes.metres_per_unit * z_up(world * cam.mPosition, axes.up, axes.up_negative);
+      const Vec3 look = axes.metres_per_unit * z_up(world * (cam.mPosition + cam.mLookAt), axes.up, axes.up_negative);
+      const double fov = 2 * double(cam.mHorizontalFOV) * 180 / std::numbers::pi;
+      if (std::isfinite(eye.x + eye.y + eye.z + look.x + look.y + look.z) && length(look - eye) > 0 && std::isfinite(fov))
+        out.viewpoint = Viewpoint{eye, look, std::clamp(fov, 40.0, 120.0)};
+    }
+  }
   return out;
 }
 
@@ -476,6 +491,7 @@ Mesh mesh_of_scene(const ImportedScene& scene) {
   }
   if (polygons.empty()) throw std::runtime_error("mesh " + scene.path + " has no faces (no triangles in any node: it holds no surfaces)");
   Mesh mesh = mesh_of_polygons(scene.path, std::move(vertices), std::move(polygons));
+  mesh.viewpoint = scene.viewpoint;
   if (coloured) {
     for (const ImportedMaterial& im : scene.materials) {
       Material m;

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -47,6 +48,9 @@ struct ImportedScene {
   std::vector<ImportedNode> nodes;    ///< parents before their children; nodes[0] is the root
   std::vector<ImportedMaterial> materials;  ///< Assimp's, in its order
   double import_seconds = 0;          ///< [s] Assimp's own ReadFile (with post-processing)
+  /// The file's own first view, where its format keeps one and its reader takes it (a VRML
+  /// Viewpoint, an Irrlicht camera), in Avenues' space; Mesh::viewpoint.
+  std::optional<Viewpoint> viewpoint;
   std::vector<std::string> warnings;  ///< what was ignored (an option the file overrides, ...)
 };
 

@@ -537,8 +537,18 @@ class Reader {
       } else if (lower == "sphere") {
         g = &made.emplace(sphere(a.real("Radius").value_or(5), int(a.real("PolyCountX").value_or(16)),
                                  int(a.real("PolyCountY").value_or(16))));
+      } else if (lower == "camera" || lower == "camerafps" || lower == "cameramaya") {
+        // The first camera: where the scene's viewer starts, looking at its Target (in the
+        // scene's space), Fovy the height of a 16:9 picture's angle.
+        const auto target = a.vec("Target");
+        if (!out_.viewpoint && target) {
+          const auto ours = [this](Vec3 p) { return Vec3{p.x * scale_, p.z * scale_, p.y * scale_}; };
+          const double fovy = std::clamp(a.real("Fovy").value_or(std::numbers::pi / 2.5), 0.01, 3.0);
+          out_.viewpoint = Viewpoint{ours(here.apply({0, 0, 0})), ours(*target),
+                                     std::clamp(2 * std::atan(std::tan(fovy / 2) * 16 / 9) * 180 / std::numbers::pi, 40.0, 120.0)};
+        }
       } else if (lower != "empty" && lower != "dummytransformation") {
-        static const char* const kNotBuilding[] = {"light", "camera", "camerafps", "cameramaya", "skybox", "skydome", "billboard",
+        static const char* const kNotBuilding[] = {"light", "skybox", "skydome", "billboard",
                                                    "billboardtext", "particlesystem", "text", "terrain", "watersurface", "shadowvolume"};
         const bool known = std::find(std::begin(kNotBuilding), std::end(kNotBuilding), lower) != std::end(kNotBuilding);
         ++left_out[known ? type : "'" + type + "' (no type Irrlicht defines)"];

@@ -37,6 +37,10 @@ struct Mesh {
   /// of, so that the pieces of one polygon cut apart (a soup's detail, cells/soup_detail.h)
   /// take one shade. Empty: each polygon is lit from its own centroid.
   std::vector<Vec3> polygon_light;
+  /// The file's own first view, where its format keeps one (a VRML Viewpoint, an Irrlicht
+  /// camera), in the mesh's space: a scene built from the mesh starts there when the eye
+  /// stands in free space (cells/mesh_scene.h).
+  std::optional<Viewpoint> viewpoint;
   bool closed = false;                     ///< every edge shared by exactly two polygons
   int boundary_edges = 0;                  ///< edges with one polygon (0 when closed)
 };

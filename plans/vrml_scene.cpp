@@ -462,11 +462,28 @@ class World {
       inline_world(*n, place, inlines);
     } else if (t == "Shape") {
       shape(*n, place);
+    } else if (t == "Viewpoint") {
+      viewpoint(*n, place);
     } else if (protos_.count(t)) {
       ++left_out_["instance(s) of PROTO " + t + " (PROTOs are not expanded)"];
     } else if (n->field("children")) {  // a grouping node of a profile not listed above
       children("children", place);
     }
+  }
+
+  /// The first Viewpoint met, which a VRML browser starts from: at `position`, looking
+  /// along −z turned by `orientation`; its fieldOfView, VRML's smaller angle, taken as
+  /// the height of a 16:9 picture's.
+  void viewpoint(const VNode& n, const Affine3& place) {
+    if (out_.viewpoint) return;
+    const Vec3 p = n.vec("position", {0, 0, 10});
+    const Value* o = n.field("orientation");
+    const Affine3 turn = o && o->numbers.size() >= 4
+                             ? Affine3::rotation({o->numbers[0], o->numbers[1], o->numbers[2]}, o->numbers[3])
+                             : Affine3{};
+    const double fov = std::clamp(n.number("fieldOfView", std::numbers::pi / 4), 0.01, 3.0);
+    out_.viewpoint = Viewpoint{place.apply(p), place.apply(p + turn.apply({0, 0, -1})),
+                               std::clamp(2 * std::atan(std::tan(fov / 2) * 16 / 9) * 180 / std::numbers::pi, 40.0, 120.0)};
   }
 
   void inline_world(const VNode& n, const Affine3& place, int inlines) {

@@ -259,6 +259,24 @@ TEST(AssimpModels, TestModelsStandOnTheirFeet) {
 // A 3MF model is a zip archive (as a Sweet Home home is) and a Blender file saved
 // compressed is gzip: the content says only that much, so Assimp's extension decides, and
 // each opens as a whole scene.
+// A file's own first camera (COLLADA's duck has one, a glTF its nodes' cameras) is where
+// its scene starts, as its own viewer starts there: the duck before the eye.
+TEST(AssimpModels, TheFilesFirstCameraIsTheFirstView) {
+  if (!fs::exists(kModels / "Collada/duck.dae")) GTEST_SKIP() << "assimp-testmodels not installed (.ci/install-deps)";
+  const Mesh duck = load_mesh((kModels / "Collada/duck.dae").string());
+  ASSERT_TRUE(duck.viewpoint.has_value());
+  const Box3 b = bounds(duck);
+  const Vec3 middle = 0.5 * (b.lo + b.hi), ahead = duck.viewpoint->look - duck.viewpoint->eye;
+  const double off = std::acos(dot(ahead, middle - duck.viewpoint->eye) / length(ahead) / length(middle - duck.viewpoint->eye));
+  EXPECT_LT(off * 180 / std::numbers::pi, 10);
+  EXPECT_GT(length(middle - duck.viewpoint->eye), 2 * (b.hi.z - b.lo.z));  // from outside it
+  const CellComplex c = build_mesh_scene({duck});
+  ASSERT_TRUE(c.view.has_value());
+  EXPECT_EQ(c.view->eye, duck.viewpoint->eye);
+  // A model with no camera keeps the first view Avenues chooses.
+  EXPECT_FALSE(load_mesh((kModels / "3DS/fels.3ds").string()).viewpoint.has_value());
+}
+
 TEST(AssimpModels, ZippedAndGzippedModelsOpenByTheirExtension) {
   if (!fs::exists(kModels / "3MF/box.3mf")) GTEST_SKIP() << "assimp-testmodels not installed (.ci/install-deps)";
   for (const char* name : {"3MF/box.3mf", "BLEND/BlenderDefault_250_Compressed.blend", "BLEND/MirroredCube_252.blend"}) {

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -202,6 +204,16 @@ TEST_F(Irrlicht, ScenesPlaceTheirNodesAsIrrlichtDoesAndSayWhatTheyLeaveOut) {
   EXPECT_TRUE(said(s.warnings, "1 animator(s) not played"));
   EXPECT_TRUE(said(s.warnings, "node 'ghost': its mesh 'nowhere.x' is not beside the scene: left out"));
   for (const std::string& w : s.warnings) EXPECT_EQ(w.rfind(path, 0), 0u) << w;
+  // The camera is where the scene's viewer starts: at Irrlicht's (5, 1.6, −10), looking at
+  // its Target (5, 1.6, 0); Fovy 72° high, 105° across a 16:9 picture. A scene built from it
+  // starts there.
+  ASSERT_TRUE(s.viewpoint.has_value());
+  EXPECT_EQ(s.viewpoint->eye, (Vec3{5, -10, 1.6}));
+  EXPECT_EQ(s.viewpoint->look, (Vec3{5, 0, 1.6}));
+  EXPECT_NEAR(s.viewpoint->fov_deg, 2 * std::atan(std::tan(1.256637 / 2) * 16 / 9) * 180 / std::numbers::pi, 1e-9);
+  const CellComplex c = build_mesh_scene({mesh_of_scene(s)});
+  ASSERT_TRUE(c.view.has_value());
+  EXPECT_EQ(c.view->eye, s.viewpoint->eye);
   // In metres as --unit says: centimetres make the block a hundredth. An up axis is no
   // option: Irrlicht's is y.
   o.axes.metres_per_unit = 0.01;

@@ -155,6 +155,15 @@ TEST(VrmlWorld, ARoomStandsWhereItsTransformsPutItInItsColours) {
   EXPECT_EQ(visible_triangles_missing_from_export(c, meshes), 0);
   expect_soup_views_agree_with_rays(c, 8, 2026, 96, 64, 8);
   EXPECT_EQ(c.locate({1, -1, 1.6}).what, Location::What::Cell);
+  // The first Viewpoint, where a VRML browser starts, is where the scene starts: at VRML's
+  // (2, 1.6, 5) looking along −z; 45° high, 72.7° across a 16:9 picture.
+  ASSERT_TRUE(s.viewpoint.has_value());
+  EXPECT_EQ(s.viewpoint->eye, (Vec3{2, -5, 1.6}));
+  EXPECT_EQ(s.viewpoint->look, (Vec3{2, -4, 1.6}));
+  EXPECT_NEAR(s.viewpoint->fov_deg, 72.7, 0.05);
+  ASSERT_TRUE(c.view.has_value());
+  EXPECT_EQ(c.view->eye, s.viewpoint->eye);
+  EXPECT_EQ(c.view->look, s.viewpoint->look);
 }
 
 // Gzipped (.wrz), inlined worlds placed by the Transform round the Inline, and an Inline
