@@ -3,10 +3,20 @@
 // take it as the UTF-8 it holds. Part of core/, below every other module.
 #pragma once
 
+#include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 
 namespace avenues {
+
+/// Appends code point `cp` to `out` as UTF-8; false (nothing appended) for a surrogate or
+/// a number beyond U+10FFFF, which are no characters.
+bool append_utf8(std::string& out, uint32_t cp);
+
+/// UTF-16 code units as UTF-8: a surrogate pair is one character, a surrogate without its
+/// other half U+FFFD (as Java strings and Windows file names may hold one).
+std::string utf8_of_utf16(std::span<const uint16_t> units);
 
 /// Whether the bytes begin with a UTF-16 byte-order mark (FF FE little-endian, FE FF big).
 bool utf16_marked(std::string_view bytes);

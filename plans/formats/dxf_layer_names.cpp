@@ -6,21 +6,11 @@
 #include <string_view>
 #include <vector>
 
+#include "core/text_encoding.h"
+
 namespace avenues {
 namespace {
 
-void put_utf8(std::string& out, unsigned cp) {
-  if (cp < 0x80) {
-    out += char(cp);
-  } else if (cp < 0x800) {
-    out += char(0xC0 | (cp >> 6));
-    out += char(0x80 | (cp & 0x3F));
-  } else {
-    out += char(0xE0 | (cp >> 12));
-    out += char(0x80 | ((cp >> 6) & 0x3F));
-    out += char(0x80 | (cp & 0x3F));
-  }
-}
 
 /// The lower case of a code point of Latin-1, Latin Extended-A or basic Cyrillic.
 unsigned lower_code_point(unsigned cp) {
@@ -116,7 +106,7 @@ std::string fold_layer_name(const std::string& name) {
       cp = unsigned(c & 0x1F) << 6 | (static_cast<unsigned char>(name[i + 1]) & 0x3F), used = 2;
     }
     if (used > 0 && cp >= 0x80) {
-      put_utf8(out, lower_code_point(cp));
+      append_utf8(out, lower_code_point(cp));
       i += used;
     } else {
       out += char(std::tolower(c));

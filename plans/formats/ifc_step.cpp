@@ -7,6 +7,8 @@
 #include <unordered_set>
 #include <vector>
 
+#include "core/text_encoding.h"
+
 namespace avenues {
 namespace {
 
@@ -16,20 +18,6 @@ constexpr size_t kNameAttribute = 2;
 constexpr size_t kLongNameAttribute = 7;
 constexpr size_t kGlobalIdLength = 22;
 
-bool append_utf8(std::string& out, uint32_t cp) {
-  if (cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return false;
-  if (cp < 0x80) {
-    out += char(cp);
-  } else if (cp < 0x800) {
-    out += char(0xC0 | (cp >> 6)), out += char(0x80 | (cp & 0x3F));
-  } else if (cp < 0x10000) {
-    out += char(0xE0 | (cp >> 12)), out += char(0x80 | ((cp >> 6) & 0x3F)), out += char(0x80 | (cp & 0x3F));
-  } else {
-    out += char(0xF0 | (cp >> 18)), out += char(0x80 | ((cp >> 12) & 0x3F)), out += char(0x80 | ((cp >> 6) & 0x3F));
-    out += char(0x80 | (cp & 0x3F));
-  }
-  return true;
-}
 
 /// `digits` hexadecimal digits at s[at...], as a number; nullopt if any is not one.
 std::optional<uint32_t> hex(std::string_view s, size_t at, size_t digits) {

@@ -11,6 +11,8 @@
 
 #include <cstring>
 
+#include "core/text_encoding.h"
+
 namespace avenues::java {
 namespace {
 
@@ -78,9 +80,7 @@ class Reader {
     need(n);
     const std::string_view in = b_.substr(pos_, n);
     pos_ += n;
-    std::string out;
-    out.reserve(n);
-    std::vector<uint32_t> units;
+    std::vector<uint16_t> units;
     for (size_t i = 0; i < in.size();) {
       const uint8_t c = uint8_t(in[i]);
       uint32_t u = 0;
@@ -95,27 +95,10 @@ class Reader {
         if ((d & 0xC0) != 0x80) fail(start + i + k, "malformed modified UTF-8 in a string");
         u = (u << 6) | (d & 0x3F);
       }
-      units.push_back(u);
+      units.push_back(uint16_t(u));  // at most 16 bits: one, two or three bytes
       i += len;
     }
-    for (size_t i = 0; i < units.size(); ++i) {
-      uint32_t u = units[i];
-      if (u >= 0xD800 && u < 0xDC00 && i + 1 < units.size() && units[i + 1] >= 0xDC00 && units[i + 1] < 0xE000)
-        u = 0x10000 + ((u - 0xD800) << 10) + (units[++i] - 0xDC00);
-      else if (u >= 0xD800 && u < 0xE000)
-        u = 0xFFFD;  // a lone surrogate: Java allows it, UTF-8 cannot say it
-      if (u < 0x80) {
-        out += char(u);
-      } else if (u < 0x800) {
-        out += char(0xC0 | (u >> 6)), out += char(0x80 | (u & 0x3F));
-      } else if (u < 0x10000) {
-        out += char(0xE0 | (u >> 12)), out += char(0x80 | ((u >> 6) & 0x3F)), out += char(0x80 | (u & 0x3F));
-      } else {
-        out += char(0xF0 | (u >> 18)), out += char(0x80 | ((u >> 12) & 0x3F)), out += char(0x80 | ((u >> 6) & 0x3F)),
-            out += char(0x80 | (u & 0x3F));
-      }
-    }
-    return out;
+    return utf8_of_utf16(units);  // a lone surrogate, which Java allows and UTF-8 cannot say: U+FFFD
   }
 
   uint32_t new_handle(bool is_class, uint32_t index) {
