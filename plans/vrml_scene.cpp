@@ -39,6 +39,9 @@ constexpr std::uintmax_t kMaxBytes = std::uintmax_t(1) << 28;  ///< a file, or w
 constexpr int kMaxDepth = 1000;                               ///< nodes within nodes
 constexpr int kMaxInlines = 8;                                ///< worlds within worlds
 constexpr int kAround = 24;                                   ///< segments round a sphere, cylinder or cone
+/// Nodes visited, USEs followed each time: a chain of groups each USEing the one before
+/// twice is 2^n visits in a few lines.
+constexpr long kMaxVisits = 2'000'000;
 
 /// Up to `limit` bytes of `path` (nullopt when it cannot be read), inflated when gzipped (to
 /// at most `inflated` bytes: beyond, `too_big` is set).
@@ -431,6 +434,9 @@ class World {
 
   void visit(const NodeRef& n, const Affine3& place, int inlines, int depth) {
     if (!n || depth > kMaxDepth) return;
+    if (++visits_ > kMaxVisits)
+      throw std::runtime_error("cannot read model " + path_ + ": its nodes, each USE counted again, number more than " +
+                               std::to_string(kMaxVisits));
     const std::string& t = n->type;
     auto children = [&](std::string_view field, const Affine3& p) {
       if (const Value* v = n->field(field))
@@ -639,6 +645,7 @@ class World {
   std::set<std::string> protos_;
   std::map<std::string, std::optional<std::array<double, 3>>> textures_;
   std::map<std::string, long> left_out_;
+  long visits_ = 0;
 };
 
 }  // namespace

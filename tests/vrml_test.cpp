@@ -207,6 +207,12 @@ TEST_F(Vrml, BrokenWorldsAreRefusedNamingTheLine) {
   std::string deep = "#VRML V2.0 utf8\n";
   for (int k = 0; k < 1100; ++k) deep += "Group { children [\n";
   refused("deep.wrl", deep, ":1003: nodes nested more than 1000 deep");
+  // Each group USEs the one before twice: 2^40 nodes in 40 lines.
+  std::string doubling = "#VRML V2.0 utf8\nDEF G0 WorldInfo { }\n";
+  for (int k = 1; k <= 40; ++k)
+    doubling += "DEF G" + std::to_string(k) + " Group { children [ USE G" + std::to_string(k - 1) + " USE G" +
+                std::to_string(k - 1) + " ] }\n";
+  refused("doubling.wrl", doubling, ": its nodes, each USE counted again, number more than 2000000");
 }
 
 // The command line: a world opens and is walked into; a broken one exits 2 naming its line.
