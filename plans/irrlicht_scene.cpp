@@ -22,6 +22,7 @@
 
 #include "core/affine.h"
 #include "core/file_name.h"
+#include "core/line_index.h"
 #include "core/srgb.h"
 #include "core/text_encoding.h"
 #include "plans/image_colour.h"
@@ -71,31 +72,6 @@ std::string_view root_name(std::string_view text) {
   }
   return {};
 }
-
-/// 1-based line of an offset into the text.
-size_t line_at(std::string_view text, ptrdiff_t offset) {
-  if (offset < 0) return 0;
-  const size_t end = std::min(text.size(), size_t(offset));
-  return 1 + size_t(std::count(text.begin(), text.begin() + ptrdiff_t(end), '\n'));
-}
-
-/// The lines of a text, for the line of an offset into it without counting from the start
-/// each time (a scene may hold thousands of nodes).
-class Lines {
- public:
-  explicit Lines(std::string_view text) {
-    for (size_t i = 0; i < text.size(); ++i)
-      if (text[i] == '\n') ends_.push_back(i);
-  }
-  /// 1-based line of an offset (0: none, for a negative one).
-  size_t at(ptrdiff_t offset) const {
-    if (offset < 0) return 0;
-    return 1 + size_t(std::lower_bound(ends_.begin(), ends_.end(), size_t(offset)) - ends_.begin());
-  }
-
- private:
-  std::vector<size_t> ends_;  ///< offsets of the '\n's
-};
 
 /// Irrlicht's relative transformation of a node: translate · rotate (degrees; the matrix
 /// Rz·Ry·Rx, as matrix4::setRotationDegrees makes it) · scale.
@@ -170,7 +146,7 @@ class Reader {
       IrrGeometry g = read_mesh(root, path_, *lines_);
       add_node(fs::path(path_).stem().string(), 0, g, Affine3{}, {});
     } else {
-      fail(lines_->at(root ? root.offset_debug() : 0),
+      fail(lines_->line(root ? root.offset_debug() : 0),
            "not an Irrlicht scene or mesh: the root element is <" + name + ">, not <irr_scene> or <mesh>");
     }
     size_t triangles = 0;
@@ -194,7 +170,7 @@ class Reader {
     for (int tries = 0;; ++tries) {
       const pugi::xml_parse_result parsed = doc.load_buffer(text.data(), text.size(), pugi::parse_default, pugi::encoding_utf8);
       if (parsed) return;
-      const size_t line = line_at(text, parsed.offset);
+      const size_t line = LineIndex(text).line(parsed.offset);
       const size_t at = std::min(text.size(), size_t(std::max<ptrdiff_t>(0, parsed.offset)));
       const size_t begin = text.rfind('\n', at == 0 ? 0 : at - 1), start = begin == std::string::npos ? 0 : begin + 1;
       size_t end = text.find('\n', at);
@@ -330,7 +306,7 @@ class Reader {
   }
 
   /// An .irrmesh's <mesh>: its buffers' triangles (`text` is the file's, for lines).
-  IrrGeometry read_mesh(pugi::xml_node mesh, const std::string& file, const Lines& lines) {
+  IrrGeometry read_mesh(pugi::xml_node mesh, const std::string& file, const LineIndex& lines) {
     IrrGeometry g;
     g.materials_replaceable = true;
     int buffer_number = 0;
@@ -339,7 +315,7 @@ class Reader {
       const std::string which = "buffer " + std::to_string(buffer_number) + " of " + fs::path(file).filename().string();
       const pugi::xml_node vertices = buffer.child("vertices"), indices = buffer.child("indices");
       if (!vertices || !indices) {
-        warn(which + " (line " + std::to_string(lines.at(buffer.offset_debug())) + ") has no " + (vertices ? "<indices>" : "<vertices>") + ": left out");
+        warn(which + " (line " + std::to_string(lines.line(buffer.offset_debug())) + ") has no " + (vertices ? "<indices>" : "<vertices>") + ": left out");
         continue;
       }
       const std::string type = vertices.attribute("type").value();
@@ -354,7 +330,7 @@ class Reader {
       std::vector<std::string_view> words;
       const std::string_view vtext = vertices.child_value();
       const auto line_of = [&lines](pugi::xml_node element, std::string_view body, std::string_view word) {
-        return lines.at(element.first_child().offset_debug()) +
+        return lines.line(element.first_child().offset_debug()) +
                size_t(std::count(body.data(), word.data(), '\n'));
       };
       split(vtext, words);
@@ -362,7 +338,7 @@ class Reader {
       const size_t count = words.size() / per;
       if (count != declared)
         warn(which + " holds " + std::to_string(count) + " whole vertices where it declares " + std::to_string(declared) +
-             " (line " + std::to_string(lines.at(vertices.offset_debug())) + "): those it holds are read");
+             " (line " + std::to_string(lines.line(vertices.offset_debug())) + "): those it holds are read");
       const int base = int(g.vertices.size());
       std::vector<char> usable(count, 1);
       size_t unusable = 0, first_bad_line = 0;
@@ -461,7 +437,7 @@ class Reader {
         if (!text) throw std::runtime_error("cannot read model " + at + ": " + why);
         pugi::xml_document doc;
         parse(doc, *text, at);
-        g = read_mesh(doc.document_element(), at, Lines(*text));
+        g = read_mesh(doc.document_element(), at, LineIndex(*text));
       } else {
         // Through Assimp, y up as Irrlicht reads every model, then back into Irrlicht's
         // space: Assimp's (a, b, c) is Avenues' (a, −c, b) = (p, q, r); Irrlicht's OBJ
@@ -513,7 +489,7 @@ class Reader {
       const std::string type = t.node.attribute("type").value();
       const Attrs a = attrs_of(t.node.child("attributes"));
       const std::string name = a.get("Name").value_or("") .empty() ? type : *a.get("Name");
-      const size_t line = lines_->at(t.node.offset_debug());
+      const size_t line = lines_->line(t.node.offset_debug());
       const std::string label = name + "' (" + type + ", line " + std::to_string(line);
       if (a.get("Visible").value_or("true") == "false") {
         warn("node '" + label + ") is hidden (Visible false): left out, with what it holds");
@@ -603,7 +579,7 @@ class Reader {
   std::string path_;
   ImportOptions options_;
   std::string text_;
-  std::optional<Lines> lines_;  ///< text_'s
+  std::optional<LineIndex> lines_;  ///< text_'s
   pugi::xml_document doc_;
   ImportedScene out_;
   double scale_ = 1;

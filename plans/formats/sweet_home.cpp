@@ -28,6 +28,7 @@
 #include "plans/formats/sweet_home.h"
 #include "plans/formats/svg_path.h"
 #include "core/file_name.h"
+#include "core/line_index.h"
 #include "plans/formats/zip_salvage.h"
 #include "plans/formats/home_tree.h"
 #include "core/number_format.h"
@@ -203,25 +204,6 @@ class ZipArchive {
 /// (the model's path under the XML's folder, or its file name in a "models" folder there,
 /// where .ci/install-deps puts the models of Sweet Home's catalogue). Returns its bytes.
 using ModelSource = std::function<std::optional<std::string>(const std::string& model)>;
-
-/// Byte offset → 1-based line and column.
-class LineIndex {
- public:
-  explicit LineIndex(const std::string& text) {
-    starts_.push_back(0);
-    for (size_t i = 0; i < text.size(); ++i)
-      if (text[i] == '\n') starts_.push_back(i + 1);
-  }
-  std::pair<int, int> at(ptrdiff_t offset) const {
-    if (offset < 0) return {0, 0};
-    const auto it = std::upper_bound(starts_.begin(), starts_.end(), size_t(offset));
-    const size_t line = size_t(it - starts_.begin());
-    return {int(line), int(size_t(offset) - starts_[line - 1] + 1)};
-  }
-
- private:
-  std::vector<size_t> starts_;
-};
 
 // --- geometry of walls -------------------------------------------------------------------
 
