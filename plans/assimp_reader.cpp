@@ -122,7 +122,7 @@ std::array<double, 3> diffuse_of(const aiScene& scene, unsigned material, bool& 
 /// The mean colour (linear) of a material's diffuse or base colour texture, as a Sweet Home
 /// texture or an OBJ's map_Kd gives one: Avenues paints each surface one colour. The image
 /// is embedded ("*0", or an FBX's own name for it) or a file beside the model, found as an
-/// OBJ's map_Kd is (paths_beside), and in any case. std::nullopt when the material has no
+/// OBJ's map_Kd is, and in any case (file_beside). std::nullopt when the material has no
 /// texture; `problem` says why one that it has gives no colour.
 std::optional<std::array<double, 3>> texture_colour(const aiScene& scene, const aiMaterial& m,
                                                     const std::string& model, std::string& problem) {
@@ -149,38 +149,11 @@ std::optional<std::array<double, 3>> texture_colour(const aiScene& scene, const 
       }
       return mean_pixels_colour(rgba, model + ": embedded image " + name);
     }
-    namespace fs = std::filesystem;
-    // Beside the model as an OBJ's map_Kd is (as written, with '/' for '\\', its name alone)...
-    std::vector<fs::path> candidates;
-    for (const std::string& beside : paths_beside(model, name)) candidates.emplace_back(beside);
-    std::string slashed = name;
-    std::replace(slashed.begin(), slashed.end(), '\\', '/');
-    const fs::path dir = fs::path(model).parent_path();
-    // ...and, names written on one system being looked for on another, in any case, folder
-    // by folder (a DOS-era 3DS's "IMAGE1.JPG" beside it as IMAGE1.jpg; "../LWo2/x.jpg").
-    std::error_code ec;
-    auto in_any_case = [&ec](const fs::path& from, const fs::path& relative) {
-      fs::path at = from.empty() ? fs::path(".") : from;
-      for (const fs::path& part : relative) {
-        fs::path next = at / part;
-        if (!fs::exists(next, ec) && part != "." && part != "..")
-          for (fs::directory_iterator it(at, ec), end; !ec && it != end; it.increment(ec))
-            if (ascii_lower(it->path().filename().string()) == ascii_lower(part.string())) {
-              next = it->path();
-              break;
-            }
-        at = next;
-      }
-      return at;
-    };
-    const fs::path written(slashed);
-    if (written.is_relative()) candidates.push_back(in_any_case(dir, written));
-    candidates.push_back(in_any_case(dir, written.filename()));
-    for (const fs::path& candidate : candidates) {
-      if (!fs::is_regular_file(candidate, ec)) continue;
-      std::ifstream in(candidate, std::ios::binary);
+    // Beside the model as an OBJ's map_Kd is, and in any case (file_beside).
+    if (const std::string at = file_beside(model, name); !at.empty()) {
+      std::ifstream in(at, std::ios::binary);
       const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-      return mean_image_colour(bytes, candidate.string());
+      return mean_image_colour(bytes, at);
     }
     problem = "its image " + name + " is not at hand";
   } catch (const std::runtime_error& e) {

@@ -12,10 +12,10 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <map>
 #include <numbers>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string_view>
 #include <vector>
@@ -26,6 +26,7 @@
 #include "core/srgb.h"
 #include "core/text_encoding.h"
 #include "plans/image_colour.h"
+#include "plans/obj_materials.h"
 #include "plans/primitive_shapes.h"
 
 namespace avenues {
@@ -195,41 +196,14 @@ class Reader {
   }
   void warn(const std::string& what) { out_.warnings.push_back(path_ + ": " + what); }
 
-  /// `name` resolved beside `from` (a file), as written, else by a case-blind match of
-  /// each part of it (a scene written on Windows); empty when there is no such file.
-  static std::string beside(const std::string& from, std::string name) {
-    std::replace(name.begin(), name.end(), '\\', '/');
-    fs::path p = fs::path(name).is_absolute() ? fs::path(name) : fs::path(from).parent_path() / name;
-    std::error_code ec;
-    if (fs::is_regular_file(p, ec)) return p.string();
-    // "/../Obj/x.jpg": written as if from the root, meant from the file (Irrlicht's meshes).
-    if (p.is_absolute() && name.starts_with('/')) {
-      const std::string from_file = beside(from, name.substr(name.find_first_not_of('/') == std::string::npos ? name.size() : name.find_first_not_of('/')));
-      if (!from_file.empty()) return from_file;
-    }
-    fs::path at = p.root_path();
-    fs::path rel = p.relative_path();
-    if (at.empty()) at = ".";
-    for (const fs::path& part : rel) {
-      if (part == "." || part == "..") {
-        at /= part;
-        continue;
-      }
-      fs::path found;
-      if (fs::exists(at / part, ec)) {
-        found = at / part;
-      } else {
-        const std::string want = ascii_lower(part.string());
-        for (fs::directory_iterator it(at, ec), end; !ec && it != end; it.increment(ec))
-          if (ascii_lower(it->path().filename().string()) == want) {
-            found = it->path();
-            break;
-          }
-      }
-      if (found.empty()) return "";
-      at = found;
-    }
-    return fs::is_regular_file(at, ec) ? at.string() : "";
+  /// The file `name` means beside `from` (file_beside: as written, in any case, by its name
+  /// alone), or from `from`'s folder where it begins with '/' ("/../Obj/x.jpg", as
+  /// Irrlicht's meshes name their textures); "" when there is none.
+  static std::string beside(const std::string& from, const std::string& name) {
+    const std::string at = file_beside(from, name);
+    const size_t rooted = name.find_first_not_of('/');
+    if (!at.empty() || rooted == 0 || rooted == std::string::npos) return at;
+    return file_beside(from, name.substr(rooted));
   }
 
   /// Named attributes of an <attributes> or <material> element: name → (element, value).
@@ -279,33 +253,19 @@ class Reader {
     const std::string texture = a.get("Texture1").value_or("");
     if (texture.empty()) return m;
     const std::string at = beside(file, texture);
-    auto cached = textures_.find(at.empty() ? texture : at);
-    if (cached == textures_.end()) {
-      std::optional<std::array<double, 3>> colour;
-      if (at.empty()) {
+    if (at.empty()) {
+      if (missing_.insert(texture).second)
         warn("texture '" + texture + "' (" + what + ") is not beside " + file + ": its Diffuse colour stands");
-      } else if (const auto bytes = read_bytes(at)) {
-        try {
-          colour = mean_image_colour(*bytes, at);
-        } catch (const std::runtime_error& err) {
-          warn(std::string(err.what()) + ": its Diffuse colour stands");
-        }
-      }
-      cached = textures_.emplace(at.empty() ? texture : at, colour).first;
+      return m;
     }
-    if (cached->second) m.colour = *cached->second;
+    bool first = false;
+    const MaterialFiles::Image& image = images_.image(at, &first);
+    if (first && !image.problem.empty()) warn(image.problem + ": its Diffuse colour stands");
+    if (image.colour) m.colour = *image.colour;
     return m;
   }
 
-  static std::optional<std::string> read_bytes(const std::string& at) {
-    std::error_code ec;
-    const std::uintmax_t size = fs::file_size(at, ec);
-    if (ec || size > kMaxBytes) return std::nullopt;
-    std::ifstream in(at, std::ios::binary);
-    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  }
-
-  /// An .irrmesh's <mesh>: its buffers' triangles (`text` is the file's, for lines).
+  /// An .irrmesh's <mesh>: its buffers' triangles (`lines`: the file's, for messages).
   IrrGeometry read_mesh(pugi::xml_node mesh, const std::string& file, const LineIndex& lines) {
     IrrGeometry g;
     g.materials_replaceable = true;
@@ -583,7 +543,8 @@ class Reader {
   pugi::xml_document doc_;
   ImportedScene out_;
   double scale_ = 1;
-  std::map<std::string, std::optional<std::array<double, 3>>> textures_;
+  MaterialFiles images_{read_material_file};  ///< textures' mean colours, each decoded once
+  std::set<std::string> missing_;             ///< textures named but not at hand, said once each
   std::map<std::string, std::optional<IrrGeometry>> models_;
 };
 

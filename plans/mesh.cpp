@@ -789,21 +789,6 @@ std::optional<char> guessed_up_axis(const Mesh& m) {
 
 namespace {
 
-/// The files an OBJ on disk names (its MTL libraries, their images): a regular file's
-/// bytes, std::nullopt for anything else (missing, a directory, a device, larger than a
-/// material file or image could sensibly be).
-std::optional<std::string> read_material_file(const std::string& path) {
-  constexpr std::uintmax_t kMaxBytes = std::uintmax_t(1) << 28;
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
-  const std::uintmax_t size = std::filesystem::file_size(path, ec);
-  if (ec || size > kMaxBytes) return std::nullopt;
-  std::ifstream in(path, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in.good() && !in.eof()) return std::nullopt;
-  return bytes;
-}
-
 /// An OBJ file read with its materials: usemtl groups (read_mesh_bytes) coloured by the MTL
 /// libraries beside it (colour_obj_materials); what is missing is one warning each.
 Mesh load_obj(const std::string& path, std::vector<std::string>* warnings) {

@@ -4,9 +4,13 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <stdexcept>
 
+#include "core/file_name.h"
 #include "core/srgb.h"
 #include "plans/image_colour.h"
 #include "plans/java3d_materials.h"
@@ -214,6 +218,47 @@ std::vector<std::string> paths_beside(const std::string& file, const std::string
   add(slashed);
   if (const size_t last = slashed.rfind('/'); last != std::string::npos) add(slashed.substr(last + 1));
   return out;
+}
+
+std::string file_beside(const std::string& model, const std::string& name) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  for (const std::string& beside : paths_beside(model, name))
+    if (fs::is_regular_file(beside, ec)) return beside;
+  std::string slashed = name;
+  std::replace(slashed.begin(), slashed.end(), '\\', '/');
+  const fs::path dir = fs::path(model).parent_path();
+  auto in_any_case = [&ec](const fs::path& from, const fs::path& relative) {
+    fs::path at = from.empty() ? fs::path(".") : from;
+    for (const fs::path& part : relative) {
+      fs::path next = at / part;
+      if (!fs::exists(next, ec) && part != "." && part != "..")
+        for (fs::directory_iterator it(at, ec), end; !ec && it != end; it.increment(ec))
+          if (ascii_lower(it->path().filename().string()) == ascii_lower(part.string())) {
+            next = it->path();
+            break;
+          }
+      at = next;
+    }
+    return at;
+  };
+  const fs::path written(slashed);
+  if (written.is_relative())
+    if (const fs::path p = in_any_case(dir, written); fs::is_regular_file(p, ec)) return p.string();
+  if (const fs::path p = in_any_case(dir, written.filename()); fs::is_regular_file(p, ec)) return p.string();
+  return "";
+}
+
+std::optional<std::string> read_material_file(const std::string& path) {
+  constexpr std::uintmax_t kMaxBytes = std::uintmax_t(1) << 28;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec || size > kMaxBytes) return std::nullopt;
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) return std::nullopt;
+  return bytes;
 }
 
 const MaterialFiles::Image& MaterialFiles::image(const std::string& path, bool* first) {

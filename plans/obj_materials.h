@@ -93,6 +93,17 @@ std::string path_beside(const std::string& file, const std::string& name);
 /// backslashes read as slashes; then its last component alone (the file moved beside the
 /// model with it, as exporters' absolute paths usually are). Each once.
 std::vector<std::string> paths_beside(const std::string& file, const std::string& name);
+/// The file on disk that `name` (an image, a mesh a model names) means beside `model`:
+/// the first of paths_beside that is a regular file; else, names written on one system
+/// being looked for on another, found in any case folder by folder (a DOS-era 3DS's
+/// "IMAGE1.JPG" beside it as IMAGE1.jpg; "../LWo2/x.jpg"), as written when relative, then by
+/// its name alone. "" when none is.
+std::string file_beside(const std::string& model, const std::string& name);
+/// The bytes of a file on disk that a model names (its MTL libraries, their images): a
+/// regular file's, std::nullopt for anything else (missing, a directory, a device, larger
+/// than 256 MiB, more than a material file or image could sensibly be). MaterialFiles'
+/// reader for files on disk.
+std::optional<std::string> read_material_file(const std::string& path);
 
 /// The files materials take their colours from, each read once however many models or
 /// surfaces name it: MTL libraries and images (their mean colour, plans/image_colour.h).

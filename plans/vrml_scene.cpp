@@ -25,7 +25,7 @@
 #include "core/affine.h"
 #include "core/file_name.h"
 #include "core/text_encoding.h"
-#include "plans/image_colour.h"
+#include "plans/obj_materials.h"
 #include "plans/polygon_triangulation.h"
 #include "plans/primitive_shapes.h"
 
@@ -527,19 +527,11 @@ class World {
     if (const NodeRef tex = app->node("texture"); tex && tex->type == "ImageTexture")
       if (const Value* url = tex->field("url"); url && !url->strings.empty()) {
         const std::string at = (fs::path(files_.back()).parent_path() / url->strings.front()).string();
-        auto cached = textures_.find(at);
-        if (cached == textures_.end()) {
-          std::optional<std::array<double, 3>> c;
-          try {
-            const std::optional<std::string> bytes = file_bytes(at, kMaxBytes, 0);
-            if (!bytes) throw std::runtime_error("texture " + at + " is not at hand");
-            c = mean_image_colour(*bytes, at);
-          } catch (const std::runtime_error& e) {
-            warn(std::string(e.what()) + ": its material's diffuseColor stands");
-          }
-          cached = textures_.emplace(at, c).first;
-        }
-        if (cached->second) return coloured = true, *cached->second;
+        bool first = false;
+        const MaterialFiles::Image& image = images_.image(at, &first);
+        if (first && (!image.at_hand || !image.problem.empty()))
+          warn((image.at_hand ? image.problem : "texture " + at + " is not at hand") + ": its material's diffuseColor stands");
+        if (image.colour) return coloured = true, *image.colour;
       }
     const NodeRef mat = app->node("material");
     if (!mat) return {1, 1, 1};
@@ -643,7 +635,7 @@ class World {
   ImportedScene out_;
   std::vector<std::string> files_;  ///< the worlds being read, outermost first
   std::set<std::string> protos_;
-  std::map<std::string, std::optional<std::array<double, 3>>> textures_;
+  MaterialFiles images_{read_material_file};  ///< textures' mean colours, each decoded once
   std::map<std::string, long> left_out_;
   long visits_ = 0;
 };
