@@ -302,11 +302,8 @@ LoadedPlan load_plan_source(const std::string& plan, const ImportOptions& import
         } catch (const std::exception& e) {
           if (spec.content_reader.empty()) throw;
           throw std::runtime_error(spec.file + " is not a plan Avenues can read: " + what_the_name_says() +
-                                   ", and " +
-                                   (spec.content_reader.starts_with("Irrlicht") || spec.content_reader == "VRML97"  // Avenues' own
-                                        ? "Avenues' " + spec.content_reader + " reader"
-                                        : "Assimp's " + spec.content_reader) +
-                                   " took it by its content but could not read it (" + e.what() + ")");
+                                   ", and " + spec.content_reader + " took it by its content but could not read it (" +
+                                   e.what() + ")");
         }
         break;
       case FileFormat::Ifc: {

@@ -50,7 +50,8 @@ struct PlanSpec {
   std::string file;
   std::string map;   ///< "MAP01" of "doom2.wad:MAP01"; "" for the first map
   FileFormat format = FileFormat::Toml;
-  /// A Model told by its content alone: the Assimp importer that knows it ("" otherwise).
+  /// A Model told by its content alone: the reader that knows it, as messages name it
+  /// ("Assimp's Discreet 3DS Importer", "Avenues' VRML97 reader"; "" otherwise).
   /// Such a guess can be wrong (some importers look only for a keyword in the first lines),
   /// so what it cannot read is reported as a file Avenues does not know, with its reason.
   std::string content_reader;

@@ -264,13 +264,13 @@ bool assimp_reads_extension(const std::string& ext) {
 std::string assimp_importer_by_content(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) return "";
-  if (binary_gltf_by_content_only(path)) return "glTF 2 (binary)";
+  if (binary_gltf_by_content_only(path)) return "Assimp's glTF 2 (binary)";
   switch (irrlicht_file_kind(path)) {  // UTF-16 text, which Assimp's own tests miss
-    case IrrlichtFile::Scene: return "Irrlicht scene";
-    case IrrlichtFile::Mesh: return "Irrlicht mesh";
+    case IrrlichtFile::Scene: return "Avenues' Irrlicht scene reader";
+    case IrrlichtFile::Mesh: return "Avenues' Irrlicht mesh reader";
     case IrrlichtFile::None: break;
   }
-  if (is_vrml(path)) return "VRML97";
+  if (is_vrml(path)) return "Avenues' VRML97 reader";
   const Assimp::Importer importer;
   for (size_t i = 0; i < importer.GetImporterCount(); ++i) {
     const Assimp::BaseImporter* reader = importer.GetImporter(i);
@@ -278,7 +278,7 @@ std::string assimp_importer_by_content(const std::string& path) {
       if (reader && reader->CanRead(path, importer.GetIOHandler(), true)) {
         std::string name = reader->GetInfo() && reader->GetInfo()->mName ? reader->GetInfo()->mName : "importer";
         if (const size_t web = name.find(" (http"); web != std::string::npos) name.erase(web);  // its home page
-        return name;
+        return "Assimp's " + name;
       }
     } catch (const std::exception&) {  // a reader that throws on what it cannot read does not know it
     }

@@ -65,10 +65,12 @@ struct ImportOptions {
 /// Whether Assimp has an importer for this extension (".gltf", with the dot).
 bool assimp_reads_extension(const std::string& ext);
 
-/// Whether one of Assimp's importers knows the file by its content (a magic number, or the
+/// Whether one of the model readers knows the file by its content (a magic number, or the
 /// keywords its format begins with), whatever its name: for a model whose name has no
 /// extension or one that says nothing (3DS's "MM" chunk, "AC3D", "*3DSMAX_ASCIIEXPORT", "xof ").
-/// Returns the importer's name ("Discreet 3DS Importer"), or "" when none knows it.
+/// Assimp's importers, and Avenues' own readers of Irrlicht's XML and VRML97, which
+/// import_scene reads instead. Returns the reader as a message names it ("Assimp's Discreet
+/// 3DS Importer", "Avenues' VRML97 reader"), or "" when none knows it.
 std::string assimp_importer_by_content(const std::string& path);
 
 /// Reads a model file. Throws std::runtime_error naming the file and Assimp's reason when

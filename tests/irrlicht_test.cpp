@@ -112,7 +112,7 @@ TEST(IrrlichtMesh, TheCellarStandsInAvenuesAxesARoomSeenFromInsideInItsTexturesC
   EXPECT_EQ(irrlicht_file_kind(cellar.string()), IrrlichtFile::Mesh);
   EXPECT_EQ(irrlicht_file_kind((kModels / "IRR/box.irr").string()), IrrlichtFile::Scene);
   EXPECT_EQ(irrlicht_file_kind((kModels / "Collada/duck.dae").string()), IrrlichtFile::None);
-  EXPECT_EQ(assimp_importer_by_content(cellar.string()), "Irrlicht mesh");
+  EXPECT_EQ(assimp_importer_by_content(cellar.string()), "Avenues' Irrlicht mesh reader");
   const ImportedScene s = import_scene(cellar.string());
   EXPECT_NE(s.format.find("Irrlicht mesh"), std::string::npos) << s.format;
   ASSERT_EQ(s.nodes.size(), 2u);  // the root and the mesh

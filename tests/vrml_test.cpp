@@ -73,7 +73,7 @@ class Vrml : public avenues::testing::AvenuesRun {};
 TEST(VrmlWorld, ARoomStandsWhereItsTransformsPutItInItsColours) {
   EXPECT_TRUE(is_vrml(kRoom.string()));
   EXPECT_FALSE(is_vrml((fs::path(AVENUES_SOURCE_DIR) / "plans" / "jones-house.toml").string()));
-  EXPECT_EQ(assimp_importer_by_content(kRoom.string()), "VRML97");
+  EXPECT_EQ(assimp_importer_by_content(kRoom.string()), "Avenues' VRML97 reader");
   const ImportedScene s = import_scene(kRoom.string());
   EXPECT_EQ(s.format, "VRML97 (Avenues' reader)");
   // The walls: VRML's (x, y, z) is Avenues' (x, −z, y): 4 m along x, 3 m along −y, 2.5 m up.
