@@ -894,15 +894,19 @@ void add_real_lines(CellComplex& c, const std::vector<RealLine>& lines) {
 
 namespace {
 
-/// The scene's box grown to hold the eye of the first view the files keep
-/// (Mesh::viewpoint), so that the far box holds it too (view_of_files).
-void include_views_of_files(Box3& box, const std::vector<Mesh>& meshes) {
+/// The first view the files keep (Mesh::viewpoint: a model's camera, a VRML Viewpoint, an
+/// Irrlicht camera); nullptr when none keeps one.
+const Viewpoint* view_of_files(const std::vector<Mesh>& meshes) {
   for (const Mesh& m : meshes)
-    if (m.viewpoint) {
-      if (std::isfinite(m.viewpoint->eye.x) && std::isfinite(m.viewpoint->eye.y) && std::isfinite(m.viewpoint->eye.z))
-        box.add(m.viewpoint->eye);
-      return;
-    }
+    if (m.viewpoint) return &*m.viewpoint;
+  return nullptr;
+}
+
+/// The scene's box grown to hold the eye of the files' view, so that the far box holds it
+/// too (start_at_view_of_files).
+void include_view_of_files(Box3& box, const std::vector<Mesh>& meshes) {
+  const Viewpoint* v = view_of_files(meshes);
+  if (v && std::isfinite(v->eye.x) && std::isfinite(v->eye.y) && std::isfinite(v->eye.z)) box.add(v->eye);
 }
 
 /// The far box around `box` (the scene's contents) with margin m, and a first view from a
@@ -963,15 +967,11 @@ void view_inside_largest_region(CellComplex& out, const Box3& scene, const std::
   out.view = Viewpoint{eye, look, 70};
 }
 
-/// The first view the files keep (Mesh::viewpoint: a VRML Viewpoint, an Irrlicht camera),
-/// where its eye stands in free space: what the file's own viewer starts from.
-void view_of_files(CellComplex& out, const std::vector<Mesh>& meshes) {
-  for (const Mesh& m : meshes) {
-    if (!m.viewpoint) continue;
-    const Viewpoint& v = *m.viewpoint;
-    if (length(v.look - v.eye) > 0 && out.locate(v.eye).what == Location::What::Cell) out.view = v;
-    return;
-  }
+/// The first view: the files' own (view_of_files), where its eye stands in free space,
+/// as the file's own viewer starts there.
+void start_at_view_of_files(CellComplex& out, const std::vector<Mesh>& meshes) {
+  const Viewpoint* v = view_of_files(meshes);
+  if (v && length(v->look - v->eye) > 0 && out.locate(v->eye).what == Location::What::Cell) out.view = *v;
 }
 
 /// The meshes with only the triangles `keep` says (numbered through all meshes in order).
@@ -1018,7 +1018,7 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     }
   }
   if (!(box.lo.x <= box.hi.x)) throw std::invalid_argument("mesh scene: no triangles and nothing to include");
-  include_views_of_files(box, meshes);
+  include_view_of_files(box, meshes);
   frame_scene(out, box, params.margin);
   const Vec3 extent = box.hi - box.lo;
   const double least_area = std::min(params.structural_area_cap,
@@ -1090,7 +1090,7 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
   }
   out.index();  // before the lines: add_real_lines takes its candidate cells from it
   view_inside_largest_region(out, box, what_cuts());
-  view_of_files(out, meshes);
+  start_at_view_of_files(out, meshes);
   if (!detail.empty()) {
     ScopedStageTimer t(out.timings, "detail");
     const std::string source = meshes.size() == 1 && !meshes[0].path.empty() ? meshes[0].path : "the meshes";
@@ -1151,7 +1151,7 @@ CellComplex build_mesh_scene(const std::vector<Mesh>& meshes, const MeshScenePar
   for (const Solid& s : solids)
     for (Vec3 p : s.v) box.add(p);
   if (!(box.lo.x <= box.hi.x)) throw std::invalid_argument("mesh scene: no solids and nothing to include");
-  include_views_of_files(box, meshes);
+  include_view_of_files(box, meshes);
   frame_scene(out, box, params.margin);
   {
     ScopedStageTimer t(out.timings, "free");
@@ -1199,7 +1199,7 @@ CellComplex build_mesh_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     }
     add_real_lines(out, lines);
   }
-  view_of_files(out, meshes);
+  start_at_view_of_files(out, meshes);
   check_complex(out, "a mesh scene");
   return out;
 }

@@ -195,6 +195,8 @@ class Reader {
                              what);
   }
   void warn(const std::string& what) { out_.warnings.push_back(path_ + ": " + what); }
+  /// A point of Irrlicht's space in Avenues': its (x, y, z) is (x, z, y), in metres.
+  Vec3 ours(Vec3 p) const { return {p.x * scale_, p.z * scale_, p.y * scale_}; }
 
   /// The file `name` means beside `from` (file_beside: as written, in any case, by its name
   /// alone), or from `from`'s folder where it begins with '/' ("/../Obj/x.jpg", as
@@ -478,10 +480,8 @@ class Reader {
         // scene's space), Fovy the height of a 16:9 picture's angle.
         const auto target = a.vec("Target");
         if (!out_.viewpoint && target) {
-          const auto ours = [this](Vec3 p) { return Vec3{p.x * scale_, p.z * scale_, p.y * scale_}; };
           const double fovy = std::clamp(a.real("Fovy").value_or(std::numbers::pi / 2.5), 0.01, 3.0);
-          out_.viewpoint = Viewpoint{ours(here.apply({0, 0, 0})), ours(*target),
-                                     std::clamp(2 * std::atan(std::tan(fovy / 2) * 16 / 9) * 180 / std::numbers::pi, 40.0, 120.0)};
+          out_.viewpoint = Viewpoint{ours(here.apply({0, 0, 0})), ours(*target), fov_deg_of_vertical(fovy)};
         }
       } else if (lower != "empty" && lower != "dummytransformation") {
         static const char* const kNotBuilding[] = {"light", "skybox", "skydome", "billboard",
@@ -515,10 +515,7 @@ class Reader {
     n.name = name;
     n.parent = parent;
     n.vertices.reserve(g.vertices.size());
-    for (const Vec3& v : g.vertices) {
-      const Vec3 p = place.apply(v);
-      n.vertices.push_back({p.x * scale_, p.z * scale_, p.y * scale_});  // Irrlicht's (x, y, z) is Avenues' (x, z, y)
-    }
+    for (const Vec3& v : g.vertices) n.vertices.push_back(ours(place.apply(v)));
     // Irrlicht's front faces have (b − a) × (c − a) towards the viewer in Irrlicht's
     // coordinates; the mirror into Avenues' turns that normal inward, so each triangle's
     // corners are reversed, unless the placement itself mirrors (a negative scale).

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace avenues {
 
@@ -128,6 +129,10 @@ Plan moved(Plan p, Vec2 by) {
   }
   p.name += " (far from the origin)";
   return p;
+}
+
+double fov_deg_of_vertical(double vertical_rad) {
+  return std::clamp(2 * std::atan(std::tan(vertical_rad / 2) * 16 / 9) * 180 / std::numbers::pi, 40.0, 120.0);
 }
 
 }  // namespace avenues

@@ -189,6 +189,11 @@ struct Viewpoint {
   double fov_deg = 60;
 };
 
+/// [deg] A model file's vertical angle of view `vertical_rad` (a VRML Viewpoint's
+/// fieldOfView, an Irrlicht camera's Fovy) as the horizontal angle of a 16:9 picture, within
+/// 40–120°: Viewpoint::fov_deg of the file's own first view.
+double fov_deg_of_vertical(double vertical_rad);
+
 struct Plan {
   std::string name;
   std::string source;                ///< file it was read from ("" if generated)

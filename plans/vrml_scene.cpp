@@ -488,8 +488,7 @@ class World {
                              ? Affine3::rotation({o->numbers[0], o->numbers[1], o->numbers[2]}, o->numbers[3])
                              : Affine3{};
     const double fov = std::clamp(n.number("fieldOfView", std::numbers::pi / 4), 0.01, 3.0);
-    out_.viewpoint = Viewpoint{place.apply(p), place.apply(p + turn.apply({0, 0, -1})),
-                               std::clamp(2 * std::atan(std::tan(fov / 2) * 16 / 9) * 180 / std::numbers::pi, 40.0, 120.0)};
+    out_.viewpoint = Viewpoint{place.apply(p), place.apply(p + turn.apply({0, 0, -1})), fov_deg_of_vertical(fov)};
   }
 
   void inline_world(const VNode& n, const Affine3& place, int inlines) {
