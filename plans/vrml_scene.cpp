@@ -454,9 +454,6 @@ class World {
                             turn(so, 1) * Affine3::scaling(n->vec("scale", {1, 1, 1})) * turn(so, -1) *
                             Affine3::translation(-1.0 * c);
       children("children", place * local);
-    } else if (t == "Group" || t == "Anchor" || t == "Billboard" || t == "Collision" || t == "StaticGroup" ||
-               t == "CADAssembly" || t == "CADLayer" || t == "CADPart") {
-      children("children", place);
     } else if (t == "Switch") {
       const int which = int(n->number("whichChoice", -1));
       const Value* v = n->field("choice") ? n->field("choice") : n->field("children");
@@ -472,7 +469,7 @@ class World {
       viewpoint(*n, place);
     } else if (protos_.count(t)) {
       ++left_out_["instance(s) of PROTO " + t + " (PROTOs are not expanded)"];
-    } else if (n->field("children")) {  // a grouping node of a profile not listed above
+    } else if (n->field("children")) {  // Group, Anchor, Billboard (as placed), Collision, X3D's CAD groups...
       children("children", place);
     }
   }
