@@ -370,14 +370,14 @@ class Session {
     if (shown_detail_ != budget_.full())
       lines.push_back("over the " + fixed(budget_.budget_ms(), 1) + " ms frame budget (" + fixed(budget_.last_ms(), 1) +
                       " ms): " + to_string(shown_detail_) + " while moving, full detail when the eye stops");
+    // The hull search's cells are not all seen: it says so, and on how many threads it ran.
+    std::string cells = " cells seen";
+    if (full_.conservative)
+      cells = searches_.threads_used() > 1 ? " cells (hull search on " + std::to_string(searches_.threads_used()) + " threads)"
+                                           : " cells (hull search)";
     lines.push_back("frame " + fixed(work_ms, 1) + " ms, render " + fixed(render_ms, 1) + " ms | " +
-                    std::to_string(full_.cells.size()) +
-                    (full_.conservative ? searches_.threads_used() > 1 ? " cells (hull search on " +
-                                                                             std::to_string(searches_.threads_used()) +
-                                                                             " threads) through "
-                                                                       : std::string(" cells (hull search) through ")
-                                        : std::string(" cells seen through ")) +
-                    std::to_string(full_.avenues.size()) + " avenues");
+                    std::to_string(full_.cells.size()) + cells + " through " + std::to_string(full_.avenues.size()) +
+                    " avenues");
     const Vec3 e = state_.eye();
     lines.push_back(state_.place() + " | eye (" + fixed(e.x, 2) + ", " + fixed(e.y, 2) + ", " + fixed(e.z, 2) +
                     ") heading " + fixed(state_.yaw(), 0) + " pitch " + fixed(state_.pitch(), 0) + " fov " +
