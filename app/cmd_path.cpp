@@ -370,7 +370,10 @@ int run_path(const PathOptions& opt) {
       throw;
     }
   }
-  if (!mpi.broadcast(shared, true)) return 2;  // rank 0 failed, and says so
+  // Rank 0 failed, and says so. The others leave quietly, with status 0: a rank leaving
+  // with another status has mpirun end the job at once, and it could end rank 0 before it
+  // has said why (it says so after MPI_Finalize). The job's status is rank 0's, 2.
+  if (!mpi.broadcast(shared, true)) return 0;
   const double broadcast_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - broadcast_start).count();
   const size_t broadcast_bytes = shared.size();
 
@@ -474,7 +477,7 @@ int run_path(const PathOptions& opt) {
   walk_over = true;
   if (filming.joinable()) filming.join();
   if (film_between_frames && failure.empty() && film_error.empty()) make_film(true);
-  if (mpi.rank() != 0) return failure.empty() ? 0 : 2;  // rank 0 reports the failure
+  if (mpi.rank() != 0) return 0;  // rank 0 reports a failure, and its status is the job's (as above)
   if (!failure.empty()) throw std::runtime_error(failure + "; the frames done are complete: run again with --resume to finish the walk");
 
   char took[32];
