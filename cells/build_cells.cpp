@@ -65,6 +65,10 @@ CellComplex build_cells(const Plan& plan, const CellParams&) {
     out.solids.push_back({r.poly, s.elevation, s.elevation + s.height, what});
   }
   {
+    ScopedStageTimer t(out.timings, "seams");
+    out.close_seams();
+  }
+  {
     ScopedStageTimer t(out.timings, "index");
     out.index();
   }

@@ -197,6 +197,11 @@ struct CellComplex {
   /// Builds the spatial index used by locate() and the surfaces (index_surfaces); done by
   /// build_cells, the mesh scenes and load_cells.
   void index();
+  /// Puts into each opaque piece's edges the corners of other pieces that lie inside them
+  /// (T-junctions, within the corners' rounding), so that pieces meeting along a line meet
+  /// at the same corners and no sample on the seam falls between them (cells/seam.cpp).
+  /// Done where cells are made and loaded, before index(); returns the corners added.
+  size_t close_seams();
   /// Groups every opaque piece into `surfaces` (OpaquePoly::surface): pieces of one
   /// material whose planes agree within 1e-6 in direction and 10 µm in place.
   void index_surfaces();

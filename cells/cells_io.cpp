@@ -659,6 +659,7 @@ CellComplex cells_from_bytes(std::string_view bytes, const std::string& name, co
   CellComplex c;
   read_complex(r, c, version, cells_dir);
   check_indices(c, r);
+  c.close_seams();  // files written before seams were closed (a no-op on later ones)
   c.index();
   check_complex(c, name);
   return c;

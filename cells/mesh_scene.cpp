@@ -1088,6 +1088,10 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
                             solids[k].name});
     }
   }
+  {
+    ScopedStageTimer t(out.timings, "seams");
+    out.close_seams();
+  }
   out.index();  // before the lines: add_real_lines takes its candidate cells from it
   view_inside_largest_region(out, box, what_cuts());
   start_at_view_of_files(out, meshes);
@@ -1184,6 +1188,10 @@ CellComplex build_mesh_scene(const std::vector<Mesh>& meshes, const MeshScenePar
   {
     ScopedStageTimer t(out.timings, "cells");
     build_cells_of(free, out);
+  }
+  {
+    ScopedStageTimer t(out.timings, "seams");
+    out.close_seams();
   }
   out.index();  // before the lines: add_real_lines takes its candidate cells from it
   {
