@@ -553,6 +553,15 @@ class World {
     else if (t == "Cone")
       round_shape(g->number("bottomRadius", 1), 0, g->number("height", 2), kAround, g->number("side", 1) != 0, false,
                   g->number("bottom", 1) != 0, {v, tris});
+    else if (t == "Extrusion") {
+      const Extrusion e = extrusion_of(*g);
+      if (e.spine.size() * e.cross_section.size() > (size_t(1) << 24)) {
+        warn("Extrusion (line " + std::to_string(g->line) + "): " + std::to_string(e.spine.size()) + " spine points × " +
+             std::to_string(e.cross_section.size()) + " cross-section points, over 16 million corners: left out");
+        return;
+      }
+      extrusion_shape(e, {v, tris});
+    }
     else {
       ++left_out_[t + " geometry (not drawn by this reader)"];
       return;
@@ -607,6 +616,31 @@ class World {
     if (bad > 0)
       warn("IndexedFaceSet (line " + std::to_string(g.line) + "): " + std::to_string(bad) +
            " face(s) of fewer than three corners or naming no coordinate dropped");
+  }
+
+  /// An Extrusion's fields, VRML's defaults where a field is not given.
+  static Extrusion extrusion_of(const VNode& g) {
+    Extrusion e;
+    if (const Value* f = g.field("crossSection")) {
+      e.cross_section.clear();
+      for (size_t i = 0; i + 1 < f->numbers.size(); i += 2) e.cross_section.push_back({f->numbers[i], f->numbers[i + 1]});
+    }
+    if (const Value* f = g.field("spine")) {
+      e.spine.clear();
+      for (size_t i = 0; i + 2 < f->numbers.size(); i += 3) e.spine.push_back({f->numbers[i], f->numbers[i + 1], f->numbers[i + 2]});
+    }
+    if (const Value* f = g.field("scale")) {
+      e.scale.clear();
+      for (size_t i = 0; i + 1 < f->numbers.size(); i += 2) e.scale.push_back({f->numbers[i], f->numbers[i + 1]});
+    }
+    if (const Value* f = g.field("orientation")) {
+      e.orientation.clear();
+      for (size_t i = 0; i + 3 < f->numbers.size(); i += 4)
+        e.orientation.push_back({f->numbers[i], f->numbers[i + 1], f->numbers[i + 2], f->numbers[i + 3]});
+    }
+    e.begin_cap = g.number("beginCap", 1) != 0;
+    e.end_cap = g.number("endCap", 1) != 0;
+    return e;
   }
 
   static void elevation_grid(const VNode& g, std::vector<Vec3>& v, std::vector<std::array<int, 3>>& tris) {

@@ -8,8 +8,9 @@
 // viewpoints, sensors, scripts, interpolators, PROTO instances) are passed over without
 // knowing their fields. What is drawn:
 // - Shape nodes with an IndexedFaceSet (each face cut into triangles, a face that is not
-//   convex by a constrained triangulation), an ElevationGrid, or the primitives Box,
-//   Sphere, Cylinder and Cone;
+//   convex by a constrained triangulation), an ElevationGrid, an Extrusion (swept as the
+//   standard says, a closed one facing out: plans/primitive_shapes.h), or the primitives
+//   Box, Sphere, Cylinder and Cone;
 // - within Transform (translation, rotation, scale, scaleOrientation, center), Group,
 //   Anchor, Billboard (as placed), Collision, Switch (its chosen child), LOD (its first
 //   level) and Inline (the world its url names, beside this one);
@@ -20,7 +21,7 @@
 // to them.
 //
 // Left out with a warning naming them: PROTO instances (their bodies are not expanded),
-// Extrusion and Text, lines and points, a face naming no coordinate, an Inline that cannot
+// Text, lines and points, a face naming no coordinate, an Inline that cannot
 // be read. Refused naming the file and line: a file that is not VRML97 or classic X3D
 // (VRML 1.0 included), broken syntax (an unclosed brace, a USE of a name never DEFined),
 // nesting deeper than 1,000 nodes.

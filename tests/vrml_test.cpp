@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -186,6 +187,86 @@ TEST_F(Vrml, GzippedAndInlinedWorldsAreRead) {
   EXPECT_EQ(b.lo.x, 9);
   EXPECT_EQ(b.hi.x, 11);
   EXPECT_TRUE(said(s.warnings, "Inline '../site.wrl' (line 3) names a world that holds it: left out"));
+}
+
+/// The volume a node's triangles bound, positive where they face out (the divergence
+/// theorem, about its first corner).
+double signed_volume(const ImportedNode& n) {
+  double v = 0;
+  const Vec3 o = n.vertices.front();
+  for (const auto& t : n.triangles)
+    v += dot(n.vertices[size_t(t[0])] - o, cross(n.vertices[size_t(t[1])] - o, n.vertices[size_t(t[2])] - o)) / 6;
+  return v;
+}
+
+/// Whether every edge of the node's triangles is walked once each way (a closed surface,
+/// consistently turned), corners compared by place.
+bool closed_surface(const ImportedNode& n) {
+  std::map<std::pair<std::array<double, 3>, std::array<double, 3>>, int> walked;
+  auto at = [&](int i) { const Vec3 p = n.vertices[size_t(i)]; return std::array<double, 3>{p.x, p.y, p.z}; };
+  for (const auto& t : n.triangles)
+    for (int k = 0; k < 3; ++k) ++walked[{at(t[size_t(k)]), at(t[size_t((k + 1) % 3)])}];
+  for (const auto& [edge, count] : walked) {
+    const auto back = walked.find({edge.second, edge.first});
+    if (count != 1 || back == walked.end() || back->second != 1) return false;
+  }
+  return true;
+}
+
+// Extrusions, swept as VRML97 defines them (ISO/IEC 14772-1, 6.18): the default is a box
+// 2 × 1 × 2 standing on the origin; a pipe round a bend (its section at the bend in the
+// plane halfway between the legs), a cross-section turned the other
+// way, a spine along x and a cone tapered to a point are closed and face out; an open
+// cross-section has sides only.
+TEST_F(Vrml, ExtrusionsAreSweptAsVrmlDefinesThem) {
+  const std::string world = write("extrusions.wrl", R"(#VRML V2.0 utf8
+Shape { geometry Extrusion { } }
+Transform { translation 10 0 0 children Shape { geometry Extrusion {
+  crossSection [ 1 0, 0.7071 -0.7071, 0 -1, -0.7071 -0.7071, -1 0, -0.7071 0.7071, 0 1, 0.7071 0.7071, 1 0 ]
+  scale 0.1 0.1 spine [ 0 0 0, 0 2 0, 2 2 0 ] } } }
+Transform { translation 20 0 0 children Shape { geometry Extrusion {
+  crossSection [ 1 1, -1 1, -1 -1, 1 -1, 1 1 ] } } }
+Transform { translation 30 0 0 children Shape { geometry Extrusion { spine [ 0 0 0, 3 0 0 ] } } }
+Transform { translation 40 0 0 children Shape { geometry Extrusion { scale [ 1 1, 0 0 ] } } }
+Transform { translation 50 0 0 children Shape { geometry Extrusion { crossSection [ 1 0, 0 1, -1 0 ] } } }
+)");
+  const ImportedScene s = read_vrml(world);
+  const auto e = nodes_of(s, "Extrusion");
+  ASSERT_EQ(e.size(), 6u);
+  for (const std::string& w : s.warnings) EXPECT_EQ(w.find("Extrusion"), std::string::npos) << w;
+  // The box: VRML's x −1..1, y 0..1, z −1..1 is Avenues' x −1..1, y −1..1, z 0..1.
+  const Box3 box = bounds(e[0]->vertices);
+  EXPECT_EQ(box.lo, (Vec3{-1, -1, 0}));
+  EXPECT_EQ(box.hi, (Vec3{1, 1, 1}));
+  EXPECT_EQ(e[0]->triangles.size(), 12u);
+  EXPECT_TRUE(outward(*e[0], {0, 0, 0.5}));
+  EXPECT_NEAR(signed_volume(*e[0]), 4, 1e-12);
+  // Every closed one closed and facing out; the open one's sides only (2 of them, 4 triangles).
+  for (const size_t k : {0u, 1u, 2u, 3u, 4u}) {
+    EXPECT_TRUE(closed_surface(*e[k])) << k;
+    EXPECT_GT(signed_volume(*e[k]), 0) << k;
+  }
+  EXPECT_NEAR(signed_volume(*e[2]), 4, 1e-12);
+  EXPECT_NEAR(signed_volume(*e[4]), 4.0 / 3, 1e-12);  // a pyramid: a third of its box
+  EXPECT_EQ(e[5]->triangles.size(), 4u);
+  // The pipe: 0.1 m across, up 2 m then along x 2 m; its bend keeps its cross-section whole.
+  const Box3 pipe = bounds(e[1]->vertices);
+  EXPECT_NEAR(pipe.lo.x, 10 - 0.1, 1e-9);
+  EXPECT_NEAR(pipe.hi.x, 12, 1e-9);
+  // It starts flat on the ground and ends upright, its section 0.1 about the spine's height.
+  EXPECT_NEAR(pipe.lo.z, 0, 1e-12);
+  EXPECT_NEAR(pipe.hi.z, 2.1, 1e-9);
+  // The spine along x: the section's plane turned as +y turns onto +x.
+  const Box3 along = bounds(e[3]->vertices);
+  EXPECT_NEAR(along.lo.x, 30, 1e-12);
+  EXPECT_NEAR(along.hi.x, 33, 1e-12);
+  EXPECT_NEAR(along.hi.z - along.lo.z, 2, 1e-12);
+  // As one mesh, in cells: the closed ones are solids, every face someone could see kept.
+  const std::vector<Mesh> meshes{load_mesh(world)};
+  const CellComplex c = build_mesh_scene(meshes);
+  ASSERT_EQ(cells_are_valid(c), "");
+  EXPECT_EQ(visible_triangles_missing_from_export(c, meshes), 0);
+  EXPECT_EQ(c.locate({0, 0, 0.5}).what, Location::What::Solid);
 }
 
 // What is not VRML97 and what is broken is refused naming the file and line.
