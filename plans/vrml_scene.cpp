@@ -42,6 +42,9 @@ constexpr int kAround = 24;                                   ///< segments roun
 /// Nodes visited, USEs followed each time: a chain of groups each USEing the one before
 /// twice is 2^n visits in a few lines.
 constexpr long kMaxVisits = 2'000'000;
+/// Nodes made by expanding PROTO instances (a PROTO whose body holds two instances of the
+/// one before doubles them at each declaration).
+constexpr long kMaxExpanded = 2'000'000;
 
 /// Up to `limit` bytes of `path` (nullopt when it cannot be read), inflated when gzipped (to
 /// at most `inflated` bytes: beyond, `too_big` is set).
@@ -197,6 +200,14 @@ struct Value {
   std::vector<std::string> strings;
   std::vector<NodeRef> nodes;
   size_t line = 0;
+  std::string is;  ///< in a PROTO's body, `field IS name`: the instance's field `name` stands here
+};
+
+/// A PROTO declared in the file: its fields' defaults and the first node of its body, the
+/// one an instance stands for (VRML97 4.8.3: the others are not drawn), IS left in it.
+struct Proto {
+  std::map<std::string, Value, std::less<>> defaults;
+  NodeRef body;
 };
 
 struct VNode {
@@ -233,7 +244,7 @@ class Parser {
       if (statement(protos)) continue;
       if (NodeRef n = node(0)) roots.push_back(std::move(n));
     }
-    protos.insert(protos_.begin(), protos_.end());
+    protos.insert(externs_.begin(), externs_.end());
     return roots;
   }
 
@@ -243,14 +254,18 @@ class Parser {
     const Token& t = lx_.peek();
     if (t.kind != Token::Word) return false;
     const std::string_view w = t.text;
-    if (w == "PROTO" || w == "EXTERNPROTO") {
+    if (w == "PROTO") {
+      proto();
+      return true;
+    }
+    if (w == "EXTERNPROTO") {  // its body is in another file: instances are left out
       const Token kw = lx_.next();
       const Token name = lx_.next();
-      if (name.kind != Token::Word) lx_.fail(kw.line, std::string(kw.text) + " without a name");
-      protos_.insert(std::string(name.text));
+      if (name.kind != Token::Word) lx_.fail(kw.line, "EXTERNPROTO without a name");
+      externs_.insert(std::string(name.text));
+      protos_.erase(std::string(name.text));
       skip_balanced(Token::LBracket, Token::RBracket, kw);
-      if (w == "PROTO") skip_balanced(Token::LBrace, Token::RBrace, kw);
-      else (void)value(1);  // its url(s)
+      (void)value(1);  // its url(s)
       return true;
     }
     if (w == "ROUTE") {
@@ -270,6 +285,79 @@ class Parser {
     }
     (void)protos;
     return false;
+  }
+
+  /// PROTO name [ interface ] { body }: its fields' defaults, and its body's first node.
+  void proto() {
+    const Token kw = lx_.next();
+    const Token name = lx_.next();
+    if (name.kind != Token::Word) lx_.fail(kw.line, "PROTO without a name");
+    Proto p;
+    const Token open = lx_.next();
+    if (open.kind != Token::LBracket) lx_.fail(open.line, "PROTO " + std::string(name.text) + " wants '[' here");
+    for (;;) {
+      const Token& d = lx_.peek();
+      if (d.kind == Token::RBracket) break;
+      if (d.kind == Token::End) lx_.fail(open.line, "PROTO " + std::string(name.text) + "'s interface begun here is never closed");
+      const Token kind = lx_.next(), type = lx_.next(), field = lx_.next();
+      if (kind.kind != Token::Word || type.kind != Token::Word || field.kind != Token::Word)
+        lx_.fail(kind.line, "PROTO " + std::string(name.text) + ": a declaration (field, exposedField, eventIn or eventOut, a type, a name) was expected");
+      const std::string_view k = kind.text;
+      if (k == "field" || k == "exposedField" || k == "initializeOnly" || k == "inputOutput")
+        p.defaults[std::string(field.text)] = value(1);
+      else if (k != "eventIn" && k != "eventOut" && k != "inputOnly" && k != "outputOnly")
+        lx_.fail(kind.line, "PROTO " + std::string(name.text) + ": '" + std::string(k) + "' is no kind of declaration");
+    }
+    lx_.next();  // ]
+    // The body: nodes and statements, its names its own (a DEF within it is not seen outside).
+    const Token brace = lx_.next();
+    if (brace.kind != Token::LBrace) lx_.fail(brace.line, "PROTO " + std::string(name.text) + " wants '{' here");
+    auto outer = defs_;
+    std::set<std::string> unused;
+    for (;;) {
+      const Token& t = lx_.peek();
+      if (t.kind == Token::RBrace) break;
+      if (t.kind == Token::End) lx_.fail(brace.line, "PROTO " + std::string(name.text) + "'s body begun here is never closed");
+      if (statement(unused)) continue;
+      NodeRef n = node(1);
+      if (!p.body) p.body = std::move(n);
+    }
+    lx_.next();  // }
+    defs_ = std::move(outer);
+    externs_.erase(std::string(name.text));
+    protos_[std::string(name.text)] = std::move(p);
+  }
+
+  /// An instance of `p`: its body's first node, each `IS` in it given the instance's value
+  /// of that field (or the PROTO's default). Parts with no IS below them are shared, not
+  /// copied; `made` keeps a node USEd twice in the body one node in the instance.
+  NodeRef instantiate(const NodeRef& n, const Proto& p, const VNode& instance, std::map<const VNode*, NodeRef>& made) {
+    if (!n) return nullptr;
+    if (const auto it = made.find(n.get()); it != made.end()) return it->second;
+    auto copy = std::make_shared<VNode>();
+    copy->type = n->type;
+    copy->line = n->line;
+    bool changed = false;
+    for (const auto& [field, v] : n->fields) {
+      if (!v.is.empty()) {
+        changed = true;
+        if (const Value* given = instance.field(v.is)) copy->fields.emplace_back(field, *given);
+        else if (const auto d = p.defaults.find(v.is); d != p.defaults.end()) copy->fields.emplace_back(field, d->second);
+        continue;  // an event, or a field the PROTO does not declare: nothing stands here
+      }
+      Value w = v;
+      for (NodeRef& c : w.nodes) {
+        NodeRef d = instantiate(c, p, instance, made);
+        changed = changed || d != c;
+        c = std::move(d);
+      }
+      copy->fields.emplace_back(field, std::move(w));
+    }
+    if (changed && ++expanded_ > kMaxExpanded)
+      lx_.fail(instance.line, "PROTO instances expand to more than " + std::to_string(kMaxExpanded) + " nodes");
+    NodeRef out = changed ? NodeRef(std::move(copy)) : n;
+    made[n.get()] = out;
+    return out;
   }
 
   void skip_balanced(Token::Kind open, Token::Kind close, const Token& what) {
@@ -323,6 +411,10 @@ class Parser {
       n->fields.emplace_back(std::move(name), value(depth + 1));
     }
     lx_.next();  // }
+    if (const auto p = protos_.find(n->type); p != protos_.end()) {
+      std::map<const VNode*, NodeRef> made;
+      return instantiate(p->second.body, p->second, *n, made);
+    }
     return n;
   }
 
@@ -356,8 +448,11 @@ class Parser {
       lx_.next();  // ]
       return v;
     }
-    if (t.kind == Token::Word && t.text == "IS") {  // a PROTO's field
-      lx_.next(), lx_.next();
+    if (t.kind == Token::Word && t.text == "IS") {  // in a PROTO's body: the instance's field
+      lx_.next();
+      const Token name = lx_.next();
+      if (name.kind != Token::Word) lx_.fail(name.line, "IS without a field's name");
+      v.is = std::string(name.text);
       return v;
     }
     if (starts_node()) {
@@ -374,7 +469,9 @@ class Parser {
 
   Lexer lx_;
   std::map<std::string, NodeRef, std::less<>> defs_;
-  std::set<std::string> protos_;
+  std::map<std::string, Proto, std::less<>> protos_;
+  std::set<std::string> externs_;  ///< EXTERNPROTOs, whose instances are left out
+  long expanded_ = 0;
 };
 
 // ---- The world ----
@@ -468,7 +565,7 @@ class World {
     } else if (t == "Viewpoint") {
       viewpoint(*n, place);
     } else if (protos_.count(t)) {
-      ++left_out_["instance(s) of PROTO " + t + " (PROTOs are not expanded)"];
+      ++left_out_["instance(s) of EXTERNPROTO " + t + " (its body is in another file, not read)"];
     } else if (n->field("children")) {  // Group, Anchor, Billboard (as placed), Collision, X3D's CAD groups...
       children("children", place);
     }

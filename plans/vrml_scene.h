@@ -5,8 +5,9 @@
 //
 // The syntax is read whole, generically: every node with its fields, DEF and USE, lists and
 // single values, whatever the node's type, so that nodes this reader does not draw (lights,
-// viewpoints, sensors, scripts, interpolators, PROTO instances) are passed over without
-// knowing their fields. What is drawn:
+// viewpoints, sensors, scripts, interpolators) are passed over without
+// knowing their fields. A PROTO's instance is its body's first node, each IS in it given
+// the instance's value of that field or the PROTO's default (VRML97 4.8). What is drawn:
 // - Shape nodes with an IndexedFaceSet (each face cut into triangles, a face that is not
 //   convex by a constrained triangulation), an ElevationGrid, an Extrusion (swept as the
 //   standard says, a closed one facing out: plans/primitive_shapes.h), or the primitives
@@ -20,11 +21,11 @@
 // Avenues'. `--up` and `--unit` (MeshAxes) override both, for CAD exports that do not keep
 // to them.
 //
-// Left out with a warning naming them: PROTO instances (their bodies are not expanded),
-// Text, lines and points, a face naming no coordinate, an Inline that cannot
+// Left out with a warning naming them: EXTERNPROTO instances (their bodies are in other
+// files, not read), Text, lines and points, a face naming no coordinate, an Inline that cannot
 // be read. Refused naming the file and line: a file that is not VRML97 or classic X3D
 // (VRML 1.0 included), broken syntax (an unclosed brace, a USE of a name never DEFined),
-// nesting deeper than 1,000 nodes.
+// nesting deeper than 1,000 nodes, PROTO instances expanding to more than 2,000,000 nodes.
 #pragma once
 
 #include <string>

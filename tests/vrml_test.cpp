@@ -140,7 +140,8 @@ TEST(VrmlWorld, ARoomStandsWhereItsTransformsPutItInItsColours) {
   EXPECT_EQ(ground.hi.x, 4);
   EXPECT_EQ(ground.lo.y, -3);
   EXPECT_NEAR(ground.hi.z, 0.1, 1e-12);
-  EXPECT_TRUE(said(s.warnings, "1 instance(s) of PROTO Lamp (PROTOs are not expanded) left out")) << s.warnings.size();
+  // The PROTO Lamp's instance is its body's PointLight: passed over, as lights are.
+  EXPECT_FALSE(said(s.warnings, "Lamp")) << s.warnings.size();
   // --unit and --up: millimetres make it a thousandth; z up leaves its axes as written.
   ImportOptions o;
   o.axes.metres_per_unit = 0.001;
@@ -267,6 +268,66 @@ Transform { translation 50 0 0 children Shape { geometry Extrusion { crossSectio
   ASSERT_EQ(cells_are_valid(c), "");
   EXPECT_EQ(visible_triangles_missing_from_export(c, meshes), 0);
   EXPECT_EQ(c.locate({0, 0, 0.5}).what, Location::What::Solid);
+}
+
+// PROTOs, as CAD exports and hand-written worlds use them: each instance is its body's first
+// node, every IS given the instance's value or the PROTO's default; instances within a
+// PROTO's body, a node USEd twice in a body, a DEF in a body not seen outside it. An
+// EXTERNPROTO's instances (their body elsewhere) are left out with a warning naming them.
+TEST_F(Vrml, ProtoInstancesAreExpanded) {
+  const std::string world = write("protos.wrl", R"(#VRML V2.0 utf8
+PROTO Post [ field SFFloat height 2  exposedField SFColor colour 0.5 0.5 0.5  eventIn SFBool set_lit ] {
+  DEF POST Transform { translation 0 1 0 children [
+    Shape { appearance Appearance { material Material { diffuseColor IS colour } }
+            geometry Box { size 0.2 2 0.2 } } ] }
+  PointLight { }
+}
+PROTO Fence [ field SFColor colour 1 0 0  field SFVec3f at 0 0 0 ] {
+  Transform { translation IS at children [ Post { colour IS colour }  Transform { translation 2 0 0 children Post { colour IS colour } } ] }
+}
+EXTERNPROTO Gate [ field SFColor colour ] "gate.wrl#Gate"
+Post { }
+Transform { translation 10 0 0 children Post { colour 0 0 1 } }
+Fence { at 20 0 0 colour 0 1 0 }
+Fence { at 30 0 0 }
+Gate { colour 1 1 1 }
+)");
+  const ImportedScene s = read_vrml(world);
+  const auto posts = nodes_of(s, "Box");
+  ASSERT_EQ(posts.size(), 6u);
+  // Each post 0.2 across, 2 high, standing on the ground where its instance puts it, in the
+  // colour the instance gives (or the PROTO's default).
+  const double xs[] = {0, 10, 20, 22, 30, 32};
+  const std::array<double, 3> colours[] = {{0.5, 0.5, 0.5}, {0, 0, 1}, {0, 1, 0}, {0, 1, 0}, {1, 0, 0}, {1, 0, 0}};
+  for (size_t k = 0; k < posts.size(); ++k) {
+    const Box3 b = bounds(posts[k]->vertices);
+    EXPECT_NEAR(middle(b).x, xs[k], 1e-12) << k;
+    EXPECT_NEAR(b.lo.z, 0, 1e-12) << k;
+    EXPECT_NEAR(b.hi.z, 2, 1e-12) << k;
+    EXPECT_TRUE(posts[k]->coloured) << k;
+    EXPECT_EQ(posts[k]->colour, colours[k]) << k;
+  }
+  EXPECT_TRUE(said(s.warnings, "1 instance(s) of EXTERNPROTO Gate (its body is in another file, not read) left out"));
+  // A DEF in a PROTO's body is the body's own.
+  const std::string leaky = write("leaky.wrl", "#VRML V2.0 utf8\nPROTO P [ ] { DEF INNER Group { } }\nP { }\nUSE INNER\n");
+  try {
+    (void)read_vrml(leaky);
+    ADD_FAILURE() << "a USE of a name DEFined only in a PROTO's body was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("leaky.wrl:4"), std::string::npos) << e.what();
+  }
+  // Each PROTO holding two instances of the one before: refused past two million nodes.
+  std::string doubling = "#VRML V2.0 utf8\nPROTO P0 [ field SFColor c 1 1 1 ] { Shape { appearance Appearance { material Material { diffuseColor IS c } } geometry Box { } } }\n";
+  for (int k = 1; k <= 24; ++k)
+    doubling += "PROTO P" + std::to_string(k) + " [ field SFColor c 1 1 1 ] { Group { children [ P" + std::to_string(k - 1) +
+                " { c IS c } P" + std::to_string(k - 1) + " { c IS c } ] } }\n";
+  doubling += "P24 { }\n";
+  try {
+    (void)read_vrml(write("doubling.wrl", doubling));
+    ADD_FAILURE() << "2^24 nodes from 27 lines were read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("more than 2000000"), std::string::npos) << e.what();
+  }
 }
 
 // What is not VRML97 and what is broken is refused naming the file and line.
