@@ -183,7 +183,8 @@ TEST(Strips, EveryBundledPlanSearchedInStripsIsDrawnAsTheWholeWindowIs) {
 
 // A walk's searches one after another (FrameSearches): the first whole; after one that took
 // at least the mark, on both threads in strips cut where its avenues lay, the same cells
-// seen; after short ones, whole again. A stereo pair's eyes likewise side by side.
+// seen (on one thread when no cut falls inside the window); after short ones, whole again.
+// A stereo pair's eyes likewise side by side.
 TEST(Strips, AWalksSearchesGoSideBySideAfterALongOne) {
   const CellComplex c = build_mesh_scene({avenues::testing::open_boxes(12)});
   const Camera cam = Camera::yaw_pitch({-1.0, -0.3, 1.6}, 40, -5, 70, 320, 180);
@@ -205,6 +206,12 @@ TEST(Strips, AWalksSearchesGoSideBySideAfterALongOne) {
   searches.find_pair(c, cam, cell, cam, cell, hull_search(), left, right);
   EXPECT_EQ(searches.threads_used(), 2);
   EXPECT_EQ(left.cells, right.cells);
+  // Cut where the last search's avenues lay, but none of those cuts inside a narrower
+  // window: searched whole, on one thread, and said so.
+  (void)searches.find(c, cam, cell, hull_search());
+  const Camera narrow = Camera::yaw_pitch({-1.0, -0.3, 1.6}, 40, -5, 0.5, 320, 180);
+  EXPECT_TRUE(searches.find(c, narrow, cell, hull_search()).strips.empty());
+  EXPECT_EQ(searches.threads_used(), 1);
   // A mark no search reaches: whole, one after another.
   FrameSearches quick(2, 1e12);
   quick.find(c, cam, cell, hull_search());

@@ -119,10 +119,11 @@ void FrameSearches::judge(double micros) {
 VisibleSet FrameSearches::find(const CellComplex& complex, const Camera& camera, CellId eye_cell,
                                const TraverseParams& params) {
   const bool on = next_on_ && params.hull_pieces && !camera.is_parallel();
-  used_ = on ? threads_ : 1;
   VisibleSet v = on ? find_visible_in_strips(complex, camera, eye_cell, params,
                                               edges_.empty() ? strip_edges(camera, threads_) : edges_, threads_)
                      : find_visible(complex, camera, eye_cell, params);
+  // As many threads as strips were searched (none when no cut fell inside the window).
+  used_ = v.strips.empty() ? 1 : std::min(threads_, int(v.strips.size()));
   judge(v.micros);
   edges_.clear();
   if (next_on_) edges_ = strip_edges(camera, threads_, &v);
