@@ -639,8 +639,9 @@ class World {
     if (!g) return;
     std::vector<Vec3> v;
     std::vector<std::array<int, 3>> tris;
+    std::vector<std::array<double, 3>> tri_colour;  // an IndexedFaceSet's own colours, per triangle
     const std::string& t = g->type;
-    if (t == "IndexedFaceSet") face_set(*g, v, tris);
+    if (t == "IndexedFaceSet") face_set(*g, v, tris, tri_colour);
     else if (t == "ElevationGrid") elevation_grid(*g, v, tris);
     else if (t == "Box") box_shape(g->vec("size", {2, 2, 2}), {v, tris});
     else if (t == "Sphere") sphere_shape(g->number("radius", 1), kAround, kAround / 2, {v, tris});
@@ -674,14 +675,70 @@ class World {
     bool coloured = false;
     n.colour = colour_of(s, coloured);
     n.coloured = coloured;
-    if (coloured) {
+    if (!tri_colour.empty() && !textured(s)) {
+      // The geometry's Color node, which stands for the Material's diffuseColor: a material
+      // for each colour it uses.
+      std::map<std::array<double, 3>, int> material_of;
+      for (const auto& c : tri_colour) {
+        auto [it, added] = material_of.try_emplace(c, int(out_.materials.size()));
+        if (added) out_.materials.push_back({n.name + ", colour " + std::to_string(material_of.size()), c, true});
+        n.triangle_material.push_back(it->second);
+      }
+      n.colour = tri_colour.front();
+      n.coloured = true;
+    } else if (coloured) {
       out_.materials.push_back({n.name, n.colour, true});
       n.triangle_material.assign(n.triangles.size(), int(out_.materials.size()) - 1);
     }
     out_.nodes.push_back(std::move(n));
   }
 
-  void face_set(const VNode& g, std::vector<Vec3>& v, std::vector<std::array<int, 3>>& tris) {
+  /// Whether the Shape's appearance holds an ImageTexture that was read (its colour then
+  /// stands over a Color node's, as a VRML browser shows an RGB texture over vertex colours).
+  bool textured(const VNode& shape) {
+    const NodeRef app = shape.node("appearance");
+    const NodeRef tex = app ? app->node("texture") : nullptr;
+    const Value* url = tex && tex->type == "ImageTexture" ? tex->field("url") : nullptr;
+    if (!url || url->strings.empty()) return false;
+    return images_.image((fs::path(files_.back()).parent_path() / url->strings.front()).string()).colour.has_value();
+  }
+
+  /// Each face's colour from the geometry's Color node (VRML97 6.23): by colorIndex or in
+  /// order, one a face (colorPerVertex FALSE) or one a corner (TRUE: the face's corners'
+  /// mean). Empty without a Color node; a face whose index names no colour takes white.
+  static std::vector<std::array<double, 3>> face_colours(const VNode& g, const std::vector<std::vector<int>>& faces,
+                                                         const std::vector<std::vector<int>>& corner_index) {
+    const NodeRef color = g.node("color");
+    const Value* list = color ? color->field("color") : nullptr;
+    if (!list || list->numbers.size() < 3) return {};
+    const size_t colours = list->numbers.size() / 3;
+    auto colour = [&](long i) -> std::array<double, 3> {
+      if (i < 0 || size_t(i) >= colours) return {1, 1, 1};
+      auto c = [&](size_t k) { return std::clamp(list->numbers[size_t(i) * 3 + k], 0.0, 1.0); };
+      return {c(0), c(1), c(2)};
+    };
+    const Value* index = g.field("colorIndex");
+    const bool per_vertex = g.number("colorPerVertex", 1) != 0;
+    std::vector<std::array<double, 3>> out;
+    for (size_t f = 0; f < faces.size(); ++f) {
+      if (!per_vertex) {
+        const long i = index && !index->numbers.empty() ? (f < index->numbers.size() ? long(index->numbers[f]) : -1) : long(f);
+        out.push_back(colour(i));
+        continue;
+      }
+      std::array<double, 3> sum{0, 0, 0};
+      for (size_t k = 0; k < faces[f].size(); ++k) {
+        const long i = index && !index->numbers.empty() ? long(corner_index[f][k]) : long(faces[f][k]);
+        const auto c = colour(i);
+        for (size_t j = 0; j < 3; ++j) sum[j] += c[j] / double(faces[f].size());
+      }
+      out.push_back(sum);
+    }
+    return out;
+  }
+
+  void face_set(const VNode& g, std::vector<Vec3>& v, std::vector<std::array<int, 3>>& tris,
+                std::vector<std::array<double, 3>>& tri_colour) {
     const NodeRef coord = g.node("coord");
     const Value* point = coord ? coord->field("point") : nullptr;
     const Value* index = g.field("coordIndex");
@@ -691,23 +748,40 @@ class World {
     const bool ccw = g.number("ccw", 1) != 0;
     size_t bad = 0;
     std::vector<int> face;
-    auto close = [&] {
+    // Every face as written (its number counts for colorIndex, drawn or not), its corners'
+    // colour indices where colorIndex runs beside coordIndex, and its triangles' face.
+    std::vector<std::vector<int>> faces, corner_index;
+    std::vector<size_t> face_of;
+    const Value* ci = g.field("colorIndex");
+    size_t at = 0;  // the position in coordIndex of the face's first corner
+    auto close = [&](size_t end) {
+      if (face.empty()) return;
       bool ok = face.size() >= 3;
       for (int i : face) ok = ok && i >= 0 && size_t(i) < points;
+      const size_t before = tris.size();
       if (!ok) {
-        bad += !face.empty();
+        bad += 1;
       } else if (polygon_is_convex(v, face)) {
         for (size_t k = 1; k + 1 < face.size(); ++k) tris.push_back({face[0], face[k], face[k + 1]});
       } else {
         for (const auto& tri : triangulate_polygon(v, face)) tris.push_back(tri);
       }
+      std::vector<int> corners;
+      for (size_t k = at; k < end; ++k)
+        corners.push_back(ci && k < ci->numbers.size() && ci->numbers[k] < double(INT32_MAX) ? int(ci->numbers[k]) : -1);
+      face_of.insert(face_of.end(), tris.size() - before, faces.size());
+      faces.push_back(face);
+      corner_index.push_back(std::move(corners));
       face.clear();
     };
-    for (double i : index->numbers) {
-      if (i < 0) close();
+    for (size_t k = 0; k < index->numbers.size(); ++k) {
+      const double i = index->numbers[k];
+      if (i < 0) close(k), at = k + 1;
       else face.push_back(i < double(INT32_MAX) ? int(i) : -1);
     }
-    close();
+    close(index->numbers.size());
+    if (const auto colours = face_colours(g, faces, corner_index); !colours.empty())
+      for (size_t f : face_of) tri_colour.push_back(colours[f]);
     if (!ccw)
       for (auto& tri : tris) std::swap(tri[1], tri[2]);
     if (bad > 0)

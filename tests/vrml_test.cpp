@@ -330,6 +330,43 @@ Gate { colour 1 1 1 }
   }
 }
 
+// Faces in their own colours, as CAD exports give them: a Color node with a colour a face
+// (colorPerVertex FALSE, by colorIndex or in order) or a corner (TRUE: the face takes its
+// corners' mean), standing for the Material's diffuseColor.
+TEST_F(Vrml, FacesTakeTheirColoursFromAColorNode) {
+  const std::string world = write("colours.wrl", R"(#VRML V2.0 utf8
+Shape { appearance Appearance { material Material { diffuseColor 0.5 0.5 0.5 } }
+  geometry IndexedFaceSet { coord DEF C Coordinate { point [ 0 0 0, 1 0 0, 1 1 0, 0 1 0, 2 0 0, 2 1 0 ] }
+    coordIndex [ 0 1 2 3 -1 1 4 5 2 -1 ]
+    color Color { color [ 1 0 0, 0 1 0, 0 0 1 ] } colorPerVertex FALSE colorIndex [ 2 0 ] } }
+Shape { geometry IndexedFaceSet { coord USE C coordIndex [ 0 1 2 -1, 0 2 3 -1 ]
+    color Color { color [ 1 0 0, 0 1 0 ] } colorPerVertex FALSE } }
+Shape { geometry IndexedFaceSet { coord USE C coordIndex [ 0 1 2 3 -1 ]
+    color Color { color [ 1 0 0, 0 0 1 ] } colorIndex [ 0 0 1 1 -1 ] } }
+)");
+  const ImportedScene s = read_vrml(world);
+  const auto sets = nodes_of(s, "IndexedFaceSet");
+  ASSERT_EQ(sets.size(), 3u);
+  auto colour_of_triangle = [&](const ImportedNode& n, size_t t) {
+    const int m = n.triangle_material.at(t);
+    EXPECT_GE(m, 0);
+    return s.materials.at(size_t(m)).colour;
+  };
+  using C = std::array<double, 3>;
+  // By colorIndex, a colour a face: the first quad blue, the second red (two triangles each).
+  ASSERT_EQ(sets[0]->triangles.size(), 4u);
+  EXPECT_EQ(colour_of_triangle(*sets[0], 0), (C{0, 0, 1}));
+  EXPECT_EQ(colour_of_triangle(*sets[0], 1), (C{0, 0, 1}));
+  EXPECT_EQ(colour_of_triangle(*sets[0], 2), (C{1, 0, 0}));
+  EXPECT_EQ(colour_of_triangle(*sets[0], 3), (C{1, 0, 0}));
+  // In order, with no Material at all.
+  EXPECT_EQ(colour_of_triangle(*sets[1], 0), (C{1, 0, 0}));
+  EXPECT_EQ(colour_of_triangle(*sets[1], 1), (C{0, 1, 0}));
+  EXPECT_TRUE(sets[1]->coloured);
+  // A colour a corner: half red, half blue.
+  EXPECT_EQ(colour_of_triangle(*sets[2], 0), (C{0.5, 0, 0.5}));
+}
+
 // What is not VRML97 and what is broken is refused naming the file and line.
 TEST_F(Vrml, BrokenWorldsAreRefusedNamingTheLine) {
   auto refused = [&](const std::string& name, const std::string& text, const std::string& what) {
