@@ -642,7 +642,7 @@ class World {
     std::vector<std::array<double, 3>> tri_colour;  // an IndexedFaceSet's own colours, per triangle
     const std::string& t = g->type;
     if (t == "IndexedFaceSet") face_set(*g, v, tris, tri_colour);
-    else if (t == "ElevationGrid") elevation_grid(*g, v, tris);
+    else if (t == "ElevationGrid") elevation_grid(*g, v, tris, tri_colour);
     else if (t == "Box") box_shape(g->vec("size", {2, 2, 2}), {v, tris});
     else if (t == "Sphere") sphere_shape(g->number("radius", 1), kAround, kAround / 2, {v, tris});
     else if (t == "Cylinder")
@@ -814,7 +814,8 @@ class World {
     return e;
   }
 
-  static void elevation_grid(const VNode& g, std::vector<Vec3>& v, std::vector<std::array<int, 3>>& tris) {
+  static void elevation_grid(const VNode& g, std::vector<Vec3>& v, std::vector<std::array<int, 3>>& tris,
+                             std::vector<std::array<double, 3>>& tri_colour) {
     const long nx = long(g.number("xDimension", 0)), nz = long(g.number("zDimension", 0));
     const double dx = g.number("xSpacing", 1), dz = g.number("zSpacing", 1);
     const Value* h = g.field("height");
@@ -822,13 +823,17 @@ class World {
     for (long j = 0; j < nz; ++j)
       for (long i = 0; i < nx; ++i) v.push_back({double(i) * dx, h->numbers[size_t(j * nx + i)], double(j) * dz});
     const bool ccw = g.number("ccw", 1) != 0;
+    // Its squares as faces, for their colours (a colour a square, or a point: face_colours).
+    std::vector<std::vector<int>> squares;
     for (long j = 0; j + 1 < nz; ++j)
       for (long i = 0; i + 1 < nx; ++i) {
         const int a = int(j * nx + i), b = int((j + 1) * nx + i), c = int((j + 1) * nx + i + 1), d = int(j * nx + i + 1);
         // (b − a) × (c − a) points up (+y) for ccw, as VRML's grid faces.
         tris.push_back(ccw ? std::array<int, 3>{a, b, c} : std::array<int, 3>{a, c, b});
         tris.push_back(ccw ? std::array<int, 3>{a, c, d} : std::array<int, 3>{a, d, c});
+        squares.push_back({a, b, c, d});
       }
+    for (const auto& c : face_colours(g, squares, squares)) tri_colour.push_back(c), tri_colour.push_back(c);
   }
 
   std::string path_;

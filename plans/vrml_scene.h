@@ -17,7 +17,7 @@
 //   level) and Inline (the world its url names, beside this one);
 // - each Shape in its Material's diffuseColor, or its ImageTexture's mean colour
 //   (plans/image_colour.h), taken as linear as Assimp's readers take colours; an
-//   IndexedFaceSet's Color node, where it has one and no texture was read, colours each
+//   IndexedFaceSet's or ElevationGrid's Color node, where it has one and no texture was read, colours each
 //   face (a colour a face, or the mean of its corners').
 // VRML's space is right-handed with y up, in metres: a point (x, y, z) is (x, −z, y) in
 // Avenues'. `--up` and `--unit` (MeshAxes) override both, for CAD exports that do not keep

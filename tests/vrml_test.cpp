@@ -332,7 +332,7 @@ Gate { colour 1 1 1 }
 
 // Faces in their own colours, as CAD exports give them: a Color node with a colour a face
 // (colorPerVertex FALSE, by colorIndex or in order) or a corner (TRUE: the face takes its
-// corners' mean), standing for the Material's diffuseColor.
+// corners' mean), standing for the Material's diffuseColor; an ElevationGrid's likewise.
 TEST_F(Vrml, FacesTakeTheirColoursFromAColorNode) {
   const std::string world = write("colours.wrl", R"(#VRML V2.0 utf8
 Shape { appearance Appearance { material Material { diffuseColor 0.5 0.5 0.5 } }
@@ -365,6 +365,22 @@ Shape { geometry IndexedFaceSet { coord USE C coordIndex [ 0 1 2 3 -1 ]
   EXPECT_TRUE(sets[1]->coloured);
   // A colour a corner: half red, half blue.
   EXPECT_EQ(colour_of_triangle(*sets[2], 0), (C{0.5, 0, 0.5}));
+  // An ElevationGrid's colours: one a square, or one a point (the square their mean).
+  const std::string grids = write("grids.wrl", R"(#VRML V2.0 utf8
+Shape { geometry ElevationGrid { xDimension 3 zDimension 2 height [ 0 0 0, 0 0 0 ]
+  color Color { color [ 1 0 0, 0 0 1 ] } colorPerVertex FALSE } }
+Shape { geometry ElevationGrid { xDimension 2 zDimension 2 height [ 0 0, 0 0 ]
+  color Color { color [ 1 0 0, 1 0 0, 0 1 0, 0 1 0 ] } } }
+)");
+  const ImportedScene g = read_vrml(grids);
+  const auto eg = nodes_of(g, "ElevationGrid");
+  ASSERT_EQ(eg.size(), 2u);
+  auto grid_colour = [&](const ImportedNode& n, size_t t) { return g.materials.at(size_t(n.triangle_material.at(t))).colour; };
+  ASSERT_EQ(eg[0]->triangles.size(), 4u);
+  EXPECT_EQ(grid_colour(*eg[0], 0), (C{1, 0, 0}));
+  EXPECT_EQ(grid_colour(*eg[0], 1), (C{1, 0, 0}));
+  EXPECT_EQ(grid_colour(*eg[0], 2), (C{0, 0, 1}));
+  EXPECT_EQ(grid_colour(*eg[1], 0), (C{0.5, 0.5, 0}));
 }
 
 // What is not VRML97 and what is broken is refused naming the file and line.
