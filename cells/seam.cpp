@@ -144,8 +144,10 @@ size_t CellComplex::close_seams() {
               inside.emplace_back(t, v);
             }
             std::sort(inside.begin(), inside.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+            // Two corners a rounding apart are one corner: the side between them would have
+            // no direction of its own.
             for (const auto& [t, v] : inside)
-              if (!same(v, out.back())) out.push_back(v), ++here;
+              if (length(v - out.back()) > end) out.push_back(v), ++here;
           }
           if (out.size() != m) piece.poly = out;
         }
