@@ -268,6 +268,7 @@ Transform { translation 50 0 0 children Shape { geometry Extrusion { crossSectio
   ASSERT_EQ(cells_are_valid(c), "");
   EXPECT_EQ(visible_triangles_missing_from_export(c, meshes), 0);
   EXPECT_EQ(c.locate({0, 0, 0.5}).what, Location::What::Solid);
+  expect_soup_views_agree_with_rays(c, 8, 2026, 96, 64, 8);
 }
 
 // PROTOs, as CAD exports and hand-written worlds use them: each instance is its body's first
@@ -308,6 +309,12 @@ Gate { colour 1 1 1 }
     EXPECT_EQ(posts[k]->colour, colours[k]) << k;
   }
   EXPECT_TRUE(said(s.warnings, "1 instance(s) of EXTERNPROTO Gate (its body is in another file, not read) left out"));
+  // In cells: sound, every post's faces kept, views agreeing with rays.
+  const std::vector<Mesh> meshes{load_mesh(world)};
+  const CellComplex c = build_mesh_scene(meshes);
+  ASSERT_EQ(cells_are_valid(c), "");
+  EXPECT_EQ(visible_triangles_missing_from_export(c, meshes), 0);
+  expect_soup_views_agree_with_rays(c, 8, 2027, 96, 64, 8);
   // A DEF in a PROTO's body is the body's own.
   const std::string leaky = write("leaky.wrl", "#VRML V2.0 utf8\nPROTO P [ ] { DEF INNER Group { } }\nP { }\nUSE INNER\n");
   try {
