@@ -22,6 +22,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -95,6 +96,15 @@ size_t CellComplex::close_seams() {
         for (int64_t z = z0; z <= z1; ++z) filed.push_back({cube_key(x, y, z), uint32_t(k)});
   }
   std::sort(filed.begin(), filed.end());
+  // Each cube's run of corners in `filed`.
+  std::unordered_map<uint64_t, std::pair<uint32_t, uint32_t>> run;
+  run.reserve(filed.size());
+  for (uint32_t k = 0; k < uint32_t(filed.size());) {
+    uint32_t e = k;
+    while (e < filed.size() && filed[e].cube == filed[k].cube) ++e;
+    run.emplace(filed[k].cube, std::pair{k, e});
+    k = e;
+  }
 
   // Each piece changes only itself, and reads only the corners as they were: cells in
   // parallel, the same result on any number of threads.
@@ -127,9 +137,9 @@ size_t CellComplex::close_seams() {
               for (int64_t x = x0; x <= x1; ++x)
                 for (int64_t y = y0; y <= y1; ++y)
                   for (int64_t z = z0; z <= z1; ++z) {
-                    const uint64_t key = cube_key(x, y, z);
-                    auto it = std::lower_bound(filed.begin(), filed.end(), Filed{key, 0});
-                    for (; it != filed.end() && it->cube == key; ++it) near.push_back(it->corner);
+                    const auto it = run.find(cube_key(x, y, z));
+                    if (it == run.end()) continue;
+                    for (uint32_t k = it->second.first; k < it->second.second; ++k) near.push_back(filed[k].corner);
                   }
             }
             if (near.empty()) continue;
