@@ -643,6 +643,8 @@ class World {
     const std::string& t = g->type;
     if (t == "IndexedFaceSet") face_set(*g, v, tris, tri_colour);
     else if (t == "ElevationGrid") elevation_grid(*g, v, tris, tri_colour);
+    else if (t.ends_with("TriangleSet") || t.ends_with("QuadSet") || t.ends_with("StripSet") || t.ends_with("FanSet"))
+      triangle_set(*g, v, tris, tri_colour);
     else if (t == "Box") box_shape(g->vec("size", {2, 2, 2}), {v, tris});
     else if (t == "Sphere") sphere_shape(g->number("radius", 1), kAround, kAround / 2, {v, tris});
     else if (t == "Cylinder")
@@ -812,6 +814,77 @@ class World {
     e.begin_cap = g.number("beginCap", 1) != 0;
     e.end_cap = g.number("endCap", 1) != 0;
     return e;
+  }
+
+  /// X3D's triangle and quad sets (ISO/IEC 19775-1, Rendering and CADGeometry): triangles,
+  /// quads, strips and fans of their coordinates, in order or by `index` (strips and fans
+  /// of an index split at −1; of coordinates in order, by stripCount or fanCount). A strip's
+  /// every other triangle is turned back, so that all of them turn as its first does.
+  static void triangle_set(const VNode& g, std::vector<Vec3>& v, std::vector<std::array<int, 3>>& tris,
+                           std::vector<std::array<double, 3>>& tri_colour) {
+    const NodeRef coord = g.node("coord");
+    const Value* point = coord ? coord->field("point") : nullptr;
+    if (!point) return;
+    for (size_t i = 0; i + 2 < point->numbers.size(); i += 3) v.push_back({point->numbers[i], point->numbers[i + 1], point->numbers[i + 2]});
+    const long points = long(v.size());
+    const std::string& t = g.type;
+    const bool indexed = t.starts_with("Indexed");
+    std::vector<long> order;  // the corners in order: the index, or the coordinates
+    if (indexed) {
+      if (const Value* index = g.field("index"))
+        for (double i : index->numbers) order.push_back(i < 0 ? -1 : i < double(INT32_MAX) ? long(i) : points);
+    } else {
+      for (long i = 0; i < points; ++i) order.push_back(i);
+    }
+    // Runs of corners: split at −1 (indexed strips and fans) or by their counts.
+    std::vector<std::vector<long>> runs(1);
+    const Value* counts = g.field(t.ends_with("StripSet") ? "stripCount" : "fanCount");
+    if (!indexed && counts && (t.ends_with("StripSet") || t.ends_with("FanSet"))) {
+      runs.clear();
+      size_t at = 0;
+      for (double c : counts->numbers) {
+        std::vector<long> run;
+        for (long k = 0; k < long(c) && at < order.size(); ++k) run.push_back(order[at++]);
+        runs.push_back(std::move(run));
+      }
+    } else {
+      for (long i : order) {
+        if (i < 0) runs.emplace_back();
+        else runs.back().push_back(i);
+      }
+    }
+    // Faces (triangles, or quads for the quad sets) as the node's kind makes them.
+    std::vector<std::vector<int>> faces;
+    const bool strip = t.ends_with("StripSet"), fan = t.ends_with("FanSet");
+    const size_t per = t.ends_with("QuadSet") ? 4 : 3;
+    for (const std::vector<long>& run : runs) {
+      auto ok = [&](long i) { return i >= 0 && i < points; };
+      if (strip || fan) {
+        for (size_t k = 2; k < run.size(); ++k) {
+          long a = fan ? run[0] : run[k - 2], b = run[k - 1], c = run[k];
+          if (strip && k % 2 == 1) std::swap(a, b);
+          if (ok(a) && ok(b) && ok(c)) faces.push_back({int(a), int(b), int(c)});
+        }
+      } else {
+        for (size_t k = 0; k + per <= run.size(); k += per) {
+          std::vector<int> f;
+          for (size_t j = 0; j < per; ++j)
+            if (ok(run[k + j])) f.push_back(int(run[k + j]));
+          if (f.size() == per) faces.push_back(std::move(f));
+        }
+      }
+    }
+    const bool ccw = g.number("ccw", 1) != 0;
+    std::vector<size_t> face_of;
+    for (size_t f = 0; f < faces.size(); ++f) {
+      const std::vector<int>& q = faces[f];
+      for (size_t k = 1; k + 1 < q.size(); ++k) {
+        tris.push_back(ccw ? std::array<int, 3>{q[0], q[k], q[k + 1]} : std::array<int, 3>{q[0], q[k + 1], q[k]});
+        face_of.push_back(f);
+      }
+    }
+    if (const auto colours = face_colours(g, faces, faces); !colours.empty())
+      for (size_t f : face_of) tri_colour.push_back(colours[f]);
   }
 
   static void elevation_grid(const VNode& g, std::vector<Vec3>& v, std::vector<std::array<int, 3>>& tris,

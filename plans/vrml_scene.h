@@ -10,15 +10,16 @@
 // the instance's value of that field or the PROTO's default (VRML97 4.8). What is drawn:
 // - Shape nodes with an IndexedFaceSet (each face cut into triangles, a face that is not
 //   convex by a constrained triangulation), an ElevationGrid, an Extrusion (swept as the
-//   standard says, a closed one facing out: plans/primitive_shapes.h), or the primitives
-//   Box, Sphere, Cylinder and Cone;
+//   standard says, a closed one facing out: plans/primitive_shapes.h), X3D's triangle and
+//   quad sets (TriangleSet, QuadSet, their strips and fans, indexed or not), or the
+//   primitives Box, Sphere, Cylinder and Cone;
 // - within Transform (translation, rotation, scale, scaleOrientation, center), Group,
 //   Anchor, Billboard (as placed), Collision, Switch (its chosen child), LOD (its first
 //   level) and Inline (the world its url names, beside this one);
 // - each Shape in its Material's diffuseColor, or its ImageTexture's mean colour
-//   (plans/image_colour.h), taken as linear as Assimp's readers take colours; an
-//   IndexedFaceSet's or ElevationGrid's Color node, where it has one and no texture was read, colours each
-//   face (a colour a face, or the mean of its corners').
+//   (plans/image_colour.h), taken as linear as Assimp's readers take colours; the
+//   geometry's Color node, where it has one and no texture was read, colours each face (a
+//   colour a face, or the mean of its corners').
 // VRML's space is right-handed with y up, in metres: a point (x, y, z) is (x, −z, y) in
 // Avenues'. `--up` and `--unit` (MeshAxes) override both, for CAD exports that do not keep
 // to them.

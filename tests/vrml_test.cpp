@@ -390,6 +390,40 @@ Shape { geometry ElevationGrid { xDimension 2 zDimension 2 height [ 0 0, 0 0 ]
   EXPECT_EQ(grid_colour(*eg[1], 0), (C{0.5, 0.5, 0}));
 }
 
+// X3D's triangle and quad sets, as X3D exporters write meshes: the same unit square (two
+// triangles, one quad, a strip, a fan), in order or by index, each facing +y (VRML's up:
+// Avenues' +z) and covering the square once; a colour a face.
+TEST_F(Vrml, X3dTriangleAndQuadSetsAreDrawn) {
+  const std::string world = write("sets.x3dv", R"(#X3D V3.0 utf8
+PROFILE Interchange
+Shape { geometry TriangleSet { coord Coordinate { point [ 0 0 0, 0 0 1, 1 0 1, 0 0 0, 1 0 1, 1 0 0 ] } } }
+Shape { geometry IndexedTriangleSet { index [ 0 1 2 0 2 3 ] coord DEF Q Coordinate { point [ 0 0 0, 0 0 1, 1 0 1, 1 0 0 ] }
+  color Color { color [ 1 0 0, 0 1 0 ] } colorPerVertex FALSE } }
+Shape { geometry QuadSet { coord USE Q } }
+Shape { geometry IndexedQuadSet { index [ 0 1 2 3 ] coord USE Q } }
+Shape { geometry TriangleStripSet { stripCount [ 4 ] coord Coordinate { point [ 0 0 0, 0 0 1, 1 0 0, 1 0 1 ] } } }
+Shape { geometry IndexedTriangleStripSet { index [ 0 1 3 2 -1 ] coord USE Q } }
+Shape { geometry TriangleFanSet { fanCount [ 4 ] coord USE Q } }
+Shape { geometry IndexedTriangleFanSet { index [ 0 1 2 3 -1 ] coord USE Q } }
+)");
+  const ImportedScene s = read_vrml(world);
+  for (const std::string& w : s.warnings) EXPECT_EQ(w.find("Set"), std::string::npos) << w;
+  const char* kinds[] = {"TriangleSet", "IndexedTriangleSet", "QuadSet", "IndexedQuadSet", "TriangleStripSet",
+                         "IndexedTriangleStripSet", "TriangleFanSet", "IndexedTriangleFanSet"};
+  for (const char* kind : kinds) {
+    const auto n = nodes_of(s, kind);
+    ASSERT_EQ(n.size(), 1u) << kind;
+    EXPECT_EQ(n[0]->triangles.size(), 2u) << kind;
+    EXPECT_NEAR(area(*n[0]), 1, 1e-12) << kind;
+    for (const auto& t : n[0]->triangles)
+      EXPECT_GT(cross(n[0]->vertices[size_t(t[1])] - n[0]->vertices[size_t(t[0])],
+                      n[0]->vertices[size_t(t[2])] - n[0]->vertices[size_t(t[0])]).z, 0) << kind;
+  }
+  const auto coloured = nodes_of(s, "IndexedTriangleSet");
+  EXPECT_EQ(s.materials.at(size_t(coloured[0]->triangle_material.at(0))).colour, (std::array<double, 3>{1, 0, 0}));
+  EXPECT_EQ(s.materials.at(size_t(coloured[0]->triangle_material.at(1))).colour, (std::array<double, 3>{0, 1, 0}));
+}
+
 // What is not VRML97 and what is broken is refused naming the file and line.
 TEST_F(Vrml, BrokenWorldsAreRefusedNamingTheLine) {
   auto refused = [&](const std::string& name, const std::string& text, const std::string& what) {
