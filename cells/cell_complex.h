@@ -200,7 +200,8 @@ struct CellComplex {
   /// Puts into each opaque piece's edges the corners of other pieces that lie inside them
   /// (T-junctions, within the corners' rounding), so that pieces meeting along a line meet
   /// at the same corners and no sample on the seam falls between them (cells/seam.cpp).
-  /// Done where cells are made and loaded, before index(); returns the corners added.
+  /// Done where cells are made, before index(), and when a .cells file written before it
+  /// (format version 6 or older) is loaded; returns the corners added.
   size_t close_seams();
   /// Groups every opaque piece into `surfaces` (OpaquePoly::surface): pieces of one
   /// material whose planes agree within 1e-6 in direction and 10 µm in place.

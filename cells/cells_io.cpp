@@ -56,8 +56,10 @@ constexpr char kMagic[8] = {'A', 'V', 'C', 'E', 'L', 'L', 'S', '\0'};
 // 6: a model's Mesh::polygon_light, after its triangles' materials; and, only when some
 //    object has one, the objects' Object::cell (a large soup's detail, cut to one cell)
 //    as (object, cell) pairs after everything else, so that a complex without detail is
-//    laid out as in version 5.
-constexpr uint32_t kVersion = 6;
+//    laid out as in version 5;
+// 7: laid out as 6, written with the opaque pieces' seams closed (CellComplex::close_seams);
+//    an earlier file has them closed when it is loaded.
+constexpr uint32_t kVersion = 7;
 constexpr uint32_t kOldestVersion = 3;
 
 /// An object's mesh file as a .cells file in `cells_dir` stores it: relative to that
@@ -659,7 +661,7 @@ CellComplex cells_from_bytes(std::string_view bytes, const std::string& name, co
   CellComplex c;
   read_complex(r, c, version, cells_dir);
   check_indices(c, r);
-  c.close_seams();  // files written before seams were closed (a no-op on later ones)
+  if (version < 7) c.close_seams();  // written before seams were closed
   c.index();
   check_complex(c, name);
   return c;
