@@ -48,7 +48,7 @@ size_t CellComplex::close_seams() {
   // Every corner once (corners rounded from one exact point are bit for bit the same).
   std::vector<Vec3> corners;
   std::vector<double> edge_lengths;
-  Box3 bounds{{HUGE_VAL, HUGE_VAL, HUGE_VAL}, {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}};
+  Box3 bounds;
   for (const Cell& cell : cells)
     for (const Face& face : cell.faces)
       for (const OpaquePoly& piece : face.opaque)
@@ -57,14 +57,12 @@ size_t CellComplex::close_seams() {
           if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return 0;
           corners.push_back(p);
           edge_lengths.push_back(length(piece.poly[(i + 1) % piece.poly.size()] - p));
-          bounds.lo = {std::min(bounds.lo.x, p.x), std::min(bounds.lo.y, p.y), std::min(bounds.lo.z, p.z)};
-          bounds.hi = {std::max(bounds.hi.x, p.x), std::max(bounds.hi.y, p.y), std::max(bounds.hi.z, p.z)};
+          bounds.add(p);
         }
   if (corners.empty()) return 0;
-  auto same = [](Vec3 a, Vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; };
   auto before = [](Vec3 a, Vec3 b) { return a.x < b.x || (a.x == b.x && (a.y < b.y || (a.y == b.y && a.z < b.z))); };
   std::sort(corners.begin(), corners.end(), before);
-  corners.erase(std::unique(corners.begin(), corners.end(), same), corners.end());
+  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
 
   // How far off an edge a corner may lie to be in it: the rounding of coordinates this far
   // from the origin, many times over. How near an end it may lie and not be that end: a
