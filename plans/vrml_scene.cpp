@@ -613,8 +613,11 @@ class World {
   }
 
   /// The colour of a Shape's appearance: its texture's mean, else its diffuseColor.
-  std::array<double, 3> colour_of(const VNode& shape, bool& coloured) {
-    coloured = false;
+  /// The Shape's colour and whether the file gave one; `textured` set when it is an
+  /// ImageTexture's (which stands over a Color node's, as a VRML browser shows an RGB
+  /// texture over vertex colours).
+  std::array<double, 3> colour_of(const VNode& shape, bool& coloured, bool& textured) {
+    coloured = textured = false;
     const NodeRef app = shape.node("appearance");
     if (!app) return {1, 1, 1};
     if (const NodeRef tex = app->node("texture"); tex && tex->type == "ImageTexture")
@@ -624,7 +627,7 @@ class World {
         const MaterialFiles::Image& image = images_.image(at, &first);
         if (first && (!image.at_hand || !image.problem.empty()))
           warn((image.at_hand ? image.problem : "texture " + at + " is not at hand") + ": its material's diffuseColor stands");
-        if (image.colour) return coloured = true, *image.colour;
+        if (image.colour) return coloured = textured = true, *image.colour;
       }
     const NodeRef mat = app->node("material");
     if (!mat) return {1, 1, 1};
@@ -674,10 +677,10 @@ class World {
     n.triangles = std::move(tris);
     if (place.det() < 0)
       for (auto& tri : n.triangles) std::swap(tri[1], tri[2]);
-    bool coloured = false;
-    n.colour = colour_of(s, coloured);
+    bool coloured = false, textured = false;
+    n.colour = colour_of(s, coloured, textured);
     n.coloured = coloured;
-    if (!tri_colour.empty() && !textured(s)) {
+    if (!tri_colour.empty() && !textured) {
       // The geometry's Color node, which stands for the Material's diffuseColor: a material
       // for each colour it uses.
       std::map<std::array<double, 3>, int> material_of;
@@ -693,16 +696,6 @@ class World {
       n.triangle_material.assign(n.triangles.size(), int(out_.materials.size()) - 1);
     }
     out_.nodes.push_back(std::move(n));
-  }
-
-  /// Whether the Shape's appearance holds an ImageTexture that was read (its colour then
-  /// stands over a Color node's, as a VRML browser shows an RGB texture over vertex colours).
-  bool textured(const VNode& shape) {
-    const NodeRef app = shape.node("appearance");
-    const NodeRef tex = app ? app->node("texture") : nullptr;
-    const Value* url = tex && tex->type == "ImageTexture" ? tex->field("url") : nullptr;
-    if (!url || url->strings.empty()) return false;
-    return images_.image((fs::path(files_.back()).parent_path() / url->strings.front()).string()).colour.has_value();
   }
 
   /// Each face's colour from the geometry's Color node (VRML97 6.23): by colorIndex or in
