@@ -533,8 +533,7 @@ MaterialId material_beyond(const Cell& dropped, Vec3 n) {
 /// (material_beyond); one warning counts them.
 void drop_slivers(CellComplex& out) {
   const Box3& fb = out.far_box;
-  const double scale = std::max({1.0, std::fabs(fb.lo.x), std::fabs(fb.hi.x), std::fabs(fb.lo.y), std::fabs(fb.hi.y),
-                                 std::fabs(fb.lo.z), std::fabs(fb.hi.z)});
+  const double scale = fb.magnitude();
   const double thin = 1e-9 * scale;
   std::vector<bool> sliver(out.cells.size(), false);
   size_t dropped = 0;
@@ -843,8 +842,7 @@ std::vector<Mesh> mesh_components(const Mesh& mesh) {
 }
 
 void add_real_lines(CellComplex& c, const std::vector<RealLine>& lines) {
-  const double scale = std::max({1.0, std::fabs(c.far_box.lo.x), std::fabs(c.far_box.hi.x), std::fabs(c.far_box.lo.y),
-                                 std::fabs(c.far_box.hi.y), std::fabs(c.far_box.lo.z), std::fabs(c.far_box.hi.z)});
+  const double scale = c.far_box.magnitude();
   const double tol = 1e-9 * scale;       // [m] a line on a face is on it within rounding
   const double min_len = 1e-6 * scale;   // [m] shorter stretches only touch the cell
   std::vector<Box3> bounds(c.cells.size());

@@ -68,8 +68,7 @@ size_t CellComplex::close_seams() {
   // from the origin, many times over. How near an end it may lie and not be that end: a
   // thousand times more, so that the edge's two parts keep its direction (a corner
   // beside an end would make a side of no direction of its own).
-  const double scale = std::max({1.0, std::fabs(bounds.lo.x), std::fabs(bounds.hi.x), std::fabs(bounds.lo.y),
-                                 std::fabs(bounds.hi.y), std::fabs(bounds.lo.z), std::fabs(bounds.hi.z)});
+  const double scale = bounds.magnitude();
   const double tol = 1e-12 * scale;  // [m]
   const double end = 1e-9 * scale;   // [m]
   const size_t middle = edge_lengths.size() / 2;

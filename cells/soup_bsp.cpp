@@ -992,8 +992,7 @@ SoupBspStats decompose_soup(const std::vector<SoupTriangle>& triangles, const Bo
   struct ForgetPlanes {
     ~ForgetPlanes() { forget_plane_facts(); }
   } forget;  // on every way out
-  const double scale = std::max({1.0, std::fabs(box.lo.x), std::fabs(box.hi.x), std::fabs(box.lo.y), std::fabs(box.hi.y),
-                                 std::fabs(box.lo.z), std::fabs(box.hi.z)});
+  const double scale = box.magnitude();
   Builder b{box, far_planes(box), {}, {}, {}, 1e-12 * scale, {}, {}};
   b.leaf_budget = leaf_budget;
   std::vector<Frag> frags;

@@ -171,6 +171,12 @@ struct Box3 {
            lo.z <= o.hi.z + tol && o.lo.z - tol <= hi.z;
   }
   Box3 grown(double tol) const { return {lo - Vec3{tol, tol, tol}, hi + Vec3{tol, tol, tol}}; }
+  /// [m] The largest magnitude of a coordinate in the box, and at least 1: the scale of the
+  /// rounding of the points in it (a tolerance is a relative one times this).
+  double magnitude() const {
+    return std::max({1.0, std::fabs(lo.x), std::fabs(hi.x), std::fabs(lo.y), std::fabs(hi.y), std::fabs(lo.z),
+                     std::fabs(hi.z)});
+  }
 };
 
 /// Plane n·p + d = 0. For a cell's face, n points out of the cell (unit length).

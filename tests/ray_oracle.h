@@ -80,8 +80,7 @@ class BoxTree {
  public:
   explicit BoxTree(std::vector<Box3> boxes) : boxes_(std::move(boxes)) {
     for (Box3& b : boxes_) {
-      const double reach = std::max({1.0, std::fabs(b.lo.x), std::fabs(b.lo.y), std::fabs(b.lo.z), std::fabs(b.hi.x),
-                                     std::fabs(b.hi.y), std::fabs(b.hi.z)});
+      const double reach = b.magnitude();
       b = b.grown(1e-6 * reach);
     }
     order_.resize(boxes_.size());
