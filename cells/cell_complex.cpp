@@ -203,13 +203,18 @@ void CellComplex::index() {
 Location CellComplex::locate(Vec3 p, CellId hint) const {
   Location loc;
   if (!far_box.contains(p)) return loc;
+  auto in = [&](CellId c) -> Location {
+    for (const ClosedSurface& s : detail_solids)
+      if (s.holds(p)) return {Location::What::Solid, kNoCell, s.name()};
+    return {Location::What::Cell, c, {}};
+  };
   // Walk: the hint, then the cells one portal away (a moving eye rarely goes further).
   if (hint >= 0 && hint < CellId(cells.size())) {
     const Cell& h = cells[size_t(hint)];
-    if (h.contains(p)) return {Location::What::Cell, hint, {}};
+    if (h.contains(p)) return in(hint);
     for (PortalId pi : h.portals) {
       CellId o = portals[size_t(pi)].other(hint);
-      if (cells[size_t(o)].contains(p)) return {Location::What::Cell, o, {}};
+      if (cells[size_t(o)].contains(p)) return in(o);
     }
   }
   if (!bands.empty() && bands[0].nx > 0) {
@@ -218,7 +223,7 @@ Location CellComplex::locate(Vec3 p, CellId hint) const {
     int j = std::clamp(int((p.y - g.y0) / g.cell_size), 0, g.ny - 1);
     size_t s = size_t(j) * size_t(g.nx) + size_t(i);
     for (int32_t k = g.start[s]; k < g.start[s + 1]; ++k)
-      if (cells[size_t(g.items[size_t(k)])].contains(p)) return {Location::What::Cell, g.items[size_t(k)], {}};
+      if (cells[size_t(g.items[size_t(k)])].contains(p)) return in(g.items[size_t(k)]);
   }
   // Not in free space: say what it is inside.
   loc.what = Location::What::Solid;

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "cells/closed_surface.h"
 #include "core/geometry.h"
 #include "core/stage_timer.h"
 #include "plans/plan.h"
@@ -163,6 +164,10 @@ struct CellComplex {
   std::vector<Portal> portals;
   std::vector<RealLine> lines;
   std::vector<Object> objects;  ///< carried along for the renderer
+  /// Closed curved solids of a mesh scene drawn as detail (cells/closed_surface.h): free
+  /// space runs through them, their facets are detail objects of the cells they cross, and
+  /// these keep the walker out of them (visibility/walker.h) and name them for locate().
+  std::vector<ClosedSurface> detail_solids;
   std::vector<Light> lights;
   Box3 far_box;                 ///< the large opaque box (Jones) around everything
   std::optional<Viewpoint> view;
@@ -173,7 +178,8 @@ struct CellComplex {
 
   /// Which cell holds p. `hint` (a cell near p, e.g. the last eye's) makes it a short
   /// walk through portals; a spatial index catches the rest. Points on a shared face
-  /// go to either cell. Solid reports name the element when known.
+  /// go to either cell. Solid reports name the element when known; a point inside one of
+  /// the detail solids is in that solid, though a cell holds it.
   Location locate(Vec3 p, CellId hint = kNoCell) const;
   /// The same for an eye looking along `facing`: an eye on a face of two cells (a sheet
   /// wall of no thickness, a floor) is on the side it looks to, in the cell that holds both

@@ -58,8 +58,11 @@ constexpr char kMagic[8] = {'A', 'V', 'C', 'E', 'L', 'L', 'S', '\0'};
 //    as (object, cell) pairs after everything else, so that a complex without detail is
 //    laid out as in version 5;
 // 7: laid out as 6, written with the opaque pieces' seams closed (CellComplex::close_seams);
-//    an earlier file has them closed when it is loaded.
-constexpr uint32_t kVersion = 7;
+//    an earlier file has them closed when it is loaded;
+// 8: and, only when there are some, CellComplex::detail_solids after the objects in one
+//    cell (their count written even when it is 0): each its name and its triangles (nine
+//    doubles each), so that a complex without them is laid out as in version 7.
+constexpr uint32_t kVersion = 8;
 constexpr uint32_t kOldestVersion = 3;
 
 /// An object's mesh file as a .cells file in `cells_dir` stores it: relative to that
@@ -231,10 +234,19 @@ void write_complex(Writer& w, const CellComplex& c, const std::filesystem::path&
   }
   size_t in_one_cell = 0;
   for (const Object& o : c.objects) in_one_cell += o.cell >= 0;
-  if (in_one_cell > 0) {
+  if (in_one_cell > 0 || !c.detail_solids.empty()) {
     w.count(in_one_cell, "objects in one cell");
     for (size_t i = 0; i < c.objects.size(); ++i)
       if (c.objects[i].cell >= 0) { w.i32(int32_t(i)); w.i32(c.objects[i].cell); }
+  }
+  if (!c.detail_solids.empty()) {
+    w.count(c.detail_solids.size(), "detail solids");
+    for (const ClosedSurface& s : c.detail_solids) {
+      w.str(s.name());
+      w.count(s.triangles().size(), "detail solid triangles");
+      for (const Triangle3& t : s.triangles())
+        for (const Vec3& p : t) w.vec3(p);
+    }
   }
 }
 
@@ -533,6 +545,16 @@ void read_complex(Reader& r, CellComplex& c, uint32_t version, const std::filesy
       if (i < 0 || size_t(i) >= c.objects.size()) r.fail("an object in one cell that the complex does not have");
       if (cell < 0 || size_t(cell) >= c.cells.size()) r.fail("an object names a cell the complex does not have");
       c.objects[size_t(i)].cell = cell;
+    }
+  }
+  if (version >= 8 && !r.at_end()) {
+    c.detail_solids.resize(r.count(8, "detail solids"));
+    for (ClosedSurface& s : c.detail_solids) {
+      std::string name = r.str("detail solid");
+      std::vector<Triangle3> triangles(r.count(72, "detail solid triangles"));
+      for (Triangle3& t : triangles)
+        for (Vec3& p : t) p = r.vec3("detail solid");
+      s = ClosedSurface(std::move(name), std::move(triangles));
     }
   }
   if (!r.at_end()) r.fail(std::to_string(r.remaining()) + " unexpected bytes after the complex");

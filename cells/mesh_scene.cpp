@@ -937,7 +937,7 @@ void frame_scene(CellComplex& out, const Box3& box, double m) {
 /// block or statue). The eye at the middle of the region's largest cell, looking level
 /// towards the farthest of the region's cells. Without such a region the view stays
 /// frame_scene's, outside looking at the scene.
-void view_inside_largest_region(CellComplex& out, const Box3& scene, const std::vector<SoupTriangle>& soup) {
+void view_inside_largest_region(CellComplex& out, const Box3& scene, const std::vector<Triangle3>& soup) {
   const size_t n = out.cells.size();
   const FreeRegions regions = free_regions(out);
   if (regions.outside == n) return;
@@ -1021,7 +1021,21 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
   const Vec3 extent = box.hi - box.lo;
   const double least_area = std::min(params.structural_area_cap,
                                      params.structural_share * std::max({extent.x * extent.y, extent.y * extent.z, extent.x * extent.z}));
-  SoupSplit split = split_detail(soup, polygon, params.detail_above, params.structural_triangles, least_area);
+  // Closed curved solids are detail whatever the soup's size (cells/closed_surface.h).
+  std::vector<bool> curved;  // per soup triangle, when some solid is curved
+  std::vector<ClosedSolid> curved_solids;
+  if (params.curved_directions > 0) {
+    ScopedStageTimer t(out.timings, "curved solids");
+    std::vector<size_t> first_of(meshes.size() + 1, 0);  // each mesh's first soup triangle
+    for (size_t i = 0; i < meshes.size(); ++i) first_of[i + 1] = first_of[i] + meshes[i].triangles.size();
+    for (ClosedSolid& s : closed_solids(meshes)) {
+      if (!is_curved(s, params.curved_directions)) continue;
+      curved.resize(soup.size(), false);
+      for (size_t k : s.source) curved[first_of[s.mesh] + k] = true;
+      curved_solids.push_back(std::move(s));
+    }
+  }
+  SoupSplit split = split_detail(soup, polygon, params.detail_above, params.structural_triangles, least_area, curved);
   // What cuts space: the whole soup, or its structural part (`cut_of`: its soup numbers).
   std::vector<SoupTriangle> structural, detail;
   std::vector<size_t> cut_of;
@@ -1055,7 +1069,7 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     } catch (const SoupTooCluttered&) {
       if (!out.timings.empty()) out.timings.back().stage = "decompose, abandoned";
       cluttered = true;
-      split = split_detail(soup, polygon, 0, split.structural / 4, least_area);
+      split = split_detail(soup, polygon, 0, split.structural / 4, least_area, curved);
       partition();
     }
   }
@@ -1091,7 +1105,12 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     out.close_seams();
   }
   out.index();  // before the lines: add_real_lines takes its candidate cells from it
-  view_inside_largest_region(out, box, what_cuts());
+  for (ClosedSolid& s : curved_solids) out.detail_solids.emplace_back(s.name, std::move(s.triangles));
+  {
+    std::vector<Triangle3> cutting;
+    for (const SoupTriangle& t : what_cuts()) cutting.push_back(t.p);
+    view_inside_largest_region(out, box, cutting);
+  }
   start_at_view_of_files(out, meshes);
   if (!detail.empty()) {
     ScopedStageTimer t(out.timings, "detail");
@@ -1101,19 +1120,35 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     for (const Object& o : out.objects) holding.push_back(o.cell);
     std::sort(holding.begin(), holding.end());
     const size_t cells_holding = size_t(std::unique(holding.begin(), holding.end()) - holding.begin());
-    std::ostringstream said;
-    said << source << ": " << split.structural + split.detail_triangles << " triangles with area"
-         << (cluttered ? " whose planes cut space into more than " + std::to_string(params.leaf_budget) + " pieces"
-                       : std::string(", more than a decomposition takes in seconds"));
-    if (split.structural > 0)
-      said << ": its largest polygons (from " << split.smallest_structural << " m², " << split.structural
-           << " triangles) cut space into cells, and the other ";
-    else
-      said << ": none of its polygons is large enough to cut space (" << least_area << " m² or more), and all ";
-    said << split.detail_triangles << " triangles are detail, drawn in "
-         << (cells_holding == 1 ? std::string("the one cell") : "the " + std::to_string(cells_holding) + " cells")
-         << " they cross; the search sees through detail, the pictures show it";
-    out.warnings.push_back(said.str());
+    const std::string drawn_in =
+        cells_holding == 1 ? std::string("the one cell") : "the " + std::to_string(cells_holding) + " cells";
+    if (!out.detail_solids.empty()) {
+      std::ostringstream said;
+      const size_t n = out.detail_solids.size();
+      said << (n == 1 ? "1 closed curved solid (" : std::to_string(n) + " closed curved solids (");
+      for (size_t k = 0; k < std::min<size_t>(n, 3); ++k) said << (k ? ", " : "") << out.detail_solids[k].name();
+      if (n > 3) said << " and " << n - 3 << " more";
+      const bool one = n == 1;
+      said << "; " << split.curved << " triangles) " << (one ? "is" : "are")
+           << " detail: not cut into a cell per facet, but drawn in the cells around "
+           << (one ? "it; the walker stays out of it, the search sees through it"
+                   : "them; the walker stays out of them, the search sees through them");
+      out.warnings.push_back(said.str());
+    }
+    if (split.detail_triangles > split.curved) {
+      std::ostringstream said;
+      said << source << ": " << split.structural + split.detail_triangles - split.curved << " triangles with area"
+           << (cluttered ? " whose planes cut space into more than " + std::to_string(params.leaf_budget) + " pieces"
+                         : std::string(", more than a decomposition takes in seconds"));
+      if (split.structural > 0)
+        said << ": its largest polygons (from " << split.smallest_structural << " m², " << split.structural
+             << " triangles) cut space into cells, and the other ";
+      else
+        said << ": none of its polygons is large enough to cut space (" << least_area << " m² or more), and all ";
+      said << split.detail_triangles - split.curved << " triangles are detail, drawn in " << drawn_in
+           << " they cross; the search sees through detail, the pictures show it";
+      out.warnings.push_back(said.str());
+    }
   }
   {
     ScopedStageTimer t(out.timings, "lines");

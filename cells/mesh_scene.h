@@ -55,6 +55,11 @@ struct MeshSceneParams {
   /// would take minutes and gigabytes) is split too, its largest polygons a quarter as
   /// many triangles at each try (0: no limit).
   size_t leaf_budget = 60'000;
+  /// Bsp only: a closed, outward-oriented solid whose facets face at least this many ways,
+  /// one plane a way nearly (soup_detail.h: is_curved), is detail: drawn in the cells that
+  /// run through it, kept as a CellComplex::detail_solids entry that the walker stays out
+  /// of (0: every closed solid cuts space).
+  size_t curved_directions = 32;
 };
 
 /// The free space of meshes as convex cells (Cell::prism = false, CellKind::Outside), by
@@ -67,7 +72,9 @@ struct MeshSceneParams {
 /// A soup with more than params.detail_above triangles with area, or whose planes cut space
 /// into more than params.leaf_budget leaves: only its largest polygons cut space
 /// (cells/soup_detail.h); the others are detail, one Object per cell they cross
-/// (Object::cell), and a warning says how many of each.
+/// (Object::cell), and a warning says how many of each. A closed curved solid
+/// (params.curved_directions) is detail in any soup: no cell ends at it, and it is kept
+/// whole in CellComplex::detail_solids (a warning names them).
 ///
 /// Nef: free space around solids, the far box minus the union of the meshes as CGAL Nef
 /// polyhedra, decomposed by CGAL::convex_decomposition_3 into convex cells (Cell::prism =

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <numbers>
 #include <numeric>
 #include <tuple>
 
@@ -26,7 +25,7 @@ struct Groups {
 };
 
 /// The closed solids of one mesh (closed_solids).
-void solids_of(const Mesh& m, std::vector<ClosedSolid>& out) {
+void solids_of(const Mesh& m, size_t mesh, std::vector<ClosedSolid>& out) {
   // Corners welded by position: readers split a vertex where its normals or texture
   // coordinates differ, which does not open the surface.
   std::map<std::tuple<double, double, double>, int> id_of;
@@ -36,10 +35,12 @@ void solids_of(const Mesh& m, std::vector<ClosedSolid>& out) {
     weld[v] = id_of.try_emplace({p.x, p.y, p.z}, int(id_of.size())).first->second;
   }
   std::vector<std::array<int, 3>> tris;
-  for (const auto& t : m.triangles) {
+  std::vector<size_t> source;  // per entry of tris, its triangle in m
+  for (size_t k = 0; k < m.triangles.size(); ++k) {
+    const auto& t = m.triangles[k];
     const std::array<int, 3> w{weld[size_t(t[0])], weld[size_t(t[1])], weld[size_t(t[2])]};
     // Two corners at one place: its edges cancel, and it covers nothing.
-    if (w[0] != w[1] && w[1] != w[2] && w[2] != w[0]) tris.push_back(w);
+    if (w[0] != w[1] && w[1] != w[2] && w[2] != w[0]) tris.push_back(w), source.push_back(k);
   }
   Groups g(id_of.size());
   for (const auto& t : tris) g.join(size_t(t[0]), size_t(t[1])), g.join(size_t(t[0]), size_t(t[2]));
@@ -66,11 +67,13 @@ void solids_of(const Mesh& m, std::vector<ClosedSolid>& out) {
       }
     if (std::any_of(balance.begin(), balance.end(), [](const auto& e) { return e.second != 0; })) continue;
     ClosedSolid s;
+    s.mesh = mesh;
     const Vec3 o = at[size_t(tris[list.front()][0])];
     for (size_t i : list) {
       const Vec3 a = at[size_t(tris[i][0])], b = at[size_t(tris[i][1])], c = at[size_t(tris[i][2])];
       s.volume += dot(a - o, cross(b - o, c - o)) / 6;
-      s.triangles.push_back({{a, b, c}, -1});
+      s.triangles.push_back({a, b, c});
+      s.source.push_back(source[i]);
       s.box.add(a), s.box.add(b), s.box.add(c);
     }
     const Vec3 e = s.box.hi - s.box.lo;
@@ -86,20 +89,8 @@ void solids_of(const Mesh& m, std::vector<ClosedSolid>& out) {
 
 std::vector<ClosedSolid> closed_solids(const std::vector<Mesh>& meshes) {
   std::vector<ClosedSolid> out;
-  for (const Mesh& m : meshes) solids_of(m, out);
+  for (size_t i = 0; i < meshes.size(); ++i) solids_of(meshes[i], i, out);
   return out;
-}
-
-double winding_number(const std::vector<SoupTriangle>& triangles, Vec3 p) {
-  double sum = 0;
-  for (const SoupTriangle& t : triangles) {
-    const Vec3 a = t.p[0] - p, b = t.p[1] - p, c = t.p[2] - p;
-    const double la = length(a), lb = length(b), lc = length(c);
-    const double num = dot(a, cross(b, c));
-    const double den = la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb;
-    sum += 2 * std::atan2(num, den);
-  }
-  return sum / (4 * std::numbers::pi);
 }
 
 std::vector<int> cells_inside_solids(const CellComplex& c, const std::vector<ClosedSolid>& solids) {

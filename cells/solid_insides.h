@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "cells/cell_complex.h"
-#include "cells/soup_bsp.h"
+#include "cells/closed_surface.h"
 #include "plans/mesh.h"
 
 namespace avenues {
@@ -27,7 +27,9 @@ namespace avenues {
 /// from outside), a connected component of one mesh with its vertices welded by position.
 struct ClosedSolid {
   std::string name;                     ///< "FILE: solid N" (N from 1, in the file's order)
-  std::vector<SoupTriangle> triangles;  ///< counter-clockwise seen from outside
+  std::vector<Triangle3> triangles;     ///< counter-clockwise seen from outside
+  size_t mesh = 0;                      ///< the mesh it is part of (its index in the meshes)
+  std::vector<size_t> source;           ///< per triangle, its index in that mesh's triangles
   Box3 box;                             ///< the bounds of its corners
   double volume = 0;                    ///< [m³] > 0
 };
@@ -39,12 +41,6 @@ struct ClosedSolid {
 /// volume. Components that are open, have a triangle turned the wrong way, or are turned
 /// inwards are not solids: their surfaces stay two-sided.
 std::vector<ClosedSolid> closed_solids(const std::vector<Mesh>& meshes);
-
-/// The generalized winding number of the triangles about p: the sum of their solid angles
-/// seen from p (Van Oosterom and Strackee's formula) over 4π. About 1 inside a closed
-/// surface whose triangles turn counter-clockwise seen from outside, about −1 inside one
-/// turned the other way, about 0 outside both or inside one of each.
-double winding_number(const std::vector<SoupTriangle>& triangles, Vec3 p);
 
 /// Per cell of a soup scene's complex: the index in `solids` of a closed solid it lies
 /// inside, or -1 for free space. Decided per region of cells joined by portals, at the

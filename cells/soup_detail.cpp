@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <memory>
+#include <set>
 #include <unordered_map>
 
 #include "plans/mesh.h"
@@ -129,12 +130,22 @@ void cluster_pieces(const std::vector<DetailPiece>& pieces, std::vector<std::vec
 }  // namespace
 
 SoupSplit split_detail(const std::vector<SoupTriangle>& soup, const std::vector<int64_t>& polygon, size_t above,
-                       size_t budget, double least_area) {
+                       size_t budget, double least_area, const std::vector<bool>& curved) {
   SoupSplit s;
   s.detail.assign(soup.size(), false);
   std::vector<double> area(soup.size());
+  auto is_curved_at = [&](size_t i) { return i < curved.size() && curved[i]; };
   size_t with_area = 0;
-  for (size_t i = 0; i < soup.size(); ++i) with_area += (area[i] = triangle_area(soup[i])) > 0;
+  for (size_t i = 0; i < soup.size(); ++i) {
+    area[i] = triangle_area(soup[i]);
+    if (is_curved_at(i)) {
+      s.detail[i] = true;
+      s.curved += area[i] > 0;
+    } else {
+      with_area += area[i] > 0;
+    }
+  }
+  s.detail_triangles = s.curved;
   s.structural = with_area;
   if (with_area <= above) return s;
   // The polygons, largest first: their areas and their triangles with area.
@@ -146,6 +157,7 @@ SoupSplit split_detail(const std::vector<SoupTriangle>& soup, const std::vector<
   std::unordered_map<int64_t, size_t> index;
   std::vector<Polygon> polygons;
   for (size_t i = 0; i < soup.size(); ++i) {
+    if (is_curved_at(i)) continue;
     auto [it, added] = index.try_emplace(polygon[i], polygons.size());
     if (added) polygons.push_back({polygon[i], 0, 0});
     Polygon& p = polygons[it->second];
@@ -167,19 +179,37 @@ SoupSplit split_detail(const std::vector<SoupTriangle>& soup, const std::vector<
   }
   s.structural = taken;
   for (size_t i = 0; i < soup.size(); ++i)
-    if (!structural[index.at(polygon[i])]) {
+    if (!is_curved_at(i) && !structural[index.at(polygon[i])]) {
       s.detail[i] = true;
       s.detail_triangles += area[i] > 0;
     }
   return s;
 }
 
+bool is_curved(const ClosedSolid& solid, size_t directions) {
+  if (directions == 0 || solid.triangles.size() < directions) return false;
+  // Directions and planes by their rounded numbers: a flat polygon's triangles share
+  // theirs, a smooth surface's facets differ by far more than the rounding.
+  const double place = 1e-5 * solid.box.magnitude();
+  std::set<std::array<int64_t, 3>> facing;
+  std::set<std::array<int64_t, 4>> planes;
+  for (const Triangle3& t : solid.triangles) {
+    const Vec3 n = cross(t[1] - t[0], t[2] - t[0]);
+    const double l = length(n);
+    if (!(l > 0)) continue;
+    const Vec3 u = (1 / l) * n;
+    const std::array<int64_t, 3> way{std::llround(u.x * 1e5), std::llround(u.y * 1e5), std::llround(u.z * 1e5)};
+    facing.insert(way);
+    planes.insert({way[0], way[1], way[2], std::llround(dot(u, t[0]) / place)});
+  }
+  return facing.size() >= directions && 4 * facing.size() >= 3 * planes.size();
+}
+
 double add_detail_objects(CellComplex& out, const std::vector<SoupTriangle>& detail, const std::vector<int64_t>& polygon,
                           const std::string& source) {
   if (out.bands.empty()) out.index();
   const Box3& fb = out.far_box;
-  const double scale = std::max({1.0, std::fabs(fb.lo.x), std::fabs(fb.hi.x), std::fabs(fb.lo.y), std::fabs(fb.hi.y),
-                                 std::fabs(fb.lo.z), std::fabs(fb.hi.z)});
+  const double scale = fb.magnitude();
   const double tol = 1e-9 * scale;           // [m] rounding of the cells' planes
   const double min_area = tol * tol;         // [m²] a piece with less shows nothing
   std::vector<Box3> bounds(out.cells.size());

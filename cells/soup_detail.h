@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "cells/cell_complex.h"
+#include "cells/solid_insides.h"
 #include "cells/soup_bsp.h"
 
 namespace avenues {
@@ -34,7 +35,15 @@ struct SoupSplit {
   size_t structural = 0;           ///< triangles with area that cut space
   size_t detail_triangles = 0;     ///< triangles with area that are detail
   double smallest_structural = 0;  ///< [m²] the area of the smallest polygon that cuts space
+  size_t curved = 0;               ///< of detail_triangles, those of curved closed solids
 };
+
+/// Whether a closed solid is curved: its triangles lie in at least `directions` planes of
+/// different directions, and as many directions as planes, nearly (at least ¾): a smooth
+/// surface's facets (a duck, a column, a vase), not a building's walls and slabs, whose
+/// many planes face a few ways. Free space around it would need a cell per facet
+/// (cells/closed_surface.h); it is drawn as detail instead.
+bool is_curved(const ClosedSolid& solid, size_t directions);
 
 /// With at most `above` triangles of non-zero area, none is detail. With more, the
 /// polygons (`polygon`: one number per triangle, shared by the triangles of one input
@@ -43,8 +52,10 @@ struct SoupSplit {
 /// polygon are detail. (A polygon smaller than `least_area` hides too little to be worth
 /// the cells its plane makes: a smooth surface's facets, a bolt. A soup of such polygons
 /// alone, a sculpture subdivided into a quarter of a million facets, cuts no space at all.)
+/// Triangles marked in `curved` (the curved closed solids', when not empty) are detail
+/// whatever the rest, and are not counted against `above` or `budget`.
 SoupSplit split_detail(const std::vector<SoupTriangle>& soup, const std::vector<int64_t>& polygon, size_t above,
-                       size_t budget, double least_area = 0);
+                       size_t budget, double least_area = 0, const std::vector<bool>& curved = {});
 
 /// Cuts each detail triangle to every cell of `out` it crosses (in double: the pieces are
 /// drawn, not part of the complex's exact geometry) and appends, for each cell that holds

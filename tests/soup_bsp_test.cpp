@@ -346,7 +346,9 @@ TEST(SoupBsp, ASphereIsHalvedNotPeeledFaceByFaceAndKeepsEveryFaceAndView) {
   // place apart, the edge between them turned inward. Every face is still kept, and the
   // search still passes every portal a ray passes (it once lost whole chains of cells
   // there: the edge's plane through the eye cut away the rays the portal lets through).
-  const CellComplex c = build_mesh_scene({sphere});
+  MeshSceneParams cut;  // a closed curved solid: cut into space only when asked
+  cut.curved_directions = 0;
+  const CellComplex c = build_mesh_scene({sphere}, cut);
   ASSERT_EQ(cells_are_valid(c), "");
   EXPECT_EQ(c.locate({0, 0, 0}).what, Location::What::Solid);
   EXPECT_EQ(c.locate({0, 0, 2}).what, Location::What::Cell);
@@ -525,7 +527,7 @@ TEST(SoupBsp, EveryMeshFromOutsideKeepsAllItsFacesAndAgreesWithRayCasting) {
     for (const std::string& f : s.files) meshes.push_back(load_mesh(outside_path(f)));
     const CellComplex c = build_mesh_scene(meshes);
     ASSERT_EQ(cells_are_valid(c), "");
-    EXPECT_NEAR(free_volume(c), box_volume(c.far_box) - closed_solids_volume(meshes), 1e-7 * box_volume(c.far_box));
+    EXPECT_NEAR(free_volume(c), box_volume(c.far_box) - closed_solids_volume(meshes, &c), 1e-7 * box_volume(c.far_box));
     size_t triangles = 0;
     for (const Mesh& m : meshes) triangles += m.triangles.size();
     std::printf("  %s: %zu triangles, %zu cells, %zu portals, %zu warnings\n", s.name, triangles, c.cells.size(),
@@ -590,12 +592,21 @@ TEST(SoupBsp, AssimpsTestModelsKeepTheirFacesAndAgreeWithRayCasting) {
           << tiny.warnings.front();
       for (Vec3& v : meshes[0].vertices) v = 100.0 * v;
     }
-    const CellComplex c = build_mesh_scene(meshes);
-    ASSERT_EQ(cells_are_valid(c), "");
-    std::printf("  %s: %zu triangles, %zu cells, %zu portals, %zu warnings\n", name, meshes[0].triangles.size(),
-                c.cells.size(), c.portals.size(), c.warnings.size());
-    EXPECT_EQ(visible_triangles_missing_from_export(c, meshes), 0);
-    expect_soup_views_agree_with_rays(c, 8, seed++, 96, 64, 8);
+    // As a user gets them (curved closed solids drawn as detail), and, where there are
+    // some, with every closed solid cut into space: the soup BSP on a duck and spheres.
+    MeshSceneParams params;
+    for (int pass = 0; pass < 2; ++pass) {
+      SCOPED_TRACE(pass == 0 ? "curved solids as detail" : "every solid cut into space");
+      const CellComplex c = build_mesh_scene(meshes, params);
+      ASSERT_EQ(cells_are_valid(c), "");
+      std::printf("  %s%s: %zu triangles, %zu cells, %zu portals, %zu curved solids, %zu warnings\n", name,
+                  pass == 0 ? "" : " (cut)", meshes[0].triangles.size(), c.cells.size(), c.portals.size(),
+                  c.detail_solids.size(), c.warnings.size());
+      EXPECT_EQ(visible_triangles_missing_from_export(c, meshes), 0);
+      expect_soup_views_agree_with_rays(c, 8, seed++, 96, 64, 8);
+      if (c.detail_solids.empty()) break;
+      params.curved_directions = 0;
+    }
   }
 }
 

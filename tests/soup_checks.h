@@ -24,31 +24,44 @@
 namespace avenues::testing {
 
 
-/// Input triangles (of some area) with no opaque piece of the complex covering their
-/// centroid, on their plane, as (mesh, triangle) indices. Each triangle is looked up among
+/// Input triangles (of some area) with no opaque piece of the complex, and no detail
+/// object's triangle, covering their centroid, on their plane, as (mesh, triangle) indices. Each triangle is looked up among
 /// the opaque pieces whose bounds hold the centroid (found in a BoxTree). `near` [m]: how
 /// far off the triangle's plane a covering piece may lie (0: the rounding of one
 /// coordinate, 1e-9 of the far box).
 inline std::vector<std::pair<size_t, size_t>> missing_triangles(const CellComplex& c, const std::vector<Mesh>& meshes,
                                                                 double near = 0) {
   struct Piece {
-    const OpaquePoly* op;
-    const Face* face;
+    const std::vector<Vec3>* poly;
+    Plane plane;
     Box3 box;
   };
   std::vector<Piece> pieces;
   std::vector<Box3> boxes;
+  auto add = [&](const std::vector<Vec3>& poly, const Plane& plane) {
+    Box3 b;
+    for (Vec3 p : poly) b.add(p);
+    pieces.push_back({&poly, plane, b});
+    boxes.push_back(b);
+  };
   for (const Cell& cell : c.cells)
     for (const Face& f : cell.faces)
-      for (const OpaquePoly& op : f.opaque) {
-        Box3 b;
-        for (Vec3 p : op.poly) b.add(p);
-        pieces.push_back({&op, &f, b});
-        boxes.push_back(b);
-      }
+      for (const OpaquePoly& op : f.opaque) add(op.poly, f.plane);
+  // Detail (a large soup's small polygons, a curved solid's facets) is kept as the
+  // triangles of objects cut to one cell each.
+  std::vector<std::vector<Vec3>> detail;
+  for (const Object& o : c.objects)
+    if (o.cell >= 0 && o.model)
+      for (const auto& t : o.model->triangles)
+        detail.push_back({o.model->vertices[size_t(t[0])], o.model->vertices[size_t(t[1])], o.model->vertices[size_t(t[2])]});
+  for (const std::vector<Vec3>& t : detail) {
+    Vec3 n = cross(t[2] - t[0], t[1] - t[0]);  // the triangle turns clockwise about it, as a face's pieces do
+    if (!(length(n) > 0)) continue;
+    n = (1 / length(n)) * n;
+    add(t, {n, -dot(n, t[0])});
+  }
   const BoxTree tree(std::move(boxes));
-  const double scale = std::max({1.0, std::fabs(c.far_box.lo.x), std::fabs(c.far_box.hi.x), std::fabs(c.far_box.lo.y),
-                                 std::fabs(c.far_box.hi.y), std::fabs(c.far_box.lo.z), std::fabs(c.far_box.hi.z)});
+  const double scale = c.far_box.magnitude();
   const double tol = std::max(near, 1e-9 * scale);
   std::vector<std::pair<size_t, size_t>> missing;
   for (size_t mi = 0; mi < meshes.size(); ++mi)
@@ -62,15 +75,15 @@ inline std::vector<std::pair<size_t, size_t>> missing_triangles(const CellComple
       bool found = false;
       tree.visit_holding(g, tol, [&](uint32_t k) {
         const Piece& p = pieces[k];
-        if (!p.box.contains(g, tol) || std::fabs(p.face->plane.eval(g)) > tol) return false;
+        if (!p.box.contains(g, tol) || std::fabs(p.plane.eval(g)) > tol) return false;
         bool in = true;
-        const auto& q = p.op->poly;
+        const auto& q = *p.poly;
         for (size_t e = 0; e < q.size() && in; ++e) {
           // Two corners a rounding apart bound nothing: the edge between them has no
           // direction of its own, and may turn the rounded piece inward.
           const Vec3 side = q[(e + 1) % q.size()] - q[e];
           if (length(side) <= 1e-12 * scale) continue;
-          in = dot(cross(side, g - q[e]), p.face->plane.n) <= tol * length(side);
+          in = dot(cross(side, g - q[e]), p.plane.n) <= tol * length(side);
         }
         found = in;
         return found;
@@ -132,9 +145,16 @@ inline int visible_triangles_missing_from_export(const CellComplex& c, const std
 
 /// The volume of the meshes' closed solids (closed_solids), which are not free space:
 /// with solids that do not overlap, the far box's volume less this is the free volume.
-inline double closed_solids_volume(const std::vector<Mesh>& meshes) {
+/// With a complex: less the curved solids it draws as detail (CellComplex::detail_solids),
+/// whose insides its cells run through.
+inline double closed_solids_volume(const std::vector<Mesh>& meshes, const CellComplex* c = nullptr) {
   double v = 0;
-  for (const ClosedSolid& s : closed_solids(meshes)) v += s.volume;
+  for (const ClosedSolid& s : closed_solids(meshes)) {
+    bool detail = false;
+    if (c)
+      for (const ClosedSurface& d : c->detail_solids) detail |= d.name() == s.name;
+    if (!detail) v += s.volume;
+  }
   return v;
 }
 
@@ -150,7 +170,19 @@ inline void expect_soup_views_agree_with_rays(const CellComplex& c, int views, u
   std::uniform_int_distribution<size_t> pick(0, c.cells.size() - 1);
   std::uniform_real_distribution<double> yaw(0, 360), pitch(-60, 60), fov(40, 110);
   for (int v = 0; v < views; ++v) {
-    const Vec3 eye = random_point_in(c.cells[pick(rng)], rng);
+    Vec3 eye = random_point_in(c.cells[pick(rng)], rng);
+    // Cells run through the curved solids drawn as detail, and a point weighted towards a
+    // cell's middle is often inside one: no eye stands there, so another is drawn, evenly
+    // over a cell's bounds.
+    for (int again = 0; again < 1000 && !c.detail_solids.empty() && c.locate(eye).what == Location::What::Solid;
+         ++again) {
+      const Cell& cell = c.cells[pick(rng)];
+      const Box3 b = cell.bounds();
+      std::uniform_real_distribution<double> u(0, 1);
+      const Vec3 p{b.lo.x + u(rng) * (b.hi.x - b.lo.x), b.lo.y + u(rng) * (b.hi.y - b.lo.y),
+                   b.lo.z + u(rng) * (b.hi.z - b.lo.z)};
+      if (cell.contains(p)) eye = p;
+    }
     const Location loc = c.locate(eye);
     ASSERT_EQ(loc.what, Location::What::Cell) << "view " << v;
     const double y = yaw(rng), p = pitch(rng), f = fov(rng);

@@ -26,6 +26,7 @@
 #include "visibility/visible_set.h"
 
 using namespace avenues;
+using avenues::testing::icosphere;
 using avenues::testing::mesh_from;
 
 namespace {
@@ -152,37 +153,6 @@ TEST(SoupDetail, PolygonsTooSmallToHideMuchCutNoSpace) {
   EXPECT_EQ(none.detail_triangles, 8u);
 }
 
-/// A closed sphere of radius r about c: an icosahedron whose faces are split into four
-/// `levels` times, its corners pushed out on to the sphere (triangles only, no two coplanar).
-Mesh icosphere(Vec3 c, double r, int levels) {
-  const double g = (1 + std::sqrt(5.0)) / 2;
-  std::vector<Vec3> v{{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
-                      {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
-  for (Vec3& p : v) p = unit(p);
-  std::vector<std::array<int, 3>> f{{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                                    {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                                    {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-  for (int l = 0; l < levels; ++l) {
-    std::map<std::pair<int, int>, int> middle;
-    auto mid = [&](int a, int b) {
-      const auto key = std::minmax(a, b);
-      auto [it, added] = middle.try_emplace(key, int(v.size()));
-      if (added) v.push_back(unit(v[size_t(a)] + v[size_t(b)]));
-      return it->second;
-    };
-    std::vector<std::array<int, 3>> next;
-    for (const auto& t : f) {
-      const int ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
-      next.insert(next.end(), {{t[0], ab, ca}, {t[1], bc, ab}, {t[2], ca, bc}, {ab, bc, ca}});
-    }
-    f = std::move(next);
-  }
-  for (Vec3& p : v) p = c + r * p;
-  std::vector<std::vector<int>> polygons;
-  for (const auto& t : f) polygons.push_back({t[0], t[1], t[2]});
-  return mesh_from(v, polygons);
-}
-
 // A finely faceted object alone (a sculpture subdivided into a quarter of a million
 // facets, Assimp's sample_subdiv.ac: 22,831 cells and two minutes before) cuts no space:
 // the far box is one cell, the object its detail, and its pictures are those of the
@@ -195,10 +165,12 @@ TEST(SoupDetail, AFinelyFacetedObjectAloneIsDetailInOneCellAndLooksTheSame) {
   sphere.materials = {red};
   sphere.material_of.assign(sphere.triangles.size(), 0);
   const std::vector<Mesh> meshes{sphere};
-  const CellComplex whole = build_mesh_scene(meshes);
+  MeshSceneParams cut;  // the sphere is closed and curved: cut into space only when asked
+  cut.curved_directions = 0;
+  const CellComplex whole = build_mesh_scene(meshes, cut);
   EXPECT_TRUE(whole.objects.empty());
   EXPECT_GT(whole.cells.size(), 50u);
-  MeshSceneParams p;
+  MeshSceneParams p = cut;
   p.detail_above = 0;
   p.structural_share = 0.05;  // the box's largest face is 4 m²: facets under 0.2 m² do not cut
   p.structural_area_cap = 1;

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -57,6 +59,40 @@ inline Mesh open_boxes(int k) {
         polygons.push_back({b + q[0], b + q[1], b + q[2], b + q[3]});
     }
   return mesh_from(std::move(v), std::move(polygons));
+}
+
+/// A closed sphere of radius r about c: an icosahedron whose faces are split into four
+/// `levels` times, its corners pushed out on to the sphere (triangles only, no two coplanar).
+inline Mesh icosphere(Vec3 c, double r, int levels) {
+  const double g = (1 + std::sqrt(5.0)) / 2;
+  std::vector<Vec3> v{{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+                      {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+  for (Vec3& p : v) p = (1 / length(p)) * p;
+  std::vector<std::array<int, 3>> f{{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                                    {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                                    {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (int l = 0; l < levels; ++l) {
+    std::map<std::pair<int, int>, int> middle;
+    auto mid = [&](int a, int b) {
+      const auto key = std::minmax(a, b);
+      auto [it, added] = middle.try_emplace(key, int(v.size()));
+      if (added) {
+        const Vec3 m = v[size_t(a)] + v[size_t(b)];
+        v.push_back((1 / length(m)) * m);
+      }
+      return it->second;
+    };
+    std::vector<std::array<int, 3>> next;
+    for (const auto& t : f) {
+      const int ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
+      next.insert(next.end(), {{t[0], ab, ca}, {t[1], bc, ab}, {t[2], ca, bc}, {ab, bc, ca}});
+    }
+    f = std::move(next);
+  }
+  for (Vec3& p : v) p = c + r * p;
+  std::vector<std::vector<int>> polygons;
+  for (const auto& t : f) polygons.push_back({t[0], t[1], t[2]});
+  return mesh_from(v, polygons);
 }
 
 /// Möller–Trumbore: the distance along dir to the nearest triangle of the meshes (or inf).

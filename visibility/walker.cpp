@@ -35,6 +35,18 @@ SegmentCast cast_segment(const CellComplex& complex, CellId from, Vec3 a, Vec3 b
   }
   const Vec3 d = b - a;
   const double scale = 1 + std::fabs(a.x) + std::fabs(a.y) + std::fabs(a.z);
+  // A detail solid (a curved object the cells run through) stops the segment where it
+  // first enters one.
+  SurfaceEntry solid;
+  if (!complex.detail_solids.empty()) {
+    Box3 span;
+    span.add(a), span.add(b);
+    for (const ClosedSurface& s : complex.detail_solids) {
+      if (!s.box().meets(span)) continue;
+      const SurfaceEntry e = s.entry(a, b);
+      if (e.hit && e.t < solid.t) solid = e;
+    }
+  }
   double t = 0;
   CellId cell = from;
   for (int steps = 0; steps < kMaxCellsPerCast; ++steps) {
@@ -47,6 +59,13 @@ SegmentCast cast_segment(const CellComplex& complex, CellId from, Vec3 a, Vec3 b
       if (!(rate > 0)) continue;
       const double te = -here.faces[f].plane.eval(a) / rate;
       if (te < t_exit) t_exit = te, exit_face = f;
+    }
+    if (solid.hit && !(t_exit < solid.t)) {
+      r.t = std::max(t, solid.t);
+      r.blocked = true;
+      r.cell = cell;
+      r.normal = -1.0 * solid.normal;  // as a face's: out of the free space it bounds
+      return r;
     }
     if (!(t_exit < 1)) {
       r.t = 1;

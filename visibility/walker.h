@@ -16,6 +16,8 @@
 // between the lower floor and the upper one (each at eye height). Elsewhere vertical moves
 // are refused: walking keeps to the floors.
 // Fly mode: any move through portals (windows too), still never into a solid.
+// A curved solid that the cells run through (CellComplex::detail_solids) stops a move
+// where it enters its surface, as a face does.
 //
 // Both keep `clearance` between the eye and a wall ahead (the segment is tested that much
 // further along its direction) and, sideways, along the four horizontal axes, so that a
@@ -40,7 +42,8 @@ struct SegmentCast {
 };
 
 /// Walks the segment a→b from `from` (a cell holding a) through the portals, stopping at the
-/// first opaque face. Conservative: where rounding cannot tell a portal from a wall, a wall.
+/// first opaque face, or where it first enters one of the complex's detail solids.
+/// Conservative: where rounding cannot tell a portal from a wall, a wall.
 SegmentCast cast_segment(const CellComplex& complex, CellId from, Vec3 a, Vec3 b);
 
 enum class MoveMode : uint8_t {

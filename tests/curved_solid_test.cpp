@@ -1,0 +1,290 @@
+// Tests of closed curved solids drawn as detail (cells/closed_surface.h, the soup's
+// MeshSceneParams::curved_directions): which solids are curved, the surface's inside and
+// segment tests against the sphere they approximate, the scene's cells and pictures
+// against the same solid cut into space, the walker kept out of it, and a saved complex.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "cells/build_cells.h"
+#include "cells/closed_surface.h"
+#include "cells/mesh_scene.h"
+#include "cells/soup_detail.h"
+#include "picture_checks.h"
+#include "render/halftone.h"
+#include "render/scene_objects.h"
+#include "tests/test_meshes.h"
+#include "visibility/visible_set.h"
+#include "visibility/walker.h"
+
+using namespace avenues;
+using avenues::testing::icosphere;
+using avenues::testing::mesh_from;
+
+namespace {
+
+/// A closed prism of n sides about the z axis through c, radius r, from z0 to z1
+/// (counter-clockwise seen from outside).
+Mesh column(Vec3 c, double r, double z0, double z1, int n) {
+  std::vector<Vec3> v;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * std::numbers::pi * i / n;
+    v.push_back({c.x + r * std::cos(a), c.y + r * std::sin(a), z0});
+  }
+  for (int i = 0; i < n; ++i) v.push_back({v[size_t(i)].x, v[size_t(i)].y, z1});
+  std::vector<std::vector<int>> polygons;
+  std::vector<int> bottom, top;
+  for (int i = n - 1; i >= 0; --i) bottom.push_back(i);
+  for (int i = 0; i < n; ++i) top.push_back(n + i);
+  polygons.push_back(bottom);
+  polygons.push_back(top);
+  for (int i = 0; i < n; ++i) polygons.push_back({i, (i + 1) % n, n + (i + 1) % n, n + i});
+  return mesh_from(v, polygons);
+}
+
+/// A closed flight of `steps` steps (0.25 m deep, 0.18 m high, 1 m wide) along x: a
+/// building's solid, many planes facing six ways.
+Mesh stair(int steps) {
+  std::vector<Vec3> profile;  // in the xz-plane, counter-clockwise seen from −y
+  profile.push_back({0, 0, 0});
+  profile.push_back({0.25 * steps, 0, 0});
+  for (int i = steps; i >= 1; --i) {
+    profile.push_back({0.25 * i, 0, 0.18 * i});
+    profile.push_back({0.25 * (i - 1), 0, 0.18 * i});
+  }
+  const int n = int(profile.size());
+  std::vector<Vec3> v = profile;
+  for (const Vec3& p : profile) v.push_back({p.x, 1, p.z});
+  std::vector<std::vector<int>> polygons;
+  // The side faces are not convex: a rectangle a step, each side.
+  for (int i = 1; i <= steps; ++i) {
+    const double x0 = 0.25 * (i - 1), x1 = 0.25 * i, z = 0.18 * i;
+    for (double y : {0.0, 1.0}) {
+      const int b = int(v.size());
+      v.insert(v.end(), {{x0, y, 0}, {x1, y, 0}, {x1, y, z}, {x0, y, z}});
+      if (y == 0)
+        polygons.push_back({b, b + 1, b + 2, b + 3});
+      else
+        polygons.push_back({b, b + 3, b + 2, b + 1});
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    polygons.push_back({i, n + i, n + j, j});
+  }
+  return mesh_from(v, polygons);
+}
+
+const ClosedSolid& only_solid(const std::vector<ClosedSolid>& solids) {
+  EXPECT_EQ(solids.size(), 1u);
+  return solids.front();
+}
+
+}  // namespace
+
+// A smooth surface's facets face as many ways as they lie in planes; a building's solid
+// lies in many planes facing a few ways. Only the first is curved.
+TEST(CurvedSolid, ManyFacetsFacingManyWaysAreCurvedManyPlanesFacingFewWaysAreNot) {
+  const std::vector<ClosedSolid> sphere = closed_solids({icosphere({0, 0, 1}, 1, 2)});
+  EXPECT_TRUE(is_curved(only_solid(sphere), 32));
+  EXPECT_FALSE(is_curved(only_solid(sphere), 400));  // 320 facets
+  EXPECT_TRUE(is_curved(only_solid(closed_solids({column({0, 0, 0}, 0.3, 0, 3, 48)})), 32));
+  EXPECT_FALSE(is_curved(only_solid(closed_solids({column({0, 0, 0}, 0.3, 0, 3, 16)})), 32));
+  const std::vector<ClosedSolid> flight = closed_solids({stair(30)});
+  ASSERT_EQ(flight.size(), 1u);
+  EXPECT_GE(flight[0].triangles.size(), 200u);
+  EXPECT_FALSE(is_curved(flight[0], 32));  // 64 planes facing 6 ways
+  EXPECT_FALSE(is_curved(only_solid(sphere), 0));
+}
+
+// Inside and outside, and where a segment enters, agree with the sphere the facets
+// approximate (away from the thin shell between the facets and the sphere), on random
+// points and on points whose rays run along the icosahedron's own symmetry.
+TEST(CurvedSolid, TheSurfaceTellsInsideFromOutsideAndWhereASegmentEntersIt) {
+  const Vec3 c{2, -1, 0.5};
+  const double r = 1.5;
+  const std::vector<ClosedSolid> solids = closed_solids({icosphere(c, r, 3)});
+  ASSERT_EQ(solids.size(), 1u);
+  const ClosedSurface s(solids[0].name, solids[0].triangles);
+  EXPECT_EQ(s.triangles().size(), 1280u);
+  const double inner = 0.99 * r;  // every facet lies between this and r from the centre
+  std::mt19937 rng(18);
+  std::uniform_real_distribution<double> u(-2 * r, 2 * r);
+  int inside = 0, outside = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const Vec3 p = c + Vec3{u(rng), u(rng), u(rng)};
+    const double d = length(p - c);
+    if (d > inner && d < r) continue;
+    const bool in = d <= inner;
+    EXPECT_EQ(s.holds(p), in) << "at distance " << d;
+    EXPECT_EQ(winding_number(s.triangles(), p) > 0.5, in);
+    (in ? inside : outside)++;
+  }
+  EXPECT_GT(inside, 200);
+  EXPECT_GT(outside, 200);
+  // Along the axes and through the icosahedron's corners: rays meet edges and corners.
+  for (Vec3 d : {Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}, Vec3{0.8017837257372732, 0.5345224838248488, 0.2672612419124244}})
+    for (double k : {0.0, 0.3, 0.9}) {
+      EXPECT_TRUE(s.holds(c + k * r * d));
+      EXPECT_FALSE(s.holds(c + 1.2 * r * d));
+      EXPECT_FALSE(s.holds(c - 1.2 * r * d));
+    }
+  // Segments from outside towards the centre enter at the surface, its normal facing them;
+  // segments leaving it, or passing beside it, are not stopped.
+  for (int i = 0; i < 500; ++i) {
+    Vec3 d{u(rng), u(rng), u(rng)};
+    if (!(length(d) > 0.1)) continue;
+    d = (1 / length(d)) * d;
+    const Vec3 a = c + 2.5 * r * d, b = c + 0.5 * r * d;
+    const SurfaceEntry e = s.entry(a, b);
+    ASSERT_TRUE(e.hit);
+    const double at = length(a + e.t * (b - a) - c);
+    EXPECT_GE(at, inner - 1e-12);
+    EXPECT_LE(at, r + 1e-12);
+    EXPECT_GT(dot(e.normal, d), 0.9);
+    EXPECT_NEAR(length(e.normal), 1, 1e-12);
+    EXPECT_FALSE(s.entry(b, a).hit);               // leaving
+    EXPECT_FALSE(s.entry(c, c + 0.5 * r * d).hit);  // inside all along
+    const Vec3 side = cross(d, std::fabs(d.z) < 0.9 ? Vec3{0, 0, 1} : Vec3{1, 0, 0});
+    const Vec3 off = c + (1.01 * r / length(side)) * side;
+    EXPECT_FALSE(s.entry(off - 3 * r * d, off + 3 * r * d).hit);  // beside it
+  }
+}
+
+// A sphere alone: it cuts no space (the far box is one cell), its facets are drawn as
+// detail, the scene says so, and its pictures are those of the sphere cut into space.
+TEST(CurvedSolid, ASphereAloneIsDetailInOneCellAndLooksAsWhenCutIntoSpace) {
+  Mesh sphere = icosphere({0, 0, 1}, 1.0, 2);
+  Material red;
+  red.name = "red";
+  red.colour = {0.8, 0.1, 0.1};
+  sphere.materials = {red};
+  sphere.material_of.assign(sphere.triangles.size(), 0);
+  const std::vector<Mesh> meshes{sphere};
+  MeshSceneParams cut;
+  cut.curved_directions = 0;
+  const CellComplex whole = build_mesh_scene(meshes, cut);
+  EXPECT_TRUE(whole.detail_solids.empty());
+  EXPECT_GT(whole.cells.size(), 50u);
+  const CellComplex c = build_mesh_scene(meshes);
+  ASSERT_EQ(c.cells.size(), 1u);
+  ASSERT_EQ(c.detail_solids.size(), 1u);
+  EXPECT_EQ(c.detail_solids[0].triangles().size(), sphere.triangles.size());
+  EXPECT_TRUE(c.lines.empty());  // the detail draws its own
+  bool said = false;
+  for (const std::string& w : c.warnings)
+    said |= w.find("1 closed curved solid (" + c.detail_solids[0].name() + "; 320 triangles) is detail") != std::string::npos;
+  EXPECT_TRUE(said);
+  const Location centre = c.locate({0, 0, 1});
+  EXPECT_EQ(centre.what, Location::What::Solid);
+  EXPECT_EQ(centre.solid, c.detail_solids[0].name());
+  EXPECT_EQ(c.locate({0, 0, 2.5}).what, Location::What::Cell);
+
+  const std::vector<PlacedObject> no_objects, detail = place_objects(c);
+  HalftoneOptions o;
+  o.threads = 1;
+  o.shading.back = 1;
+  TraverseParams merged;
+  merged.merge_pieces = true;
+  for (const Camera& cam : {Camera::yaw_pitch({-2.5, -1.0, 1.5}, 20, -10, 70, 240, 160),
+                            Camera::yaw_pitch({0.5, 2.5, 2.8}, -80, -35, 70, 240, 160)}) {
+    const Location in_whole = whole.locate(cam.eye), in_c = c.locate(cam.eye);
+    ASSERT_EQ(in_whole.what, Location::What::Cell);
+    ASSERT_EQ(in_c.what, Location::What::Cell);
+    Image truth, pic;
+    render_view(whole, no_objects, cam, find_visible(whole, cam, in_whole.cell, merged), o, truth);
+    TraverseParams hull = merged;
+    hull.hull_pieces = true;
+    const VisibleSet vs = find_visible(c, cam, in_c.cell, hull);
+    render_view(c, detail, cam, vs, o, pic);
+    Image empty;  // the far box alone: the sphere must be in view
+    render_view(c, no_objects, cam, vs, o, empty);
+    EXPECT_GT(avenues::testing::compare_off_edges(truth, empty).differ, truth.width * truth.height / 10);
+    const avenues::testing::PictureDifference d = avenues::testing::compare_off_edges(truth, pic);
+    EXPECT_EQ(d.off_edges, 0) << "the pictures differ in " << d.off_edges << " pixels away from every edge";
+    EXPECT_LE(d.differ, d.pixels / 200) << "the pictures differ in " << d.differ << " pixels";
+  }
+}
+
+// Walking or flying at a sphere that no cell ends at, the eye stops short of it (by the
+// clearance) and is never inside it; sliding, it goes round it. A box beside it still cuts
+// space, and an eye may not start inside either.
+TEST(CurvedSolid, TheWalkerStopsAtACurvedSolidAsAtAWall) {
+  const Mesh sphere = icosphere({0, 0, 1}, 1.0, 3);
+  const Mesh box = mesh_from({{3, -0.5, 0}, {4, -0.5, 0}, {4, 0.5, 0}, {3, 0.5, 0},
+                              {3, -0.5, 1}, {4, -0.5, 1}, {4, 0.5, 1}, {3, 0.5, 1}},
+                             {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}});
+  const CellComplex c = build_mesh_scene({sphere, box});
+  ASSERT_EQ(c.detail_solids.size(), 1u);
+  EXPECT_GT(c.cells.size(), 1u);  // the box cuts space
+  EXPECT_EQ(c.locate({3.5, 0, 0.5}).what, Location::What::Solid);
+  EXPECT_THROW(Walker(c, {0, 0.2, 1.1}), std::runtime_error);
+  for (MoveMode mode : {MoveMode::Fly, MoveMode::Walk}) {
+    SCOPED_TRACE(to_string(mode));
+    // Fly at the sphere's centre; walk at eye height (1.6 m), above its middle.
+    Walker w(c, {-2.5, 0, mode == MoveMode::Fly ? 1.0 : WalkerOptions{}.eye_height});
+    w.set_mode(mode);
+    double nearest = HUGE_VAL;
+    for (int i = 0; i < 200; ++i) {
+      w.move({0.05, 0, 0}, 1.0 / 60);
+      ASSERT_EQ(c.locate(w.eye()).what, Location::What::Cell);
+      nearest = std::min(nearest, length(w.eye() - Vec3{0, 0, 1}));
+    }
+    if (mode == MoveMode::Walk) {
+      // Stopped, a step at most before the clearance short of where the eye (at 1.6 m)
+      // or the knee (just above a step) would meet the sphere; the facets lie within 1 cm
+      // of the sphere.
+      double reach = 0;
+      for (double z : {w.options().eye_height, w.options().step_height + 0.02})
+        reach = std::max(reach, std::sqrt(1 - (z - 1) * (z - 1)));
+      EXPECT_LE(w.eye().x, -reach - w.options().clearance + 0.01);
+      EXPECT_GE(w.eye().x, -reach - w.options().clearance - 0.05 - 0.01);
+      EXPECT_NEAR(w.eye().y, 0, 1e-9);
+    } else {
+      // Flying, it slid over the sphere's facets (as along a slanted wall: the clearance
+      // is kept ahead of each move and along the horizontal axes), never into it.
+      EXPECT_GT(nearest, 1.0);
+      EXPECT_GT(w.eye().x, -2.4);
+    }
+    // Moving at it slantwise, the eye slides past it to the other side.
+    Walker side(c, {-2.5, 0.3, mode == MoveMode::Fly ? 1.0 : WalkerOptions{}.eye_height});
+    side.set_mode(mode);
+    for (int i = 0; i < 400; ++i) {
+      side.move({0.05, 0.005, 0}, 1.0 / 60);
+      ASSERT_GE(length(side.eye() - Vec3{0, 0, 1}), 0.98);
+    }
+    EXPECT_GT(side.eye().x, 0) << "it did not slide round the sphere";
+  }
+}
+
+// A saved complex keeps its detail solids, and they still keep eyes out once loaded.
+TEST(CurvedSolid, ASavedComplexKeepsItsCurvedSolids) {
+  const CellComplex c = build_mesh_scene({icosphere({0, 0, 1}, 1.0, 2), column({4, 0, 0}, 0.5, 0, 2, 40)});
+  ASSERT_EQ(c.detail_solids.size(), 2u);
+  const std::string path = (std::filesystem::temp_directory_path() / "avenues_curved_solid_test.cells").string();
+  save_cells(c, path);
+  const CellComplex again = load_cells(path);
+  std::filesystem::remove(path);
+  ASSERT_EQ(again.detail_solids.size(), 2u);
+  auto sorted = [](std::vector<Triangle3> t) {  // in whatever order each surface's hierarchy keeps them
+    auto key = [](const Triangle3& x) {
+      return std::array{x[0].x, x[0].y, x[0].z, x[1].x, x[1].y, x[1].z, x[2].x, x[2].y, x[2].z};
+    };
+    std::sort(t.begin(), t.end(), [&](const Triangle3& a, const Triangle3& b) { return key(a) < key(b); });
+    return t;
+  };
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(again.detail_solids[i].name(), c.detail_solids[i].name());
+    EXPECT_TRUE(sorted(again.detail_solids[i].triangles()) == sorted(c.detail_solids[i].triangles()));
+  }
+  EXPECT_EQ(again.locate({4, 0, 1}).what, Location::What::Solid);
+  EXPECT_EQ(again.locate({4, 0, 1}).solid, c.detail_solids[1].name());
+  EXPECT_EQ(again.objects.size(), c.objects.size());
+}
