@@ -4,6 +4,8 @@
 #include "render/scene_objects.h"
 
 #include <algorithm>
+#include <array>
+#include <map>
 #include <cmath>
 #include <limits>
 
@@ -82,7 +84,106 @@ void find_edges(FurniturePiece& p) {
 
 }  // namespace
 
-Furniture furniture_of(const std::vector<PlacedObject>& placed) {
+namespace {
+
+/// A detail polygon is cut to the cells it crosses, and a cell's detail is gathered into
+/// clusters (cells/soup_detail.h), so the sides of a cluster's mesh that one triangle alone
+/// uses are not all the input's open edges: some are edges between two input polygons in
+/// two clusters, and some are cuts along the cell's faces. Drawn as an open mesh's
+/// boundary, they crossed a curved solid's drawing with lines it does not have. Here each
+/// such side that another cluster has too (corner for corner) becomes an edge between the
+/// two polygons (the other's kept as a polygon of no triangles, for facing and the
+/// dihedral), and one lying on a face of its cell is dropped.
+void join_detail_edges(Furniture& f, const CellComplex& complex) {
+  if (f.pieces.size() != complex.objects.size()) return;
+  // Two pieces of one input edge are cut to a cell's face by two triangles, each in double:
+  // their cut corners agree to a rounding, not always to the bit.
+  const double tol = 1e-9 * complex.far_box.magnitude(), bucket = 1e3 * tol;
+  struct Open {
+    size_t piece, edge;
+    Vec3 a, b;
+    bool done = false;
+  };
+  std::vector<Open> open;
+  std::map<std::array<int64_t, 3>, std::vector<size_t>> near;  // by the edge's middle
+  auto square = [&](Vec3 p) {
+    return std::array<int64_t, 3>{int64_t(std::floor(p.x / bucket)), int64_t(std::floor(p.y / bucket)),
+                                  int64_t(std::floor(p.z / bucket))};
+  };
+  for (size_t i = 0; i < f.pieces.size(); ++i) {
+    if (complex.objects[i].cell < 0) continue;
+    const FurniturePiece& p = f.pieces[i];
+    for (size_t e = 0; e < p.edges.size(); ++e) {
+      if (p.edges[e].polygon[1] >= 0) continue;
+      const Vec3 a = p.mesh.vertices[size_t(p.edges[e].v[0])], b = p.mesh.vertices[size_t(p.edges[e].v[1])];
+      near[square(0.5 * (a + b))].push_back(open.size());
+      open.push_back({i, e, a, b});
+    }
+  }
+  auto same = [&](Vec3 u, Vec3 v) {
+    return std::fabs(u.x - v.x) <= tol && std::fabs(u.y - v.y) <= tol && std::fabs(u.z - v.z) <= tol;
+  };
+  std::vector<std::vector<uint8_t>> drop(f.pieces.size());
+  for (size_t i = 0; i < f.pieces.size(); ++i) drop[i].assign(f.pieces[i].edges.size(), 0);
+  for (size_t k = 0; k < open.size(); ++k) {
+    Open& o = open[k];
+    if (o.done) continue;
+    o.done = true;
+    // The other piece of the same edge, if any: an edge between two polygons.
+    const std::array<int64_t, 3> at = square(0.5 * (o.a + o.b));
+    Open* twin = nullptr;
+    for (int64_t dx = -1; dx <= 1 && !twin; ++dx)
+      for (int64_t dy = -1; dy <= 1 && !twin; ++dy)
+        for (int64_t dz = -1; dz <= 1 && !twin; ++dz) {
+          const auto it = near.find({at[0] + dx, at[1] + dy, at[2] + dz});
+          if (it == near.end()) continue;
+          for (size_t j : it->second) {
+            Open& t = open[j];
+            if (t.done || (t.piece == o.piece && t.edge == o.edge)) continue;
+            if ((same(o.a, t.a) && same(o.b, t.b)) || (same(o.a, t.b) && same(o.b, t.a))) {
+              twin = &t;
+              break;
+            }
+          }
+        }
+    if (twin) {
+      twin->done = true;
+      FurniturePiece& keep = f.pieces[o.piece];
+      const FurniturePiece& other = f.pieces[twin->piece];
+      const size_t poly = size_t(other.edges[twin->edge].polygon[0]);
+      FurnitureEdge& e = keep.edges[o.edge];
+      if (twin->piece == o.piece) {
+        e.polygon[1] = int32_t(poly);
+      } else {
+        e.polygon[1] = int32_t(keep.polygon_normal.size());
+        keep.polygon_normal.push_back(other.polygon_normal[poly]);
+        keep.polygon_point.push_back(other.polygon_point[poly]);
+      }
+      const double c = dot(keep.polygon_normal[size_t(e.polygon[0])], keep.polygon_normal[size_t(e.polygon[1])]);
+      e.dihedral_deg = deg_from_rad(std::acos(std::clamp(c, -1.0, 1.0)));
+      drop[twin->piece][twin->edge] = 1;
+      continue;
+    }
+    // None: the input's own open edge, or a cut along a face of the piece's cell.
+    const Cell& cell = complex.cells[size_t(complex.objects[o.piece].cell)];
+    for (const Face& face : cell.faces)
+      if (std::fabs(face.plane.eval(o.a)) <= tol && std::fabs(face.plane.eval(o.b)) <= tol) {
+        drop[o.piece][o.edge] = 1;
+        break;
+      }
+  }
+  for (size_t i = 0; i < f.pieces.size(); ++i) {
+    std::vector<FurnitureEdge>& edges = f.pieces[i].edges;
+    size_t kept = 0;
+    for (size_t e = 0; e < edges.size(); ++e)
+      if (!drop[i][e]) edges[kept++] = edges[e];
+    edges.resize(kept);
+  }
+}
+
+}  // namespace
+
+Furniture furniture_of(const CellComplex& complex, const std::vector<PlacedObject>& placed) {
   Furniture f;
   for (const PlacedObject& o : placed) {
     FurniturePiece p;
@@ -92,6 +193,7 @@ Furniture furniture_of(const std::vector<PlacedObject>& placed) {
     for (const ObjectCell& in : o.cells) p.cells.push_back(in.cell);
     f.pieces.push_back(std::move(p));
   }
+  join_detail_edges(f, complex);
   return f;
 }
 

@@ -50,8 +50,10 @@ struct Furniture {
 };
 
 /// The objects as placed (place_objects: one per complex.objects entry, in order, with
-/// the cells each meets), with their edges.
-Furniture furniture_of(const std::vector<PlacedObject>& placed);
+/// the cells each meets), with their edges. The clusters of a cell's detail (Object::cell)
+/// are one surface: a side two clusters share is an edge between their polygons, and one
+/// along a face of its cell (where a polygon was cut) is none.
+Furniture furniture_of(const CellComplex& complex, const std::vector<PlacedObject>& placed);
 
 /// Crow's back-face test: 1 for each polygon of `piece` that faces `eye`.
 std::vector<uint8_t> polygons_facing(const FurniturePiece& piece, Vec3 eye);

@@ -160,7 +160,7 @@ void draw_shadow_outlines(const CellComplex& c, const LineScene& scene, const Ca
 
 LineScene prepare_line_scene(const CellComplex& complex, const std::vector<PlacedObject>& objects,
                              const LineOptions& options) {
-  LineScene scene{line_faces(complex), furniture_of(objects), {}, {}};
+  LineScene scene{line_faces(complex), furniture_of(complex, objects), {}, {}};
   if (!options.shadows) return scene;
   scene.lighting = lighting_of(complex, Shading{}, Lights::Plan, false, false);
   scene.shadows = cast_shadows(complex, objects, scene.lighting);

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <numbers>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,7 @@
 #include "cells/mesh_scene.h"
 #include "cells/soup_detail.h"
 #include "picture_checks.h"
+#include "render/furniture.h"
 #include "render/halftone.h"
 #include "render/scene_objects.h"
 #include "tests/test_meshes.h"
@@ -287,4 +289,54 @@ TEST(CurvedSolid, ASavedComplexKeepsItsCurvedSolids) {
   EXPECT_EQ(again.locate({4, 0, 1}).what, Location::What::Solid);
   EXPECT_EQ(again.locate({4, 0, 1}).solid, c.detail_solids[1].name());
   EXPECT_EQ(again.objects.size(), c.objects.size());
+}
+
+// A curved solid's facets are cut to the cells around it and gathered in clusters, but it
+// is one closed surface: in the line drawings no side of a cluster is an open edge (a
+// side two clusters share is an edge between their facets; a cut along a cell's face is
+// none). An open sheet drawn as detail keeps its own boundary, all of it, and no more.
+TEST(CurvedSolid, ItsDrawingHasNoEdgeWhereItsFacetsWereCutOrClustered) {
+  const Mesh sphere = icosphere({0, 0, 1}, 1.0, 4);  // 5,120 facets: many clusters
+  // A box into it whose planes cut the cells around it, and a tilted sheet 1.2 m square
+  // above it that is detail (its 1.44 m² under the least area asked of what cuts space,
+  // 0.2 of the scene's largest face, 2.3 m²; every face of the box over it) and is cut by
+  // the plane of the box's end.
+  const Mesh box = mesh_from({{0.5, -1, 0}, {4, -1, 0}, {4, 1, 0}, {0.5, 1, 0},
+                              {0.5, -1, 1.5}, {4, -1, 1.5}, {4, 1, 1.5}, {0.5, 1, 1.5}},
+                             {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}});
+  const Mesh sheet = mesh_from({{-0.6, -0.6, 2.3}, {0.6, -0.6, 2.3}, {0.6, 0.6, 2.2}, {-0.6, 0.6, 2.2}}, {{0, 1, 2, 3}});
+  MeshSceneParams p;
+  p.detail_above = 0;
+  p.structural_share = 0.2;
+  p.structural_area_cap = 100;
+  const CellComplex c = build_mesh_scene({sphere, box, sheet}, p);
+  ASSERT_EQ(c.detail_solids.size(), 1u);
+  ASSERT_GT(c.cells.size(), 1u);
+  const std::vector<PlacedObject> placed = place_objects(c);
+  const Furniture f = furniture_of(c, placed);
+  ASSERT_EQ(f.pieces.size(), c.objects.size());
+  std::set<CellId> cells;
+  size_t sphere_pieces = 0;
+  double open_length = 0;
+  for (size_t i = 0; i < f.pieces.size(); ++i) {
+    const FurniturePiece& piece = f.pieces[i];
+    ASSERT_GE(c.objects[i].cell, 0);
+    cells.insert(c.objects[i].cell);
+    bool of_sphere = false;
+    for (Vec3 v : piece.mesh.vertices) of_sphere |= std::fabs(length(v - Vec3{0, 0, 1}) - 1) < 0.01;
+    sphere_pieces += of_sphere;
+    for (const FurnitureEdge& e : piece.edges) {
+      if (e.polygon[1] >= 0) continue;
+      const Vec3 a = piece.mesh.vertices[size_t(e.v[0])], b = piece.mesh.vertices[size_t(e.v[1])];
+      // Only the sheet's own sides are open.
+      const bool on_side = (std::fabs(a.x - b.x) < 1e-9 && std::fabs(std::fabs(a.x) - 0.6) < 1e-9) ||
+                           (std::fabs(a.y - b.y) < 1e-9 && std::fabs(std::fabs(a.y) - 0.6) < 1e-9);
+      EXPECT_TRUE(on_side) << "an open edge from " << a.x << "," << a.y << "," << a.z << " to " << b.x << "," << b.y
+                           << "," << b.z;
+      open_length += length(b - a);
+    }
+  }
+  EXPECT_GT(sphere_pieces, 4u);
+  EXPECT_GE(cells.size(), 2u);  // the detail was cut to more than one cell
+  EXPECT_NEAR(open_length, 2 * 1.2 + 2 * std::hypot(1.2, 0.1), 1e-9);  // the sheet's perimeter
 }
