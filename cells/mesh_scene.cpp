@@ -1123,16 +1123,28 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     const std::string drawn_in =
         cells_holding == 1 ? std::string("the one cell") : "the " + std::to_string(cells_holding) + " cells";
     if (!out.detail_solids.empty()) {
+      // "FILE: solid N" each; said once per file where they all come from one.
       std::ostringstream said;
       const size_t n = out.detail_solids.size();
-      said << (n == 1 ? "1 closed curved solid (" : std::to_string(n) + " closed curved solids (");
-      for (size_t k = 0; k < std::min<size_t>(n, 3); ++k) said << (k ? ", " : "") << out.detail_solids[k].name();
-      if (n > 3) said << " and " << n - 3 << " more";
-      const bool one = n == 1;
-      said << "; " << split.curved << " triangles) " << (one ? "is" : "are")
-           << " detail: not cut into a cell per facet, but drawn in the cells around "
-           << (one ? "it; the walker stays out of it, the search sees through it"
-                   : "them; the walker stays out of them, the search sees through them");
+      auto file_of = [](const std::string& name) { return name.substr(0, name.rfind(": solid ")); };
+      const std::string file = file_of(out.detail_solids[0].name());
+      bool one_file = true;
+      for (const ClosedSurface& d : out.detail_solids) one_file &= file_of(d.name()) == file;
+      if (n == 1) {
+        said << out.detail_solids[0].name() << " (" << split.curved
+             << " triangles) is closed and curved: detail, not cut into a cell per facet but drawn in the cells "
+                "around it; the walker stays out of it, the search sees through it";
+      } else {
+        said << (one_file ? file + ": " : std::string()) << n << " closed curved solids ("
+             << (one_file ? "solids " : "");
+        for (size_t k = 0; k < std::min<size_t>(n, 3); ++k) {
+          const std::string& name = out.detail_solids[k].name();
+          said << (k ? ", " : "") << (one_file ? name.substr(name.rfind(' ') + 1) : name);
+        }
+        if (n > 3) said << " and " << n - 3 << " more";
+        said << "; " << split.curved << " triangles) are detail: not cut into a cell per facet but drawn in the "
+             << "cells around them; the walker stays out of them, the search sees through them";
+      }
       out.warnings.push_back(said.str());
     }
     if (split.detail_triangles > split.curved) {

@@ -182,7 +182,7 @@ TEST(CurvedSolid, ASphereAloneIsDetailInOneCellAndLooksAsWhenCutIntoSpace) {
   EXPECT_TRUE(c.lines.empty());  // the detail draws its own
   bool said = false;
   for (const std::string& w : c.warnings)
-    said |= w.find("1 closed curved solid (" + c.detail_solids[0].name() + "; 320 triangles) is detail") != std::string::npos;
+    said |= w.find(c.detail_solids[0].name() + " (320 triangles) is closed and curved: detail") != std::string::npos;
   EXPECT_TRUE(said);
   const Location centre = c.locate({0, 0, 1});
   EXPECT_EQ(centre.what, Location::What::Solid);
