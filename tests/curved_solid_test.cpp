@@ -188,6 +188,10 @@ TEST(CurvedSolid, ASphereAloneIsDetailInOneCellAndLooksAsWhenCutIntoSpace) {
   EXPECT_EQ(centre.what, Location::What::Solid);
   EXPECT_EQ(centre.solid, c.detail_solids[0].name());
   EXPECT_EQ(c.locate({0, 0, 2.5}).what, Location::What::Cell);
+  // A walker stands on the ground the sphere stands on, not on the far box below it.
+  double lowest = HUGE_VAL;
+  for (Vec3 v : sphere.vertices) lowest = std::min(lowest, v.z);
+  EXPECT_NEAR(Walker(c, {0, 0, 2.5}).ground(), lowest, 1e-12);
 
   const std::vector<PlacedObject> no_objects, detail = place_objects(c);
   HalftoneOptions o;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "plans/mesh.h"
 #include "visibility/stereo.h"
 
 namespace avenues {
@@ -135,6 +136,12 @@ Walker::Walker(const CellComplex& complex, Vec3 eye, const WalkerOptions& option
           }
           if (std::none_of(far_face, far_face + 6, [](bool b) { return b; })) lowest = std::min(lowest, low);
         }
+    // Detail stands on the ground too: a curved solid (a duck alone is all detail), a
+    // large soup's small polygons.
+    for (const ClosedSurface& s : complex.detail_solids) lowest = std::min(lowest, s.box().lo.z);
+    for (const Object& o : complex.objects)
+      if (o.cell >= 0 && o.model)
+        for (Vec3 v : o.model->vertices) lowest = std::min(lowest, v.z);
     if (lowest < HUGE_VAL) ground_ = lowest;
   }
 }

@@ -84,7 +84,8 @@ class Walker {
   /// grid of open boxes) is walked around at its foot, not from the far box's bottom below it.
   double floor_below() const;
   /// [m] The ground the eye stands on where no floor is below it: a scene of meshes' lowest
-  /// point; -inf for a plan (its storeys' floors and the outside's ground are faces).
+  /// point (of its opaque faces and its detail); -inf for a plan (its storeys' floors and
+  /// the outside's ground are faces).
   double ground() const { return ground_; }
   /// True when the eye stands in a stairwell's column (a floor hole above or below it, with
   /// no floor between).
