@@ -344,3 +344,24 @@ TEST(CurvedSolid, ItsDrawingHasNoEdgeWhereItsFacetsWereCutOrClustered) {
   EXPECT_GE(cells.size(), 2u);  // the detail was cut to more than one cell
   EXPECT_NEAR(open_length, 2 * 1.2 + 2 * std::hypot(1.2, 0.1), 1e-9);  // the sheet's perimeter
 }
+
+// The same 5,400 km from the origin (a model in site coordinates): the sphere is still
+// curved (its planes' places, rounded to the scale of their coordinates, do not matter
+// when their directions differ), an eye inside it is refused, and a walker flying at it
+// never enters it.
+TEST(CurvedSolid, FarFromTheOriginItIsStillDetailAndStillStopsTheWalker) {
+  const Vec3 centre{5.4e6, -2.5e5, 1};
+  const CellComplex c = build_mesh_scene({icosphere(centre, 1.0, 3)});
+  ASSERT_EQ(c.detail_solids.size(), 1u);
+  EXPECT_EQ(c.cells.size(), 1u);
+  EXPECT_EQ(c.locate(centre).what, Location::What::Solid);
+  EXPECT_EQ(c.locate(centre + Vec3{0, 0, 1.5}).what, Location::What::Cell);
+  const Vec3 start = centre + Vec3{-2.5, 0, 0};
+  Walker w(c, start);
+  w.set_mode(MoveMode::Fly);
+  for (int i = 0; i < 100; ++i) {
+    w.move({0.05, 0, 0}, 1.0 / 60);
+    ASSERT_GT(length(w.eye() - centre), 1.0);  // never into it; sliding over it as at the origin
+  }
+  EXPECT_GT(length(w.eye() - start), 1.0);  // it went up to the sphere
+}
