@@ -18,6 +18,7 @@
 #include "cells/closed_surface.h"
 #include "cells/mesh_scene.h"
 #include "cells/soup_detail.h"
+#include "detail_checks.h"
 #include "picture_checks.h"
 #include "render/furniture.h"
 #include "render/halftone.h"
@@ -163,12 +164,7 @@ TEST(CurvedSolid, TheSurfaceTellsInsideFromOutsideAndWhereASegmentEntersIt) {
 // A sphere alone: it cuts no space (the far box is one cell), its facets are drawn as
 // detail, the scene says so, and its pictures are those of the sphere cut into space.
 TEST(CurvedSolid, ASphereAloneIsDetailInOneCellAndLooksAsWhenCutIntoSpace) {
-  Mesh sphere = icosphere({0, 0, 1}, 1.0, 2);
-  Material red;
-  red.name = "red";
-  red.colour = {0.8, 0.1, 0.1};
-  sphere.materials = {red};
-  sphere.material_of.assign(sphere.triangles.size(), 0);
+  const Mesh sphere = avenues::testing::painted(icosphere({0, 0, 1}, 1.0, 2), "red", {0.8, 0.1, 0.1});
   const std::vector<Mesh> meshes{sphere};
   MeshSceneParams cut;
   cut.curved_directions = 0;
@@ -193,30 +189,8 @@ TEST(CurvedSolid, ASphereAloneIsDetailInOneCellAndLooksAsWhenCutIntoSpace) {
   for (Vec3 v : sphere.vertices) lowest = std::min(lowest, v.z);
   EXPECT_NEAR(Walker(c, {0, 0, 2.5}).ground(), lowest, 1e-12);
 
-  const std::vector<PlacedObject> no_objects, detail = place_objects(c);
-  HalftoneOptions o;
-  o.threads = 1;
-  o.shading.back = 1;
-  TraverseParams merged;
-  merged.merge_pieces = true;
-  for (const Camera& cam : {Camera::yaw_pitch({-2.5, -1.0, 1.5}, 20, -10, 70, 240, 160),
-                            Camera::yaw_pitch({0.5, 2.5, 2.8}, -80, -35, 70, 240, 160)}) {
-    const Location in_whole = whole.locate(cam.eye), in_c = c.locate(cam.eye);
-    ASSERT_EQ(in_whole.what, Location::What::Cell);
-    ASSERT_EQ(in_c.what, Location::What::Cell);
-    Image truth, pic;
-    render_view(whole, no_objects, cam, find_visible(whole, cam, in_whole.cell, merged), o, truth);
-    TraverseParams hull = merged;
-    hull.hull_pieces = true;
-    const VisibleSet vs = find_visible(c, cam, in_c.cell, hull);
-    render_view(c, detail, cam, vs, o, pic);
-    Image empty;  // the far box alone: the sphere must be in view
-    render_view(c, no_objects, cam, vs, o, empty);
-    EXPECT_GT(avenues::testing::compare_off_edges(truth, empty).differ, truth.width * truth.height / 10);
-    const avenues::testing::PictureDifference d = avenues::testing::compare_off_edges(truth, pic);
-    EXPECT_EQ(d.off_edges, 0) << "the pictures differ in " << d.off_edges << " pixels away from every edge";
-    EXPECT_LE(d.differ, d.pixels / 200) << "the pictures differ in " << d.differ << " pixels";
-  }
+  avenues::testing::expect_detail_looks_as_cut(whole, c, {Camera::yaw_pitch({-2.5, -1.0, 1.5}, 20, -10, 70, 240, 160),
+                                                   Camera::yaw_pitch({0.5, 2.5, 2.8}, -80, -35, 70, 240, 160)});
 }
 
 // Walking or flying at a sphere that no cell ends at, the eye stops short of it (by the

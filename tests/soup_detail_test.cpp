@@ -18,6 +18,7 @@
 #include "cells/mesh_scene.h"
 #include "cells/soup_detail.h"
 #include "hull_checks.h"
+#include "detail_checks.h"
 #include "picture_checks.h"
 #include "ray_oracle.h"
 #include "render/halftone.h"
@@ -158,12 +159,7 @@ TEST(SoupDetail, PolygonsTooSmallToHideMuchCutNoSpace) {
 // the far box is one cell, the object its detail, and its pictures are those of the
 // object decomposed whole.
 TEST(SoupDetail, AFinelyFacetedObjectAloneIsDetailInOneCellAndLooksTheSame) {
-  Mesh sphere = icosphere({0, 0, 1}, 1.0, 2);  // 320 triangles of about 0.04 m²
-  Material red;
-  red.name = "red";
-  red.colour = {0.8, 0.1, 0.1};
-  sphere.materials = {red};
-  sphere.material_of.assign(sphere.triangles.size(), 0);
+  const Mesh sphere = avenues::testing::painted(icosphere({0, 0, 1}, 1.0, 2), "red", {0.8, 0.1, 0.1});  // 320 triangles of about 0.04 m²
   const std::vector<Mesh> meshes{sphere};
   MeshSceneParams cut;  // the sphere is closed and curved: cut into space only when asked
   cut.curved_directions = 0;
@@ -185,30 +181,8 @@ TEST(SoupDetail, AFinelyFacetedObjectAloneIsDetailInOneCellAndLooksTheSame) {
   double pieces = 0;
   for (const Object& o : split.objects) pieces += area_of(*o.model);
   EXPECT_NEAR(pieces, area_of(meshes[0]), 1e-9 * area_of(meshes[0]));
-  const std::vector<PlacedObject> no_objects, detail = place_objects(split);
-  HalftoneOptions o;
-  o.threads = 1;
-  o.shading.back = 1;
-  TraverseParams merged;
-  merged.merge_pieces = true;
-  for (const Camera& cam : {Camera::yaw_pitch({-2.5, -1.0, 1.5}, 20, -10, 70, 240, 160),
-                            Camera::yaw_pitch({0.5, 2.5, 2.8}, -80, -35, 70, 240, 160)}) {
-    const Location in_whole = whole.locate(cam.eye), in_split = split.locate(cam.eye);
-    ASSERT_EQ(in_whole.what, Location::What::Cell);
-    ASSERT_EQ(in_split.what, Location::What::Cell);
-    Image truth, pic;
-    render_view(whole, no_objects, cam, find_visible(whole, cam, in_whole.cell, merged), o, truth);
-    TraverseParams hull = merged;
-    hull.hull_pieces = true;
-    const VisibleSet vs = find_visible(split, cam, in_split.cell, hull);
-    render_view(split, detail, cam, vs, o, pic);
-    Image empty;  // the far box alone: the sphere must be in view
-    render_view(split, no_objects, cam, vs, o, empty);
-    EXPECT_GT(avenues::testing::compare_off_edges(truth, empty).differ, truth.width * truth.height / 10);
-    const avenues::testing::PictureDifference d = avenues::testing::compare_off_edges(truth, pic);
-    EXPECT_EQ(d.off_edges, 0) << "the pictures differ in " << d.off_edges << " pixels away from every edge";
-    EXPECT_LE(d.differ, d.pixels / 200) << "the pictures differ in " << d.differ << " pixels";
-  }
+  avenues::testing::expect_detail_looks_as_cut(whole, split, {Camera::yaw_pitch({-2.5, -1.0, 1.5}, 20, -10, 70, 240, 160),
+                                                   Camera::yaw_pitch({0.5, 2.5, 2.8}, -80, -35, 70, 240, 160)});
 }
 
 // Every detail triangle is kept, cut to the cells it crosses: the pieces cover its area,

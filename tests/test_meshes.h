@@ -95,6 +95,16 @@ inline Mesh icosphere(Vec3 c, double r, int levels) {
   return mesh_from(v, polygons);
 }
 
+/// The mesh in one material of this name and colour.
+inline Mesh painted(Mesh m, const std::string& name, std::array<double, 3> colour) {
+  Material material;
+  material.name = name;
+  material.colour = colour;
+  m.materials = {material};
+  m.material_of.assign(m.triangles.size(), 0);
+  return m;
+}
+
 /// Möller–Trumbore: the distance along dir to the nearest triangle of the meshes (or inf).
 inline double nearest_triangle(const std::vector<Mesh>& meshes, Vec3 o, Vec3 dir) {
   double best = std::numeric_limits<double>::infinity();
