@@ -18,6 +18,9 @@
 //               plane of one (the cheapest by splits and balance, axis-aligned preferred,
 //               estimated in doubles on a sample); fragments on that plane go to both sides
 //               as boundary. A cell all of whose fragments lie on its boundary is a leaf.
+//               First, where the soup's walls end under a large empty space (the air over
+//               a grid of open boxes), the far box is cut at their tops (empty_space_cut),
+//               so that the space stays one cell and no plane of the soup slices it.
 //   cells     — each leaf face not on the far box is pushed down the other side of the
 //               node that made it, into the pieces facing each neighbouring leaf; each piece
 //               minus the leaf's fragments on that face is portal, the rest opaque. Leaves
@@ -714,16 +717,86 @@ struct Builder {
     return plane_of(axis == 0 ? 1 : 0, axis == 1 ? 1 : 0, axis == 2 ? 1 : 0, -at);
   }
 
+  /// A level plane at the top or the foot of the cell's interior fragments that leaves them
+  /// all on one side and a slab of the cell, at least a fifth of its height, empty on the
+  /// other: the air over a cluster (a grid of open boxes) parted from it in one piece, where
+  /// every plane of the cluster, run on across it, would slice it into a column over each
+  /// box and corridor. Only where the fragments reach it along an edge at least, each of
+  /// those that touch it standing steeply on it (walls under their tops, within 60° of
+  /// upright): a plane through one corner of a turned model, or along a face nearly level,
+  /// would leave a wedge of free space thinner than rounding beside it, and one holding a
+  /// floor changes which slivers rounding leaves for no gain. Exact: its offset is a
+  /// double, and each fragment's side is asked exactly. Tried on the far box and the boxes
+  /// such cuts make of it only.
+  std::optional<Pl> empty_space_cut(const std::vector<CellFace>& faces, const std::vector<Frag>& frags,
+                                    const std::vector<size_t>& interior) const {
+    constexpr double kShare = 0.2;
+    std::vector<Vec3> corners;
+    std::vector<size_t> first;  // per interior fragment, its first corner in `corners`
+    Box3 fb, cb;
+    for (size_t i : interior) {
+      first.push_back(corners.size());
+      for (const P3& q : frags[i].poly.v) {
+        const auto& a = CGAL::approx(q);
+        corners.push_back({CGAL::to_double(a.x()), CGAL::to_double(a.y()), CGAL::to_double(a.z())});
+        fb.add(corners.back());
+      }
+    }
+    first.push_back(corners.size());
+    for (const CellFace& f : faces)
+      for (const P3& q : f.poly.v) {
+        const auto& a = CGAL::approx(q);
+        cb.add({CGAL::to_double(a.x()), CGAL::to_double(a.y()), CGAL::to_double(a.z())});
+      }
+    const double margin = 1e3 * tol, height = cb.hi.z - cb.lo.z;
+    if (!(height > 0)) return std::nullopt;
+    // The fragments' top, then their foot, the wider empty slab first.
+    std::vector<std::pair<double, double>> levels;  // (empty height, level)
+    if (cb.hi.z - fb.hi.z > kShare * height && fb.hi.z > cb.lo.z + margin) levels.push_back({cb.hi.z - fb.hi.z, fb.hi.z});
+    if (fb.lo.z - cb.lo.z > kShare * height && fb.lo.z < cb.hi.z - margin) levels.push_back({fb.lo.z - cb.lo.z, fb.lo.z});
+    if (levels.size() == 2 && levels[1].first > levels[0].first) std::swap(levels[0], levels[1]);
+    for (const auto& [gap, at] : levels) {
+      // The fragments reach it along an edge at least (two corners on it, as a grid's wall
+      // tops do), and each that touches it stands steeply on it.
+      const Vec3* one = nullptr;
+      bool two = false, steep = true;
+      for (size_t f = 0; f + 1 < first.size() && steep; ++f) {
+        bool touches = false;
+        for (size_t k = first[f]; k < first[f + 1]; ++k) {
+          if (corners[k].z != at) continue;
+          touches = true;
+          if (!one) one = &corners[k];
+          else two = two || !(corners[k] == *one);
+        }
+        if (!touches) continue;
+        const Vec3 n = approx[size_t(frags[interior[f]].tri)].n;
+        steep = std::fabs(n.z) <= 0.5 * length(n);
+      }
+      if (!two || !steep) continue;
+      const Pl h = plane_of(0, 0, 1, -at);
+      const Pl o = opposite_of(h);
+      bool clear = true;
+      for (size_t i : interior)
+        if (split(frags[i].poly, h, o, nullptr, nullptr) == Where::Both) {
+          clear = false;
+          break;
+        }
+      if (clear) return h;
+    }
+    return std::nullopt;
+  }
+
   void build(std::vector<CellFace> root_faces, std::vector<Frag> root_frags) {
     struct Task {
       int node;
       std::vector<CellFace> faces;
       std::vector<Frag> frags;
       int depth;
+      bool boxed = false;  ///< the far box cut by empty_space_cut alone: a box
     };
     nodes.emplace_back();
     std::vector<Task> stack;
-    stack.push_back({0, std::move(root_faces), std::move(root_frags), 0});
+    stack.push_back({0, std::move(root_faces), std::move(root_frags), 0, true});
     while (!stack.empty()) {
       check_memory_reserve();  // a model sliced finely can outgrow the machine (core/memory_reserve.h)
       Task t = std::move(stack.back());
@@ -743,15 +816,16 @@ struct Builder {
       const int id = t.node;
       constexpr size_t kHalveFrom = 1024;  ///< interior fragments; fewer make a chain short enough
       bool lopsided = false;
-      const int tri = choose(t.frags, interior, &lopsided);
+      const std::optional<Pl> empty = t.boxed ? empty_space_cut(t.faces, t.frags, interior) : std::nullopt;
+      const int tri = empty ? -1 : choose(t.frags, interior, &lopsided);
       std::optional<Pl> halve;
       if (lopsided && interior.size() >= kHalveFrom) halve = halving(t.frags, interior);
-      const Pl h = halve ? *halve : support_of[size_t(tri)];
+      const Pl h = empty ? *empty : halve ? *halve : support_of[size_t(tri)];
       const Pl o = opposite_of(h);
       nodes[size_t(id)].plane = h;
       nodes[size_t(id)].opposite = o;
       ++stats.nodes;
-      Task neg{int(nodes.size()), {}, {}, t.depth + 1}, pos{int(nodes.size()) + 1, {}, {}, t.depth + 1};
+      Task neg{int(nodes.size()), {}, {}, t.depth + 1, bool(empty)}, pos{int(nodes.size()) + 1, {}, {}, t.depth + 1, bool(empty)};
       nodes[size_t(id)].child[0] = neg.node, nodes[size_t(id)].child[1] = pos.node;
       nodes.emplace_back();
       nodes.emplace_back();

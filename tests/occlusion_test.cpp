@@ -206,7 +206,13 @@ TEST(Occlusion, AWallDropsTheTrianglesBehindItAndThePictureStaysTheSame) {
 // from those counts whether remembering pays); the picture is then the same bytes with and
 // without what is hidden dropped.
 TEST(Occlusion, ACellWhoseFacesAreHiddenHasEveryPieceDroppedOneByOne) {
-  const CellComplex c = build_mesh_scene({avenues::testing::open_boxes(12)});
+  // A ramp beside the grid rising to the walls' tops, so that the air over them is cut into
+  // columns by their planes (as it is where anything but walls stands at that height: the
+  // soup is cut at the walls' tops only where every surface there stands steeply, see
+  // SoupBsp.TheAirOverAGridOfOpenBoxesIsOneCell), and the search reaches the cells behind
+  // the near walls through those columns; over a grid alone it reaches few such cells.
+  const Mesh ramp = avenues::testing::mesh_from({{30, -1.5, 0.5}, {31, -1.5, 1}, {31, -1, 1}, {30, -1, 0.5}}, {{0, 1, 2, 3}});
+  const CellComplex c = build_mesh_scene({avenues::testing::open_boxes(12), ramp});
   for (const int samples : {1, 4}) {
     SCOPED_TRACE(std::to_string(samples) + " samples");
     const Camera cam = Camera::yaw_pitch({-1.0, -0.3, 0.6}, 45, 0, 88, 322, 181);

@@ -283,6 +283,31 @@ TEST(SoupBsp, LeavesAreJoinedWhereTheUnionStaysConvex) {
   expect_soup_views_agree_with_rays(c, 12, 21, 96, 64, 1);
 }
 
+// The air over a grid of open boxes is one cell. Every wall's plane, run on across the
+// space above the grid, sliced it into a column over each box and each corridor, and a
+// grazing view over the grid went through every one of them (8,192 cells of the 64 × 64
+// grid). The far box is now first cut where the walls' tops stand (an empty-space cut).
+TEST(SoupBsp, TheAirOverAGridOfOpenBoxesIsOneCell) {
+  const Mesh m = avenues::testing::open_boxes(8);
+  const CellComplex c = build_mesh_scene({m});
+  ASSERT_EQ(cells_are_valid(c), "");
+  EXPECT_NEAR(free_volume(c), box_volume(c.far_box), 1e-9 * box_volume(c.far_box));
+  EXPECT_EQ(triangles_missing_from_export(c, {m}), 0);
+  int above = 0;
+  for (const Cell& cell : c.cells) {
+    const Box3 b = cell.bounds();
+    if (b.lo.z < 1 - 1e-9) continue;
+    ++above;
+    EXPECT_NEAR(b.lo.x, c.far_box.lo.x, 1e-9);
+    EXPECT_NEAR(b.hi.x, c.far_box.hi.x, 1e-9);
+    EXPECT_NEAR(b.lo.y, c.far_box.lo.y, 1e-9);
+    EXPECT_NEAR(b.hi.y, c.far_box.hi.y, 1e-9);
+    EXPECT_NEAR(b.hi.z, c.far_box.hi.z, 1e-9);
+  }
+  EXPECT_EQ(above, 1);
+  expect_soup_views_agree_with_rays(c, 8, 64, 96, 64, 8);
+}
+
 // The decomposition settles its points' exact values on two threads where there are two
 // (the pass before rounding): the cells come out the same, to the bit, on one thread.
 TEST(SoupBsp, OneThreadOrManyMakeTheSameCellsToTheBit) {
