@@ -282,7 +282,9 @@ class FrameWriter {
     return draw_view(c_, scene_, f.camera, find_visible(c_, f.camera, f.cell, exact_masks(s_.search)));
   }
   void render(const WalkFrame& f, Image& out) {
-    render_view(c_, objects_, *effects_, f.camera, searches_.find(c_, f.camera, f.cell, s_.search), s_.halftone, out,
+    TraverseParams search = s_.search;  // for this half-tone: pieces of view between its samples show nothing
+    search.samples_per_side = samples_per_side(s_.halftone.samples);
+    render_view(c_, objects_, *effects_, f.camera, searches_.find(c_, f.camera, f.cell, search), s_.halftone, out,
                 storage_);
   }
 

@@ -337,7 +337,9 @@ class Session {
         }
       }
       shown_mode_ = mode;
-      const TraverseParams search = lines_ ? exact_masks(search_) : search_;  // lines need exact masks
+      TraverseParams search = lines_ ? exact_masks(search_) : search_;  // lines need exact masks
+      // A half-tone: pieces of view between its samples show nothing, and are not followed.
+      if (!lines_) search.samples_per_side = samples_per_side(halftone_.samples);
       // A long search last frame: this one on every thread the pictures use (strips.h).
       if (mode == StereoMode::Mono) {
         cam_ = state_.camera(w, h);

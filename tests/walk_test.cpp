@@ -268,7 +268,8 @@ TEST_F(WalkWindow, ALongSearchRunsInStripsOnEveryThreadAndShowsTheSamePicture) {
   const json s = read_json("s.json");
   ASSERT_EQ(s["screenshots"].size(), 1u);
   const json still = s["screenshots"][0];
-  EXPECT_GT(still["visible_cells"].get<long>(), 2000) << still.dump();
+  // Thousands of cells whole; the half-tone's search skips those seen between its samples.
+  EXPECT_GT(still["visible_cells"].get<long>(), 1000) << still.dump();
   if (avenues::arena_for(0).max_concurrency() >= 2) {  // the threads the walk's pictures may take
     EXPECT_GE(still["search_threads"].get<int>(), 2) << still.dump();
   }

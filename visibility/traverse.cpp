@@ -60,10 +60,18 @@ VisibleSet traverse(const CellComplex& complex, const Camera& camera, CellId eye
                             : params.merge_pieces ? detail::Join::Convex
                                                   : detail::Join::None;
   const TraverseParams::Strip* strip = params.strip && !camera.is_parallel() ? &*params.strip : nullptr;
+  // The hull search's pictures resolve depth among every face found: the same bytes
+  // without what no sample sees. The merged search's masks decide which cell a sample
+  // shows, and other pieces merge into other masks.
+  const int per_side = params.hull_pieces ? params.samples_per_side : 0;
   VisibleSet vs;
   switch (params.kernel) {
-    case Kernel::Float: vs = detail::traverse_with<float>(complex, camera, eye_cell, prune, cut, join, strip); break;
-    case Kernel::Double: vs = detail::traverse_with<double>(complex, camera, eye_cell, prune, cut, join, strip); break;
+    case Kernel::Float:
+      vs = detail::traverse_with<float>(complex, camera, eye_cell, prune, cut, join, strip, per_side);
+      break;
+    case Kernel::Double:
+      vs = detail::traverse_with<double>(complex, camera, eye_cell, prune, cut, join, strip, per_side);
+      break;
     case Kernel::Filtered: vs = detail::traverse_filtered(complex, camera, eye_cell, prune, cut, join, strip); break;
     case Kernel::Exact: vs = detail::traverse_exact(complex, camera, eye_cell, prune, cut, join, strip); break;
   }

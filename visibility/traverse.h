@@ -109,6 +109,16 @@ class Traversal {
     }
   }
 
+  /// Pieces of view that hold no sample's centre of a half-tone of the camera's size, with
+  /// `per_side` samples a side a pixel, are not followed (TraverseParams::samples_per_side).
+  void only_through_samples(const Camera& cam, int per_side) {
+    if (per_side <= 0) return;
+    const ImageToRaster r = cam.image_to_raster();
+    sample_.per_side = per_side;
+    sample_.left = r.left, sample_.top = r.top;
+    sample_.across = r.width * per_side / r.across, sample_.down = r.height * per_side / r.down;
+  }
+
   /// The search from the eye in cell `start`. An eye on the boundary of its cell (within
   /// kOnBoundary: on a sheet wall, in a doorway's plane, at a T-junction of sheets, on an
   /// edge several cells share) stands in every cell that holds it, and each ray leaves it
@@ -556,6 +566,10 @@ class Traversal {
     thread_local Corners clipped;
     if (!now) m.corners(clipped), now = &clipped;
     if (!(Mask<T>::area2(*now) > T(0))) return false;
+    if (sample_.per_side > 0 && !sample_.held(*now)) {
+      ++out_.between_samples;
+      return false;
+    }
     bool settled = false;
     const bool kept = m.settle_within(from, from_corners, *now, &settled);
     out_.masks_settled += settled;
@@ -839,6 +853,22 @@ class Traversal {
   std::vector<CellId> touched_, queued_, ready_;
   Corners corners_;            ///< the merged search: the corners of the piece being expanded
   Vec3 eye_d_;                 ///< the eye in double, for culling only
+  /// The sample centres of the half-tone the search is for (only_through_samples): at
+  /// k + ½ in sample units, x from the window's left, y down from its top.
+  struct SampleGrid {
+    int per_side = 0;  ///< 0: every piece is followed
+    double left = 0, top = 0, across = 1, down = 1;  ///< samples per picture-plane unit
+    /// Whether the bounds of these corners, grown by 1/16 of a sample, hold a sample's centre.
+    bool held(const Corners& c) const {
+      const double x0 = to_double_of(c.reach.lo_x), x1 = to_double_of(c.reach.hi_x);
+      const double y0 = to_double_of(c.reach.lo_y), y1 = to_double_of(c.reach.hi_y);
+      constexpr double kGrow = 1.0 / 16;
+      const double u0 = (x0 - left) * across - kGrow, u1 = (x1 - left) * across + kGrow;
+      const double v0 = (top - y1) * down - kGrow, v1 = (top - y0) * down + kGrow;
+      return std::ceil(u0 - 0.5) <= std::floor(u1 - 0.5) && std::ceil(v0 - 0.5) <= std::floor(v1 - 0.5);
+    }
+  };
+  SampleGrid sample_;
   Camera cam_;
   bool parallel_ = false;      ///< cam_.projection == Projection::Parallel
 };
@@ -848,15 +878,20 @@ class Traversal {
 template <class T>
 VisibleSet traverse_with(const CellComplex& c, const Camera& cam, CellId eye_cell, bool prune_covered,
                          const Plane* cut = nullptr, Join join = Join::None,
-                         const TraverseParams::Strip* strip = nullptr) {
+                         const TraverseParams::Strip* strip = nullptr, int samples_per_side = 0) {
   VisibleSet out;
   out.eye_cell = eye_cell;
   out.conservative = join == Join::Hull;
   auto t0 = std::chrono::steady_clock::now();
-  if (cam.is_parallel())
-    Traversal<T>(c, cam, prune_covered, out, join).run_cut(cut ? *cut : cam.picture_plane());
-  else
-    Traversal<T>(c, cam, prune_covered, out, join, strip).run(eye_cell);
+  if (cam.is_parallel()) {
+    Traversal<T> t(c, cam, prune_covered, out, join);
+    t.only_through_samples(cam, samples_per_side);
+    t.run_cut(cut ? *cut : cam.picture_plane());
+  } else {
+    Traversal<T> t(c, cam, prune_covered, out, join, strip);
+    t.only_through_samples(cam, samples_per_side);
+    t.run(eye_cell);
+  }
   out.micros = std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
   out.collect_cells();
   return out;

@@ -43,6 +43,7 @@ struct VisibleSet {
   long avenues_pruned = 0;      ///< avenues not followed: mask inside one already found into the cell
   long avenues_merged = 0;      ///< merged (or hull) search: pieces joined into another piece of their cell
   long masks_settled = 0;       ///< floating point: masks with a corner strayed past their parent's, settled (Mask::settle_within)
+  long between_samples = 0;     ///< pieces of view not followed: no sample's centre in them (TraverseParams::samples_per_side)
   /// The hull search (TraverseParams::hull_pieces) found it: the cells hold every visible
   /// cell and the masks every ray of their cells, but may hold more (so what they show must
   /// be resolved by depth).
@@ -88,6 +89,15 @@ struct TraverseParams {
     double x0, x1;
   };
   std::optional<Strip> strip;
+  /// > 0, with hull_pieces: the search is for a half-tone of the camera's width × height
+  /// pixels with this many samples a side each (samples_per_side, render/halftone.h), in
+  /// the double or float kernel. A polygon covers a sample only where the sample's centre
+  /// lies in its clip region, so a piece of view whose bounds (grown by 1/16 of a sample)
+  /// hold no sample's centre colours nothing, and nothing beyond it can: it is not followed
+  /// (VisibleSet::between_samples counts them). The hull search's picture, resolved by
+  /// depth, is the same to the byte; the cells found are fewer (far cells seen through
+  /// slivers). Ignored by the other searches, whose masks decide what a sample shows.
+  int samples_per_side = 0;
 };
 
 /// "jones", "merged" or "hull": the search's name on the command line.
