@@ -535,6 +535,13 @@ void drop_slivers(CellComplex& out) {
   const Box3& fb = out.far_box;
   const double scale = fb.magnitude();
   const double thin = 1e-9 * scale;
+  // A face rounded to fewer than three corners (the thin end of a wedge of a cell, a
+  // rounding wide: the duplex's triangles written out as an OBJ left one 3.7 m long)
+  // bounds nothing; the faces beside it close the cell.
+  for (Cell& cell : out.cells)
+    cell.faces.erase(std::remove_if(cell.faces.begin(), cell.faces.end(),
+                                    [](const Face& f) { return f.poly.size() < 3 && f.portals.empty(); }),
+                     cell.faces.end());
   std::vector<bool> sliver(out.cells.size(), false);
   size_t dropped = 0;
   double thinnest = HUGE_VAL;
