@@ -113,65 +113,60 @@ void ClosedSurface::build(int32_t node, int32_t first, int32_t count, std::vecto
   build(child + 1, mid, first + count - mid, order, centres);
 }
 
-SurfaceEntry ClosedSurface::entry(Vec3 a, Vec3 b) const {
-  SurfaceEntry best;
-  if (nodes_.empty()) return best;
-  const Vec3 d = b - a;
+template <class F>
+bool ClosedSurface::for_each_near(Vec3 a, Vec3 d, const double* t_max, F&& f) const {
+  if (nodes_.empty()) return true;
   int32_t stack[64];  // median splits keep the tree under 40 deep; the stack holds a node a level
   int depth = 0;
   stack[depth++] = 0;
   while (depth > 0) {
     const Node& n = nodes_[size_t(stack[--depth])];
-    if (!line_meets(n.box, a, d, best.t)) continue;
+    if (!line_meets(n.box, a, d, *t_max)) continue;
     if (n.count == 0) {
       stack[depth++] = n.first, stack[depth++] = n.first + 1;
       continue;
     }
-    for (int32_t k = n.first; k < n.first + n.count; ++k) {
-      const Triangle3& tri = triangles_[size_t(k)];
-      const Vec3 normal = cross(tri[1] - tri[0], tri[2] - tri[0]);
-      if (!(dot(normal, d) < 0)) continue;  // leaving, or along it: not stopped
-      double t, u, v;
-      if (!line_plane_hit(tri, a, d, &t, &u, &v)) continue;
-      // Edges and corners count (a segment through a seam between two facets is stopped).
-      if (!(t >= 0 && t <= best.t && u >= 0 && v >= 0 && u + v <= 1)) continue;
-      best.t = t;
-      best.hit = true;
-      best.normal = (1 / length(normal)) * normal;
-    }
+    for (int32_t k = n.first; k < n.first + n.count; ++k)
+      if (!f(triangles_[size_t(k)])) return false;
   }
+  return true;
+}
+
+SurfaceEntry ClosedSurface::entry(Vec3 a, Vec3 b) const {
+  SurfaceEntry best;
+  const Vec3 d = b - a;
+  for_each_near(a, d, &best.t, [&](const Triangle3& tri) {
+    const Vec3 normal = cross(tri[1] - tri[0], tri[2] - tri[0]);
+    if (!(dot(normal, d) < 0)) return true;  // leaving, or along it: not stopped
+    double t, u, v;
+    if (!line_plane_hit(tri, a, d, &t, &u, &v)) return true;
+    // Edges and corners count (a segment through a seam between two facets is stopped).
+    if (!(t >= 0 && t <= best.t && u >= 0 && v >= 0 && u + v <= 1)) return true;
+    best.t = t;
+    best.hit = true;
+    best.normal = (1 / length(normal)) * normal;
+    return true;
+  });
   return best;
 }
 
 bool ClosedSurface::crossings(Vec3 p, Vec3 d, int* sum) const {
   constexpr double kNear = 1e-9;  // a barycentric coordinate this close to 0: on an edge
-  int32_t stack[64];
-  int depth = 0;
-  stack[depth++] = 0;
-  while (depth > 0) {
-    const Node& n = nodes_[size_t(stack[--depth])];
-    if (!line_meets(n.box, p, d, HUGE_VAL)) continue;
-    if (n.count == 0) {
-      stack[depth++] = n.first, stack[depth++] = n.first + 1;
-      continue;
+  const double unbounded = HUGE_VAL;
+  return for_each_near(p, d, &unbounded, [&](const Triangle3& tri) {
+    const Vec3 normal = cross(tri[1] - tri[0], tri[2] - tri[0]);
+    double t, u, v;
+    if (!line_plane_hit(tri, p, d, &t, &u, &v)) {
+      // Parallel: a ray in the triangle's plane may graze it; too near to tell.
+      const double l = length(normal);
+      return !(l > 0 && std::fabs(dot(p - tri[0], normal)) <= kNear * l * (1 + length(tri[1] - tri[0])));
     }
-    for (int32_t k = n.first; k < n.first + n.count; ++k) {
-      const Triangle3& tri = triangles_[size_t(k)];
-      double t, u, v;
-      if (!line_plane_hit(tri, p, d, &t, &u, &v)) {
-        // Parallel: a ray in the triangle's plane may graze it; too near to tell.
-        const Vec3 normal = cross(tri[1] - tri[0], tri[2] - tri[0]);
-        const double l = length(normal);
-        if (l > 0 && std::fabs(dot(p - tri[0], normal)) <= kNear * l * (1 + length(tri[1] - tri[0]))) return false;
-        continue;
-      }
-      const double w = 1 - u - v;
-      if (u < -kNear || v < -kNear || w < -kNear || t < -kNear) continue;  // clearly missed
-      if (u <= kNear || v <= kNear || w <= kNear || t <= kNear) return false;  // on an edge, or p on it
-      *sum += dot(cross(tri[1] - tri[0], tri[2] - tri[0]), d) > 0 ? 1 : -1;
-    }
-  }
-  return true;
+    const double w = 1 - u - v;
+    if (u < -kNear || v < -kNear || w < -kNear || t < -kNear) return true;  // clearly missed
+    if (u <= kNear || v <= kNear || w <= kNear || t <= kNear) return false;  // on an edge, or p on it
+    *sum += dot(normal, d) > 0 ? 1 : -1;
+    return true;
+  });
 }
 
 bool ClosedSurface::holds(Vec3 p) const {

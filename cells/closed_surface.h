@@ -64,6 +64,11 @@ class ClosedSurface {
   /// Makes nodes_[node] hold triangles order[first, first + count), splitting it in two
   /// at the median of their centres along the widest axis down to a few a leaf.
   void build(int32_t node, int32_t first, int32_t count, std::vector<int32_t>& order, const std::vector<Vec3>& centres);
+  /// Calls f(triangle) for each triangle in a leaf whose box the line a + t·d meets for t
+  /// in [0, *t_max] (read again at each node: f may lower it), until f returns false;
+  /// false when it did.
+  template <class F>
+  bool for_each_near(Vec3 a, Vec3 d, const double* t_max, F&& f) const;
   /// Adds to `sum` the signed crossings (+1 leaving, −1 entering) of the ray from p along
   /// d; false where the ray passes too near an edge or a corner to tell.
   bool crossings(Vec3 p, Vec3 d, int* sum) const;
