@@ -736,18 +736,11 @@ struct Builder {
     Box3 fb, cb;
     for (size_t i : interior) {
       first.push_back(corners.size());
-      for (const P3& q : frags[i].poly.v) {
-        const auto& a = CGAL::approx(q);
-        corners.push_back({CGAL::to_double(a.x()), CGAL::to_double(a.y()), CGAL::to_double(a.z())});
-        fb.add(corners.back());
-      }
+      for (Vec3 p : approx_corners(frags[i].poly)) corners.push_back(p), fb.add(p);
     }
     first.push_back(corners.size());
     for (const CellFace& f : faces)
-      for (const P3& q : f.poly.v) {
-        const auto& a = CGAL::approx(q);
-        cb.add({CGAL::to_double(a.x()), CGAL::to_double(a.y()), CGAL::to_double(a.z())});
-      }
+      for (Vec3 p : approx_corners(f.poly)) cb.add(p);
     const double margin = 1e3 * tol, height = cb.hi.z - cb.lo.z;
     if (!(height > 0)) return std::nullopt;
     // The fragments' top, then their foot, the wider empty slab first.
