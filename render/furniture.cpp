@@ -20,6 +20,9 @@ Vec3 unit(Vec3 v) {
   return l > 0 ? (1.0 / l) * v : v;
 }
 
+/// [deg] in [0, 180]: the angle between two unit normals.
+double dihedral_deg(Vec3 a, Vec3 b) { return deg_from_rad(std::acos(std::clamp(dot(a, b), -1.0, 1.0))); }
+
 /// Normals and edges of a placed mesh.
 void find_edges(FurniturePiece& p) {
   const Mesh& m = p.mesh;
@@ -73,8 +76,7 @@ void find_edges(FurniturePiece& p) {
     const bool boundary = j - i == 1;
     if (boundary || e.polygon[1] >= 0) {  // not a diagonal inside one polygon
       if (e.polygon[1] >= 0) {
-        const double c = dot(p.polygon_normal[size_t(e.polygon[0])], p.polygon_normal[size_t(e.polygon[1])]);
-        e.dihedral_deg = deg_from_rad(std::acos(std::clamp(c, -1.0, 1.0)));
+        e.dihedral_deg = dihedral_deg(p.polygon_normal[size_t(e.polygon[0])], p.polygon_normal[size_t(e.polygon[1])]);
       }
       p.edges.push_back(e);
     }
@@ -159,8 +161,7 @@ void join_detail_edges(Furniture& f, const CellComplex& complex) {
         keep.polygon_normal.push_back(other.polygon_normal[poly]);
         keep.polygon_point.push_back(other.polygon_point[poly]);
       }
-      const double c = dot(keep.polygon_normal[size_t(e.polygon[0])], keep.polygon_normal[size_t(e.polygon[1])]);
-      e.dihedral_deg = deg_from_rad(std::acos(std::clamp(c, -1.0, 1.0)));
+      e.dihedral_deg = dihedral_deg(keep.polygon_normal[size_t(e.polygon[0])], keep.polygon_normal[size_t(e.polygon[1])]);
       drop[twin->piece][twin->edge] = 1;
       continue;
     }
