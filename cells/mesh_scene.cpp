@@ -1031,11 +1031,13 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
   // Closed curved solids are detail whatever the soup's size (cells/closed_surface.h).
   std::vector<bool> curved;  // per soup triangle, when some solid is curved
   std::vector<ClosedSolid> curved_solids;
+  std::vector<ClosedSolid> meshes_solids;  // closed_solids(meshes), the curved ones moved out
   if (params.curved_directions > 0) {
     ScopedStageTimer t(out.timings, "curved solids");
     std::vector<size_t> first_of(meshes.size() + 1, 0);  // each mesh's first soup triangle
     for (size_t i = 0; i < meshes.size(); ++i) first_of[i + 1] = first_of[i] + meshes[i].triangles.size();
-    for (ClosedSolid& s : closed_solids(meshes)) {
+    meshes_solids = closed_solids(meshes);
+    for (ClosedSolid& s : meshes_solids) {
       if (!is_curved(s, params.curved_directions)) continue;
       curved.resize(soup.size(), false);
       for (size_t k : s.source) curved[first_of[s.mesh] + k] = true;
@@ -1093,7 +1095,11 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
   {
     // A closed, outward-oriented solid is seen from outside only: the cells inside it go.
     ScopedStageTimer t(out.timings, "solids");
-    const std::vector<ClosedSolid> solids = closed_solids(solid_meshes);
+    // With nothing detail (no curved solid either), the solids of what cuts space are those
+    // already found for the curved ones, none moved out.
+    const std::vector<ClosedSolid> solids = split.detail_triangles == 0 && params.curved_directions > 0
+                                                ? std::move(meshes_solids)
+                                                : closed_solids(solid_meshes);
     const std::vector<int> inside = cells_inside_solids(out, solids);
     std::vector<bool> drop(inside.size());
     std::vector<bool> named(solids.size(), false);
