@@ -198,9 +198,7 @@ TEST(CurvedSolid, ASphereAloneIsDetailInOneCellAndLooksAsWhenCutIntoSpace) {
 // space, and an eye may not start inside either.
 TEST(CurvedSolid, TheWalkerStopsAtACurvedSolidAsAtAWall) {
   const Mesh sphere = icosphere({0, 0, 1}, 1.0, 3);
-  const Mesh box = mesh_from({{3, -0.5, 0}, {4, -0.5, 0}, {4, 0.5, 0}, {3, 0.5, 0},
-                              {3, -0.5, 1}, {4, -0.5, 1}, {4, 0.5, 1}, {3, 0.5, 1}},
-                             {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}});
+  const Mesh box = avenues::testing::box_between({3, -0.5, 0}, {4, 0.5, 1});
   const CellComplex c = build_mesh_scene({sphere, box});
   ASSERT_EQ(c.detail_solids.size(), 1u);
   EXPECT_GT(c.cells.size(), 1u);  // the box cuts space
@@ -279,9 +277,7 @@ TEST(CurvedSolid, ItsDrawingHasNoEdgeWhereItsFacetsWereCutOrClustered) {
   // above it that is detail (its 1.44 m² under the least area asked of what cuts space,
   // 0.2 of the scene's largest face, 2.3 m²; every face of the box over it) and is cut by
   // the plane of the box's end.
-  const Mesh box = mesh_from({{0.5, -1, 0}, {4, -1, 0}, {4, 1, 0}, {0.5, 1, 0},
-                              {0.5, -1, 1.5}, {4, -1, 1.5}, {4, 1, 1.5}, {0.5, 1, 1.5}},
-                             {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}});
+  const Mesh box = avenues::testing::box_between({0.5, -1, 0}, {4, 1, 1.5});
   const Mesh sheet = mesh_from({{-0.6, -0.6, 2.3}, {0.6, -0.6, 2.3}, {0.6, 0.6, 2.2}, {-0.6, 0.6, 2.2}}, {{0, 1, 2, 3}});
   MeshSceneParams p;
   p.detail_above = 0;

@@ -95,6 +95,14 @@ inline Mesh icosphere(Vec3 c, double r, int levels) {
   return mesh_from(v, polygons);
 }
 
+/// A closed box from lo to hi (box_mesh, moved there).
+inline Mesh box_between(Vec3 lo, Vec3 hi) {
+  Mesh m = box_mesh(hi - lo);
+  const Vec3 base{0.5 * (lo.x + hi.x), 0.5 * (lo.y + hi.y), lo.z};
+  for (Vec3& v : m.vertices) v = v + base;
+  return m;
+}
+
 /// The mesh in one material of this name and colour.
 inline Mesh painted(Mesh m, const std::string& name, std::array<double, 3> colour) {
   Material material;
