@@ -377,6 +377,10 @@ const SurfaceLight* ScreenSceneBuilder::surface_light(size_t k, const PolygonSou
   return nullptr;
 }
 
+/// [fixed point] how far each piece of light or shadow is grown on the raster (a square's
+/// Minkowski sum): more than the rounding of its corners, far less than a sample.
+constexpr int64_t kPieceGrowth = kSubpixelOne / 64;
+
 bool ScreenSceneBuilder::add_pieces(const SurfaceLight& s, LightTerm& term) {
   const size_t before = out_.pieces.size();
   std::vector<Vec3> cam;
@@ -385,7 +389,13 @@ bool ScreenSceneBuilder::add_pieces(const SurfaceLight& s, LightTerm& term) {
     for (Vec3 p : world) cam.push_back(camera_.camera_from_world(p));
     ScreenPolygon piece;
     piece.outline = out_.take_outline();
-    if (project(cam, piece)) out_.pieces.push_back(std::move(piece));
+    if (!project(cam, piece)) return out_.keep_outline(std::move(piece.outline));
+    clip_points_.clear();
+    for (const FixedPoint& f : piece.outline)
+      for (int64_t dx : {-kPieceGrowth, kPieceGrowth})
+        for (int64_t dy : {-kPieceGrowth, kPieceGrowth}) clip_points_.push_back({f.x + dx, f.y + dy});
+    piece.outline = hull(clip_points_, std::move(piece.outline));
+    if (piece.outline.size() >= 3) out_.pieces.push_back(std::move(piece));
     else out_.keep_outline(std::move(piece.outline));
   };
   term.first_piece = int32_t(before);

@@ -233,8 +233,10 @@ class ScreenSceneBuilder {
   }
   /// What light k does to the surface `source` came from; nullptr: nothing.
   const SurfaceLight* surface_light(size_t k, const PolygonSource& source) const;
-  /// Puts a surface's lit pieces and shadow polygons on the raster for `term`; false if the
-  /// light lights none of it on the raster (the term is dropped).
+  /// Puts a surface's lit pieces and shadow polygons on the raster for `term`, each grown by
+  /// 1/64 of a sample (the union of pieces rounded one by one leaves no sample on a seam
+  /// between two of them outside both); false if the light lights none of it on the raster
+  /// (the term is dropped).
   bool add_pieces(const SurfaceLight& s, LightTerm& term);
   /// add() for a Lit shade: drops the shade's terms and pieces when nothing is drawn.
   bool add_lit(const std::vector<Vec3>& points, Vec3 n, double d, const SurfaceShade& shade, Placement where,
