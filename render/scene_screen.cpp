@@ -381,6 +381,64 @@ const SurfaceLight* ScreenSceneBuilder::surface_light(size_t k, const PolygonSou
 /// Minkowski sum): more than the rounding of its corners, far less than a sample.
 constexpr int64_t kPieceGrowth = kSubpixelOne / 64;
 
+bool grow_convex(const std::vector<FixedPoint>& v, int64_t g, std::vector<FixedPoint>& out) {
+  const size_t n = v.size();
+  out.clear();
+  double area = 0;  // twice the signed area; its sign is all that is used
+  for (size_t i = 0; i < n; ++i) {
+    const FixedPoint a = v[i], b = v[(i + 1) % n];
+    area += double(a.x) * double(b.y) - double(a.y) * double(b.x);
+  }
+  if (!(area != 0)) return false;
+  const bool ccw = area > 0;
+  // The corners counter-clockwise; each side's outward normal (y, −x) by its quadrant: 0
+  // for x > 0, y >= 0, then on counter-clockwise, each with the square's corner extreme there.
+  auto corner_at = [&](size_t i) { return ccw ? v[i % n] : v[(n - i % n) % n]; };
+  auto quadrant = [](int64_t nx, int64_t ny) {
+    if (nx > 0 && ny >= 0) return 0;
+    if (nx <= 0 && ny > 0) return 1;
+    if (nx < 0 && ny <= 0) return 2;
+    return 3;
+  };
+  auto side_quadrant = [&](size_t i) {
+    const FixedPoint a = corner_at(i), b = corner_at(i + 1);
+    return quadrant(b.y - a.y, a.x - b.x);
+  };
+  // Convex: no corner turns clockwise, and the sides' normals go round once.
+  bool convex = true;
+  int steps = 0;
+  for (size_t i = 0, q = size_t(side_quadrant(n - 1)); i < n && convex; ++i) {
+    const FixedPoint p = corner_at(i), prev = corner_at(i + n - 1), next = corner_at(i + 1);
+    convex = double(p.x - prev.x) * double(next.y - p.y) - double(p.y - prev.y) * double(next.x - p.x) >= 0;
+    const size_t q_out = size_t(side_quadrant(i));
+    steps += int((q_out + 4 - q) % 4);
+    q = q_out;
+  }
+  if (!convex || steps != 4) {  // rounding left a tiny outline a hair concave: the hull of its moved corners
+    std::vector<FixedPoint> pts;
+    for (const FixedPoint& f : v)
+      for (int64_t dx : {-g, g})
+        for (int64_t dy : {-g, g}) pts.push_back({f.x + dx, f.y + dy});
+    out = hull(pts, std::move(out));
+    return out.size() >= 3;
+  }
+  constexpr int64_t kCornerX[4] = {1, -1, -1, 1}, kCornerY[4] = {1, 1, -1, -1};
+  int q_in = side_quadrant(n - 1);
+  for (size_t i = 0; i < n; ++i) {
+    const FixedPoint p = corner_at(i);
+    auto put = [&](int q) {
+      const FixedPoint f{p.x + g * kCornerX[q], p.y + g * kCornerY[q]};
+      if (out.empty() || !(out.back() == f)) out.push_back(f);
+    };
+    const int q_out = side_quadrant(i);
+    put(q_in);
+    for (int q = q_in; q != q_out;) put(q = (q + 1) % 4);
+    q_in = q_out;
+  }
+  while (out.size() > 1 && out.front() == out.back()) out.pop_back();
+  return out.size() >= 3;
+}
+
 bool ScreenSceneBuilder::add_pieces(const SurfaceLight& s, LightTerm& term) {
   const size_t before = out_.pieces.size();
   std::vector<Vec3> cam;
@@ -390,13 +448,9 @@ bool ScreenSceneBuilder::add_pieces(const SurfaceLight& s, LightTerm& term) {
     ScreenPolygon piece;
     piece.outline = out_.take_outline();
     if (!project(cam, piece)) return out_.keep_outline(std::move(piece.outline));
-    clip_points_.clear();
-    for (const FixedPoint& f : piece.outline)
-      for (int64_t dx : {-kPieceGrowth, kPieceGrowth})
-        for (int64_t dy : {-kPieceGrowth, kPieceGrowth}) clip_points_.push_back({f.x + dx, f.y + dy});
-    piece.outline = hull(clip_points_, std::move(piece.outline));
-    if (piece.outline.size() >= 3) out_.pieces.push_back(std::move(piece));
-    else out_.keep_outline(std::move(piece.outline));
+    if (!grow_convex(piece.outline, kPieceGrowth, clip_points_)) return out_.keep_outline(std::move(piece.outline));
+    piece.outline.swap(clip_points_);
+    out_.pieces.push_back(std::move(piece));
   };
   term.first_piece = int32_t(before);
   term.whole = s.whole;

@@ -349,4 +349,12 @@ void screen_scene_of_view(const CellComplex& complex, const std::vector<PlacedOb
 ScreenScene screen_scene_of_meshes(const std::vector<Mesh>& meshes, const std::vector<MeshPaint>& paints,
                                    const Camera& camera, const SceneOptions& options);
 
+/// The convex outline `v` (either orientation, as the engine takes it) grown by the square
+/// [−g, g]² (their Minkowski sum) into `out`, counter-clockwise in (x, y) as stored, in one
+/// pass: each corner of `v` becomes the square's corners whose outward normals lie between
+/// those of its two sides (an outline that rounding left a hair concave: the hull of its
+/// corners moved to the square's four corners, which is the same for a convex one). False
+/// when `v` has no area. Pieces of light and shadow are grown so (ScreenSceneBuilder::add_pieces).
+bool grow_convex(const std::vector<FixedPoint>& v, int64_t g, std::vector<FixedPoint>& out);
+
 }  // namespace avenues

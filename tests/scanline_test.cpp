@@ -191,6 +191,58 @@ TEST(FillRule, LongThinTrianglesCoverEverySampleExactlyOnce) {
   expect_exactly_once(380, 30, triangle_grid(50, 3.7, 4.2, 7, 0.3, 0.22, 1967), 3.7, 4.2, 353.7, 19.2);
 }
 
+// Pieces of light and shadow are grown by a square of 1/64 sample (scene_screen.h): in one
+// pass, not by a hull of four times their corners. Against that hull (core/geometry.h), on
+// random convex outlines of either orientation, from triangles to 60 corners, slivers, and
+// tiny outlines that rounding to the grid left a hair concave or crossing themselves.
+TEST(GrowConvex, IsTheHullOfTheCornersMovedByTheSquare) {
+  std::mt19937_64 rng(20261207);
+  std::uniform_real_distribution<double> unit(0, 1);
+  auto strip = [](std::vector<Vec2> h) {  // counter-clockwise, no two corners in line
+    return convex_hull(std::move(h));
+  };
+  int checked = 0;
+  for (int k = 0; k < 3000; ++k) {
+    const int corners = 3 + int(unit(rng) * 58);
+    const double r = k % 3 == 0 ? 3.0 : 5000.0 * unit(rng) + 1;
+    const double squash = k % 5 == 0 ? 1e-3 : 1;
+    const Vec2 c{unit(rng) * 1e5, unit(rng) * 1e5};
+    std::vector<double> angles;
+    for (int i = 0; i < corners; ++i) angles.push_back(unit(rng) * 2 * M_PI);
+    std::sort(angles.begin(), angles.end());
+    std::vector<FixedPoint> v;
+    for (double a : angles) {
+      const FixedPoint f{std::llround(c.x + r * std::cos(a)), std::llround(c.y + squash * r * std::sin(a))};
+      if (v.empty() || !(v.back() == f)) v.push_back(f);
+    }
+    while (v.size() > 1 && v.front() == v.back()) v.pop_back();
+    if (k % 2) std::reverse(v.begin(), v.end());
+    const int64_t g = k % 7 == 0 ? 1 : 4;
+    std::vector<Vec2> moved, given;
+    for (const FixedPoint& f : v) {
+      given.push_back({double(f.x), double(f.y)});
+      for (int64_t dx : {-g, g})
+        for (int64_t dy : {-g, g}) moved.push_back({double(f.x + dx), double(f.y + dy)});
+    }
+    std::vector<FixedPoint> out;
+    const bool grown = grow_convex(v, g, out);
+    if (strip(given).size() < 3) {  // no area (rounded onto a line)
+      EXPECT_FALSE(grown);
+      continue;
+    }
+    const std::vector<Vec2> want = strip(moved);
+    ASSERT_TRUE(grown);
+    std::vector<Vec2> got;
+    for (const FixedPoint& f : out) got.push_back({double(f.x), double(f.y)});
+    double area = 0;  // counter-clockwise as stored: a positive area
+    for (size_t i = 0; i < got.size(); ++i) area += cross(got[i], got[(i + 1) % got.size()]);
+    EXPECT_GT(area, 0) << k;
+    EXPECT_EQ(strip(got), want) << k;
+    ++checked;
+  }
+  EXPECT_GT(checked, 1500);
+}
+
 TEST(Scanline, ABandStartedMidPictureScansWhatAFullScanDoes) {
   const std::vector<ScreenPolygon> polys = triangle_grid(30, 2.2, 1.7, 9, 7, 0.22, 7);
   EdgeTable table(300, 220, polys, {});
