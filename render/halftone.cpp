@@ -86,6 +86,7 @@ class BandPainter {
       painted_on_.resize(scene.polygons.size(), 0);  // stamped with the picture: never cleared
       painted_.resize(scene.polygons.size());
     }
+    run_codes_.fill(RunCode{});
     if (!pieces) secondary_.reset();
     else if (secondary_) secondary_->reset(*pieces);
     else secondary_.emplace(*pieces);
@@ -218,7 +219,9 @@ class BandPainter {
   }
 
   /// A flat Lit shade (every light's term constant): the span cut into runs lit alike,
-  /// each of one colour: f(from, to, linear colour). The runs are found from the pieces'
+  /// each of one colour: f(from, to, state, linear), `linear()` the run's linear colour and
+  /// `state` the word of its lights' states (nullptr: the shade has over 64 terms, or no
+  /// piece meets the span). The runs are found from the pieces'
   /// spans themselves, not sample by sample: each piece's ends, sorted, are where some
   /// light may begin or cease to reach, and between two ends every light's state is fixed
   /// (lit: the whole polygon or within a lit piece, and within no shadow piece). The
@@ -233,7 +236,7 @@ class BandPainter {
       ends_.push_back(piece_end(from, counter, true));
       ends_.push_back(piece_end(to, counter, false));
     });
-    if (ends_.empty()) return f(sp.x0, sp.x1, look.unpieced);  // no piece on this row's span: one run
+    if (ends_.empty()) return f(sp.x0, sp.x1, nullptr, [&] { return look.unpieced; });  // no piece on this row's span: one run
     // Per word of terms: lit everywhere (no scan needed), lit but where shadowed (whole),
     // within some lit piece, within some shadow piece; then the run's state and the next.
     const size_t words = (size_t(shade.terms) + 63) / 64;
@@ -277,13 +280,13 @@ class BandPainter {
       bool changed = false;  // (a loop, not std::equal: that is a call to memcmp)
       for (size_t w = 0; w < words; ++w) changed |= next[w] != run[w];
       if (x > sp.x0 && changed) {
-        f(run_from, x, colour(run));
+        f(run_from, x, words == 1 ? run : nullptr, [&] { return colour(run); });
         run_from = x;
       }
       std::swap(run, next);
       x = e < ends_.size() ? end_x(ends_[e]) : sp.x1;
     }
-    f(run_from, sp.x1, colour(run));
+    f(run_from, sp.x1, words == 1 ? run : nullptr, [&] { return colour(run); });
   }
 
   /// Per light term of the span's shade, which of its samples the light reaches (masks_;
@@ -316,6 +319,20 @@ class BandPainter {
     return all_pieces(shade, [&](int, int32_t piece, bool) { return secondary_->unmoved(piece); });
   }
 
+  /// The code of a run of `polygon` lit as `state` says, `linear()` its colour: kept for the
+  /// picture by (polygon, state), since a lit floor's runs take the same few colours on row
+  /// after row (its summed terms and their encoding done once).
+  template <class Linear>
+  std::array<uint8_t, 3> run_code(int32_t polygon, const uint64_t* state, Linear&& linear) {
+    auto encode = [&](const std::array<float, 3>& l) {
+      return std::array<uint8_t, 3>{encoder_(l[0]), encoder_(l[1]), encoder_(l[2])};
+    };
+    if (!state) return encode(linear());
+    RunCode& kept = run_codes_[(uint64_t(uint32_t(polygon)) * 0x9E3779B97F4A7C15ull ^ *state) % run_codes_.size()];
+    if (kept.polygon != polygon || kept.state != *state) kept = {polygon, *state, encode(linear())};
+    return kept.code;
+  }
+
   /// One sample per pixel: straight into the picture.
   void write_span(uint8_t* dst, const Span& sp, int row) {
     const PolygonLook& look = look_of(sp.polygon);
@@ -333,10 +350,8 @@ class BandPainter {
       if (again) return void(std::memcpy(at, out_->row(row - 1) + size_t(sp.x0) * size_t(ch_), size_t(sp.x1 - sp.x0) * size_t(ch_)));
     }
     if (look.piecewise)
-      return lit_runs(sp, look, [&](int from, int to, const std::array<float, 3>& linear) {
-        std::array<uint8_t, 3> code{};
-        for (size_t c = 0; c < 3; ++c) code[c] = encoder_(linear[c]);
-        fills_.of(code).fill(dst + size_t(from) * size_t(ch_), size_t(to - from), ch_);
+      return lit_runs(sp, look, [&](int from, int to, const uint64_t* state, auto&& linear) {
+        fills_.of(run_code(sp.polygon, state, linear)).fill(dst + size_t(from) * size_t(ch_), size_t(to - from), ch_);
       });
     row_alike_ = false;  // lit sample by sample: another row, other samples
     const float* in = light(sp, row);
@@ -355,7 +370,8 @@ class BandPainter {
     const PolygonLook& look = look_of(sp.polygon);
     if (sp.polygon >= 0) pixels_ += sp.x1 - sp.x0;
     if (look.piecewise)
-      return lit_runs(sp, look, [&](int from, int to, const std::array<float, 3>& linear) {
+      return lit_runs(sp, look, [&](int from, int to, const uint64_t*, auto&& run_linear) {
+        const std::array<float, 3> linear = run_linear();
         for (int px = from / s_; px * s_ < to; ++px) {
           const float k = float(std::min(to, (px + 1) * s_) - std::max(from, px * s_));
           float* sum = &row_sum_[size_t(px) * size_t(ch_)];
@@ -424,6 +440,13 @@ class BandPainter {
   OwnLines<uint64_t> painted_on_;
   uint64_t painted_stamp(int row) const { return picture_ << 32 | uint64_t(uint32_t(row + 1)); }
   SpanRow painted_;
+  /// run_code(): codes of runs lit in pieces, by polygon and lights' states, for this picture.
+  struct RunCode {
+    int32_t polygon = -1;
+    uint64_t state = 0;
+    std::array<uint8_t, 3> code{};
+  };
+  std::array<RunCode, 16> run_codes_{};
   bool row_alike_ = false;  ///< the row of samples last painted or summed is of its spans alone (none lit by its place)
   long row_pixels_ = 0;     ///< its pixels counted
   /// Several samples a pixel: the row last painted was one row of samples over and over.
