@@ -221,8 +221,8 @@ class BandPainter {
   /// A flat Lit shade (every light's term constant): the span cut into runs lit alike,
   /// each of one colour: f(from, to, state, linear), `linear()` the run's linear colour and
   /// `state` the word of its lights' states (nullptr: the shade has over 64 terms, or no
-  /// piece meets the span). The runs are found from the pieces'
-  /// spans themselves, not sample by sample: each piece's ends, sorted, are where some
+  /// piece meets the span). The runs are found from the pieces' spans themselves, not
+  /// sample by sample: each piece's ends, sorted, are where some
   /// light may begin or cease to reach, and between two ends every light's state is fixed
   /// (lit: the whole polygon or within a lit piece, and within no shadow piece). The
   /// states are bits, 64 terms a word.

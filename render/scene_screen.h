@@ -316,7 +316,7 @@ class ScreenSceneBuilder {
   std::vector<Vec2> corners_;         ///< remember_drawn: the outline's corners [samples]
   std::vector<int> triangle_corners_;       ///< add_mesh: one triangle of a polygon that is not a fan
   std::vector<Vec3> triangle_normals_;      ///< and its corners' normals
-  std::vector<FixedPoint> clip_points_;  ///< add_clip: the grown corners
+  std::vector<FixedPoint> clip_points_;  ///< add_clip: the grown corners; add_pieces: a grown piece
   /// cut_to: the cell's face planes in camera space, kept where dot(n, P) + d <= kOnCellFace.
   struct CellPlane {
     Vec3 n;
