@@ -32,6 +32,11 @@ Wide area2(const std::vector<FixedPoint>& v) {
 
 }  // namespace
 
+int orientation(const std::vector<FixedPoint>& outline) {
+  const Wide a = area2(outline);
+  return a > 0 ? 1 : a < 0 ? -1 : 0;
+}
+
 void ScanCounters::add(const ScanCounters& o) {
   scanlines += o.scanlines;
   intersections += o.intersections;

@@ -77,6 +77,10 @@ struct FixedPoint {
   friend bool operator==(FixedPoint a, FixedPoint b) { return a.x == b.x && a.y == b.y; }
 };
 
+/// The sign of an outline's area, exactly (as the edge table takes it): 1 counter-clockwise
+/// in (x, y) as stored, −1 clockwise, 0 none.
+int orientation(const std::vector<FixedPoint>& outline);
+
 enum class PolygonRole : uint8_t {
   Face,    ///< a face of a cell: no depth within its group; deeper groups (rank) win
   Object,  ///< a mesh polygon: depth-resolved within its group, in front of deeper groups

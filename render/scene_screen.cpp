@@ -57,6 +57,10 @@ void cut(const std::vector<P>& in, F f, std::vector<P>& out) {
 
 FixedPoint to_fixed(Vec2 r) { return {std::llround(r.x * kSubpixelOne), std::llround(r.y * kSubpixelOne)}; }
 
+/// Twice the signed area of the triangle o, a, b, exactly: > 0 where o → a → b turns
+/// counter-clockwise (|terms| < 2^58 within the guard band).
+int64_t turn(FixedPoint o, FixedPoint a, FixedPoint b) { return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x); }
+
 /// Convex hull (Andrew's monotone chain), exact in integers; collinear points dropped. Into
 /// `h`'s storage; empty when fewer than three corners are left. Sorts `pts`.
 std::vector<FixedPoint> hull(std::vector<FixedPoint>& pts, std::vector<FixedPoint> h) {
@@ -64,9 +68,6 @@ std::vector<FixedPoint> hull(std::vector<FixedPoint>& pts, std::vector<FixedPoin
   pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
   h.clear();
   if (pts.size() < 3) return h;
-  auto turn = [](FixedPoint o, FixedPoint a, FixedPoint b) {
-    return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);  // |terms| < 2^58
-  };
   h.resize(2 * pts.size());
   size_t k = 0;
   for (size_t i = 0; i < pts.size(); ++i) {
@@ -384,13 +385,9 @@ constexpr int64_t kPieceGrowth = kSubpixelOne / 64;
 bool grow_convex(const std::vector<FixedPoint>& v, int64_t g, std::vector<FixedPoint>& out) {
   const size_t n = v.size();
   out.clear();
-  double area = 0;  // twice the signed area; its sign is all that is used
-  for (size_t i = 0; i < n; ++i) {
-    const FixedPoint a = v[i], b = v[(i + 1) % n];
-    area += double(a.x) * double(b.y) - double(a.y) * double(b.x);
-  }
-  if (!(area != 0)) return false;
-  const bool ccw = area > 0;
+  const int sense = orientation(v);
+  if (sense == 0) return false;
+  const bool ccw = sense > 0;
   // The corners counter-clockwise; each side's outward normal (y, −x) by its quadrant: 0
   // for x > 0, y >= 0, then on counter-clockwise, each with the square's corner extreme there.
   auto corner_at = [&](size_t i) { return ccw ? v[i % n] : v[(n - i % n) % n]; };
@@ -408,8 +405,7 @@ bool grow_convex(const std::vector<FixedPoint>& v, int64_t g, std::vector<FixedP
   bool convex = true;
   int steps = 0;
   for (size_t i = 0, q = size_t(side_quadrant(n - 1)); i < n && convex; ++i) {
-    const FixedPoint p = corner_at(i), prev = corner_at(i + n - 1), next = corner_at(i + 1);
-    convex = double(p.x - prev.x) * double(next.y - p.y) - double(p.y - prev.y) * double(next.x - p.x) >= 0;
+    convex = turn(corner_at(i + n - 1), corner_at(i), corner_at(i + 1)) >= 0;
     const size_t q_out = size_t(side_quadrant(i));
     steps += int((q_out + 4 - q) % 4);
     q = q_out;
