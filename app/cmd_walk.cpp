@@ -321,6 +321,7 @@ class Session {
     // Rendered at 1/scale of the window along each side, each pixel shown as a block.
     shown_detail_ = detail;
     halftone_.samples = detail.samples;
+    halftone_.objects_within = detail.reach;
     const int w = std::max(1, window_w / detail.scale), h = std::max(1, window_h / detail.scale);
     const CellId cell = state_.cell();
     StereoMode mode = stereo_;
@@ -369,9 +370,13 @@ class Session {
                      " | " + to_string(shown_mode_);
     if (progressive_) l1 += " | progressive " + std::to_string(shown_) + "/" + std::to_string(full_.avenues.size());
     lines.push_back(l1 + "    H: help");
-    if (shown_detail_ != budget_.full())
+    if (shown_detail_ != budget_.full()) {
+      // A hidden-line drawing draws every object at any step.
+      Detail given_up = shown_detail_;
+      if (lines_) given_up.reach = HUGE_VAL;
       lines.push_back("over the " + fixed(budget_.budget_ms(), 1) + " ms frame budget (" + fixed(budget_.last_ms(), 1) +
-                      " ms): " + to_string(shown_detail_) + " while moving, full detail when the eye stops");
+                      " ms): " + to_string(given_up) + " while moving, full detail when the eye stops");
+    }
     // The hull search's cells are not all seen: it says so, and on how many threads it ran.
     std::string cells = " cells seen";
     if (full_.conservative)
@@ -402,6 +407,7 @@ class Session {
     j["search_threads"] = searches_.threads_used();
     j["size"] = {frame_w_, frame_h_};
     j["detail"] = {{"samples", shown_detail_.samples}, {"scale", shown_detail_.scale}};
+    if (shown_detail_.reach < HUGE_VAL) j["detail"]["objects_within_m"] = shown_detail_.reach;
     j["status"] = status_;
     return j;
   }

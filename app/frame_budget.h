@@ -1,14 +1,18 @@
 // Avenues — the walkthrough's frame budget: while the eye moves, a frame that ran over its
 // budget (16.7 ms for 60 fps) makes the next ones cheaper — fewer samples per pixel, then
 // (in a plan lit by its own lamps) the light at the eye instead of the lamps and their
-// shadows, then fewer pixels (each rendered sample shown as a 2 × 2, then 4 × 4 block) — and frames well
-// under it, for long enough, bring detail back one step; when the eye stops, the view is
-// rendered once more at full detail (progressive refinement, as a still picture should be).
+// shadows, then fewer pixels (each rendered sample shown as a 2 × 2, then 4 × 4 block), and
+// last the objects (furniture, a mesh's detail) beyond 16, then 8 metres of the eye, as CAD
+// viewers drop objects while navigating a large model — and frames well under it, for long
+// enough, bring detail back one step; when the eye stops, the view is rendered once more at
+// full detail (progressive refinement, as a still picture should be). The far objects go
+// last because a picture of thousands of them costs their polygons at any resolution.
 //
 // The walkthrough measures its own frames (from the poll of events to the swap) and tells
 // the budget after each one; the budget answers what detail the next frame gets.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -19,15 +23,19 @@ struct Detail {
   int samples = 1;  ///< half-tone samples per pixel: 1, 4 or 16
   int scale = 1;    ///< window pixels per rendered pixel along each side: 1, 2 or 4
   bool lamps = true;  ///< the plan's own lights (as asked); false: the light at the eye, no shadows
-  bool operator==(const Detail& o) const { return samples == o.samples && scale == o.scale && lamps == o.lamps; }
+  double reach = HUGE_VAL;  ///< [m] objects farther from the eye are not drawn (HalftoneOptions::objects_within)
+  bool operator==(const Detail& o) const {
+    return samples == o.samples && scale == o.scale && lamps == o.lamps && reach == o.reach;
+  }
   bool operator!=(const Detail& o) const { return !(*this == o); }
 };
 
 /// "4 samples", "half resolution, 1 sample": what a reduced detail gives up, for the status line.
 inline std::string to_string(const Detail& d) {
   std::string s = d.scale == 1 ? "" : d.scale == 2 ? "half resolution, " : d.scale == 4 ? "quarter resolution, " : "";
-  return s + std::to_string(d.samples) + (d.samples == 1 ? " sample" : " samples") +
-         (d.lamps ? "" : ", the light at the eye");
+  s += std::to_string(d.samples) + (d.samples == 1 ? " sample" : " samples") + (d.lamps ? "" : ", the light at the eye");
+  if (d.reach < HUGE_VAL) s += ", no objects beyond " + std::to_string(std::lround(d.reach)) + " m";
+  return s;
 }
 
 class FrameBudget {
@@ -42,7 +50,10 @@ class FrameBudget {
     if (lamps) ladder_.push_back({1, 1, false});
     ladder_.push_back({1, 2, !lamps});
     ladder_.push_back({1, 4, !lamps});
+    for (const double reach : kReach) ladder_.push_back({1, 4, !lamps, reach});
   }
+  /// [m] the last steps' reach of objects.
+  static constexpr double kReach[] = {16, 8};
 
   double budget_ms() const { return budget_ms_; }
   const Detail& full() const { return ladder_.front(); }

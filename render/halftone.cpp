@@ -493,6 +493,7 @@ SceneOptions scene_options(const HalftoneOptions& options) {
   s.shading = options.shading;
   s.cull_back_faces = options.cull_back_faces;
   s.detail_samples = options.detail_samples;
+  s.objects_within = options.objects_within;
   s.drop_hidden = options.drop_hidden;
   s.threads = options.threads;
   return s;

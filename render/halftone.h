@@ -15,6 +15,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <memory>
 #include <string>
 #include <utility>
@@ -50,6 +51,10 @@ struct HalftoneOptions {
   /// whose tolerance moves no point of it on the picture by more than this many samples
   /// (SceneOptions::detail_samples); 0: always in full. docs/ACCURACY.md, §5.
   double detail_samples = 0;
+  /// [m] objects whose box lies farther than this from the eye are not drawn
+  /// (SceneOptions::objects_within): the walkthrough's frame budget gives up far furniture
+  /// and detail while the eye moves, when fewer samples and pixels were not enough.
+  double objects_within = HUGE_VAL;
   /// SceneOptions::drop_hidden: what lies wholly behind polygons already drawn is not put
   /// on the raster where depth alone decides (the same picture; false: the reference).
   bool drop_hidden = true;

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -106,6 +107,9 @@ struct SceneOptions {
   /// > 0: objects' coarser versions where their tolerance projects under this many samples
   /// (scene_view.cpp); 0: objects in full.
   double detail_samples = 0;
+  /// [m] a perspective view draws no object whose box lies farther than this from the eye
+  /// (HalftoneOptions::objects_within); a parallel view draws every one.
+  double objects_within = HUGE_VAL;
   /// Where depth alone decides (a conservative visible set, meshes alone), polygons wholly
   /// behind what is already drawn are not put on the raster (ScreenSceneBuilder::
   /// drop_hidden): the same picture. False: every polygon, the reference tests compare with.

@@ -155,6 +155,16 @@ struct ViewScene {
   const SceneOptions& options;
   size_t roots;  ///< avenues with no parent: several meet along lines, grown as deeper masks are
 
+  /// Whether an object with this box is not drawn: a perspective view's object lying
+  /// farther from the eye than options.objects_within.
+  bool beyond_reach(const Box3& box) const {
+    if (parallel || !(options.objects_within < HUGE_VAL)) return false;
+    const Vec3 e = camera.eye;
+    const Vec3 nearest{std::clamp(e.x, box.lo.x, box.hi.x), std::clamp(e.y, box.lo.y, box.hi.y),
+                       std::clamp(e.z, box.lo.z, box.hi.z)};
+    return length(nearest - e) > options.objects_within;
+  }
+
   /// Avenues [first, last) into `b`'s scene.
   void add(ScreenSceneBuilder& b, size_t first, size_t last) const {
     std::vector<Vec2> scaled;
@@ -258,6 +268,7 @@ struct ViewScene {
       std::optional<Box3> cell_box;
       for (const uint32_t entry : in_cell) {
         const uint32_t o = entry & ~ObjectsByCell::kCut;
+        if (beyond_reach(objects[o].bounds)) continue;
         if (visible.conservative && objects[o].cells.size() > 1) {
           // Resolved by depth, an object need not be cut: drawn once, whole, within the hull
           // of the masks of every visible cell it meets (wherever it shows, a cell of its own

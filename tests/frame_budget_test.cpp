@@ -7,15 +7,16 @@
 using avenues::app::Detail;
 using avenues::app::FrameBudget;
 
-TEST(FrameBudget, OverBudgetWhileMovingDropsSamplesThenResolutionOneStepAFrame) {
+TEST(FrameBudget, OverBudgetWhileMovingDropsSamplesThenResolutionThenFarObjectsOneStepAFrame) {
   FrameBudget b(16.7, 16);
-  const Detail steps[] = {{16, 1}, {4, 1}, {1, 1}, {1, 2}, {1, 4}, {1, 4}};
+  const Detail steps[] = {{16, 1}, {4, 1}, {1, 1}, {1, 2}, {1, 4}, {1, 4, true, 16}, {1, 4, true, 8}, {1, 4, true, 8}};
   for (const Detail& d : steps) {
     EXPECT_EQ(b.next(true), d) << to_string(b.next(true));
     EXPECT_EQ(b.next(false), (Detail{16, 1})) << "a still eye gets full detail";
     b.measured(40, true);
   }
-  EXPECT_EQ(to_string(b.next(true)), "quarter resolution, 1 sample");
+  EXPECT_EQ(to_string(Detail{1, 4}), "quarter resolution, 1 sample");
+  EXPECT_EQ(to_string(b.next(true)), "quarter resolution, 1 sample, no objects beyond 8 m");
   // One sample asked for: resolution is all there is to drop.
   FrameBudget one(16.7, 1);
   one.measured(20, true);
@@ -26,14 +27,14 @@ TEST(FrameBudget, OverBudgetWhileMovingDropsSamplesThenResolutionOneStepAFrame) 
 // draw) goes before the pixels do, and stays while resolution drops.
 TEST(FrameBudget, APlanLitByItsLampsGivesThemUpBeforeItsPixels) {
   FrameBudget b(16.7, 4, true);
-  const Detail steps[] = {{4, 1, true}, {1, 1, true}, {1, 1, false}, {1, 2, false}, {1, 4, false}};
+  const Detail steps[] = {{4, 1, true}, {1, 1, true}, {1, 1, false}, {1, 2, false}, {1, 4, false}, {1, 4, false, 16}};
   for (const Detail& d : steps) {
     EXPECT_EQ(b.next(true), d) << to_string(b.next(true));
     EXPECT_EQ(b.next(false), (Detail{4, 1, true})) << "a still eye gets full detail, lamps and all";
     b.measured(40, true);
   }
   EXPECT_EQ(to_string(Detail{1, 1, false}), "1 sample, the light at the eye");
-  EXPECT_EQ(to_string(b.next(true)), "quarter resolution, 1 sample, the light at the eye");
+  EXPECT_EQ(to_string(b.next(true)), "quarter resolution, 1 sample, the light at the eye, no objects beyond 8 m");
 }
 
 TEST(FrameBudget, DetailComesBackOneStepAfterHalfASecondWellUnderBudget) {

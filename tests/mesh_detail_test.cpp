@@ -2,16 +2,20 @@
 // has far fewer triangles than a finely tessellated mesh, lies within its tolerance of every
 // vertex of the original, keeps each triangle's polygon and material, a mesh too small is
 // left alone; a furnished home's walkthrough picture drawn with them differs from the one in
-// full only along edges, by the stated fraction of a sample.
+// full only along edges, by the stated fraction of a sample. The walkthrough's last budget
+// steps leave out objects beyond a reach of the eye, and only those.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 
 #include "cells/build_cells.h"
 #include "plans/formats/sweet_home.h"
 #include "plans/mesh_detail.h"
 #include "render/halftone.h"
+#include "render/scene_screen.h"
 #include "render/scene_objects.h"
 #include "visibility/visible_set.h"
 
@@ -177,4 +181,55 @@ TEST(MeshDetail, AFurnishedHomeDrawnWithCoarserFurnitureDiffersOnlyAlongEdges) {
     EXPECT_LE(rms, 2.0);
   }
   EXPECT_LT(polygons_coarse, polygons_full);
+}
+
+// The frame budget's last steps (app/frame_budget.h) draw no object whose box lies farther
+// from the eye than a reach (HalftoneOptions::objects_within). A furnished home from its
+// stored eye and three more headings, searched exactly and by the walk's hull search: with
+// a reach of 4 m, every object polygon drawn comes from an object within 4 m, every such
+// object is drawn with the polygons it had without a reach, and the cells' faces are the same.
+TEST(ObjectReach, ObjectsBeyondTheReachAreLeftOutAndNoOthers) {
+  const fs::path home = fs::path(AVENUES_SH3D_EXAMPLES) / "1BedroomApartmentWithRoundWall.xml";
+  if (!fs::exists(home)) GTEST_SKIP() << "no " << home;
+  const CellComplex c = build_cells(read_sweet_home(home.string()));
+  const std::vector<PlacedObject> objects = place_objects(c);
+  ASSERT_TRUE(c.view.has_value());
+  const Viewpoint& vp = *c.view;
+  constexpr double kReach = 4;
+  auto distance = [](const Box3& b, Vec3 e) {
+    const Vec3 q{std::clamp(e.x, b.lo.x, b.hi.x), std::clamp(e.y, b.lo.y, b.hi.y), std::clamp(e.z, b.lo.z, b.hi.z)};
+    return length(q - e);
+  };
+  long left_out = 0, kept = 0;
+  for (const bool hull : {false, true})
+    for (double yaw : {-1.0, 0.0, 120.0, 240.0}) {
+      SCOPED_TRACE(std::string(hull ? "hull" : "exact") + " search, yaw " + std::to_string(yaw));
+      const Camera cam = yaw < 0 ? Camera::look_at(vp.eye, vp.look, vp.fov_deg, 640, 360)
+                                 : Camera::yaw_pitch(vp.eye, yaw, -10, 60, 640, 360);
+      const Location at = c.locate(cam.eye, cam.forward);
+      ASSERT_EQ(at.what, Location::What::Cell);
+      TraverseParams tp;
+      tp.hull_pieces = hull;
+      const VisibleSet vs = find_visible(c, cam, at.cell, tp);
+      SceneOptions so;
+      so.drop_hidden = false;  // what is drawn depends on nothing else drawn
+      const ScreenScene all = screen_scene_of_view(c, objects, cam, vs, so);
+      so.objects_within = kReach;
+      const ScreenScene near = screen_scene_of_view(c, objects, cam, vs, so);
+      std::map<int, long> per_all, per_near;  // object polygons, by object
+      long faces_all = 0, faces_near = 0;
+      for (const PolygonSource& s : all.sources)
+        s.kind == PolygonSource::Kind::Object ? ++per_all[s.mesh] : ++faces_all;
+      for (const PolygonSource& s : near.sources)
+        s.kind == PolygonSource::Kind::Object ? ++per_near[s.mesh] : ++faces_near;
+      EXPECT_EQ(faces_near, faces_all);
+      for (const auto& [o, n] : per_all) {
+        const bool within = distance(objects[size_t(o)].bounds, cam.eye) <= kReach;
+        EXPECT_EQ(per_near.count(o) ? per_near[o] : 0, within ? n : 0) << objects[size_t(o)].name;
+        (within ? kept : left_out) += n;
+      }
+    }
+  std::printf("  %ld object polygons within %.0f m kept, %ld beyond left out\n", kept, kReach, left_out);
+  EXPECT_GT(kept, 0);
+  EXPECT_GT(left_out, 0);
 }

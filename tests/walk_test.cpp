@@ -214,8 +214,8 @@ TEST_F(WalkWindow, ScriptedWalkShowsTheOfflineRenderOfTheSameEye) {
 }
 
 // The frame budget (app/frame_budget.h): with a budget no frame can keep, walking drops the
-// samples and then the resolution (the window shows each rendered pixel as a block) and
-// the status line says so; once the eye stops, the view is rendered again at full detail —
+// samples, then the resolution (the window shows each rendered pixel as a block), then the
+// objects beyond 16 and 8 m, and the status line says so; once the eye stops, the view is rendered again at full detail —
 // the offline render of the same eye.
 TEST_F(WalkWindow, OverItsFrameBudgetTheWalkDropsDetailAndRestoresItWhenTheEyeStops) {
   NEED_DISPLAY();
@@ -226,12 +226,17 @@ TEST_F(WalkWindow, OverItsFrameBudgetTheWalkDropsDetailAndRestoresItWhenTheEyeSt
   const json s = read_json("s.json");
   ASSERT_EQ(s["screenshots"].size(), 2u);
   const json moving = s["screenshots"][0], still = s["screenshots"][1];
-  // Over budget every frame: 4 samples, 1, half resolution, then a quarter.
+  // Over budget every frame: 4 samples, 1, half resolution, a quarter, then no objects
+  // beyond 16 m, then 8 m.
   EXPECT_EQ(moving["detail"]["samples"], 1);
   EXPECT_EQ(moving["detail"]["scale"], 4);
+  EXPECT_EQ(moving["detail"]["objects_within_m"], 8);
   bool says = false;
-  for (const json& line : moving["status"]) says |= line.get<std::string>().find("frame budget") != std::string::npos;
+  for (const json& line : moving["status"])
+    says |= line.get<std::string>().find("frame budget") != std::string::npos &&
+            line.get<std::string>().find("no objects beyond 8 m") != std::string::npos;
   EXPECT_TRUE(says) << moving["status"].dump();
+  EXPECT_FALSE(still["detail"].contains("objects_within_m"));
   EXPECT_GE(s["reduced_frames"].get<long>(), 10);
   EXPECT_GE(s["refined_frames"].get<long>(), 1);
   // The moving picture is made of 4 × 4 blocks.
