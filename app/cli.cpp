@@ -248,7 +248,7 @@ int run_cli(int argc, char** argv) {
   walk->add_option("--detail", walk_opt.detail, kDetailHelp)->capture_default_str()->check(number_in(0, 16));
   walk->add_option("--interocular", walk_opt.interocular, "[m] distance between the eyes")->capture_default_str()->check(number_in(0, 10));
   walk->add_option("--frame-budget", walk_opt.frame_budget_ms,
-                   "[ms] while the eye moves, drop samples, then resolution, to keep frames under this; "
+                   "[ms] while the eye moves, drop samples, then resolution, then far objects, to keep frames under this; "
                    "full detail again when it stops (0: never)")
       ->capture_default_str()->check(number_in(0, 10000));
   walk->add_option("--converge", walk_opt.converge, "[m] distance at which the two views coincide")
