@@ -2,6 +2,7 @@
 // geometry predicates, atomic files, invariant checks).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -84,6 +85,24 @@ TEST(Geometry, AreaAndCentroidKeepTheirMillimetresFarFromTheOrigin) {
   EXPECT_NEAR(c.y, 1.7, 1e-6);
   EXPECT_EQ(centroid(std::vector<Vec2>{}).x, 0);
   EXPECT_EQ(signed_area(std::vector<Vec2>{}), 0);
+}
+
+TEST(Geometry, ABoxGrowsByEachPointAndPassesOverNaNCoordinates) {
+  Box3 b;
+  EXPECT_FALSE(b.contains({0, 0, 0}));  // empty
+  b.add({1, -2, 3});
+  b.add({-1, 5, std::nan("")});  // z unknown: only x and y count
+  b.add({std::nan(""), std::nan(""), -4});
+  EXPECT_EQ(b.lo.x, -1);
+  EXPECT_EQ(b.lo.y, -2);
+  EXPECT_EQ(b.lo.z, -4);
+  EXPECT_EQ(b.hi.x, 1);
+  EXPECT_EQ(b.hi.y, 5);
+  EXPECT_EQ(b.hi.z, 3);
+  Box3 none;
+  none.add({std::nan(""), std::nan(""), std::nan("")});
+  EXPECT_EQ(none.lo.x, HUGE_VAL);  // still empty
+  EXPECT_EQ(none.hi.z, -HUGE_VAL);
 }
 
 TEST(AtomicFile, WritesWholeOrLeavesTheTargetAlone) {
