@@ -697,9 +697,7 @@ struct Builder {
     std::vector<Vec3> middles;
     for (size_t i : interior) {
       Vec3 m{0, 0, 0};
-      for (const P3& q : frags[i].poly.v) {
-        const auto& a = CGAL::approx(q);
-        const Vec3 p{CGAL::to_double(a.x()), CGAL::to_double(a.y()), CGAL::to_double(a.z())};
+      for (const Vec3 p : approx_corners(frags[i].poly)) {
         b.add(p);
         m = m + p;
       }
