@@ -51,7 +51,12 @@ const CellComplex& complex_of(const std::string& key) {
     } else if (key.rfind("sh3d:", 0) == 0) {
       p = read_sweet_home(key.substr(5));
     } else if (key.rfind("ifc:", 0) == 0) {
-      p = read_ifc_building(key.substr(4));
+      try {
+        p = read_ifc_building(key.substr(4));
+      } catch (const IfcWithoutWalls& e) {  // a structural model: its faces are the scene, as `avenues` reads it
+        slot = std::make_unique<CellComplex>(build_mesh_scene({*e.faces}));
+        return *slot;
+      }
     } else if (key.rfind("mesh:", 0) == 0) {
       slot = std::make_unique<CellComplex>(read_mesh_scene(key.substr(5)));
       return *slot;
@@ -226,7 +231,8 @@ int register_all() {
       const std::string wad = "/usr/share/games/doom/" + m.substr(0, m.find(':'));
       if (fs::exists(wad)) plans.push_back({m, "wad:" + wad + m.substr(m.find(':'))});
     }
-    for (const char* model : {"duplex", "Office_A_20110811", "IfcOpenHouse_IFC4"}) {
+    for (const char* model : {"duplex", "Office_A_20110811", "IfcOpenHouse_IFC4", "ISSUE_044_test_IFCCOMPOSITEPROFILEDEF",
+                              "ISSUE_021_Mini_Project"}) {
       const fs::path ifc = fs::path(AVENUES_OUTSIDE_DIR) / "ifc" / (std::string(model) + ".ifc");
       if (fs::exists(ifc)) plans.push_back({model, "ifc:" + ifc.string()});
     }
