@@ -407,7 +407,7 @@ class Session {
     j["search_threads"] = searches_.threads_used();
     j["size"] = {frame_w_, frame_h_};
     j["detail"] = {{"samples", shown_detail_.samples}, {"scale", shown_detail_.scale}};
-    if (shown_detail_.reach < HUGE_VAL) j["detail"]["objects_within_m"] = shown_detail_.reach;
+    if (shown_detail_.reach < HUGE_VAL && !lines_) j["detail"]["objects_within_m"] = shown_detail_.reach;  // lines draw them all
     j["status"] = status_;
     return j;
   }
