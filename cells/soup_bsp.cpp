@@ -574,6 +574,9 @@ void drop_close_corners(std::vector<Vec3>& p, double near, std::vector<std::vect
   p = std::move(kept);
 }
 
+/// [m] how narrow a corner's interval must be for its middle to place a halving plane.
+constexpr double kPlacedWithin = 1e-3;
+
 /// A polygon's corners to within their intervals (for estimates, not for the output).
 std::vector<Vec3> approx_corners(const Poly& p) {
   std::vector<Vec3> v;
@@ -696,13 +699,22 @@ struct Builder {
     Box3 b;
     std::vector<Vec3> middles;
     for (size_t i : interior) {
+      // A corner whose interval is wider than a millimetre says little of where it is (its
+      // middle can lie metres off): the fragment's other corners place it.
       Vec3 m{0, 0, 0};
-      for (const Vec3 p : approx_corners(frags[i].poly)) {
+      int n = 0;
+      for (const P3& q : frags[i].poly.v) {
+        const auto& a = CGAL::approx(q);
+        if (!(std::max({a.x().sup() - a.x().inf(), a.y().sup() - a.y().inf(), a.z().sup() - a.z().inf()}) <= kPlacedWithin))
+          continue;
+        const Vec3 p{CGAL::to_double(a.x()), CGAL::to_double(a.y()), CGAL::to_double(a.z())};
         b.add(p);
         m = m + p;
+        ++n;
       }
-      middles.push_back((1.0 / double(frags[i].poly.v.size())) * m);
+      if (n > 0) middles.push_back((1.0 / double(n)) * m);
     }
+    if (middles.empty()) return std::nullopt;
     const Vec3 e = b.hi - b.lo;
     const int axis = e.x >= e.y && e.x >= e.z ? 0 : e.y >= e.z ? 1 : 2;
     auto coord = [axis](Vec3 p) { return axis == 0 ? p.x : axis == 1 ? p.y : p.z; };
@@ -811,7 +823,18 @@ struct Builder {
       const int tri = empty ? -1 : choose(t.frags, interior, &lopsided);
       std::optional<Pl> halve;
       if (lopsided && interior.size() >= kHalveFrom) halve = halving(t.frags, interior);
-      const Pl h = empty ? *empty : halve ? *halve : support_of[size_t(tri)];
+      Pl h = empty ? *empty : halve ? *halve : support_of[size_t(tri)];
+      // The new face on h, cut to the cell. A halving plane is placed from the fragments'
+      // corners as doubles, and a corner whose interval is wide can still mislead it (where
+      // a chain of cuts met nearly parallel planes): where it misses the cell, the chosen
+      // fragment's own plane, which crosses it, cuts instead.
+      Poly cap = section(h, t.faces, far);
+      if (cap.v.size() < 3 && halve) {
+        h = support_of[size_t(tri)];
+        cap = section(h, t.faces, far);
+        ++stats.halvings_missed;
+      }
+      if (cap.v.size() < 3) throw std::logic_error("soup bsp: a splitting plane misses its cell");
       const Pl o = opposite_of(h);
       nodes[size_t(id)].plane = h;
       nodes[size_t(id)].opposite = o;
@@ -820,9 +843,7 @@ struct Builder {
       nodes[size_t(id)].child[0] = neg.node, nodes[size_t(id)].child[1] = pos.node;
       nodes.emplace_back();
       nodes.emplace_back();
-      // The cell's faces, cut; then the new face on h, outward for each side.
-      Poly cap = section(h, t.faces, far);
-      if (cap.v.size() < 3) throw std::logic_error("soup bsp: a splitting plane misses its cell");
+      // The cell's faces, cut; then the cap, outward for each side.
       for (CellFace& f : t.faces) {
         CellFace a{{}, f.id, f.toward}, b{{}, f.id, f.toward};
         switch (split(f.poly, h, o, &a.poly, &b.poly)) {

@@ -36,6 +36,9 @@ struct SoupBspStats {
   int depth = 0;             ///< deepest leaf
   size_t snapped = 0;        ///< triangles put on a plane not their own (cells/shared_planes.h)
   double largest_snap = 0;   ///< [m] the farthest a corner moved onto such a plane
+  /// Halving planes (a large cell's fragments parted at their median) that missed their
+  /// cell, placed by a corner's wide interval, and were replaced by a fragment's plane.
+  size_t halvings_missed = 0;
 };
 
 /// A soup whose planes cut space into more leaves than the decomposition was given
