@@ -577,11 +577,14 @@ void drop_close_corners(std::vector<Vec3>& p, double near, std::vector<std::vect
 /// [m] how narrow a corner's interval must be for its middle to place a halving plane.
 constexpr double kPlacedWithin = 1e-3;
 
-/// A polygon's corners to within their intervals (for estimates, not for the output).
-std::vector<Vec3> approx_corners(const Poly& p) {
+/// A polygon's corners to within their intervals (for estimates, not for the output): the
+/// middles of those no wider than `within` [m] along any axis (every corner by default).
+std::vector<Vec3> approx_corners(const Poly& p, double within = HUGE_VAL) {
   std::vector<Vec3> v;
   for (const P3& q : p.v) {
     const auto& a = CGAL::approx(q);
+    if (!(std::max({a.x().sup() - a.x().inf(), a.y().sup() - a.y().inf(), a.z().sup() - a.z().inf()}) <= within))
+      continue;
     v.push_back({CGAL::to_double(a.x()), CGAL::to_double(a.y()), CGAL::to_double(a.z())});
   }
   return v;
@@ -701,18 +704,14 @@ struct Builder {
     for (size_t i : interior) {
       // A corner whose interval is wider than a millimetre says little of where it is (its
       // middle can lie metres off): the fragment's other corners place it.
+      const std::vector<Vec3> corners = approx_corners(frags[i].poly, kPlacedWithin);
+      if (corners.empty()) continue;
       Vec3 m{0, 0, 0};
-      int n = 0;
-      for (const P3& q : frags[i].poly.v) {
-        const auto& a = CGAL::approx(q);
-        if (!(std::max({a.x().sup() - a.x().inf(), a.y().sup() - a.y().inf(), a.z().sup() - a.z().inf()}) <= kPlacedWithin))
-          continue;
-        const Vec3 p{CGAL::to_double(a.x()), CGAL::to_double(a.y()), CGAL::to_double(a.z())};
+      for (const Vec3 p : corners) {
         b.add(p);
         m = m + p;
-        ++n;
       }
-      if (n > 0) middles.push_back((1.0 / double(n)) * m);
+      middles.push_back((1.0 / double(corners.size())) * m);
     }
     if (middles.empty()) return std::nullopt;
     const Vec3 e = b.hi - b.lo;
