@@ -61,6 +61,13 @@ FixedPoint to_fixed(Vec2 r) { return {std::llround(r.x * kSubpixelOne), std::llr
 /// counter-clockwise (|terms| < 2^58 within the guard band).
 int64_t turn(FixedPoint o, FixedPoint a, FixedPoint b) { return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x); }
 
+/// Corner f moved to each corner of the square [−g, g]², appended to `pts`: the hull of an
+/// outline's corners so moved is its Minkowski sum with the square.
+void push_moved_by_square(FixedPoint f, int64_t g, std::vector<FixedPoint>& pts) {
+  for (int64_t dx : {-g, g})
+    for (int64_t dy : {-g, g}) pts.push_back({f.x + dx, f.y + dy});
+}
+
 /// Convex hull (Andrew's monotone chain), exact in integers; collinear points dropped. Into
 /// `h`'s storage; empty when fewer than three corners are left. Sorts `pts`.
 std::vector<FixedPoint> hull(std::vector<FixedPoint>& pts, std::vector<FixedPoint> h) {
@@ -160,11 +167,7 @@ int32_t ScreenSceneBuilder::add_clip(const std::vector<Vec2>& picture_polygon, d
   const int64_t g = std::llround(grow * kSubpixelOne);
   std::vector<FixedPoint>& pts = clip_points_;
   pts.clear();
-  for (Vec2 p : picture_polygon) {
-    const FixedPoint f = to_fixed(out_.raster.raster_from_image(p));
-    for (int64_t dx : {-g, g})
-      for (int64_t dy : {-g, g}) pts.push_back({f.x + dx, f.y + dy});
-  }
+  for (Vec2 p : picture_polygon) push_moved_by_square(to_fixed(out_.raster.raster_from_image(p)), g, pts);
   std::vector<FixedPoint> h = hull(pts, out_.take_outline());
   if (h.empty()) {
     out_.keep_outline(std::move(h));
@@ -412,9 +415,7 @@ bool grow_convex(const std::vector<FixedPoint>& v, int64_t g, std::vector<FixedP
   }
   if (!convex || steps != 4) {  // rounding left a tiny outline a hair concave: the hull of its moved corners
     std::vector<FixedPoint> pts;
-    for (const FixedPoint& f : v)
-      for (int64_t dx : {-g, g})
-        for (int64_t dy : {-g, g}) pts.push_back({f.x + dx, f.y + dy});
+    for (const FixedPoint& f : v) push_moved_by_square(f, g, pts);
     out = hull(pts, std::move(out));
     return out.size() >= 3;
   }
