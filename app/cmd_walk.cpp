@@ -370,13 +370,9 @@ class Session {
                      " | " + to_string(shown_mode_);
     if (progressive_) l1 += " | progressive " + std::to_string(shown_) + "/" + std::to_string(full_.avenues.size());
     lines.push_back(l1 + "    H: help");
-    if (shown_detail_ != budget_.full()) {
-      // A hidden-line drawing draws every object at any step.
-      Detail given_up = shown_detail_;
-      if (lines_) given_up.reach = HUGE_VAL;
+    if (shown_detail_ != budget_.full())
       lines.push_back("over the " + fixed(budget_.budget_ms(), 1) + " ms frame budget (" + fixed(budget_.last_ms(), 1) +
-                      " ms): " + to_string(given_up) + " while moving, full detail when the eye stops");
-    }
+                      " ms): " + to_string(shown_detail()) + " while moving, full detail when the eye stops");
     // The hull search's cells are not all seen: it says so, and on how many threads it ran.
     std::string cells = " cells seen";
     if (full_.conservative)
@@ -407,7 +403,7 @@ class Session {
     j["search_threads"] = searches_.threads_used();
     j["size"] = {frame_w_, frame_h_};
     j["detail"] = {{"samples", shown_detail_.samples}, {"scale", shown_detail_.scale}};
-    if (shown_detail_.reach < HUGE_VAL && !lines_) j["detail"]["objects_within_m"] = shown_detail_.reach;  // lines draw them all
+    if (shown_detail().reach < HUGE_VAL) j["detail"]["objects_within_m"] = shown_detail().reach;
     j["status"] = status_;
     return j;
   }
@@ -472,6 +468,13 @@ class Session {
   Viewer& viewer_;
   FrameBudget budget_;
   Detail shown_detail_;   ///< what the frame on screen was rendered at
+  /// What the frame on screen shows of shown_detail_ (the status line, the stats): a
+  /// hidden-line drawing draws every object at any step.
+  Detail shown_detail() const {
+    Detail d = shown_detail_;
+    if (lines_) d.reach = HUGE_VAL;
+    return d;
+  }
   bool refining_ = false; ///< this frame renders the still view again at full detail
   WalkState state_;
   WalkExports exports_;
