@@ -1044,7 +1044,17 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
       curved_solids.push_back(std::move(s));
     }
   }
-  SoupSplit split = split_detail(soup, polygon, params.detail_above, params.structural_triangles, least_area, curved);
+  // A split ranks flat surfaces, not single polygons (soup_detail.h: flat_surfaces): found
+  // only for a soup that may be split (more triangles than detail_above, or cluttered).
+  std::vector<int64_t> surface;
+  auto surfaces = [&]() -> const std::vector<int64_t>& {
+    if (surface.empty()) {
+      ScopedStageTimer t(out.timings, "flat surfaces");
+      surface = flat_surfaces(soup, polygon);
+    }
+    return surface;
+  };
+  SoupSplit split = split_detail(soup, soup.size() > params.detail_above ? surfaces() : polygon, params.detail_above, params.structural_triangles, least_area, curved);
   // What cuts space: the whole soup, or its structural part (`cut_of`: its soup numbers).
   std::vector<SoupTriangle> structural, detail;
   std::vector<size_t> cut_of;
@@ -1059,7 +1069,8 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
         cut_of.push_back(t);
       } else if (length(cross(soup[t].p[1] - soup[t].p[0], soup[t].p[2] - soup[t].p[0])) > 0) {
         detail.push_back(soup[t]);
-        detail_polygon.push_back(polygon[t]);
+        // One polygon a flat surface and material, lit as one (one shade, no diagonals).
+        detail_polygon.push_back(surface.empty() ? polygon[t] : surface[t] << 32 | int64_t(uint32_t(soup[t].material)));
       } else {
         dropped[mesh_of[t]]++;
       }
@@ -1078,7 +1089,7 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     } catch (const SoupTooCluttered&) {
       if (!out.timings.empty()) out.timings.back().stage = "decompose, abandoned";
       cluttered = true;
-      split = split_detail(soup, polygon, 0, split.structural / 4, least_area, curved);
+      split = split_detail(soup, surfaces(), 0, split.structural / 4, least_area, curved);
       partition();
     }
   }
@@ -1166,7 +1177,7 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
            << (cluttered ? " whose planes cut space into more than " + std::to_string(params.leaf_budget) + " pieces"
                          : std::string(", more than a decomposition takes in seconds"));
       if (split.structural > 0)
-        said << ": its largest polygons (from " << split.smallest_structural << " m², " << split.structural
+        said << ": its largest flat surfaces (from " << split.smallest_structural << " m², " << split.structural
              << " triangles) cut space into cells, and the other ";
       else
         said << ": none of its polygons is large enough to cut space (" << least_area << " m² or more), and all ";

@@ -42,17 +42,17 @@ struct MeshSceneParams {
   /// e.g. Crow's wire objects. Empty by default.
   Box3 include;
   /// Bsp only: a soup with more triangles of non-zero area than `detail_above` is split
-  /// (cells/soup_detail.h): its largest polygons, up to `structural_triangles` triangles,
+  /// (cells/soup_detail.h): its largest flat surfaces, up to `structural_triangles` triangles,
   /// cut space, and every other polygon is detail, drawn in the cells it crosses.
   size_t detail_above = 50'000;
   size_t structural_triangles = 16'000;
-  /// Bsp only, where a soup is split: a polygon cuts space only if its area is at least
+  /// Bsp only, where a soup is split: a surface cuts space only if its area is at least
   /// this share of the largest face of the meshes' bounding box, and never needs more than
   /// `structural_area_cap` [m²] (a wall's face cuts; a smooth surface's facets do not).
   double structural_share = 1e-4;
   double structural_area_cap = 0.1;
   /// Bsp only: a soup whose planes cut space into more leaves than this (cluttered: it
-  /// would take minutes and gigabytes) is split too, its largest polygons a quarter as
+  /// would take minutes and gigabytes) is split too, its largest surfaces a quarter as
   /// many triangles at each try (0: no limit).
   size_t leaf_budget = 60'000;
   /// Bsp only: a closed, outward-oriented solid whose facets face at least this many ways,
@@ -70,7 +70,7 @@ struct MeshSceneParams {
 /// (PortalKind::Open) are the rest of the cells' boundaries. Real lines: the edges between
 /// polygons that are not coplanar, and the open edges of surfaces (LineKind::Sheet).
 /// A soup with more than params.detail_above triangles with area, or whose planes cut space
-/// into more than params.leaf_budget leaves: only its largest polygons cut space
+/// into more than params.leaf_budget leaves: only its largest flat surfaces cut space
 /// (cells/soup_detail.h); the others are detail, one Object per cell they cross
 /// (Object::cell), and a warning says how many of each. A closed curved solid
 /// (params.curved_directions) is detail in any soup: no cell ends at it, and it is kept

@@ -9,6 +9,7 @@
 #include <set>
 #include <unordered_map>
 
+#include "cells/shared_planes.h"
 #include "plans/mesh.h"
 
 namespace avenues {
@@ -129,7 +130,49 @@ void cluster_pieces(const std::vector<DetailPiece>& pieces, std::vector<std::vec
 
 }  // namespace
 
-SoupSplit split_detail(const std::vector<SoupTriangle>& soup, const std::vector<int64_t>& polygon, size_t above,
+std::vector<int64_t> flat_surfaces(const std::vector<SoupTriangle>& soup, const std::vector<int64_t>& polygon) {
+  const size_t n = soup.size();
+  std::vector<int64_t> parent(n);
+  for (size_t i = 0; i < n; ++i) parent[i] = int64_t(i);
+  auto find = [&](int64_t x) {
+    while (parent[size_t(x)] != x) x = parent[size_t(x)] = parent[size_t(parent[size_t(x)])];
+    return x;
+  };
+  auto unite = [&](size_t a, size_t b) {
+    const int64_t ra = find(int64_t(a)), rb = find(int64_t(b));
+    if (ra != rb) parent[size_t(std::max(ra, rb))] = std::min(ra, rb);
+  };
+  // Triangles of one input polygon are one surface.
+  {
+    std::unordered_map<int64_t, size_t> first;
+    for (size_t i = 0; i < n; ++i) {
+      auto [it, added] = first.try_emplace(polygon[i], i);
+      if (!added) unite(it->second, i);
+    }
+  }
+  std::unordered_map<Vec3, uint32_t, PointHash, PointEqual> vid;  // corners welded by position
+  auto id = [&](Vec3 p) { return vid.try_emplace(p, uint32_t(vid.size())).first->second; };
+  // On one plane: the plane the decomposition cuts each on (nearly coplanar triangles
+  // share one, cells/shared_planes.h).
+  const SharedPlanes planes = shared_planes(soup);
+  std::unordered_map<uint64_t, size_t> edge;  // (lo, hi) corner ids -> a triangle with that edge
+  for (size_t i = 0; i < n; ++i) {
+    const auto& t = soup[i].p;
+    const uint32_t v[3] = {id(t[0]), id(t[1]), id(t[2])};
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = v[k], b = v[(k + 1) % 3];
+      if (a == b) continue;
+      const uint64_t key = uint64_t(std::min(a, b)) << 32 | std::max(a, b);
+      auto [it, added] = edge.try_emplace(key, i);
+      if (!added && planes.plane_of[it->second] == planes.plane_of[i]) unite(i, it->second);
+    }
+  }
+  std::vector<int64_t> out(n);
+  for (size_t i = 0; i < n; ++i) out[i] = find(int64_t(i));
+  return out;
+}
+
+SoupSplit split_detail(const std::vector<SoupTriangle>& soup, const std::vector<int64_t>& surface, size_t above,
                        size_t budget, double least_area, const std::vector<bool>& curved) {
   SoupSplit s;
   s.detail.assign(soup.size(), false);
@@ -148,38 +191,38 @@ SoupSplit split_detail(const std::vector<SoupTriangle>& soup, const std::vector<
   s.detail_triangles = s.curved;
   s.structural = with_area;
   if (with_area <= above) return s;
-  // The polygons, largest first: their areas and their triangles with area.
-  struct Polygon {
+  // The surfaces, largest first: their areas and their triangles with area.
+  struct Surface {
     int64_t id = 0;
     double area = 0;
     size_t triangles = 0;
   };
   std::unordered_map<int64_t, size_t> index;
-  std::vector<Polygon> polygons;
+  std::vector<Surface> surfaces;
   for (size_t i = 0; i < soup.size(); ++i) {
     if (is_curved_at(i)) continue;
-    auto [it, added] = index.try_emplace(polygon[i], polygons.size());
-    if (added) polygons.push_back({polygon[i], 0, 0});
-    Polygon& p = polygons[it->second];
+    auto [it, added] = index.try_emplace(surface[i], surfaces.size());
+    if (added) surfaces.push_back({surface[i], 0, 0});
+    Surface& p = surfaces[it->second];
     p.area += area[i];
     p.triangles += area[i] > 0;
   }
-  std::vector<size_t> order(polygons.size());
+  std::vector<size_t> order(surfaces.size());
   for (size_t k = 0; k < order.size(); ++k) order[k] = k;
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-    return polygons[a].area != polygons[b].area ? polygons[a].area > polygons[b].area : polygons[a].id < polygons[b].id;
+    return surfaces[a].area != surfaces[b].area ? surfaces[a].area > surfaces[b].area : surfaces[a].id < surfaces[b].id;
   });
-  std::vector<bool> structural(polygons.size(), false);
+  std::vector<bool> structural(surfaces.size(), false);
   size_t taken = 0;
   for (size_t k : order) {
-    if (taken + polygons[k].triangles > budget || polygons[k].area < least_area) break;
-    taken += polygons[k].triangles;
+    if (taken + surfaces[k].triangles > budget || surfaces[k].area < least_area) break;
+    taken += surfaces[k].triangles;
     structural[k] = true;
-    if (polygons[k].area > 0) s.smallest_structural = polygons[k].area;
+    if (surfaces[k].area > 0) s.smallest_structural = surfaces[k].area;
   }
   s.structural = taken;
   for (size_t i = 0; i < soup.size(); ++i)
-    if (!is_curved_at(i) && !structural[index.at(polygon[i])]) {
+    if (!is_curved_at(i) && !structural[index.at(surface[i])]) {
       s.detail[i] = true;
       s.detail_triangles += area[i] > 0;
     }

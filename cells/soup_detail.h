@@ -9,8 +9,14 @@
 // is built from the structural brushes alone. Here the split is made by size, not by
 // hand: where a soup holds more triangles than a decomposition takes in seconds, or its
 // planes cut space into more pieces than that (cells/mesh_scene.h: MeshSceneParams), its
-// largest polygons (the slabs, walls and broad plates that hide most) cut space, up to a
-// budget of triangles, and every other polygon is detail. Each detail polygon is cut to
+// largest flat surfaces (the slabs, walls and broad plates that hide most) cut space, up
+// to a budget of triangles, and every other polygon is detail. A surface is ranked whole,
+// not by its polygons: BIM tools and Assimp hand over a wall's face with its openings as
+// a fan of triangles, each its own polygon, and ranked one by one its small triangles fell
+// below the budget while its large ones cut: the wall cut space with holes punched in it,
+// and every plane cut space where the wall's area hardly hid anything more (a precast
+// concrete model: 6,194 cells, against 105 when its faces are ranked whole; docs/
+// PERFORMANCE.md). Each detail polygon is cut to
 // the convex cells it crosses and drawn there as part of one of that cell's detail
 // objects (compact clusters of a few hundred triangles, each with its own box), by depth,
 // as furniture is (render/scene_view.cpp, render/furniture.h). The search sees through
@@ -34,7 +40,7 @@ struct SoupSplit {
   std::vector<bool> detail;        ///< per soup triangle
   size_t structural = 0;           ///< triangles with area that cut space
   size_t detail_triangles = 0;     ///< triangles with area that are detail
-  double smallest_structural = 0;  ///< [m²] the area of the smallest polygon that cuts space
+  double smallest_structural = 0;  ///< [m²] the area of the smallest surface that cuts space
   size_t curved = 0;               ///< of detail_triangles, those of curved closed solids
 };
 
@@ -46,16 +52,23 @@ struct SoupSplit {
 bool is_curved(const ClosedSolid& solid, size_t directions);
 
 /// With at most `above` triangles of non-zero area, none is detail. With more, the
-/// polygons (`polygon`: one number per triangle, shared by the triangles of one input
-/// polygon) of at least `least_area` [m²] are taken largest area first, ties by number,
-/// while their triangles with area number at most `budget`; the triangles of every other
-/// polygon are detail. (A polygon smaller than `least_area` hides too little to be worth
-/// the cells its plane makes: a smooth surface's facets, a bolt. A soup of such polygons
-/// alone, a sculpture subdivided into a quarter of a million facets, cuts no space at all.)
+/// surfaces (`surface`: one number per triangle, shared by the triangles of one surface,
+/// flat_surfaces' or the input polygons) of at least `least_area` [m²] are taken largest
+/// area first, ties by number, while their triangles with area number at most `budget`;
+/// the triangles of every other surface are detail. (A surface smaller than `least_area`
+/// hides too little to be worth the cells its plane makes: a smooth surface's facets, a
+/// bolt. A soup of such surfaces alone, a sculpture subdivided into a quarter of a million
+/// facets, cuts no space at all.)
 /// Triangles marked in `curved` (the curved closed solids', when not empty) are detail
 /// whatever the rest, and are not counted against `above` or `budget`.
-SoupSplit split_detail(const std::vector<SoupTriangle>& soup, const std::vector<int64_t>& polygon, size_t above,
+SoupSplit split_detail(const std::vector<SoupTriangle>& soup, const std::vector<int64_t>& surface, size_t above,
                        size_t budget, double least_area = 0, const std::vector<bool>& curved = {});
+
+/// Per soup triangle, the flat surface it is part of, numbered by its first triangle: the
+/// triangles of one input polygon (`polygon`), and triangles on one plane of
+/// shared_planes (cells/shared_planes.h: coplanar, or nearly so, as the decomposition cuts
+/// them) that share an edge (its two corners at the same positions), are one surface.
+std::vector<int64_t> flat_surfaces(const std::vector<SoupTriangle>& soup, const std::vector<int64_t>& polygon);
 
 /// Cuts each detail triangle to every cell of `out` it crosses (in double: the pieces are
 /// drawn, not part of the complex's exact geometry) and appends, for each cell that holds

@@ -157,6 +157,57 @@ TEST(SoupDetail, PolygonsTooSmallToHideMuchCutNoSpace) {
   EXPECT_EQ(none.detail_triangles, 8u);
 }
 
+// A wall's face with a door in it, as BIM tools and Assimp hand it over: a fan of
+// triangles, each its own polygon, some large and some small. Ranked one by one, its small
+// triangles would be detail while its large ones cut: a wall with holes punched in it. Its
+// flat surface is one (with a neighbour a rounding off its plane), ranked and cut whole; a
+// wall at right angles sharing its edge, and a coplanar face apart from it, are surfaces
+// of their own.
+TEST(SoupDetail, AWallsFaceCutsSpaceWholeOrNotAtAll) {
+  std::vector<SoupTriangle> soup;
+  std::vector<int64_t> polygon;
+  auto add = [&](Vec3 a, Vec3 b, Vec3 c) {
+    polygon.push_back(int64_t(soup.size()));
+    soup.push_back({{a, b, c}});
+  };
+  // The face y = 0, x in [0, 4], z in [0, 3], a door x in [1, 2], z in [0, 2]: six
+  // triangles from 0.5 m² to 3 m² (10 m² in all).
+  const Vec3 o{0, 0, 0}, p{1, 0, 0}, q{1, 0, 2}, r{2, 0, 2}, s2{2, 0, 0}, e{4, 0, 0}, f{4, 0, 3}, g{0, 0, 3};
+  add(o, p, q), add(o, q, g), add(q, r, g), add(r, f, g), add(r, s2, f), add(s2, e, f);
+  // A rounding off the plane: a sliver of a triangle on the door's head, sharing edge q–r.
+  add(q, Vec3{1.5, 1e-13, 2.3}, r);  // 0.15 m²
+  // A wall at right angles along the face's end x = 4 (4.5 m²): its own surface.
+  add(e, Vec3{4, 3, 0}, f);
+  // A coplanar face 10 m away along the same plane (0.5 m²): its own surface.
+  add(Vec3{14, 0, 0}, Vec3{15, 0, 0}, Vec3{15, 0, 1});
+  const std::vector<int64_t> surface = flat_surfaces(soup, polygon);
+  ASSERT_EQ(surface.size(), soup.size());
+  for (size_t t = 1; t < 7; ++t) EXPECT_EQ(surface[t], surface[0]) << "triangle " << t << " is part of the face";
+  EXPECT_NE(surface[7], surface[0]) << "the wall at right angles";
+  EXPECT_NE(surface[8], surface[0]) << "the coplanar face apart from it";
+  EXPECT_NE(surface[7], surface[8]);
+  // Triangles of one input polygon are one surface whatever their planes.
+  std::vector<int64_t> joined = polygon;
+  joined[8] = joined[7];
+  const std::vector<int64_t> by_polygon = flat_surfaces(soup, joined);
+  EXPECT_EQ(by_polygon[7], by_polygon[8]);
+  EXPECT_NE(by_polygon[7], by_polygon[0]);
+  // Surfaces from 2 m²: the face (10.15 m², 7 triangles) and the wall at right angles;
+  // by single triangles, only 3 of the face's 6 (those of 2 m² and more) and the wall.
+  const SoupSplit whole = split_detail(soup, surface, 0, 100, 2.0);
+  for (size_t t = 0; t < 8; ++t) EXPECT_FALSE(whole.detail[t]) << "triangle " << t;
+  EXPECT_TRUE(whole.detail[8]) << "the 0.5 m² face apart";
+  EXPECT_DOUBLE_EQ(whole.smallest_structural, 4.5);
+  const SoupSplit alone = split_detail(soup, polygon, 0, 100, 2.0);
+  size_t face_detail = 0;
+  for (size_t t = 0; t < 6; ++t) face_detail += alone.detail[t];
+  EXPECT_EQ(face_detail, 3u) << "ranked one by one, the face would be cut with holes in it";
+  // The budget takes a surface whole or not at all: 7 triangles leave the face out.
+  const SoupSplit tight = split_detail(soup, surface, 0, 6, 0.0);
+  for (size_t t = 0; t < 7; ++t) EXPECT_TRUE(tight.detail[t]) << "triangle " << t;
+  EXPECT_EQ(tight.structural, 0u) << "the largest surface does not fit, so none smaller is taken";
+}
+
 // A finely faceted object alone (a sculpture subdivided into a quarter of a million
 // facets, Assimp's sample_subdiv.ac: 22,831 cells and two minutes before) cuts no space:
 // the far box is one cell, the object its detail, and its pictures are those of the
@@ -429,7 +480,10 @@ TEST(SoupDetail, AStructuralModelReadAsItsFacesDecomposesIntoValidCells) {
   ASSERT_TRUE(faces) << "read as a building";
   const CellComplex c = build_mesh_scene({*faces});
   EXPECT_EQ(cells_are_valid(c), "");
-  EXPECT_GT(c.cells.size(), 1000u);
+  // Its slabs' faces cut space whole (flat_surfaces): about a hundred cells, not the
+  // 6,194 of its triangles ranked one by one.
+  EXPECT_GT(c.cells.size(), 20u);
+  EXPECT_LT(c.cells.size(), 1000u);
   EXPECT_GT(c.objects.size(), 1000u) << "its detail, in the cells it crosses";
   const Vec3 eye = default_viewpoint(c).eye;
   EXPECT_EQ(c.locate(eye).what, Location::What::Cell);
