@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 namespace avenues {
 
@@ -114,6 +115,90 @@ double total_volume(const CellComplex& c) {
 
 void CellComplex::index_portals() { portal_table = lay_out_portals(*this); }
 
+namespace {
+
+/// The corners after corner 0 of `poly` spanning the most area with it (not simply the
+/// first three, which may hold two a rounding apart): where the search reads a portal's
+/// side from (PortalTable::Seen::spread).
+uint32_t spread_of(const std::vector<Vec3>& poly) {
+  uint32_t spread = 1;
+  double most = -1;
+  for (size_t k = 1; k + 1 < poly.size(); ++k) {
+    const Vec3 n = cross(poly[k] - poly[0], poly[k + 1] - poly[0]);
+    if (const double a = dot(n, n); a > most) most = a, spread = uint32_t(k);
+  }
+  return spread;
+}
+
+/// PortalTable::hulls for the faces of the cell last laid out, and their t.face_hulls.
+void lay_out_hulls(CellComplex::PortalTable& t) {
+  using Seen = CellComplex::PortalTable::Seen;
+  const size_t faces_end = t.face_seen.size();
+  for (size_t face = size_t(t.cell_faces.back()); face < faces_end; ++face) {
+    t.face_hulls.resize(face, int32_t(t.hulls.size()));
+    t.face_hulls.push_back(int32_t(t.hulls.size()));
+    const size_t begin = size_t(t.face_seen[face]);
+    const size_t end = face + 1 < faces_end ? size_t(t.face_seen[face + 1]) : t.seen.size();
+    std::map<CellId, std::vector<size_t>> into;  // other cell -> its portals' entries
+    for (size_t i = begin; i < end; ++i) into[t.seen[i].other].push_back(i);
+    bool joins = false;
+    for (const auto& [other, entries] : into) joins = joins || entries.size() > 1;
+    if (!joins) continue;
+    for (const auto& [other, entries] : into) {
+      const Seen& lead = t.seen[entries.front()];
+      // The plane's normal into `other`, and the 2D axes that drop its largest component.
+      const Vec3 n = lead.first ? lead.plane.n : -1.0 * lead.plane.n;
+      const int drop = std::fabs(n.x) >= std::fabs(n.y) && std::fabs(n.x) >= std::fabs(n.z) ? 0
+                       : std::fabs(n.y) >= std::fabs(n.z)                                  ? 1
+                                                                                          : 2;
+      auto uv = [&](Vec3 v) { return drop == 0 ? Vec2{v.y, v.z} : drop == 1 ? Vec2{v.z, v.x} : Vec2{v.x, v.y}; };
+      std::vector<Vec3> points;
+      PortalId least = lead.portal;
+      for (size_t i : entries) {
+        least = std::min(least, t.seen[i].portal);
+        for (size_t k = 0; k < t.seen[i].corners; ++k) points.push_back(t.corners[size_t(t.seen[i].corner0) + k]);
+      }
+      // Andrew's monotone chain, counter-clockwise in (u, v); points on a side are left out.
+      std::sort(points.begin(), points.end(), [&](Vec3 a, Vec3 b) {
+        const Vec2 p = uv(a), q = uv(b);
+        return p.x != q.x ? p.x < q.x : p.y < q.y;
+      });
+      points.erase(std::unique(points.begin(), points.end(), [](Vec3 a, Vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }),
+                   points.end());
+      std::vector<Vec3> hull(2 * points.size() + 1);
+      size_t k = 0;
+      auto turn = [&](Vec3 o, Vec3 a, Vec3 b) { return cross(uv(a) - uv(o), uv(b) - uv(o)); };
+      for (size_t i = 0; i < points.size(); ++i) {
+        while (k >= 2 && turn(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+        hull[k++] = points[i];
+      }
+      for (size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+        while (k >= lower && turn(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+        hull[k++] = points[i];
+      }
+      hull.resize(k > 1 ? k - 1 : k);
+      if (hull.size() < 3) continue;  // no area: the face's portals stay as they are
+      // Counter-clockwise in (u, v) is anticlockwise about the dropped axis's positive
+      // direction; the corners must turn about n, into `other`.
+      const double axis = drop == 0 ? n.x : drop == 1 ? n.y : n.z;
+      if (axis < 0) std::reverse(hull.begin(), hull.end());
+      Seen s;
+      s.plane = lead.first ? lead.plane : Plane{-1.0 * lead.plane.n, -lead.plane.d};
+      s.portal = least;
+      s.other = other;
+      s.corner0 = int32_t(t.corners.size());
+      s.corners = uint32_t(hull.size());
+      s.spread = spread_of(hull);
+      s.first = true;
+      t.corners.insert(t.corners.end(), hull.begin(), hull.end());
+      t.hulls.push_back(s);
+    }
+  }
+  t.face_hulls.resize(faces_end, int32_t(t.hulls.size()));
+}
+
+}  // namespace
+
 CellComplex::PortalTable lay_out_portals(const CellComplex& c) {
   const auto& cells = c.cells;
   const auto& portals = c.portals;
@@ -142,18 +227,13 @@ CellComplex::PortalTable lay_out_portals(const CellComplex& c) {
         s.corner0 = int32_t(t.corners.size());
         s.corners = uint32_t(p.poly.size());
         s.first = p.cell[0] == id;
-        // As the search would find it: the corners after corner 0 spanning the most area
-        // with it (not simply the first three, which may hold two a rounding apart).
-        double most = -1;
-        for (size_t k = 1; k + 1 < p.poly.size(); ++k) {
-          const Vec3 n = cross(p.poly[k] - p.poly[0], p.poly[k + 1] - p.poly[0]);
-          if (const double a = dot(n, n); a > most) most = a, s.spread = uint32_t(k);
-        }
+        s.spread = spread_of(p.poly);
         t.corners.insert(t.corners.end(), p.poly.begin(), p.poly.end());
         at[size_t(pi)] = int32_t(t.seen.size());
         t.seen.push_back(s);
       }
     }
+    if (!cells[size_t(id)].prism) lay_out_hulls(t);
     // As many as the cell's entries in `seen` (the same, in a valid complex).
     for (PortalId pi : cells[size_t(id)].portals)
       if (t.listed.size() < t.seen.size() && pi >= 0 && size_t(pi) < at.size() && at[size_t(pi)] >= 0)
@@ -163,6 +243,7 @@ CellComplex::PortalTable lay_out_portals(const CellComplex& c) {
   }
   t.cell_faces.push_back(int32_t(t.face_seen.size()));
   t.face_seen.push_back(int32_t(t.seen.size()));
+  t.face_hulls.resize(t.face_seen.size(), int32_t(t.hulls.size()));
   t.portal_count = portals.size();
   return t;
 }

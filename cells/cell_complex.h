@@ -259,6 +259,16 @@ struct CellComplex {
     /// (-1 past the end of a cell whose list names fewer portals than its faces hold).
     std::vector<int32_t> listed;
     std::vector<Vec3> corners;
+    /// Per face of every cell in order, and one more: its first entry in `hulls`, an empty
+    /// range where the face holds no two portals into one cell or its cell is a prism.
+    std::vector<int32_t> face_hulls;
+    /// A face's portals into each other cell as one: their convex hull in the face's plane
+    /// (its corners some of theirs, in `corners`; `portal` the least of theirs; `first`
+    /// true, the plane's normal into `other`). A soup's cell face is cut into many convex
+    /// portals around the surfaces that cover parts of it (a slab's many openings onto the
+    /// cell below: hundreds); the hull search, which joins whatever reaches a cell into its
+    /// hull anyway, clips a mask to their hull once instead of to each (traverse.h).
+    std::vector<Seen> hulls;
     size_t portal_count = 0;          ///< portals.size() when laid out
     /// Whether the table was laid out for a complex of c's size (a complex changed since
     /// must be indexed again, as for the spatial index).

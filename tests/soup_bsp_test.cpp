@@ -743,3 +743,94 @@ TEST(SoupBsp, DroppedSliversAreJoinedAcrossOrShowTheMaterialSeenThroughThem) {
   }
 }
 
+
+// A slab with a grid of openings over a box: the cell under the slab meets the cell over it
+// through many portals in the slab's plane (the openings, and the strips of the far box
+// around the slab cut into convex pieces). The search's table holds each face's portals
+// into one cell as their convex hull too (CellComplex::PortalTable::hulls): every corner
+// of every such portal within it, its own corners theirs, its normal into the cell beyond.
+// The hull search clips to that hull once where it would clip to each portal: it tests
+// fewer portals, holds every view the merged search finds, and draws the same pictures.
+TEST(SoupBsp, ThePortalsOfAFaceIntoOneCellAreOneHullToTheHullSearch) {
+  // The slab z = 2 over [0, 6]², openings [1, 1.5], [2.5, 3], [4, 4.5] in x and in y: the
+  // grid of rectangles between those lines, less the nine openings.
+  const double at[] = {0, 1, 1.5, 2.5, 3, 4, 4.5, 6};
+  std::vector<Vec3> v;
+  std::vector<std::vector<int>> polygons;
+  for (int i = 0; i + 1 < 8; ++i)
+    for (int j = 0; j + 1 < 8; ++j) {
+      if (i % 2 == 1 && j % 2 == 1) continue;  // an opening
+      const int k = int(v.size());
+      v.insert(v.end(), {Vec3{at[i], at[j], 2}, Vec3{at[i + 1], at[j], 2}, Vec3{at[i + 1], at[j + 1], 2},
+                         Vec3{at[i], at[j + 1], 2}});
+      polygons.push_back({k, k + 1, k + 2, k + 3});
+    }
+  Mesh slab = mesh_from(v, polygons);
+  slab.path = "slab.obj";
+  Mesh block = cube({2, 2, 0}, 1);
+  block.path = "block.obj";
+  const std::vector<Mesh> meshes{slab, block};
+  const CellComplex c = build_mesh_scene(meshes);
+  ASSERT_EQ(cells_are_valid(c), "");
+  const CellComplex::PortalTable& t = c.portal_table;
+  ASSERT_TRUE(t.fits(c));
+  ASSERT_EQ(t.face_hulls.size(), t.face_seen.size());
+  size_t joined = 0, largest = 0;
+  for (CellId id = 0; id < CellId(c.cells.size()); ++id)
+    for (int32_t face = t.cell_faces[size_t(id)]; face < t.cell_faces[size_t(id) + 1]; ++face)
+      for (int32_t h = t.face_hulls[size_t(face)]; h < t.face_hulls[size_t(face) + 1]; ++h) {
+        const auto& hull = t.hulls[size_t(h)];
+        SCOPED_TRACE("cell " + std::to_string(id) + ", hull " + std::to_string(h));
+        EXPECT_TRUE(hull.first);
+        ASSERT_GE(hull.corners, 3u);
+        std::vector<Vec3> corners(t.corners.begin() + hull.corner0, t.corners.begin() + hull.corner0 + hull.corners);
+        // Its normal into the cell beyond, as the search reads it (corners 0, spread, spread + 1).
+        const Vec3 n = cross(corners[hull.spread] - corners[0], corners[hull.spread + 1] - corners[0]);
+        EXPECT_GT(dot(n, hull.plane.n), 0);
+        const Box3 beyond = c.cells[size_t(hull.other)].bounds();
+        EXPECT_GT(hull.plane.eval(0.5 * (beyond.lo + beyond.hi)), 0) << "the plane's normal points into the cell beyond";
+        // The portals of the face into that cell: their least number, their corners.
+        size_t portals = 0;
+        PortalId least = -1;
+        std::vector<Vec3> theirs;
+        for (int32_t i = t.face_seen[size_t(face)]; i < t.face_seen[size_t(face) + 1]; ++i) {
+          const auto& s = t.seen[size_t(i)];
+          if (s.other != hull.other) continue;
+          ++portals;
+          least = least < 0 ? s.portal : std::min(least, s.portal);
+          theirs.insert(theirs.end(), t.corners.begin() + s.corner0, t.corners.begin() + s.corner0 + s.corners);
+        }
+        EXPECT_EQ(hull.portal, least);
+        for (const Vec3& k : corners)
+          EXPECT_TRUE(std::any_of(theirs.begin(), theirs.end(), [&](const Vec3& q) { return q.x == k.x && q.y == k.y && q.z == k.z; }))
+              << "a corner of the hull that is no portal's";
+        // Every portal corner on the hull's side of each of its edges (within a rounding).
+        const Vec3 unit_n = (1 / length(n)) * n;
+        for (const Vec3& q : theirs)
+          for (size_t e = 0; e < corners.size(); ++e) {
+            const Vec3 a = corners[e], b = corners[(e + 1) % corners.size()];
+            EXPECT_GE(dot(cross(b - a, q - a), unit_n), -1e-9) << "a portal's corner outside the hull";
+          }
+        joined += portals > 1;
+        largest = std::max(largest, portals);
+      }
+  EXPECT_GT(joined, 0u);
+  EXPECT_GE(largest, 9u) << "the nine openings into the cell over the slab";
+  // From under the slab, looking up through it: the hull search with and without the
+  // hulls (a copy of the complex whose table names none) finds the same cells here, with
+  // fewer portals tested.
+  CellComplex each = c;
+  std::fill(each.portal_table.face_hulls.begin(), each.portal_table.face_hulls.end(), 0);
+  const Vec3 eye{3, 0.5, 1};
+  const CellId cell = c.locate(eye).cell;
+  ASSERT_NE(cell, kNoCell);
+  Camera cam = Camera::look_at(eye, {3, 3, 3}, 90, 96, 64);
+  TraverseParams hull;
+  hull.merge_pieces = hull.hull_pieces = true;
+  const VisibleSet once = find_visible(c, cam, cell, hull), apart = find_visible(each, cam, cell, hull);
+  EXPECT_EQ(once.cells, apart.cells);
+  EXPECT_LT(once.portals_tested, apart.portals_tested);
+  // Random views: Jones's and the merged search against ray casting, and the hull search
+  // (through the hulls) holding the merged one's view with the same pictures.
+  expect_soup_views_agree_with_rays(c, 16, 1871, 96, 64, 8);
+}

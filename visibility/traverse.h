@@ -42,6 +42,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 #include <boost/container/small_vector.hpp>
 
@@ -318,6 +319,21 @@ class Traversal {
     Facing fc;
     const int32_t first_face = t.cell_faces[size_t(cell)], end_face = t.cell_faces[size_t(cell) + 1];
     for (int32_t face = first_face; face < end_face; ++face) {
+      // The hull search in floating point: a face's portals into one cell as their hull
+      // (PortalTable::hulls), where it has them. What passes the hull holds all that passes
+      // each, and the pieces would have been joined into their hull in that cell anyway.
+      if (hull_ && std::is_floating_point_v<T> && t.face_hulls[size_t(face)] < t.face_hulls[size_t(face) + 1]) {
+        for (int32_t i = t.face_hulls[size_t(face)]; i < t.face_hulls[size_t(face) + 1]; ++i) {
+          const Seen& h = t.hulls[size_t(i)];
+          if (h.portal == via || !facing(h, fc)) continue;
+          if (!seen_edge_on(h)) {
+            if (!cone_made) cone = cone_planes(mask), cone_made = true;
+            if (surely_outside(cone, h)) continue;
+          }
+          f(h, fc);
+        }
+        continue;
+      }
       const Seen* ps = t.seen.data() + t.face_seen[size_t(face)];
       size_t lo = 0, hi = size_t(t.face_seen[size_t(face) + 1] - t.face_seen[size_t(face)]);
       if (hi > kLinearScan) {
