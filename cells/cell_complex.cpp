@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 
 namespace avenues {
 
@@ -234,10 +235,16 @@ CellComplex::PortalTable lay_out_portals(const CellComplex& c) {
       }
     }
     if (!cells[size_t(id)].prism) lay_out_hulls(t);
-    // As many as the cell's entries in `seen` (the same, in a valid complex).
-    for (PortalId pi : cells[size_t(id)].portals)
-      if (t.listed.size() < t.seen.size() && pi >= 0 && size_t(pi) < at.size() && at[size_t(pi)] >= 0)
-        t.listed.push_back(at[size_t(pi)]);
+    // The first of each face's portals into one cell, in the order of Cell::portals.
+    const int32_t first_face = t.cell_faces.back();
+    std::set<std::pair<CellId, size_t>> named;  // (other cell, face)
+    for (PortalId pi : cells[size_t(id)].portals) {
+      if (t.listed.size() >= t.seen.size() || pi < 0 || size_t(pi) >= at.size() || at[size_t(pi)] < 0) continue;
+      const int32_t entry = at[size_t(pi)];
+      const size_t face = size_t(std::upper_bound(t.face_seen.begin() + first_face, t.face_seen.end(), entry) -
+                                 t.face_seen.begin()) - 1;
+      if (named.insert({t.seen[size_t(entry)].other, face}).second) t.listed.push_back(entry);
+    }
     t.listed.resize(t.seen.size(), -1);
     for (size_t i = first_seen; i < t.seen.size(); ++i) at[size_t(t.seen[i].portal)] = -1;
   }

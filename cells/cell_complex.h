@@ -255,8 +255,12 @@ struct CellComplex {
     std::vector<int32_t> cell_faces;  ///< per cell, and one more: its first face's entry in face_seen
     std::vector<int32_t> face_seen;   ///< per face of every cell in order, and one more: its first in `seen`
     std::vector<Seen> seen;
-    /// Beside `seen`, each cell's portals in the order of Cell::portals: indices into `seen`
-    /// (-1 past the end of a cell whose list names fewer portals than its faces hold).
+    /// Beside `seen`, each cell's neighbours across each face, in the order of Cell::portals:
+    /// indices into `seen`, of the first of a face's portals into each other cell (its
+    /// others lie in the same plane, on the same side of the eye), then -1 to the end of
+    /// the cell's entries. What the merged search reads to find a pending neighbour in
+    /// front of a cell (a soup's cell: 56 portals, 4 such neighbours, on average in one
+    /// IFC model).
     std::vector<int32_t> listed;
     std::vector<Vec3> corners;
     /// Per face of every cell in order, and one more: its first entry in `hulls`, an empty

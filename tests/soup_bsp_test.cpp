@@ -11,6 +11,7 @@
 #include <map>
 #include <numbers>
 #include <random>
+#include <set>
 #include <tuple>
 
 #include <tbb/global_control.h>
@@ -816,6 +817,27 @@ TEST(SoupBsp, ThePortalsOfAFaceIntoOneCellAreOneHullToTheHullSearch) {
       }
   EXPECT_GT(joined, 0u);
   EXPECT_GE(largest, 9u) << "the nine openings into the cell over the slab";
+  // The neighbours the merged search asks about (PortalTable::listed): per cell, the first
+  // of each face's portals into one cell, in the order of Cell::portals, then -1s.
+  for (CellId id = 0; id < CellId(c.cells.size()); ++id) {
+    const int32_t f0 = t.cell_faces[size_t(id)], f1 = t.cell_faces[size_t(id) + 1];
+    auto face_of = [&](int32_t entry) {
+      int32_t f = f0;
+      while (f + 1 < f1 && t.face_seen[size_t(f) + 1] <= entry) ++f;
+      return f;
+    };
+    std::vector<int32_t> expected;
+    std::set<std::pair<CellId, int32_t>> named;
+    for (PortalId pi : c.cells[size_t(id)].portals)
+      for (int32_t i = t.face_seen[size_t(f0)]; i < t.face_seen[size_t(f1)]; ++i)
+        if (t.seen[size_t(i)].portal == pi) {
+          if (named.insert({t.seen[size_t(i)].other, face_of(i)}).second) expected.push_back(i);
+          break;
+        }
+    std::vector<int32_t> listed(t.listed.begin() + t.face_seen[size_t(f0)], t.listed.begin() + t.face_seen[size_t(f1)]);
+    expected.resize(listed.size(), -1);
+    EXPECT_EQ(listed, expected) << "cell " << id;
+  }
   // From under the slab, looking up through it: the hull search with and without the
   // hulls (a copy of the complex whose table names none) finds the same cells here, with
   // fewer portals tested.

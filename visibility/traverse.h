@@ -657,7 +657,7 @@ class Traversal {
     const size_t begin = size_t(t.face_seen[size_t(t.cell_faces[size_t(cell)])]);
     const size_t end = size_t(t.face_seen[size_t(t.cell_faces[size_t(cell) + 1])]);
     for (size_t i = begin; i < end; ++i) {  // in the order of Cell::portals
-      if (t.listed[i] < 0) continue;
+      if (t.listed[i] < 0) break;  // the cell's last neighbour passed
       const Seen& p = t.seen[size_t(t.listed[i])];
       const CellId other = p.other;
       if (other == cell || state_[size_t(other)] != kPending) continue;
