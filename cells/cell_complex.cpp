@@ -6,6 +6,8 @@
 #include <map>
 #include <set>
 
+#include "plans/mesh.h"
+
 namespace avenues {
 
 const char* to_string(CellKind k) {
@@ -255,9 +257,27 @@ CellComplex::PortalTable lay_out_portals(const CellComplex& c) {
   return t;
 }
 
+void CellComplex::index_detail() {
+  detail_start.assign(cells.size() + 1, 0);
+  detail_boxes.clear();
+  for (const Object& o : objects)
+    if (o.cell >= 0 && size_t(o.cell) < cells.size() && o.model) ++detail_start[size_t(o.cell) + 1];
+  for (size_t c = 0; c < cells.size(); ++c) detail_start[c + 1] += detail_start[c];
+  detail_boxes.resize(size_t(detail_start.back()));
+  std::vector<int32_t> at(detail_start.begin(), detail_start.end() - 1);
+  for (size_t i = 0; i < objects.size(); ++i) {
+    const Object& o = objects[i];
+    if (!(o.cell >= 0 && size_t(o.cell) < cells.size() && o.model)) continue;
+    DetailBox& d = detail_boxes[size_t(at[size_t(o.cell)]++)];
+    d.object = int32_t(i);
+    for (const Vec3& v : o.model->vertices) d.box.add(v);  // a detail model is in world space
+  }
+}
+
 void CellComplex::index() {
   index_surfaces();
   index_portals();
+  index_detail();
   // One uniform grid in plan over the far box; each grid square lists the cells whose
   // footprint's bounding box overlaps it (all heights: a few storeys per square).
   bands.assign(1, Band{});

@@ -214,6 +214,9 @@ struct CellComplex {
   void index_surfaces();
   /// Lays out `portal_table` from the cells and portals as they are.
   void index_portals();
+  /// Lists each cell's detail objects (Object::cell, a large soup's: cells/soup_detail.h)
+  /// with their bounds in `detail_boxes`; done by index(), and again where detail is added.
+  void index_detail();
 
   // --- spatial index (derived; rebuilt by index()) ---
   struct Band {
@@ -232,6 +235,16 @@ struct CellComplex {
   };
   std::vector<SolidBox> solids;
   std::vector<Surface> surfaces;  ///< derived (index_surfaces)
+  /// A cell's detail object and the bounds of its model (derived: index_detail). The walker
+  /// stops where a move meets a triangle of one (visibility/walker.h): the slabs and walls
+  /// of a large soup that were made detail so as not to cut space are still walls to a
+  /// person.
+  struct DetailBox {
+    Box3 box;
+    int32_t object = -1;  ///< index into `objects`
+  };
+  std::vector<int32_t> detail_start;   ///< per cell, and one more: its first in detail_boxes
+  std::vector<DetailBox> detail_boxes;
 
   /// Each cell's portals laid out for the search of what an eye sees (derived; rebuilt by
   /// index_portals). The search meets a cell, then each portal of each of its faces, then

@@ -1140,6 +1140,7 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     ScopedStageTimer t(out.timings, "detail");
     const std::string source = meshes.size() == 1 && !meshes[0].path.empty() ? meshes[0].path : "the meshes";
     add_detail_objects(out, detail, detail_polygon, source);
+    out.index_detail();
     std::vector<CellId> holding;
     for (const Object& o : out.objects) holding.push_back(o.cell);
     std::sort(holding.begin(), holding.end());
@@ -1182,7 +1183,7 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
       else
         said << ": none of its polygons is large enough to cut space (" << least_area << " m² or more), and all ";
       said << split.detail_triangles - split.curved << " triangles are detail, drawn in " << drawn_in
-           << " they cross; the search sees through detail, the pictures show it";
+           << " they cross; the search sees through detail, the pictures show it, the walker stops at it";
       out.warnings.push_back(said.str());
     }
   }

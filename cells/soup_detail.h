@@ -21,7 +21,8 @@
 // objects (compact clusters of a few hundred triangles, each with its own box), by depth,
 // as furniture is (render/scene_view.cpp, render/furniture.h). The search sees through
 // detail (its visible set is conservative there: a cell behind a member is still found),
-// and the picture is exact.
+// the picture is exact, and the walker stops at it as at a wall (CellComplex::detail_boxes,
+// visibility/walker.h).
 #pragma once
 
 #include <cstddef>

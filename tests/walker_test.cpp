@@ -264,3 +264,46 @@ TEST(Walker, RandomMovesNeverEnterASolidOnFreedoomMaps) {
     EXPECT_GT(travelled, 30) << file << ":" << map;
   }
 }
+
+// A large soup cuts space by its largest surfaces only; the rest is detail, drawn in the
+// cells it crosses (cells/soup_detail.h). A wall that is detail is still a wall to the
+// walker: a move stops at its triangles as at an opaque face, from either side, in walk
+// and fly mode alike, where the same scene decomposed whole stops at the wall's faces.
+TEST(Walker, AWallThatIsASoupsDetailStopsTheEyeAsAFaceWould) {
+  // A floor 10 × 10 m and a wall across it at x = 3, 3 m high.
+  const Mesh floor = avenues::testing::mesh_from({{0, 0, 0}, {10, 0, 0}, {10, 10, 0}, {0, 10, 0}}, {{0, 1, 2, 3}});
+  const Mesh wall = avenues::testing::mesh_from({{3, 0, 0}, {3, 10, 0}, {3, 10, 3}, {3, 0, 3}}, {{0, 1, 2, 3}});
+  const std::vector<Mesh> meshes{floor, wall};
+  MeshSceneParams split;
+  split.detail_above = 0;
+  split.structural_triangles = 2;  // the floor only
+  const CellComplex detail = build_mesh_scene(meshes, split), whole = build_mesh_scene(meshes);
+  ASSERT_FALSE(detail.objects.empty()) << "the wall is detail";
+  ASSERT_TRUE(whole.objects.empty()) << "the wall cuts space";
+  ASSERT_EQ(detail.detail_start.size(), detail.cells.size() + 1);
+  EXPECT_EQ(detail.detail_boxes.size(), detail.objects.size());
+  for (const CellComplex* c : {&detail, &whole}) {
+    SCOPED_TRACE(c == &detail ? "the wall as detail" : "the wall cutting space");
+    const Vec3 a{1, 5, 1.6}, b{5, 5, 1.6};
+    const SegmentCast across = cast_segment(*c, c->locate(a).cell, a, b);
+    EXPECT_TRUE(across.blocked);
+    EXPECT_NEAR(across.t, 0.5, 1e-9);
+    EXPECT_NEAR(across.normal.x, 1, 1e-9) << "out of the free space the segment leaves";
+    const SegmentCast back = cast_segment(*c, c->locate(b).cell, b, a);
+    EXPECT_TRUE(back.blocked) << "from the other side";
+    EXPECT_NEAR(back.t, 0.5, 1e-9);
+    EXPECT_NEAR(back.normal.x, -1, 1e-9);
+    EXPECT_FALSE(cast_segment(*c, c->locate(a).cell, a, {2, 9, 1.6}).blocked) << "along the wall";
+    EXPECT_FALSE(cast_segment(*c, c->locate(a).cell, a, {4, 5, 4.6}).blocked) << "over its top";
+    for (MoveMode mode : {MoveMode::Walk, MoveMode::Fly}) {
+      Walker w(*c, a);
+      w.set_mode(mode);
+      walk_towards(w, {6, 5}, 200);
+      EXPECT_LT(w.eye().x, 3 - w.options().clearance + 1e-9) << to_string(mode);
+      EXPECT_GT(w.eye().x, 3 - w.options().clearance - 0.06) << to_string(mode) << ": it walked up to the wall";
+    }
+  }
+  // A segment starting on the detail wall's plane leaves it, either way.
+  const Vec3 on{3, 5, 1.6};
+  EXPECT_FALSE(cast_segment(detail, detail.locate(on).cell, on, {1, 5, 1.6}).blocked);
+}

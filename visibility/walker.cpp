@@ -22,6 +22,39 @@ Vec3 unit(Vec3 v) {
   return l > 0 ? (1.0 / l) * v : Vec3{};
 }
 
+/// Where segment a + t·d, t in (t0, t1), first meets a triangle of `cell`'s detail
+/// (CellComplex::detail_boxes): its t (HUGE_VAL for none) and the triangle's normal turned
+/// along d (as a face's outward normal: out of the free space the segment leaves). A
+/// segment starting on a triangle's plane (within kTol) is leaving it, and passes.
+double detail_hit(const CellComplex& c, CellId cell, Vec3 a, Vec3 d, double t0, double t1, Vec3& normal) {
+  double best = HUGE_VAL;
+  if (size_t(cell) + 1 >= c.detail_start.size()) return best;
+  Box3 span;
+  span.add(a + t0 * d), span.add(a + std::min(t1, 1.0) * d);
+  for (int32_t i = c.detail_start[size_t(cell)]; i < c.detail_start[size_t(cell) + 1]; ++i) {
+    const CellComplex::DetailBox& db = c.detail_boxes[size_t(i)];
+    if (!db.box.meets(span)) continue;
+    const Mesh& m = *c.objects[size_t(db.object)].model;
+    for (const auto& tri : m.triangles) {
+      const Vec3 p0 = m.vertices[size_t(tri[0])], p1 = m.vertices[size_t(tri[1])], p2 = m.vertices[size_t(tri[2])];
+      const Vec3 n = cross(p1 - p0, p2 - p0);
+      const double ln = length(n);
+      if (!(ln > 0)) continue;
+      const double da = dot(n, a - p0) / ln, rate = dot(n, d) / ln;
+      if (std::fabs(da) <= kTol || !(std::fabs(rate) > 0)) continue;
+      const double t = -da / rate;
+      if (!(t >= t0 && t <= t1 && t < best)) continue;
+      const Vec3 q = a + t * d;
+      // Inside the triangle: on the same side of each edge as the normal.
+      if (dot(cross(p1 - p0, q - p0), n) < 0 || dot(cross(p2 - p1, q - p1), n) < 0 || dot(cross(p0 - p2, q - p2), n) < 0)
+        continue;
+      best = t;
+      normal = (rate > 0 ? 1.0 : -1.0) * ((1 / ln) * n);
+    }
+  }
+  return best;
+}
+
 }  // namespace
 
 const char* to_string(MoveMode m) { return m == MoveMode::Walk ? "walk" : "fly"; }
@@ -67,6 +100,18 @@ SegmentCast cast_segment(const CellComplex& complex, CellId from, Vec3 a, Vec3 b
       r.cell = cell;
       r.normal = -1.0 * solid.normal;  // as a face's: out of the free space it bounds
       return r;
+    }
+    // A large soup's detail in this cell (a wall or slab that cuts no space) stops it too.
+    if (!complex.detail_boxes.empty()) {
+      Vec3 normal;
+      const double hit = detail_hit(complex, cell, a, d, t, std::min(t_exit, 1.0), normal);
+      if (hit < HUGE_VAL) {
+        r.t = hit;
+        r.blocked = true;
+        r.cell = cell;
+        r.normal = normal;
+        return r;
+      }
     }
     if (!(t_exit < 1)) {
       r.t = 1;

@@ -17,7 +17,9 @@
 // are refused: walking keeps to the floors.
 // Fly mode: any move through portals (windows too), still never into a solid.
 // A curved solid that the cells run through (CellComplex::detail_solids) stops a move
-// where it enters its surface, as a face does.
+// where it enters its surface, as a face does; so does a triangle of a large soup's detail
+// (CellComplex::detail_boxes: the walls, slabs and members that were left out of cutting
+// space so that it decomposes in seconds), from either side.
 //
 // Both keep `clearance` between the eye and a wall ahead (the segment is tested that much
 // further along its direction) and, sideways, along the four horizontal axes, so that a
@@ -42,7 +44,8 @@ struct SegmentCast {
 };
 
 /// Walks the segment a→b from `from` (a cell holding a) through the portals, stopping at the
-/// first opaque face, or where it first enters one of the complex's detail solids.
+/// first opaque face, where it first enters one of the complex's detail solids, or at the
+/// first triangle of a cell's detail it crosses (one it starts on, it leaves).
 /// Conservative: where rounding cannot tell a portal from a wall, a wall.
 SegmentCast cast_segment(const CellComplex& complex, CellId from, Vec3 a, Vec3 b);
 
