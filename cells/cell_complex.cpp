@@ -161,26 +161,18 @@ void lay_out_hulls(CellComplex::PortalTable& t) {
         least = std::min(least, t.seen[i].portal);
         for (size_t k = 0; k < t.seen[i].corners; ++k) points.push_back(t.corners[size_t(t.seen[i].corner0) + k]);
       }
-      // Andrew's monotone chain, counter-clockwise in (u, v); points on a side are left out.
-      std::sort(points.begin(), points.end(), [&](Vec3 a, Vec3 b) {
-        const Vec2 p = uv(a), q = uv(b);
-        return p.x != q.x ? p.x < q.x : p.y < q.y;
-      });
-      points.erase(std::unique(points.begin(), points.end(), [](Vec3 a, Vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }),
-                   points.end());
-      std::vector<Vec3> hull(2 * points.size() + 1);
-      size_t k = 0;
-      auto turn = [&](Vec3 o, Vec3 a, Vec3 b) { return cross(uv(a) - uv(o), uv(b) - uv(o)); };
-      for (size_t i = 0; i < points.size(); ++i) {
-        while (k >= 2 && turn(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
-        hull[k++] = points[i];
+      // Their convex hull (core/geometry.h), counter-clockwise in (u, v), back in 3D: points
+      // on a side are left out.
+      std::map<std::pair<double, double>, Vec3> at;  // (u, v) -> the corner there
+      std::vector<Vec2> flat;
+      for (Vec3 q : points)
+        if (const Vec2 f = uv(q); at.try_emplace({f.x, f.y}, q).second) flat.push_back(f);
+      std::vector<Vec3> hull;
+      for (Vec2 f : convex_hull(std::move(flat))) hull.push_back(at.at({f.x, f.y}));
+      if (hull.size() < 3) {  // no area (rounding): the portals stay as they are, each its own
+        for (size_t i : entries) t.hulls.push_back(t.seen[i]);
+        continue;
       }
-      for (size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
-        while (k >= lower && turn(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
-        hull[k++] = points[i];
-      }
-      hull.resize(k > 1 ? k - 1 : k);
-      if (hull.size() < 3) continue;  // no area: the face's portals stay as they are
       // Counter-clockwise in (u, v) is anticlockwise about the dropped axis's positive
       // direction; the corners must turn about n, into `other`.
       const double axis = drop == 0 ? n.x : drop == 1 ? n.y : n.z;

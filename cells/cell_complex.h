@@ -281,7 +281,8 @@ struct CellComplex {
     std::vector<int32_t> face_hulls;
     /// A face's portals into each other cell as one: their convex hull in the face's plane
     /// (its corners some of theirs, in `corners`; `portal` the least of theirs; `first`
-    /// true, the plane's normal into `other`). A soup's cell face is cut into many convex
+    /// true, the plane's normal into `other`), or where their hull has no area (rounding),
+    /// each of them as in `seen`. A soup's cell face is cut into many convex
     /// portals around the surfaces that cover parts of it (a slab's many openings onto the
     /// cell below: hundreds); the hull search, which joins whatever reaches a cell into its
     /// hull anyway, clips a mask to their hull once instead of to each (traverse.h).
