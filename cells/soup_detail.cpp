@@ -215,7 +215,11 @@ SoupSplit split_detail(const std::vector<SoupTriangle>& soup, const std::vector<
   std::vector<bool> structural(surfaces.size(), false);
   size_t taken = 0;
   for (size_t k : order) {
-    if (taken + surfaces[k].triangles > budget || surfaces[k].area < least_area) break;
+    if (surfaces[k].area < least_area) break;
+    // A surface of more triangles than the whole budget (a floor tessellated into tiles)
+    // could never cut: passed over, so that it does not leave the whole soup as detail.
+    if (surfaces[k].triangles > budget) continue;
+    if (taken + surfaces[k].triangles > budget) break;
     taken += surfaces[k].triangles;
     structural[k] = true;
     if (surfaces[k].area > 0) s.smallest_structural = surfaces[k].area;

@@ -55,7 +55,8 @@ bool is_curved(const ClosedSolid& solid, size_t directions);
 /// With at most `above` triangles of non-zero area, none is detail. With more, the
 /// surfaces (`surface`: one number per triangle, shared by the triangles of one surface,
 /// flat_surfaces' or the input polygons) of at least `least_area` [m²] are taken largest
-/// area first, ties by number, while their triangles with area number at most `budget`;
+/// area first, ties by number, while their triangles with area number at most `budget`
+/// (passing over a surface of more triangles than the whole budget, which never could);
 /// the triangles of every other surface are detail. (A surface smaller than `least_area`
 /// hides too little to be worth the cells its plane makes: a smooth surface's facets, a
 /// bolt. A soup of such surfaces alone cuts no space at all; a sculpture subdivided into a

@@ -202,10 +202,20 @@ TEST(SoupDetail, AWallsFaceCutsSpaceWholeOrNotAtAll) {
   size_t face_detail = 0;
   for (size_t t = 0; t < 6; ++t) face_detail += alone.detail[t];
   EXPECT_EQ(face_detail, 3u) << "ranked one by one, the face would be cut with holes in it";
-  // The budget takes a surface whole or not at all: 7 triangles leave the face out.
-  const SoupSplit tight = split_detail(soup, surface, 0, 6, 0.0);
-  for (size_t t = 0; t < 7; ++t) EXPECT_TRUE(tight.detail[t]) << "triangle " << t;
-  EXPECT_EQ(tight.structural, 0u) << "the largest surface does not fit, so none smaller is taken";
+  // The budget takes a surface whole or not at all. Of 7 triangles: the face, and then the
+  // wall would make 8, so nothing smaller is taken.
+  const SoupSplit seven = split_detail(soup, surface, 0, 7, 0.0);
+  for (size_t t = 0; t < 7; ++t) EXPECT_FALSE(seven.detail[t]) << "triangle " << t;
+  EXPECT_TRUE(seven.detail[7]);
+  EXPECT_TRUE(seven.detail[8]);
+  EXPECT_EQ(seven.structural, 7u);
+  // Of 6: the face alone is more than the whole budget and is passed over (it never could
+  // cut); the surfaces after it are taken.
+  const SoupSplit six = split_detail(soup, surface, 0, 6, 0.0);
+  for (size_t t = 0; t < 7; ++t) EXPECT_TRUE(six.detail[t]) << "triangle " << t;
+  EXPECT_FALSE(six.detail[7]);
+  EXPECT_FALSE(six.detail[8]);
+  EXPECT_EQ(six.structural, 2u);
 }
 
 // A finely faceted object alone (a sculpture subdivided into a quarter of a million
