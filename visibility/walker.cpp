@@ -22,7 +22,7 @@ Vec3 unit(Vec3 v) {
   return l > 0 ? (1.0 / l) * v : Vec3{};
 }
 
-/// Where segment a + t·d, t in (t0, t1), first meets a triangle of `cell`'s detail
+/// Where segment a + t·d, t in [t0, t1], first meets a triangle of `cell`'s detail
 /// (CellComplex::detail_boxes): its t (HUGE_VAL for none) and the triangle's normal turned
 /// along d (as a face's outward normal: out of the free space the segment leaves). A
 /// segment starting on a triangle's plane (within kTol) is leaving it, and passes.
