@@ -317,21 +317,21 @@ class Traversal {
     Cone cone;  // made when the first portal not seen edge-on wants it (a plan's cells may have none)
     bool cone_made = false;
     Facing fc;
+    auto consider = [&](const Seen& p) {
+      if (p.portal == via || !facing(p, fc)) return;
+      if (!seen_edge_on(p)) {
+        if (!cone_made) cone = cone_planes(mask), cone_made = true;
+        if (surely_outside(cone, p)) return;
+      }
+      f(p, fc);
+    };
     const int32_t first_face = t.cell_faces[size_t(cell)], end_face = t.cell_faces[size_t(cell) + 1];
     for (int32_t face = first_face; face < end_face; ++face) {
       // The hull search in floating point: a face's portals into one cell as their hull
       // (PortalTable::hulls), where it has them. What passes the hull holds all that passes
       // each, and the pieces would have been joined into their hull in that cell anyway.
       if (hull_ && std::is_floating_point_v<T> && t.face_hulls[size_t(face)] < t.face_hulls[size_t(face) + 1]) {
-        for (int32_t i = t.face_hulls[size_t(face)]; i < t.face_hulls[size_t(face) + 1]; ++i) {
-          const Seen& h = t.hulls[size_t(i)];
-          if (h.portal == via || !facing(h, fc)) continue;
-          if (!seen_edge_on(h)) {
-            if (!cone_made) cone = cone_planes(mask), cone_made = true;
-            if (surely_outside(cone, h)) continue;
-          }
-          f(h, fc);
-        }
+        for (int32_t i = t.face_hulls[size_t(face)]; i < t.face_hulls[size_t(face) + 1]; ++i) consider(t.hulls[size_t(i)]);
         continue;
       }
       const Seen* ps = t.seen.data() + t.face_seen[size_t(face)];
@@ -341,14 +341,7 @@ class Traversal {
         const size_t k = size_t(face - first_face);
         if (cl.prism && k < cl.footprint.size()) side_range(cl, k, ps, hi, mask, lo, hi);
       }
-      for (size_t i = lo; i < hi; ++i) {
-        if (ps[i].portal == via || !facing(ps[i], fc)) continue;
-        if (!seen_edge_on(ps[i])) {
-          if (!cone_made) cone = cone_planes(mask), cone_made = true;
-          if (surely_outside(cone, ps[i])) continue;
-        }
-        f(ps[i], fc);
-      }
+      for (size_t i = lo; i < hi; ++i) consider(ps[i]);
     }
   }
 
