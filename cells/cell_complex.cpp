@@ -133,63 +133,55 @@ uint32_t spread_of(const std::vector<Vec3>& poly) {
   return spread;
 }
 
-/// PortalTable::hulls for the faces of the cell last laid out, and their t.face_hulls.
-void lay_out_hulls(CellComplex::PortalTable& t) {
+/// PortalTable::hulls for the face whose entries in t.seen run from `begin` to its end.
+void lay_out_hulls(CellComplex::PortalTable& t, size_t begin) {
   using Seen = CellComplex::PortalTable::Seen;
-  const size_t faces_end = t.face_seen.size();
-  for (size_t face = size_t(t.cell_faces.back()); face < faces_end; ++face) {
-    t.face_hulls.resize(face, int32_t(t.hulls.size()));
-    t.face_hulls.push_back(int32_t(t.hulls.size()));
-    const size_t begin = size_t(t.face_seen[face]);
-    const size_t end = face + 1 < faces_end ? size_t(t.face_seen[face + 1]) : t.seen.size();
-    std::map<CellId, std::vector<size_t>> into;  // other cell -> its portals' entries
-    for (size_t i = begin; i < end; ++i) into[t.seen[i].other].push_back(i);
-    bool joins = false;
-    for (const auto& [other, entries] : into) joins = joins || entries.size() > 1;
-    if (!joins) continue;
-    for (const auto& [other, entries] : into) {
-      const Seen& lead = t.seen[entries.front()];
-      // The plane's normal into `other`, and the 2D axes that drop its largest component.
-      const Vec3 n = lead.first ? lead.plane.n : -1.0 * lead.plane.n;
-      const int drop = std::fabs(n.x) >= std::fabs(n.y) && std::fabs(n.x) >= std::fabs(n.z) ? 0
-                       : std::fabs(n.y) >= std::fabs(n.z)                                  ? 1
-                                                                                          : 2;
-      auto uv = [&](Vec3 v) { return drop == 0 ? Vec2{v.y, v.z} : drop == 1 ? Vec2{v.z, v.x} : Vec2{v.x, v.y}; };
-      std::vector<Vec3> points;
-      PortalId least = lead.portal;
-      for (size_t i : entries) {
-        least = std::min(least, t.seen[i].portal);
-        for (size_t k = 0; k < t.seen[i].corners; ++k) points.push_back(t.corners[size_t(t.seen[i].corner0) + k]);
-      }
-      // Their convex hull (core/geometry.h), counter-clockwise in (u, v), back in 3D: points
-      // on a side are left out.
-      std::map<std::pair<double, double>, Vec3> at;  // (u, v) -> the corner there
-      std::vector<Vec2> flat;
-      for (Vec3 q : points)
-        if (const Vec2 f = uv(q); at.try_emplace({f.x, f.y}, q).second) flat.push_back(f);
-      std::vector<Vec3> hull;
-      for (Vec2 f : convex_hull(std::move(flat))) hull.push_back(at.at({f.x, f.y}));
-      if (hull.size() < 3) {  // no area (rounding): the portals stay as they are, each its own
-        for (size_t i : entries) t.hulls.push_back(t.seen[i]);
-        continue;
-      }
-      // Counter-clockwise in (u, v) is anticlockwise about the dropped axis's positive
-      // direction; the corners must turn about n, into `other`.
-      const double axis = drop == 0 ? n.x : drop == 1 ? n.y : n.z;
-      if (axis < 0) std::reverse(hull.begin(), hull.end());
-      Seen s;
-      s.plane = lead.first ? lead.plane : Plane{-1.0 * lead.plane.n, -lead.plane.d};
-      s.portal = least;
-      s.other = other;
-      s.corner0 = int32_t(t.corners.size());
-      s.corners = uint32_t(hull.size());
-      s.spread = spread_of(hull);
-      s.first = true;
-      t.corners.insert(t.corners.end(), hull.begin(), hull.end());
-      t.hulls.push_back(s);
+  std::map<CellId, std::vector<size_t>> into;  // other cell -> its portals' entries
+  for (size_t i = begin; i < t.seen.size(); ++i) into[t.seen[i].other].push_back(i);
+  bool joins = false;
+  for (const auto& [other, entries] : into) joins = joins || entries.size() > 1;
+  if (!joins) return;
+  for (const auto& [other, entries] : into) {
+    const Seen& lead = t.seen[entries.front()];
+    // The plane's normal into `other`, and the 2D axes that drop its largest component.
+    const Vec3 n = lead.first ? lead.plane.n : -1.0 * lead.plane.n;
+    const int drop = std::fabs(n.x) >= std::fabs(n.y) && std::fabs(n.x) >= std::fabs(n.z) ? 0
+                     : std::fabs(n.y) >= std::fabs(n.z)                                  ? 1
+                                                                                        : 2;
+    auto uv = [&](Vec3 v) { return drop == 0 ? Vec2{v.y, v.z} : drop == 1 ? Vec2{v.z, v.x} : Vec2{v.x, v.y}; };
+    std::vector<Vec3> points;
+    PortalId least = lead.portal;
+    for (size_t i : entries) {
+      least = std::min(least, t.seen[i].portal);
+      for (size_t k = 0; k < t.seen[i].corners; ++k) points.push_back(t.corners[size_t(t.seen[i].corner0) + k]);
     }
+    // Their convex hull (core/geometry.h), counter-clockwise in (u, v), back in 3D: points
+    // on a side are left out.
+    std::map<std::pair<double, double>, Vec3> at;  // (u, v) -> the corner there
+    std::vector<Vec2> flat;
+    for (Vec3 q : points)
+      if (const Vec2 f = uv(q); at.try_emplace({f.x, f.y}, q).second) flat.push_back(f);
+    std::vector<Vec3> hull;
+    for (Vec2 f : convex_hull(std::move(flat))) hull.push_back(at.at({f.x, f.y}));
+    if (hull.size() < 3) {  // no area (rounding): the portals stay as they are, each its own
+      for (size_t i : entries) t.hulls.push_back(t.seen[i]);
+      continue;
+    }
+    // Counter-clockwise in (u, v) is anticlockwise about the dropped axis's positive
+    // direction; the corners must turn about n, into `other`.
+    const double axis = drop == 0 ? n.x : drop == 1 ? n.y : n.z;
+    if (axis < 0) std::reverse(hull.begin(), hull.end());
+    Seen s;
+    s.plane = lead.first ? lead.plane : Plane{-1.0 * lead.plane.n, -lead.plane.d};
+    s.portal = least;
+    s.other = other;
+    s.corner0 = int32_t(t.corners.size());
+    s.corners = uint32_t(hull.size());
+    s.spread = spread_of(hull);
+    s.first = true;
+    t.corners.insert(t.corners.end(), hull.begin(), hull.end());
+    t.hulls.push_back(s);
   }
-  t.face_hulls.resize(faces_end, int32_t(t.hulls.size()));
 }
 
 }  // namespace
@@ -213,6 +205,7 @@ CellComplex::PortalTable lay_out_portals(const CellComplex& c) {
     const size_t first_seen = t.seen.size();
     for (const Face& f : cells[size_t(id)].faces) {
       t.face_seen.push_back(int32_t(t.seen.size()));
+      t.face_hulls.push_back(int32_t(t.hulls.size()));
       for (PortalId pi : f.portals) {
         const Portal& p = portals[size_t(pi)];
         CellComplex::PortalTable::Seen s;
@@ -227,8 +220,8 @@ CellComplex::PortalTable lay_out_portals(const CellComplex& c) {
         at[size_t(pi)] = int32_t(t.seen.size());
         t.seen.push_back(s);
       }
+      if (!cells[size_t(id)].prism) lay_out_hulls(t, size_t(t.face_seen.back()));
     }
-    if (!cells[size_t(id)].prism) lay_out_hulls(t);
     // The first of each face's portals into one cell, in the order of Cell::portals.
     const int32_t first_face = t.cell_faces.back();
     std::set<std::pair<CellId, size_t>> named;  // (other cell, face)
@@ -244,7 +237,7 @@ CellComplex::PortalTable lay_out_portals(const CellComplex& c) {
   }
   t.cell_faces.push_back(int32_t(t.face_seen.size()));
   t.face_seen.push_back(int32_t(t.seen.size()));
-  t.face_hulls.resize(t.face_seen.size(), int32_t(t.hulls.size()));
+  t.face_hulls.push_back(int32_t(t.hulls.size()));
   t.portal_count = portals.size();
   return t;
 }
