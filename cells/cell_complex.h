@@ -215,7 +215,7 @@ struct CellComplex {
   /// Lays out `portal_table` from the cells and portals as they are.
   void index_portals();
   /// Lists each cell's detail objects (Object::cell, a large soup's: cells/soup_detail.h)
-  /// with their bounds in `detail_boxes`; done by index(), and again where detail is added.
+  /// with their bounds in `detail_boxes`; done by index(), and by add_detail_objects.
   void index_detail();
 
   // --- spatial index (derived; rebuilt by index()) ---

@@ -1140,7 +1140,6 @@ CellComplex build_soup_scene(const std::vector<Mesh>& meshes, const MeshScenePar
     ScopedStageTimer t(out.timings, "detail");
     const std::string source = meshes.size() == 1 && !meshes[0].path.empty() ? meshes[0].path : "the meshes";
     add_detail_objects(out, detail, detail_polygon, source);
-    out.index_detail();
     std::vector<CellId> holding;
     for (const Object& o : out.objects) holding.push_back(o.cell);
     std::sort(holding.begin(), holding.end());

@@ -342,6 +342,7 @@ double add_detail_objects(CellComplex& out, const std::vector<SoupTriangle>& det
       out.objects.push_back(std::move(o));
     }
   }
+  out.index_detail();  // the walker's index of each cell's detail
   return covered;
 }
 

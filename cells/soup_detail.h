@@ -81,7 +81,8 @@ std::vector<int64_t> flat_surfaces(const std::vector<SoupTriangle>& soup, const 
 /// diagonals are no edges; Object::cell that cell; named "detail in cell N" (or "detail in
 /// cell N, part K" where the cell has several), its model's path "`source`: " and that
 /// name. Each model carries the materials of out.materials its triangles use.
-/// Uses out's spatial index (CellComplex::index). Returns the area [m²] the pieces cover.
+/// Uses out's spatial index (CellComplex::index), and lists the detail objects in its
+/// CellComplex::detail_boxes (index_detail). Returns the area [m²] the pieces cover.
 double add_detail_objects(CellComplex& out, const std::vector<SoupTriangle>& detail,
                           const std::vector<int64_t>& polygon, const std::string& source);
 
