@@ -33,9 +33,9 @@ bool line_meets(const Box3& b, Vec3 a, Vec3 d, double t_max) {
   return true;
 }
 
-/// Möller and Trumbore's line–triangle intersection: the line's parameter t and the
-/// barycentric coordinates (u, v) of the point where a + t·d meets the triangle's plane;
-/// false when the line runs parallel to it.
+
+}  // namespace
+
 bool line_plane_hit(const Triangle3& tri, Vec3 a, Vec3 d, double* t, double* u, double* v) {
   const Vec3 e1 = tri[1] - tri[0], e2 = tri[2] - tri[0];
   const Vec3 q = cross(d, e2);
@@ -49,8 +49,6 @@ bool line_plane_hit(const Triangle3& tri, Vec3 a, Vec3 d, double* t, double* u, 
   *t = dot(e2, r) * inv;
   return true;
 }
-
-}  // namespace
 
 double winding_number(const std::vector<Triangle3>& triangles, Vec3 p) {
   double sum = 0;

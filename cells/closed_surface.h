@@ -32,6 +32,11 @@ using Triangle3 = std::array<Vec3, 3>;
 /// turned the other way, about 0 outside both or inside one of each.
 double winding_number(const std::vector<Triangle3>& triangles, Vec3 p);
 
+/// Möller and Trumbore's line–triangle intersection: the line's parameter t and the
+/// barycentric coordinates (u, v) of the point where a + t·d meets the triangle's plane;
+/// false when the line runs parallel to it.
+bool line_plane_hit(const Triangle3& tri, Vec3 a, Vec3 d, double* t, double* u, double* v);
+
 /// Where a segment first enters a closed surface.
 struct SurfaceEntry {
   double t = 1;  ///< the fraction of the segment before it, in [0, 1]

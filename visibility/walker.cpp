@@ -35,19 +35,15 @@ double detail_hit(const CellComplex& c, CellId cell, Vec3 a, Vec3 d, double t0, 
     const CellComplex::DetailBox& db = c.detail_boxes[size_t(i)];
     if (!db.box.meets(span)) continue;
     const Mesh& m = *c.objects[size_t(db.object)].model;
-    for (const auto& tri : m.triangles) {
-      const Vec3 p0 = m.vertices[size_t(tri[0])], p1 = m.vertices[size_t(tri[1])], p2 = m.vertices[size_t(tri[2])];
-      const Vec3 n = cross(p1 - p0, p2 - p0);
-      const double ln = length(n);
-      if (!(ln > 0)) continue;
-      const double da = dot(n, a - p0) / ln, rate = dot(n, d) / ln;
-      if (std::fabs(da) <= kTol || !(std::fabs(rate) > 0)) continue;
-      const double t = -da / rate;
-      if (!(t >= t0 && t <= t1 && t < best)) continue;
-      const Vec3 q = a + t * d;
-      // Inside the triangle: on the same side of each edge as the normal.
-      if (dot(cross(p1 - p0, q - p0), n) < 0 || dot(cross(p2 - p1, q - p1), n) < 0 || dot(cross(p0 - p2, q - p2), n) < 0)
-        continue;
+    for (const auto& k : m.triangles) {
+      const Triangle3 tri{m.vertices[size_t(k[0])], m.vertices[size_t(k[1])], m.vertices[size_t(k[2])]};
+      double t, u, v;
+      if (!line_plane_hit(tri, a, d, &t, &u, &v)) continue;
+      // Edges and corners count, as for a detail solid (ClosedSurface::entry).
+      if (!(t >= t0 && t <= t1 && t < best && u >= 0 && v >= 0 && u + v <= 1)) continue;
+      const Vec3 n = cross(tri[1] - tri[0], tri[2] - tri[0]);
+      const double ln = length(n), rate = dot(n, d) / ln;
+      if (!(std::fabs(t * rate) > kTol)) continue;  // the start on its plane: leaving it
       best = t;
       normal = (rate > 0 ? 1.0 : -1.0) * ((1 / ln) * n);
     }
